@@ -1,0 +1,79 @@
+# yfdem: build, demo, tests, benchmarks.
+#
+#   make          build ./yfdem
+#   make demo     install what is missing (tools/install-deps), build, run the main example deck
+#   make check    install what tests need, build, run every Check suite through one runner
+#   make bench    element-steps per second, thread scaling, bytes per element
+#
+# Required flags live in YF_CFLAGS so that `make CFLAGS=-O0` changes optimisation only.
+# -ffp-contract=off: no fused multiply-add, so results do not depend on the CPU (and match the
+# Y2D references, which were computed without FMA).
+
+CC      ?= gcc
+PKGS    := hdf5-serial gsl
+PKGCF   := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKGLIB  := $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+CFLAGS  ?= -O2 -g
+YF_CFLAGS := -std=c11 -D_GNU_SOURCE -fopenmp -ffp-contract=off -Wall -Wextra -Wshadow \
+             -Wno-unused-parameter -Isrc $(PKGCF)
+LDLIBS  := $(PKGLIB) -lmetis -lm
+CHECKLIB := $(shell pkg-config --libs check 2>/dev/null)
+
+BUILD   := build
+SRC     := $(filter-out src/main.c,$(wildcard src/*.c))
+OBJ     := $(SRC:src/%.c=$(BUILD)/%.o)
+TSRC    := $(wildcard tests/check_*.c)
+TOBJ    := $(TSRC:tests/%.c=$(BUILD)/tests/%.o)
+
+.PHONY: all demo check test deps deps-test bench clean asan
+
+all: yfdem
+
+$(BUILD)/%.o: src/%.c $(wildcard src/*.h src/*.def) | $(BUILD)
+	$(CC) $(YF_CFLAGS) $(CFLAGS) -MMD -c $< -o $@
+
+$(BUILD)/libyf.a: $(OBJ)
+	$(AR) rcs $@ $^
+
+yfdem: $(BUILD)/main.o $(BUILD)/libyf.a
+	$(CC) $(YF_CFLAGS) $(CFLAGS) $^ -o $@ $(LDLIBS)
+
+$(BUILD):
+	mkdir -p $(BUILD)/tests
+
+# The runner calls every `Suite *NAME_suite(void)` defined in tests/check_*.c.
+$(BUILD)/tests/suites.h: $(TSRC) | $(BUILD)
+	grep -ho '^Suite \*[a-z0-9_]*_suite(void)' $(TSRC) | sed 's/^Suite \*\([a-z0-9_]*\)_suite(void)/YF_SUITE(\1)/' > $@.tmp
+	mv $@.tmp $@
+
+$(BUILD)/tests/%.o: tests/%.c $(BUILD)/tests/suites.h $(wildcard src/*.h tests/*.h)
+	$(CC) $(YF_CFLAGS) $(CFLAGS) -I$(BUILD)/tests -Itests -c $< -o $@
+
+$(BUILD)/check_yfdem: $(TOBJ) $(BUILD)/libyf.a
+	$(CC) $(YF_CFLAGS) $(CFLAGS) $^ -o $@ $(CHECKLIB) $(LDLIBS)
+
+deps:
+	tools/install-deps
+
+deps-test:
+	tools/install-deps --test
+
+demo: deps
+	$(MAKE) yfdem
+	./yfdem -in decks/beam.deck -summary demo_summary.json
+
+# Tests run at most 2 threads (the machines have 2 cores).
+check: deps-test
+	$(MAKE) yfdem $(BUILD)/check_yfdem
+	OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem
+
+test: yfdem $(BUILD)/check_yfdem
+	OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem
+
+bench: yfdem
+	tools/bench
+
+clean:
+	rm -rf $(BUILD) yfdem
+
+-include $(wildcard $(BUILD)/*.d)

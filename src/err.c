@@ -1,0 +1,129 @@
+/* err.c: the single exit path for failures (see err.h).
+ *
+ * Messages go to stderr (and to the log through the cleanup hook, which main installs).  The last
+ * message is kept for the summary JSON.  The cleanup hook runs at most once, so a failure inside
+ * cleanup cannot loop.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "err.h"
+
+static char last_msg[2048];
+static YfCleanupFn cleanup_fn;
+static int in_cleanup;
+
+const char *yf_status_word(int code) {
+  switch (code) {
+  case YF_EXIT_OK: return "ok";
+  case YF_EXIT_DECK: return "deck_error";
+  case YF_EXIT_IO: return "io_error";
+  case YF_EXIT_NUMERIC: return "numerical_failure";
+  case YF_EXIT_INTERRUPT: return "interrupted";
+  default: return "internal_error";
+  }
+}
+
+void yf_set_cleanup(YfCleanupFn fn) { cleanup_fn = fn; }
+const char *yf_last_message(void) { return last_msg; }
+
+static void finish(int code) __attribute__((noreturn));
+static void finish(int code) {
+  fprintf(stderr, "%s\n", last_msg);
+  fflush(stderr);
+  if (cleanup_fn && !in_cleanup) {
+    in_cleanup = 1;
+    cleanup_fn(code, last_msg);
+  }
+  exit(code);
+}
+
+/* Compose "FILE:LINE: error: " + message into last_msg. */
+static void compose(const YfLoc *loc, const char *kind, const char *fmt, va_list ap) {
+  int k = 0;
+  if (loc && loc->file)
+    k = snprintf(last_msg, sizeof last_msg, "%s:%d: %s: ", loc->file, loc->line, kind);
+  else
+    k = snprintf(last_msg, sizeof last_msg, "%s: ", kind);
+  if (k < 0) k = 0;
+  if ((size_t)k < sizeof last_msg) vsnprintf(last_msg + k, sizeof last_msg - (size_t)k, fmt, ap);
+}
+
+void yf_deck_error(const YfLoc *loc, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  compose(loc, "error", fmt, ap);
+  va_end(ap);
+  finish(YF_EXIT_DECK);
+}
+
+void yf_io_error(const YfLoc *loc, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  compose(loc, "error", fmt, ap);
+  va_end(ap);
+  finish(YF_EXIT_IO);
+}
+
+void yf_numeric_error(long step, const char *fmt, ...) {
+  int k = snprintf(last_msg, sizeof last_msg, "error: numerical failure at step %ld: ", step);
+  va_list ap;
+  va_start(ap, fmt);
+  if (k > 0 && (size_t)k < sizeof last_msg) vsnprintf(last_msg + k, sizeof last_msg - (size_t)k, fmt, ap);
+  va_end(ap);
+  finish(YF_EXIT_NUMERIC);
+}
+
+void yf_exit_with(int code, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(last_msg, sizeof last_msg, fmt, ap);
+  va_end(ap);
+  finish(code);
+}
+
+void yf_warn(const YfLoc *loc, const char *fmt, ...) {
+  char buf[2048];
+  int k = 0;
+  if (loc && loc->file) k = snprintf(buf, sizeof buf, "%s:%d: warning: ", loc->file, loc->line);
+  else k = snprintf(buf, sizeof buf, "warning: ");
+  va_list ap;
+  va_start(ap, fmt);
+  if (k > 0 && (size_t)k < sizeof buf) vsnprintf(buf + k, sizeof buf - (size_t)k, fmt, ap);
+  va_end(ap);
+  fprintf(stderr, "%s\n", buf);
+}
+
+void yf_assert_fail(const char *expr, const char *file, int line) {
+  snprintf(last_msg, sizeof last_msg, "internal error: assertion '%s' failed at %s:%d (a bug in yfdem)",
+           expr, file, line);
+  finish(YF_EXIT_INTERNAL);
+}
+
+static void oom(size_t n, const char *what) __attribute__((noreturn));
+static void oom(size_t n, const char *what) {
+  snprintf(last_msg, sizeof last_msg, "error: out of memory allocating %zu bytes for %s", n, what);
+  finish(YF_EXIT_IO);
+}
+
+void *yf_malloc(size_t n, const char *what) {
+  void *p = malloc(n ? n : 1);
+  if (!p) oom(n, what);
+  return p;
+}
+void *yf_calloc(size_t n, size_t size, const char *what) {
+  void *p = calloc(n ? n : 1, size ? size : 1);
+  if (!p) oom(n * size, what);
+  return p;
+}
+void *yf_realloc(void *p, size_t n, const char *what) {
+  void *q = realloc(p, n ? n : 1);
+  if (!q) oom(n, what);
+  return q;
+}
+char *yf_strdup(const char *s) {
+  size_t n = strlen(s) + 1;
+  char *p = yf_malloc(n, "string");
+  memcpy(p, s, n);
+  return p;
+}

@@ -1,0 +1,82 @@
+/* sim.h: a whole simulation = the model + what acts on it + how it is run and written.
+ *
+ * YfSim is what every command handler receives.  The step loop (run.c) reads it; the modules
+ * that add physics (bc.c for supports and loads, joint.c for fracture, contact.c for contact)
+ * keep their own state structs inside it and are called at fixed stages of the step.
+ */
+#ifndef YF_SIM_H
+#define YF_SIM_H
+#include <stdio.h>
+#include "model.h"
+
+/* Energies [J/m], accumulated or evaluated as stated. */
+typedef struct {
+  double kinetic;        /* sum m |v|^2 / 2 with half-step velocities (Y2D's definition) */
+  double strain;         /* sum A_c/2 T:E without the viscous part                       */
+  double external_work;  /* work of loads, gravity and prescribed motions, accumulated  */
+  double damping;        /* dissipated by viscous and mass damping, accumulated         */
+  double joint_dissipated;/* fracture (joint.c)                                           */
+  double contact;        /* contact potential energy (contact.c)                         */
+  double friction;       /* dissipated by friction (contact.c)                           */
+} YfEnergy;
+
+/* Time history: a factor phi(t) multiplying an amplitude. */
+enum { YF_HIST_CONSTANT = 0, YF_HIST_RAMP, YF_HIST_TABLE, YF_HIST_SINE };
+typedef struct {
+  char name[YF_NAME_MAX];
+  int kind;
+  double t0, t1;        /* ramp: 0 before t0, linear to 1 at t1, 1 after; sine: period t0 */
+  int npts;             /* table: points, interpolated linearly, end values held outside  */
+  double *t, *v;
+} YfHistory;
+
+struct YfBc;      /* bc.c      */
+struct YfOutput;  /* output.c  */
+struct YfJoints;  /* joint.c   */
+struct YfContact; /* contact.c */
+struct YfDeck;
+
+typedef struct YfSim {
+  YfModel model;
+  struct YfDeck *deck;
+
+  /* time stepping */
+  long step;            /* completed steps                                                  */
+  double time;          /* [s]                                                              */
+  double dt;            /* [s]; 0 until set                                                 */
+  int dt_auto;          /* 1: dt = safety * stable limit, recomputed at each run            */
+  double dt_safety;     /* safety factor of auto (default 0.5)                              */
+  double dt_limit;      /* last computed stable limit [s] and what limits it                */
+  char dt_limiter[96];
+  double gx, gy;        /* gravity [m/s^2]                                                  */
+  double mass_damping;  /* alpha [1/s]: force -alpha m v (dynamic relaxation), 0 = off      */
+
+  int nhist;
+  YfHistory *hist;
+
+  struct YfBc *bc;
+  struct YfOutput *out;
+  struct YfJoints *joints;
+  struct YfContact *contact;
+
+  YfEnergy energy;
+  long thermo_every;    /* thermo line every N steps (0: only at start and end of a run)    */
+  double wall_s;        /* wall time spent in runs [s]                                      */
+  double elem_steps;    /* triangles x steps done (for element_steps_per_s)                 */
+  int threads;
+
+  /* options */
+  char summary_path[1024];
+  FILE *log;            /* -log FILE (also gets every message), NULL if none                */
+  int progress;         /* progress bar on stderr when it is a terminal                     */
+} YfSim;
+
+void sim_init(YfSim *s);
+void sim_free(YfSim *s);
+int sim_find_history(const YfSim *s, const char *name);
+double history_value(const YfHistory *h, double t);
+
+/* Print to stdout and the log. */
+void sim_printf(YfSim *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+#endif
