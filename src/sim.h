@@ -8,6 +8,7 @@
 #define YF_SIM_H
 #include <stdio.h>
 #include "model.h"
+#include "err.h"
 
 /* Energies [J/m], accumulated or evaluated as stated. */
 typedef struct {
@@ -48,6 +49,7 @@ typedef struct YfSim {
   double dt_safety;     /* safety factor of auto (default 0.5)                              */
   double dt_limit;      /* last computed stable limit [s] and what limits it                */
   char dt_limiter[96];
+  YfLoc dt_loc;         /* where the time step was set (for the 'above the limit' error)    */
   double gx, gy;        /* gravity [m/s^2]                                                  */
   double mass_damping;  /* alpha [1/s]: force -alpha m v (dynamic relaxation), 0 = off      */
 
@@ -64,6 +66,9 @@ typedef struct YfSim {
   double wall_s;        /* wall time spent in runs [s]                                      */
   double elem_steps;    /* triangles x steps done (for element_steps_per_s)                 */
   int threads;
+
+  volatile int interrupted; /* set by SIGINT/SIGTERM; the run stops after the current step */
+  long run_end_step;    /* last step of the current run command                            */
 
   /* options */
   char summary_path[1024];

@@ -1,0 +1,398 @@
+/* bc.c: what holds and drives the scene from outside: fixed supports, prescribed velocities and
+ * displacements, point and edge loads, initial velocities, each with an optional time history.
+ *
+ * Every item is a row of one table (YfBcItem) whose kind says how it acts; adding a kind means
+ * one parse branch in cmd_fix/cmd_load and one case in the apply functions.  Items are resolved
+ * to node lists (and boundary edges for distributed loads) at the start of each run, through the
+ * group masks, so nodes created by joint insertion (copies of a shared node) are included.
+ *
+ * Order inside a step (run.c): loads are added to the nodal forces before the update; fixed and
+ * prescribed-velocity components override the velocity after the free update; prescribed
+ * displacements set the position after it moves.  Later items override earlier ones on the same
+ * node component.  The work of loads and of constraint reactions is accumulated so that the
+ * energy balance (kinetic + strain = external work - dissipation) can be checked.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "bc.h"
+#include "deck.h"
+#include "err.h"
+#include "mesh.h"
+
+enum { BC_FIXED, BC_VELOCITY, BC_DISPLACEMENT, BC_POINT, BC_TRACTION, BC_PRESSURE };
+
+typedef struct {
+  char id[YF_NAME_MAX];
+  int kind;
+  int group;          /* group index (fixes, edge loads)                          */
+  int has[2];         /* component given (x, y); NULL in the deck leaves it free   */
+  double a[2];        /* amplitude: velocity [m/s], displacement [m], force [N/m], traction [Pa], pressure [Pa] */
+  int hist;           /* history index or -1 (factor 1)                           */
+  int node_id;        /* point load: user node id, or -1 when given by position   */
+  double px, py;      /* point load: position for 'at'                            */
+  YfLoc loc;
+  /* resolved at bc_prepare: */
+  int nn, *nodes;     /* nodes acted on                                           */
+  int ne, *edges;     /* boundary edges (2 node indices each), CCW                */
+  double *lf;         /* loads: force applied to each node this step (2 per node)  */
+} YfBcItem;
+
+typedef struct YfBc {
+  int n;
+  YfBcItem *item;
+  unsigned char *flags; /* per node: bit 0 x prescribed, bit 1 y prescribed */
+  int flags_n;
+} YfBc;
+
+static YfBc *bc_get(YfSim *s) {
+  if (!s->bc) s->bc = yf_calloc(1, sizeof(YfBc), "bc");
+  return s->bc;
+}
+
+int bc_count(const YfSim *s) { return s->bc ? s->bc->n : 0; }
+
+static YfBcItem *bc_new(YfSim *s, const YfArgs *a, const char *id) {
+  YfBc *b = bc_get(s);
+  for (int i = 0; i < b->n; i++)
+    if (!strcmp(b->item[i].id, id)) arg_error(a, 0, "ID '%s' is already used (by another fix or load); use unfix/unload first", id);
+  b->item = yf_realloc(b->item, (size_t)(b->n + 1) * sizeof *b->item, "bc items");
+  YfBcItem *it = &b->item[b->n++];
+  memset(it, 0, sizeof *it);
+  snprintf(it->id, sizeof it->id, "%s", id);
+  it->hist = -1;
+  it->node_id = -1;
+  it->loc = a->loc;
+  return it;
+}
+
+static int find_group(YfSim *s, const YfArgs *a, int i) {
+  const char *g = arg_word(a, i, "group");
+  int k = model_group(&s->model, g, 0);
+  if (k < 0) {
+    char list[1024] = "";
+    for (int j = 0; j < s->model.ngroup; j++) {
+      strncat(list, j ? ", " : "", sizeof list - strlen(list) - 1);
+      strncat(list, s->model.group[j].name, sizeof list - strlen(list) - 1);
+    }
+    arg_error(a, i, "unknown group (defined groups: %s)", s->model.ngroup ? list : "none yet");
+  }
+  return k;
+}
+
+/* Optional trailing "history NAME". */
+static int parse_history(YfSim *s, const YfArgs *a, int i) {
+  if (i >= a->n) return -1;
+  if (strcmp(a->w[i], "history")) arg_error(a, i, "unexpected word (expected 'history NAME' or nothing)");
+  const char *h = arg_word(a, i + 1, "history name");
+  int k = sim_find_history(s, h);
+  if (k < 0) arg_error(a, i + 1, "unknown history (define it first with: history NAME constant|ramp|table|sine ...)");
+  if (i + 2 < a->n) arg_error(a, i + 2, "unexpected word after the history name");
+  return k;
+}
+
+/* A component that may be NULL (left free). */
+static void parse_component(const YfArgs *a, int i, const char *what, YfBcItem *it, int c) {
+  if (!strcmp(arg_word(a, i, what), "NULL")) { it->has[c] = 0; return; }
+  it->has[c] = 1;
+  it->a[c] = arg_num(a, i, what);
+}
+
+/* fix ID GROUP fixed x|y|xy
+ * fix ID GROUP velocity VX|NULL VY|NULL [history H]
+ * fix ID GROUP displacement UX|NULL UY|NULL [history H] */
+void cmd_fix(YfSim *s, const YfArgs *a) {
+  arg_count(a, 3, 7);
+  static const char *const styles[] = {"fixed", "velocity", "displacement", NULL};
+  int st = arg_choice(a, 2, "style", styles);
+  int g = find_group(s, a, 1);
+  YfBcItem *it = bc_new(s, a, arg_word(a, 0, "ID"));
+  it->group = g;
+  if (st == 0) {
+    static const char *const dirs[] = {"x", "y", "xy", NULL};
+    arg_count(a, 4, 4);
+    int d = arg_choice(a, 3, "direction", dirs);
+    it->kind = BC_FIXED;
+    it->has[0] = d != 1;
+    it->has[1] = d != 0;
+  } else {
+    arg_count(a, 5, 7);
+    it->kind = st == 1 ? BC_VELOCITY : BC_DISPLACEMENT;
+    parse_component(a, 3, st == 1 ? "vx" : "ux", it, 0);
+    parse_component(a, 4, st == 1 ? "vy" : "uy", it, 1);
+    if (!it->has[0] && !it->has[1]) arg_error(a, 3, "both components are NULL: nothing to prescribe");
+    it->hist = parse_history(s, a, 5);
+  }
+}
+
+static void remove_item(YfSim *s, const YfArgs *a, int pointload) {
+  arg_count(a, 1, 1);
+  YfBc *b = bc_get(s);
+  for (int i = 0; i < b->n; i++) {
+    YfBcItem *it = &b->item[i];
+    int isload = it->kind >= BC_POINT;
+    if (!strcmp(it->id, a->w[0]) && isload == pointload) {
+      free(it->nodes); free(it->edges); free(it->lf);
+      memmove(it, it + 1, (size_t)(b->n - i - 1) * sizeof *it);
+      b->n--;
+      return;
+    }
+  }
+  arg_error(a, 0, "no %s with this ID", pointload ? "load" : "fix");
+}
+
+/* unfix ID */
+void cmd_unfix(YfSim *s, const YfArgs *a) { remove_item(s, a, 0); }
+/* unload ID */
+void cmd_unload(YfSim *s, const YfArgs *a) { remove_item(s, a, 1); }
+
+/* load ID point node NODEID FX FY [history H]
+ * load ID point at X Y FX FY [history H]
+ * load ID GROUP traction TX TY [history H]     (on the group's boundary edges, [Pa] = N/m per m)
+ * load ID GROUP pressure P [history H]          (positive pushes into the body [Pa]) */
+void cmd_load(YfSim *s, const YfArgs *a) {
+  arg_count(a, 3, 9);
+  const char *id = arg_word(a, 0, "ID");
+  if (!strcmp(a->w[1], "point")) {
+    static const char *const how[] = {"node", "at", NULL};
+    int h = arg_choice(a, 2, "point location", how);
+    YfBcItem *it = bc_new(s, a, id);
+    it->kind = BC_POINT;
+    int i = 3;
+    if (h == 0) {
+      it->node_id = (int)arg_int(a, 3, "node id", 0, 2147483647L);
+      i = 4;
+    } else {
+      it->px = arg_num(a, 3, "x");
+      it->py = arg_num(a, 4, "y");
+      i = 5;
+    }
+    it->has[0] = it->has[1] = 1;
+    it->a[0] = arg_num(a, i, "fx");
+    it->a[1] = arg_num(a, i + 1, "fy");
+    it->hist = parse_history(s, a, i + 2);
+    if (h == 0) {
+      int found = 0;
+      for (int k = 0; k < s->model.node.n && !found; k++) found = s->model.node.id[k] == it->node_id;
+      if (!found) arg_error(a, 3, "no node has this id");
+    }
+    return;
+  }
+  static const char *const styles[] = {"traction", "pressure", NULL};
+  int g = find_group(s, a, 1);
+  int st = arg_choice(a, 2, "load style", styles);
+  YfBcItem *it = bc_new(s, a, id);
+  it->group = g;
+  if (st == 0) {
+    it->kind = BC_TRACTION;
+    it->a[0] = arg_num(a, 3, "tx");
+    it->a[1] = arg_num(a, 4, "ty");
+    it->hist = parse_history(s, a, 5);
+  } else {
+    it->kind = BC_PRESSURE;
+    it->a[0] = arg_num(a, 3, "p");
+    it->hist = parse_history(s, a, 4);
+  }
+}
+
+/* velocity GROUP set VX VY    (initial velocity of the group's nodes, now) */
+void cmd_velocity(YfSim *s, const YfArgs *a) {
+  arg_count(a, 4, 4);
+  static const char *const styles[] = {"set", NULL};
+  int g = find_group(s, a, 0);
+  arg_choice(a, 1, "style", styles);
+  double vx = arg_num(a, 2, "vx"), vy = arg_num(a, 3, "vy");
+  YfNodes *n = &s->model.node;
+  uint64_t bit = (uint64_t)1 << g;
+  int cnt = 0;
+  for (int i = 0; i < n->n; i++)
+    if (n->gmask[i] & bit) { n->vx[i] = vx; n->vy[i] = vy; cnt++; }
+  if (!cnt) yf_warn(&a->loc, "velocity: group '%s' has no nodes", a->w[0]);
+}
+
+/* ---------------- resolution and application ---------------- */
+
+static void resolve_nodes(YfSim *s, YfBcItem *it) {
+  YfNodes *n = &s->model.node;
+  free(it->nodes);
+  it->nodes = NULL;
+  it->nn = 0;
+  if (it->kind == BC_POINT) {
+    /* The target node and all its copies (joint insertion) share the load equally. */
+    int target = -1;
+    if (it->node_id >= 0) {
+      for (int i = 0; i < n->n && target < 0; i++)
+        if (n->id[i] == it->node_id) target = i;
+    } else {
+      double best = INFINITY;
+      for (int i = 0; i < n->n; i++) {
+        if (n->m[i] <= 0) continue;
+        double d = (n->x0[i] - it->px) * (n->x0[i] - it->px) + (n->y0[i] - it->py) * (n->y0[i] - it->py);
+        if (d < best) { best = d; target = i; }
+      }
+    }
+    if (target < 0) yf_deck_error(&it->loc, "load '%s': no node to apply it to", it->id);
+    int p = n->parent[target];
+    for (int i = 0; i < n->n; i++)
+      if (n->parent[i] == p && n->m[i] > 0) it->nn++;
+    if (!it->nn) { it->nn = 1; }
+    it->nodes = yf_malloc((size_t)it->nn * sizeof(int), "load nodes");
+    int k = 0;
+    for (int i = 0; i < n->n && k < it->nn; i++)
+      if (n->parent[i] == p && n->m[i] > 0) it->nodes[k++] = i;
+    if (!k) it->nodes[0] = target;
+  } else if (it->kind == BC_TRACTION || it->kind == BC_PRESSURE) {
+    free(it->edges);
+    it->edges = NULL;
+    it->ne = mesh_boundary_edges(&s->model, (uint64_t)1 << it->group, &it->edges);
+    if (!it->ne)
+      yf_warn(&it->loc, "load '%s': group '%s' has no boundary edge (both end nodes must be in the group)",
+              it->id, s->model.group[it->group].name);
+    /* nodes touched: the edge ends, each edge contributing to its own two nodes */
+    it->nn = 2 * it->ne;
+    it->nodes = yf_malloc((size_t)(it->nn ? it->nn : 1) * sizeof(int), "load nodes");
+    memcpy(it->nodes, it->edges, (size_t)it->nn * sizeof(int));
+  } else {
+    uint64_t bit = (uint64_t)1 << it->group;
+    for (int i = 0; i < n->n; i++) it->nn += (n->gmask[i] & bit) != 0;
+    it->nodes = yf_malloc((size_t)(it->nn ? it->nn : 1) * sizeof(int), "fix nodes");
+    int k = 0;
+    for (int i = 0; i < n->n; i++)
+      if (n->gmask[i] & bit) it->nodes[k++] = i;
+    if (!it->nn) yf_warn(&it->loc, "fix '%s': group '%s' has no nodes", it->id, s->model.group[it->group].name);
+  }
+  free(it->lf);
+  it->lf = yf_calloc((size_t)(it->nn ? it->nn : 1) * 2, sizeof(double), "load forces");
+}
+
+void bc_prepare(YfSim *s) {
+  YfBc *b = bc_get(s);
+  int nn = s->model.node.n;
+  free(b->flags);
+  b->flags = yf_calloc((size_t)(nn ? nn : 1), 1, "bc flags");
+  b->flags_n = nn;
+  for (int i = 0; i < b->n; i++) {
+    YfBcItem *it = &b->item[i];
+    resolve_nodes(s, it);
+    if (it->kind <= BC_DISPLACEMENT)
+      for (int k = 0; k < it->nn; k++) b->flags[it->nodes[k]] |= (unsigned char)(it->has[0] | (it->has[1] << 1));
+  }
+}
+
+const unsigned char *bc_node_flags(const YfSim *s) { return s->bc ? s->bc->flags : NULL; }
+
+static double factor(const YfSim *s, int hist, double t) {
+  return hist < 0 ? 1.0 : history_value(&s->hist[hist], t);
+}
+
+void bc_apply_loads(YfSim *s) {
+  if (!s->bc) return;
+  YfNodes *n = &s->model.node;
+  for (int i = 0; i < s->bc->n; i++) {
+    YfBcItem *it = &s->bc->item[i];
+    if (it->kind < BC_POINT) continue;
+    double ph = factor(s, it->hist, s->time);
+    if (it->kind == BC_POINT) {
+      double fx = it->a[0] * ph / it->nn, fy = it->a[1] * ph / it->nn;
+      for (int k = 0; k < it->nn; k++) {
+        it->lf[2 * k] = fx;
+        it->lf[2 * k + 1] = fy;
+      }
+    } else {
+      for (int e = 0; e < it->ne; e++) {
+        int j = it->edges[2 * e], k = it->edges[2 * e + 1];
+        double dx = n->x[k] - n->x[j], dy = n->y[k] - n->y[j];
+        double fx, fy;
+        if (it->kind == BC_TRACTION) {
+          double L = sqrt(dx * dx + dy * dy);
+          fx = 0.5 * it->a[0] * ph * L;
+          fy = 0.5 * it->a[1] * ph * L;
+        } else {
+          /* outward normal (dy, -dx) has the edge length; pressure pushes inwards */
+          fx = -0.5 * it->a[0] * ph * dy;
+          fy = 0.5 * it->a[0] * ph * dx;
+        }
+        it->lf[4 * e] = fx; it->lf[4 * e + 1] = fy;
+        it->lf[4 * e + 2] = fx; it->lf[4 * e + 3] = fy;
+      }
+    }
+    for (int k = 0; k < it->nn; k++) {
+      n->fx[it->nodes[k]] += it->lf[2 * k];
+      n->fy[it->nodes[k]] += it->lf[2 * k + 1];
+    }
+  }
+}
+
+void bc_constrain_velocities(YfSim *s, const double *vx_old, const double *vy_old) {
+  if (!s->bc) return;
+  YfNodes *n = &s->model.node;
+  double t1 = s->time + s->dt;
+  for (int i = 0; i < s->bc->n; i++) {
+    YfBcItem *it = &s->bc->item[i];
+    if (it->kind != BC_FIXED && it->kind != BC_VELOCITY) continue;
+    double ph = it->kind == BC_VELOCITY ? factor(s, it->hist, s->time) : 0.0;
+    for (int k = 0; k < it->nn; k++) {
+      int j = it->nodes[k];
+      if (n->m[j] <= 0) continue;
+      double *v[2] = {&n->vx[j], &n->vy[j]};
+      for (int c = 0; c < 2; c++) {
+        if (!it->has[c]) continue;
+        double target = it->kind == BC_VELOCITY ? it->a[c] * ph : 0.0;
+        /* reaction R = m (v_target - v_free)/dt; its work over this step = R . v_target dt */
+        double R = n->m[j] * (target - *v[c]) / s->dt;
+        s->energy.external_work += R * target * s->dt;
+        *v[c] = target;
+      }
+    }
+  }
+  (void)vx_old; (void)vy_old; (void)t1;
+}
+
+void bc_constrain_positions(YfSim *s, const double *x_old, const double *y_old) {
+  YfNodes *n = &s->model.node;
+  double t1 = s->time + s->dt;
+  if (s->bc) {
+    for (int i = 0; i < s->bc->n; i++) {
+      YfBcItem *it = &s->bc->item[i];
+      if (it->kind != BC_DISPLACEMENT) continue;
+      double ph = factor(s, it->hist, t1);
+      for (int k = 0; k < it->nn; k++) {
+        int j = it->nodes[k];
+        if (n->m[j] <= 0) continue;
+        double *x[2] = {&n->x[j], &n->y[j]}, *v[2] = {&n->vx[j], &n->vy[j]};
+        const double x0[2] = {n->x0[j], n->y0[j]}, xo[2] = {x_old[j], y_old[j]};
+        for (int c = 0; c < 2; c++) {
+          if (!it->has[c]) continue;
+          double target = x0[c] + it->a[c] * ph;
+          double vnew = (target - xo[c]) / s->dt;
+          double R = n->m[j] * (vnew - *v[c]) / s->dt;
+          s->energy.external_work += R * (target - xo[c]);
+          *v[c] = vnew;
+          *x[c] = target;
+        }
+      }
+    }
+    /* work of the loads of this step over the step's displacement */
+    for (int i = 0; i < s->bc->n; i++) {
+      YfBcItem *it = &s->bc->item[i];
+      if (it->kind < BC_POINT) continue;
+      for (int k = 0; k < it->nn; k++) {
+        int j = it->nodes[k];
+        s->energy.external_work += it->lf[2 * k] * (n->x[j] - x_old[j]) + it->lf[2 * k + 1] * (n->y[j] - y_old[j]);
+      }
+    }
+  }
+}
+
+void bc_free(YfSim *s) {
+  if (!s->bc) return;
+  for (int i = 0; i < s->bc->n; i++) {
+    free(s->bc->item[i].nodes);
+    free(s->bc->item[i].edges);
+    free(s->bc->item[i].lf);
+  }
+  free(s->bc->item);
+  free(s->bc->flags);
+  free(s->bc);
+  s->bc = NULL;
+}

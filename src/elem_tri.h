@@ -1,0 +1,33 @@
+/* elem_tri.h: constant-strain triangle kernels (Munjiza / Y2D law, ALGORITHMS.md 2). */
+#ifndef YF_ELEM_TRI_H
+#define YF_ELEM_TRI_H
+#include "model.h"
+
+/* Per-material constants the kernel reads (gathered once per run by tri_prepare). */
+typedef struct {
+  double mu2;   /* 2 mu [Pa]                        */
+  double lamv;  /* volfac * lambda [Pa]             */
+  double k;     /* viscous coefficient [Pa s]       */
+  double rho;   /* [kg/m^3]                         */
+} YfTriMat;
+
+/* Result of a force pass over a range of triangles. */
+typedef struct {
+  int bad;          /* first triangle (lowest index) with J <= 0 or a non-finite stress, or -1 */
+  double badJ;      /* its J                                                                  */
+  double visc_power;/* sum of A_c k D:D [W/m]: rate of viscous dissipation                    */
+} YfTriPass;
+
+/* Reference inverses, twice-areas and lumped masses (adds rho d0/6 to each corner node's m).
+ * Returns the first triangle with non-positive initial area, or -1. */
+int tri_prepare(YfModel *m, const YfTriMat *tm);
+/* Stress and corner forces of triangles [e0, e1) at the current x, v: writes tri.s and tri.cf. */
+void tri_forces(YfModel *m, const YfTriMat *tm, int e0, int e1, YfTriPass *out);
+/* Strain energy of triangles [e0, e1): sum A_c/2 T:E without the viscous part [J/m]. */
+double tri_strain_energy(const YfModel *m, const YfTriMat *tm, int e0, int e1);
+/* Stable time step of triangle e with lumped masses: 2/omega_max of the linearised element
+ * (an upper bound of the mesh's highest frequency, Irons' element-by-element theorem), reduced
+ * for the viscous term.  Uses initial positions. [s] */
+double tri_stable_dt(const YfModel *m, const YfTriMat *tm, int e);
+
+#endif

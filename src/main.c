@@ -1,0 +1,127 @@
+/* main.c: the yfdem program: command-line options, the deck, the exit code.
+ *
+ *   yfdem < beam.deck
+ *   yfdem -in beam.deck -var n 40 -log run.log -summary run.json
+ *   yfdem old_model.y            (a Y2D input deck, run to its own last step)
+ */
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "bc.h"
+#include "commands.h"
+#include "deck.h"
+#include "err.h"
+#include "output.h"
+#include "run.h"
+#include "sim.h"
+#include "summary.h"
+
+#ifndef YF_VERSION
+#define YF_VERSION "0.1.0"
+#endif
+
+static YfSim g_sim;
+static YfDeck *g_deck;
+
+static void usage(FILE *fp) {
+  fprintf(fp,
+          "yfdem %s: combined finite-discrete element method (Munjiza's FDEM, Y2D-compatible)\n\n"
+          "usage: yfdem [options] [< deck]\n"
+          "       yfdem [options] FILE.y           run a Y2D input deck\n"
+          "options:\n"
+          "  -in FILE          read the deck from FILE (default: standard input)\n"
+          "  -var NAME VALUE   define variable NAME (repeatable; the deck's own definition is then ignored)\n"
+          "  -log FILE         copy everything printed to FILE\n"
+          "  -echo             print each command before running it\n"
+          "  -summary FILE     write a JSON summary at the end (also after an error)\n"
+          "  -h [COMMAND]      this help, or the usage of one deck command\n"
+          "  -reference        print the deck reference (markdown) and exit\n"
+          "  -version          print the version\n"
+          "exit codes: 0 ok, 1 deck error, 2 I/O error, 3 numerical failure, 4 interrupted, 70 internal error\n\n"
+          "deck commands:\n",
+          YF_VERSION);
+  for (const YfCommand *c = yf_commands; c->name; c++) fprintf(fp, "  %-10s %s\n", c->name, c->help);
+}
+
+static void finish(int code, const char *message) {
+  output_close_all(&g_sim);
+  if (g_sim.summary_path[0]) summary_write(&g_sim, g_sim.summary_path, code, message);
+  if (g_sim.log) {
+    if (message && *message) fprintf(g_sim.log, "%s\n", message);
+    fclose(g_sim.log);
+    g_sim.log = NULL;
+  }
+}
+
+static void on_signal(int sig) {
+  (void)sig;
+  g_sim.interrupted = 1;
+}
+
+int main(int argc, char **argv) {
+  sim_init(&g_sim);
+  g_sim.progress = 1;
+  yf_set_cleanup(finish);
+  g_deck = deck_new(&g_sim);
+  const char *in = NULL;
+  int echo = 0;
+  for (int i = 1; i < argc; i++) {
+    const char *o = argv[i];
+    if (!strcmp(o, "-h") || !strcmp(o, "-help") || !strcmp(o, "--help")) {
+      if (i + 1 < argc) {
+        const YfCommand *c = deck_find_command(argv[i + 1]);
+        if (!c) { fprintf(stderr, "yfdem: no deck command '%s'\n", argv[i + 1]); return YF_EXIT_DECK; }
+        printf("%s\n  %s\n  example: %s\n", c->usage, c->help, c->example);
+        return 0;
+      }
+      usage(stdout);
+      return 0;
+    } else if (!strcmp(o, "-reference")) {
+      commands_print_reference(stdout);
+      return 0;
+    } else if (!strcmp(o, "-version") || !strcmp(o, "--version")) {
+      printf("yfdem %s\n", YF_VERSION);
+      return 0;
+    } else if (!strcmp(o, "-in") && i + 1 < argc) {
+      in = argv[++i];
+    } else if (!strcmp(o, "-var") && i + 2 < argc) {
+      deck_set_var(g_deck, argv[i + 1], argv[i + 2]);
+      i += 2;
+    } else if (!strcmp(o, "-log") && i + 1 < argc) {
+      g_sim.log = fopen(argv[++i], "w");
+      if (!g_sim.log) yf_io_error(NULL, "cannot open log file '%s'", argv[i]);
+    } else if (!strcmp(o, "-echo")) {
+      echo = 1;
+    } else if (!strcmp(o, "-summary") && i + 1 < argc) {
+      snprintf(g_sim.summary_path, sizeof g_sim.summary_path, "%s", argv[++i]);
+    } else if (o[0] != '-' && !in) {
+      in = o;
+    } else {
+      fprintf(stderr, "yfdem: unknown or incomplete option '%s' (try yfdem -h)\n", o);
+      return YF_EXIT_DECK;
+    }
+  }
+  deck_set_echo(g_deck, echo);
+  signal(SIGINT, on_signal);
+  signal(SIGTERM, on_signal);
+  if (in) {
+    size_t L = strlen(in);
+    if (L > 2 && !strcmp(in + L - 2, ".y")) {
+      /* A Y2D deck: read it and run to its own last step (read_y2d + run). */
+      extern void y2d_run_file(YfSim *, const char *);
+      y2d_run_file(&g_sim, in);
+    } else {
+      deck_run_file(g_deck, in, NULL);
+    }
+  } else {
+    deck_run_stream(g_deck, stdin, "<stdin>");
+  }
+  finish(YF_EXIT_OK, "");
+  deck_free(g_deck);
+  run_free();
+  output_free(&g_sim);
+  bc_free(&g_sim);
+  sim_free(&g_sim);
+  return 0;
+}

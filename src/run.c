@@ -1,0 +1,374 @@
+/* run.c: the explicit central-difference time loop and its stages.
+ *
+ * One step (ALGORITHMS.md 1, 7): forces at x_n and v_{n-1/2} (triangles write per-corner slots
+ * in parallel; a node gather sums them in a fixed order, so 1 or N threads give the same bits),
+ * external loads, then v_{n+1/2} = v_{n-1/2} + dt (f/m + g) with supports and prescribed motions,
+ * x_{n+1} = x_n + dt v_{n+1/2}, t += dt.  Energies are evaluated at thermo lines; the energy
+ * check catches an unstable run (kinetic + strain energy growing far beyond what was put in).
+ * Nothing in the step allocates, does I/O (except output at its own stage) or touches strings.
+ */
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+#include "run.h"
+#include "bc.h"
+#include "deck.h"
+#include "elem_tri.h"
+#include "err.h"
+#include "output.h"
+#include "summary.h"
+
+const char *const yf_stage_names[YF_NSTAGE] = {"elements", "joints", "detection", "contact", "gather", "update", "output"};
+double yf_stage_time[YF_NSTAGE];
+
+#define BLOCK 2048 /* triangles per block of the force loop: fixed, so sums do not depend on threads */
+
+/* Run-time state derived from the model (rebuilt by run_prepare). */
+static struct {
+  YfTriMat *tm;
+  int ntm;
+  int nblk;
+  double *blk;        /* per-block partial sums */
+  int *blk_bad;
+  double *blk_badJ;
+  double *xo, *yo, *vxo, *vyo; /* positions and velocities before the update */
+  int cap_nodes;
+  double e_budget;    /* energy put in so far (for the growth check) */
+  double t_wall0;
+} R;
+
+static double now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Build the node -> slot gather lists (CSR) for the triangles' corners. */
+static void build_gather(YfModel *m) {
+  int nn = m->node.n, nt = m->tri.n;
+  free(m->gather_off);
+  free(m->gather_slot);
+  m->gather_off = yf_calloc((size_t)nn + 1, sizeof(int), "gather offsets");
+  m->gather_slot = yf_malloc((size_t)(nt > 0 ? 3 * nt : 1) * sizeof(int), "gather slots");
+  for (int k = 0; k < 3 * nt; k++) m->gather_off[m->tri.v[k] + 1]++;
+  for (int i = 0; i < nn; i++) m->gather_off[i + 1] += m->gather_off[i];
+  int *fill = yf_calloc((size_t)nn + 1, sizeof(int), "gather fill");
+  for (int k = 0; k < 3 * nt; k++) {
+    int i = m->tri.v[k];
+    m->gather_slot[m->gather_off[i] + fill[i]++] = k; /* increasing slot order per node */
+  }
+  free(fill);
+}
+
+static void material_consts(YfSim *s) {
+  YfModel *m = &s->model;
+  free(R.tm);
+  R.tm = yf_calloc((size_t)(m->nmat ? m->nmat : 1), sizeof(YfTriMat), "material constants");
+  R.ntm = m->nmat;
+  for (int i = 0; i < m->nmat; i++) {
+    YfMaterial *mt = &m->mat[i];
+    double k = mt->visc;
+    if (mt->beta > 0) {
+      /* Y practice: k = 2 h beta sqrt(E rho), h the smallest edge of this material's triangles */
+      double h = INFINITY;
+      for (int e = 0; e < m->tri.n; e++) {
+        if (m->tri.mat[e] != i) continue;
+        const int *v = m->tri.v + 3 * e;
+        for (int c = 0; c < 3; c++) {
+          int p = v[c], q = v[(c + 1) % 3];
+          double L = hypot(m->node.x0[q] - m->node.x0[p], m->node.y0[q] - m->node.y0[p]);
+          if (L < h) h = L;
+        }
+      }
+      if (isfinite(h)) k = 2.0 * h * mt->beta * sqrt(mt->E * mt->rho);
+    }
+    R.tm[i].mu2 = 2.0 * mt->mu;
+    R.tm[i].lamv = mt->volfac * mt->lambda;
+    R.tm[i].k = k;
+    R.tm[i].rho = mt->rho;
+  }
+}
+
+double run_model_bytes(const YfSim *s) {
+  const YfModel *m = &s->model;
+  double nodes = (double)m->node.n * (9 * sizeof(double) + 4 * sizeof(int) + sizeof(uint64_t) + 1);
+  double tris = (double)m->tri.n * (3 * sizeof(int) + 3 * sizeof(int) + sizeof(uint64_t) +
+                                    (4 + 1 + 3 + 6) * sizeof(double) + 3 * sizeof(int));
+  return nodes + tris + (double)(m->node.n + 1) * sizeof(int);
+}
+
+double run_stable_dt(YfSim *s, char *limiter, size_t n) {
+  YfModel *m = &s->model;
+  double best = INFINITY;
+  int which = -1;
+  for (int e = 0; e < m->tri.n; e++) {
+    double d = tri_stable_dt(m, R.tm, e);
+    if (d < best) { best = d; which = e; }
+  }
+  if (limiter) {
+    if (which >= 0)
+      snprintf(limiter, n, "triangle %d (material %s)", m->tri.id[which], m->mat[m->tri.mat[which]].name);
+    else
+      snprintf(limiter, n, "nothing (no triangles)");
+  }
+  return best;
+}
+
+void run_prepare(YfSim *s) {
+  YfModel *m = &s->model;
+  if (!m->tri.n) yf_deck_error(NULL, "run: the scene has no triangles (use mesh, triangle or read_y2d first)");
+  if (!m->prepared) {
+    material_consts(s);
+    for (int i = 0; i < m->node.n; i++) m->node.m[i] = 0.0;
+    int bad = tri_prepare(m, R.tm);
+    if (bad >= 0)
+      yf_deck_error(NULL, "triangle %d has non-positive area (%g m^2): its corners must be counter-clockwise and distinct",
+                    m->tri.id[bad], 0.5 * m->tri.d0[bad]);
+    build_gather(m);
+    R.nblk = (m->tri.n + BLOCK - 1) / BLOCK;
+    free(R.blk); free(R.blk_bad); free(R.blk_badJ);
+    R.blk = yf_calloc((size_t)R.nblk, sizeof(double), "block sums");
+    R.blk_bad = yf_calloc((size_t)R.nblk, sizeof(int), "block flags");
+    R.blk_badJ = yf_calloc((size_t)R.nblk, sizeof(double), "block J");
+    if (R.cap_nodes < m->node.n) {
+      R.cap_nodes = m->node.n;
+      R.xo = yf_realloc(R.xo, (size_t)R.cap_nodes * sizeof(double), "old positions");
+      R.yo = yf_realloc(R.yo, (size_t)R.cap_nodes * sizeof(double), "old positions");
+      R.vxo = yf_realloc(R.vxo, (size_t)R.cap_nodes * sizeof(double), "old velocities");
+      R.vyo = yf_realloc(R.vyo, (size_t)R.cap_nodes * sizeof(double), "old velocities");
+    }
+    m->prepared = 1;
+  }
+  bc_prepare(s);
+}
+
+void run_energies(YfSim *s) {
+  YfModel *m = &s->model;
+  const YfNodes *n = &m->node;
+  double ke = 0, pg = 0;
+  for (int i = 0; i < n->n; i++) {
+    ke += 0.5 * n->m[i] * (n->vx[i] * n->vx[i] + n->vy[i] * n->vy[i]);
+    pg += n->m[i] * (s->gx * (n->x[i] - n->x0[i]) + s->gy * (n->y[i] - n->y0[i]));
+  }
+  s->energy.kinetic = ke;
+  s->energy.strain = R.tm ? tri_strain_energy(m, R.tm, 0, m->tri.n) : 0.0;
+  (void)pg;
+}
+
+/* Gravity's work is a function of the state: sum m g . (x - x0). */
+static double gravity_work(const YfSim *s) {
+  if (s->gx == 0 && s->gy == 0) return 0.0;
+  const YfNodes *n = &s->model.node;
+  double w = 0;
+  for (int i = 0; i < n->n; i++) w += n->m[i] * (s->gx * (n->x[i] - n->x0[i]) + s->gy * (n->y[i] - n->y0[i]));
+  return w;
+}
+
+static double total_external(const YfSim *s) { return s->energy.external_work + gravity_work(s); }
+
+static void thermo_header(YfSim *s) {
+  sim_printf(s, "%10s %12s %13s %13s %13s %13s %13s %9s\n", "Step", "Time", "KinEng", "StrainEng", "ExtWork",
+             "Dissipated", "Balance", "Wall");
+}
+
+static void thermo_line(YfSim *s) {
+  run_energies(s);
+  double ext = total_external(s);
+  double diss = s->energy.damping + s->energy.joint_dissipated + s->energy.friction;
+  double bal = s->energy.kinetic + s->energy.strain + s->energy.contact + diss - ext;
+  sim_printf(s, "%10ld %12.6e %13.6e %13.6e %13.6e %13.6e %13.6e %9.2f\n", s->step, s->time, s->energy.kinetic,
+             s->energy.strain, ext, diss, bal, s->wall_s + (now() - R.t_wall0));
+}
+
+/* Unstable runs show as energy growing without a source: stop them with a clear cause. */
+static void energy_check(YfSim *s) {
+  run_energies(s);
+  double e = s->energy.kinetic + s->energy.strain;
+  double budget = R.e_budget + fabs(total_external(s));
+  if (isfinite(e) && e <= 10.0 * budget + 1e-300) return;
+  yf_numeric_error(s->step, "energy growing without a source: kinetic + strain = %.6g J/m, but only %.6g J/m was put in "
+                   "(time step %.6g s, stable limit %.6g s set by %s); reduce the time step",
+                   e, budget, s->dt, s->dt_limit, s->dt_limiter);
+}
+
+static void progress(YfSim *s, long done, long total, double t0) {
+  static double last;
+  double t = now();
+  if (t - last < 0.5 && done < total) return;
+  last = t;
+  double frac = total ? (double)done / (double)total : 1.0;
+  double eta = frac > 0 ? (t - t0) * (1.0 - frac) / frac : 0;
+  char bar[31];
+  int k = (int)(frac * 30);
+  for (int i = 0; i < 30; i++) bar[i] = i < k ? '#' : ' ';
+  bar[30] = 0;
+  fprintf(stderr, "\r[%s] %3.0f%% step %ld ETA %.0fs ", bar, 100 * frac, s->step, eta);
+  if (done >= total) fprintf(stderr, "\r%60s\r", "");
+  fflush(stderr);
+}
+
+/* The step.  Every loop over elements or nodes is a static OpenMP loop whose iterations write
+ * only their own slots; sums over blocks are added serially in block order. */
+static void step_once(YfSim *s) {
+  YfModel *m = &s->model;
+  YfNodes *n = &m->node;
+  const int nn = n->n, nblk = R.nblk, nt = m->tri.n;
+  const double dt = s->dt, gx = s->gx, gy = s->gy, alpha = s->mass_damping;
+  double t0 = now(), t1;
+
+  #pragma omp parallel for schedule(static)
+  for (int b = 0; b < nblk; b++) {
+    YfTriPass p;
+    int e1 = (b + 1) * BLOCK < nt ? (b + 1) * BLOCK : nt;
+    tri_forces(m, R.tm, b * BLOCK, e1, &p);
+    R.blk[b] = p.visc_power;
+    R.blk_bad[b] = p.bad;
+    R.blk_badJ[b] = p.badJ;
+  }
+  double power = 0;
+  for (int b = 0; b < nblk; b++) {
+    if (R.blk_bad[b] >= 0) {
+      int e = R.blk_bad[b];
+      if (R.blk_badJ[b] <= 0)
+        yf_numeric_error(s->step + 1, "triangle %d (material %s) inverted: J = %.6g (area ratio current/initial); "
+                         "the time step (%.6g s) may be too large or the body is crushed beyond what the law allows",
+                         m->tri.id[e], m->mat[m->tri.mat[e]].name, R.blk_badJ[b], s->dt);
+      yf_numeric_error(s->step + 1, "triangle %d (material %s): stress is not finite (NaN or inf)", m->tri.id[e],
+                       m->mat[m->tri.mat[e]].name);
+    }
+    power += R.blk[b];
+  }
+  s->energy.damping += power * dt;
+  t1 = now();
+  yf_stage_time[YF_ST_ELEMENTS] += t1 - t0;
+  t0 = t1;
+
+  /* gather corner forces into nodes in fixed slot order */
+  const int *off = m->gather_off, *slot = m->gather_slot;
+  const double *cf = m->tri.cf;
+  #pragma omp parallel for schedule(static)
+  for (int i = 0; i < nn; i++) {
+    double fx = 0, fy = 0;
+    for (int k = off[i]; k < off[i + 1]; k++) {
+      fx += cf[2 * slot[k]];
+      fy += cf[2 * slot[k] + 1];
+    }
+    n->fx[i] = fx;
+    n->fy[i] = fy;
+  }
+  bc_apply_loads(s);
+  t1 = now();
+  yf_stage_time[YF_ST_GATHER] += t1 - t0;
+  t0 = t1;
+
+  /* update: v_{n+1/2}, then supports, then x_{n+1} */
+  double *x = n->x, *y = n->y, *vx = n->vx, *vy = n->vy;
+  const double *fx = n->fx, *fy = n->fy, *ms = n->m;
+  memcpy(R.xo, x, (size_t)nn * sizeof(double));
+  memcpy(R.yo, y, (size_t)nn * sizeof(double));
+  if (alpha > 0) {
+    /* central-difference mass damping: v+ = ((1 - a dt/2) v- + dt f/m) / (1 + a dt/2) */
+    const double c1 = 1.0 - 0.5 * alpha * dt, c2 = 1.0 / (1.0 + 0.5 * alpha * dt);
+    double diss = 0;
+    #pragma omp parallel for schedule(static) reduction(+:diss)
+    for (int i = 0; i < nn; i++) {
+      if (!(ms[i] > 1e-300)) continue;
+      double ux = (c1 * vx[i] + dt * (fx[i] / ms[i] + gx)) * c2;
+      double uy = (c1 * vy[i] + dt * (fy[i] / ms[i] + gy)) * c2;
+      double ax = 0.5 * (ux + vx[i]), ay = 0.5 * (uy + vy[i]);
+      diss += alpha * ms[i] * (ax * ax + ay * ay) * dt;
+      vx[i] = ux;
+      vy[i] = uy;
+    }
+    s->energy.damping += diss;
+  } else {
+    #pragma omp parallel for schedule(static)
+    for (int i = 0; i < nn; i++) {
+      if (!(ms[i] > 1e-300)) continue;
+      vx[i] += dt * (fx[i] / ms[i] + gx);
+      vy[i] += dt * (fy[i] / ms[i] + gy);
+    }
+  }
+  bc_constrain_velocities(s, NULL, NULL);
+  #pragma omp parallel for schedule(static)
+  for (int i = 0; i < nn; i++) {
+    x[i] += dt * vx[i];
+    y[i] += dt * vy[i];
+  }
+  bc_constrain_positions(s, R.xo, R.yo);
+  s->step++;
+  s->time += dt;
+  t1 = now();
+  yf_stage_time[YF_ST_UPDATE] += t1 - t0;
+}
+
+void run_steps(YfSim *s, long nsteps) {
+  run_prepare(s);
+  char lim[96];
+  double limit = run_stable_dt(s, lim, sizeof lim);
+  s->dt_limit = limit;
+  snprintf(s->dt_limiter, sizeof s->dt_limiter, "%s", lim);
+  if (s->dt_auto) {
+    s->dt = s->dt_safety * limit;
+    sim_printf(s, "timestep auto: dt = %.6g s = %.3g x stable limit %.6g s (set by %s)\n", s->dt, s->dt_safety, limit, lim);
+  } else if (!(s->dt > 0)) {
+    yf_deck_error(NULL, "run: no time step set (use 'timestep DT' or 'timestep auto')");
+  } else if (s->dt > limit) {
+    yf_deck_error(s->dt_loc.file ? &s->dt_loc : NULL,
+                  "timestep %.6g s is above the stable limit %.6g s (set by %s); use at most %.6g s or 'timestep auto'",
+                  s->dt, limit, lim, limit);
+  }
+  s->threads = omp_get_max_threads();
+  run_energies(s);
+  if (s->step == 0 || R.e_budget == 0) R.e_budget = s->energy.kinetic + s->energy.strain;
+  s->run_end_step = s->step + nsteps;
+  output_run_begin(s);
+  R.t_wall0 = now();
+  double t_start = R.t_wall0;
+  thermo_header(s);
+  thermo_line(s);
+  int tty = s->progress && isatty(2);
+  long check_every = 100;
+  for (long k = 0; k < nsteps; k++) {
+    step_once(s);
+    double t0 = now();
+    output_step(s);
+    yf_stage_time[YF_ST_OUTPUT] += now() - t0;
+    if (s->thermo_every > 0 && s->step % s->thermo_every == 0 && k + 1 < nsteps) thermo_line(s);
+    if ((k + 1) % check_every == 0) energy_check(s);
+    if (tty) progress(s, k + 1, nsteps, t_start);
+    if (s->interrupted) {
+      output_run_end(s);
+      s->wall_s += now() - R.t_wall0;
+      yf_exit_with(YF_EXIT_INTERRUPT, "interrupted at step %ld (time %.6g s): frames written so far are kept; "
+                   "rerun the deck with a longer run to continue", s->step, s->time);
+    }
+  }
+  energy_check(s);
+  thermo_line(s);
+  double wall = now() - R.t_wall0;
+  s->wall_s += wall;
+  s->elem_steps += (double)s->model.tri.n * (double)nsteps;
+  output_run_end(s);
+  sim_printf(s, "run: %ld steps of %d triangles in %.3f s wall (%.3g element-steps/s on %d thread%s)\n", nsteps,
+             s->model.tri.n, wall, wall > 0 ? (double)s->model.tri.n * (double)nsteps / wall : 0.0, s->threads,
+             s->threads > 1 ? "s" : "");
+}
+
+/* run N */
+void cmd_run(YfSim *s, const YfArgs *a) {
+  arg_count(a, 1, 1);
+  long n = arg_int(a, 0, "N", 0, 2000000000L);
+  run_steps(s, n);
+}
+
+const YfTriMat *run_tri_mats(void) { return R.tm; }
+
+void run_free(void) {
+  free(R.tm); free(R.blk); free(R.blk_bad); free(R.blk_badJ);
+  free(R.xo); free(R.yo); free(R.vxo); free(R.vyo);
+  memset(&R, 0, sizeof R);
+}

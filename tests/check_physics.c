@@ -1,0 +1,251 @@
+/* check_physics.c: the elastic triangle, the time integration and the supports and loads,
+ * checked against exact laws and textbook solutions (tolerances derived in each test). */
+#include <check.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "bc.h"
+#include "elem_tri.h"
+#include "run.h"
+#include "yftest.h"
+
+static void quiet(void) { freopen("/dev/null", "w", stdout); }
+
+#define MAT "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+
+/* Deform every node by x = F X + c and evaluate the triangle forces. */
+static void deform(YfSim *s, const double F[4], double cx, double cy) {
+  YfNodes *n = &s->model.node;
+  for (int i = 0; i < n->n; i++) {
+    n->x[i] = F[0] * n->x0[i] + F[1] * n->y0[i] + cx;
+    n->y[i] = F[2] * n->x0[i] + F[3] * n->y0[i] + cy;
+  }
+  YfTriPass p;
+  tri_forces(&s->model, run_tri_mats(), 0, s->model.tri.n, &p);
+  ck_assert_int_eq(p.bad, -1);
+}
+
+/* Patch test: a uniform deformation gives the same stress in every triangle, equal to the law
+ * evaluated with that F, and zero net force on every interior node (to round-off). */
+START_TEST(test_patch_uniform_strain) {
+  quiet();
+  YfSim *s = yft_run(MAT "mesh rect b m 0 0 1 0.5 6 3 pattern cross\ntimestep auto\n");
+  run_prepare(s);
+  const double F[4] = {1 + 1e-4, 2e-5, 3e-5, 1 - 5e-5};
+  deform(s, F, 0.3, -0.2);
+  double J = F[0] * F[3] - F[1] * F[2];
+  double E11 = 0.5 * (F[0] * F[0] + F[1] * F[1] - 1), E22 = 0.5 * (F[2] * F[2] + F[3] * F[3] - 1);
+  double E12 = 0.5 * (F[0] * F[2] + F[1] * F[3]);
+  double mu = 1e9 / 2.5, lam = 1e9 * 0.25 / (1 - 0.0625);
+  double T[3] = {2 * mu / J * E11 + 0.5 * lam * (J - 1 / J), 2 * mu / J * E22 + 0.5 * lam * (J - 1 / J), 2 * mu / J * E12};
+  double scale = fabs(T[0]) + fabs(T[1]) + fabs(T[2]);
+  for (int e = 0; e < s->model.tri.n; e++)
+    for (int k = 0; k < 3; k++) ck_assert_double_eq_tol(s->model.tri.s[3 * e + k], T[k], 1e-9 * scale);
+  /* interior nodes: sum of corner forces vanishes (uniform stress is in equilibrium) */
+  int nn = s->model.node.n;
+  double *fx = calloc(nn, sizeof(double)), *fy = calloc(nn, sizeof(double));
+  for (int e = 0; e < s->model.tri.n; e++)
+    for (int c = 0; c < 3; c++) {
+      fx[s->model.tri.v[3 * e + c]] += s->model.tri.cf[6 * e + 2 * c];
+      fy[s->model.tri.v[3 * e + c]] += s->model.tri.cf[6 * e + 2 * c + 1];
+    }
+  double fscale = scale * 0.5 / 6; /* stress x edge length */
+  for (int i = 0; i < nn; i++) {
+    double X = s->model.node.x0[i], Y = s->model.node.y0[i];
+    if (X > 1e-9 && X < 1 - 1e-9 && Y > 1e-9 && Y < 0.5 - 1e-9) {
+      ck_assert_double_le(fabs(fx[i]), 1e-9 * fscale);
+      ck_assert_double_le(fabs(fy[i]), 1e-9 * fscale);
+    }
+  }
+  free(fx);
+  free(fy);
+}
+END_TEST
+
+/* Small strain: the law is Hooke's law with the material's E, nu.  Uniaxial stress in plane
+ * stress: eps_xx = s/E, eps_yy = -nu s/E gives sxx = s and syy = 0 up to O(eps) = 1e-6. */
+START_TEST(test_uniaxial_stress_matches_E) {
+  quiet();
+  YfSim *s = yft_run(MAT "mesh rect b m 0 0 1 0.2 5 2 pattern alt\n");
+  run_prepare(s);
+  double eps = 1e-6, F[4] = {1 + eps, 0, 0, 1 - 0.25 * eps};
+  deform(s, F, 0, 0);
+  for (int e = 0; e < s->model.tri.n; e++) {
+    ck_assert_double_eq_tol(s->model.tri.s[3 * e], 1e9 * eps, 1e9 * eps * 1e-5);
+    ck_assert_double_le(fabs(s->model.tri.s[3 * e + 1]), 1e9 * eps * 1e-5);
+  }
+}
+END_TEST
+
+/* Plane strain: eps_yy = -nu/(1-nu) eps_xx gives syy = 0 and sxx = E/(1-nu^2) eps_xx. */
+START_TEST(test_uniaxial_plane_strain) {
+  quiet();
+  YfSim *s = yft_run("material m elastic rho 1000 E 1e9 nu 0.3 plane_strain\nmesh rect b m 0 0 1 0.2 5 2\n");
+  run_prepare(s);
+  double eps = 1e-6, nu = 0.3, F[4] = {1 + eps, 0, 0, 1 - nu / (1 - nu) * eps};
+  deform(s, F, 0, 0);
+  double expect = 1e9 / (1 - nu * nu) * eps;
+  for (int e = 0; e < s->model.tri.n; e++) {
+    ck_assert_double_eq_tol(s->model.tri.s[3 * e], expect, expect * 1e-5);
+    ck_assert_double_le(fabs(s->model.tri.s[3 * e + 1]), expect * 1e-5);
+  }
+}
+END_TEST
+
+/* Rigid motion (translation and a 60 degree rotation) gives no stress and no force: B = R R^T = I
+ * to round-off, so |T| <= ~10 eps_machine E. */
+START_TEST(test_rigid_rotation_zero_force) {
+  quiet();
+  YfSim *s = yft_run(MAT "mesh rect b m 0 0 1 0.5 4 2 pattern cross\n");
+  run_prepare(s);
+  double a = M_PI / 3, F[4] = {cos(a), -sin(a), sin(a), cos(a)};
+  deform(s, F, 12.5, -3.0);
+  for (int e = 0; e < s->model.tri.n; e++)
+    for (int k = 0; k < 3; k++) ck_assert_double_le(fabs(s->model.tri.s[3 * e + k]), 1e9 * 1e-13);
+  for (int k = 0; k < 6 * s->model.tri.n; k++) ck_assert_double_le(fabs(s->model.tri.cf[k]), 1e9 * 1e-13);
+}
+END_TEST
+
+/* 1D wave: with nu = 0 the strip is a 1D bar, c = sqrt(E/rho) = 1000 m/s.  The left end is
+ * driven at 1 m/s from t = 0; the half-amplitude point of the front reaches x = 0.5 m at
+ * t = 0.5 ms.  Resolution: h = 2.5 mm (200 cells over the half length), dt = 0.5 limit. */
+START_TEST(test_wave_arrival_time) {
+  quiet();
+  YfSim *s = yft_run("material m elastic rho 1000 E 1e9 nu 0 plane_stress\n"
+                     "mesh rect bar m 0 0 1 0.01 400 4 pattern right\n"
+                     "region left box -1 -1 1e-6 1\ngroup left node region left\n"
+                     "fix push left velocity 1 NULL\ntimestep auto safety 0.5\nrun 0\n");
+  int probe = yft_node_at(s, 0.5, 0.0);
+  double tprev = s->time, vprev = 0, arrival = -1;
+  while (s->time < 1e-3 && arrival < 0) {
+    run_steps(s, 1);
+    double v = s->model.node.vx[probe];
+    /* velocities live at half steps: v_{n+1/2} belongs to t - dt/2 */
+    double t = s->time - 0.5 * s->dt;
+    if (v >= 0.5) arrival = tprev + (0.5 - vprev) / (v - vprev) * (t - tprev);
+    tprev = t;
+    vprev = v;
+  }
+  ck_assert_double_gt(arrival, 0);
+  ck_assert_double_eq_tol(arrival, 0.5e-3, 0.01 * 0.5e-3);
+}
+END_TEST
+
+/* Free vibration without damping: kinetic + strain energy stays within 0.5 % of its initial
+ * value over 10 000 steps (leapfrog is symplectic: the energy error oscillates, no drift). */
+START_TEST(test_energy_conserved_free_vibration) {
+  quiet();
+  YfSim *s = yft_run(MAT "mesh rect beam m 0 0 0.5 0.05 20 2 pattern cross\n"
+                     "region root box -1 -1 1e-6 1\ngroup root node region root\nfix clamp root fixed xy\n"
+                     "velocity beam set 0 0\ntimestep auto safety 0.5\nrun 0\n");
+  YfNodes *n = &s->model.node;
+  for (int i = 0; i < n->n; i++) n->vy[i] = 0.5 * (n->x0[i] / 0.5) * (n->x0[i] / 0.5); /* m/s */
+  run_energies(s);
+  double e0 = s->energy.kinetic + s->energy.strain, emax = 0;
+  for (int k = 0; k < 100; k++) {
+    run_steps(s, 100);
+    double e = s->energy.kinetic + s->energy.strain;
+    double err = fabs(e - e0) / e0;
+    if (err > emax) emax = err;
+  }
+  ck_assert_double_lt(emax, 0.005);
+}
+END_TEST
+
+/* Cantilever (L = 1, h = 0.1, plane stress) with an end shear load P = 1000 N/m, damped to rest:
+ * Timoshenko tip deflection P L^3 / (3 E I) + P L / (k G A), k = 5/6, within 2 %. */
+START_TEST(test_cantilever_static_deflection) {
+  quiet();
+  YfSim *s = yft_run(MAT "mesh rect beam m 0 0 1 0.1 60 6 pattern cross\n"
+                     "region root box -1 -1 1e-6 1\ngroup root node region root\nfix clamp root fixed xy\n"
+                     "region tipr box 0.999999 -1 2 1\ngroup tip node region tipr\n"
+                     "load P tip traction 0 -10000\n" /* 10 kPa over h = 0.1 m = 1000 N/m */
+                     "damping mass 180\ntimestep auto safety 0.9\nrun 0\n");
+  double E = 1e9, G = E / 2.5, I = 1e-3 / 12.0, A = 0.1, P = 1000;
+  double expect = P / (3 * E * I) + P / (5.0 / 6.0 * G * A);
+  double t_end = 0.12; /* about 12 / omega_1: the damped error is below 1e-4 */
+  run_steps(s, (long)(t_end / s->dt));
+  double uy = 0;
+  int cnt = 0;
+  for (int i = 0; i < s->model.node.n; i++)
+    if (s->model.node.x0[i] > 0.999999) { uy += s->model.node.y[i] - s->model.node.y0[i]; cnt++; }
+  uy /= cnt;
+  ck_assert_double_eq_tol(-uy, expect, 0.02 * expect);
+}
+END_TEST
+
+/* A fixed node never moves, bit for bit, whatever the loads. */
+START_TEST(test_fixed_nodes_never_move) {
+  quiet();
+  YfSim *s = yft_run(MAT "mesh rect b m 0 0 1 0.2 10 2\nregion l box -1 -1 1e-6 1\ngroup l node region l\n"
+                     "fix hold l fixed xy\nload push b traction 3e5 -1e5\ngravity 0 -9.81\ntimestep auto\nrun 300\n");
+  for (int i = 0; i < s->model.node.n; i++)
+    if (s->model.node.x0[i] < 1e-6) {
+      ck_assert(s->model.node.x[i] == s->model.node.x0[i]);
+      ck_assert(s->model.node.y[i] == s->model.node.y0[i]);
+    }
+}
+END_TEST
+
+/* A prescribed displacement with a ramp history is met exactly at every step's end time. */
+START_TEST(test_prescribed_displacement_exact) {
+  quiet();
+  YfSim *s = yft_run(MAT "mesh rect b m 0 0 1 0.2 10 2\nregion r box 0.999999 -1 2 1\ngroup r node region r\n"
+                     "history ramp1 ramp 0 1e-4\nfix pull r displacement 1e-3 NULL history ramp1\n"
+                     "timestep auto\nrun 57\n");
+  double phi = s->time >= 1e-4 ? 1.0 : s->time / 1e-4;
+  for (int i = 0; i < s->model.node.n; i++)
+    if (s->model.node.x0[i] > 0.999999)
+      ck_assert_double_eq_tol(s->model.node.x[i] - s->model.node.x0[i], 1e-3 * phi, 1e-15);
+}
+END_TEST
+
+/* A pressure's resultant equals p times the loaded length, pointing into the body; a traction's
+ * equals t times the length.  Exact up to round-off. */
+START_TEST(test_pressure_resultant) {
+  quiet();
+  YfSim *s = yft_run(MAT "mesh rect b m 0 0 2 0.2 7 2 pattern cross\nregion top box -1 0.199999 3 1\n"
+                     "group top node region top\nload p top pressure 1e5\nregion rs box 1.999999 -1 3 1\n"
+                     "group rs node region rs\nload t rs traction 200 0\n");
+  run_prepare(s);
+  YfNodes *n = &s->model.node;
+  for (int i = 0; i < n->n; i++) n->fx[i] = n->fy[i] = 0;
+  bc_apply_loads(s);
+  double sx = 0, sy = 0;
+  for (int i = 0; i < n->n; i++) { sx += n->fx[i]; sy += n->fy[i]; }
+  ck_assert_double_eq_tol(sy, -1e5 * 2.0, 1e-9 * 2e5);
+  ck_assert_double_eq_tol(sx, 200 * 0.2, 1e-9 * 40);
+}
+END_TEST
+
+/* Gravity on a free body: after n steps v = g n dt exactly (uniform acceleration, no stress). */
+START_TEST(test_gravity_free_fall) {
+  quiet();
+  YfSim *s = yft_run(MAT "mesh rect b m 0 0 1 0.2 4 2\ngravity 0 -9.81\ntimestep auto\nrun 100\n");
+  for (int i = 0; i < s->model.node.n; i++) ck_assert_double_eq_tol(s->model.node.vy[i], -9.81 * s->time, 1e-9);
+}
+END_TEST
+
+Suite *physics_suite(void) {
+  Suite *s = suite_create("physics");
+  TCase *k = tcase_create("triangle");
+  tcase_add_test(k, test_patch_uniform_strain);
+  tcase_add_test(k, test_uniaxial_stress_matches_E);
+  tcase_add_test(k, test_uniaxial_plane_strain);
+  tcase_add_test(k, test_rigid_rotation_zero_force);
+  suite_add_tcase(s, k);
+  TCase *d = tcase_create("dynamics");
+  tcase_set_timeout(d, 120);
+  tcase_add_test(d, test_wave_arrival_time);
+  tcase_add_test(d, test_energy_conserved_free_vibration);
+  tcase_add_test(d, test_cantilever_static_deflection);
+  suite_add_tcase(s, d);
+  TCase *b = tcase_create("directives");
+  tcase_add_test(b, test_fixed_nodes_never_move);
+  tcase_add_test(b, test_prescribed_displacement_exact);
+  tcase_add_test(b, test_pressure_resultant);
+  tcase_add_test(b, test_gravity_free_fall);
+  suite_add_tcase(s, b);
+  return s;
+}

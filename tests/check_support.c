@@ -1,0 +1,83 @@
+/* check_support.c: shared helpers of the test suites (yftest.h); defines no suite. */
+#include <check.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include "deck.h"
+#include "yftest.h"
+
+static YfSim t_sim;
+
+YfSim *yft_run(const char *deck_text) {
+  sim_init(&t_sim);
+  t_sim.progress = 0;
+  YfDeck *d = deck_new(&t_sim);
+  FILE *fp = fmemopen((void *)deck_text, strlen(deck_text), "r");
+  fflush(stdout);
+  int saved = dup(1);
+  FILE *devnull = fopen("/dev/null", "w");
+  dup2(fileno(devnull), 1);
+  deck_run_stream(d, fp, "test.deck");
+  fflush(stdout);
+  dup2(saved, 1);
+  close(saved);
+  fclose(devnull);
+  fclose(fp);
+  return &t_sim;
+}
+
+int yft_exists(const char *path) {
+  struct stat st;
+  return stat(path, &st) == 0;
+}
+
+int yft_run_binary(const char *name, const char *deck_text, const char *extra_args, char **err, char **dirout) {
+  char tmpl[] = "/tmp/yft_XXXXXX";
+  char *dir = mkdtemp(tmpl);
+  ck_assert_ptr_nonnull(dir);
+  char path[512], errpath[512], cmd[4096];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  snprintf(errpath, sizeof errpath, "%s/stderr.txt", dir);
+  FILE *fp = fopen(path, "w");
+  ck_assert_ptr_nonnull(fp);
+  fputs(deck_text, fp);
+  fclose(fp);
+  const char *bin = getenv("YFDEM") ? getenv("YFDEM") : "./yfdem";
+  char abs[1024];
+  if (bin[0] != '/' && getcwd(abs, sizeof abs - strlen(bin) - 2)) {
+    strcat(abs, "/");
+    strcat(abs, bin);
+    bin = abs;
+  }
+  snprintf(cmd, sizeof cmd, "cd %s && OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} %s -in %s %s >/dev/null 2>%s", dir, bin,
+           name, extra_args ? extra_args : "", errpath);
+  int st = system(cmd);
+  int code = WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+  if (err) {
+    FILE *fe = fopen(errpath, "r");
+    char *buf = calloc(1, 65536);
+    if (fe) {
+      size_t k = fread(buf, 1, 65535, fe);
+      buf[k] = 0;
+      fclose(fe);
+    }
+    *err = buf;
+  }
+  if (dirout) *dirout = strdup(dir);
+  return code;
+}
+
+int yft_node_at(const YfSim *s, double x, double y) {
+  int best = -1;
+  double bd = INFINITY;
+  for (int i = 0; i < s->model.node.n; i++) {
+    double d = hypot(s->model.node.x0[i] - x, s->model.node.y0[i] - y);
+    if (d < bd) { bd = d; best = i; }
+  }
+  return best;
+}
+

@@ -1,0 +1,21 @@
+/* yftest.h: helpers for tests that run deck text in-process and look at the resulting arrays.
+ *
+ * Check runs each test in a forked child, so a deck that fails (and exits) only ends that test:
+ * error tests use tcase_add_exit_test or yft_run_binary below.
+ */
+#ifndef YF_TEST_H
+#define YF_TEST_H
+#include "sim.h"
+
+/* Run deck text in a fresh simulation (stdout silenced); returns the simulation (static). */
+YfSim *yft_run(const char *deck_text);
+/* Run the yfdem binary (path from $YFDEM, default ./yfdem) with the given deck text written to
+ * a temporary file named NAME in a fresh temporary directory; returns the exit code, and the
+ * captured stderr in err (caller frees).  *dir receives the temporary directory (caller frees). */
+int yft_run_binary(const char *name, const char *deck_text, const char *extra_args, char **err, char **dir);
+/* Node nearest to (x, y) in the initial configuration. */
+int yft_node_at(const YfSim *s, double x, double y);
+/* Whether a file exists. */
+int yft_exists(const char *path);
+
+#endif
