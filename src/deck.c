@@ -486,6 +486,11 @@ static char *substitute(YfDeck *d, const char *in, const YfLoc *loc) {
       char *expr = yf_malloc(len + 1, "expression");
       memcpy(expr, p + 2, len);
       expr[len] = 0;
+      if (strchr(expr, '$')) { /* $(v_a*${b}): references inside are substituted first */
+        char *inner = substitute(d, expr, loc);
+        free(expr);
+        expr = inner;
+      }
       /* optional ":%fmt" at parenthesis depth 0 */
       const char *fmt = "%.15g";
       int kind = 1;

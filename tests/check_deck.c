@@ -1,0 +1,749 @@
+/* check_deck.c: the deck interpreter (deck.c) and the expression evaluator (expr.c).
+ *
+ * Decks are written to a fresh temporary directory.  Successful decks run in the test process and
+ * their results are read back through deck_eval (numbers) or printed text; failing decks run in a
+ * forked child with stdout/stderr captured to files, so each error test checks the exit code, the
+ * FILE:LINE prefix, the message and the caret line exactly.  Only builtin commands are used (the
+ * table in commands.c also holds physics commands, which are other modules' business).
+ *
+ * Operator convention under test: '^' binds tighter than unary minus and is right-associative
+ * (-2^2 = -4, 2^3^2 = 512), the mathematical reading; LAMMPS reads both differently.
+ */
+#include <check.h>
+#include <errno.h>
+#include <ftw.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include "deck.h"
+#include "expr.h"
+#include "sim.h"
+
+/* ------------------------------------------------------------------ helpers */
+
+static char tdir[256]; /* per-test temporary directory */
+
+static int rm_entry(const char *path, const struct stat *st, int flag, struct FTW *f) {
+  return remove(path);
+}
+static void remove_tmpdir(void) {
+  if (tdir[0]) nftw(tdir, rm_entry, 16, FTW_DEPTH | FTW_PHYS);
+  tdir[0] = 0;
+}
+
+/* A fresh directory (the previous one of this test is removed; the teardown removes the last). */
+static void make_tmpdir(void) {
+  remove_tmpdir();
+  snprintf(tdir, sizeof tdir, "/tmp/yf_check_deck_XXXXXX");
+  ck_assert_ptr_nonnull(mkdtemp(tdir));
+}
+
+/* Write text to tdir/name (creating one level of sub-directory if name has one). */
+static void write_file(const char *name, const char *text) {
+  char path[512];
+  const char *slash = strchr(name, '/');
+  if (slash) {
+    snprintf(path, sizeof path, "%s/%.*s", tdir, (int)(slash - name), name);
+    mkdir(path, 0700);
+  }
+  snprintf(path, sizeof path, "%s/%s", tdir, name);
+  FILE *fp = fopen(path, "w");
+  ck_assert_ptr_nonnull(fp);
+  fputs(text, fp);
+  fclose(fp);
+}
+
+static char *read_all(const char *path) {
+  FILE *fp = fopen(path, "rb");
+  if (!fp) return strdup("");
+  char *buf = calloc(1, 65536);
+  size_t n = fread(buf, 1, 65535, fp);
+  buf[n] = 0;
+  fclose(fp);
+  return buf;
+}
+
+/* Run a deck in the test process: the deck is written to tdir/main.deck and run by path. */
+static YfSim g_sim;
+static YfDeck *run_here(const char *text) {
+  make_tmpdir();
+  write_file("main.deck", text);
+  memset(&g_sim, 0, sizeof g_sim);
+  YfDeck *d = deck_new(&g_sim);
+  char path[512];
+  snprintf(path, sizeof path, "%s/main.deck", tdir);
+  deck_run_file(d, path, NULL);
+  return d;
+}
+
+static double val(YfDeck *d, const char *expr) { return deck_eval(d, expr, NULL); }
+
+typedef struct {
+  int code;   /* exit code of the child (or 128+signal) */
+  char *out;  /* its stdout                             */
+  char *err;  /* its stderr                             */
+} Run;
+
+/* Run tdir/e.deck (text) in a child whose working directory is tdir, so messages say "e.deck:N".
+ * Extra files must have been written with write_file before.  var: optional -var NAME=VALUE. */
+static Run run_child(const char *text, const char *var_name, const char *var_value) {
+  write_file("e.deck", text);
+  char out[512], err[512];
+  snprintf(out, sizeof out, "%s/stdout.txt", tdir);
+  snprintf(err, sizeof err, "%s/stderr.txt", tdir);
+  fflush(NULL);
+  pid_t pid = fork();
+  ck_assert_int_ge(pid, 0);
+  if (pid == 0) {
+    if (chdir(tdir) || !freopen(out, "w", stdout) || !freopen(err, "w", stderr)) _exit(99);
+    YfSim sim;
+    memset(&sim, 0, sizeof sim);
+    YfDeck *d = deck_new(&sim);
+    if (var_name) deck_set_var(d, var_name, var_value);
+    deck_run_file(d, "e.deck", NULL);
+    deck_free(d);
+    exit(0);
+  }
+  int st = 0;
+  waitpid(pid, &st, 0);
+  Run r;
+  r.code = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+  r.out = read_all(out);
+  r.err = read_all(err);
+  return r;
+}
+
+static Run run_child_text(const char *text) {
+  make_tmpdir();
+  return run_child(text, NULL, NULL);
+}
+
+static void run_free(Run *r) {
+  free(r->out);
+  free(r->err);
+}
+
+/* Line k (0-based) of text, in a static buffer. */
+static const char *line_of(const char *text, int k) {
+  static char buf[1024];
+  for (int i = 0; i < k && text; i++) {
+    text = strchr(text, '\n');
+    if (text) text++;
+  }
+  if (!text) return "";
+  size_t n = strcspn(text, "\n");
+  if (n >= sizeof buf) n = sizeof buf - 1;
+  memcpy(buf, text, n);
+  buf[n] = 0;
+  return buf;
+}
+
+/* Assert an error run: exit code, first stderr line, and (if given) the context and caret lines. */
+static void expect_error(const char *deck, int code, const char *first, const char *ctx, const char *caret) {
+  Run r = run_child_text(deck);
+  ck_assert_msg(r.code == code, "exit %d, expected %d; stderr:\n%s", r.code, code, r.err);
+  ck_assert_str_eq(line_of(r.err, 0), first);
+  if (ctx) ck_assert_str_eq(line_of(r.err, 1), ctx);
+  if (caret) ck_assert_str_eq(line_of(r.err, 2), caret);
+  run_free(&r);
+}
+
+/* ------------------------------------------------------------------ expressions */
+
+static int no_names(void *ctx, const char *name, double *v, char *err, size_t n) { return 0; }
+
+static double ev(const char *s) {
+  double v = NAN;
+  ExprError e;
+  ck_assert_msg(expr_eval(s, no_names, NULL, &v, &e), "'%s' failed: %s", s, e.msg);
+  return v;
+}
+
+START_TEST(expr_precedence) {
+  /* exact in binary floating point */
+  ck_assert_double_eq(ev("2^3^2"), 512.0); /* right-associative */
+  ck_assert_double_eq(ev("-2^2"), -4.0);   /* '^' before unary minus */
+  ck_assert_double_eq(ev("(-2)^2"), 4.0);
+  ck_assert_double_eq(ev("2^-1"), 0.5);
+  ck_assert_double_eq(ev("1+2*3"), 7.0);
+  ck_assert_double_eq(ev("(1+2)*3"), 9.0);
+  ck_assert_double_eq(ev("8/4/2"), 1.0); /* left-associative */
+  ck_assert_double_eq(ev("10-4-3"), 3.0);
+  ck_assert_double_eq(ev("7%3"), 1.0);
+  ck_assert_double_eq(ev("10/4"), 2.5);
+  ck_assert_double_eq(ev("1e3*2 + .5 + 1."), 2001.5);
+  ck_assert_double_eq(ev("1 + 2 > 2"), 1.0); /* comparison below arithmetic */
+  ck_assert_double_eq(ev("2 <= 1"), 0.0);
+  ck_assert_double_eq(ev("3 >= 3 && 2 != 3"), 1.0);
+  ck_assert_double_eq(ev("1 == 2 || 2 == 2"), 1.0);
+  ck_assert_double_eq(ev("!0 + !5"), 1.0);
+  ck_assert_double_eq(ev("0 || 0"), 0.0);
+  ck_assert_double_eq(ev("1 < 2 == 1"), 1.0);   /* relational before equality */
+  ck_assert_double_eq(ev("0 && 1/0"), 0.0);     /* short-circuit: 1/0 is not evaluated */
+  ck_assert_double_eq(ev("1 || sqrt(-1)"), 1.0);
+}
+END_TEST
+
+START_TEST(expr_functions) {
+  ck_assert_double_eq(ev("sqrt(16)"), 4.0);
+  ck_assert_double_eq(ev("max(1, 5, 3)"), 5.0);
+  ck_assert_double_eq(ev("min(4,-2)"), -2.0);
+  ck_assert_double_eq(ev("pow(2,10)"), 1024.0);
+  ck_assert_double_eq(ev("abs(-3)"), 3.0);
+  ck_assert_double_eq(ev("floor(-1.5)"), -2.0);
+  ck_assert_double_eq(ev("ceil(1.2)"), 2.0);
+  ck_assert_double_eq(ev("round(2.5)"), 3.0); /* half away from zero */
+  ck_assert_double_eq(ev("round(-2.5)"), -3.0);
+  ck_assert_double_eq(ev("log10(1000)"), 3.0);
+  ck_assert_double_eq(ev("pi"), M_PI);
+  ck_assert_double_eq(ev("PI"), M_PI);
+  /* libm results: within a few ulp of the exact value */
+  ck_assert_double_eq_tol(ev("atan2(1,1)"), M_PI / 4, 1e-15);
+  ck_assert_double_eq_tol(ev("cos(pi)"), -1.0, 1e-15);
+  ck_assert_double_eq_tol(ev("sin(pi/6)"), 0.5, 1e-15);
+  ck_assert_double_eq_tol(ev("tan(pi/4)"), 1.0, 1e-15);
+  ck_assert_double_eq_tol(ev("asin(1)"), M_PI / 2, 1e-15);
+  ck_assert_double_eq_tol(ev("acos(0)"), M_PI / 2, 1e-15);
+  ck_assert_double_eq_tol(ev("atan(1)*4"), M_PI, 1e-15);
+  ck_assert_double_eq_tol(ev("log(exp(2))"), 2.0, 1e-15);
+}
+END_TEST
+
+/* Each bad expression: the message and the character position it points at. */
+START_TEST(expr_errors) {
+  static const struct { const char *s, *msg; int pos; } t[] = {
+      {"2*(3+", "missing ')'", 5},
+      {"(1+2", "missing ')'", 4},
+      {"1+2)", "unmatched ')'", 3},
+      {"1/0", "division by zero", 1},
+      {"5%0", "division by zero", 1},
+      {"sqrt(-1)", "sqrt of negative number -1", 0},
+      {"log(0)", "log of non-positive number 0", 0},
+      {"log10(-2)", "log10 of non-positive number -2", 0},
+      {"asin(2)", "asin of 2 (outside [-1, 1])", 0},
+      {"exp(1000)", "exp gives a non-finite result", 0},
+      {"10^400", "'^' gives a non-finite result", 2},
+      {"(-8)^0.5", "negative base -8 to non-integer power 0.5", 4},
+      {"1 + foo", "unknown variable 'foo'", 4},
+      {"v_bar * 2", "unknown variable 'bar'", 0},
+      {"hypot(3,4)", NULL, 0}, /* message lists the functions; checked by prefix below */
+      {"atan2(1)", "atan2() takes 2 arguments, got 1", 0},
+      {"max(1)", "max() takes at least 2 arguments, got 1", 0},
+      {"2 3", "unexpected '3'", 2},
+      {"", "empty expression", 0},
+      {"1 +", "missing operand at the end", 3},
+      {"3.0x", "unexpected 'x' after number", 3},
+      {"1e", "bad exponent in number", 1},
+      {"1 = 1", "'=' is not an operator (use '==' to compare)", 2},
+      {"1 & 1", "'&' is not an operator (use '&&')", 2},
+  };
+  for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+    ExprError e;
+    double v;
+    ck_assert_msg(!expr_eval(t[i].s, no_names, NULL, &v, &e), "'%s' should fail", t[i].s);
+    if (t[i].msg) {
+      ck_assert_msg(!strcmp(e.msg, t[i].msg), "'%s': got '%s', want '%s'", t[i].s, e.msg, t[i].msg);
+      ck_assert_msg(e.pos == t[i].pos, "'%s': pos %d, want %d", t[i].s, e.pos, t[i].pos);
+    } else {
+      ck_assert_msg(!strncmp(e.msg, "unknown function 'hypot'", 24), "got '%s'", e.msg);
+    }
+  }
+  /* syntax check only: names and domain are not checked */
+  ExprError e;
+  ck_assert(expr_check("v_later * 1/0", &e));
+  ck_assert(!expr_check("2*(", &e));
+}
+END_TEST
+
+/* ------------------------------------------------------------------ strict numbers, nearest */
+
+START_TEST(strict_numbers) {
+  static const struct { const char *s; int ok; double v; } t[] = {
+      {"3", 1, 3.0},     {"-2.5e-3", 1, -2.5e-3}, {"+4.", 1, 4.0},   {".5", 1, 0.5},
+      {"1E+2", 1, 100.0}, {"0", 1, 0.0},          {"1e-999", 1, 0.0}, /* underflow is fine */
+      {"3.0x", 0, 0},    {"", 0, 0},              {"nan", 0, 0},     {"inf", 0, 0},
+      {"-inf", 0, 0},    {"1e999", 0, 0},         {".", 0, 0},       {"e5", 0, 0},
+      {"1e", 0, 0},      {" 1", 0, 0},            {"1 ", 0, 0},      {"0x10", 0, 0},
+      {"--1", 0, 0},     {"1,5", 0, 0},           {"$(1)", 0, 0},    {"2*3", 0, 0},
+  };
+  for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+    double v = -12345;
+    int ok = yf_parse_double(t[i].s, &v);
+    ck_assert_msg(ok == t[i].ok, "yf_parse_double('%s') = %d", t[i].s, ok);
+    if (ok) ck_assert_msg(v == t[i].v, "yf_parse_double('%s') = %.17g", t[i].s, v);
+  }
+  static const struct { const char *s; int ok; long v; } L[] = {
+      {"42", 1, 42},  {"-7", 1, -7},   {"+3", 1, 3},   {"1e6", 1, 1000000},
+      {"2.0", 1, 2},  {"2.5", 0, 0},   {"1e-3", 0, 0}, {"", 0, 0},
+      {"12a", 0, 0},  {"1e30", 0, 0},  {"99999999999999999999", 0, 0},
+      {"9223372036854775807", 1, LONG_MAX},
+  };
+  for (size_t i = 0; i < sizeof L / sizeof L[0]; i++) {
+    long v = -12345;
+    int ok = yf_parse_long(L[i].s, &v);
+    ck_assert_msg(ok == L[i].ok, "yf_parse_long('%s') = %d", L[i].s, ok);
+    if (ok) ck_assert_msg(v == L[i].v, "yf_parse_long('%s') = %ld", L[i].s, v);
+  }
+}
+END_TEST
+
+START_TEST(nearest) {
+  static const char *const names[] = {"fix", "run", "variable", "timestep", "label"};
+  ck_assert_str_eq(yf_nearest("fxi", names, 5), "fix");
+  ck_assert_str_eq(yf_nearest("varaible", names, 5), "variable");
+  ck_assert_str_eq(yf_nearest("timstep", names, 5), "timestep");
+  ck_assert_str_eq(yf_nearest("lable", names, 5), "label");
+  ck_assert_ptr_null(yf_nearest("zzzzzz", names, 5)); /* distance 6 > max(2, 6/3) */
+  ck_assert_ptr_null(yf_nearest("material", names, 5));
+}
+END_TEST
+
+/* ------------------------------------------------------------------ variables and loops */
+
+START_TEST(loop_sum) {
+  YfDeck *d = run_here("variable s string 0\n"
+                       "variable c string 0\n"
+                       "variable i loop 10\n"
+                       "label top\n"
+                       "variable s string $(v_s + v_i)\n"
+                       "variable c string $(v_c + 1)\n"
+                       "next i\n"
+                       "jump SELF top\n"
+                       "variable after equal 1\n");
+  ck_assert_double_eq(val(d, "v_s"), 55.0);   /* 1 + 2 + ... + 10 */
+  ck_assert_double_eq(val(d, "c"), 10.0);     /* the body ran exactly 10 times */
+  ck_assert_double_eq(val(d, "after"), 1.0);  /* the skipped jump fell through */
+  deck_free(d);
+}
+END_TEST
+
+START_TEST(index_and_loop_ranges) {
+  YfDeck *d = run_here("variable p string 1\n"
+                       "variable n index 2 3 5\n"
+                       "label a\n"
+                       "variable p string $(v_p*v_n)\n"
+                       "next n\n"
+                       "jump SELF a\n"
+                       "variable k loop 3 5\n"
+                       "variable q string 0\n"
+                       "label b\n"
+                       "variable q string $(v_q+${k})\n"
+                       "next k\n"
+                       "jump SELF b\n"
+                       /* two variables advanced together; ends when the shorter one runs out */
+                       "variable x index 1 2 3\n"
+                       "variable y loop 10 11\n"
+                       "variable z string 0\n"
+                       "label c\n"
+                       "variable z string $(v_z + v_x*v_y)\n"
+                       "next x y\n"
+                       "jump SELF c\n"
+                       /* an exhausted variable is deleted, so it can be defined again */
+                       "variable n equal 99\n");
+  ck_assert_double_eq(val(d, "p"), 30.0);            /* 2*3*5 */
+  ck_assert_double_eq(val(d, "q"), 12.0);            /* 3+4+5 */
+  ck_assert_double_eq(val(d, "z"), 1 * 10 + 2 * 11); /* y ends after 2 values */
+  ck_assert_double_eq(val(d, "n"), 99.0);
+  deck_free(d);
+}
+END_TEST
+
+START_TEST(equal_is_lazy) {
+  YfDeck *d = run_here("variable a equal 1\n"
+                       "variable lazy equal v_a*2\n"
+                       "variable now equal ${a}*2\n"
+                       "variable a equal 5\n"
+                       "variable s string 3.5\n"
+                       "variable t equal v_s + 1\n");
+  ck_assert_double_eq(val(d, "lazy"), 10.0); /* follows a */
+  ck_assert_double_eq(val(d, "now"), 2.0);   /* ${a} was substituted at definition */
+  ck_assert_double_eq(val(d, "t"), 4.5);     /* numeric string variables work in expressions */
+  /* step, time, dt read the simulation */
+  g_sim.step = 7;
+  g_sim.time = 0.5;
+  g_sim.dt = 1e-3;
+  ck_assert_double_eq_tol(val(d, "step*dt + time"), 0.507, 1e-15);
+  g_sim.time = 2.0;
+  ck_assert_double_eq(val(d, "time"), 2.0);
+  deck_free(d);
+}
+END_TEST
+
+START_TEST(cmdline_var_wins) {
+  make_tmpdir();
+  write_file("main.deck", "variable n equal 3\nvariable m equal v_n*2\n");
+  char path[512];
+  snprintf(path, sizeof path, "%s/main.deck", tdir);
+  YfSim sim;
+  memset(&sim, 0, sizeof sim);
+  YfDeck *d = deck_new(&sim);
+  ck_assert_ptr_eq(sim.deck, d);
+  deck_set_var(d, "n", "7");
+  deck_run_file(d, path, NULL);
+  ck_assert_double_eq(deck_eval(d, "m", NULL), 14.0); /* the deck's default 3 was ignored */
+  deck_free(d);
+  d = deck_new(&sim);
+  deck_run_file(d, path, NULL);
+  ck_assert_double_eq(deck_eval(d, "m", NULL), 6.0);
+  deck_free(d);
+}
+END_TEST
+
+START_TEST(if_branches) {
+  static const struct { const char *x; double r; } t[] = {{"20", 1}, {"5", 2}, {"3", 3}, {"-1", 4}};
+  for (int i = 0; i < 4; i++) {
+    char deck[512];
+    snprintf(deck, sizeof deck,
+             "variable x equal %s\n"
+             "if \"${x} > 10\" then \"variable r equal 1\" \"variable r2 equal 1\" &\n"
+             "   elif \"v_x > 4\" \"variable r equal 2\" &\n"
+             "   elif \"v_x >= 0 && v_x < 4\" then \"variable r equal 3\" &\n"
+             "   else \"variable r equal 4\"\n",
+             t[i].x);
+    YfDeck *d = run_here(deck);
+    ck_assert_double_eq(val(d, "r"), t[i].r);
+    if (t[i].r == 1) ck_assert_double_eq(val(d, "r2"), 1.0); /* several commands in one branch */
+    deck_free(d);
+  }
+  /* string comparison, jump from inside an if, and a false if without else */
+  YfDeck *d = run_here("variable mode string fast\n"
+                       "variable f equal 0\n"
+                       "if \"${mode} == fast\" then \"variable f equal 1\"\n"
+                       "if \"${mode} != fast\" then \"variable f equal 2\"\n"
+                       "variable c string 0\n"
+                       "label again\n"
+                       "variable c string $(v_c+1)\n"
+                       "if \"${c} < 4\" then \"jump SELF again\"\n");
+  ck_assert_double_eq(val(d, "f"), 1.0);
+  ck_assert_double_eq(val(d, "c"), 4.0);
+  deck_free(d);
+}
+END_TEST
+
+START_TEST(include_relative) {
+  make_tmpdir();
+  write_file("sub/a.deck", "variable fromA equal 1\ninclude b.deck\nvariable afterB equal v_fromB+1\n");
+  write_file("sub/b.deck", "variable fromB equal 41\n");
+  write_file("main.deck", "include sub/a.deck\nvariable last equal v_afterB*2\n");
+  YfSim sim;
+  memset(&sim, 0, sizeof sim);
+  YfDeck *d = deck_new(&sim);
+  char path[512];
+  snprintf(path, sizeof path, "%s/main.deck", tdir);
+  deck_run_file(d, path, NULL); /* b.deck is found next to a.deck, not next to main.deck */
+  ck_assert_double_eq(deck_eval(d, "last", NULL), 84.0);
+  deck_free(d);
+
+  /* deck_resolve_path joins with the directory of the command's deck */
+  YfArgs a;
+  memset(&a, 0, sizeof a);
+  a.loc.file = "decks/sub/beam.deck";
+  char *p = deck_resolve_path(&a, "mesh.msh");
+  ck_assert_str_eq(p, "decks/sub/mesh.msh");
+  free(p);
+  p = deck_resolve_path(&a, "/abs/mesh.msh");
+  ck_assert_str_eq(p, "/abs/mesh.msh");
+  free(p);
+  a.loc.file = "<stdin>";
+  p = deck_resolve_path(&a, "mesh.msh");
+  ck_assert_str_eq(p, "mesh.msh");
+  free(p);
+  a.loc.file = "beam.deck";
+  p = deck_resolve_path(&a, "m.msh");
+  ck_assert_str_eq(p, "m.msh");
+  free(p);
+}
+END_TEST
+
+START_TEST(quit_stops) {
+  YfDeck *d = run_here("variable a equal 1\nif \"1\" then quit\nvariable a equal 2\n");
+  ck_assert_double_eq(val(d, "a"), 1.0);
+  deck_free(d);
+}
+END_TEST
+
+/* ------------------------------------------------------------------ text: substitution, quotes */
+
+START_TEST(substitution_and_quotes) {
+  Run r = run_child_text("variable a equal 3\n"
+                         "variable name string beam\n"
+                         "print \"${name}: a=$a 2a=$(2*v_a) third=$(1/3:%.4f) n=$(7.6:%d)\" # comment\n"
+                         "print 'single ${name} # not a comment'\n"
+                         "print \"two  spaces\"   and   words\n"
+                         "print \"long &\n"
+                         "   line\" &\n"
+                         "  end\n"
+                         "print \"\"\"triple\n"
+                         "quoted ${a}\"\"\"\n"
+                         "print cost $5\n"
+                         "print \"$(-0.0) ${a}${a}\"\n");
+  ck_assert_msg(r.code == 0, "stderr: %s", r.err);
+  ck_assert_str_eq(r.out, "beam: a=3 2a=6 third=0.3333 n=8\n"
+                          "single ${name} # not a comment\n"
+                          "two  spaces and words\n"
+                          "long     line end\n"
+                          "triple\nquoted 3\n"
+                          "cost $5\n"
+                          "0 33\n");
+  run_free(&r);
+}
+END_TEST
+
+START_TEST(echo_and_stdin) {
+  make_tmpdir();
+  Run r = run_child("echo on\nvariable v equal 2\nprint \"v=$v\"\necho off\nprint done\n", NULL, NULL);
+  ck_assert_msg(r.code == 0, "stderr: %s", r.err);
+  ck_assert_str_eq(r.out, "variable v equal 2\nprint \"v=2\"\nv=2\necho off\ndone\n");
+  run_free(&r);
+  /* a deck from a stream can jump backwards (it is read into memory first) */
+  char text[] = "variable c string 0\nlabel l\nvariable c string $(v_c+1)\nif \"v_c < 3\" then \"jump SELF l\"\n";
+  FILE *fp = fmemopen(text, strlen(text), "r");
+  YfSim sim;
+  memset(&sim, 0, sizeof sim);
+  YfDeck *d = deck_new(&sim);
+  deck_run_stream(d, fp, "<stdin>");
+  fclose(fp);
+  ck_assert_double_eq(deck_eval(d, "c", NULL), 3.0);
+  deck_free(d);
+}
+END_TEST
+
+/* ------------------------------------------------------------------ errors */
+
+START_TEST(error_unknown_command) {
+  expect_error("variable a equal 1\n"
+               "\n"
+               "varaible b equal 2\n",
+               1, "e.deck:3: error: unknown command 'varaible' (did you mean 'variable'?)",
+               "  varaible b equal 2", "  ^");
+  expect_error("qwertyuiop\n", 1, "e.deck:1: error: unknown command 'qwertyuiop'", NULL, NULL);
+}
+END_TEST
+
+START_TEST(error_lines_after_continuation_and_include) {
+  /* the command starts on line 2; the bad word is on line 3 */
+  expect_error("# header\n"
+               "echo &\n"
+               "   maybe\n",
+               1, "e.deck:2: error: echo: setting 'maybe': expected one of off, on", "  echo     maybe",
+               "           ^");
+  make_tmpdir();
+  write_file("inc/x.deck", "variable ok equal 1\n\nvariable bad equal 2*(3+\n");
+  Run r = run_child("variable a equal 1\ninclude inc/x.deck\n", NULL, NULL);
+  ck_assert_int_eq(r.code, 1);
+  ck_assert_str_eq(line_of(r.err, 0), "inc/x.deck:3: error: variable: expression '2*(3+': missing ')'");
+  ck_assert_str_eq(line_of(r.err, 1), "  variable bad equal 2*(3+");
+  ck_assert_str_eq(line_of(r.err, 2), "                          ^");
+  run_free(&r);
+}
+END_TEST
+
+START_TEST(error_expressions_and_variables) {
+  expect_error("print \"x = $(2*(3+))\"\n", 1, "e.deck:1: error: expression '2*(3+)': expected a number, a name or '(' but found ')'",
+               "  print \"x = $(2*(3+))\"", "                    ^");
+  expect_error("variable a equal 1/(v_b-2)\nvariable b equal 2\nprint ${a}\n", 1,
+               "e.deck:3: error: variable 'a' = '1/(v_b-2)': division by zero", "  print ${a}", "        ^");
+  expect_error("print ${nope}\n", 1, "e.deck:1: error: unknown variable 'nope'", NULL, NULL);
+  expect_error("print $q\n", 1, "e.deck:1: error: unknown variable 'q' (write ${name} for longer names)", NULL, NULL);
+  expect_error("variable a equal v_b\nvariable b equal v_a+1\nprint ${a}\n", 1,
+               "e.deck:3: error: variable 'a': equal-style variables nested deeper than 64 (does it refer to itself?)",
+               NULL, NULL);
+  expect_error("variable s string abc\nprint $(v_s+1)\n", 1,
+               "e.deck:2: error: expression 'v_s+1': variable 's' has the non-numeric value 'abc'", NULL, NULL);
+  expect_error("print \"unterminated\n", 1, "e.deck:1: error: unmatched quote", "  print \"unterminated", "        ^");
+  expect_error("variable a equl 3\n", 1,
+               "e.deck:1: error: variable: style 'equl': expected one of equal, string, index, loop, delete "
+               "(did you mean 'equal'?)", NULL, NULL);
+  expect_error("variable a index 1 2\nvariable a equal 3\n", 1,
+               "e.deck:2: error: variable: variable 'a': already defined as index-style, cannot redefine as "
+               "equal-style (use 'variable a delete' first)", NULL, NULL);
+  expect_error("next i\n", 1, "e.deck:1: error: next: variable 'i': no such variable", NULL, NULL);
+  expect_error("jump SELF nowhere\n", 1, "e.deck:1: error: jump: label 'nowhere': no 'label nowhere' in e.deck",
+               NULL, NULL);
+  expect_error("if \"v_q > 1\" then \"print x\"\n", 1, "e.deck:1: error: if: condition 'v_q > 1': unknown variable 'q'",
+               "  if \"v_q > 1\" then \"print x\"", "      ^");
+  expect_error("if 1 \"print x\"\n", 1, "e.deck:1: error: if: 'print x': expected 'then' after the condition", NULL,
+               NULL);
+  expect_error("label\n", 1, "e.deck:1: error: label: expected 1 argument, got 0", "  usage: label NAME", "  label");
+  expect_error("print $(1:%s)\n", 1,
+               "e.deck:1: error: bad format '%s' in $(...) (expected one conversion like %.3f, %g, %10.4e or %d)",
+               NULL, NULL);
+}
+END_TEST
+
+START_TEST(error_includes) {
+  expect_error("variable a equal 1\n\ninclude missing.deck\n", 2,
+               "e.deck:3: error: include: cannot open 'missing.deck': No such file or directory", NULL, NULL);
+  make_tmpdir();
+  write_file("r1.deck", "include r2.deck\n");
+  write_file("r2.deck", "include r1.deck\n");
+  Run r = run_child("include r1.deck\n", NULL, NULL);
+  ck_assert_int_eq(r.code, 1);
+  ck_assert_msg(strstr(r.err, "error: include: nesting deeper than 32 levels ('r") &&
+                    strstr(r.err, "includes itself, directly or through other files)"),
+                "stderr: %s", r.err);
+  run_free(&r);
+}
+END_TEST
+
+/* The argument helpers, on a hand-made command (as a physics handler would call them). */
+static YfArgs fake_args(const char *cmd, const char *line, int n, char **w) {
+  YfArgs a;
+  a.cmd = cmd;
+  a.n = n;
+  a.w = w;
+  a.loc.file = "beam.deck";
+  a.loc.line = 14;
+  a.line = line;
+  return a;
+}
+
+/* Run fn in a child and return its stderr (first line in *first) and exit code. */
+static int helper_child(void (*fn)(void), char **err) {
+  make_tmpdir();
+  char path[512];
+  snprintf(path, sizeof path, "%s/stderr.txt", tdir);
+  fflush(NULL);
+  pid_t pid = fork();
+  if (pid == 0) {
+    if (!freopen(path, "w", stderr)) _exit(99);
+    fn();
+    exit(0);
+  }
+  int st = 0;
+  waitpid(pid, &st, 0);
+  *err = read_all(path);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+}
+
+static char *w_fix[] = {"base", "bottom", "fixed", "z"};
+static void call_choice(void) {
+  static const char *const dirs[] = {"x", "y", "xy", NULL};
+  YfArgs a = fake_args("fix", "fix base bottom fixed z", 4, w_fix);
+  arg_choice(&a, 3, "direction", dirs);
+}
+static char *w_num[] = {"3.0x"};
+static void call_num(void) {
+  YfArgs a = fake_args("timestep", "timestep 3.0x", 1, w_num);
+  arg_num(&a, 0, "dt");
+}
+static char *w_expr[] = {"2*E"};
+static void call_num_expr(void) {
+  YfArgs a = fake_args("timestep", "timestep 2*E", 1, w_expr);
+  arg_num(&a, 0, "dt");
+}
+static char *w_int[] = {"0"};
+static void call_int_range(void) {
+  YfArgs a = fake_args("run", "run 0", 1, w_int);
+  arg_int(&a, 0, "steps", 1, 100);
+}
+static char *w_neg[] = {"-1e-3"};
+static void call_pos(void) {
+  YfArgs a = fake_args("timestep", "timestep -1e-3", 1, w_neg);
+  arg_pos(&a, 0, "dt");
+}
+static void call_word_missing(void) {
+  YfArgs a = fake_args("fix", "fix base", 1, w_fix);
+  arg_word(&a, 1, "group");
+}
+static void call_arg_error(void) {
+  YfArgs a = fake_args("fix", "fix base bottom fixed z", 4, w_fix);
+  arg_error(&a, 1, "no such group");
+}
+
+START_TEST(arg_helpers) {
+  /* successful conversions */
+  char *ok[] = {"2.5e-3", "1e6", "xy", "0"};
+  YfArgs a = fake_args("t", "t 2.5e-3 1e6 xy 0", 4, ok);
+  static const char *const dirs[] = {"x", "y", "xy", NULL};
+  ck_assert_double_eq(arg_num(&a, 0, "v"), 2.5e-3);
+  ck_assert_int_eq(arg_int(&a, 1, "n", 0, LONG_MAX), 1000000);
+  ck_assert_int_eq(arg_choice(&a, 2, "dir", dirs), 2);
+  ck_assert_double_eq(arg_nonneg(&a, 3, "v"), 0.0);
+  ck_assert_str_eq(arg_word(&a, 2, "w"), "xy");
+  arg_count(&a, 4, 4);
+  arg_count(&a, 1, -1);
+
+  static const struct { void (*fn)(void); const char *l0, *l1, *l2; } t[] = {
+      {call_choice, "beam.deck:14: error: fix: direction 'z': expected one of x, y, xy", "  fix base bottom fixed z",
+       "                        ^"},
+      {call_num, "beam.deck:14: error: timestep: dt '3.0x': not a finite number", "  timestep 3.0x", "           ^"},
+      {call_num_expr, "beam.deck:14: error: timestep: dt '2*E': not a finite number (write an expression as $(...))",
+       NULL, NULL},
+      {call_int_range, "beam.deck:14: error: run: steps '0': must be in [1, 100]", NULL, NULL},
+      {call_pos, "beam.deck:14: error: timestep: dt '-1e-3': must be > 0", NULL, NULL},
+      {call_word_missing, "beam.deck:14: error: fix: missing group", NULL, NULL},
+      {call_arg_error, "beam.deck:14: error: fix: 'bottom': no such group", "  fix base bottom fixed z",
+       "           ^"},
+  };
+  for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+    char *err;
+    int code = helper_child(t[i].fn, &err);
+    ck_assert_msg(code == 1, "case %zu: exit %d, stderr %s", i, code, err);
+    ck_assert_str_eq(line_of(err, 0), t[i].l0);
+    if (t[i].l1) ck_assert_str_eq(line_of(err, 1), t[i].l1);
+    if (t[i].l2) ck_assert_str_eq(line_of(err, 2), t[i].l2);
+    free(err);
+  }
+}
+END_TEST
+
+/* Exit codes through Check's own fork mode (decks from memory streams: nothing to clean up). */
+static void run_text_stream(const char *text) {
+  static char buf[256];
+  snprintf(buf, sizeof buf, "%s", text);
+  FILE *fp = fmemopen(buf, strlen(buf), "r");
+  YfSim sim;
+  memset(&sim, 0, sizeof sim);
+  YfDeck *d = deck_new(&sim);
+  if (!freopen("/dev/null", "w", stderr)) return;
+  deck_run_stream(d, fp, "<stdin>");
+}
+
+START_TEST(exit_deck_error) { run_text_stream("variable a equal 1\nfxi 1\n"); }
+END_TEST
+
+START_TEST(exit_missing_include) { run_text_stream("include /nonexistent/yf_no_such_file.deck\n"); }
+END_TEST
+
+Suite *deck_suite(void) {
+  Suite *s = suite_create("deck");
+  TCase *tc = tcase_create("expressions");
+  tcase_add_checked_fixture(tc, NULL, remove_tmpdir);
+  tcase_add_test(tc, expr_precedence);
+  tcase_add_test(tc, expr_functions);
+  tcase_add_test(tc, expr_errors);
+  tcase_add_test(tc, strict_numbers);
+  tcase_add_test(tc, nearest);
+  suite_add_tcase(s, tc);
+
+  tc = tcase_create("interpreter");
+  tcase_add_checked_fixture(tc, NULL, remove_tmpdir);
+  tcase_add_test(tc, loop_sum);
+  tcase_add_test(tc, index_and_loop_ranges);
+  tcase_add_test(tc, equal_is_lazy);
+  tcase_add_test(tc, cmdline_var_wins);
+  tcase_add_test(tc, if_branches);
+  tcase_add_test(tc, include_relative);
+  tcase_add_test(tc, quit_stops);
+  tcase_add_test(tc, substitution_and_quotes);
+  tcase_add_test(tc, echo_and_stdin);
+  suite_add_tcase(s, tc);
+
+  tc = tcase_create("errors");
+  tcase_add_checked_fixture(tc, NULL, remove_tmpdir);
+  tcase_add_test(tc, error_unknown_command);
+  tcase_add_test(tc, error_lines_after_continuation_and_include);
+  tcase_add_test(tc, error_expressions_and_variables);
+  tcase_add_test(tc, error_includes);
+  tcase_add_test(tc, arg_helpers);
+  tcase_add_exit_test(tc, exit_deck_error, 1);
+  tcase_add_exit_test(tc, exit_missing_include, 2);
+  suite_add_tcase(s, tc);
+  return s;
+}
