@@ -1,0 +1,110 @@
+/* joint_law.h: the cohesive joint element of Y2D as a pure kernel (ALGORITHMS.md 3), plus
+ * yfdem's extra softening laws.
+ *
+ * A joint is four nodes on a shared edge of two triangles A and B.  joint_force() turns their
+ * current positions and the joint's small state (current shear strength, optional damage memory)
+ * into eight nodal force components; it allocates nothing, does no I/O and touches nothing but its
+ * arguments, so joint.c can call it from any thread on any slice of joints.
+ *
+ * Laws (sigma/f_t = g(z) beyond the peak, z = (o - o_p)/o_t in pure mode I):
+ *   YF_SOFT_MUNJIZA     Y2D's curve f(z) with o_t = 3 G/f_t: reproduces the book exactly when
+ *                       y2d_floor = 1 and irreversible = 0.  It dissipates 3 I_f G beyond the peak,
+ *                       I_f = YF_MUNJIZA_AREA, i.e. 1.15892 G (see joint_law.c); y2d_floor = 0 is
+ *                       the Y-Geo rule o_t = 3 G/f_t without the 2 o_p floor.
+ *   YF_SOFT_MUNJIZA_GF  the same curve with o_t = G/(f_t I_f): area beyond the peak exactly G.
+ *   YF_SOFT_LINEAR      g = 1 - z, o_t = 2 G/f_t.
+ *   YF_SOFT_BILINEAR    kink at (z1, s1); defaults z1 = 2/9, s1 = 1/3 (Petersson's concrete curve:
+ *                       f_t/3 at 0.8 G/f_t, zero at 3.6 G/f_t); o_t = G/(f_t (z1 + s1)/2).
+ *   YF_SOFT_TABLE       piecewise linear through user points (w_i, s_i), w rescaled to [0, 1];
+ *                       o_t = G/(f_t area of the normalised table).
+ * Every yfdem law (all but YF_SOFT_MUNJIZA) puts exactly G under the softening branch unless the
+ * floor o_t >= 2 o_p (y2d_floor = 1, Y2D's guard against a softening branch shorter than the
+ * pre-peak one) lengthens it.  Shear uses the same g with f_s, s_p, s_t in place of f_t, o_p, o_t.
+ *
+ * Units: SI, 2D per unit thickness: stresses Pa, openings m, forces N/m, energies J/m^2 per unit
+ * joint length.
+ */
+#ifndef YF_JOINT_LAW_H
+#define YF_JOINT_LAW_H
+#include <stddef.h>
+
+enum { YF_SOFT_MUNJIZA = 0, YF_SOFT_MUNJIZA_GF, YF_SOFT_LINEAR, YF_SOFT_BILINEAR, YF_SOFT_TABLE,
+       YF_SOFT_NLAW };
+
+/* Failure mode reported by joint_force (at the most damaged sampling point). */
+enum { YF_JMODE_NONE = 0, YF_JMODE_I, YF_JMODE_II, YF_JMODE_MIXED };
+
+#define YF_JOINT_TAB_MAX 32 /* points of a tabulated softening curve */
+
+/* Integral of Munjiza's f(z) over z = 0..1 (derived analytically in joint_law.c). */
+#define YF_MUNJIZA_AREA 0.38630729474394262516
+
+/* One joint property set.  Plain data: copy freely (the table lives inside). */
+typedef struct {
+  double ft, fs, gf, pen; /* tensile, shear strength [Pa], fracture energy [J/m^2], penalty [Pa] */
+  double coh, phi;        /* Mohr-Coulomb cohesion [Pa] and friction coefficient; active if coh > 0 */
+  int law;                /* YF_SOFT_*                                                          */
+  int y2d_floor;          /* 1: o_t = max(2 o_p, law length) as Y2D; 0: the law's length alone   */
+  int irreversible;       /* 0: Y2D, no damage memory; 1: damage never decreases, secant unloading */
+  double bl_z, bl_s;      /* bilinear kink: fraction of o_t, fraction of f_t                      */
+  int ntab;               /* tabulated law: set only through joint_prop_set_table()              */
+  double tab_z[YF_JOINT_TAB_MAX]; /* normalised opening, 0 .. 1, strictly increasing          */
+  double tab_s[YF_JOINT_TAB_MAX]; /* stress / f_t, 1 .. 0                                     */
+  double tab_area;        /* integral of the normalised table                                    */
+} YfJointProp;
+
+/* What one evaluation saw (optional output of joint_force). */
+typedef struct {
+  double h;          /* current joint length [m]                                            */
+  double open_mean;  /* mean normal opening (o_a + o_b)/2 [m], > 0 when A moves away from B     */
+  double slip_mean;  /* mean slip (s_a + s_b)/2 [m], signed along e1                           */
+  double zmax;       /* largest damage of the three sampling points after this call            */
+  int mode;          /* YF_JMODE_* of the most damaged point: I if the normalised opening beyond
+                        the peak is >= 9x the slip beyond the peak, II for the converse, else mixed;
+                        NONE when zmax = 0                                                       */
+} YfJointInfo;
+
+/* Y2D-like defaults: Munjiza law, book floor, reversible, concrete of the seed paper
+ * (f_t = f_s = 3.15 MPa, G = 300 J/m^2, p = 1e11 Pa), no Mohr-Coulomb, Petersson kink. */
+void joint_prop_default(YfJointProp *p);
+/* 1 if p is usable; else 0 and a one-line reason in why[0..n-1]. */
+int joint_prop_check(const YfJointProp *p, char *why, size_t n);
+/* Fill the tabulated law from n points (w_i opening in any unit, s_i stress/f_t): w_0 = 0, w
+ * strictly increasing, s_0 = 1, s_{n-1} = 0, 0 <= s_i <= 1, 2 <= n <= YF_JOINT_TAB_MAX.  Sets law =
+ * YF_SOFT_TABLE.  Returns 1, or 0 with a reason (p unchanged). */
+int joint_prop_set_table(YfJointProp *p, int n, const double *w, const double *s, char *why,
+                         size_t nwhy);
+/* Shear strength a joint starts with (ALGORITHMS 3.2): fs, or coh if fs <= 0. [Pa] */
+double joint_fs_init(const YfJointProp *p);
+
+/* Normalised softening curve g(z) of the law, z in [0, 1]: g(0) = 1, g(1) = 0. */
+double joint_soft(const YfJointProp *p, double z);
+/* Integral of g over [0, 1]. */
+double joint_soft_area(const YfJointProp *p);
+/* Characteristic lengths for joint length h and shear strength fs [m]: peak opening o_p, softening
+ * length o_t (stress 0 at o_p + o_t), and the same for slip.  Any pointer may be NULL. */
+void joint_lengths(const YfJointProp *p, double h, double fs, double *op, double *ot, double *sp,
+                   double *st);
+/* Energy per unit joint length [J/m^2] dissipated by opening a joint of length h in pure mode I
+ * until it fails: the quadratic pre-peak branch (2/3 f_t o_p) plus the softening area f_t o_t I_g.
+ * joint_law_area_shear: the same in pure slip with the initial shear strength. */
+double joint_law_area(const YfJointProp *p, double h);
+double joint_law_area_shear(const YfJointProp *p, double h);
+
+/* Forces of one joint (ALGORITHMS 3.1-3.7).
+ * x[4], y[4]: current positions of nodes 0..3 [m] (0, 1 on triangle A: edge p->q in A's CCW order;
+ *   3, 2: B's copies of p, q).
+ * fs_state: in/out current shear strength [Pa] (Mohr-Coulomb memory; start with joint_fs_init);
+ *   NULL: use joint_fs_init(p) and keep nothing.
+ * dmg: in/out, 3 doubles: largest damage reached at end a, middle, end b (start at 0); read and
+ *   written only when p->irreversible (may be NULL otherwise).
+ * f[8]: out, fx0, fy0, fx1, fy1, fx2, fy2, fx3, fy3 [N/m].
+ * info: optional out.
+ * Returns the number of failed sampling points (z >= 1); >= 2 means the joint is broken (3.7):
+ * the caller still applies f of this call and drops the joint afterwards. */
+int joint_force(const YfJointProp *p, const double x[4], const double y[4], double *fs_state,
+                double *dmg, double f[8], YfJointInfo *info);
+
+#define YF_JOINT_BROKEN(nfail) ((nfail) >= 2)
+
+#endif
