@@ -1091,7 +1091,9 @@ static int condition(YfDeck *d, const YfArgs *a, int i) {
 void deck_cmd_if(struct YfSim *sim, const YfArgs *a) {
   YfDeck *d = deck_of(sim, a);
   arg_count(a, 2, -1);
-  if (strcmp(a->w[1], "then")) arg_fail(a, 1, NULL, "expected 'then' after the condition");
+  if (strcmp(a->w[1], "then"))
+    arg_fail(a, 1, NULL, "expected 'then' after the condition%s",
+             a->n > 2 && strchr("<>=!&|", a->w[1][0]) ? " (quote the condition: if \"a > b\" then ...)" : "");
   int i = 2, from = -1, to = -1;
   int start = i;
   while (i < a->n && strcmp(a->w[i], "elif") && strcmp(a->w[i], "else")) i++;
