@@ -93,7 +93,9 @@ double joint_law_area_shear(const YfJointProp *p, double h);
 
 /* Forces of one joint (ALGORITHMS 3.1-3.7).
  * x[4], y[4]: current positions of nodes 0..3 [m] (0, 1 on triangle A: edge p->q in A's CCW order;
- *   3, 2: B's copies of p, q).
+ *   3, 2: B's copies of p, q).  The joint length h must be > 0 (as in Y2D, o_p = 0 divides).
+ *   As in Y2D the tangent is e/(h + 1e-10) and the normal its rotation, so both are shorter than
+ *   1 by h/(h + 1e-10): measured o, s and the force vectors carry that factor.
  * fs_state: in/out current shear strength [Pa] (Mohr-Coulomb memory; start with joint_fs_init);
  *   NULL: use joint_fs_init(p) and keep nothing.
  * dmg: in/out, 3 doubles: largest damage reached at end a, middle, end b (start at 0); read and
