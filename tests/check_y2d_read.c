@@ -1,0 +1,302 @@
+/* check_y2d_read.c: the Y2D (.y) deck reader.
+ *
+ * Three layers: (1) the four reference decks of /work/shared/y2d (copied to tests/y2d/decks)
+ * give the counts of the README table and the values written in them (exact: the reader must
+ * not change a digit); (2) the array syntaxes (codes 12/21, 3D permutations), defaults, the
+ * prefix rule and $YINCL relative to the deck; (3) malformed decks in tests/y2d_bad each end
+ * the process with the documented exit code and a "FILE:LINE: error:" message naming the key.
+ * Error cases run y2d_read in a forked child with stderr captured in a file.
+ */
+#include <check.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include "y2d_read.h"
+
+#define DECKS "tests/y2d/decks/"
+#define BAD "tests/y2d_bad/"
+
+/* ------------------------------------------------------------------ reference decks */
+
+static const struct {
+  const char *file;
+  long tris, nodes, steps;
+  double dt;
+} refs[] = {
+  {DECKS "a_elastic_block.y", 736, 440, 4000, 2.5e-7},
+  {DECKS "b_beam_impact.y", 1080, 628, 15000, 1.0e-7},
+  {DECKS "c_column_impact.y", 952, 541, 9000, 6.0e-8},
+  {DECKS "d1_cantilever_bc.y", 720, 427, 16000, 2.5e-7},
+};
+
+START_TEST(test_reference_counts) {
+  YfY2d y;
+  y2d_read(refs[_i].file, &y, NULL);
+  ck_assert_int_eq(y.nelem, refs[_i].tris);
+  ck_assert_int_eq(y.nnopo, refs[_i].nodes);
+  ck_assert_int_eq(y.mcstep, refs[_i].steps);
+  ck_assert(y.dcstec == refs[_i].dt); /* the literal in the deck, read exactly */
+  ck_assert_int_eq(y.has_ydoit, 1);
+  ck_assert_int_eq(y.mnodim, 2);
+  /* every input node has a valid BC set and every triangle a property (checked on read) */
+  for (long n = 0; n < y.nnopo; n++) ck_assert(y.i1nopr[n] >= 0 && y.i1nopr[n] < y.npnset);
+  /* D2NCC is given in these decks and equals D2NCI (no pre-strain) */
+  ck_assert_int_eq(y.given[Y2D_N_D2NCC], 1);
+  for (long i = 0; i < 2 * y.nnopo; i++) ck_assert(y.d2ncc[i] == y.d2nci[i]);
+  y2d_free(&y);
+}
+END_TEST
+
+START_TEST(test_beam_values) {
+  YfY2d y;
+  y2d_read(DECKS "b_beam_impact.y", &y, NULL);
+  ck_assert_int_eq(y.nprop, 3);
+  ck_assert(y.d1pero[0] == 2340 && y.d1pero[1] == 30000);
+  ck_assert(y.d1pela[0] == 4836709384.042993);
+  ck_assert(y.d1pemu[1] == 80769230769.23077);
+  ck_assert(y.d1pepe[2] == 1e11);
+  ck_assert_int_eq(y.npjset, 2);
+  ck_assert(y.d1pjft[0] == 3.15e6 && y.d1pjgf[0] == 300 && y.d1pjgf[1] == 3e12);
+  /* meshing rows: [k, code, p] = [1 3 0], [1 3 1]; I2PMIJ [0 0 0], [1 1 1] */
+  ck_assert_int_eq(y.mpmcom, 2);
+  ck_assert_int_eq(y.mpmcol, 3);
+  const int set[6] = {1, 3, 0, 1, 3, 1}, ij[6] = {0, 0, 0, 1, 1, 1};
+  for (int i = 0; i < 6; i++) ck_assert_int_eq(y.i2pmset[i], set[i]);
+  for (int i = 0; i < 6; i++) ck_assert_int_eq(y.i2pmij[i], ij[i]);
+  /* BC sets: 0 free (force 0), 1 fixed (velocity 0) */
+  ck_assert_int_eq(y.i1pnfx[0], 1);
+  ck_assert_int_eq(y.i1pnfx[1], 3);
+  ck_assert(y.d1pnay[1] == 0.0);
+  ck_assert_int_eq(y.micoup, 27000);
+  ck_assert_int_eq(y.mistate, 6);
+  ck_assert(y.diezon == 0.0014999999999999846);
+  /* the where[] of a key is its line in the .y file */
+  ck_assert_int_eq(y.where[Y2D_I_MICOUP].line, 3113);
+  ck_assert_int_eq(y.where[Y2D_PM_I2PMSET].line, 3160);
+  ck_assert_str_eq(y.where[Y2D_PM_I2PMSET].file, DECKS "b_beam_impact.y");
+  y2d_free(&y);
+}
+END_TEST
+
+START_TEST(test_cantilever_bc_tables) {
+  YfY2d y;
+  y2d_read(DECKS "d1_cantilever_bc.y", &y, NULL);
+  /* topology: first two triangles as written (21 ordering: one row per element) */
+  const int t01[6] = {0, 1, 62, 0, 62, 61};
+  for (int k = 0; k < 3; k++) {
+    ck_assert_int_eq(y.i2elto[0 * y.melno + k], t01[k]);
+    ck_assert_int_eq(y.i2elto[1 * y.melno + k], t01[3 + k]);
+  }
+  ck_assert(y.d2nci[2 * 1] == 0.0050000000000000001 && y.d2nci[2 * 1 + 1] == 0.0);
+  ck_assert_int_eq(y.npnset, 5);
+  ck_assert(y.i1pnfy[2] == 1 && y.d1pnay[2] == -20000); /* tip point load */
+  ck_assert(y.d1pnap[3] == 2e6);                        /* pressure patch  */
+  ck_assert(y.i1pnfy[4] == 3 && y.d1pnay[4] == 0.5);    /* velocity pulse  */
+  /* D3PNFAC 123 2 5 4: all times set by set, then all factors */
+  ck_assert_int_eq(y.npnfact, 4);
+  ck_assert_int_eq(y.tables_on, 1);
+  const double t2[4] = {0.0, 0.00050000000000000001, 0.00059999999999999995, 0.040000000000000001};
+  const double f2[4] = {0, 1, 1, 1};
+  const double t3[4] = {0.0, 0.00020000000000000001, 0.00040000000000000002, 0.040000000000000001};
+  const double f3[4] = {0, 1, 0, 0};
+  const double t4[4] = {0.0, 5e-05, 0.0001, 0.040000000000000001};
+  for (int p = 0; p < 4; p++) {
+    ck_assert(y2d_fac_time(&y, 2, p) == t2[p] && y2d_fac_value(&y, 2, p) == f2[p]);
+    ck_assert(y2d_fac_time(&y, 3, p) == t3[p] && y2d_fac_value(&y, 3, p) == f3[p]);
+    ck_assert(y2d_fac_time(&y, 4, p) == t4[p] && y2d_fac_value(&y, 4, p) == f3[p]);
+    ck_assert(y2d_fac_value(&y, 0, p) == 1.0);
+  }
+  y2d_free(&y);
+}
+END_TEST
+
+/* ------------------------------------------------------------------ syntax and defaults */
+
+/* The tiny deck of tests/y2d/tiny.y with line 11 (I2ELTO) and the keys before $YDOIT
+ * replaceable, written to a temporary file. */
+static const char *tiny_head =
+  "/* tiny deck */\n/YD/YDC/MCSTEP 10\n/YD/YDC/DCSTEC 1e-6\n/YD/YDE/MELEM 2\n/YD/YDE/NELEM 2\n"
+  "/YD/YDE/MELST 1\n/YD/YDE/NELST 1\n/YD/YDE/MELNO 3\n/YD/YDE/NELNO 3\n/YD/YDE/I1ELPR 2 0 0\n";
+static const char *tiny_tail =
+  "/YD/YDN/MNODIM 2\n/YD/YDN/NNODIM 2\n/YD/YDN/MNOPO 4\n/YD/YDN/NNOPO 4\n"
+  "/YD/YDN/D2NCI 21 2 4 0 0 1 0 1 1 0 1\n/YD/YDN/I1NOPR 4 0 0 0 0\n/YD/YDN/I1NOBF 4 1 1 1 1\n"
+  "/YD/YDI/MICOUP 10\n/YD/YDI/MISTATE 6\n/YD/YDPE/MPROP 1\n/YD/YDPE/NPROP 1\n"
+  "/YD/YDPE/I1PTYP 1 1\n/YD/YDPE/D1PERO 1 2000\n/YD/YDPE/D1PELA 1 1e9\n/YD/YDPE/D1PEMU 1 1e9\n"
+  "/YD/YDPE/D1PEPE 1 1e10\n/YD/YDPE/D1PEPT 1 1e9\n/YD/YDPN/MPNSET 2\n/YD/YDPN/NPNSET 2\n"
+  "/YD/YDPN/I1PNFX 2 1 3\n/YD/YDPN/I1PNFY 2 1 3\n/YD/YDPN/D1PNAX 2 0 0\n/YD/YDPN/D1PNAY 2 0 0\n";
+
+static void write_tiny(char *path, const char *elto, const char *extra) {
+  strcpy(path, "/tmp/y2d_testXXXXXX.y");
+  int fd = mkstemps(path, 2);
+  ck_assert(fd >= 0);
+  FILE *f = fdopen(fd, "w");
+  fprintf(f, "%s%s\n%s%s\n$YDOIT\n$YSTOP\n", tiny_head, elto, tiny_tail, extra);
+  fclose(f);
+}
+
+START_TEST(test_array_orders) {
+  char path[64];
+  /* code 12: dimension 1 (node slot) outermost: slot 0 of both elements, then slot 1, slot 2;
+   * D3PNFAC 321: table point outermost, then set, then time/factor */
+  write_tiny(path, "/YD/YDE/I2ELTO 12 3 2  0 0  1 2  2 3",
+             "/YD/YDPN/MPNFACT 2\n/YD/YDPN/NPNFACT 2\n"
+             "/YD/YDPN/D3PNFAC 321 2 2 2  0 0.5  0 0.25  1 1.5  2 2.5\n");
+  YfY2d y;
+  y2d_read(path, &y, NULL);
+  unlink(path);
+  const int t[6] = {0, 1, 2, 0, 2, 3};
+  for (int i = 0; i < 6; i++) ck_assert_int_eq(y.i2elto[i], t[i]);
+  /* value order (p, s, c): p0 s0: t=0 f=0.5; p0 s1: t=0 f=0.25; p1 s0: t=1 f=1.5; p1 s1: 2, 2.5 */
+  ck_assert(y2d_fac_time(&y, 0, 0) == 0 && y2d_fac_value(&y, 0, 0) == 0.5);
+  ck_assert(y2d_fac_time(&y, 1, 0) == 0 && y2d_fac_value(&y, 1, 0) == 0.25);
+  ck_assert(y2d_fac_time(&y, 0, 1) == 1 && y2d_fac_value(&y, 0, 1) == 1.5);
+  ck_assert(y2d_fac_time(&y, 1, 1) == 2 && y2d_fac_value(&y, 1, 1) == 2.5);
+  y2d_free(&y);
+}
+END_TEST
+
+START_TEST(test_defaults_and_prefix) {
+  char path[64];
+  /* MCSTEPXYZ is MCSTEP under the anchor's prefix rule; MNODIMX is MNODIM (5 characters) */
+  write_tiny(path, "/YD/YDE/I2ELTO 21 3 2 0 1 2 0 2 3", "/YD/YDC/MCSTEPXYZ 77\n");
+  YfY2d y;
+  y2d_read(path, &y, NULL);
+  unlink(path);
+  ck_assert_int_eq(y.mcstep, 77);
+  ck_assert_int_eq(y.where[Y2D_C_MCSTEP].line, 35);
+  /* FORMAT.md defaults of keys the deck does not give */
+  ck_assert_int_eq(y.icoutf, 10);
+  ck_assert_int_eq(y.icoutp, 4);
+  ck_assert_int_eq(y.icshtf, 100);
+  ck_assert_int_eq(y.iwfast, 1);
+  ck_assert_int_eq(y.iiecff, -2);
+  ck_assert(y.diedi == 1e15 && y.dcsizc == 1 && y.dcsizv == 1 && y.dohyp == 0.05);
+  ck_assert(y.d1pnxx[1] == 1 && y.d1pnxy[1] == 0 && y.d1pnyx[1] == 0 && y.d1pnyy[1] == 1);
+  ck_assert(y.d1pnap[0] == 0 && y.d1pnat[1] == 0);
+  ck_assert(y.d1peks[0] == 0 && y.d1pefr[0] == 0);
+  ck_assert_int_eq(y.i1pefr[0], -1);
+  ck_assert_int_eq(y.given[Y2D_PE_D1PEKS], 0);
+  ck_assert_int_eq(y.given[Y2D_PE_D1PEPT], 1);
+  /* D2NCC not given: copy of D2NCI; D2NVC zero */
+  ck_assert_int_eq(y.given[Y2D_N_D2NCC], 0);
+  for (int i = 0; i < 8; i++) ck_assert(y.d2ncc[i] == y.d2nci[i] && y.d2nvc[i] == 0);
+  ck_assert(y.d2nci[2 * 2] == 1 && y.d2nci[2 * 2 + 1] == 1);
+  y2d_free(&y);
+  ck_assert_int_eq(y2d_is_y_file("a/b/beam.y"), 1);
+  ck_assert_int_eq(y2d_is_y_file("beam.deck"), 0);
+  ck_assert_int_eq(y2d_is_y_file("beam.yh0"), 0);
+}
+END_TEST
+
+START_TEST(test_include_relative_to_deck) {
+  /* tiny_incl.y says "$YINCL tiny_part.inc"; the test runs from the repo root, so the file is
+   * found only relative to the deck's directory */
+  YfY2d a, b;
+  y2d_read("tests/y2d/tiny.y", &a, NULL);
+  y2d_read("tests/y2d/tiny_incl.y", &b, NULL);
+  ck_assert_int_eq(a.nprop, b.nprop);
+  ck_assert(a.d1pero[0] == b.d1pero[0] && a.d1pept[0] == b.d1pept[0]);
+  ck_assert_str_eq(b.where[Y2D_PE_D1PERO].file, "tests/y2d/tiny_part.inc");
+  ck_assert_int_eq(b.where[Y2D_PE_D1PERO].line, 4);
+  ck_assert_int_eq(b.where[Y2D_PN_MPNSET].line, 22); /* back in the including file */
+  y2d_free(&a);
+  y2d_free(&b);
+}
+END_TEST
+
+/* ------------------------------------------------------------------ errors */
+
+/* Run y2d_read(path) in a child; return its exit status, stderr in msg. */
+static int run_child(const char *path, char *msg, size_t cap) {
+  char tmp[] = "/tmp/y2d_errXXXXXX";
+  int fd = mkstemp(tmp);
+  ck_assert(fd >= 0);
+  fflush(stderr);
+  pid_t pid = fork();
+  ck_assert(pid >= 0);
+  if (pid == 0) {
+    dup2(fd, 2);
+    YfY2d y;
+    y2d_read(path, &y, NULL);
+    _exit(0);
+  }
+  int st = 0;
+  waitpid(pid, &st, 0);
+  FILE *f = fdopen(fd, "r");
+  rewind(f);
+  size_t n = fread(msg, 1, cap - 1, f);
+  msg[n] = 0;
+  fclose(f);
+  unlink(tmp);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+}
+
+static const struct {
+  const char *file;
+  int code, line;
+  const char *text; /* must appear after "FILE:LINE: error: " */
+} bad[] = {
+  {"unknown_key.y", 1, 2, "/YD/YDC/MCSTPE: unknown key in /YD/YDC/ (did you mean MCSTEP?)"},
+  {"unknown_group.y", 1, 3, "unknown group /YD/YDX/ (did you mean /YD/YDC/?)"},
+  {"ygeo_key.y", 1, 25, "/YD/YDPE/D1PEEM: Y-Geo key, not in Y2D"},
+  {"ygeo_group.y", 1, 35, "/YD/YDFN/MFNSET: Y-Geo group"},
+  {"short_array.y", 1, 10, "/YD/YDE/I1ELPR: expected 2 values, found 1 before '/YD/YDE/I2ELTO'"},
+  {"real_for_int.y", 1, 2, "/YD/YDC/MCSTEP: '4e3' is not an integer"},
+  {"array_before_cap.y", 1, 4, "/YD/YDE/I1ELPR: read before its capacity /YD/YDE/MELEM"},
+  {"bad_set_index.y", 1, 17, "/YD/YDN/I1NOPR: node 2 has BC set 5, outside 0..NPNSET-1"},
+  {"missing_required.y", 1, 34, "/YD/YDN/D2NCI is required"},
+  {"unterminated_comment.y", 1, 35, "unterminated comment"},
+  {"comment_too_long.y", 1, 1, "longer than 100 tokens"},
+  {"missing_include.y", 2, 5, "$YINCL no_such_file.inc: cannot open"},
+  {"non_numeric.y", 1, 25, "/YD/YDPE/D1PERO: '2e3x' is not a number"},
+  {"count_over_capacity.y", 1, 10, "/YD/YDE/I1ELPR: n = 3 entries exceed the capacity 2 given by /YD/YDE/MELEM"},
+  {"stray_value.y", 1, 10, "unexpected value '0'"},
+  {"mistate_small.y", 1, 20, "/YD/YDI/MISTATE = 3 with /YD/YDI/MICOUP = 10"},
+  {"pept_missing.y", 1, 34, "/YD/YDPE/D1PEPT (tangential contact penalty) is required"},
+  {"two_sections.y", 1, 36, "'/YD/YDC/MCSTEP' after $YDOIT"},
+  {"clockwise.y", 1, 11, "not counter-clockwise, first element 1"},
+  {"negative_size.y", 1, 4, "/YD/YDE/MELEM: negative value -2"},
+  {"no_bc_set.y", 1, 30, "/YD/YDPN/NPNSET = 0 must be >= 1"},
+};
+
+START_TEST(test_bad_decks) {
+  char path[256], msg[4096], want[512];
+  snprintf(path, sizeof path, BAD "%s", bad[_i].file);
+  int code = run_child(path, msg, sizeof msg);
+  ck_assert_msg(code == bad[_i].code, "%s: exit %d, expected %d; stderr: %s", path, code,
+                bad[_i].code, msg);
+  snprintf(want, sizeof want, "%s:%d: error: ", path, bad[_i].line);
+  const char *p = strstr(msg, want);
+  ck_assert_msg(p != NULL, "%s: no '%s' in: %s", path, want, msg);
+  ck_assert_msg(strstr(p, bad[_i].text) != NULL, "%s: no '%s' in: %s", path, bad[_i].text, msg);
+}
+END_TEST
+
+START_TEST(test_missing_deck) {
+  char msg[1024];
+  int code = run_child("tests/y2d_bad/does_not_exist.y", msg, sizeof msg);
+  ck_assert_int_eq(code, 2);
+  ck_assert_ptr_nonnull(strstr(msg, "cannot open Y2D deck 'tests/y2d_bad/does_not_exist.y'"));
+}
+END_TEST
+
+Suite *y2d_read_suite(void) {
+  Suite *s = suite_create("y2d_read");
+  TCase *tc = tcase_create("reference_decks");
+  tcase_add_loop_test(tc, test_reference_counts, 0, (int)(sizeof refs / sizeof refs[0]));
+  tcase_add_test(tc, test_beam_values);
+  tcase_add_test(tc, test_cantilever_bc_tables);
+  suite_add_tcase(s, tc);
+  tc = tcase_create("syntax");
+  tcase_add_test(tc, test_array_orders);
+  tcase_add_test(tc, test_defaults_and_prefix);
+  tcase_add_test(tc, test_include_relative_to_deck);
+  suite_add_tcase(s, tc);
+  tc = tcase_create("errors");
+  tcase_add_loop_test(tc, test_bad_decks, 0, (int)(sizeof bad / sizeof bad[0]));
+  tcase_add_test(tc, test_missing_deck);
+  suite_add_tcase(s, tc);
+  return s;
+}
