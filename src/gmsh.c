@@ -1,0 +1,708 @@
+/* gmsh.c: reader of Gmsh MSH 4.1 ASCII meshes (the `mesh gmsh` command's parser).
+ *
+ * The file is read whole into memory and walked token by token, keeping the line of each token
+ * so that every complaint names FILE.msh:LINE (and the deck line of the mesh command).  Sections
+ * used: $MeshFormat (must say 4.1, ASCII), $PhysicalNames, $Entities (which entity belongs to
+ * which physical groups), $Nodes (with or without parametric coordinates) and $Elements; any
+ * other section is skipped.
+ *
+ * What becomes what:
+ *   - 3-node triangles (type 2) in surfaces become triangles, turned counter-clockwise when the
+ *     file has them clockwise; their material comes from the surface's physical group (see
+ *     gmsh_read in mesh.h and mesh_gmsh in mesh.c);
+ *   - every physical group (point, curve, surface) becomes a node group named after it (a
+ *     surface also a triangle group), so boundary curves carry loads and supports;
+ *   - 2-node lines (type 1) and points (type 15) only matter in physical curves and points;
+ *     elements of entities without physical groups in dimensions 0 and 1 are skipped;
+ *   - only nodes that are triangle corners enter the model (a node without a triangle would
+ *     have no mass).  Node and element tags become the user ids.
+ * Each element must sit on one line (as Gmsh writes them), which lets the reader check the
+ * number of node tags of every element.
+ */
+#include <ctype.h>
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "mesh.h"
+
+typedef struct {
+  const char *fname;
+  const YfLoc *from;
+  char *buf;
+  size_t len, pos;
+  int line;            /* line of the read position (1-based)  */
+  int tokline;         /* line of the last token               */
+  char tok[256];
+  const char *section; /* for messages                         */
+} Msh;
+
+typedef struct {
+  int dim;
+  long tag;
+  int off, nphys; /* physical tags in the pool */
+  int ntri;       /* triangles read in this entity (surfaces) */
+  int mat;        /* resolved material (surfaces with triangles) */
+  uint64_t bits;  /* group bits of its physical groups */
+} Ent;
+
+typedef struct {
+  int dim;
+  long tag;
+  char name[128];
+} PhysName;
+
+typedef struct {
+  int dim;
+  long tag;
+  char name[160];
+  int group;
+} Phys;
+
+static void msh_fail(const Msh *r, int line, const char *fmt, ...)
+    __attribute__((noreturn, format(printf, 3, 4)));
+static void msh_fail(const Msh *r, int line, const char *fmt, ...) {
+  char msg[1024];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  YfLoc loc = {r->fname, line};
+  if (r->from && r->from->file)
+    yf_deck_error(&loc, "%s%s%s (read by mesh gmsh at %s:%d)", r->section ? r->section : "",
+                  r->section ? ": " : "", msg, r->from->file, r->from->line);
+  yf_deck_error(&loc, "%s%s%s", r->section ? r->section : "", r->section ? ": " : "", msg);
+}
+
+/* Next whitespace-separated token into r->tok; 0 at end of file. */
+static int msh_next(Msh *r) {
+  while (r->pos < r->len) {
+    char c = r->buf[r->pos];
+    if (c == '\n') r->line++;
+    else if (!isspace((unsigned char)c)) break;
+    r->pos++;
+  }
+  r->tokline = r->line;
+  if (r->pos >= r->len) {
+    r->tok[0] = '\0';
+    return 0;
+  }
+  size_t k = 0;
+  while (r->pos < r->len && !isspace((unsigned char)r->buf[r->pos])) {
+    if (k + 1 >= sizeof r->tok) msh_fail(r, r->line, "a word longer than %zu characters", sizeof r->tok - 1);
+    r->tok[k++] = r->buf[r->pos++];
+  }
+  r->tok[k] = '\0';
+  return 1;
+}
+
+/* 1 when only blanks remain on the current line. */
+static int msh_eol(Msh *r) {
+  while (r->pos < r->len && (r->buf[r->pos] == ' ' || r->buf[r->pos] == '\t' || r->buf[r->pos] == '\r'))
+    r->pos++;
+  return r->pos >= r->len || r->buf[r->pos] == '\n';
+}
+
+/* A data token: refuses end of file and section markers (both mean the counts are wrong). */
+static void msh_need(Msh *r, const char *what) {
+  if (!msh_next(r))
+    msh_fail(r, r->line, "unexpected end of file while reading %s (truncated file?)", what);
+  if (r->tok[0] == '$')
+    msh_fail(r, r->tokline, "found '%s' while reading %s: the section holds less data than its "
+             "counts declare", r->tok, what);
+}
+
+static long msh_long(Msh *r, const char *what) {
+  msh_need(r, what);
+  char *end;
+  errno = 0;
+  long v = strtol(r->tok, &end, 10);
+  if (end == r->tok || *end != '\0' || errno == ERANGE)
+    msh_fail(r, r->tokline, "expected an integer for %s, found '%s'", what, r->tok);
+  return v;
+}
+
+static double msh_double(Msh *r, const char *what) {
+  msh_need(r, what);
+  char *end;
+  errno = 0;
+  double v = strtod(r->tok, &end);
+  if (end == r->tok || *end != '\0' || !isfinite(v))
+    msh_fail(r, r->tokline, "expected a number for %s, found '%s'", what, r->tok);
+  return v;
+}
+
+static void msh_expect(Msh *r, const char *word, const char *why) {
+  if (!msh_next(r))
+    msh_fail(r, r->line, "unexpected end of file: %s is missing (truncated file?)", word);
+  if (strcmp(r->tok, word) != 0)
+    msh_fail(r, r->tokline, "expected %s, found '%s'%s", word, r->tok, why);
+}
+
+/* Skip an unused section up to its $End marker. */
+static void msh_skip_section(Msh *r) {
+  char end[300];
+  int line0 = r->tokline;
+  snprintf(end, sizeof end, "$End%s", r->tok + 1);
+  while (msh_next(r))
+    if (!strcmp(r->tok, end)) return;
+  msh_fail(r, line0, "section %s is not closed by %s (truncated file?)", r->tok[0] ? r->tok : end + 4, end);
+}
+
+static const char *elem_name(long type) {
+  switch (type) {
+  case 1: return "2-node line";
+  case 2: return "3-node triangle";
+  case 3: return "4-node quadrangle";
+  case 4: return "4-node tetrahedron";
+  case 5: return "8-node hexahedron";
+  case 6: return "6-node prism";
+  case 7: return "5-node pyramid";
+  case 8: return "3-node line";
+  case 9: return "6-node triangle";
+  case 10: return "9-node quadrangle";
+  case 11: return "10-node tetrahedron";
+  case 15: return "1-node point";
+  case 16: return "8-node quadrangle";
+  case 21: return "10-node triangle";
+  default: return "unknown type";
+  }
+}
+
+static const char *const dim_word[4] = {"point", "curve", "surface", "volume"};
+
+static void unsupported(Msh *r, int line, long type, int dim, long etag) {
+  msh_fail(r, line, "element type %ld (%s) in %s %ld is not supported: yfdem reads 3-node triangles "
+           "(type 2) in surfaces, 2-node lines (type 1) in physical curves and points (type 15) in "
+           "physical points; mesh 2D with Mesh.ElementOrder = 1 and without recombination",
+           type, elem_name(type), dim_word[dim], etag);
+}
+
+static char *slurp(const char *path, const YfLoc *from, size_t *len) {
+  FILE *fp = fopen(path, "rb");
+  if (!fp) yf_io_error(from, "mesh gmsh: cannot open '%s': %s", path, strerror(errno));
+  size_t cap = 1 << 16, n = 0;
+  char *buf = yf_malloc(cap, "mesh file");
+  for (;;) {
+    size_t k = fread(buf + n, 1, cap - n, fp);
+    n += k;
+    if (n < cap) break;
+    cap *= 2;
+    buf = yf_realloc(buf, cap, "mesh file");
+  }
+  if (ferror(fp)) yf_io_error(from, "mesh gmsh: error reading '%s': %s", path, strerror(errno));
+  fclose(fp);
+  *len = n;
+  return buf;
+}
+
+static int ent_find(const YfIdMap *emap, int dim, long tag) {
+  return idmap_get(emap, (long long)tag * 4 + dim);
+}
+
+int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
+  Msh rd = {0}, *r = &rd;
+  r->fname = path;
+  r->from = &o->from;
+  r->line = 1;
+  r->buf = slurp(path, &o->from, &r->len);
+
+  int nent = 0, capent = 0, npool = 0, cappool = 0;
+  Ent *ent = NULL;
+  long *pool = NULL;
+  YfIdMap emap;
+  idmap_init(&emap);
+  int npn = 0;
+  PhysName *pn = NULL;
+
+  /* nodes of the file (local index = order in $Nodes) */
+  long nn = 0;
+  long *ntag = NULL;
+  double *nx = NULL, *ny = NULL;
+  int *used = NULL;
+  YfIdMap nmap;
+  idmap_init(&nmap);
+
+  /* triangles, and (entity, node) pairs of physical points and curves */
+  long ntri = 0, captri = 0;
+  int *tv = NULL, *tent = NULL;
+  long *ttag = NULL;
+  long npair = 0, cappair = 0;
+  int *pair = NULL; /* 2 per pair: entity, local node */
+
+  int have_fmt = 0, have_ent = 0, have_nodes = 0, have_elems = 0;
+
+  while (msh_next(r)) {
+    r->section = NULL;
+    if (!have_fmt && strcmp(r->tok, "$MeshFormat") != 0)
+      msh_fail(r, r->tokline, "not a Gmsh mesh: the file must start with $MeshFormat (found '%s')", r->tok);
+    if (r->tok[0] != '$')
+      msh_fail(r, r->tokline, "expected a section name such as $Nodes, found '%s'", r->tok);
+
+    if (!strcmp(r->tok, "$MeshFormat")) {
+      if (have_fmt) msh_fail(r, r->tokline, "a second $MeshFormat section");
+      r->section = "$MeshFormat";
+      msh_need(r, "the version");
+      char ver[sizeof r->tok];
+      memcpy(ver, r->tok, sizeof ver);
+      int vline = r->tokline;
+      char *end;
+      double v = strtod(ver, &end);
+      if (end == ver || *end != '\0' || fabs(v - 4.1) > 1e-9)
+        msh_fail(r, vline, "MSH version %s is not supported: yfdem reads MSH 4.1 ASCII (save with "
+                 "gmsh -format msh41, or Mesh.MshFileVersion = 4.1)", ver);
+      long ft = msh_long(r, "the file type");
+      if (ft == 1)
+        msh_fail(r, r->tokline, "binary .msh files are not supported: save as ASCII (Mesh.Binary = 0)");
+      if (ft != 0) msh_fail(r, r->tokline, "file type %ld is neither 0 (ASCII) nor 1 (binary)", ft);
+      msh_long(r, "the data size");
+      msh_expect(r, "$EndMeshFormat", "");
+      /* an ASCII mesh has no NUL bytes; a binary one mislabelled as ASCII would be misread */
+      const char *nul = memchr(r->buf, '\0', r->len);
+      if (nul) {
+        int line = 1;
+        for (const char *p = r->buf; p < nul; p++) line += *p == '\n';
+        msh_fail(r, line, "the file contains binary data although $MeshFormat says ASCII");
+      }
+      have_fmt = 1;
+
+    } else if (!strcmp(r->tok, "$PhysicalNames")) {
+      r->section = "$PhysicalNames";
+      long n = msh_long(r, "the number of physical names");
+      if (n < 0 || n > 1000000) msh_fail(r, r->tokline, "bad number of physical names %ld", n);
+      pn = yf_realloc(pn, (size_t)(npn + n) * sizeof *pn, "physical names");
+      for (long i = 0; i < n; i++) {
+        PhysName *p = &pn[npn];
+        long dim = msh_long(r, "the dimension of a physical name");
+        if (dim < 0 || dim > 3) msh_fail(r, r->tokline, "physical name dimension %ld is not 0..3", dim);
+        p->dim = (int)dim;
+        p->tag = msh_long(r, "the tag of a physical name");
+        /* the name is a quoted string on the same line, spaces allowed */
+        if (msh_eol(r)) msh_fail(r, r->line, "physical group %ld has no name", p->tag);
+        if (r->buf[r->pos] != '"')
+          msh_fail(r, r->line, "the name of physical group %ld must be in double quotes", p->tag);
+        size_t k = 0, q = r->pos + 1;
+        while (q < r->len && r->buf[q] != '"' && r->buf[q] != '\n') {
+          if (k + 1 >= sizeof p->name) msh_fail(r, r->line, "physical name longer than %zu characters", sizeof p->name - 1);
+          p->name[k++] = r->buf[q++];
+        }
+        if (q >= r->len || r->buf[q] != '"') msh_fail(r, r->line, "unterminated physical name");
+        p->name[k] = '\0';
+        r->pos = q + 1;
+        if (k == 0) msh_fail(r, r->line, "physical group %ld has an empty name", p->tag);
+        for (int j = 0; j < npn; j++)
+          if (pn[j].dim == p->dim && pn[j].tag == p->tag)
+            msh_fail(r, r->line, "physical %s %ld is named twice", dim_word[p->dim], p->tag);
+        npn++;
+      }
+      msh_expect(r, "$EndPhysicalNames", " (more names than the count declares?)");
+
+    } else if (!strcmp(r->tok, "$Entities")) {
+      if (have_ent) msh_fail(r, r->tokline, "a second $Entities section");
+      r->section = "$Entities";
+      long cnt[4];
+      for (int d = 0; d < 4; d++) {
+        cnt[d] = msh_long(r, "the number of entities");
+        if (cnt[d] < 0 || cnt[d] > 100000000) msh_fail(r, r->tokline, "bad entity count %ld", cnt[d]);
+      }
+      for (int d = 0; d < 4; d++)
+        for (long i = 0; i < cnt[d]; i++) {
+          char what[64];
+          snprintf(what, sizeof what, "a %s entity", dim_word[d]);
+          long tag = msh_long(r, what);
+          int line = r->tokline;
+          for (int k = 0; k < (d == 0 ? 3 : 6); k++) msh_double(r, d == 0 ? "a point coordinate" : "a bounding box");
+          long np = msh_long(r, "the number of physical tags");
+          if (np < 0 || np > 100000) msh_fail(r, r->tokline, "bad number of physical tags %ld", np);
+          if (nent == capent) {
+            capent = capent ? 2 * capent : 64;
+            ent = yf_realloc(ent, (size_t)capent * sizeof *ent, "entities");
+          }
+          if (npool + np > cappool) {
+            while (npool + np > cappool) cappool = cappool ? 2 * cappool : 256;
+            pool = yf_realloc(pool, (size_t)cappool * sizeof *pool, "physical tags");
+          }
+          Ent *e = &ent[nent];
+          memset(e, 0, sizeof *e);
+          e->dim = d;
+          e->tag = tag;
+          e->off = npool;
+          e->nphys = (int)np;
+          e->mat = -1;
+          for (long k = 0; k < np; k++) pool[npool++] = labs(msh_long(r, "a physical tag"));
+          if (d > 0) {
+            long nb = msh_long(r, "the number of bounding entities");
+            if (nb < 0 || nb > 100000000) msh_fail(r, r->tokline, "bad number of bounding entities %ld", nb);
+            for (long k = 0; k < nb; k++) msh_long(r, "a bounding entity tag");
+          }
+          if (!idmap_put(&emap, (long long)tag * 4 + d, nent))
+            msh_fail(r, line, "%s %ld is defined twice", dim_word[d], tag);
+          nent++;
+        }
+      msh_expect(r, "$EndEntities", " (more entities than the counts declare?)");
+      have_ent = 1;
+
+    } else if (!strcmp(r->tok, "$Nodes")) {
+      if (have_nodes) msh_fail(r, r->tokline, "a second $Nodes section");
+      r->section = "$Nodes";
+      long nblk = msh_long(r, "the number of entity blocks");
+      int hline = r->tokline;
+      long ntot = msh_long(r, "the number of nodes");
+      msh_long(r, "the smallest node tag");
+      msh_long(r, "the largest node tag");
+      if (nblk < 0 || ntot < 0 || ntot > INT_MAX / 4)
+        msh_fail(r, r->tokline, "bad counts in the $Nodes header (%ld blocks, %ld nodes)", nblk, ntot);
+      ntag = yf_malloc((size_t)ntot * sizeof *ntag, "mesh nodes");
+      nx = yf_malloc((size_t)ntot * sizeof *nx, "mesh nodes");
+      ny = yf_malloc((size_t)ntot * sizeof *ny, "mesh nodes");
+      used = yf_calloc((size_t)ntot, sizeof *used, "mesh nodes");
+      double zmax = 0.0, ext = 0.0;
+      int zline = 0;
+      long zntag = 0;
+      for (long b = 0; b < nblk; b++) {
+        long edim = msh_long(r, "the entity dimension of a node block");
+        int bline = r->tokline;
+        if (edim < 0 || edim > 3) msh_fail(r, bline, "entity dimension %ld is not 0..3", edim);
+        msh_long(r, "the entity tag of a node block");
+        long par = msh_long(r, "the parametric flag");
+        if (par != 0 && par != 1) msh_fail(r, r->tokline, "parametric flag %ld is neither 0 nor 1", par);
+        long nin = msh_long(r, "the number of nodes in a block");
+        if (nin < 0 || nin > ntot - nn)
+          msh_fail(r, r->tokline, "node block %ld declares %ld nodes, more than the %ld left of the "
+                   "header's total %ld", b + 1, nin, ntot - nn, ntot);
+        for (long i = 0; i < nin; i++) {
+          long t = msh_long(r, "a node tag");
+          if (t <= 0 || t > INT_MAX) msh_fail(r, r->tokline, "node tag %ld is not in 1..%d", t, INT_MAX);
+          if (!idmap_put(&nmap, t, (int)(nn + i))) msh_fail(r, r->tokline, "node tag %ld is defined twice", t);
+          ntag[nn + i] = t;
+        }
+        int extra = par ? (int)edim : 0; /* parametric u (curves), u v (surfaces) */
+        for (long i = 0; i < nin; i++) {
+          double x = msh_double(r, "a node x");
+          int cline = r->tokline;
+          double y = msh_double(r, "a node y");
+          double z = msh_double(r, "a node z");
+          for (int k = 0; k < extra; k++) msh_double(r, "a parametric coordinate");
+          nx[nn + i] = x * o->scale;
+          ny[nn + i] = y * o->scale;
+          ext = fmax(ext, fmax(fabs(x), fabs(y)));
+          if (fabs(z) > zmax) {
+            zmax = fabs(z);
+            zline = cline;
+            zntag = ntag[nn + i];
+          }
+        }
+        nn += nin;
+      }
+      if (nn != ntot)
+        msh_fail(r, hline, "the blocks hold %ld nodes but the header declares %ld", nn, ntot);
+      msh_expect(r, "$EndNodes", " (the header's block count does not match the data?)");
+      if (zmax > 1e-9 * ext)
+        msh_fail(r, zline, "node %ld has z = %g: yfdem is 2D and needs the mesh in the plane z = 0",
+                 zntag, zmax);
+      have_nodes = 1;
+
+    } else if (!strcmp(r->tok, "$Elements")) {
+      if (have_elems) msh_fail(r, r->tokline, "a second $Elements section");
+      r->section = "$Elements";
+      if (!have_nodes) msh_fail(r, r->tokline, "$Elements comes before $Nodes");
+      long nblk = msh_long(r, "the number of entity blocks");
+      int hline = r->tokline;
+      long ntot = msh_long(r, "the number of elements");
+      msh_long(r, "the smallest element tag");
+      msh_long(r, "the largest element tag");
+      if (nblk < 0 || ntot < 0 || ntot > INT_MAX / 4)
+        msh_fail(r, r->tokline, "bad counts in the $Elements header (%ld blocks, %ld elements)", nblk, ntot);
+      long ne = 0;
+      for (long b = 0; b < nblk; b++) {
+        long edim = msh_long(r, "the entity dimension of an element block");
+        int bline = r->tokline;
+        if (edim < 0 || edim > 3) msh_fail(r, bline, "entity dimension %ld is not 0..3", edim);
+        long etag = msh_long(r, "the entity tag of an element block");
+        long type = msh_long(r, "the element type");
+        long nin = msh_long(r, "the number of elements in a block");
+        if (nin < 0 || nin > ntot - ne)
+          msh_fail(r, r->tokline, "element block %ld declares %ld elements, more than the %ld left of "
+                   "the header's total %ld", b + 1, nin, ntot - ne, ntot);
+        int ei = -1;
+        if (have_ent) {
+          ei = ent_find(&emap, (int)edim, etag);
+          if (ei < 0) msh_fail(r, bline, "element block in %s %ld, which $Entities does not define",
+                               dim_word[edim], etag);
+        }
+        int physical = ei >= 0 && ent[ei].nphys > 0;
+        int keep; /* 1: triangles, 2: group nodes, 0: skip */
+        int want; /* node tags per element */
+        if (edim == 3)
+          msh_fail(r, bline, "3D elements (%s) in volume %ld: yfdem is 2D (mesh with gmsh -2)",
+                   elem_name(type), etag);
+        if (edim == 2) {
+          if (type != 2) unsupported(r, bline, type, 2, etag);
+          keep = 1, want = 3;
+        } else if (!physical) {
+          keep = 0, want = 0;
+        } else if (edim == 1) {
+          if (type != 1) unsupported(r, bline, type, 1, etag);
+          keep = 2, want = 2;
+        } else {
+          if (type != 15) unsupported(r, bline, type, 0, etag);
+          keep = 2, want = 1;
+        }
+        if (ei < 0 && keep == 1) {
+          /* no $Entities: remember the surface so triangles still know where they came from */
+          ei = ent_find(&emap, 2, etag);
+          if (ei < 0) {
+            if (nent == capent) {
+              capent = capent ? 2 * capent : 64;
+              ent = yf_realloc(ent, (size_t)capent * sizeof *ent, "entities");
+            }
+            memset(&ent[nent], 0, sizeof ent[nent]);
+            ent[nent].dim = 2;
+            ent[nent].tag = etag;
+            ent[nent].mat = -1;
+            ei = nent++;
+            idmap_put(&emap, (long long)etag * 4 + 2, ei);
+          }
+        }
+        for (long i = 0; i < nin; i++) {
+          long tag = msh_long(r, "an element tag");
+          int line = r->tokline;
+          long nt[3];
+          int k = 0;
+          while (!msh_eol(r)) {
+            msh_next(r);
+            if (!keep) continue;
+            if (k >= want)
+              msh_fail(r, line, "element %ld (%s) has more than %d node tags on its line", tag,
+                       elem_name(type), want);
+            char *end;
+            errno = 0;
+            nt[k] = strtol(r->tok, &end, 10);
+            if (end == r->tok || *end != '\0' || errno == ERANGE)
+              msh_fail(r, line, "expected an integer node tag in element %ld, found '%s'", tag, r->tok);
+            k++;
+          }
+          if (!keep) continue;
+          if (k < want)
+            msh_fail(r, line, "element %ld (%s) has %d node tags on its line, expected %d", tag,
+                     elem_name(type), k, want);
+          int v[3];
+          for (int j = 0; j < want; j++) {
+            v[j] = idmap_get(&nmap, nt[j]);
+            if (v[j] < 0) msh_fail(r, line, "node %ld of element %ld is not defined in $Nodes", nt[j], tag);
+          }
+          if (keep == 2) {
+            if (npair + want > cappair) {
+              cappair = cappair ? 2 * cappair : 256;
+              pair = yf_realloc(pair, (size_t)cappair * 2 * sizeof *pair, "group nodes");
+            }
+            for (int j = 0; j < want; j++) {
+              pair[2 * npair] = ei;
+              pair[2 * npair + 1] = v[j];
+              npair++;
+            }
+            continue;
+          }
+          if (tag <= 0 || tag > INT_MAX) msh_fail(r, line, "element tag %ld is not in 1..%d", tag, INT_MAX);
+          double ax = nx[v[1]] - nx[v[0]], ay = ny[v[1]] - ny[v[0]];
+          double bx = nx[v[2]] - nx[v[0]], by = ny[v[2]] - ny[v[0]];
+          double cx = nx[v[2]] - nx[v[1]], cy = ny[v[2]] - ny[v[1]];
+          double d = ax * by - bx * ay;
+          double l2 = fmax(ax * ax + ay * ay, fmax(bx * bx + by * by, cx * cx + cy * cy));
+          if (!(fabs(d) > 1e-12 * l2))
+            msh_fail(r, line, "triangle %ld has zero area (nodes %ld %ld %ld)", tag, nt[0], nt[1], nt[2]);
+          if (d < 0) { /* clockwise in the file: swap two corners */
+            int s = v[1];
+            v[1] = v[2];
+            v[2] = s;
+          }
+          if (ntri == captri) {
+            captri = captri ? 2 * captri : 1024;
+            tv = yf_realloc(tv, (size_t)captri * 3 * sizeof *tv, "mesh triangles");
+            tent = yf_realloc(tent, (size_t)captri * sizeof *tent, "mesh triangles");
+            ttag = yf_realloc(ttag, (size_t)captri * sizeof *ttag, "mesh triangles");
+          }
+          memcpy(tv + 3 * ntri, v, sizeof v);
+          tent[ntri] = ei;
+          ttag[ntri] = tag;
+          ntri++;
+          ent[ei].ntri++;
+          for (int j = 0; j < 3; j++) used[v[j]] = 1;
+        }
+        ne += nin;
+      }
+      if (ne != ntot)
+        msh_fail(r, hline, "the blocks hold %ld elements but the header declares %ld", ne, ntot);
+      msh_expect(r, "$EndElements", " (the header's block count does not match the data?)");
+      have_elems = 1;
+
+    } else if (!strncmp(r->tok, "$End", 4)) {
+      msh_fail(r, r->tokline, "unexpected %s", r->tok);
+    } else {
+      msh_skip_section(r);
+    }
+  }
+  r->section = NULL;
+  if (!have_fmt) msh_fail(r, r->line, "not a Gmsh mesh: the file is empty");
+  if (!have_nodes) msh_fail(r, r->line, "no $Nodes section (truncated file?)");
+  if (!have_elems) msh_fail(r, r->line, "no $Elements section (truncated file?)");
+  if (ntri == 0)
+    msh_fail(r, r->line, "no 3-node triangles in the file (mesh in 2D with gmsh -2)");
+
+  /* ---- physical groups: names and group indices ---- */
+  int nph = 0;
+  Phys *ph = NULL;
+  for (int e = 0; e < nent; e++) {
+    if (ent[e].dim > 2) continue;
+    for (int k = 0; k < ent[e].nphys; k++) {
+      long tag = pool[ent[e].off + k];
+      int j;
+      for (j = 0; j < nph; j++)
+        if (ph[j].dim == ent[e].dim && ph[j].tag == tag) break;
+      if (j < nph) continue;
+      ph = yf_realloc(ph, (size_t)(nph + 1) * sizeof *ph, "physical groups");
+      ph[nph].dim = ent[e].dim;
+      ph[nph].tag = tag;
+      ph[nph].name[0] = '\0';
+      ph[nph].group = -1;
+      for (int q = 0; q < npn; q++)
+        if (pn[q].dim == ent[e].dim && pn[q].tag == tag) snprintf(ph[nph].name, sizeof ph[nph].name, "%s", pn[q].name);
+      nph++;
+    }
+  }
+  for (int j = 0; j < nph; j++) {
+    if (ph[j].name[0]) continue;
+    /* unnamed: phys_<tag>, with the dimension added when another unnamed group shares the tag
+     * (Gmsh numbers physical curves and surfaces independently, so tag 1 is often both) */
+    int shared = 0;
+    for (int q = 0; q < nph; q++)
+      if (q != j && ph[q].tag == ph[j].tag && !ph[q].name[0]) shared = 1;
+    if (shared) snprintf(ph[j].name, sizeof ph[j].name, "phys_%ld_%s", ph[j].tag, dim_word[ph[j].dim]);
+    else snprintf(ph[j].name, sizeof ph[j].name, "phys_%ld", ph[j].tag);
+  }
+
+  /* ---- materials of the surfaces ---- */
+  char buf[512];
+  for (int k = 0; k < o->nmap; k++) {
+    int found = 0;
+    for (int j = 0; j < nph; j++) {
+      char tagword[32];
+      snprintf(tagword, sizeof tagword, "%ld", ph[j].tag);
+      if (ph[j].dim == 2 && (!strcmp(ph[j].name, o->map[k].phys) || !strcmp(tagword, o->map[k].phys)))
+        found = 1;
+    }
+    if (!found) {
+      size_t q = 0;
+      buf[0] = '\0';
+      for (int j = 0; j < nph && q + 60 < sizeof buf; j++)
+        if (ph[j].dim == 2) q += (size_t)snprintf(buf + q, sizeof buf - q, "%s%s", q ? ", " : "", ph[j].name);
+      yf_deck_error(&o->from, "mesh gmsh: '%s' has no physical surface '%s' (physical surfaces: %s)",
+                    path, o->map[k].phys, q ? buf : "none");
+    }
+  }
+  int first_mat = -1;
+  for (int e = 0; e < nent; e++) {
+    if (ent[e].dim != 2 || ent[e].ntri == 0) continue;
+    int mat = -1;
+    const char *phname = NULL;
+    for (int k = 0; k < ent[e].nphys && mat < 0; k++) {
+      long tag = pool[ent[e].off + k];
+      const Phys *p = NULL;
+      for (int j = 0; j < nph; j++)
+        if (ph[j].dim == 2 && ph[j].tag == tag) p = &ph[j];
+      if (!phname) phname = p->name;
+      char tagword[32];
+      snprintf(tagword, sizeof tagword, "%ld", tag);
+      for (int q = 0; q < o->nmap && mat < 0; q++)
+        if (!strcmp(o->map[q].phys, p->name) || !strcmp(o->map[q].phys, tagword)) mat = o->map[q].mat;
+      if (mat < 0) mat = model_find_material(m, p->name);
+    }
+    if (mat < 0) mat = o->defmat;
+    if (mat < 0) {
+      if (phname)
+        yf_deck_error(&o->from, "mesh gmsh: no material for physical surface '%s' of '%s': define a "
+                      "material of that name or add 'material %s=MAT' (known materials: %s)", phname,
+                      path, phname, mesh_material_names(m, buf, sizeof buf));
+      yf_deck_error(&o->from, "mesh gmsh: surface %ld of '%s' is in no physical group: give a default "
+                    "material with 'material MAT' (known materials: %s)", ent[e].tag, path,
+                    mesh_material_names(m, buf, sizeof buf));
+    }
+    ent[e].mat = mat;
+    if (first_mat < 0) first_mat = mat;
+  }
+
+  /* ---- into the model ---- */
+  int b = mesh_new_body(m, o->body, o->defmat >= 0 ? o->defmat : first_mat, &o->from, "mesh gmsh");
+  uint64_t bbit = (uint64_t)1 << m->body[b].group;
+  for (int j = 0; j < nph; j++) {
+    if (model_find_body(m, ph[j].name) >= 0)
+      yf_deck_error(&o->from, "mesh gmsh: physical %s '%s' of '%s' has the name of a body; rename "
+                    "the body or the physical group", dim_word[ph[j].dim], ph[j].name, path);
+    ph[j].group = mesh_group_or_die(m, ph[j].name, &o->from, "mesh gmsh");
+  }
+  for (int e = 0; e < nent; e++)
+    for (int k = 0; k < ent[e].nphys && ent[e].dim <= 2; k++)
+      for (int j = 0; j < nph; j++)
+        if (ph[j].dim == ent[e].dim && ph[j].tag == pool[ent[e].off + k])
+          ent[e].bits |= (uint64_t)1 << ph[j].group;
+
+  int *l2m = yf_malloc((size_t)(nn ? nn : 1) * sizeof *l2m, "mesh nodes");
+  for (long i = 0; i < nn; i++) {
+    l2m[i] = -1;
+    if (!used[i]) continue;
+    l2m[i] = model_add_node(m, nx[i], ny[i], (int)ntag[i], b);
+    m->node.gmask[l2m[i]] |= bbit;
+  }
+  for (long t = 0; t < ntri; t++) {
+    const Ent *e = &ent[tent[t]];
+    int v0 = l2m[tv[3 * t]], v1 = l2m[tv[3 * t + 1]], v2 = l2m[tv[3 * t + 2]];
+    int k = model_add_tri(m, v0, v1, v2, e->mat, (int)ttag[t], b);
+    m->tri.gmask[k] |= bbit | e->bits;
+    m->node.gmask[v0] |= e->bits;
+    m->node.gmask[v1] |= e->bits;
+    m->node.gmask[v2] |= e->bits;
+  }
+  /* node groups of physical points and curves; nodes that are no triangle corner were dropped */
+  long dropped = 0;
+  uint64_t dropbits = 0;
+  for (long p = 0; p < npair; p++) {
+    const Ent *e = &ent[pair[2 * p]];
+    int k = l2m[pair[2 * p + 1]];
+    if (k < 0) {
+      dropped++;
+      dropbits |= e->bits;
+      continue;
+    }
+    m->node.gmask[k] |= e->bits;
+  }
+  if (dropped) {
+    size_t q = 0;
+    buf[0] = '\0';
+    for (int j = 0; j < nph && q + 60 < sizeof buf; j++)
+      if (dropbits & ((uint64_t)1 << ph[j].group))
+        q += (size_t)snprintf(buf + q, sizeof buf - q, "%s%s", q ? ", " : "", ph[j].name);
+    yf_warn(&o->from, "mesh gmsh: %ld node references of physical group(s) %s in '%s' are not "
+            "triangle corners and were left out", dropped, buf, path);
+  }
+
+  free(l2m);
+  free(ph);
+  free(pair);
+  free(tv);
+  free(tent);
+  free(ttag);
+  free(ntag);
+  free(nx);
+  free(ny);
+  free(used);
+  idmap_free(&nmap);
+  idmap_free(&emap);
+  free(pn);
+  free(pool);
+  free(ent);
+  free(r->buf);
+  return b;
+}

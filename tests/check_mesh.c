@@ -1,0 +1,800 @@
+/* check_mesh.c: meshes and sets (mesh.c, gmsh.c, region.c) through the C API.
+ *
+ * Handlers are called with YfArgs built by hand from a command line, on a fresh model per test.
+ * Geometric facts are exact or to round-off: the triangles of a mesh tile their domain, so the
+ * areas add up to the domain's area (1e-12 relative), every interior edge is shared by exactly two
+ * triangles, and the boundary edges add up to the perimeter with outward normals (dy, -dx).
+ * Failures run in a forked child whose stderr is captured, and each checks the exit code, the
+ * FILE:LINE of the offending .msh / data line and the message.
+ *
+ * The Gmsh tests use decks/meshes/two_squares.msh (made by gmsh 4.8 from two_squares.geo),
+ * its parametric twin, and square4.msh (hand-written: a unit square cut into 4 triangles
+ * around its centre, two physical surfaces, a physical curve, one triangle clockwise).
+ * Paths are taken relative to the working directory (the repository root under `make check`).
+ */
+#include <check.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "deck.h"
+#include "mesh.h"
+#include "model.h"
+#include "region.h"
+#include "sim.h"
+
+/* ------------------------------------------------------------------ helpers */
+
+static YfSim *new_sim(void) {
+  YfSim *s = calloc(1, sizeof *s);
+  model_init(&s->model);
+  mesh_reset();
+  region_reset();
+  return s;
+}
+
+static void free_sim(YfSim *s) {
+  mesh_reset();
+  region_reset();
+  model_free(&s->model);
+  free(s);
+}
+
+/* Split line into words (no quoting needed by these tests) and call fn as the deck would. */
+static void run(YfSim *s, YfCmdFn fn, const char *cmd, const char *line) {
+  static char buf[8192], full[8300];
+  static char *w[512];
+  snprintf(buf, sizeof buf, "%s", line);
+  snprintf(full, sizeof full, "%s %s", cmd, line);
+  int n = 0;
+  for (char *t = strtok(buf, " \t"); t; t = strtok(NULL, " \t")) w[n++] = t;
+  YfArgs a = {.cmd = cmd, .n = n, .w = w, .loc = {"test.deck", 7}, .line = full};
+  fn(s, &a);
+}
+
+/* Run a command in a child; return its exit status and captured stderr (static buffer). */
+static int run_child(YfSim *s, YfCmdFn fn, const char *cmd, const char *line, char **err) {
+  static char out[8192];
+  int p[2];
+  ck_assert_int_eq(pipe(p), 0);
+  fflush(stdout);
+  fflush(stderr);
+  pid_t pid = fork();
+  ck_assert_int_ge(pid, 0);
+  if (pid == 0) {
+    close(p[0]);
+    dup2(p[1], 2);
+    run(s, fn, cmd, line);
+    fflush(stderr);
+    _exit(0);
+  }
+  close(p[1]);
+  size_t n = 0;
+  ssize_t k;
+  while ((k = read(p[0], out + n, sizeof out - 1 - n)) > 0) n += (size_t)k;
+  out[n] = '\0';
+  close(p[0]);
+  int st;
+  waitpid(pid, &st, 0);
+  *err = out;
+  return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+}
+
+#define EXPECT_FAIL(s, fn, cmd, line, code, ...)                                                   \
+  do {                                                                                             \
+    char *err_;                                                                                    \
+    int rc_ = run_child(s, fn, cmd, line, &err_);                                                  \
+    ck_assert_msg(rc_ == (code), "'%s %s': exit %d, expected %d; stderr: %s", cmd, line, rc_,      \
+                  code, err_);                                                                     \
+    const char *want_[] = {__VA_ARGS__, NULL};                                                     \
+    for (int i_ = 0; want_[i_]; i_++)                                                              \
+      ck_assert_msg(strstr(err_, want_[i_]), "'%s %s': stderr lacks \"%s\": %s", cmd, line,        \
+                    want_[i_], err_);                                                              \
+  } while (0)
+
+static char tmpdir[256];
+static const char *tmp_path(const char *name) {
+  static char p[512];
+  if (!tmpdir[0]) {
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/yf_check_mesh_XXXXXX");
+    ck_assert_ptr_nonnull(mkdtemp(tmpdir));
+  }
+  snprintf(p, sizeof p, "%s/%s", tmpdir, name);
+  return p;
+}
+
+static const char *write_tmp(const char *name, const char *text) {
+  const char *p = tmp_path(name);
+  FILE *fp = fopen(p, "w");
+  ck_assert_ptr_nonnull(fp);
+  fputs(text, fp);
+  fclose(fp);
+  return p;
+}
+
+/* Absolute path of a file of the repository (tests run from its root). */
+static const char *repo_path(const char *rel) {
+  static char p[1024];
+  char cwd[700];
+  ck_assert_ptr_nonnull(getcwd(cwd, sizeof cwd));
+  snprintf(p, sizeof p, "%s/%s", cwd, rel);
+  ck_assert_msg(access(p, R_OK) == 0, "missing test file %s (run from the repository root)", p);
+  return p;
+}
+
+static double tri_area(const YfModel *m, int t) { return 0.5 * model_tri_d(m, t, 0); }
+
+static double total_area(const YfModel *m, int body) {
+  double a = 0;
+  for (int t = 0; t < m->tri.n; t++)
+    if (body < 0 || m->tri.body[t] == body) a += tri_area(m, t);
+  return a;
+}
+
+static void assert_all_ccw(const YfModel *m) {
+  for (int t = 0; t < m->tri.n; t++) ck_assert_msg(model_tri_d(m, t, 0) > 0, "triangle %d is not CCW", t);
+}
+
+/* Number of triangles sharing each edge: returns how many edges have 1, 2 and more uses. */
+static void edge_use(const YfModel *m, int *n1, int *n2, int *nmore) {
+  int ne = 3 * m->tri.n;
+  long long *key = malloc((size_t)ne * sizeof *key);
+  for (int t = 0; t < m->tri.n; t++)
+    for (int k = 0; k < 3; k++) {
+      long long a = m->tri.v[3 * t + k], b = m->tri.v[3 * t + (k + 1) % 3];
+      key[3 * t + k] = a < b ? a * 100000000LL + b : b * 100000000LL + a;
+    }
+  *n1 = *n2 = *nmore = 0;
+  for (int i = 0; i < ne; i++) {
+    int c = 0, first = 1;
+    for (int j = 0; j < ne; j++)
+      if (key[j] == key[i]) {
+        c++;
+        if (j < i) first = 0;
+      }
+    if (!first) continue;
+    if (c == 1) (*n1)++;
+    else if (c == 2) (*n2)++;
+    else (*nmore)++;
+  }
+  free(key);
+}
+
+static int count_nodes(const YfModel *m, int g) {
+  int c = 0;
+  for (int i = 0; i < m->node.n; i++) c += (m->node.gmask[i] >> g) & 1;
+  return c;
+}
+static int count_tris(const YfModel *m, int g) {
+  int c = 0;
+  for (int t = 0; t < m->tri.n; t++) c += (m->tri.gmask[t] >> g) & 1;
+  return c;
+}
+
+/* Sum of boundary edge lengths of group g; checks each normal (dy, -dx) points away from c. */
+static double boundary_length(const YfModel *m, int g, double cx, double cy, int *count) {
+  int *e;
+  int n = mesh_boundary_edges(m, (uint64_t)1 << g, &e);
+  double L = 0;
+  for (int i = 0; i < n; i++) {
+    int a = e[2 * i], b = e[2 * i + 1];
+    double dx = m->node.x0[b] - m->node.x0[a], dy = m->node.y0[b] - m->node.y0[a];
+    double mx = 0.5 * (m->node.x0[a] + m->node.x0[b]) - cx, my = 0.5 * (m->node.y0[a] + m->node.y0[b]) - cy;
+    ck_assert_msg(dy * mx - dx * my > 0, "edge %d-%d: normal points inwards", a, b);
+    L += hypot(dx, dy);
+  }
+  free(e);
+  *count = n;
+  return L;
+}
+
+/* ------------------------------------------------------------------ mesh rect */
+
+START_TEST(test_rect_patterns) {
+  static const char *pats[] = {"right", "left", "alt", "cross"};
+  const int nx = 3, ny = 2;
+  const double x0 = 0.5, y0 = -1.0, x1 = 2.0, y1 = 0.5, A = 1.5 * 1.5;
+  for (int p = 0; p < 4; p++) {
+    YfSim *s = new_sim();
+    YfModel *m = &s->model;
+    model_add_material(m, "steel");
+    char line[256];
+    snprintf(line, sizeof line, "rect plate steel %g %g %g %g %d %d pattern %s", x0, y0, x1, y1, nx, ny, pats[p]);
+    run(s, cmd_mesh, "mesh", line);
+    int cross = p == 3;
+    ck_assert_int_eq(m->node.n, (nx + 1) * (ny + 1) + (cross ? nx * ny : 0));
+    ck_assert_int_eq(m->tri.n, (cross ? 4 : 2) * nx * ny);
+    assert_all_ccw(m);
+    ck_assert_double_eq_tol(total_area(m, -1), A, 1e-12 * A);
+    /* Euler: E = V + F - 1 for a disc; boundary edges = 2 (nx + ny) */
+    int n1, n2, nmore;
+    edge_use(m, &n1, &n2, &nmore);
+    ck_assert_int_eq(nmore, 0);
+    ck_assert_int_eq(n1, 2 * (nx + ny));
+    ck_assert_int_eq(n1 + n2, m->node.n + m->tri.n - 1);
+    /* row-by-row numbering with exact edges */
+    for (int j = 0; j <= ny; j++)
+      for (int i = 0; i <= nx; i++) {
+        int k = j * (nx + 1) + i;
+        ck_assert_double_eq_tol(m->node.x0[k], x0 + (x1 - x0) * i / nx, 1e-15);
+        ck_assert_double_eq_tol(m->node.y0[k], y0 + (y1 - y0) * j / ny, 1e-15);
+        ck_assert_int_eq(m->node.id[k], k + 1);
+      }
+    ck_assert(m->node.x0[nx] == x1 && m->node.y0[(nx + 1) * (ny + 1) - 1] == y1);
+    if (cross) { /* centre of cell (1, 1) */
+      int c = (nx + 1) * (ny + 1) + 1 * nx + 1;
+      ck_assert_double_eq_tol(m->node.x0[c], x0 + 1.5 * 0.5, 1e-15);
+      ck_assert_double_eq_tol(m->node.y0[c], y0 + 1.5 * 0.75, 1e-15);
+    }
+    /* body, material, group named after the body holding everything */
+    ck_assert_int_eq(m->nbody, 1);
+    int g = model_group(m, "plate", 0);
+    ck_assert_int_ge(g, 0);
+    ck_assert_int_eq(count_nodes(m, g), m->node.n);
+    ck_assert_int_eq(count_tris(m, g), m->tri.n);
+    for (int t = 0; t < m->tri.n; t++) ck_assert_int_eq(m->tri.mat[t], 0);
+    /* boundary of the whole body = perimeter, normals outward */
+    int nb;
+    double L = boundary_length(m, g, 0.5 * (x0 + x1), 0.5 * (y0 + y1), &nb);
+    ck_assert_int_eq(nb, 2 * (nx + ny));
+    ck_assert_double_eq_tol(L, 6.0, 1e-12 * 6.0);
+    free_sim(s);
+  }
+}
+END_TEST
+
+/* The diagonals of the patterns: which corner pairs of the first two cells are edges. */
+static int has_edge(const YfModel *m, int a, int b) {
+  for (int t = 0; t < m->tri.n; t++)
+    for (int k = 0; k < 3; k++) {
+      int p = m->tri.v[3 * t + k], q = m->tri.v[3 * t + (k + 1) % 3];
+      if ((p == a && q == b) || (p == b && q == a)) return 1;
+    }
+  return 0;
+}
+
+START_TEST(test_rect_diagonals) {
+  static const char *pats[] = {"right", "left", "alt"};
+  /* cell (0,0): corners 0, 1, 5, 4 (nx = 3 -> row length 4); cell (1,0): 1, 2, 6, 5 */
+  static const int want[3][4] = {{1, 0, 1, 0}, {0, 1, 0, 1}, {1, 0, 0, 1}};
+  for (int p = 0; p < 3; p++) {
+    YfSim *s = new_sim();
+    model_add_material(&s->model, "steel");
+    char line[128];
+    snprintf(line, sizeof line, "rect b steel 0 0 3 1 3 1 pattern %s", pats[p]);
+    run(s, cmd_mesh, "mesh", line);
+    const YfModel *m = &s->model;
+    ck_assert_int_eq(has_edge(m, 0, 5), want[p][0]); /* cell 0, lower-left to upper-right */
+    ck_assert_int_eq(has_edge(m, 1, 4), want[p][1]); /* cell 0, the other diagonal */
+    ck_assert_int_eq(has_edge(m, 1, 6), want[p][2]);
+    ck_assert_int_eq(has_edge(m, 2, 5), want[p][3]);
+    free_sim(s);
+  }
+}
+END_TEST
+
+START_TEST(test_rect_two_bodies_ids_min_edge) {
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  model_add_material(m, "steel");
+  model_add_material(m, "rock");
+  run(s, cmd_mesh, "mesh", "rect a steel 0 0 1 1 2 4");           /* cells 0.5 x 0.25 */
+  run(s, cmd_mesh, "mesh", "rect b rock 2 0 3 1 4 4 pattern cross"); /* 0.25 x 0.25, centres */
+  ck_assert_int_eq(m->nbody, 2);
+  ck_assert_int_eq(m->node.n, 15 + 25 + 16);
+  /* ids continue after the first body */
+  ck_assert_int_eq(m->node.id[15], 16);
+  ck_assert_int_eq(m->tri.id[16], 17);
+  ck_assert_int_eq(m->tri.mat[m->tri.n - 1], 1);
+  ck_assert_double_eq_tol(mesh_min_edge(m, 0), 0.25, 1e-15);
+  ck_assert_double_eq_tol(mesh_min_edge(m, 1), 0.125 * sqrt(2.0), 1e-15);
+  ck_assert_double_eq_tol(mesh_min_edge(m, -1), 0.125 * sqrt(2.0), 1e-15);
+  ck_assert(mesh_min_edge(m, 5) == 0.0);
+  /* boundary of body b only */
+  int nb;
+  double L = boundary_length(m, model_group(m, "b", 0), 2.5, 0.5, &nb);
+  ck_assert_int_eq(nb, 16);
+  ck_assert_double_eq_tol(L, 4.0, 1e-12);
+  free_sim(s);
+}
+END_TEST
+
+START_TEST(test_rect_errors) {
+  YfSim *s = new_sim();
+  model_add_material(&s->model, "steel");
+  model_add_material(&s->model, "rock");
+  EXPECT_FAIL(s, cmd_mesh, "mesh", "rect a stel 0 0 1 1 2 2", 1, "test.deck:7", "unknown material",
+              "steel, rock");
+  EXPECT_FAIL(s, cmd_mesh, "mesh", "rect a steel 1 0 1 1 2 2", 1, "x1 must be greater");
+  EXPECT_FAIL(s, cmd_mesh, "mesh", "rect a steel 0 0 1 1 0 2", 1, "test.deck:7");
+  EXPECT_FAIL(s, cmd_mesh, "mesh", "rect a steel 0 0 1 1 2 2 pattern diag", 1, "diag");
+  run(s, cmd_mesh, "mesh", "rect a steel 0 0 1 1 2 2");
+  EXPECT_FAIL(s, cmd_mesh, "mesh", "rect a steel 0 0 1 1 2 2", 1, "body 'a' already exists");
+  free_sim(s);
+}
+END_TEST
+
+/* ------------------------------------------------------------------ gmsh */
+
+static int group_of(const YfModel *m, const char *name) {
+  int g = model_group((YfModel *)m, name, 0);
+  ck_assert_msg(g >= 0, "no group %s", name);
+  return g;
+}
+
+static void check_two_squares(const YfModel *m, double sc, int rock, int steel) {
+  /* 31 nodes in the file, all triangle corners; the .msh has 44 triangles */
+  ck_assert_int_eq(m->node.n, 31);
+  ck_assert_int_eq(m->tri.n, 44);
+  assert_all_ccw(m);
+  ck_assert_double_eq_tol(total_area(m, -1), sc * sc, 1e-12 * sc * sc);
+  int gr = group_of(m, "rock"), gs = group_of(m, "steel");
+  double ar = 0, as = 0;
+  for (int t = 0; t < m->tri.n; t++) {
+    const int *v = m->tri.v + 3 * t;
+    double cx = (m->node.x0[v[0]] + m->node.x0[v[1]] + m->node.x0[v[2]]) / 3;
+    int in_r = (m->tri.gmask[t] >> gr) & 1, in_s = (m->tri.gmask[t] >> gs) & 1;
+    ck_assert_int_eq(in_r + in_s, 1);
+    ck_assert_int_eq(in_r, cx < 0.5 * sc);
+    ck_assert_int_eq(m->tri.mat[t], in_r ? rock : steel);
+    if (in_r) ar += tri_area(m, t);
+    else as += tri_area(m, t);
+  }
+  ck_assert_double_eq_tol(ar, 0.5 * sc * sc, 1e-12);
+  ck_assert_double_eq_tol(as, 0.5 * sc * sc, 1e-12);
+  /* physical curves and point: nodes on y = 0 (9: lc = 0.25 on two halves), on x = 1, corner */
+  int gb = group_of(m, "bottom"), gx = group_of(m, "right"), gc = group_of(m, "corner");
+  int nbot = 0, nright = 0;
+  for (int i = 0; i < m->node.n; i++) {
+    int onb = fabs(m->node.y0[i]) < 1e-12, onr = fabs(m->node.x0[i] - sc) < 1e-12;
+    nbot += onb;
+    nright += onr;
+    ck_assert_int_eq((int)((m->node.gmask[i] >> gb) & 1), onb);
+    ck_assert_int_eq((int)((m->node.gmask[i] >> gx) & 1), onr);
+    ck_assert_int_eq((int)((m->node.gmask[i] >> gc) & 1),
+                     fabs(m->node.x0[i]) < 1e-12 && fabs(m->node.y0[i] - sc) < 1e-12);
+  }
+  ck_assert_int_eq(nbot, 5);
+  ck_assert_int_eq(nright, 5);
+  ck_assert_int_eq(count_tris(m, gb), 0);
+  int nb;
+  ck_assert_double_eq_tol(boundary_length(m, gb, 0.5 * sc, 0.5 * sc, &nb), sc, 1e-12);
+  ck_assert_int_eq(nb, 4);
+  ck_assert_double_eq_tol(boundary_length(m, group_of(m, "sq"), 0.5 * sc, 0.5 * sc, &nb), 4 * sc, 1e-12);
+  /* node ids are the Gmsh tags: tag 1 is point 1 at the origin */
+  ck_assert_int_eq(m->node.id[0], 1);
+  ck_assert(m->node.x0[0] == 0.0 && m->node.y0[0] == 0.0);
+}
+
+START_TEST(test_gmsh_two_squares) {
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  int rock = model_add_material(m, "rock"), steel = model_add_material(m, "steel");
+  char line[1200];
+  snprintf(line, sizeof line, "gmsh sq %s", repo_path("decks/meshes/two_squares.msh"));
+  run(s, cmd_mesh, "mesh", line);
+  check_two_squares(m, 1.0, rock, steel);
+  ck_assert_int_eq(m->body[0].mat, rock);
+  free_sim(s);
+}
+END_TEST
+
+START_TEST(test_gmsh_parametric_scale_mapping) {
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  model_add_material(m, "rock");
+  int granite = model_add_material(m, "granite"), steel = model_add_material(m, "steel");
+  char line[1200];
+  snprintf(line, sizeof line, "gmsh sq %s material rock=granite scale 2",
+           repo_path("decks/meshes/two_squares_param.msh"));
+  run(s, cmd_mesh, "mesh", line);
+  check_two_squares(m, 2.0, granite, steel);
+  free_sim(s);
+  /* a bare default material applies where no name matches; by tag number works too */
+  s = new_sim();
+  m = &s->model;
+  int soft = model_add_material(m, "soft"), hardm = model_add_material(m, "hardm");
+  snprintf(line, sizeof line, "gmsh sq %s material soft 2=hardm", repo_path("decks/meshes/two_squares.msh"));
+  run(s, cmd_mesh, "mesh", line);
+  check_two_squares(m, 1.0, soft, hardm);
+  free_sim(s);
+}
+END_TEST
+
+START_TEST(test_gmsh_hand_written) {
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  int soft = model_add_material(m, "soft"), hard = model_add_material(m, "hard");
+  char line[1200];
+  snprintf(line, sizeof line, "gmsh sq %s", repo_path("decks/meshes/square4.msh"));
+  run(s, cmd_mesh, "mesh", line);
+  ck_assert_int_eq(m->node.n, 5);
+  ck_assert_int_eq(m->tri.n, 4);
+  assert_all_ccw(m); /* triangle 3 is clockwise in the file */
+  ck_assert_double_eq_tol(total_area(m, -1), 1.0, 1e-15);
+  int gs = group_of(m, "soft"), gh = group_of(m, "hard"), gb = group_of(m, "base");
+  for (int t = 0; t < 4; t++) {
+    int tag = m->tri.id[t];
+    ck_assert_int_eq(m->tri.mat[t], tag <= 3 ? soft : hard);
+    ck_assert_int_eq((int)((m->tri.gmask[t] >> gs) & 1), tag <= 3);
+    ck_assert_int_eq((int)((m->tri.gmask[t] >> gh) & 1), tag > 3);
+  }
+  ck_assert_int_eq(count_nodes(m, gs), 5);
+  ck_assert_int_eq(count_nodes(m, gh), 5);
+  ck_assert_int_eq(count_nodes(m, gb), 2);
+  int nb;
+  ck_assert_double_eq_tol(boundary_length(m, gb, 0.5, 0.5, &nb), 1.0, 1e-15);
+  ck_assert_int_eq(nb, 1);
+  free_sim(s);
+}
+END_TEST
+
+/* square4.msh, kept here to derive malformed variants from (line numbers below refer to it) */
+static const char *SQ4 =
+    "$MeshFormat\n"                 /* 1 */
+    "4.1 0 8\n"                     /* 2 */
+    "$EndMeshFormat\n"              /* 3 */
+    "$PhysicalNames\n"              /* 4 */
+    "3\n"                           /* 5 */
+    "1 10 \"base\"\n"               /* 6 */
+    "2 1 \"soft\"\n"                /* 7 */
+    "2 2 \"hard\"\n"                /* 8 */
+    "$EndPhysicalNames\n"           /* 9 */
+    "$Entities\n"                   /* 10 */
+    "0 1 2 0\n"                     /* 11 */
+    "1 0 0 0 1 0 0 1 10 0\n"        /* 12 */
+    "1 0 0 0 1 1 0 1 1 0\n"         /* 13 */
+    "2 0 0 0 1 1 0 1 2 0\n"         /* 14 */
+    "$EndEntities\n"                /* 15 */
+    "$Nodes\n"                      /* 16 */
+    "2 5 1 5\n"                     /* 17 */
+    "1 1 0 2\n"                     /* 18 */
+    "1\n"                           /* 19 */
+    "2\n"                           /* 20 */
+    "0 0 0\n"                       /* 21 */
+    "1 0 0\n"                       /* 22 */
+    "2 1 0 3\n"                     /* 23 */
+    "3\n"                           /* 24 */
+    "4\n"                           /* 25 */
+    "5\n"                           /* 26 */
+    "1 1 0\n"                       /* 27 */
+    "0 1 0\n"                       /* 28 */
+    "0.5 0.5 0\n"                   /* 29 */
+    "$EndNodes\n"                   /* 30 */
+    "$Elements\n"                   /* 31 */
+    "3 5 1 5\n"                     /* 32 */
+    "1 1 1 1\n"                     /* 33 */
+    "1 1 2\n"                       /* 34 */
+    "2 1 2 2\n"                     /* 35 */
+    "2 1 2 5\n"                     /* 36 */
+    "3 3 5 4\n"                     /* 37 */
+    "2 2 2 2\n"                     /* 38 */
+    "4 2 3 5\n"                     /* 39 */
+    "5 4 1 5\n"                     /* 40 */
+    "$EndElements\n";               /* 41 */
+
+/* SQ4 with the first occurrence of `from` replaced by `to` (or cut after it when to is NULL). */
+static const char *variant(const char *name, const char *from, const char *to) {
+  static char buf[4096];
+  const char *p = strstr(SQ4, from);
+  ck_assert_ptr_nonnull(p);
+  size_t k = (size_t)(p - SQ4);
+  if (to) snprintf(buf, sizeof buf, "%.*s%s%s", (int)k, SQ4, to, p + strlen(from));
+  else snprintf(buf, sizeof buf, "%.*s", (int)(k + strlen(from)), SQ4);
+  return write_tmp(name, buf);
+}
+
+START_TEST(test_gmsh_same_as_file) {
+  /* the string above is the committed file */
+  FILE *fp = fopen(repo_path("decks/meshes/square4.msh"), "r");
+  char buf[4096];
+  size_t n = fread(buf, 1, sizeof buf - 1, fp);
+  buf[n] = '\0';
+  fclose(fp);
+  ck_assert_str_eq(buf, SQ4);
+}
+END_TEST
+
+static void bad_msh(const char *name, const char *from, const char *to, int line, const char *msg) {
+  YfSim *s = new_sim();
+  model_add_material(&s->model, "soft");
+  model_add_material(&s->model, "hard");
+  const char *path = variant(name, from, to);
+  char cmd[1024], where[700];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s", path);
+  snprintf(where, sizeof where, "%s:%d: error:", path, line);
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, where, msg, "mesh gmsh at test.deck:7");
+  free_sim(s);
+}
+
+START_TEST(test_gmsh_malformed) {
+  bad_msh("v22.msh", "4.1 0 8", "2.2 0 8", 2, "MSH version 2.2 is not supported");
+  bad_msh("bin.msh", "4.1 0 8", "4.1 1 8", 2, "binary .msh files are not supported");
+  bad_msh("trunc.msh", "4 2 3 5\n", NULL, 40, "unexpected end of file");
+  bad_msh("trunc2.msh", "1 0 0\n", NULL, 23, "unexpected end of file");
+  bad_msh("num.msh", "0.5 0.5 0\n", "0.5 0.5x 0\n", 29, "expected a number for a node y, found '0.5x'");
+  bad_msh("tag.msh", "5 4 1 5\n", "5 4 1 9\n", 40, "node 9 of element 5 is not defined in $Nodes");
+  bad_msh("count.msh", "2 5 1 5\n", "2 6 1 5\n", 17, "the blocks hold 5 nodes but the header declares 6");
+  bad_msh("count2.msh", "3 5 1 5\n", "3 4 1 5\n", 38, "element block 3 declares 2 elements");
+  bad_msh("count3.msh", "2 1 0 3\n", "2 1 0 4\n", 23, "node block 2 declares 4 nodes, more than the 3 left");
+  bad_msh("short.msh", "0.5 0.5 0\n$EndNodes", "$EndNodes", 29, "found '$EndNodes' while reading a node x");
+  bad_msh("dup.msh", "4\n5\n", "4\n4\n", 26, "node tag 4 is defined twice");
+  bad_msh("nodes.msh", "4 2 3 5\n", "4 2 3\n", 39, "element 4 (3-node triangle) has 2 node tags");
+  bad_msh("zero.msh", "0.5 0.5 0\n", "0.5 0 0\n", 36, "triangle 2 has zero area");
+  bad_msh("quad.msh", "2 2 2 2\n4 2 3 5\n5 4 1 5\n", "2 2 3 1\n4 2 3 5 1\n", 38,
+          "element type 3 (4-node quadrangle) in surface 2 is not supported");
+  bad_msh("z.msh", "0.5 0.5 0\n", "0.5 0.5 0.1\n", 29, "needs the mesh in the plane z = 0");
+  bad_msh("ent.msh", "2 2 2 2\n", "2 7 2 2\n", 38, "surface 7, which $Entities does not define");
+  bad_msh("start.msh", "$MeshFormat\n", "$Mesh\n", 1, "must start with $MeshFormat");
+}
+END_TEST
+
+START_TEST(test_gmsh_deck_errors) {
+  YfSim *s = new_sim();
+  model_add_material(&s->model, "soft");
+  char cmd[1200];
+  /* unreadable file: I/O error at the deck line, naming the file */
+  EXPECT_FAIL(s, cmd_mesh, "mesh", "gmsh sq /nonexistent/nothere.msh", 2, "test.deck:7",
+              "/nonexistent/nothere.msh");
+  /* no material for 'hard' (no same-named material, no default) */
+  snprintf(cmd, sizeof cmd, "gmsh sq %s", repo_path("decks/meshes/square4.msh"));
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "test.deck:7", "no material for physical surface 'hard'");
+  /* a mapping naming a physical group the file does not have */
+  snprintf(cmd, sizeof cmd, "gmsh sq %s material hrad=soft", repo_path("decks/meshes/square4.msh"));
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "no physical surface 'hrad'", "soft, hard");
+  snprintf(cmd, sizeof cmd, "gmsh sq %s material hard=steel", repo_path("decks/meshes/square4.msh"));
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "unknown material 'steel'");
+  snprintf(cmd, sizeof cmd, "gmsh soft %s material hard=soft", repo_path("decks/meshes/square4.msh"));
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "has the name of a body");
+  free_sim(s);
+}
+END_TEST
+
+START_TEST(test_gmsh_no_entities_unnamed) {
+  /* no $PhysicalNames, no $Entities: every triangle gets the default material */
+  static const char *txt =
+      "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+      "$Comments\nanything $Nodes here is skipped\n$EndComments\n"
+      "$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n3\n4\n0 0 0\n2 0 0\n2 1 0\n0 1 0\n$EndNodes\n"
+      "$Elements\n1 2 1 2\n2 1 2 2\n1 1 3 2\n2 1 3 4\n$EndElements\n";
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  model_add_material(m, "a");
+  int b = model_add_material(m, "b");
+  char cmd[600];
+  snprintf(cmd, sizeof cmd, "gmsh blk %s material b", write_tmp("plain.msh", txt));
+  run(s, cmd_mesh, "mesh", cmd);
+  ck_assert_int_eq(m->tri.n, 2);
+  assert_all_ccw(m); /* 1 3 2 is clockwise */
+  ck_assert_double_eq_tol(total_area(m, -1), 2.0, 1e-15);
+  ck_assert_int_eq(m->tri.mat[0], b);
+  ck_assert_int_eq(m->tri.mat[1], b);
+  ck_assert_int_eq(m->ngroup, 1);
+  free_sim(s);
+  /* without a default the error names the surface */
+  s = new_sim();
+  model_add_material(&s->model, "a");
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "unknown material");
+  snprintf(cmd, sizeof cmd, "gmsh blk %s", tmp_path("plain.msh"));
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "surface 1 of", "in no physical group");
+  free_sim(s);
+}
+END_TEST
+
+/* ------------------------------------------------------------------ inline node / triangle */
+
+START_TEST(test_inline_commands) {
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  model_add_material(m, "rock");
+  run(s, cmd_node, "node", "10 0 0");
+  run(s, cmd_node, "node", "11 2 0");
+  run(s, cmd_node, "node", "12 2 1");
+  run(s, cmd_node, "node", "13 0 1");
+  run(s, cmd_triangle, "triangle", "1 10 11 12 rock");
+  run(s, cmd_triangle, "triangle", "2 10 12 13 rock");
+  ck_assert_int_eq(m->nbody, 1);
+  ck_assert_str_eq(m->body[0].name, "inline");
+  ck_assert_int_eq(m->body[0].mat, 0);
+  ck_assert_double_eq_tol(total_area(m, -1), 2.0, 1e-15);
+  ck_assert_int_eq(m->tri.v[3], 0);
+  ck_assert_int_eq(m->tri.v[4], 2);
+  ck_assert_int_eq(count_tris(m, group_of(m, "inline")), 2);
+  EXPECT_FAIL(s, cmd_node, "node", "11 5 5", 1, "test.deck:7", "node id 11 is defined twice");
+  EXPECT_FAIL(s, cmd_triangle, "triangle", "3 10 11 99 rock", 1, "node 99 is not defined");
+  EXPECT_FAIL(s, cmd_triangle, "triangle", "3 10 12 11 rock", 1, "triangle 3 is clockwise", "10 11 12");
+  EXPECT_FAIL(s, cmd_triangle, "triangle", "1 10 11 13 rock", 1, "triangle id 1 is defined twice");
+  EXPECT_FAIL(s, cmd_triangle, "triangle", "3 10 11 13 gneiss", 1, "unknown material", "rock");
+  EXPECT_FAIL(s, cmd_node, "node", "14 0 1x", 1, "test.deck:7");
+  /* a second inline body; its triangles may not use the first body's nodes */
+  run(s, cmd_node, "node", "20 5 0 other");
+  run(s, cmd_node, "node", "21 6 0 other");
+  EXPECT_FAIL(s, cmd_triangle, "triangle", "7 20 21 13 rock other", 1, "its node 13 is in body 'inline'");
+  free_sim(s);
+}
+END_TEST
+
+START_TEST(test_inline_files) {
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  model_add_material(m, "rock");
+  char np[600], tp[600], cmd[700];
+  snprintf(np, sizeof np, "%s", write_tmp("n.txt", "# id x y\n1 0 0\n2 1 0  # comment\n\n3 1 1\n4 0 1\n"));
+  snprintf(tp, sizeof tp, "%s", write_tmp("t.txt", "1 1 2 3 rock\n2 1 3 4 rock\n"));
+  snprintf(cmd, sizeof cmd, "%s blk", np);
+  run(s, cmd_nodes, "nodes", cmd);
+  snprintf(cmd, sizeof cmd, "%s blk", tp);
+  run(s, cmd_triangles, "triangles", cmd);
+  ck_assert_int_eq(m->node.n, 4);
+  ck_assert_int_eq(m->tri.n, 2);
+  ck_assert_str_eq(m->body[0].name, "blk");
+  ck_assert_double_eq_tol(total_area(m, -1), 1.0, 1e-15);
+  free_sim(s);
+
+  s = new_sim();
+  model_add_material(&s->model, "rock");
+  run(s, cmd_nodes, "nodes", np);
+  char where[800];
+  snprintf(cmd, sizeof cmd, "%s", write_tmp("t2.txt", "1 1 2 3 rock\n2 1 4 3 rock\n"));
+  snprintf(where, sizeof where, "%s:2: error:", cmd);
+  EXPECT_FAIL(s, cmd_triangles, "triangles", cmd, 1, where, "clockwise");
+  snprintf(cmd, sizeof cmd, "%s", write_tmp("t3.txt", "1 1 2 3 rock\n\n2 1 3 rock\n"));
+  snprintf(where, sizeof where, "%s:3: error:", cmd);
+  EXPECT_FAIL(s, cmd_triangles, "triangles", cmd, 1, where, "expected 5 columns");
+  snprintf(cmd, sizeof cmd, "%s", write_tmp("n2.txt", "7 0 0\n8 1 zero\n"));
+  snprintf(where, sizeof where, "%s:2: error:", cmd);
+  EXPECT_FAIL(s, cmd_nodes, "nodes", cmd, 1, where, "'zero' is not a number");
+  EXPECT_FAIL(s, cmd_nodes, "nodes", "/nonexistent/n.txt", 2, "test.deck:7", "/nonexistent/n.txt");
+  free_sim(s);
+}
+END_TEST
+
+/* ------------------------------------------------------------------ regions */
+
+START_TEST(test_region_box_circle_polygon) {
+  YfSim *s = new_sim();
+  run(s, cmd_region, "region", "b box 0 0 2 1");
+  run(s, cmd_region, "region", "c circle 1 1 0.5");
+  run(s, cmd_region, "region", "L polygon 0 0 2 0 2 1 1 1 1 2 0 2");
+  run(s, cmd_region, "region", "o box 0 0 2 1 side out");
+  run(s, cmd_region, "region", "line box 0 1 2 1");
+  int b = region_find("b"), c = region_find("c"), L = region_find("L"), o = region_find("o");
+  int ln = region_find("line");
+  ck_assert_int_eq(region_find("nothere"), -1);
+  ck_assert_int_eq(region_count(), 5);
+  /* box: interior, edges and corners inside; 1e-6 outside is outside, 1e-10 (round-off) inside */
+  ck_assert(region_contains(b, 1, 0.5));
+  ck_assert(region_contains(b, 2, 1) && region_contains(b, 0, 0) && region_contains(b, 2, 0.3));
+  ck_assert(region_contains(b, 2 + 1e-10, 0.5) && region_contains(b, 1, -1e-10));
+  ck_assert(!region_contains(b, 2 + 1e-6, 0.5) && !region_contains(b, 1, -1e-6));
+  /* side out: the complement, boundary included */
+  ck_assert(!region_contains(o, 1, 0.5));
+  ck_assert(region_contains(o, 2, 0.5) && region_contains(o, 3, 0.5));
+  /* a flat box selects a line */
+  ck_assert(region_contains(ln, 0.7, 1.0) && !region_contains(ln, 0.7, 1.0 - 1e-6));
+  /* circle */
+  ck_assert(region_contains(c, 1, 1) && region_contains(c, 1.5, 1) && region_contains(c, 1, 0.5));
+  ck_assert(region_contains(c, 1 + 0.5 / sqrt(2.0), 1 + 0.5 / sqrt(2.0)));
+  ck_assert(!region_contains(c, 1.36, 1.36));
+  /* L-shaped (concave) polygon: the notch is outside, its edges inside */
+  ck_assert(region_contains(L, 0.5, 1.5) && region_contains(L, 1.5, 0.5));
+  ck_assert(!region_contains(L, 1.5, 1.5));
+  ck_assert(region_contains(L, 1.5, 1.0) && region_contains(L, 1.0, 1.5) && region_contains(L, 1, 1));
+  ck_assert(region_contains(L, 0, 1.3) && region_contains(L, 2, 0));
+  ck_assert(!region_contains(L, -1e-6, 1.0) && !region_contains(L, 1.0 + 1e-6, 1.5));
+  EXPECT_FAIL(s, cmd_region, "region", "p polygon 0 0 1 0", 1, "at least 3 points");
+  EXPECT_FAIL(s, cmd_region, "region", "p polygon 0 0 1 0 1 1 2", 1, "X Y pairs");
+  EXPECT_FAIL(s, cmd_region, "region", "b box 0 0 1 1", 1, "region already exists");
+  EXPECT_FAIL(s, cmd_region, "region", "p box 0 0 -1 1", 1, "X1 must not be less than X0");
+  EXPECT_FAIL(s, cmd_region, "region", "p circle 0 0 0", 1, "test.deck:7");
+  EXPECT_FAIL(s, cmd_region, "region", "p sphere 0 0 1", 1, "sphere");
+  free_sim(s);
+}
+END_TEST
+
+/* ------------------------------------------------------------------ groups */
+
+START_TEST(test_groups) {
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  model_add_material(m, "steel");
+  run(s, cmd_mesh, "mesh", "rect plate steel 0 0 1 1 4 4");  /* node (i,j) = 5 j + i, h = 0.25 */
+  run(s, cmd_mesh, "mesh", "rect other steel 2 0 3 1 1 1");
+  run(s, cmd_region, "region", "left box 0 0 0 1");
+  run(s, cmd_region, "region", "bottom box -1 0 5 0");
+  run(s, cmd_region, "region", "lowhalf box 0 0 1 0.5");
+  run(s, cmd_group, "group", "left node region left");
+  run(s, cmd_group, "group", "bot node region bottom body plate");
+  run(s, cmd_group, "group", "allbot node region bottom");
+  run(s, cmd_group, "group", "low both region lowhalf");
+  int gl = group_of(m, "left"), gb = group_of(m, "bot"), gab = group_of(m, "allbot"), glo = group_of(m, "low");
+  ck_assert_int_eq(count_nodes(m, gl), 5);
+  ck_assert_int_eq(count_tris(m, gl), 0);
+  ck_assert_int_eq(count_nodes(m, gb), 5);
+  ck_assert_int_eq(count_nodes(m, gab), 7);
+  ck_assert_int_eq(count_nodes(m, glo), 15); /* rows j = 0, 1, 2 */
+  ck_assert_int_eq(count_tris(m, glo), 16);  /* centroids of the lower two rows of cells */
+  /* boundary edges of the left side: 4 edges of length 0.25, outward normal (-1, 0) */
+  int *e, n = mesh_boundary_edges(m, (uint64_t)1 << gl, &e);
+  ck_assert_int_eq(n, 4);
+  for (int i = 0; i < n; i++) {
+    double dx = m->node.x0[e[2 * i + 1]] - m->node.x0[e[2 * i]];
+    double dy = m->node.y0[e[2 * i + 1]] - m->node.y0[e[2 * i]];
+    ck_assert_double_eq_tol(dy / 0.25, -1.0, 1e-12); /* normal (dy, -dx) = (-1, 0) */
+    ck_assert(dx == 0.0);
+  }
+  free(e);
+  /* set operations */
+  run(s, cmd_group, "group", "u union left bot");
+  run(s, cmd_group, "group", "x intersect left bot");
+  run(s, cmd_group, "group", "d subtract bot left");
+  run(s, cmd_group, "group", "d2 subtract low left bot");
+  ck_assert_int_eq(count_nodes(m, group_of(m, "u")), 9);
+  ck_assert_int_eq(count_nodes(m, group_of(m, "x")), 1);
+  ck_assert_int_eq(count_nodes(m, group_of(m, "d")), 4);
+  ck_assert_int_eq(count_nodes(m, group_of(m, "d2")), 15 - 3 - 4);
+  ck_assert_int_eq(count_tris(m, group_of(m, "d2")), 16);
+  ck_assert_int_eq(count_tris(m, group_of(m, "x")), 0);
+  /* ids, nearest, body */
+  run(s, cmd_group, "group", "ids node id 1 25 26");
+  int gi = group_of(m, "ids");
+  ck_assert_int_eq(count_nodes(m, gi), 3);
+  ck_assert(m->node.gmask[0] >> gi & 1 && m->node.gmask[24] >> gi & 1 && m->node.gmask[25] >> gi & 1);
+  run(s, cmd_group, "group", "t3 tri id 3");
+  ck_assert_int_eq(count_tris(m, group_of(m, "t3")), 1);
+  ck_assert(m->tri.gmask[2] >> group_of(m, "t3") & 1);
+  run(s, cmd_group, "group", "tip node nearest 0.74 0.26");
+  int gt = group_of(m, "tip");
+  ck_assert_int_eq(count_nodes(m, gt), 1);
+  ck_assert(m->node.gmask[5 + 3] >> gt & 1);
+  run(s, cmd_group, "group", "ob both body other");
+  ck_assert_int_eq(count_nodes(m, group_of(m, "ob")), 4);
+  ck_assert_int_eq(count_tris(m, group_of(m, "ob")), 2);
+  /* a group only grows: adding to an existing group */
+  run(s, cmd_group, "group", "left node id 3");
+  ck_assert_int_eq(count_nodes(m, gl), 6);
+  /* errors and the empty warning */
+  EXPECT_FAIL(s, cmd_group, "group", "z union left nothere", 1, "test.deck:7", "unknown group",
+              "plate, other, left");
+  EXPECT_FAIL(s, cmd_group, "group", "z node region nowhere", 1, "unknown region", "left, bottom, lowhalf");
+  EXPECT_FAIL(s, cmd_group, "group", "z both body rock", 1, "unknown body", "plate, other");
+  EXPECT_FAIL(s, cmd_group, "group", "z node id 1 999", 1, "no node has this id");
+  EXPECT_FAIL(s, cmd_group, "group", "z tri nearest 0 0", 1, "selects a node");
+  EXPECT_FAIL(s, cmd_group, "group", "plate node id 1", 1, "group of body");
+  run(s, cmd_region, "region", "far circle 10 10 1");
+  EXPECT_FAIL(s, cmd_group, "group", "empty node region far", 0, "test.deck:7: warning:", "empty");
+  free_sim(s);
+}
+END_TEST
+
+Suite *mesh_suite(void) {
+  Suite *s = suite_create("mesh");
+  TCase *tc = tcase_create("rect");
+  tcase_add_test(tc, test_rect_patterns);
+  tcase_add_test(tc, test_rect_diagonals);
+  tcase_add_test(tc, test_rect_two_bodies_ids_min_edge);
+  tcase_add_test(tc, test_rect_errors);
+  suite_add_tcase(s, tc);
+  tc = tcase_create("gmsh");
+  tcase_add_test(tc, test_gmsh_two_squares);
+  tcase_add_test(tc, test_gmsh_parametric_scale_mapping);
+  tcase_add_test(tc, test_gmsh_hand_written);
+  tcase_add_test(tc, test_gmsh_same_as_file);
+  tcase_add_test(tc, test_gmsh_malformed);
+  tcase_add_test(tc, test_gmsh_deck_errors);
+  tcase_add_test(tc, test_gmsh_no_entities_unnamed);
+  suite_add_tcase(s, tc);
+  tc = tcase_create("inline");
+  tcase_add_test(tc, test_inline_commands);
+  tcase_add_test(tc, test_inline_files);
+  suite_add_tcase(s, tc);
+  tc = tcase_create("sets");
+  tcase_add_test(tc, test_region_box_circle_polygon);
+  tcase_add_test(tc, test_groups);
+  suite_add_tcase(s, tc);
+  return s;
+}
