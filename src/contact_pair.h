@@ -1,0 +1,66 @@
+/* contact_pair.h: the narrow phase of triangle-to-triangle contact (ALGORITHMS.md 6).
+ *
+ * Munjiza's potential contact, as in Y2D: every edge of a contactor triangle that crosses a
+ * target triangle is pushed out along its own outward normal by the integral of the target's
+ * potential phi = 3 min_k beta_k over the part of the edge inside the target; a penalty
+ * "spring" g per edge adds Coulomb friction; the reaction goes to the target's corners with the
+ * barycentric weights of the contactor nodes, so momentum and angular momentum are conserved
+ * (to round-off).  A couple (A, B) is evaluated in both directions: B as contactor on target A,
+ * then A on B.  To mirror Y2D's summation order exactly, pass A = the triangle with the larger
+ * index and B = the smaller one (Y2D evaluates the couple list's target, the smaller element,
+ * first as contactor); any other convention changes results by round-off only.
+ *
+ * These are pure functions on plain numbers: no model, no allocation, no I/O.  Units: SI, 2D per
+ * unit thickness.  Forces [N/m]; penalties [Pa]; the sliding memory g is Y2D's (m^2: a relative
+ * tangential velocity dotted with the unnormalised edge vector, times dt).
+ */
+#ifndef YF_CONTACT_PAIR_H
+#define YF_CONTACT_PAIR_H
+
+#define YF_CONTACT_EPS 1e-10 /* barycentric tolerance of Y2D (dimensionless) */
+
+/* Optional diagnostics of a kernel call, ADDED to (the caller zeroes them). */
+typedef struct {
+  int nedge;     /* contactor edges that produced a force (s_min < s_max)                    */
+  double fn;     /* sum over those edges of the normal force magnitude F L [N/m]              */
+  double ft;     /* sum over those edges of the tangential force magnitude |F_t| L [N/m]       */
+  double work_t; /* work of the tangential forces against the relative motion, sum F_t w dt
+                    [J/m]; > 0 when friction takes energy from the motion (stick + slip)      */
+  double dissip; /* frictional dissipation of this step: |F_t| |g_trial - g| on sliding edges
+                    [J/m] (0 while sticking)                                                  */
+  double energy; /* estimate of the normal penalty energy: sum over edges of
+                    1.5 p_n L int h_k P(s)^2 ds, h_k = height of the target over the edge that
+                    gives the minimum (exact for a flat penetration of one edge) [J/m]        */
+} YfContactInfo;
+
+/* One direction: contactor triangle C acting on target triangle T (ALGORITHMS 6.1-6.5).
+ *   xt,yt,vxt,vyt: target corners (CCW) and velocities; xc,yc,vxc,vyc: the contactor's.
+ *   pn, pt [Pa], mu: normal and tangential penalties and friction coefficient of the pair.
+ *   dt [s]: time step (friction memory increment).
+ *   g[3]: in/out sliding memory of the contactor's edges (edge e from corner e to e+1); an edge
+ *         not in contact keeps its value.
+ *   ft[6], fc[6]: forces ADDED to the target's / contactor's corners (fx0, fy0, fx1, ...) [N/m].
+ *   dmin2: in/out, lowered to the squared distance [m^2] recorded by each skipped edge (its
+ *          start node to the target edge line with the smallest barycentric value).
+ *   info: optional (NULL), added to.
+ * Returns the number of contactor edges that produced a force (0..3).  Triangles with
+ * non-positive area are ignored (return 0) instead of producing NaN. */
+int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3], const double vyt[3],
+                     const double xc[3], const double yc[3], const double vxc[3], const double vyc[3],
+                     double pn, double pt, double mu, double dt, double g[3],
+                     double ft[6], double fc[6], double *dmin2, YfContactInfo *info);
+
+/* One couple (A, B): B as contactor on target A (g[0..2]), then A on B (g[3..5]).
+ *   g[6]: sliding memory of the couple, index = dir*3 + contactor edge (dir 0 = B on A).
+ *   fa[6], fb[6]: forces ADDED to A's and B's corners [N/m].
+ *   dmin2: out (set, not lowered): smallest squared node-to-edge-line distance [m^2] of the
+ *          skipped edges of both directions, DBL_MAX if none; used for couple removal
+ *          (ALGORITHMS 5: remove when the return is 0 and dmin2 > (2 buffer)^2).
+ * Returns 1 if any edge of either direction produced a force, else 0.  An edge that passes the
+ * skip tests but whose contact interval is empty counts as neither (it records no distance). */
+int contact_pair_force(const double xa[3], const double ya[3], const double vxa[3], const double vya[3],
+                       const double xb[3], const double yb[3], const double vxb[3], const double vyb[3],
+                       double pn, double pt, double mu, double dt, double g[6],
+                       double fa[6], double fb[6], double *dmin2, YfContactInfo *info);
+
+#endif
