@@ -11,7 +11,10 @@
  *     file has them clockwise; their material comes from the surface's physical group (see
  *     gmsh_read in mesh.h and mesh_gmsh in mesh.c);
  *   - every physical group (point, curve, surface) becomes a node group named after it (a
- *     surface also a triangle group), so boundary curves carry loads and supports;
+ *     surface also a triangle group), so boundary curves carry loads and supports; unnamed
+ *     groups are called phys_<tag> (phys_<tag>_<curve|surface|point> when tags of two
+ *     dimensions coincide).  A name already used by a group of an earlier mesh adds to that
+ *     group; a name equal to a body's name is refused (it would corrupt the body's group);
  *   - 2-node lines (type 1) and points (type 15) only matter in physical curves and points;
  *     elements of entities without physical groups in dimensions 0 and 1 are skipped;
  *   - only nodes that are triangle corners enter the model (a node without a triangle would

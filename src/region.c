@@ -277,10 +277,12 @@ void cmd_group(struct YfSim *sim, const YfArgs *a) {
           int k = idmap_get(&want, m->tri.id[t]);
           if (k >= 0) ts[t] = hit_t[k] = 1;
         }
+      /* an id that selects nothing is a typo; with `both` it must name a node or a triangle */
       for (int k = 0; k < nid; k++) {
         int pos = idmap_get(&want, arg_int(a, 3 + k, "id", LONG_MIN, LONG_MAX));
-        if (want_n && !hit_n[pos]) arg_error(a, 3 + k, "no node has this id");
-        if (want_t && !hit_t[pos]) arg_error(a, 3 + k, "no triangle has this id");
+        if (hit_n[pos] || hit_t[pos]) continue;
+        arg_error(a, 3 + k, "no %s has this id", style == S_NODE ? "node" : style == S_TRI ? "triangle"
+                                                                      : "node or triangle");
       }
       free(hit_n);
       free(hit_t);

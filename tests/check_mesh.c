@@ -555,12 +555,14 @@ START_TEST(test_gmsh_deck_errors) {
 END_TEST
 
 START_TEST(test_gmsh_no_entities_unnamed) {
-  /* no $PhysicalNames, no $Entities: every triangle gets the default material */
+  /* no $PhysicalNames, no $Entities: every triangle gets the default material, and line
+   * elements (even 3-node ones, type 8) are skipped since they are in no physical group */
   static const char *txt =
       "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
       "$Comments\nanything $Nodes here is skipped\n$EndComments\n"
       "$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n3\n4\n0 0 0\n2 0 0\n2 1 0\n0 1 0\n$EndNodes\n"
-      "$Elements\n1 2 1 2\n2 1 2 2\n1 1 3 2\n2 1 3 4\n$EndElements\n";
+      "$Elements\n3 4 1 4\n2 1 2 2\n1 1 3 2\n2 1 3 4\n"
+      "1 5 1 1\n3 1 2\n1 6 8 1\n4 2 3 9\n$EndElements\n"; /* lines outside physical groups */
   YfSim *s = new_sim();
   YfModel *m = &s->model;
   model_add_material(m, "a");
@@ -763,6 +765,11 @@ START_TEST(test_groups) {
   EXPECT_FAIL(s, cmd_group, "group", "z node region nowhere", 1, "unknown region", "left, bottom, lowhalf");
   EXPECT_FAIL(s, cmd_group, "group", "z both body rock", 1, "unknown body", "plate, other");
   EXPECT_FAIL(s, cmd_group, "group", "z node id 1 999", 1, "no node has this id");
+  EXPECT_FAIL(s, cmd_group, "group", "z both id 1 99", 1, "no node or triangle has this id");
+  /* nodes have ids 1..29, triangles 1..34: 30 names a triangle only */
+  run(s, cmd_group, "group", "nt both id 26 30");
+  ck_assert_int_eq(count_nodes(m, group_of(m, "nt")), 1);
+  ck_assert_int_eq(count_tris(m, group_of(m, "nt")), 2);
   EXPECT_FAIL(s, cmd_group, "group", "z tri nearest 0 0", 1, "selects a node");
   EXPECT_FAIL(s, cmd_group, "group", "plate node id 1", 1, "group of body");
   run(s, cmd_region, "region", "far circle 10 10 1");
