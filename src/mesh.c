@@ -359,7 +359,8 @@ void mesh_reset(void) {
 }
 
 static void inline_bind(const YfModel *m) {
-  if (inl.owner != m) {
+  /* a different model, or a new one at the same address (it has fewer bodies than we made) */
+  if (inl.owner != m || m->nbody < inl.nbody) {
     mesh_reset();
     inl.owner = m;
   }

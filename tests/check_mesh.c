@@ -655,6 +655,44 @@ START_TEST(test_inline_files) {
 }
 END_TEST
 
+/* A fracturing body owns one node set per triangle; copies point at their shared node through
+ * node.parent.  The diagonal of a split square is still interior, and each boundary edge is
+ * given by the copies its own triangle uses. */
+START_TEST(test_boundary_edges_with_copies) {
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  model_add_material(m, "rock");
+  run(s, cmd_mesh, "mesh", "rect sq rock 0 0 1 1 1 1"); /* triangles (0,1,3) and (0,3,2) */
+  int g = group_of(m, "sq");
+  /* give triangle 1 its own copies of its three corners */
+  for (int k = 0; k < 3; k++) {
+    int v = m->tri.v[3 + k];
+    int c = model_add_node(m, m->node.x0[v], m->node.y0[v], m->node.id[v], 0);
+    m->node.parent[c] = v;
+    m->node.gmask[c] = m->node.gmask[v];
+    m->tri.v[3 + k] = c;
+  }
+  int *e, n = mesh_boundary_edges(m, (uint64_t)1 << g, &e);
+  ck_assert_int_eq(n, 4);
+  double L = 0;
+  for (int i = 0; i < n; i++) {
+    int a = e[2 * i], b = e[2 * i + 1];
+    L += hypot(m->node.x0[b] - m->node.x0[a], m->node.y0[b] - m->node.y0[a]);
+    /* edges of triangle 1 (the upper-left one, edges on y = 1 and x = 0) use its copies */
+    int upper_left = m->node.y0[a] + m->node.y0[b] == 2.0 || m->node.x0[a] + m->node.x0[b] == 0.0;
+    ck_assert_int_eq(a >= 4 && b >= 4, upper_left);
+  }
+  ck_assert_double_eq_tol(L, 4.0, 1e-15);
+  free(e);
+  /* without parents the split diagonal would count as two boundary edges */
+  for (int k = 4; k < 7; k++) m->node.parent[k] = k;
+  n = mesh_boundary_edges(m, (uint64_t)1 << g, &e);
+  ck_assert_int_eq(n, 6);
+  free(e);
+  free_sim(s);
+}
+END_TEST
+
 /* ------------------------------------------------------------------ regions */
 
 START_TEST(test_region_box_circle_polygon) {
@@ -785,6 +823,7 @@ Suite *mesh_suite(void) {
   tcase_add_test(tc, test_rect_diagonals);
   tcase_add_test(tc, test_rect_two_bodies_ids_min_edge);
   tcase_add_test(tc, test_rect_errors);
+  tcase_add_test(tc, test_boundary_edges_with_copies);
   suite_add_tcase(s, tc);
   tc = tcase_create("gmsh");
   tcase_add_test(tc, test_gmsh_two_squares);
