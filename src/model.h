@@ -94,6 +94,11 @@ typedef struct {
    * slot[gather_slot[k]] for k in gather_off[i]..gather_off[i+1]-1, in that fixed order, so any
    * thread count gives the same bits.  Slots 0..3*ntri-1 are triangle corners (tri.cf). */
   int *gather_off, *gather_slot;
+  /* Extra force slots beyond the triangle corners (joints register 4 per joint): slot
+   * 3*ntri + k adds (xslot_f[2k], xslot_f[2k+1]) to node xslot_node[k]. */
+  int nxslot;
+  const int *xslot_node;
+  double *xslot_f;
   int prepared;    /* model_prepare done for the current topology               */
 } YfModel;
 

@@ -16,8 +16,10 @@
 #include "run.h"
 #include "bc.h"
 #include "deck.h"
+#include "contact.h"
 #include "elem_tri.h"
 #include "err.h"
+#include "joint.h"
 #include "output.h"
 #include "summary.h"
 
@@ -25,6 +27,9 @@ const char *const yf_stage_names[YF_NSTAGE] = {"elements", "joints", "detection"
 double yf_stage_time[YF_NSTAGE];
 
 #define BLOCK 2048 /* triangles per block of the force loop: fixed, so sums do not depend on threads */
+/* Loops shorter than this run on one thread: a parallel region costs microseconds (much more on
+ * a loaded machine) and results are the same bits either way. */
+#define PAR_MIN 16384
 
 /* Run-time state derived from the model (rebuilt by run_prepare). */
 static struct {
@@ -46,19 +51,20 @@ static double now(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* Build the node -> slot gather lists (CSR) for the triangles' corners. */
+/* Build the node -> slot gather lists (CSR): triangle corners (slots 0..3 ntri-1) then the extra
+ * slots (joints).  Each node's slots are in increasing slot order, fixed for the whole run. */
 static void build_gather(YfModel *m) {
-  int nn = m->node.n, nt = m->tri.n;
+  int nn = m->node.n, nt3 = 3 * m->tri.n, ns = nt3 + m->nxslot;
   free(m->gather_off);
   free(m->gather_slot);
   m->gather_off = yf_calloc((size_t)nn + 1, sizeof(int), "gather offsets");
-  m->gather_slot = yf_malloc((size_t)(nt > 0 ? 3 * nt : 1) * sizeof(int), "gather slots");
-  for (int k = 0; k < 3 * nt; k++) m->gather_off[m->tri.v[k] + 1]++;
+  m->gather_slot = yf_malloc((size_t)(ns > 0 ? ns : 1) * sizeof(int), "gather slots");
+  for (int k = 0; k < ns; k++) m->gather_off[(k < nt3 ? m->tri.v[k] : m->xslot_node[k - nt3]) + 1]++;
   for (int i = 0; i < nn; i++) m->gather_off[i + 1] += m->gather_off[i];
   int *fill = yf_calloc((size_t)nn + 1, sizeof(int), "gather fill");
-  for (int k = 0; k < 3 * nt; k++) {
-    int i = m->tri.v[k];
-    m->gather_slot[m->gather_off[i] + fill[i]++] = k; /* increasing slot order per node */
+  for (int k = 0; k < ns; k++) {
+    int i = k < nt3 ? m->tri.v[k] : m->xslot_node[k - nt3];
+    m->gather_slot[m->gather_off[i] + fill[i]++] = k;
   }
   free(fill);
 }
@@ -114,6 +120,17 @@ double run_stable_dt(YfSim *s, char *limiter, size_t n) {
     else
       snprintf(limiter, n, "nothing (no triangles)");
   }
+  char what[96];
+  double dj = joints_stable_dt(s, what, sizeof what);
+  if (dj < best) {
+    best = dj;
+    if (limiter) snprintf(limiter, n, "%s", what);
+  }
+  double dc = contact_stable_dt(s, what, sizeof what);
+  if (dc < best) {
+    best = dc;
+    if (limiter) snprintf(limiter, n, "%s", what);
+  }
   return best;
 }
 
@@ -121,6 +138,7 @@ void run_prepare(YfSim *s) {
   YfModel *m = &s->model;
   if (!m->tri.n) yf_deck_error(NULL, "run: the scene has no triangles (use mesh, triangle or read_y2d first)");
   if (!m->prepared) {
+    joints_insert(s); /* fracturing bodies get their own nodes per triangle and joints */
     material_consts(s);
     for (int i = 0; i < m->node.n; i++) m->node.m[i] = 0.0;
     int bad = tri_prepare(m, R.tm);
@@ -143,6 +161,7 @@ void run_prepare(YfSim *s) {
     m->prepared = 1;
   }
   bc_prepare(s);
+  contact_prepare(s);
 }
 
 void run_energies(YfSim *s) {
@@ -219,7 +238,7 @@ static void step_once(YfSim *s) {
   const double dt = s->dt, gx = s->gx, gy = s->gy, alpha = s->mass_damping;
   double t0 = now(), t1;
 
-  #pragma omp parallel for schedule(static)
+  #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
   for (int b = 0; b < nblk; b++) {
     YfTriPass p;
     int e1 = (b + 1) * BLOCK < nt ? (b + 1) * BLOCK : nt;
@@ -246,15 +265,25 @@ static void step_once(YfSim *s) {
   yf_stage_time[YF_ST_ELEMENTS] += t1 - t0;
   t0 = t1;
 
-  /* gather corner forces into nodes in fixed slot order */
+  if (m->nxslot) {
+    joints_forces(s);
+    t1 = now();
+    yf_stage_time[YF_ST_JOINTS] += t1 - t0;
+    t0 = t1;
+  }
+
+  /* gather corner (and joint) forces into nodes in fixed slot order */
   const int *off = m->gather_off, *slot = m->gather_slot;
-  const double *cf = m->tri.cf;
-  #pragma omp parallel for schedule(static)
+  const double *cf = m->tri.cf, *xf = m->xslot_f;
+  const int nt3 = 3 * nt;
+  #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
   for (int i = 0; i < nn; i++) {
     double fx = 0, fy = 0;
     for (int k = off[i]; k < off[i + 1]; k++) {
-      fx += cf[2 * slot[k]];
-      fy += cf[2 * slot[k] + 1];
+      int q = slot[k];
+      const double *f = q < nt3 ? cf + 2 * q : xf + 2 * (q - nt3);
+      fx += f[0];
+      fy += f[1];
     }
     n->fx[i] = fx;
     n->fy[i] = fy;
@@ -263,29 +292,27 @@ static void step_once(YfSim *s) {
   t1 = now();
   yf_stage_time[YF_ST_GATHER] += t1 - t0;
   t0 = t1;
+  contact_step(s); /* detection when due, then pair forces added in pair order (timed inside) */
+  t0 = now();
 
   /* update: v_{n+1/2}, then supports, then x_{n+1} */
   double *x = n->x, *y = n->y, *vx = n->vx, *vy = n->vy;
   const double *fx = n->fx, *fy = n->fy, *ms = n->m;
   memcpy(R.xo, x, (size_t)nn * sizeof(double));
   memcpy(R.yo, y, (size_t)nn * sizeof(double));
+  memcpy(R.vxo, vx, (size_t)nn * sizeof(double));
+  memcpy(R.vyo, vy, (size_t)nn * sizeof(double));
   if (alpha > 0) {
     /* central-difference mass damping: v+ = ((1 - a dt/2) v- + dt f/m) / (1 + a dt/2) */
     const double c1 = 1.0 - 0.5 * alpha * dt, c2 = 1.0 / (1.0 + 0.5 * alpha * dt);
-    double diss = 0;
-    #pragma omp parallel for schedule(static) reduction(+:diss)
+    #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
     for (int i = 0; i < nn; i++) {
       if (!(ms[i] > 1e-300)) continue;
-      double ux = (c1 * vx[i] + dt * (fx[i] / ms[i] + gx)) * c2;
-      double uy = (c1 * vy[i] + dt * (fy[i] / ms[i] + gy)) * c2;
-      double ax = 0.5 * (ux + vx[i]), ay = 0.5 * (uy + vy[i]);
-      diss += alpha * ms[i] * (ax * ax + ay * ay) * dt;
-      vx[i] = ux;
-      vy[i] = uy;
+      vx[i] = (c1 * vx[i] + dt * (fx[i] / ms[i] + gx)) * c2;
+      vy[i] = (c1 * vy[i] + dt * (fy[i] / ms[i] + gy)) * c2;
     }
-    s->energy.damping += diss;
   } else {
-    #pragma omp parallel for schedule(static)
+    #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
     for (int i = 0; i < nn; i++) {
       if (!(ms[i] > 1e-300)) continue;
       vx[i] += dt * (fx[i] / ms[i] + gx);
@@ -293,7 +320,17 @@ static void step_once(YfSim *s) {
     }
   }
   bc_constrain_velocities(s, NULL, NULL);
-  #pragma omp parallel for schedule(static)
+  if (alpha > 0) {
+    /* dissipated: alpha m |v_n|^2 dt with v_n the mean of the two half-step velocities, after
+     * the supports (a held node dissipates nothing); summed serially: same bits on any threads */
+    double diss = 0;
+    for (int i = 0; i < nn; i++) {
+      double ax = 0.5 * (vx[i] + R.vxo[i]), ay = 0.5 * (vy[i] + R.vyo[i]);
+      diss += ms[i] * (ax * ax + ay * ay);
+    }
+    s->energy.damping += alpha * diss * dt;
+  }
+  #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
   for (int i = 0; i < nn; i++) {
     x[i] += dt * vx[i];
     y[i] += dt * vy[i];

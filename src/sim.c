@@ -8,6 +8,8 @@
 #include "sim.h"
 #include "deck.h"
 #include "err.h"
+#include "mesh.h"
+#include "region.h"
 
 void sim_init(YfSim *s) {
   memset(s, 0, sizeof *s);
@@ -175,4 +177,6 @@ void sim_free(YfSim *s) {
   for (int i = 0; i < s->nhist; i++) { free(s->hist[i].t); free(s->hist[i].v); }
   free(s->hist);
   model_free(&s->model);
+  region_reset();
+  mesh_reset();
 }
