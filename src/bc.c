@@ -338,17 +338,20 @@ void bc_constrain_velocities(YfSim *s, const double *vx_old, const double *vy_ol
       for (int c = 0; c < 2; c++) {
         if (!it->has[c]) continue;
         double target = it->kind == BC_VELOCITY ? it->a[c] * ph : 0.0;
-        /* reaction R = m (v_target - v_free)/dt; its work over this step = R . v_target dt */
+        /* reaction R = m (v_target - v_free)/dt acting over the step at the mean velocity of the
+         * two half steps (the central-difference energy measure) */
         double R = n->m[j] * (target - *v[c]) / s->dt;
-        s->energy.external_work += R * target * s->dt;
+        double vo = c ? vy_old[j] : vx_old[j];
+        s->energy.external_work += R * 0.5 * (target + vo) * s->dt;
         *v[c] = target;
       }
     }
   }
-  (void)vx_old; (void)vy_old; (void)t1;
+  (void)t1;
 }
 
-void bc_constrain_positions(YfSim *s, const double *x_old, const double *y_old) {
+void bc_constrain_positions(YfSim *s, const double *x_old, const double *y_old, const double *vx_old,
+                            const double *vy_old) {
   YfNodes *n = &s->model.node;
   double t1 = s->time + s->dt;
   if (s->bc) {
@@ -366,19 +369,20 @@ void bc_constrain_positions(YfSim *s, const double *x_old, const double *y_old) 
           double target = x0[c] + it->a[c] * ph;
           double vnew = (target - xo[c]) / s->dt;
           double R = n->m[j] * (vnew - *v[c]) / s->dt;
-          s->energy.external_work += R * (target - xo[c]);
+          double vo = c ? vy_old[j] : vx_old[j];
+          s->energy.external_work += R * 0.5 * (vnew + vo) * s->dt;
           *v[c] = vnew;
           *x[c] = target;
         }
       }
     }
-    /* work of the loads of this step over the step's displacement */
+    /* work of the loads of this step at the mean velocity of the two half steps */
     for (int i = 0; i < s->bc->n; i++) {
       YfBcItem *it = &s->bc->item[i];
       if (it->kind < BC_POINT) continue;
       for (int k = 0; k < it->nn; k++) {
         int j = it->nodes[k];
-        s->energy.external_work += it->lf[2 * k] * (n->x[j] - x_old[j]) + it->lf[2 * k + 1] * (n->y[j] - y_old[j]);
+        s->energy.external_work += 0.5 * s->dt * (it->lf[2 * k] * (n->vx[j] + vx_old[j]) + it->lf[2 * k + 1] * (n->vy[j] + vy_old[j]));
       }
     }
   }

@@ -12,7 +12,8 @@ void bc_apply_loads(YfSim *s);
  * fixed and prescribed velocities; after positions move: impose prescribed displacements.
  * Both accumulate the work of the constraint reactions and loads into s->energy. */
 void bc_constrain_velocities(YfSim *s, const double *vx_old, const double *vy_old);
-void bc_constrain_positions(YfSim *s, const double *x_old, const double *y_old);
+void bc_constrain_positions(YfSim *s, const double *x_old, const double *y_old, const double *vx_old,
+                            const double *vy_old);
 /* Per-node flags: bit 0 x is prescribed, bit 1 y is prescribed (used by contact/energy). */
 const unsigned char *bc_node_flags(const YfSim *s);
 /* Time-step limit implied by anything in bc (none today): INFINITY. */

@@ -25,6 +25,10 @@
 #include <omp.h>
 #endif
 
+/* Below this many items a search runs on one thread: waking a team costs more than it saves
+ * (and on a loaded machine a descheduled worker can stall a barrier for a time slice). */
+#define YF_SEARCH_PAR_MIN 20000
+
 struct YfPairBuf {
   int n, cap;
   int *ij;
@@ -175,7 +179,7 @@ static inline int filter_keep(const YfSearchFilter *f, int i, int j)
 void contact_search_bounds(int n, const int *tri, const int *tri_v, const double *x, const double *y,
                            double *cx, double *cy, double *r)
 {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= YF_SEARCH_PAR_MIN)
   for (int k = 0; k < n; k++) {
     const int *v = tri_v + 3 * (size_t)(tri ? tri[k] : k);
     double x0 = x[v[0]], x1 = x[v[1]], x2 = x[v[2]];
@@ -233,7 +237,7 @@ void contact_search(YfSearchWork *w, int n, const int *tri, const double *cx, co
   /* Stable counting sort of items by cell. */
   int *start = w->start, *cell = w->cell;
   memset(start, 0, (size_t)(ncells + 1) * sizeof *start);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= YF_SEARCH_PAR_MIN)
   for (int k = 0; k < n; k++) {
     int ix = (int)((cx[k] - xmin) / h), iy = (int)((cy[k] - ymin) / h);
     if (ix >= nx) ix = nx - 1;
@@ -258,7 +262,7 @@ void contact_search(YfSearchWork *w, int n, const int *tri, const double *cx, co
   long tested = 0;
   int nthr_used = 1;
 
-#pragma omp parallel reduction(+ : tested)
+#pragma omp parallel reduction(+ : tested) if (n >= YF_SEARCH_PAR_MIN)
   {
     int t = 0, nt = 1;
 #ifdef _OPENMP
@@ -340,7 +344,7 @@ int contact_trigger_step(YfSearchTrigger *t, double dt, double vmax2)
 double contact_vmax2(int n, const int *nodes, const double *vx, const double *vy)
 {
   double vm = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : vm)
+#pragma omp parallel for schedule(static) reduction(max : vm) if (n >= YF_SEARCH_PAR_MIN)
   for (int k = 0; k < n; k++) {
     int i = nodes ? nodes[k] : k;
     double v2 = vx[i] * vx[i] + vy[i] * vy[i];

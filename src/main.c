@@ -16,6 +16,7 @@
 #include "run.h"
 #include "sim.h"
 #include "summary.h"
+#include "y2d_model.h"
 
 #ifndef YF_VERSION
 #define YF_VERSION "0.1.0"
@@ -109,7 +110,6 @@ int main(int argc, char **argv) {
     size_t L = strlen(in);
     if (L > 2 && !strcmp(in + L - 2, ".y")) {
       /* A Y2D deck: read it and run to its own last step (read_y2d + run). */
-      extern void y2d_run_file(YfSim *, const char *);
       y2d_run_file(&g_sim, in);
     } else {
       deck_run_file(g_deck, in, NULL);

@@ -186,23 +186,32 @@ static void h5_put(YfDump *d, hid_t loc, const char *name, hid_t type, int rank,
   if (st < 0) h5_fail(d, name);
 }
 
+/* Frames that /frames holds in its pre-sized object header (see the file comment). */
+#define FRAMES_EST 8192
+
 static void h5_open(YfDump *d) {
   h5_quiet();
+  /* 1.8 file format: link messages in object headers (needed for the pre-sized /frames), and a
+   * version-2 superblock, which has no "open for writing" flag that would lock a killed file. */
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18);
   if (!d->created) {
-    /* Big symbol-table nodes: /frames grows by appending into one node for ~2000 frames. */
     hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
-    H5Pset_sym_k(fcpl, 16, 1024);
-    d->file = H5Fcreate(d->path, H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
+    H5Pset_est_link_info(fcpl, 16, 9); /* root: frames, mesh, mesh_NNNN... */
+    d->file = H5Fcreate(d->path, H5F_ACC_TRUNC, fcpl, fapl);
     H5Pclose(fcpl);
+    H5Pclose(fapl);
     if (d->file < 0) h5_fail(d, "create file");
     d->created = 1;
     hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE);
-    H5Pset_local_heap_size_hint(gcpl, 64 * 1024); /* names of ~8000 frames without growing */
+    H5Pset_link_phase_change(gcpl, 65535, 65534);
+    H5Pset_est_link_info(gcpl, FRAMES_EST, 6);
     d->frames = H5Gcreate2(d->file, "frames", H5P_DEFAULT, gcpl, H5P_DEFAULT);
     H5Pclose(gcpl);
     if (d->frames < 0) h5_fail(d, "create /frames");
   } else { /* reopened after output_close_all / between runs: append */
-    d->file = H5Fopen(d->path, H5F_ACC_RDWR, H5P_DEFAULT);
+    d->file = H5Fopen(d->path, H5F_ACC_RDWR, fapl);
+    H5Pclose(fapl);
     if (d->file < 0) h5_fail(d, "reopen file");
     d->frames = H5Gopen2(d->file, "frames", H5P_DEFAULT);
     if (d->frames < 0) h5_fail(d, "open /frames");

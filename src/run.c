@@ -21,6 +21,7 @@
 #include "err.h"
 #include "joint.h"
 #include "output.h"
+#include "y2d_model.h"
 #include "summary.h"
 
 const char *const yf_stage_names[YF_NSTAGE] = {"elements", "joints", "detection", "contact", "gather", "update", "output"};
@@ -289,6 +290,7 @@ static void step_once(YfSim *s) {
     n->fy[i] = fy;
   }
   bc_apply_loads(s);
+  if (s->y2d) y2d_apply_loads(s); /* Y2D BC sets: edge pressure and shear traction */
   t1 = now();
   yf_stage_time[YF_ST_GATHER] += t1 - t0;
   t0 = t1;
@@ -302,7 +304,9 @@ static void step_once(YfSim *s) {
   memcpy(R.yo, y, (size_t)nn * sizeof(double));
   memcpy(R.vxo, vx, (size_t)nn * sizeof(double));
   memcpy(R.vyo, vy, (size_t)nn * sizeof(double));
-  if (alpha > 0) {
+  if (s->y2d) {
+    y2d_update_velocities(s); /* Y2D's BC-set update (kinds, local frames, time factors) */
+  } else if (alpha > 0) {
     /* central-difference mass damping: v+ = ((1 - a dt/2) v- + dt f/m) / (1 + a dt/2) */
     const double c1 = 1.0 - 0.5 * alpha * dt, c2 = 1.0 / (1.0 + 0.5 * alpha * dt);
     #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
@@ -319,7 +323,7 @@ static void step_once(YfSim *s) {
       vy[i] += dt * (fy[i] / ms[i] + gy);
     }
   }
-  bc_constrain_velocities(s, NULL, NULL);
+  bc_constrain_velocities(s, R.vxo, R.vyo);
   if (alpha > 0) {
     /* dissipated: alpha m |v_n|^2 dt with v_n the mean of the two half-step velocities, after
      * the supports (a held node dissipates nothing); summed serially: same bits on any threads */
@@ -335,7 +339,7 @@ static void step_once(YfSim *s) {
     x[i] += dt * vx[i];
     y[i] += dt * vy[i];
   }
-  bc_constrain_positions(s, R.xo, R.yo);
+  bc_constrain_positions(s, R.xo, R.yo, R.vxo, R.vyo);
   s->step++;
   s->time += dt;
   t1 = now();
@@ -395,10 +399,17 @@ void run_steps(YfSim *s, long nsteps) {
              s->threads > 1 ? "s" : "");
 }
 
-/* run N */
+/* run N | run (to the last step of a Y2D deck read by read_y2d) */
 void cmd_run(YfSim *s, const YfArgs *a) {
-  arg_count(a, 1, 1);
-  long n = arg_int(a, 0, "N", 0, 2000000000L);
+  arg_count(a, 0, 1);
+  long n;
+  if (a->n == 0) {
+    if (s->last_step <= 0) arg_error(a, 0, "give the number of steps (run without N needs a read_y2d deck)");
+    n = s->last_step - s->step;
+    if (n < 0) n = 0;
+  } else {
+    n = arg_int(a, 0, "N", 0, 2000000000L);
+  }
   run_steps(s, n);
 }
 

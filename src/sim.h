@@ -35,6 +35,7 @@ struct YfBc;      /* bc.c      */
 struct YfOutput;  /* output.c  */
 struct YfJoints;  /* joint.c   */
 struct YfContact; /* contact.c */
+struct YfY2dRun;  /* y2d_model.c: Y2D boundary-condition sets of a read_y2d scene */
 struct YfDeck;
 
 typedef struct YfSim {
@@ -60,6 +61,8 @@ typedef struct YfSim {
   struct YfOutput *out;
   struct YfJoints *joints;
   struct YfContact *contact;
+  struct YfY2dRun *y2d;   /* non-NULL after read_y2d: nodes follow Y2D's BC-set update   */
+  long last_step;         /* `run` without N runs to this step (Y2D's MCSTEP), 0 = none   */
 
   YfEnergy energy;
   long thermo_every;    /* thermo line every N steps (0: only at start and end of a run)    */
