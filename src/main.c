@@ -47,6 +47,7 @@ static void usage(FILE *fp) {
 
 static void finish(int code, const char *message) {
   output_close_all(&g_sim);
+  run_summary_update(&g_sim);
   if (g_sim.summary_path[0]) summary_write(&g_sim, g_sim.summary_path, code, message);
   if (g_sim.log) {
     if (message && *message) fprintf(g_sim.log, "%s\n", message);

@@ -9,6 +9,7 @@
  */
 #include <math.h>
 #include <omp.h>
+#include <sys/resource.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -190,8 +191,8 @@ static double gravity_work(const YfSim *s) {
 static double total_external(const YfSim *s) { return s->energy.external_work + gravity_work(s); }
 
 static void thermo_header(YfSim *s) {
-  sim_printf(s, "%10s %12s %13s %13s %13s %13s %13s %9s\n", "Step", "Time", "KinEng", "StrainEng", "ExtWork",
-             "Dissipated", "Balance", "Wall");
+  sim_printf(s, "%10s %12s %13s %13s %13s %13s %13s %8s %9s %9s\n", "Step", "Time", "KinEng", "StrainEng", "ExtWork",
+             "Dissipated", "Balance", "Broken", "Pairs", "Wall");
 }
 
 static void thermo_line(YfSim *s) {
@@ -199,8 +200,9 @@ static void thermo_line(YfSim *s) {
   double ext = total_external(s);
   double diss = s->energy.damping + s->energy.joint_dissipated + s->energy.friction;
   double bal = s->energy.kinetic + s->energy.strain + s->energy.contact + diss - ext;
-  sim_printf(s, "%10ld %12.6e %13.6e %13.6e %13.6e %13.6e %13.6e %9.2f\n", s->step, s->time, s->energy.kinetic,
-             s->energy.strain, ext, diss, bal, s->wall_s + (now() - R.t_wall0));
+  sim_printf(s, "%10ld %12.6e %13.6e %13.6e %13.6e %13.6e %13.6e %8ld %9ld %9.2f\n", s->step, s->time,
+             s->energy.kinetic, s->energy.strain, ext, diss, bal, joints_broken(s), contact_pairs(s),
+             s->wall_s + (now() - R.t_wall0));
 }
 
 /* Unstable runs show as energy growing without a source: stop them with a clear cause. */
@@ -414,6 +416,26 @@ void cmd_run(YfSim *s, const YfArgs *a) {
 }
 
 const YfTriMat *run_tri_mats(void) { return R.tm; }
+
+/* Summary keys owned by the loop: counts, cost of the model, where the time went.  Runs from
+ * the exit path too, so it must not fail. */
+void run_summary_update(YfSim *s) {
+  summary_set_counts(joints_count(s), joints_broken(s), contact_pairs(s));
+  if (s->model.tri.n > 0) summary_add_number("model_bytes_per_element", run_model_bytes(s) / s->model.tri.n);
+  struct rusage ru;
+  if (!getrusage(RUSAGE_SELF, &ru)) summary_add_number("peak_rss_mb", ru.ru_maxrss / 1024.0);
+  char buf[512];
+  int k = snprintf(buf, sizeof buf, "{");
+  for (int i = 0; i < YF_NSTAGE && k > 0 && (size_t)k < sizeof buf; i++)
+    k += snprintf(buf + k, sizeof buf - (size_t)k, "%s\"%s\": %.6g", i ? ", " : "", yf_stage_names[i], yf_stage_time[i]);
+  if (k > 0 && (size_t)k < sizeof buf - 2) {
+    snprintf(buf + k, sizeof buf - (size_t)k, "}");
+    summary_add_raw("stage_seconds", buf);
+  }
+  summary_add_number("dt", s->dt);
+  if (isfinite(s->dt_limit) && s->dt_limit > 0) summary_add_number("dt_limit", s->dt_limit);
+  joints_summary(s);
+}
 
 void run_free(void) {
   free(R.tm); free(R.blk); free(R.blk_bad); free(R.blk_badJ);
