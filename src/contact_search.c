@@ -73,7 +73,11 @@ int contact_pairs_compact(YfPairs *p, const unsigned char *keep)
 
 /* ---------------------------------------------------------------- workspace */
 
-void contact_search_work_init(YfSearchWork *w) { memset(w, 0, sizeof *w); }
+void contact_search_work_init(YfSearchWork *w)
+{
+  memset(w, 0, sizeof *w);
+  w->par_min = YF_SEARCH_PAR_MIN;
+}
 
 void contact_search_work_free(YfSearchWork *w)
 {
@@ -86,7 +90,7 @@ void contact_search_work_free(YfSearchWork *w)
   free(w->stri);
   for (int t = 0; t < w->nthr_cap; t++) free(w->buf[t].ij);
   free(w->buf);
-  memset(w, 0, sizeof *w);
+  contact_search_work_init(w);
 }
 
 static void work_grow(YfSearchWork *w, int n, int ncells, int nthr)
@@ -262,7 +266,7 @@ void contact_search(YfSearchWork *w, int n, const int *tri, const double *cx, co
   long tested = 0;
   int nthr_used = 1;
 
-#pragma omp parallel reduction(+ : tested) if (n >= YF_SEARCH_PAR_MIN)
+#pragma omp parallel reduction(+ : tested) if (n >= w->par_min)
   {
     int t = 0, nt = 1;
 #ifdef _OPENMP

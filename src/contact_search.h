@@ -49,6 +49,7 @@ typedef struct YfSearchWork {
   double *sx, *sy, *sr; /* centroid and radius per sorted slot (locality)             */
   int *stri;            /* triangle index per sorted slot                             */
   struct YfPairBuf *buf;/* one per thread                                             */
+  int par_min;          /* fewer items than this: one thread (set by init; tests lower it) */
   /* statistics of the last search */
   int nx, ny;           /* grid size                                                  */
   double h;             /* cell size [m]                                              */

@@ -356,9 +356,13 @@ START_TEST(test_search_equals_brute_force)
       if (t % 2 == 0 || t % 7 == 0) tri[n++] = t;
     contact_search_bounds(n, tri, tv, x, y, cx, cy, r);
     for (int b = 0; b < 3; b++) {
-      contact_search(&w, n, tri, cx, cy, r, bufs[b], NULL, &p);
       brute(n, tri, cx, cy, r, bufs[b], NULL, NULL, NULL, &q);
       ck_assert_int_gt(q.n, 0);
+      w.par_min = 1 << 30; /* serial */
+      contact_search(&w, n, tri, cx, cy, r, bufs[b], NULL, &p);
+      assert_same(&p, &q);
+      w.par_min = 1;       /* threaded, with the runner's thread count */
+      contact_search(&w, n, tri, cx, cy, r, bufs[b], NULL, &p);
       assert_same(&p, &q);
     }
   }
@@ -439,8 +443,10 @@ START_TEST(test_search_filters_and_threads)
   assert_same(&p, &q);
 
 #ifdef _OPENMP
-  /* Same list, bit for bit, with 1 and 2 threads. */
+  /* Same list, bit for bit, with 1 and 2 threads (threaded path forced for this small N), and
+   * equal to brute force with 2 threads. */
   int nthr = omp_get_max_threads();
+  w.par_min = 1;
   omp_set_num_threads(1);
   contact_search(&w, NT, NULL, cx, cy, r, buf, NULL, &p1);
   omp_set_num_threads(2);
@@ -448,6 +454,8 @@ START_TEST(test_search_filters_and_threads)
   omp_set_num_threads(nthr);
   ck_assert_int_eq(p.n, p1.n);
   ck_assert(memcmp(p.ij, p1.ij, (size_t)p.n * 2 * sizeof(int)) == 0);
+  brute(NT, tri, cx, cy, r, buf, NULL, NULL, NULL, &q);
+  assert_same(&p, &q);
 #endif
   free(q.ij);
   contact_pairs_free(&p);
