@@ -40,6 +40,11 @@
 #include <hdf5.h>
 #include "output.h"
 #include "err.h"
+#include "y2dref.h"
+
+/* The y2dref style (y2dref.c: Y2D reference CSV files) is written every step; y2dref_frame decides
+ * what is due. */
+enum { YF_DUMP_Y2DREF = 2 };
 
 typedef struct YfDump {
   char id[YF_NAME_MAX];
@@ -62,6 +67,7 @@ typedef struct YfDump {
   double *buf;        /* scratch for interleaved / derived arrays                      */
   size_t bufcap;
   FILE *csv_index;    /* PREFIX_frames.csv                                             */
+  struct YfY2dRef *y2d; /* y2dref style                                                */
 } YfDump;
 
 static const char *const field_names[] = {"u", "v", "f", "stress", "vonmises", "sigma1",
@@ -458,7 +464,8 @@ static void csv_frame(YfSim *s, YfDump *d) {
 /* ---------------------------------------------------------------- frames */
 
 static void write_frame(YfSim *s, YfDump *d) {
-  if (d->style == YF_DUMP_H5) h5_frame(s, d);
+  if (d->style == YF_DUMP_Y2DREF) y2dref_frame(s, d->y2d);
+  else if (d->style == YF_DUMP_H5) h5_frame(s, d);
   else csv_frame(s, d);
   d->nframe++;
   d->last_step = s->step;
@@ -504,6 +511,7 @@ void output_topology_changed(YfSim *s) {
 
 static void dump_close(YfDump *d) {
   if (d->style == YF_DUMP_H5) h5_close(d);
+  if (d->style == YF_DUMP_Y2DREF) y2dref_close(d->y2d);
   if (d->csv_index) {
     fclose(d->csv_index);
     d->csv_index = NULL;
@@ -518,6 +526,7 @@ static void dump_free(YfDump *d) {
   free(d->h5name);
   free(d->grids);
   free(d->buf);
+  y2dref_free(d->y2d);
   free(d);
 }
 
@@ -590,10 +599,20 @@ int output_remove_dump(YfSim *s, const char *id) {
 /* dump ID h5 N FILE.h5 [fields F1 F2 ...] [compress]
  * dump ID csv N PREFIX */
 void cmd_dump(YfSim *s, const YfArgs *a) {
-  static const char *const styles[] = {"h5", "csv", NULL};
-  arg_count(a, 4, -1);
+  static const char *const styles[] = {"h5", "csv", "y2dref", NULL};
+  arg_count(a, 2, -1);
   const char *id = arg_word(a, 0, "dump id");
   int style = arg_choice(a, 1, "style", styles);
+  if (style == YF_DUMP_Y2DREF) { /* dump ID y2dref DIR [corners S,...] [summary K] [probes K E:C ...] */
+    if (find_dump(s->out, id, NULL)) arg_error(a, 0, "a dump with this id exists (undump it first)");
+    if (s->out && s->out->ndump >= YF_MAX_DUMPS) arg_error(a, 0, "at most %d dumps at a time", YF_MAX_DUMPS);
+    struct YfY2dRef *r = y2dref_parse(s, a);
+    int k = output_add_dump(s, id, style, 1, y2dref_dir(r), 0, 0);
+    s->out->dump[k]->y2d = r;
+    sim_printf(s, "dump %s: Y2D reference CSV files in %s\n", id, y2dref_dir(r));
+    return;
+  }
+  arg_count(a, 4, -1);
   long every = arg_int(a, 2, "N (steps between frames)", 1, LONG_MAX / 4);
   const char *path = arg_word(a, 3, style == YF_DUMP_H5 ? "file" : "file prefix");
   unsigned fields = YF_FIELD_ALL;

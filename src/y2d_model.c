@@ -1,11 +1,424 @@
-/* y2d_model.c: turning a Y2D input deck (y2d_read.c) into the yfdem scene.  (In progress: the
- * Y2D compatibility issue fills it in; until then a .y deck is refused with a clear message.) */
+/* y2d_model.c: a Y2D input deck as a yfdem scene (read_y2d), and Y2D's boundary-condition sets
+ * inside the step.
+ *
+ * This module owns the translation of a YfY2d (y2d_read.c: plain arrays, Y2D defaults) into the
+ * model: nodes keep their input numbers as ids, triangles their input element index (in input
+ * order, so input element e is triangle tri0 + e), each element property becomes one material and
+ * one body, joint meshing rows (code 3) insert joints through joint.c, MICOUP > 0 switches on
+ * contact through contact.c.  It also owns the two Y2D stages run.c calls when s->y2d is set:
+ *
+ *  - y2d_apply_loads: the exact consistent edge loads of ALGORITHMS 2.5 (linearly varying pressure
+ *    and shear traction over every triangle edge whose two nodes carry loaded sets; Y2D's quirk of
+ *    loading interior edges too is kept), at positions x_n and time factors of t_n;
+ *  - y2d_update_velocities: ALGORITHMS 7 per node of mass > 1e-10: gravity m g_y added in global
+ *    y, force and velocity into the set's local frame, per local direction kind 1 force, 2
+ *    acceleration, 3 prescribed velocity, anything else frozen, back to global.
+ *
+ * Time tables follow Y2D: piecewise linear, factor 1.0 outside a table's time range (not the end
+ * value), all tables off when the first time of set 0 is -1 (y2d_read sets tables_on).
+ *
+ * The work done on the nodes by loads, prescribed motions and frozen directions is accumulated
+ * into s->energy.external_work (reaction R = m dv/dt - f_internal - m g, at the mean of the two
+ * half-step velocities), so the energy balance and the run's energy check stay meaningful.
+ * Units: whatever the deck uses (reference decks SI, 2D per unit thickness).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
 #include "y2d_model.h"
+#include "y2d_read.h"
+#include "contact.h"
 #include "err.h"
-void y2d_apply_loads(YfSim *s) { (void)s; }
-void y2d_update_velocities(YfSim *s) { (void)s; }
-void y2d_run_file(YfSim *s, const char *path) {
-  (void)s;
-  yf_deck_error(NULL, "%s: running Y2D decks is not available in this build yet", path);
+#include "joint.h"
+#include "run.h"
+
+static YfY2d *deck_of(const YfY2dRun *r) { return (YfY2d *)r->deck; }
+
+/* ------------------------------------------------------------------ index maps */
+
+int y2d_tri_of_elem(const YfSim *s, long e) {
+  if (e < 0) return -1;
+  if (s->y2d) return e < s->y2d->ntri ? s->y2d->tri0 + (int)e : -1;
+  for (int t = 0; t < s->model.tri.n; t++)
+    if (s->model.tri.id[t] == e) return t;
+  return -1;
 }
-void y2d_model_free(YfSim *s) { (void)s; }
+
+int y2d_input_node(const YfSim *s, int i) {
+  const YfNodes *n = &s->model.node;
+  int p = i;
+  for (int k = 0; k < 8 && n->parent[p] != p; k++) p = n->parent[p]; /* copies of copies */
+  return n->id[p];
+}
+
+/* ------------------------------------------------------------------ time factors */
+
+/* Factor of set b at time t: linear in the table; 1.0 outside its range or without tables. */
+static double set_factor(const YfY2dRun *r, int b, double t) {
+  if (!r->tables_on || r->npts < 1) return 1.0;
+  const double *tt = r->tt + (size_t)b * r->npts, *tf = r->tf + (size_t)b * r->npts;
+  for (int i = 0; i + 1 < r->npts; i++) {
+    if (t >= tt[i] && t <= tt[i + 1] && tt[i + 1] > tt[i])
+      return tf[i] + (tf[i + 1] - tf[i]) * (t - tt[i]) / (tt[i + 1] - tt[i]);
+  }
+  return 1.0;
+}
+
+/* ------------------------------------------------------------------ per-node resolution */
+
+/* Sets of nodes and the list of loaded edges for the current topology (after joint insertion the
+ * triangles use copies; a copy inherits the set of the node it was copied from). */
+static void resolve(YfSim *s, YfY2dRun *r) {
+  YfModel *m = &s->model;
+  const YfNodes *n = &m->node;
+  const YfY2d *y = deck_of(r);
+  r->nn = n->n;
+  free(r->set);
+  free(r->lf);
+  free(r->le);
+  r->set = yf_malloc((size_t)(n->n + 1) * sizeof(int), "y2d node sets");
+  r->lf = yf_calloc((size_t)(2 * n->n + 2), sizeof(double), "y2d edge loads");
+  for (int i = 0; i < n->n; i++) {
+    int p = i;
+    for (int k = 0; k < 8 && n->parent[p] != p; k++) p = n->parent[p];
+    int in = p - r->node0;
+    r->set[i] = (in >= 0 && in < r->nnode) ? y->i1nopr[in] : -1;
+    if (r->set[i] >= r->nset) r->set[i] = -1;
+  }
+  /* triangle edges whose two end nodes both carry a pressure or both a shear traction */
+  r->nle = 0;
+  r->le = yf_malloc((size_t)(6 * r->ntri + 2) * sizeof(int), "y2d loaded edges");
+  for (int e = 0; e < r->ntri; e++) {
+    int t = r->tri0 + e;
+    const int *v = m->tri.v + 3 * t;
+    for (int j = 0; j < 3; j++) {
+      int a = r->set[v[j]], b = r->set[v[(j + 1) % 3]];
+      if (a < 0 || b < 0) continue;
+      if ((r->ap[a] != 0 && r->ap[b] != 0) || (r->at[a] != 0 && r->at[b] != 0)) {
+        r->le[2 * r->nle] = t;
+        r->le[2 * r->nle + 1] = j;
+        r->nle++;
+      }
+    }
+  }
+}
+
+/* ------------------------------------------------------------------ step stages */
+
+void y2d_apply_loads(YfSim *s) {
+  YfY2dRun *r = s->y2d;
+  if (!r) return;
+  YfNodes *n = &s->model.node;
+  if (r->nn != n->n) resolve(s, r);
+  for (int b = 0; b < r->nset; b++) r->phi[b] = set_factor(r, b, s->time);
+  if (!r->nle) return;
+  const int *tv = s->model.tri.v;
+  /* clear last step's loads on the loaded nodes */
+  for (int k = 0; k < r->nle; k++) {
+    const int *v = tv + 3 * r->le[2 * k];
+    int j = r->le[2 * k + 1];
+    int a = v[j], b = v[(j + 1) % 3];
+    r->lf[2 * a] = r->lf[2 * a + 1] = r->lf[2 * b] = r->lf[2 * b + 1] = 0.0;
+  }
+  const double *x = n->x, *y = n->y;
+  for (int k = 0; k < r->nle; k++) {
+    const int *v = tv + 3 * r->le[2 * k];
+    int jj = r->le[2 * k + 1];
+    int j = v[jj], kk = v[(jj + 1) % 3];
+    int sj = r->set[j], sk = r->set[kk];
+    double nx = y[kk] - y[j], ny = x[j] - x[kk]; /* outward normal, length L */
+    double tx = x[kk] - x[j], ty = y[kk] - y[j]; /* CCW tangent, length L */
+    double fjx = 0, fjy = 0, fkx = 0, fky = 0;
+    double pj = r->ap[sj] * r->phi[sj], pk = r->ap[sk] * r->phi[sk];
+    if (fabs(pj) > 1e-10 && fabs(pk) > 1e-10) {
+      double wj = pj / 3.0 + pk / 6.0, wk = pj / 6.0 + pk / 3.0;
+      fjx -= nx * wj; fjy -= ny * wj;
+      fkx -= nx * wk; fky -= ny * wk;
+    }
+    double qj = r->at[sj] * r->phi[sj], qk = r->at[sk] * r->phi[sk];
+    if (fabs(qj) > 1e-10 && fabs(qk) > 1e-10) {
+      double wj = qj / 3.0 + qk / 6.0, wk = qj / 6.0 + qk / 3.0;
+      fjx += tx * wj; fjy += ty * wj;
+      fkx += tx * wk; fky += ty * wk;
+    }
+    n->fx[j] += fjx; n->fy[j] += fjy;
+    n->fx[kk] += fkx; n->fy[kk] += fky;
+    r->lf[2 * j] += fjx; r->lf[2 * j + 1] += fjy;
+    r->lf[2 * kk] += fkx; r->lf[2 * kk + 1] += fky;
+  }
+}
+
+void y2d_update_velocities(YfSim *s) {
+  YfY2dRun *r = s->y2d;
+  if (!r) return;
+  YfNodes *n = &s->model.node;
+  if (r->nn != n->n) resolve(s, r);
+  const double dt = s->dt, gy = r->gy;
+  double *vx = n->vx, *vy = n->vy;
+  const double *fx = n->fx, *fy = n->fy, *ms = n->m, *lf = r->lf;
+  double work = 0.0;
+  for (int i = 0; i < n->n; i++) {
+    int b = r->set[i];
+    double m = ms[i];
+    if (b < 0) {
+      /* a node added by native commands after read_y2d: the generic update */
+      if (!(m > 1e-300)) continue;
+      vx[i] += dt * (fx[i] / m + s->gx);
+      vy[i] += dt * (fy[i] / m + s->gy);
+      continue;
+    }
+    if (!(m > 1e-10)) continue; /* Y2D: nodes without mass are not moved */
+    const double *R = r->R + 4 * b, *Ri = r->Ri + 4 * b;
+    double vx0 = vx[i], vy0 = vy[i];
+    double gfx = fx[i], gfy = fy[i] + m * gy; /* gravity as a force in global y */
+    double u[2] = {Ri[0] * vx0 + Ri[1] * vy0, Ri[2] * vx0 + Ri[3] * vy0};
+    double q[2] = {Ri[0] * gfx + Ri[1] * gfy, Ri[2] * gfx + Ri[3] * gfy};
+    for (int d = 0; d < 2; d++) {
+      double A = r->amp[2 * b + d] * r->phi[b];
+      switch (r->kind[2 * b + d]) {
+      case Y2D_KIND_FORCE: u[d] += dt * (A + q[d]) / m; break;
+      case Y2D_KIND_ACCEL: u[d] += dt * (A + q[d] / m); break;
+      case Y2D_KIND_VELOCITY: u[d] = A; break;
+      default: break; /* frozen: velocity kept, forces ignored */
+      }
+    }
+    double vx1 = R[0] * u[0] + R[1] * u[1], vy1 = R[2] * u[0] + R[3] * u[1];
+    vx[i] = vx1;
+    vy[i] = vy1;
+    /* work of everything that is not an internal force: loads, supports, prescribed motion
+     * (gravity's work is counted by run.c from positions) */
+    double rx = m * (vx1 - vx0) / dt - (fx[i] - lf[2 * i]);
+    double ry = m * (vy1 - vy0) / dt - (fy[i] - lf[2 * i + 1]) - m * gy;
+    work += dt * 0.5 * (rx * (vx1 + vx0) + ry * (vy1 + vy0));
+  }
+  s->energy.external_work += work;
+}
+
+/* ------------------------------------------------------------------ building the scene */
+
+/* Meshing row logic for joint insertion: the joint set of a pair of triangles (ALGORITHMS 4.1). */
+typedef struct {
+  const YfY2d *y;
+  const YfSim *s;
+  int tri0;
+} PairCtx;
+
+/* Joint set of row (P, Q) of I2PMIJ (either order; P == Q: the diagonal row), -1 if none. */
+static int pmij_set(const YfY2d *y, int p, int q) {
+  for (long k = 0; k < y->mpmrow; k++) {
+    const int *w = &y->i2pmij[3 * k];
+    if ((w[0] == p && w[1] == q) || (w[0] == q && w[1] == p)) return w[2];
+  }
+  return -1;
+}
+
+static int row_has(const YfY2d *y, long row, int p) {
+  const int *w = &y->i2pmset[row * y->mpmcol];
+  for (int i = 0; i < w[0] && i + 2 < y->mpmcol; i++)
+    if (w[2 + i] == p) return 1;
+  return 0;
+}
+
+static void unsupported_checks(const YfY2d *y) {
+  for (long p = 0; p < y->nprop; p++) {
+    int ty = y->pe_i1ptyp[p];
+    if (ty == 2 || ty == 4) {
+      YfLoc l = y->given[Y2D_PE_I1PTYP] ? y->where[Y2D_PE_I1PTYP] : y->end;
+      int used = 0;
+      for (long e = 0; e < y->nelem; e++) used |= y->i1elpr[e] == p;
+      if (used)
+        yf_deck_error(&l, "%s: property %ld has type %d (%s): not supported yet by read_y2d "
+                      "(supported: 1 elastic triangle)", y2d_key_name(Y2D_PE_I1PTYP), p, ty,
+                      ty == 2 ? "rigid triangle" : "softening triangle");
+    }
+  }
+  if (y->given[Y2D_PM_I2PMSET]) {
+    YfLoc l = y->where[Y2D_PM_I2PMSET];
+    for (long row = 0; row < y->mpmcom; row++) {
+      const int *w = &y->i2pmset[row * y->mpmcol];
+      if (w[0] <= 0) continue;
+      if (w[1] != 3)
+        yf_deck_error(&l, "%s: row %ld has meshing code %d: not supported yet by read_y2d "
+                      "(supported: 3 = insert joints; refinement 1, 2 and detaching 4 are not)",
+                      y2d_key_name(Y2D_PM_I2PMSET), row, w[1]);
+    }
+  }
+}
+
+/* Joint insertion for the meshing rows (ALGORITHMS 4.1).  (Waiting for joint.c's insertion.) */
+static void y2d_setup_joints(YfSim *s, YfY2dRun *r, const YfY2d *y, const int *pmat) {
+  (void)s; (void)r; (void)pmat;
+  if (!y->given[Y2D_PM_I2PMSET]) return;
+  int any = 0;
+  for (long row = 0; row < y->mpmcom; row++) any |= y->i2pmset[row * y->mpmcol] > 0;
+  if (any)
+    yf_deck_error(&y->where[Y2D_PM_I2PMSET], "%s: joint meshing is not available in this build yet",
+                  y2d_key_name(Y2D_PM_I2PMSET));
+}
+
+/* Contact between all participating triangles (FORMAT.md 5.3).  (Waiting for contact.c.) */
+static void y2d_setup_contact(YfSim *s, YfY2dRun *r, const YfY2d *y) {
+  (void)s; (void)r; (void)y;
+}
+
+void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from) {
+  if (s->y2d) yf_deck_error(from, "read_y2d: a Y2D deck (%s) was already read; one per simulation", s->y2d->path);
+  YfY2d *y = yf_calloc(1, sizeof *y, "y2d deck");
+  y2d_read(path, y, from);
+  unsupported_checks(y);
+  YfModel *m = &s->model;
+  YfY2dRun *r = yf_calloc(1, sizeof *r, "y2d run");
+  r->path = yf_strdup(path);
+  r->deck = y;
+  r->volfac = volfac;
+  r->gy = y->dcgray;
+
+  /* materials and bodies: one per element property */
+  int np = (int)y->nprop;
+  int *pmat = yf_malloc((size_t)(np + 1) * sizeof(int), "y2d materials");
+  int *pbody = yf_malloc((size_t)(np + 1) * sizeof(int), "y2d bodies");
+  for (int p = 0; p < np; p++) {
+    char name[YF_NAME_MAX];
+    snprintf(name, sizeof name, "y2d_p%d", p);
+    if (model_find_material(m, name) >= 0) yf_deck_error(from, "read_y2d: material '%s' already exists", name);
+    int k = model_add_material(m, name);
+    YfMaterial *mt = &m->mat[k];
+    mt->rho = y->d1pero[p];
+    mt->plane = YF_PLANE_LAME;
+    mt->lambda = y->d1pela[p];
+    mt->mu = y->d1pemu[p];
+    mt->volfac = volfac;
+    mt->visc = y->d1peks[p];
+    mt->pen_n = y->d1pepe[p];
+    mt->pen_t = y->d1pept[p];
+    mt->fric = y->d1pefr[p];
+    pmat[p] = k;
+    pbody[p] = model_add_body(m, name, k);
+  }
+
+  /* nodes: input numbering kept as ids; body and groups of the elements that use them */
+  int nn = (int)y->nnopo, ne = (int)y->nelem;
+  int *nbody = yf_malloc((size_t)(nn + 1) * sizeof(int), "y2d node bodies");
+  for (int i = 0; i < nn; i++) nbody[i] = -1;
+  for (int e = 0; e < ne; e++)
+    for (int c = 0; c < 3; c++) {
+      int v = y->i2elto[(long)e * y->melno + c];
+      if (nbody[v] < 0) nbody[v] = pbody[y->i1elpr[e]];
+    }
+  r->node0 = m->node.n;
+  r->nnode = nn;
+  for (int i = 0; i < nn; i++) {
+    int k = model_add_node(m, y->d2nci[2 * i], y->d2nci[2 * i + 1], i, nbody[i] >= 0 ? nbody[i] : 0);
+    m->node.x[k] = y->d2ncc[2 * i];
+    m->node.y[k] = y->d2ncc[2 * i + 1];
+    m->node.vx[k] = y->d2nvc[2 * i];
+    m->node.vy[k] = y->d2nvc[2 * i + 1];
+  }
+  r->tri0 = m->tri.n;
+  r->ntri = ne;
+  for (int e = 0; e < ne; e++) {
+    const int *v = &y->i2elto[(long)e * y->melno];
+    int p = y->i1elpr[e];
+    model_add_tri(m, r->node0 + v[0], r->node0 + v[1], r->node0 + v[2], pmat[p], e, pbody[p]);
+    for (int c = 0; c < 3; c++) m->node.gmask[r->node0 + v[c]] |= m->tri.gmask[m->tri.n - 1];
+  }
+  free(nbody);
+
+  /* control */
+  s->dt = y->dcstec;
+  s->dt_auto = 0;
+  s->dt_loc = y->given[Y2D_C_DCSTEC] ? y->where[Y2D_C_DCSTEC] : y->end;
+  s->time = y->dctime;
+  s->step = y->ncstep;
+  s->last_step = y->mcstep;
+  s->gx = 0.0;
+  s->gy = y->dcgray;
+
+  /* BC sets */
+  int ns = (int)y->npnset;
+  r->nset = ns;
+  r->kind = yf_malloc((size_t)(2 * ns + 2) * sizeof(int), "y2d kinds");
+  r->amp = yf_malloc((size_t)(2 * ns + 2) * sizeof(double), "y2d amplitudes");
+  r->ap = yf_malloc((size_t)(ns + 1) * sizeof(double), "y2d pressures");
+  r->at = yf_malloc((size_t)(ns + 1) * sizeof(double), "y2d tractions");
+  r->R = yf_malloc((size_t)(4 * ns + 4) * sizeof(double), "y2d frames");
+  r->Ri = yf_malloc((size_t)(4 * ns + 4) * sizeof(double), "y2d frames");
+  r->phi = yf_malloc((size_t)(ns + 1) * sizeof(double), "y2d factors");
+  for (int b = 0; b < ns; b++) {
+    r->kind[2 * b] = y->i1pnfx[b];
+    r->kind[2 * b + 1] = y->i1pnfy[b];
+    r->amp[2 * b] = y->d1pnax[b];
+    r->amp[2 * b + 1] = y->d1pnay[b];
+    r->ap[b] = y->d1pnap[b];
+    r->at[b] = y->d1pnat[b];
+    /* R = [ex ey]: columns are the local axes in global components */
+    double a = y->d1pnxx[b], c = y->d1pnxy[b], bb = y->d1pnyx[b], d = y->d1pnyy[b];
+    double *R = r->R + 4 * b, *Ri = r->Ri + 4 * b;
+    R[0] = a; R[1] = bb; R[2] = c; R[3] = d;
+    double det = a * d - bb * c;
+    Ri[0] = d / det; Ri[1] = -bb / det; Ri[2] = -c / det; Ri[3] = a / det;
+    r->phi[b] = 1.0;
+  }
+  r->tables_on = y->tables_on;
+  r->npts = y->tables_on ? (int)y->npnfact : 0;
+  if (r->npts > 0) {
+    r->tt = yf_malloc((size_t)ns * r->npts * sizeof(double), "y2d tables");
+    r->tf = yf_malloc((size_t)ns * r->npts * sizeof(double), "y2d tables");
+    for (int b = 0; b < ns; b++)
+      for (int p = 0; p < r->npts; p++) {
+        r->tt[b * r->npts + p] = y2d_fac_time(y, b, p);
+        r->tf[b * r->npts + p] = y2d_fac_value(y, b, p);
+      }
+  }
+  s->y2d = r;
+
+  /* joints (meshing code 3) and contact */
+  y2d_setup_joints(s, r, y, pmat);
+  r->contact_on = y->micoup > 0;
+  y2d_setup_contact(s, r, y);
+  free(pmat);
+  free(pbody);
+  resolve(s, r);
+}
+
+void y2d_model_free(YfSim *s) {
+  YfY2dRun *r = s->y2d;
+  if (!r) return;
+  if (r->deck) {
+    y2d_free(deck_of(r));
+    free(r->deck);
+  }
+  free(r->path);
+  free(r->kind); free(r->amp); free(r->ap); free(r->at); free(r->R); free(r->Ri);
+  free(r->tt); free(r->tf); free(r->phi); free(r->set); free(r->le); free(r->lf);
+  free(r);
+  s->y2d = NULL;
+}
+
+/* read_y2d FILE [volfac 0.5|1] */
+void cmd_read_y2d(YfSim *s, const YfArgs *a) {
+  arg_count(a, 1, 3);
+  const char *f = arg_word(a, 0, "file");
+  double vf = 0.5;
+  if (a->n > 1) {
+    if (strcmp(a->w[1], "volfac")) arg_error(a, 1, "unknown keyword (expected 'volfac 0.5|1')");
+    if (a->n < 3) arg_error(a, 1, "expected a value after it: 0.5 (book Y2D) or 1 (Y-Geo family decks)");
+    vf = arg_num(a, 2, "volfac");
+    if (vf != 0.5 && vf != 1.0)
+      arg_error(a, 2, "must be 0.5 (book Y2D: (lambda/2)(J - 1/J)) or 1 (Y-Geo and other Y2D copies: lambda (J - 1/J))");
+  }
+  if (s->y2d) arg_error(a, 0, "a Y2D deck (%s) was already read; one read_y2d per simulation", s->y2d->path);
+  char *path = deck_resolve_path(a, f);
+  y2d_load(s, path, vf, &a->loc);
+  YfY2dRun *r = s->y2d;
+  sim_printf(s, "read_y2d: %s: %d nodes, %d triangles, %d properties, %d BC sets, dt %.6g s, last step %ld%s%s\n",
+             path, r->nnode, r->ntri, (int)deck_of(r)->nprop, r->nset, s->dt, s->last_step,
+             joints_count(s) ? ", joints" : "", r->contact_on ? ", contact" : "");
+  free(path);
+}
+
+void y2d_run_file(YfSim *s, const char *path) {
+  y2d_load(s, path, 0.5, NULL);
+  long n = s->last_step - s->step;
+  run_steps(s, n > 0 ? n : 0);
+}

@@ -1,6 +1,11 @@
 /* y2d_model.h: a Y2D input deck (y2d_read.c) as a yfdem scene, and the Y2D boundary-condition
  * sets in the step (ALGORITHMS.md 7, 2.5).
  *
+ * read_y2d builds nodes (ids = input node numbers), triangles (ids = input element indices, in
+ * input order), one material per Y2D element property (the deck's Lame constants, the book's
+ * volumetric factor 1/2 unless `volfac 1`), joints from the meshing rows (ALGORITHMS 4.1, code 3)
+ * and contact (MICOUP > 0), and keeps the BC sets in a YfY2dRun (s->y2d).
+ *
  * Contract with run.c (active only when sim->y2d != NULL, i.e. after read_y2d):
  *   y2d_apply_loads(s)        after the gather: edge pressures and shear tractions of the sets.
  *   y2d_update_velocities(s)  replaces the generic velocity update for every node: v_{n+1/2}
@@ -10,11 +15,53 @@
 #ifndef YF_Y2D_MODEL_H
 #define YF_Y2D_MODEL_H
 #include "sim.h"
+#include "deck.h"
+
+/* Y2D BC kinds of a local direction (FORMAT.md 3.8); anything else freezes the velocity. */
+enum { Y2D_KIND_FORCE = 1, Y2D_KIND_ACCEL = 2, Y2D_KIND_VELOCITY = 3 };
+
+/* The state of a read_y2d scene (plain arrays; built once by read_y2d, node arrays resolved again
+ * when joint insertion adds nodes). */
+typedef struct YfY2dRun {
+  char *path;          /* the .y file                                                        */
+  void *deck;          /* the YfY2d as read (owned; YfLoc file names of messages point here)  */
+  double volfac;       /* factor of the volumetric term: 0.5 book Y2D, 1 Y-Geo family          */
+  int tri0, ntri;      /* triangles tri0 .. tri0+ntri-1 are the input elements 0..ntri-1       */
+  int node0, nnode;    /* nodes node0 .. node0+nnode-1 are the input nodes 0..nnode-1          */
+  double gy;           /* DCGRAY [m/s^2]                                                      */
+  /* BC sets (arrays [nset]) */
+  int nset;
+  int *kind;           /* 2 per set: local x, local y                                         */
+  double *amp;         /* 2 per set: amplitude [N/m | m/s^2 | m/s]                             */
+  double *ap, *at;     /* edge pressure and shear traction [Pa]                               */
+  double *R, *Ri;      /* 4 per set: local frame [ex ey] (row-major 2x2) and its inverse        */
+  int tables_on, npts; /* time tables: on/off, points per table                               */
+  double *tt, *tf;     /* [nset][npts]: times [s], factors [-]                                 */
+  double *phi;         /* [nset]: time factor at the current step's t_n                        */
+  /* per node (resolved for the current node count) */
+  int nn;              /* node count the arrays below were built for                           */
+  int *set;            /* BC set of each node (copies inherit their parent's), -1 none         */
+  /* loaded triangle edges: triangle, local edge j (edge from corner j to j+1) */
+  int nle;
+  int *le;
+  double *lf;          /* per node: edge load of this step (2 per node) [N/m], for the work    */
+  int contact_on;      /* MICOUP > 0                                                           */
+} YfY2dRun;
 
 void y2d_apply_loads(YfSim *s);
 void y2d_update_velocities(YfSim *s);
 /* `yfdem FILE.y`: read_y2d FILE.y then run to MCSTEP. */
 void y2d_run_file(YfSim *s, const char *path);
+/* Build the scene of a .y deck into s (programmatic form of read_y2d; from: where it was asked,
+ * for messages, may be NULL).  volfac: 0.5 (book Y2D) or 1 (Y-Geo family decks). */
+void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from);
 void y2d_model_free(YfSim *s);
+/* Deck command: read_y2d FILE [volfac 0.5|1] */
+void cmd_read_y2d(YfSim *s, const YfArgs *a);
+
+/* Index maps of a read_y2d scene: triangle index of input element e (-1 if none), input node
+ * number of node i (its own id, or its parent's for a copy made by joint insertion). */
+int y2d_tri_of_elem(const YfSim *s, long e);
+int y2d_input_node(const YfSim *s, int i);
 
 #endif

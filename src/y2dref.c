@@ -1,0 +1,218 @@
+/* y2dref.c: the `y2dref` dump (see y2dref.h): the neutral CSV files of the Y2D reference outputs.
+ *
+ * The dump is registered in output.c with a period of one step; y2dref_frame decides what is due
+ * (a corner table at a listed step, a summary or probe row every K steps, new joint failures) and
+ * costs a few integer compares on the other steps.  Summary and probe rows are flushed as they are
+ * written, so an interrupted run leaves complete rows.  Energies follow README section 3: kinetic
+ * = sum m |v|^2 / 2 with the half-step velocities, elastic = sum A_c/2 T:E of the triangle law
+ * without the viscous part (run_energies).  Units: SI (J/m, kg m/s per m).
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include "y2dref.h"
+#include "contact.h"
+#include "err.h"
+#include "joint.h"
+#include "run.h"
+#include "y2d_model.h"
+
+typedef struct YfY2dRef {
+  char *dir;
+  long *csteps;   /* corner-table steps, as given */
+  int ncsteps;
+  long sum_every, probe_every;
+  int nprobe;
+  long *probe;    /* 2 per probe: input element, corner */
+  FILE *fsum, *fprobe, *fbroken;
+  int opened;          /* files open                                              */
+  int created;         /* files created by this dump (a reopen appends)            */
+  long nbroken_written;
+} YfY2dRef;
+
+const char *y2dref_dir(const YfY2dRef *r) { return r->dir; }
+
+/* "S1,S2,..." -> steps */
+static void parse_steps(const YfArgs *a, int i, YfY2dRef *r) {
+  const char *w = arg_word(a, i, "corner steps");
+  char *buf = yf_strdup(w), *save = NULL;
+  for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+    long v;
+    if (!yf_parse_long(t, &v) || v < 0) {
+      free(buf);
+      arg_error(a, i, "expected a comma-separated list of step numbers >= 0 (e.g. 500,2000,4000)");
+    }
+    r->csteps = yf_realloc(r->csteps, (size_t)(r->ncsteps + 1) * sizeof(long), "y2dref steps");
+    r->csteps[r->ncsteps++] = v;
+  }
+  free(buf);
+  if (!r->ncsteps) arg_error(a, i, "expected at least one step");
+}
+
+YfY2dRef *y2dref_parse(YfSim *s, const YfArgs *a) {
+  arg_count(a, 3, -1);
+  YfY2dRef *r = yf_calloc(1, sizeof *r, "y2dref dump");
+  const char *d = arg_word(a, 2, "directory");
+  if (!d[0]) arg_error(a, 2, "empty directory name");
+  r->dir = deck_resolve_path(a, d);
+  for (int i = 3; i < a->n;) {
+    const char *k = a->w[i];
+    if (!strcmp(k, "corners")) {
+      parse_steps(a, i + 1, r);
+      i += 2;
+    } else if (!strcmp(k, "summary")) {
+      r->sum_every = arg_int(a, i + 1, "summary period K (steps)", 1, 1000000000L);
+      i += 2;
+    } else if (!strcmp(k, "probes")) {
+      r->probe_every = arg_int(a, i + 1, "probe period K (steps)", 1, 1000000000L);
+      i += 2;
+      for (; i < a->n && strchr(a->w[i], ':'); i++) {
+        long e, c;
+        char *w = yf_strdup(a->w[i]), *colon = strchr(w, ':');
+        *colon = 0;
+        int ok = yf_parse_long(w, &e) && yf_parse_long(colon + 1, &c) && e >= 0 && c >= 0 && c <= 2;
+        free(w);
+        if (!ok) arg_error(a, i, "expected ELEMENT:CORNER (input element index, corner 0, 1 or 2)");
+        if (y2d_tri_of_elem(s, e) < 0) arg_error(a, i, "no triangle with input index %ld in the scene", e);
+        r->probe = yf_realloc(r->probe, (size_t)(2 * r->nprobe + 2) * sizeof(long), "y2dref probes");
+        r->probe[2 * r->nprobe] = e;
+        r->probe[2 * r->nprobe + 1] = c;
+        r->nprobe++;
+      }
+      if (!r->nprobe) arg_error(a, i - 1, "expected probes ELEMENT:CORNER after the period");
+    } else {
+      arg_error(a, i, "unknown keyword (expected corners S1,S2,..., summary K or probes K E:C ...)");
+    }
+  }
+  return r;
+}
+
+/* Create (first time, with its header) or reopen for appending (after y2dref_close) a CSV file. */
+static FILE *open_csv(const YfY2dRef *r, const char *name, const char *header) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s/%s", r->dir, name);
+  FILE *f = fopen(path, r->created ? "a" : "w");
+  if (!f) yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, strerror(errno));
+  if (!r->created) fputs(header, f);
+  return f;
+}
+
+static void mkdir_p(const char *dir) {
+  char *p = yf_strdup(dir);
+  for (char *q = p + 1; *q; q++) {
+    if (*q != '/') continue;
+    *q = 0;
+    mkdir(p, 0777);
+    *q = '/';
+  }
+  if (mkdir(p, 0777) != 0 && errno != EEXIST) yf_io_error(NULL, "dump y2dref: cannot create directory '%s': %s", p, strerror(errno));
+  free(p);
+}
+
+static void open_files(YfSim *s, YfY2dRef *r) {
+  mkdir_p(r->dir);
+  if (r->sum_every) r->fsum = open_csv(r, "summary.csv", "step,time,kinetic,elastic,px,py,nbroken,ncouples\n");
+  if (r->probe_every) {
+    r->fprobe = open_csv(r, "probes.csv", "step,time");
+    for (int k = 0; k < r->nprobe && !r->created; k++) {
+      long e = r->probe[2 * k], c = r->probe[2 * k + 1];
+      fprintf(r->fprobe, ",ux_%ld_%ld,uy_%ld_%ld,vx_%ld_%ld,vy_%ld_%ld", e, c, e, c, e, c, e, c);
+    }
+    if (!r->created) fputc('\n', r->fprobe);
+  }
+  r->fbroken = open_csv(r, "broken.csv", "step,elemA,elemB,nodeP,nodeQ\n");
+  fflush(r->fbroken);
+  (void)s;
+  r->opened = 1;
+  r->created = 1;
+}
+
+static void check_write(FILE *f, const YfY2dRef *r, const char *name) {
+  if (fflush(f) != 0 || ferror(f))
+    yf_io_error(NULL, "dump y2dref: cannot write '%s/%s': %s", r->dir, name, strerror(errno));
+}
+
+static void write_corners(YfSim *s, YfY2dRef *r) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s/corners_%07ld.csv", r->dir, s->step);
+  FILE *f = fopen(path, "w");
+  if (!f) yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, strerror(errno));
+  fputs("elem,corner,node,ux,uy,vx,vy\n", f);
+  const YfNodes *n = &s->model.node;
+  const YfTris *t = &s->model.tri;
+  int e0 = s->y2d ? s->y2d->tri0 : 0, e1 = s->y2d ? s->y2d->tri0 + s->y2d->ntri : t->n;
+  for (int e = e0; e < e1; e++)
+    for (int c = 0; c < 3; c++) {
+      int i = t->v[3 * e + c];
+      fprintf(f, "%d,%d,%d,%.16e,%.16e,%.16e,%.16e\n", t->id[e], c, y2d_input_node(s, i), n->x[i] - n->x0[i],
+              n->y[i] - n->y0[i], n->vx[i], n->vy[i]);
+    }
+  int bad = ferror(f);
+  if (fclose(f) != 0 || bad) yf_io_error(NULL, "dump y2dref: cannot write '%s': %s", path, strerror(errno));
+}
+
+static void write_summary(YfSim *s, YfY2dRef *r) {
+  run_energies(s);
+  const YfNodes *n = &s->model.node;
+  double px = 0, py = 0;
+  for (int i = 0; i < n->n; i++) {
+    px += n->m[i] * n->vx[i];
+    py += n->m[i] * n->vy[i];
+  }
+  fprintf(r->fsum, "%ld,%.16e,%.16e,%.16e,%.16e,%.16e,%ld,%ld\n", s->step, s->time, s->energy.kinetic,
+          s->energy.strain, px, py, joints_broken(s), contact_pairs(s));
+  check_write(r->fsum, r, "summary.csv");
+}
+
+static void write_probes(YfSim *s, YfY2dRef *r) {
+  const YfNodes *n = &s->model.node;
+  fprintf(r->fprobe, "%ld,%.16e", s->step, s->time);
+  for (int k = 0; k < r->nprobe; k++) {
+    int t = y2d_tri_of_elem(s, r->probe[2 * k]);
+    int i = s->model.tri.v[3 * t + r->probe[2 * k + 1]];
+    fprintf(r->fprobe, ",%.16e,%.16e,%.16e,%.16e", n->x[i] - n->x0[i], n->y[i] - n->y0[i], n->vx[i], n->vy[i]);
+  }
+  fputc('\n', r->fprobe);
+  check_write(r->fprobe, r, "probes.csv");
+}
+
+/* New joint failures since the last frame, in the order joint.c recorded them. */
+static void write_breaks(YfSim *s, YfY2dRef *r) {
+  (void)s;
+  (void)r;
+}
+
+void y2dref_frame(YfSim *s, YfY2dRef *r) {
+  if (!r->opened) open_files(s, r);
+  write_breaks(s, r);
+  for (int k = 0; k < r->ncsteps; k++)
+    if (r->csteps[k] == s->step) {
+      write_corners(s, r);
+      break;
+    }
+  if (s->step > 0 && r->sum_every && s->step % r->sum_every == 0) write_summary(s, r);
+  if (s->step > 0 && r->probe_every && s->step % r->probe_every == 0) write_probes(s, r);
+}
+
+void y2dref_close(YfY2dRef *r) {
+  if (!r) return;
+  FILE **f[3] = {&r->fsum, &r->fprobe, &r->fbroken};
+  for (int k = 0; k < 3; k++)
+    if (*f[k]) {
+      fclose(*f[k]);
+      *f[k] = NULL;
+    }
+  r->opened = 0;
+}
+
+void y2dref_free(YfY2dRef *r) {
+  if (!r) return;
+  y2dref_close(r);
+  free(r->dir);
+  free(r->csteps);
+  free(r->probe);
+  free(r);
+}

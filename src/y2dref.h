@@ -1,0 +1,32 @@
+/* y2dref.h: the `y2dref` dump style: yfdem results in the neutral CSV format of the Y2D reference
+ * outputs (shared/y2d/README.md section 3), so that yfdem and Y2D can be compared file for file.
+ *
+ *   dump ID y2dref DIR [corners S1,S2,...] [summary K] [probes K E:C E:C ...]
+ *
+ * writes into DIR (created if missing):
+ *   corners_NNNNNNN.csv  at the listed steps: elem,corner,node,ux,uy,vx,vy per triangle corner;
+ *   summary.csv          every K steps (K, 2K, ...): step,time,kinetic,elastic,px,py,nbroken,ncouples;
+ *   broken.csv           every joint failure: step,elemA,elemB,nodeP,nodeQ (A < B, P < Q);
+ *   probes.csv           every K steps: step,time, then ux,uy,vx,vy of each element:corner.
+ * Indices are those of the input deck (element = input triangle index = triangle id, node = input
+ * node number = id of the node or of the node it was copied from).  Numbers are written with 17
+ * significant digits (%.16e), so they read back to the same doubles.
+ */
+#ifndef YF_Y2DREF_H
+#define YF_Y2DREF_H
+#include "sim.h"
+#include "deck.h"
+
+struct YfY2dRef;
+
+/* Parse the words after `dump ID y2dref` (a->w[2] = DIR ...); exits with a deck error on bad input. */
+struct YfY2dRef *y2dref_parse(YfSim *s, const YfArgs *a);
+/* Directory written by the dump. */
+const char *y2dref_dir(const struct YfY2dRef *r);
+/* After each completed step (and at the start of a run): write what is due at s->step. */
+void y2dref_frame(YfSim *s, struct YfY2dRef *r);
+/* Flush and close the files (frames written so far stay complete); safe to call twice. */
+void y2dref_close(struct YfY2dRef *r);
+void y2dref_free(struct YfY2dRef *r);
+
+#endif
