@@ -275,7 +275,9 @@ void contact_search(YfSearchWork *w, int n, const int *tri, const double *cx, co
 #endif
 #pragma omp single
     nthr_used = nt;
-    struct YfPairBuf *b = &w->buf[t];
+    /* A private copy of this thread's buffer header: the headers of all threads share a cache
+     * line, and bumping a shared line's counter per pair would serialise the threads. */
+    struct YfPairBuf bl = w->buf[t], *b = &bl;
     b->n = 0;
     int lo = (int)((long)n * t / nt), hi = (int)((long)n * (t + 1) / nt);
     for (int k = lo; k < hi; k++) {
@@ -298,6 +300,7 @@ void contact_search(YfSearchWork *w, int n, const int *tri, const double *cx, co
       }
       sort_partners(b, from);
     }
+    w->buf[t] = bl;
   }
 
   /* Concatenate the per-thread lists in thread (= item range) order. */
