@@ -573,6 +573,51 @@ START_TEST(test_trigger)
 }
 END_TEST
 
+/* ------------------------------------------------------------------ random pairs */
+
+START_TEST(test_random_pairs_conserve)
+{
+  /* Random overlapping pairs, plus mesh neighbours that share corners or whole edges (the
+   * degenerate cases of an intact body: zero barycentric values, parallel lines): forces are
+   * finite, linear and angular momentum are conserved to round-off, and a pair sharing an edge
+   * exactly without overlap gets no force at all. */
+  rng_state = 31337;
+  int bad = 0, touching = 0;
+  for (int it = 0; it < 3000; it++) {
+    double xa[3], ya[3], xb[3], yb[3], vxa[3], vya[3], vxb[3], vyb[3];
+    int mode = it % 3;
+    for (int q = 0; q < 3; q++) {
+      vxa[q] = urand() - 0.5; vya[q] = urand() - 0.5; vxb[q] = urand() - 0.5; vyb[q] = urand() - 0.5;
+    }
+    if (mode == 0) { /* two random CCW triangles near each other */
+      for (int q = 0; q < 3; q++) {
+        double th = q * 2.0943951023931957 + 0.6 * (urand() - 0.5);
+        xa[q] = 0.5 * cos(th) + 0.2 * urand(); ya[q] = 0.5 * sin(th) + 0.2 * urand();
+        th = q * 2.0943951023931957 + 0.6 * (urand() - 0.5);
+        xb[q] = 0.6 + 0.5 * cos(th) + 0.4 * (urand() - 0.5); yb[q] = 0.5 * sin(th) + 0.4 * (urand() - 0.5);
+      }
+    } else { /* the two triangles of a unit square cell (shared diagonal), perhaps nudged */
+      double e = mode == 1 ? 0.0 : 0.02 * (urand() - 0.5);
+      xa[0] = 0; ya[0] = 0; xa[1] = 1; ya[1] = 0; xa[2] = 1; ya[2] = 1;
+      xb[0] = 0 + e; yb[0] = 0; xb[1] = 1; yb[1] = 1 + e; xb[2] = 0; yb[2] = 1;
+    }
+    double g[6] = {0}, fa[6] = {0}, fb[6] = {0}, d2;
+    int r = 0;
+    for (int step = 0; step < 3; step++) {
+      for (int q = 0; q < 6; q++) fa[q] = fb[q] = 0.0;
+      r = contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, 1e10, 1e9, 0.3, 1e-4, g, fa, fb, &d2, NULL);
+    }
+    touching += r;
+    double px, py, tq, sc;
+    torque_and_momentum(xa, ya, xb, yb, fa, fb, &px, &py, &tq, &sc);
+    if (!isfinite(sc) || fabs(px) > 1e-14 * sc || fabs(py) > 1e-14 * sc || fabs(tq) > 1e-14 * sc) bad++;
+    if (mode == 1 && (r != 0 || sc != 0.0)) bad++;
+  }
+  ck_assert_int_eq(bad, 0);
+  ck_assert_int_gt(touching, 1000);
+}
+END_TEST
+
 Suite *contact_pair_suite(void)
 {
   Suite *s = suite_create("contact_pair");
@@ -584,6 +629,7 @@ Suite *contact_pair_suite(void)
   tc = tcase_create("pair");
   tcase_add_test(tc, test_conservation);
   tcase_add_test(tc, test_monotonic_symmetric);
+  tcase_add_test(tc, test_random_pairs_conserve);
   suite_add_tcase(s, tc);
   tc = tcase_create("friction");
   tcase_add_test(tc, test_friction_stick_then_slide);
