@@ -1,0 +1,148 @@
+/* check_errors.c: what a user sees when a deck is wrong or a run fails: the FILE:LINE message,
+ * the exit code that tells the kind apart, no partial output, and a summary that says why.
+ * These run the real binary ($YFDEM) on small decks written to a temporary directory. */
+#include <check.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include "yftest.h"
+
+#define MAT "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+#define BAR MAT "mesh rect bar m 0 0 1 0.1 10 2\n"
+
+static char *slurp(const char *path) {
+  FILE *f = fopen(path, "r");
+  if (!f) return NULL;
+  char *b = calloc(1, 1 << 16);
+  size_t k = fread(b, 1, (1 << 16) - 1, f);
+  b[k] = 0;
+  fclose(f);
+  return b;
+}
+
+/* Run deck text; assert exit code and that stderr contains each expected piece. */
+static void expect_fail(const char *deck, int code, const char *piece1, const char *piece2) {
+  char *err, *dir;
+  int rc = yft_run_binary("bad.deck", deck, "-summary s.json", &err, &dir);
+  ck_assert_msg(rc == code, "exit %d (expected %d), stderr:\n%s", rc, code, err);
+  if (piece1) ck_assert_msg(strstr(err, piece1) != NULL, "stderr lacks '%s':\n%s", piece1, err);
+  if (piece2) ck_assert_msg(strstr(err, piece2) != NULL, "stderr lacks '%s':\n%s", piece2, err);
+  /* the summary says why; no dump file was created */
+  char p[600];
+  snprintf(p, sizeof p, "%s/s.json", dir);
+  char *js = slurp(p);
+  ck_assert_msg(js != NULL, "no summary written");
+  const char *word = code == 1 ? "\"deck_error\"" : code == 2 ? "\"io_error\"" : "\"numerical_failure\"";
+  ck_assert_msg(strstr(js, word) != NULL, "summary lacks status %s:\n%s", word, js);
+  if (code != 3) {
+    snprintf(p, sizeof p, "%s/out.h5", dir);
+    ck_assert_msg(!yft_exists(p), "a deck error left a partial output file");
+  }
+  free(js);
+  free(err);
+  free(dir);
+}
+
+START_TEST(test_unknown_command_suggests) {
+  expect_fail(BAR "dump d h5 10 out.h5\nfxi hold bar fixed xy\nrun 10\n", 1, "bad.deck:4: error:", "did you mean 'fix'");
+}
+END_TEST
+
+START_TEST(test_wrong_argument_count) {
+  expect_fail(BAR "dump d h5 10 out.h5\ngravity 0\nrun 10\n", 1, "bad.deck:4: error:", "gravity GX GY");
+}
+END_TEST
+
+START_TEST(test_non_numeric_number) {
+  expect_fail(BAR "dump d h5 10 out.h5\ngravity 0 3.0x\nrun 10\n", 1, "bad.deck:4: error:", "3.0x");
+}
+END_TEST
+
+START_TEST(test_unknown_group) {
+  expect_fail(BAR "dump d h5 10 out.h5\nfix hold nosuch fixed xy\nrun 10\n", 1, "bad.deck:4: error:", "nosuch");
+}
+END_TEST
+
+START_TEST(test_bad_choice_lists_valid) {
+  expect_fail(BAR "fix hold bar fixed z\n", 1, "bad.deck:3: error:", "x, y, xy");
+}
+END_TEST
+
+START_TEST(test_missing_include_is_io_error) {
+  expect_fail(BAR "dump d h5 10 out.h5\ninclude nothere.deck\nrun 10\n", 2, "bad.deck:4: error:", "nothere.deck");
+}
+END_TEST
+
+START_TEST(test_bad_mesh_file) {
+  /* a .msh of the wrong version: deck error pointing into the mesh file */
+  char *err, *dir;
+  const char *deck = MAT "dump d h5 10 out.h5\nmesh gmsh b bad.msh material m\nrun 1\n";
+  int rc = yft_run_binary("bad.deck", deck, "-summary s.json", &err, &dir);
+  ck_assert_int_eq(rc, 2); /* bad.msh does not exist yet: an I/O error naming it */
+  ck_assert_ptr_nonnull(strstr(err, "bad.msh"));
+  char p[600];
+  snprintf(p, sizeof p, "%s/bad.msh", dir);
+  FILE *f = fopen(p, "w");
+  fputs("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n", f);
+  fclose(f);
+  free(err);
+  char cmd[900];
+  snprintf(cmd, sizeof cmd, "cd %s && %s/yfdem -in bad.deck -summary s.json >/dev/null 2>err.txt", dir, getenv("PWD"));
+  int st = system(cmd);
+  ck_assert_int_eq(WEXITSTATUS(st), 1);
+  snprintf(p, sizeof p, "%s/err.txt", dir);
+  char *e2 = slurp(p);
+  ck_assert_msg(strstr(e2, "bad.msh:2") != NULL, "message should point into the mesh file: %s", e2);
+  snprintf(p, sizeof p, "%s/out.h5", dir);
+  ck_assert(!yft_exists(p));
+  free(e2);
+  free(dir);
+}
+END_TEST
+
+/* A time step above the stable limit is refused, naming the limit and what sets it. */
+START_TEST(test_timestep_above_limit_refused) {
+  expect_fail(BAR "timestep 1e-3\nrun 10\n", 1, "bad.deck:3: error: timestep", "stable limit");
+}
+END_TEST
+
+/* A run that goes wrong stops as a numerical failure naming the step and the element, keeps the
+ * frames written before it, and exits 3. */
+START_TEST(test_inverted_element_numerical_failure) {
+  char *err, *dir;
+  const char *deck = BAR "group tipn node nearest 1 0.1\nvelocity tipn set -3000 -3000\n"
+                         "timestep auto\ndump d h5 1 out.h5\nrun 100\n";
+  int rc = yft_run_binary("bad.deck", deck, "-summary s.json", &err, &dir);
+  ck_assert_msg(rc == 3, "exit %d, stderr %s", rc, err);
+  ck_assert_msg(strstr(err, "numerical failure at step") && strstr(err, "triangle") && strstr(err, "inverted"),
+                "message: %s", err);
+  char p[600];
+  snprintf(p, sizeof p, "%s/out.h5", dir);
+  ck_assert_msg(yft_exists(p), "frames before the failure must be kept");
+  snprintf(p, sizeof p, "%s/out.xmf", dir);
+  char *x = slurp(p);
+  ck_assert_ptr_nonnull(x);
+  ck_assert_msg(strstr(x, "<Time") != NULL, "the XDMF index lists the frames written");
+  free(x);
+  free(err);
+  free(dir);
+}
+END_TEST
+
+Suite *errors_suite(void) {
+  Suite *s = suite_create("errors");
+  TCase *t = tcase_create("deck");
+  tcase_set_timeout(t, 60);
+  tcase_add_test(t, test_unknown_command_suggests);
+  tcase_add_test(t, test_wrong_argument_count);
+  tcase_add_test(t, test_non_numeric_number);
+  tcase_add_test(t, test_unknown_group);
+  tcase_add_test(t, test_bad_choice_lists_valid);
+  tcase_add_test(t, test_missing_include_is_io_error);
+  tcase_add_test(t, test_bad_mesh_file);
+  tcase_add_test(t, test_timestep_above_limit_refused);
+  tcase_add_test(t, test_inverted_element_numerical_failure);
+  suite_add_tcase(s, t);
+  return s;
+}
