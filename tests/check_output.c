@@ -328,12 +328,67 @@ START_TEST(test_csv) {
 }
 END_TEST
 
+/* ---------------------------------------------------------------- I/O errors */
+
+static YfSim *cleanup_sim;
+static void close_on_error(int code, const char *msg) {
+  (void)code;
+  (void)msg;
+  output_close_all(cleanup_sim);
+}
+
+/* A dump that cannot create its file ends the run with exit code 2 and a message naming the
+ * file and the system's reason; the cleanup path closes the other dump, whose frame stays. */
+START_TEST(test_io_error) {
+  mk_tmpdir();
+  char good[128], bad[128];
+  snprintf(good, sizeof good, "%s/good.h5", tmpdir);
+  snprintf(bad, sizeof bad, "%s/no_such_dir/bad.h5", tmpdir);
+  int pfd[2];
+  ck_assert_int_eq(pipe(pfd), 0);
+  pid_t pid = fork();
+  if (pid == 0) {
+    dup2(pfd[1], 2);
+    close(pfd[0]);
+    static YfSim s;
+    build(&s, 2);
+    cleanup_sim = &s;
+    yf_set_cleanup(close_on_error);
+    output_add_dump(&s, "good", YF_DUMP_H5, 1, good, YF_FIELD_ALL, 0);
+    output_add_dump(&s, "bad", YF_DUMP_H5, 1, bad, YF_FIELD_ALL, 0);
+    set_state(&s, 0);
+    output_run_begin(&s);
+    _exit(0);
+  }
+  close(pfd[1]);
+  char msg[2048] = "";
+  size_t k = 0;
+  ssize_t r;
+  while (k + 1 < sizeof msg && (r = read(pfd[0], msg + k, sizeof msg - 1 - k)) > 0) k += (size_t)r;
+  msg[k] = 0;
+  close(pfd[0]);
+  int status;
+  waitpid(pid, &status, 0);
+  ck_assert(WIFEXITED(status));
+  ck_assert_int_eq(WEXITSTATUS(status), YF_EXIT_IO);
+  ck_assert_msg(strstr(msg, "dump bad") && strstr(msg, bad) && strstr(msg, "No such file"), "message: %s", msg);
+  YfSim s;
+  build(&s, 2);
+  hid_t f = H5Fopen(good, H5F_ACC_RDONLY, H5P_DEFAULT);
+  ck_assert_int_ge(f, 0);
+  ck_assert_int_eq(check_frame(f, &s, 0, 0), 0);
+  H5Fclose(f);
+  model_free(&s.model);
+  rm_tmpdir();
+}
+END_TEST
+
 /* ---------------------------------------------------------------- kill test */
 
 /* Fork a writer (period 1, 800 nodes) that reports through a pipe once frame 1 is flushed and
  * indexed, SIGKILL it after delay_us microseconds, then check that the .xmf lists >= 2 frames and
- * that every listed frame reads back exactly.  Returns the number of listed frames, or -1 - k
- * when frame k is unreadable or wrong. */
+ * that every listed frame reads back exactly.  Returns the number of listed frames, -1 - k
+ * when frame k is unreadable or wrong, or -1000 when the file does not open at all. */
 static long kill_trial(const char *dir, useconds_t delay_us) {
   char h5[160], xmf[160];
   snprintf(h5, sizeof h5, "%s/k.h5", dir);
@@ -374,7 +429,7 @@ static long kill_trial(const char *dir, useconds_t delay_us) {
   build(&s, 399);
   long result = listed;
   hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (f < 0) result = -1;
+  if (f < 0) result = -1000;
   for (long k = 0; f >= 0 && k < listed; k++)
     if (check_frame(f, &s, k, k) != 0) {
       result = -1 - k;
@@ -392,6 +447,7 @@ START_TEST(test_kill_midway) {
   static const useconds_t delay[] = {0, 300, 3000};
   for (size_t i = 0; i < sizeof delay / sizeof delay[0]; i++) {
     long r = kill_trial(tmpdir, delay[i]);
+    ck_assert_msg(r != -1000, "killed writer (delay %u us): the .h5 does not open", (unsigned)delay[i]);
     ck_assert_msg(r >= 2, "killed writer (delay %u us): frame %ld listed in the .xmf is unreadable",
                   (unsigned)delay[i], -1 - r);
   }
@@ -550,6 +606,7 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_h5_roundtrip_compressed);
   tcase_add_test(tc, test_h5_runs_and_topology);
   tcase_add_test(tc, test_csv);
+  tcase_add_test(tc, test_io_error);
   tcase_add_test(tc, test_kill_midway);
   suite_add_tcase(su, tc);
   tc = tcase_create("summary");
