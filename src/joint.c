@@ -1,17 +1,852 @@
-/* joint.c: fracture in the scene (see joint.h).  This first version holds no joints: no deck
- * command creates fracturing bodies yet; the fracture issue fills it in. */
+/* joint.c: fracture in the scene (see joint.h): the jointprop / fracture / fracture_log commands,
+ * the splitting of fracturing triangles into their own nodes with a 4-node joint on each internal
+ * edge (Y2D meshing code 3, ALGORITHMS.md 4.1), the per-step joint force stage with breakage
+ * (3.7), the energy bookkeeping of the joints, the joints' stable time step, and the crack and
+ * fragment statistics of the summary.
+ *
+ * Determinism: the force loop writes only per-joint data; breaks are collected per fixed block of
+ * joints and recorded serially in joint order; every sum over joints is serial.  So 1 or N
+ * threads give the same bits, and a scene without fracture has no joints and pays nothing.
+ *
+ * Units: SI, 2D per unit thickness (forces N/m, energies J/m, fracture energy J/m^2).
+ */
 #include <math.h>
+#include <omp.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+#include <gsl/gsl_sf_gamma.h>
 #include "joint.h"
+#include "contact.h"
+#include "deck.h"
+#include "elem_tri.h"
+#include "err.h"
+#include "mesh.h"
+#include "output.h"
+#include "region.h"
+#include "run.h"
+#include "summary.h"
 
-void joints_insert(YfSim *s) { (void)s; }
-void joints_forces(YfSim *s) { (void)s; }
-double joints_stable_dt(YfSim *s, char *what, size_t n) {
-  (void)s;
-  if (what && n) what[0] = 0;
-  return INFINITY;
+#define JBLOCK 1024 /* joints per block of the force loop (break collection granularity) */
+static int par_min = 4096;
+void joints_set_par_min(int n) { par_min = n < 0 ? 0 : n; }
+
+/* A `fracture` command: which triangles of which body get joints of which set. */
+typedef struct YfFracSpec {
+  int body, set, region, group;
+  int applied;
+  YfLoc loc;
+} YfFracSpec;
+
+static YfJoints *jget(YfSim *s) {
+  if (!s->joints) s->joints = yf_calloc(1, sizeof(YfJoints), "joints");
+  return s->joints;
 }
-long joints_count(const YfSim *s) { (void)s; return 0; }
-long joints_broken(const YfSim *s) { (void)s; return 0; }
-void joints_summary(YfSim *s) { (void)s; }
-void joints_free(YfSim *s) { (void)s; }
+
+int joints_find_set(const YfSim *s, const char *name) {
+  const YfJoints *J = s->joints;
+  if (!J) return -1;
+  for (int i = 0; i < J->nset; i++)
+    if (!strcmp(J->set[i].name, name)) return i;
+  return -1;
+}
+
+int joints_add_set(YfSim *s, const char *name, const YfJointProp *p, int het, double het_par,
+                   unsigned long seed, const YfLoc *loc) {
+  YfJoints *J = jget(s);
+  if (joints_find_set(s, name) >= 0) yf_deck_error(loc, "jointprop '%s' is already defined", name);
+  if (strlen(name) >= YF_NAME_MAX) yf_deck_error(loc, "jointprop name '%s' is too long (max %d)", name, YF_NAME_MAX - 1);
+  char why[256];
+  if (!joint_prop_check(p, why, sizeof why)) yf_deck_error(loc, "jointprop '%s': %s", name, why);
+  J->set = yf_realloc(J->set, (size_t)(J->nset + 1) * sizeof *J->set, "joint sets");
+  YfJointSet *js = &J->set[J->nset];
+  memset(js, 0, sizeof *js);
+  snprintf(js->name, sizeof js->name, "%s", name);
+  js->p = *p;
+  js->het = het;
+  js->het_par = het_par;
+  js->seed = seed;
+  return J->nset++;
+}
+
+/* Two-column table file (opening, stress; '#' comments) for law table: stresses are divided by
+ * the first one, so the file may hold Pa or already normalised values; openings in any unit. */
+static void read_table(const YfArgs *a, int i, YfJointProp *p) {
+  char *path = deck_resolve_path(a, a->w[i]);
+  FILE *fp = fopen(path, "r");
+  if (!fp) yf_io_error(&a->loc, "jointprop: cannot open softening table '%s'", path);
+  double w[YF_JOINT_TAB_MAX], sv[YF_JOINT_TAB_MAX];
+  int n = 0, line = 0;
+  char buf[512];
+  while (fgets(buf, sizeof buf, fp)) {
+    line++;
+    char *h = strchr(buf, '#');
+    if (h) *h = 0;
+    double u, v;
+    char extra[8];
+    int k = sscanf(buf, "%lf %lf %7s", &u, &v, extra);
+    if (k <= 0) continue;
+    if (k != 2) {
+      fclose(fp);
+      yf_deck_error(&a->loc, "%s:%d: expected two numbers 'opening stress' per line", path, line);
+    }
+    if (n == YF_JOINT_TAB_MAX) {
+      fclose(fp);
+      yf_deck_error(&a->loc, "%s: more than %d points in the softening table", path, YF_JOINT_TAB_MAX);
+    }
+    w[n] = u;
+    sv[n++] = v;
+  }
+  fclose(fp);
+  if (n < 2 || !(sv[0] > 0)) yf_deck_error(&a->loc, "%s: the softening table needs >= 2 points starting at a stress > 0", path);
+  for (int k = n - 1; k >= 0; k--) sv[k] /= sv[0];
+  char why[256];
+  if (!joint_prop_set_table(p, n, w, sv, why, sizeof why)) yf_deck_error(&a->loc, "%s: %s", path, why);
+  free(path);
+}
+
+/* jointprop NAME ft FT fs FS gf GF pen P [law ...] [cohesion C friction MU] [damage ...]
+ *           [floor y2d|none] [weibull M | normal CV] [seed S] */
+void cmd_jointprop(YfSim *s, const YfArgs *a) {
+  arg_count(a, 1, -1);
+  const char *name = arg_word(a, 0, "name");
+  if (joints_find_set(s, name) >= 0) arg_error(a, 0, "jointprop already defined (each name once)");
+  YfJointProp p;
+  joint_prop_default(&p);
+  p.irreversible = 1; /* native decks: damage never decreases (read_y2d keeps Y2D's reversible law) */
+  int given[4] = {0, 0, 0, 0}, het = YF_HET_NONE;
+  double het_par = 0;
+  unsigned long seed = 1;
+  static const char *const keys[] = {"ft", "fs", "gf", "pen", "law", "cohesion", "friction", "damage", "floor",
+                                     "weibull", "normal", "seed", NULL};
+  static const char *const laws[] = {"munjiza", "munjiza_gf", "linear", "bilinear", "table", NULL};
+  static const char *const dmg[] = {"reversible", "irreversible", NULL};
+  static const char *const floors[] = {"y2d", "none", NULL};
+  p.coh = 0;
+  for (int i = 1; i < a->n;) {
+    int k = arg_choice(a, i, "keyword", keys);
+    if (i + 1 >= a->n) arg_error(a, i, "keyword needs a value");
+    switch (k) {
+    case 0: p.ft = arg_pos(a, i + 1, "ft"); given[0] = 1; break;
+    case 1: p.fs = arg_pos(a, i + 1, "fs"); given[1] = 1; break;
+    case 2: p.gf = arg_pos(a, i + 1, "gf"); given[2] = 1; break;
+    case 3: p.pen = arg_pos(a, i + 1, "pen"); given[3] = 1; break;
+    case 4: {
+      int l = arg_choice(a, i + 1, "law", laws);
+      p.law = l;
+      if (l == YF_SOFT_TABLE) {
+        if (i + 2 >= a->n) arg_error(a, i + 1, "law table needs a FILE (two columns: opening, stress)");
+        read_table(a, i + 2, &p);
+        i += 3;
+        continue;
+      }
+      if (l == YF_SOFT_BILINEAR && i + 2 < a->n && !strcmp(a->w[i + 2], "kink")) {
+        p.bl_z = arg_num(a, i + 3, "kink opening fraction");
+        p.bl_s = arg_num(a, i + 4, "kink stress fraction");
+        i += 5;
+        continue;
+      }
+      break;
+    }
+    case 5: p.coh = arg_pos(a, i + 1, "cohesion"); break;
+    case 6: p.phi = arg_nonneg(a, i + 1, "friction"); break;
+    case 7: p.irreversible = arg_choice(a, i + 1, "damage", dmg); break;
+    case 8: p.y2d_floor = arg_choice(a, i + 1, "floor", floors) == 0; break;
+    case 9:
+    case 10:
+      if (het != YF_HET_NONE) arg_error(a, i, "give one of weibull M or normal CV");
+      het = k == 9 ? YF_HET_WEIBULL : YF_HET_NORMAL;
+      het_par = arg_pos(a, i + 1, k == 9 ? "Weibull modulus" : "coefficient of variation");
+      break;
+    case 11: seed = (unsigned long)arg_int(a, i + 1, "seed", 0, 4294967295L); break;
+    }
+    i += 2;
+  }
+  if (!given[0]) arg_error(a, 0, "missing 'ft FT' (tensile strength, Pa)");
+  if (!given[2]) arg_error(a, 0, "missing 'gf GF' (fracture energy, J/m^2)");
+  if (!given[3]) arg_error(a, 0, "missing 'pen P' (joint penalty, Pa; about 10-100 x E)");
+  if (!given[1] && !(p.coh > 0)) arg_error(a, 0, "missing 'fs FS' (shear strength, Pa) or 'cohesion C'");
+  if (!given[1]) p.fs = 0;
+  joints_add_set(s, name, &p, het, het_par, seed, &a->loc);
+}
+
+/* fracture BODY JOINTPROP [region R | group G] */
+void cmd_fracture(YfSim *s, const YfArgs *a) {
+  arg_count(a, 2, 4);
+  YfModel *m = &s->model;
+  if (s->step > 0 || m->prepared)
+    arg_error(a, 0, "fracture must come before the first run (the mesh is split once, when the run starts)");
+  int b = model_find_body(m, a->w[0]);
+  if (b < 0) {
+    char list[1024];
+    arg_error(a, 0, "unknown body (bodies: %s)", mesh_body_names(m, list, sizeof list));
+  }
+  int js = joints_find_set(s, arg_word(a, 1, "jointprop"));
+  if (js < 0) arg_error(a, 1, "unknown jointprop (define it first with: jointprop NAME ft FT fs FS gf GF pen P ...)");
+  YfFracSpec sp = {.body = b, .set = js, .region = -1, .group = -1, .loc = a->loc};
+  if (a->n > 2) {
+    static const char *const how[] = {"region", "group", NULL};
+    int h = arg_choice(a, 2, "selection", how);
+    const char *nm = arg_word(a, 3, h ? "group" : "region");
+    if (h == 0) {
+      sp.region = region_find(nm);
+      if (sp.region < 0) arg_error(a, 3, "unknown region (define it with: region NAME box|circle|polygon ...)");
+    } else {
+      sp.group = model_group(m, nm, 0);
+      if (sp.group < 0) {
+        char list[1024];
+        arg_error(a, 3, "unknown group (groups: %s)", mesh_group_names(m, list, sizeof list));
+      }
+    }
+  }
+  YfJoints *J = jget(s);
+  J->spec = yf_realloc(J->spec, (size_t)(J->nspec + 1) * sizeof *J->spec, "fracture specs");
+  J->spec[J->nspec++] = sp;
+  m->body[b].fracture = 1;
+}
+
+/* fracture_log FILE: the break record as CSV, rewritten at the end of every run. */
+void cmd_fracture_log(YfSim *s, const YfArgs *a) {
+  arg_count(a, 1, 1);
+  YfJoints *J = jget(s);
+  char *path = deck_resolve_path(a, a->w[0]);
+  if (strlen(path) >= sizeof J->log_path) arg_error(a, 0, "path too long");
+  snprintf(J->log_path, sizeof J->log_path, "%s", path);
+  free(path);
+}
+
+/* ---------------- insertion ---------------- */
+
+typedef struct {
+  int lo, hi, t, k;
+} Edge;
+
+static int edge_cmp(const void *pa, const void *pb) {
+  const Edge *a = pa, *b = pb;
+  if (a->lo != b->lo) return a->lo < b->lo ? -1 : 1;
+  if (a->hi != b->hi) return a->hi < b->hi ? -1 : 1;
+  if (a->t != b->t) return a->t < b->t ? -1 : 1;
+  return a->k - b->k;
+}
+
+typedef struct {
+  int A, kA, B, kB, set;
+} NewJoint;
+
+static int nj_cmp(const void *pa, const void *pb) {
+  const NewJoint *a = pa, *b = pb;
+  if (a->A != b->A) return a->A < b->A ? -1 : 1;
+  return a->kA - b->kA;
+}
+
+static void joints_reserve(YfJoints *J, int want) {
+  if (want <= J->cap) return;
+  int cap = J->cap ? J->cap : 256;
+  while (cap < want) cap *= 2;
+#define JG(p, k) J->p = yf_realloc(J->p, (size_t)cap * (k) * sizeof *J->p, "joint " #p)
+  JG(corner, 4); JG(node, 4); JG(tri, 2); JG(prop, 1); JG(k, 1); JG(fs, 1); JG(dmg, 3); JG(w, 1);
+  JG(z, 1); JG(L0, 1); JG(state, 1); JG(mode, 1); JG(f, 8); JG(pend, 1);
+#undef JG
+  J->cap = cap;
+}
+
+/* Renumber nodes so that each zone triangle owns three contiguous nodes (see joint.h). */
+static void split_nodes(YfModel *m, const unsigned char *zone) {
+  const int nn = m->node.n, nt = m->tri.n;
+  YfNodes *N = &m->node;
+  int *usez = yf_calloc((size_t)nn, sizeof(int), "split"), *usen = yf_calloc((size_t)nn, sizeof(int), "split");
+  int nzt = 0;
+  for (int t = 0; t < nt; t++) {
+    if (zone[t]) nzt++;
+    for (int c = 0; c < 3; c++) (zone[t] ? usez : usen)[m->tri.v[3 * t + c]]++;
+  }
+  /* anchor of each body: lowest node index used by its zone triangles */
+  int nb = m->nbody > 0 ? m->nbody : 1;
+  int *anchor = yf_malloc((size_t)nb * sizeof(int), "split");
+  for (int b = 0; b < nb; b++) anchor[b] = nn;
+  for (int t = 0; t < nt; t++)
+    if (zone[t]) {
+      int b = m->tri.body[t] >= 0 && m->tri.body[t] < nb ? m->tri.body[t] : 0;
+      for (int c = 0; c < 3; c++)
+        if (m->tri.v[3 * t + c] < anchor[b]) anchor[b] = m->tri.v[3 * t + c];
+    }
+  /* new order: src[new] = old node */
+  int nkeep = 0;
+  for (int i = 0; i < nn; i++) nkeep += usez[i] == 0 || usen[i] > 0;
+  int nnew = nkeep + 3 * nzt;
+  int *src = yf_malloc((size_t)(nnew > 0 ? nnew : 1) * sizeof(int), "split");
+  int *rep = yf_malloc((size_t)(nn > 0 ? nn : 1) * sizeof(int), "split");
+  int *tv = yf_malloc((size_t)nt * 3 * sizeof(int), "split");
+  for (int i = 0; i < nn; i++) rep[i] = -1;
+  int k = 0;
+  for (int i = 0; i <= nn; i++) {
+    for (int b = 0; b < nb; b++) {
+      if (anchor[b] != i) continue;
+      for (int t = 0; t < nt; t++) {
+        int tb = m->tri.body[t] >= 0 && m->tri.body[t] < nb ? m->tri.body[t] : 0;
+        if (!zone[t] || tb != b) continue;
+        for (int c = 0; c < 3; c++) {
+          int o = m->tri.v[3 * t + c];
+          tv[3 * t + c] = k;
+          if (rep[o] < 0 && usen[o] == 0) rep[o] = k; /* first zone use reuses the node */
+          src[k++] = o;
+        }
+      }
+    }
+    if (i < nn && (usez[i] == 0 || usen[i] > 0)) {
+      rep[i] = k;
+      src[k++] = i;
+    }
+  }
+  YF_ASSERT(k == nnew);
+  for (int t = 0; t < nt; t++)
+    if (!zone[t])
+      for (int c = 0; c < 3; c++) tv[3 * t + c] = rep[m->tri.v[3 * t + c]];
+  /* copy the old arrays, grow the model, write permuted */
+  size_t dsz = (size_t)(nn > 0 ? nn : 1) * sizeof(double), isz = (size_t)(nn > 0 ? nn : 1) * sizeof(int);
+  double *old[10];
+  double *cur[10] = {N->x, N->y, N->x0, N->y0, N->vx, N->vy, N->fx, N->fy, N->m, NULL};
+  for (int a = 0; a < 9; a++) {
+    old[a] = yf_malloc(dsz, "split");
+    memcpy(old[a], cur[a], (size_t)nn * sizeof(double));
+  }
+  int *oid = yf_malloc(isz, "split"), *opar = yf_malloc(isz, "split"), *obody = yf_malloc(isz, "split");
+  uint64_t *ogm = yf_malloc((size_t)(nn > 0 ? nn : 1) * sizeof(uint64_t), "split");
+  memcpy(oid, N->id, (size_t)nn * sizeof(int));
+  memcpy(opar, N->parent, (size_t)nn * sizeof(int));
+  memcpy(obody, N->body, (size_t)nn * sizeof(int));
+  memcpy(ogm, N->gmask, (size_t)nn * sizeof(uint64_t));
+  while (N->n < nnew) model_add_node(m, 0, 0, 0, -1);
+  N->n = nnew;
+  double *dst[9] = {N->x, N->y, N->x0, N->y0, N->vx, N->vy, N->fx, N->fy, N->m};
+  for (int a = 0; a < 9; a++)
+    for (int i = 0; i < nnew; i++) dst[a][i] = old[a][src[i]];
+  /* root of an old node (copy chains from earlier calls), then its representative */
+  for (int i = 0; i < nnew; i++) {
+    int o = src[i], r = o;
+    for (int it = 0; it < 64 && opar[r] != r; it++) r = opar[r];
+    N->id[i] = oid[o];
+    N->body[i] = obody[o];
+    N->gmask[i] = ogm[o];
+    N->parent[i] = rep[r] >= 0 ? rep[r] : i;
+  }
+  memcpy(m->tri.v, tv, (size_t)nt * 3 * sizeof(int));
+  for (int a = 0; a < 9; a++) free(old[a]);
+  free(oid); free(opar); free(obody); free(ogm);
+  free(src); free(rep); free(tv); free(usez); free(usen); free(anchor);
+}
+
+/* Point the model's extra slots at the joint arrays (after any change of n or the arrays). */
+static void register_slots(YfSim *s) {
+  YfJoints *J = s->joints;
+  YfModel *m = &s->model;
+  m->nxslot = J && J->n ? 4 * J->n : 0;
+  m->xslot_node = J && J->n ? J->node : NULL;
+  m->xslot_f = J && J->n ? J->f : NULL;
+}
+
+int joints_insert_zone(YfSim *s, const unsigned char *tri_in_zone,
+                       int (*prop_of_pair)(void *ctx, int triA, int triB), void *ctx) {
+  YfModel *m = &s->model;
+  YfJoints *J = jget(s);
+  const int nt = m->tri.n;
+  int any = 0;
+  for (int t = 0; t < nt && !any; t++) any = tri_in_zone[t] != 0;
+  if (!any) return 0;
+  /* 1. candidate joints on shared edges (by node index, before the split) */
+  Edge *E = yf_malloc((size_t)nt * 3 * sizeof *E, "edges");
+  for (int t = 0; t < nt; t++)
+    for (int c = 0; c < 3; c++) {
+      int a = m->tri.v[3 * t + c], b = m->tri.v[3 * t + (c + 1) % 3];
+      E[3 * t + c] = (Edge){a < b ? a : b, a < b ? b : a, t, c};
+    }
+  qsort(E, (size_t)nt * 3, sizeof *E, edge_cmp);
+  NewJoint *nj = yf_malloc(((size_t)nt * 3 / 2 + 1) * sizeof *nj, "joints");
+  int nnj = 0;
+  for (int i = 0; i < 3 * nt;) {
+    int j = i + 1;
+    while (j < 3 * nt && E[j].lo == E[i].lo && E[j].hi == E[i].hi) j++;
+    if (j == i + 2) { /* exactly two triangles: internal edge (more would be non-manifold) */
+      const Edge *ea = &E[i], *eb = &E[i + 1]; /* ea->t < eb->t */
+      int A = ea->t, B = eb->t;
+      int pa = m->tri.v[3 * A + ea->k], pb = m->tri.v[3 * B + eb->k];
+      if (A != B && pa != pb && (tri_in_zone[A] || tri_in_zone[B])) { /* opposite orientation */
+        int set = prop_of_pair(ctx, A, B);
+        if (set >= 0) {
+          if (set >= J->nset) yf_deck_error(NULL, "internal: joint set %d out of range", set);
+          nj[nnj++] = (NewJoint){A, ea->k, B, eb->k, set};
+        }
+      }
+    }
+    i = j;
+  }
+  free(E);
+  qsort(nj, (size_t)nnj, sizeof *nj, nj_cmp);
+  /* 2. split the zone triangles' nodes */
+  split_nodes(m, tri_in_zone);
+  /* 3. append the joints in creation order */
+  int j0 = J->n;
+  joints_reserve(J, J->n + nnj);
+  for (int q = 0; q < nnj; q++) {
+    int j = J->n++;
+    const NewJoint *w = &nj[q];
+    int *cn = J->corner + 4 * j;
+    cn[0] = 3 * w->A + w->kA;             /* p in A */
+    cn[1] = 3 * w->A + (w->kA + 1) % 3;   /* q in A */
+    cn[2] = 3 * w->B + w->kB;             /* B's edge starts at q */
+    cn[3] = 3 * w->B + (w->kB + 1) % 3;   /* ... and ends at p    */
+    J->tri[2 * j] = w->A;
+    J->tri[2 * j + 1] = w->B;
+    J->prop[j] = w->set;
+    J->k[j] = 1.0;
+    J->w[j] = J->z[j] = 0.0;
+    J->dmg[3 * j] = J->dmg[3 * j + 1] = J->dmg[3 * j + 2] = 0.0;
+    J->state[j] = 0;
+    J->mode[j] = YF_JMODE_NONE;
+    for (int c = 0; c < 8; c++) J->f[8 * j + c] = 0.0;
+  }
+  free(nj);
+  /* 4. node indices of every joint from its corners (earlier joints follow the renumbering) */
+  for (int j = 0; j < J->n; j++)
+    for (int c = 0; c < 4; c++) J->node[4 * j + c] = m->tri.v[J->corner[4 * j + c]];
+  /* 5. heterogeneity in joint index order, one generator per set; initial lengths */
+  for (int j = j0; j < J->n; j++) {
+    YfJointSet *js = &J->set[J->prop[j]];
+    if (js->het != YF_HET_NONE) {
+      if (!js->rng) {
+        js->rng = gsl_rng_alloc(gsl_rng_mt19937);
+        gsl_rng_set(js->rng, js->seed);
+      }
+      double f;
+      if (js->het == YF_HET_WEIBULL) {
+        f = gsl_ran_weibull(js->rng, 1.0 / gsl_sf_gamma(1.0 + 1.0 / js->het_par), js->het_par);
+      } else {
+        do f = 1.0 + js->het_par * gsl_ran_gaussian(js->rng, 1.0); while (!(f > 0.0));
+      }
+      J->k[j] = f;
+    }
+    YfJointProp p = js->p;
+    p.coh *= J->k[j];
+    p.fs *= J->k[j];
+    J->fs[j] = joint_fs_init(&p);
+    const int *nd = J->node + 4 * j;
+    J->L0[j] = hypot(m->node.x0[nd[1]] - m->node.x0[nd[0]], m->node.y0[nd[1]] - m->node.y0[nd[0]]);
+  }
+  J->nblk = (J->n + JBLOCK - 1) / JBLOCK;
+  J->blk_nbreak = yf_realloc(J->blk_nbreak, (size_t)(J->nblk > 0 ? J->nblk : 1) * sizeof(int), "joint blocks");
+  register_slots(s);
+  m->prepared = 0;
+  if (s->out) output_topology_changed(s);
+  return J->n - j0;
+}
+
+/* Native pair rule: same body; the joint takes the set of the later fracture command among
+ * the two sides (tspec = spec index per triangle, -1 outside every zone). */
+typedef struct {
+  const YfModel *m;
+  const int *tspec;
+  const YfFracSpec *spec;
+} NativeCtx;
+
+static int native_pair(void *ctx, int A, int B) {
+  const NativeCtx *c = ctx;
+  if (c->m->tri.body[A] != c->m->tri.body[B]) return -1;
+  int sp = c->tspec[A] > c->tspec[B] ? c->tspec[A] : c->tspec[B];
+  return sp >= 0 ? c->spec[sp].set : -1;
+}
+
+void joints_insert(YfSim *s) {
+  YfJoints *J = s->joints;
+  if (!J || !J->nspec) return;
+  YfModel *m = &s->model;
+  const int nt = m->tri.n;
+  int *tspec = yf_malloc((size_t)(nt > 0 ? nt : 1) * sizeof(int), "fracture zone");
+  unsigned char *zone = yf_calloc((size_t)(nt > 0 ? nt : 1), 1, "fracture zone");
+  for (int t = 0; t < nt; t++) tspec[t] = -1;
+  int pending = 0;
+  for (int q = 0; q < J->nspec; q++) {
+    YfFracSpec *sp = &J->spec[q];
+    if (sp->applied) continue;
+    pending = 1;
+    sp->applied = 1;
+    int cnt = 0;
+    uint64_t gb = sp->group >= 0 ? (uint64_t)1 << sp->group : 0;
+    for (int t = 0; t < nt; t++) {
+      if (m->tri.body[t] != sp->body) continue;
+      const int *v = m->tri.v + 3 * t;
+      if (sp->region >= 0) {
+        double cx = (m->node.x0[v[0]] + m->node.x0[v[1]] + m->node.x0[v[2]]) / 3.0;
+        double cy = (m->node.y0[v[0]] + m->node.y0[v[1]] + m->node.y0[v[2]]) / 3.0;
+        if (!region_contains(sp->region, cx, cy)) continue;
+      } else if (sp->group >= 0) {
+        int in = (m->tri.gmask[t] & gb) || ((m->node.gmask[v[0]] & gb) && (m->node.gmask[v[1]] & gb) &&
+                                            (m->node.gmask[v[2]] & gb));
+        if (!in) continue;
+      }
+      tspec[t] = q;
+      zone[t] = 1;
+      cnt++;
+    }
+    if (!cnt) yf_warn(&sp->loc, "fracture: no triangle of body '%s' is in the selection (no joints)", m->body[sp->body].name);
+  }
+  if (pending) {
+    NativeCtx c = {m, tspec, J->spec};
+    int made = joints_insert_zone(s, zone, native_pair, &c);
+    sim_printf(s, "fracture: %d joints inserted (%d in total), %d nodes\n", made, J->n, m->node.n);
+  }
+  free(tspec);
+  free(zone);
+}
+
+/* ---------------- the force stage ---------------- */
+
+/* Work increment of joint j over the last step: -(f_old + f_new)/2 . dx, dx = dt v of each node
+ * (the step moved every node by dt v_{n+1/2}). */
+static inline double work_inc(const YfNodes *N, const int *nd, const double *fo, const double *fn, double dt) {
+  double w = 0;
+  for (int c = 0; c < 4; c++) {
+    int i = nd[c];
+    w -= 0.5 * ((fo[2 * c] + fn[2 * c]) * N->vx[i] + (fo[2 * c + 1] + fn[2 * c + 1]) * N->vy[i]);
+  }
+  return w * dt;
+}
+
+/* Scaled property of joint j (heterogeneity factor on the strengths and the fracture energy). */
+static inline void scaled_prop(const YfJoints *J, int j, YfJointProp *lp, int *cur) {
+  if (*cur != J->prop[j]) {
+    *lp = J->set[J->prop[j]].p;
+    *cur = J->prop[j];
+  }
+  const YfJointProp *b = &J->set[J->prop[j]].p;
+  double k = J->k[j];
+  lp->ft = b->ft * k;
+  lp->fs = b->fs * k;
+  lp->coh = b->coh * k;
+  lp->gf = b->gf * k;
+}
+
+void joints_forces(YfSim *s) {
+  YfJoints *J = s->joints;
+  if (!J || !J->n) return;
+  const YfNodes *N = &s->model.node;
+  const double dtp = J->dt_prev;
+  static const double zero8[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  /* joints that failed at the last evaluation: their forces acted over the last step; close
+   * their work and drop them */
+  for (int q = 0; q < J->npend; q++) {
+    int j = J->pend[q];
+    J->w[j] += work_inc(N, J->node + 4 * j, J->f + 8 * j, J->f + 8 * j, dtp) ;
+    J->diss_broken += J->w[j];
+    J->state[j] = 2;
+    memcpy(J->f + 8 * j, zero8, sizeof zero8);
+  }
+  J->npend = 0;
+  const int nj = J->n, nblk = J->nblk;
+  #pragma omp parallel for schedule(static) if (nj >= par_min)
+  for (int b = 0; b < nblk; b++) {
+    YfJointProp lp;
+    int cur = -1, nbreak = 0;
+    int j1 = (b + 1) * JBLOCK < nj ? (b + 1) * JBLOCK : nj;
+    for (int j = b * JBLOCK; j < j1; j++) {
+      if (J->state[j]) continue;
+      scaled_prop(J, j, &lp, &cur);
+      const int *nd = J->node + 4 * j;
+      double x[4], y[4], f[8];
+      for (int c = 0; c < 4; c++) {
+        x[c] = N->x[nd[c]];
+        y[c] = N->y[nd[c]];
+      }
+      YfJointInfo info;
+      int nfail = joint_force(&lp, x, y, J->fs + j, J->dmg + 3 * j, f, &info);
+      double *fj = J->f + 8 * j;
+      J->w[j] += work_inc(N, nd, fj, f, dtp);
+      memcpy(fj, f, sizeof f);
+      J->z[j] = info.zmax;
+      if (YF_JOINT_BROKEN(nfail)) {
+        J->state[j] = 1;
+        J->mode[j] = (unsigned char)(info.mode != YF_JMODE_NONE ? info.mode : YF_JMODE_MIXED);
+        nbreak++;
+      }
+    }
+    J->blk_nbreak[b] = nbreak;
+  }
+  /* record the new breaks in joint order */
+  for (int b = 0; b < nblk; b++) {
+    if (!J->blk_nbreak[b]) continue;
+    int j1 = (b + 1) * JBLOCK < nj ? (b + 1) * JBLOCK : nj;
+    for (int j = b * JBLOCK; j < j1; j++) {
+      if (J->state[j] != 1) continue;
+      J->pend[J->npend++] = j;
+      J->nbroken++;
+      if (J->nrec == J->caprec) {
+        J->caprec = J->caprec ? 2 * J->caprec : 256;
+        J->rec = yf_realloc(J->rec, (size_t)J->caprec * sizeof *J->rec, "break record");
+      }
+      const int *nd = J->node + 4 * j;
+      double mx = 0, my = 0;
+      for (int c = 0; c < 4; c++) {
+        mx += N->x[nd[c]];
+        my += N->y[nd[c]];
+      }
+      J->rec[J->nrec++] = (YfBreak){s->step + 1, s->time, 0.25 * mx, 0.25 * my, J->L0[j], J->mode[j],
+                                     J->tri[2 * j], J->tri[2 * j + 1], j};
+    }
+  }
+  J->dt_prev = s->dt;
+}
+
+/* ---------------- energy ---------------- */
+
+/* Energy stored in joint j at positions x, y after an evaluation that left dmg3 and returned f:
+ * the exact pre-peak potential while undamaged, else the secant energy -1/2 (f0 . d_a + f1 . d_b)
+ * (= 1/2 Simpson integral of q . d, exact for secant unloading). */
+static double stored_irrev(const YfJointProp *p, const double *x, const double *y, const double *f,
+                           const double *dmg3, double fs) {
+  double dax = x[0] - x[3], day = y[0] - y[3], dbx = x[1] - x[2], dby = y[1] - y[2];
+  if (dmg3[0] > 0 || dmg3[1] > 0 || dmg3[2] > 0)
+    return -0.5 * (f[0] * dax + f[1] * day + f[2] * dbx + f[3] * dby);
+  double ex = ((x[1] + x[2]) - (x[0] + x[3])) / 2.0, ey = ((y[1] + y[2]) - (y[0] + y[3])) / 2.0;
+  double h = sqrt(ex * ex + ey * ey);
+  double e1x = ex / (h + 1e-10), e1y = ey / (h + 1e-10), nx = -e1y, ny = e1x;
+  double op, sp;
+  joint_lengths(p, h, fs, &op, NULL, &sp, NULL);
+  double oa = dax * nx + day * ny, ob = dbx * nx + dby * ny, sa = dax * e1x + day * e1y, sb = dbx * e1x + dby * e1y;
+  double po[3] = {oa, 0.5 * (oa + ob), ob}, ps[3] = {sa, 0.5 * (sa + sb), sb}, wt[3] = {h / 6, 2 * h / 3, h / 6};
+  double e = 0;
+  for (int k = 0; k < 3; k++) {
+    double o = po[k], r = fabs(ps[k]) / sp, en;
+    if (o < 0) en = o * o * p->ft / op; /* penalty o p/h, integrated */
+    else {
+      double ro = o / op;
+      en = p->ft * op * (ro * ro - ro * ro * ro / 3.0);
+    }
+    en += fs * sp * (r * r - r * r * r / 3.0);
+    e += wt[k] * en;
+  }
+  return e;
+}
+
+double joints_energy(YfSim *s) {
+  YfJoints *J = s->joints;
+  if (!J || !J->n) return 0.0;
+  const YfNodes *N = &s->model.node;
+  double stored = 0, diss = J->diss_broken;
+  YfJointProp lp;
+  int cur = -1;
+  for (int q = 0; q < J->npend; q++) {
+    int j = J->pend[q];
+    diss += J->w[j] + work_inc(N, J->node + 4 * j, J->f + 8 * j, J->f + 8 * j, J->dt_prev);
+  }
+  for (int j = 0; j < J->n; j++) {
+    if (J->state[j]) continue;
+    scaled_prop(J, j, &lp, &cur);
+    const int *nd = J->node + 4 * j;
+    double x[4], y[4], f[8], fs = J->fs[j], dmg[3] = {J->dmg[3 * j], J->dmg[3 * j + 1], J->dmg[3 * j + 2]};
+    for (int c = 0; c < 4; c++) {
+      x[c] = N->x[nd[c]];
+      y[c] = N->y[nd[c]];
+    }
+    joint_force(&lp, x, y, &fs, dmg, f, NULL);
+    /* work up to the current positions (the last step is not yet in w) */
+    double W = J->w[j] + work_inc(N, nd, J->f + 8 * j, f, J->dt_prev);
+    double e = lp.irreversible ? stored_irrev(&lp, x, y, f, dmg, fs) : W;
+    stored += e;
+    diss += W - e;
+  }
+  s->energy.joint_dissipated = diss;
+  return stored;
+}
+
+/* ---------------- stable time step ---------------- */
+
+double joints_stable_dt(YfSim *s, char *what, size_t n) {
+  if (what && n) what[0] = 0;
+  YfJoints *J = s->joints;
+  if (!J || !J->n) return INFINITY;
+  YfModel *m = &s->model;
+  const YfNodes *N = &m->node;
+  const YfTriMat *tm = run_tri_mats();
+  /* Per node: sum of the penalties of its joints.  A joint is, pre-peak, an isotropic interface
+   * of stiffness p/h per length; its consistent 4x4 stiffness (per direction) has absolute row
+   * sums p h (1/3 + 1/6 + 1/3 + 1/6)/h = p for every node, whatever h.  Gershgorin bounds the
+   * joints' part of omega^2 by P_i / m_i, Weyl adds the triangle's own omega_T^2 (undamped), and
+   * the viscous term of the triangle reduces the limit as in tri_stable_dt, with the damping ratio
+   * the triangle's viscosity gives the combined mode. */
+  double *P = yf_calloc((size_t)N->n, sizeof(double), "joint dt");
+  int *tri_of = yf_malloc((size_t)N->n * sizeof(int), "joint dt");
+  for (int i = 0; i < N->n; i++) tri_of[i] = -1;
+  for (int t = 0; t < m->tri.n; t++)
+    for (int c = 0; c < 3; c++) tri_of[m->tri.v[3 * t + c]] = t;
+  for (int j = 0; j < J->n; j++) {
+    if (J->state[j]) continue;
+    double pj = J->set[J->prop[j]].p.pen;
+    for (int c = 0; c < 4; c++) P[J->node[4 * j + c]] += pj;
+  }
+  YfTriMat *tm0 = yf_malloc((size_t)(m->nmat > 0 ? m->nmat : 1) * sizeof *tm0, "joint dt");
+  for (int i = 0; i < m->nmat; i++) {
+    tm0[i] = tm[i];
+    tm0[i].k = 0;
+  }
+  double best = INFINITY;
+  int bj = -1;
+  for (int j = 0; j < J->n; j++) {
+    if (J->state[j]) continue;
+    for (int c = 0; c < 4; c++) {
+      int i = J->node[4 * j + c], t = tri_of[i];
+      if (!(N->m[i] > 0) || t < 0) continue;
+      double dt0 = tri_stable_dt(m, tm0, t);
+      double wt2 = isfinite(dt0) && dt0 > 0 ? 4.0 / (dt0 * dt0) : 0.0;
+      double w = sqrt(wt2 + P[i] / N->m[i]);
+      const YfTriMat *mt = tm + m->tri.mat[t];
+      double M = 2.0 * mt->lamv + mt->mu2; /* lambda + 2 mu of the small-strain law */
+      /* stiffness-proportional viscosity acts on the triangle's share of the mode only:
+       * xi = xi_T omega_T / omega with xi_T = omega_T k / (2 (lambda + 2 mu)) */
+      double xi = M > 0 ? wt2 * mt->k / (2.0 * M * w) : 0.0;
+      double d = 2.0 / w * (sqrt(1.0 + xi * xi) - xi);
+      if (d < best) { best = d; bj = j; }
+    }
+  }
+  if (what && n && bj >= 0)
+    snprintf(what, n, "joint %d (jointprop %s, triangles %d/%d)", bj, J->set[J->prop[bj]].name,
+             m->tri.id[J->tri[2 * bj]], m->tri.id[J->tri[2 * bj + 1]]);
+  free(P);
+  free(tri_of);
+  free(tm0);
+  return best;
+}
+
+/* ---------------- statistics ---------------- */
+
+long joints_count(const YfSim *s) { return s->joints ? s->joints->n : 0; }
+long joints_broken(const YfSim *s) { return s->joints ? s->joints->nbroken : 0; }
+
+const YfBreak *joints_breaks(const YfSim *s, int *n) {
+  *n = s->joints ? s->joints->nrec : 0;
+  return s->joints ? s->joints->rec : NULL;
+}
+
+static int uf_find(int *par, int i) {
+  while (par[i] != i) {
+    par[i] = par[par[i]];
+    i = par[i];
+  }
+  return i;
+}
+static void uf_union(int *par, int a, int b) {
+  a = uf_find(par, a);
+  b = uf_find(par, b);
+  if (a != b) {
+    if (a < b) par[b] = a;
+    else par[a] = b;
+  }
+}
+
+int joints_fragments(const YfSim *s, int *frag) {
+  const YfModel *m = &s->model;
+  const int nt = m->tri.n, nn = m->node.n;
+  if (!nt) return 0;
+  int *par = yf_malloc((size_t)nt * sizeof(int), "fragments");
+  int *first = yf_malloc((size_t)(nn > 0 ? nn : 1) * sizeof(int), "fragments");
+  for (int t = 0; t < nt; t++) par[t] = t;
+  for (int i = 0; i < nn; i++) first[i] = -1;
+  for (int t = 0; t < nt; t++)
+    for (int c = 0; c < 3; c++) {
+      int v = m->tri.v[3 * t + c];
+      if (first[v] < 0) first[v] = t;
+      else uf_union(par, first[v], t);
+    }
+  const YfJoints *J = s->joints;
+  if (J)
+    for (int j = 0; j < J->n; j++)
+      if (!J->state[j]) uf_union(par, J->tri[2 * j], J->tri[2 * j + 1]);
+  int nf = 0;
+  int *id = yf_malloc((size_t)nt * sizeof(int), "fragments");
+  for (int t = 0; t < nt; t++) id[t] = -1;
+  for (int t = 0; t < nt; t++) {
+    int r = uf_find(par, t);
+    if (id[r] < 0) id[r] = nf++;
+    if (frag) frag[t] = id[r];
+  }
+  free(id);
+  free(par);
+  free(first);
+  return nf;
+}
+
+static int dbl_desc(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return x < y ? 1 : x > y ? -1 : 0;
+}
+
+static const char *mode_name(int md) { return md == YF_JMODE_I ? "I" : md == YF_JMODE_II ? "II" : "mixed"; }
+
+static void write_log(YfSim *s) {
+  YfJoints *J = s->joints;
+  char tmp[1100];
+  snprintf(tmp, sizeof tmp, "%s.tmp", J->log_path);
+  FILE *f = fopen(tmp, "w");
+  if (!f) { /* runs from the exit path too: warn, never exit */
+    yf_warn(NULL, "fracture_log: cannot write '%s'", tmp);
+    return;
+  }
+  fprintf(f, "step,time,x,y,mode,triA,triB,length,joint\n");
+  for (int i = 0; i < J->nrec; i++) {
+    const YfBreak *b = &J->rec[i];
+    fprintf(f, "%ld,%.17g,%.17g,%.17g,%s,%d,%d,%.17g,%d\n", b->step, b->time, b->x, b->y, mode_name(b->mode),
+            s->model.tri.id[b->triA], s->model.tri.id[b->triB], b->length, b->joint);
+  }
+  if (fclose(f) != 0 || rename(tmp, J->log_path) != 0) yf_warn(NULL, "fracture_log: cannot write '%s'", J->log_path);
+}
+
+void joints_summary(YfSim *s) {
+  YfJoints *J = s->joints;
+  summary_set_counts(joints_count(s), joints_broken(s), contact_pairs(s));
+  if (!J || !J->n) return;
+  char buf[1024];
+  if (J->nrec) {
+    const YfBreak *b = &J->rec[0];
+    snprintf(buf, sizeof buf, "{\"step\": %ld, \"time\": %.17g, \"x\": %.17g, \"y\": %.17g, \"mode\": \"%s\"}", b->step,
+             b->time, b->x, b->y, mode_name(b->mode));
+    summary_add_raw("first_break", buf);
+  } else {
+    summary_add_raw("first_break", "null");
+  }
+  double len[4] = {0, 0, 0, 0};
+  for (int i = 0; i < J->nrec; i++) len[J->rec[i].mode == YF_JMODE_I ? 0 : J->rec[i].mode == YF_JMODE_II ? 1 : 2] += J->rec[i].length;
+  len[3] = len[0] + len[1] + len[2];
+  snprintf(buf, sizeof buf, "{\"I\": %.17g, \"II\": %.17g, \"mixed\": %.17g, \"total\": %.17g}", len[0], len[1], len[2], len[3]);
+  summary_add_raw("crack_length", buf);
+  const YfModel *m = &s->model;
+  int *fr = yf_malloc((size_t)m->tri.n * sizeof(int), "fragments");
+  int nf = joints_fragments(s, fr);
+  summary_add_number("fragments", nf);
+  double *area = yf_calloc((size_t)(nf > 0 ? nf : 1), sizeof(double), "fragments");
+  for (int t = 0; t < m->tri.n; t++) area[fr[t]] += 0.5 * fabs(model_tri_d(m, t, 0));
+  qsort(area, (size_t)nf, sizeof(double), dbl_desc);
+  int k = 0;
+  k += snprintf(buf + k, sizeof buf - (size_t)k, "[");
+  for (int i = 0; i < nf && i < 10; i++) k += snprintf(buf + k, sizeof buf - (size_t)k, "%s%.17g", i ? ", " : "", area[i]);
+  snprintf(buf + k, sizeof buf - (size_t)k, "]");
+  summary_add_raw("fragment_sizes", buf);
+  free(fr);
+  free(area);
+  if (J->log_path[0]) write_log(s);
+}
+
+void joints_free(YfSim *s) {
+  YfJoints *J = s->joints;
+  if (!J) return;
+  for (int i = 0; i < J->nset; i++)
+    if (J->set[i].rng) gsl_rng_free(J->set[i].rng);
+  free(J->set); free(J->spec);
+  free(J->corner); free(J->node); free(J->tri); free(J->prop); free(J->k); free(J->fs); free(J->dmg);
+  free(J->w); free(J->z); free(J->L0); free(J->state); free(J->mode); free(J->f); free(J->pend);
+  free(J->blk_nbreak); free(J->rec);
+  free(J);
+  s->joints = NULL;
+  s->model.nxslot = 0;
+  s->model.xslot_node = NULL;
+  s->model.xslot_f = NULL;
+}
