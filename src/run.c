@@ -176,6 +176,7 @@ void run_energies(YfSim *s) {
   }
   s->energy.kinetic = ke;
   s->energy.strain = R.tm ? tri_strain_energy(m, R.tm, 0, m->tri.n) : 0.0;
+  s->energy.strain += joints_energy(s); /* intact joints' stored energy; sets energy.joint_dissipated */
   (void)pg;
 }
 
