@@ -30,6 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "deck.h"
+#include "query.h"
 #include "deck_cmds.h"
 #include "expr.h"
 #include "sim.h"
@@ -396,6 +397,8 @@ static int lookup_cb(void *ctx, const char *name, double *val, char *err, size_t
     if (!strcmp(name, "step")) { *val = (double)d->sim->step; return 1; }
     if (!strcmp(name, "time")) { *val = d->sim->time; return 1; }
     if (!strcmp(name, "dt")) { *val = d->sim->dt; return 1; }
+    int q = sim_query(d->sim, name, val, err, errlen); /* thermo keywords, group averages */
+    if (q) return q;
   }
   return 0;
 }

@@ -1,0 +1,11 @@
+/* query.h: simulation quantities that deck expressions can read (LAMMPS thermo keywords and
+ * group reductions), e.g.  print "tip deflection $(uy_tip) m"  or  if "${broken} > 0" then ... */
+#ifndef YF_QUERY_H
+#define YF_QUERY_H
+#include <stddef.h>
+#include "sim.h"
+
+/* 1 and *val when name is a known quantity, 0 when unknown, -1 on error (message in err). */
+int sim_query(YfSim *s, const char *name, double *val, char *err, size_t errlen);
+
+#endif
