@@ -44,12 +44,9 @@ int y2d_tri_of_elem(const YfSim *s, long e) {
   return -1;
 }
 
-int y2d_input_node(const YfSim *s, int i) {
-  const YfNodes *n = &s->model.node;
-  int p = i;
-  for (int k = 0; k < 8 && n->parent[p] != p; k++) p = n->parent[p]; /* copies of copies */
-  return n->id[p];
-}
+/* Nodes keep their input number as id, and joint insertion gives copies the id of the original
+ * (joint.h), so the id is the input number even after nodes are renumbered. */
+int y2d_input_node(const YfSim *s, int i) { return s->model.node.id[i]; }
 
 /* ------------------------------------------------------------------ time factors */
 
@@ -78,11 +75,12 @@ static void resolve(YfSim *s, YfY2dRun *r) {
   free(r->le);
   r->set = yf_malloc((size_t)(n->n + 1) * sizeof(int), "y2d node sets");
   r->lf = yf_calloc((size_t)(2 * n->n + 2), sizeof(double), "y2d edge loads");
+  /* a node of the deck (or a copy of one: copies keep group masks and ids) has the set of its
+   * input node; nodes added by native commands have none */
   for (int i = 0; i < n->n; i++) {
-    int p = i;
-    for (int k = 0; k < 8 && n->parent[p] != p; k++) p = n->parent[p];
-    int in = p - r->node0;
-    r->set[i] = (in >= 0 && in < r->nnode) ? y->i1nopr[in] : -1;
+    int in = n->id[i];
+    int mine = (n->gmask[i] & r->gbit) && in >= 0 && in < r->nnode;
+    r->set[i] = mine ? y->i1nopr[in] : -1;
     if (r->set[i] >= r->nset) r->set[i] = -1;
   }
   /* triangle edges whose two end nodes both carry a pressure or both a shear traction */
@@ -196,13 +194,6 @@ void y2d_update_velocities(YfSim *s) {
 
 /* ------------------------------------------------------------------ building the scene */
 
-/* Meshing row logic for joint insertion: the joint set of a pair of triangles (ALGORITHMS 4.1). */
-typedef struct {
-  const YfY2d *y;
-  const YfSim *s;
-  int tri0;
-} PairCtx;
-
 /* Joint set of row (P, Q) of I2PMIJ (either order; P == Q: the diagonal row), -1 if none. */
 static int pmij_set(const YfY2d *y, int p, int q) {
   for (long k = 0; k < y->mpmrow; k++) {
@@ -245,20 +236,77 @@ static void unsupported_checks(const YfY2d *y) {
   }
 }
 
-/* Joint insertion for the meshing rows (ALGORITHMS 4.1).  (Waiting for joint.c's insertion.) */
-static void y2d_setup_joints(YfSim *s, YfY2dRun *r, const YfY2d *y, const int *pmat) {
-  (void)s; (void)r; (void)pmat;
+/* Joint insertion callback: the yfdem joint set for the edge shared by triangles A < B of one
+ * meshing row (ALGORITHMS 4.1 step 2): row (P, P) of I2PMIJ when both have property P, else a row
+ * holding both properties (either order), else the creating triangle's (A's) row (P_A, P_A);
+ * triangles outside the row (other rows, unmeshed properties) are not joined (-1). */
+typedef struct {
+  const YfY2d *y;
+  const int *jmap;  /* Y2D joint set -> yfdem joint set */
+  long row;
+  int tri0, ntri;
+} PairCtx;
+
+static int prop_of_pair(void *ctx, int A, int B) {
+  const PairCtx *c = ctx;
+  int ea = A - c->tri0, eb = B - c->tri0;
+  if (ea < 0 || eb < 0 || ea >= c->ntri || eb >= c->ntri) return -1;
+  const YfY2d *y = c->y;
+  int pa = y->i1elpr[ea], pb = y->i1elpr[eb];
+  if (!row_has(y, c->row, pa) || !row_has(y, c->row, pb)) return -1;
+  int js = pmij_set(y, pa, pb);
+  if (js < 0) js = pmij_set(y, pa, pa);
+  return js < 0 || js >= y->npjset ? -1 : c->jmap[js];
+}
+
+/* Joint sets (Munjiza law with Y2D's 2 o_p floor, no damage memory, Mohr-Coulomb from D1PJCO and
+ * D1PJFR) and joint insertion for every meshing row of code 3, row by row as Y2D meshes them.
+ * Marks the meshed triangles in meshed[] (their new nodes are boundary-flagged for contact). */
+static void y2d_setup_joints(YfSim *s, YfY2dRun *r, const YfY2d *y, unsigned char *meshed) {
   if (!y->given[Y2D_PM_I2PMSET]) return;
   int any = 0;
   for (long row = 0; row < y->mpmcom; row++) any |= y->i2pmset[row * y->mpmcol] > 0;
-  if (any)
-    yf_deck_error(&y->where[Y2D_PM_I2PMSET], "%s: joint meshing is not available in this build yet",
-                  y2d_key_name(Y2D_PM_I2PMSET));
+  if (!any) return;
+  int *jmap = yf_malloc((size_t)(y->npjset + 1) * sizeof(int), "y2d joint sets");
+  YfLoc jl = y->given[Y2D_PJ_D1PJFT] ? y->where[Y2D_PJ_D1PJFT] : y->end;
+  for (long j = 0; j < y->npjset; j++) {
+    YfJointProp p;
+    joint_prop_default(&p);
+    p.ft = y->d1pjft[j];
+    p.fs = y->d1pjfs[j];
+    p.gf = y->d1pjgf[j];
+    p.pen = y->d1pjpe[j];
+    p.coh = y->d1pjco[j];
+    p.phi = y->d1pjfr[j];
+    p.law = YF_SOFT_MUNJIZA;
+    p.y2d_floor = 1;
+    p.irreversible = 0;
+    char name[YF_NAME_MAX];
+    snprintf(name, sizeof name, "y2d_j%ld", j);
+    jmap[j] = joints_add_set(s, name, &p, YF_HET_NONE, 0.0, 1, &jl);
+  }
+  YfModel *m = &s->model;
+  unsigned char *zone = yf_calloc((size_t)m->tri.n + 1, 1, "y2d meshing zone");
+  for (long row = 0; row < y->mpmcom; row++) {
+    if (y->i2pmset[row * y->mpmcol] <= 0) continue;
+    int nz = 0;
+    for (int t = 0; t < m->tri.n; t++) {
+      int e = t - r->tri0;
+      zone[t] = (unsigned char)(e >= 0 && e < r->ntri && row_has(y, row, y->i1elpr[e]));
+      if (zone[t]) meshed[e] = 1;
+      nz += zone[t];
+    }
+    if (!nz) continue;
+    PairCtx c = {y, jmap, row, r->tri0, r->ntri};
+    joints_insert_zone(s, zone, prop_of_pair, &c);
+  }
+  free(zone);
+  free(jmap);
 }
 
 /* Contact between all participating triangles (FORMAT.md 5.3).  (Waiting for contact.c.) */
-static void y2d_setup_contact(YfSim *s, YfY2dRun *r, const YfY2d *y) {
-  (void)s; (void)r; (void)y;
+static void y2d_setup_contact(YfSim *s, YfY2dRun *r, const YfY2d *y, const unsigned char *meshed) {
+  (void)s; (void)r; (void)y; (void)meshed;
 }
 
 void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from) {
@@ -305,6 +353,10 @@ void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from) {
       int v = y->i2elto[(long)e * y->melno + c];
       if (nbody[v] < 0) nbody[v] = pbody[y->i1elpr[e]];
     }
+  /* group "y2d": every node and triangle of the deck (identifies them after joint insertion) */
+  int g = model_group(m, "y2d", 1);
+  if (g < 0) yf_deck_error(from, "read_y2d: no room for group 'y2d' (at most %d groups)", YF_MAX_GROUPS);
+  r->gbit = (uint64_t)1 << g;
   r->node0 = m->node.n;
   r->nnode = nn;
   for (int i = 0; i < nn; i++) {
@@ -313,13 +365,15 @@ void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from) {
     m->node.y[k] = y->d2ncc[2 * i + 1];
     m->node.vx[k] = y->d2nvc[2 * i];
     m->node.vy[k] = y->d2nvc[2 * i + 1];
+    m->node.gmask[k] |= r->gbit;
   }
   r->tri0 = m->tri.n;
   r->ntri = ne;
   for (int e = 0; e < ne; e++) {
     const int *v = &y->i2elto[(long)e * y->melno];
     int p = y->i1elpr[e];
-    model_add_tri(m, r->node0 + v[0], r->node0 + v[1], r->node0 + v[2], pmat[p], e, pbody[p]);
+    int t = model_add_tri(m, r->node0 + v[0], r->node0 + v[1], r->node0 + v[2], pmat[p], e, pbody[p]);
+    m->tri.gmask[t] |= r->gbit;
     for (int c = 0; c < 3; c++) m->node.gmask[r->node0 + v[c]] |= m->tri.gmask[m->tri.n - 1];
   }
   free(nbody);
@@ -373,9 +427,11 @@ void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from) {
   s->y2d = r;
 
   /* joints (meshing code 3) and contact */
-  y2d_setup_joints(s, r, y, pmat);
+  unsigned char *meshed = yf_calloc((size_t)ne + 1, 1, "y2d meshed elements");
+  y2d_setup_joints(s, r, y, meshed);
   r->contact_on = y->micoup > 0;
-  y2d_setup_contact(s, r, y);
+  y2d_setup_contact(s, r, y, meshed);
+  free(meshed);
   free(pmat);
   free(pbody);
   resolve(s, r);

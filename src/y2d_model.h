@@ -27,7 +27,9 @@ typedef struct YfY2dRun {
   void *deck;          /* the YfY2d as read (owned; YfLoc file names of messages point here)  */
   double volfac;       /* factor of the volumetric term: 0.5 book Y2D, 1 Y-Geo family          */
   int tri0, ntri;      /* triangles tri0 .. tri0+ntri-1 are the input elements 0..ntri-1       */
-  int node0, nnode;    /* nodes node0 .. node0+nnode-1 are the input nodes 0..nnode-1          */
+  int node0, nnode;    /* at read: nodes node0 .. node0+nnode-1 are the input nodes 0..nnode-1
+                          (joint insertion renumbers nodes: use ids and gbit afterwards)        */
+  uint64_t gbit;       /* group mask bit of group "y2d" (all nodes and triangles of the deck)  */
   double gy;           /* DCGRAY [m/s^2]                                                      */
   /* BC sets (arrays [nset]) */
   int nset;
@@ -60,7 +62,7 @@ void y2d_model_free(YfSim *s);
 void cmd_read_y2d(YfSim *s, const YfArgs *a);
 
 /* Index maps of a read_y2d scene: triangle index of input element e (-1 if none), input node
- * number of node i (its own id, or its parent's for a copy made by joint insertion). */
+ * number of node i (its id: copies made by joint insertion keep the original's id). */
 int y2d_tri_of_elem(const YfSim *s, long e);
 int y2d_input_node(const YfSim *s, int i);
 

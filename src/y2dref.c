@@ -17,6 +17,7 @@
 #include "contact.h"
 #include "err.h"
 #include "joint.h"
+#include "elem_tri.h"
 #include "run.h"
 #include "y2d_model.h"
 
@@ -155,7 +156,11 @@ static void write_corners(YfSim *s, YfY2dRef *r) {
 }
 
 static void write_summary(YfSim *s, YfY2dRef *r) {
+  /* README 3: kinetic = sum m |v|^2 / 2; elastic = triangles only (A_c/2 T:E, no viscous part,
+   * no joint energy, which run_energies adds to energy.strain) */
   run_energies(s);
+  const YfTriMat *tm = run_tri_mats();
+  double elastic = tm ? tri_strain_energy(&s->model, tm, 0, s->model.tri.n) : 0.0;
   const YfNodes *n = &s->model.node;
   double px = 0, py = 0;
   for (int i = 0; i < n->n; i++) {
@@ -163,7 +168,7 @@ static void write_summary(YfSim *s, YfY2dRef *r) {
     py += n->m[i] * n->vy[i];
   }
   fprintf(r->fsum, "%ld,%.16e,%.16e,%.16e,%.16e,%.16e,%ld,%ld\n", s->step, s->time, s->energy.kinetic,
-          s->energy.strain, px, py, joints_broken(s), contact_pairs(s));
+          elastic, px, py, joints_broken(s), contact_pairs(s));
   check_write(r->fsum, r, "summary.csv");
 }
 
@@ -181,8 +186,19 @@ static void write_probes(YfSim *s, YfY2dRef *r) {
 
 /* New joint failures since the last frame, in the order joint.c recorded them. */
 static void write_breaks(YfSim *s, YfY2dRef *r) {
-  (void)s;
-  (void)r;
+  int nb = 0;
+  const YfBreak *b = joints_breaks(s, &nb);
+  if (nb <= r->nbroken_written) return;
+  const YfJoints *J = s->joints;
+  for (long k = r->nbroken_written; k < nb; k++) {
+    int ea = s->model.tri.id[b[k].triA], eb = s->model.tri.id[b[k].triB];
+    /* the shared edge: slots 0, 1 are A's copies of its start and end nodes */
+    int p = y2d_input_node(s, J->node[4 * b[k].joint]), q = y2d_input_node(s, J->node[4 * b[k].joint + 1]);
+    fprintf(r->fbroken, "%ld,%d,%d,%d,%d\n", b[k].step, ea < eb ? ea : eb, ea < eb ? eb : ea, p < q ? p : q,
+            p < q ? q : p);
+  }
+  r->nbroken_written = nb;
+  check_write(r->fbroken, r, "broken.csv");
 }
 
 void y2dref_frame(YfSim *s, YfY2dRef *r) {
