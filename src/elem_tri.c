@@ -45,21 +45,23 @@ static inline double tri_stress(const double *x, const double *y, const double *
   double F11 = x1 * xi[0] + x2 * xi[2], F12 = x1 * xi[1] + x2 * xi[3];
   double F21 = y1 * xi[0] + y2 * xi[2], F22 = y1 * xi[1] + y2 * xi[3];
   double dc = x1 * y2 - x2 * y1;
+  double idc = 1.0 / dc; /* one division per triangle: J = dc/d0, 1/J = d0/dc */
   double J = dc / d0;
   /* E = (F F^T - I)/2 */
   double E11 = 0.5 * (F11 * F11 + F12 * F12 - 1.0);
   double E22 = 0.5 * (F21 * F21 + F22 * F22 - 1.0);
   double E12 = 0.5 * (F11 * F21 + F12 * F22);
-  double a = mt->mu2 / J;
-  double vol = mt->lamv * (J - 1.0 / J);
+  double iJ = d0 * idc;
+  double a = mt->mu2 * iJ;
+  double vol = mt->lamv * (J - iJ);
   double s11 = a * E11 + vol, s22 = a * E22 + vol, s12 = a * E12;
   double D11 = 0, D22 = 0, D12 = 0;
   if (mt->k != 0.0) {
     /* L = v_e x_e^-1; x_e^-1 = [[y2 -x2],[-y1 x1]] / dc */
     double u1 = vx[v[1]] - vx[v[0]], u2 = vx[v[2]] - vx[v[0]];
     double w1 = vy[v[1]] - vy[v[0]], w2 = vy[v[2]] - vy[v[0]];
-    double L11 = (u1 * y2 - u2 * y1) / dc, L12 = (-u1 * x2 + u2 * x1) / dc;
-    double L21 = (w1 * y2 - w2 * y1) / dc, L22 = (-w1 * x2 + w2 * x1) / dc;
+    double L11 = (u1 * y2 - u2 * y1) * idc, L12 = (-u1 * x2 + u2 * x1) * idc;
+    double L21 = (w1 * y2 - w2 * y1) * idc, L22 = (-w1 * x2 + w2 * x1) * idc;
     D11 = L11; D22 = L22; D12 = 0.5 * (L12 + L21);
     s11 += mt->k * D11; s22 += mt->k * D22; s12 += mt->k * D12;
   }
