@@ -604,6 +604,7 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
   static const char *const styles[] = {"h5", "csv", "y2dref", NULL};
   arg_count(a, 2, -1);
   const char *id = arg_word(a, 0, "dump id");
+  if (strlen(id) >= YF_NAME_MAX) arg_error(a, 0, "id too long (at most %d characters)", YF_NAME_MAX - 1);
   int style = arg_choice(a, 1, "style", styles);
   if (style == YF_DUMP_Y2DREF) { /* dump ID y2dref DIR [corners S,...] [summary K] [probes K E:C ...] */
     if (find_dump(s->out, id, NULL)) arg_error(a, 0, "a dump with this id exists (undump it first)");

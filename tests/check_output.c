@@ -22,6 +22,7 @@
 #include "model.h"
 #include "sim.h"
 #include "err.h"
+#include "yftest.h"
 
 /* ---------------------------------------------------------------- fixtures */
 
@@ -328,6 +329,79 @@ START_TEST(test_csv) {
 }
 END_TEST
 
+/* ---------------------------------------------------------------- deck commands */
+
+/* Through the interpreter: periods, fields, csv, undump, and no frame twice at a run boundary. */
+START_TEST(test_deck_dump) {
+  mk_tmpdir();
+  char cwd[1024];
+  ck_assert_ptr_nonnull(getcwd(cwd, sizeof cwd));
+  ck_assert_int_eq(chdir(tmpdir), 0);
+  YfSim *s = yft_run("material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                     "mesh rect bar m 0 0 1 0.1 10 2\n"
+                     "velocity bar set 0.1 0.05\n"
+                     "timestep auto\n"
+                     "dump a h5 5 a.h5 fields v stress\n"
+                     "dump c csv 10 n\n"
+                     "run 10\n"
+                     "undump a\n"
+                     "run 5\n");
+  ck_assert_int_eq(s->step, 15);
+  ck_assert_int_eq(output_frames(s, "a"), -1);
+  ck_assert_int_eq(output_frames(s, "c"), 2); /* steps 0 and 10; the second run starts at 10 */
+  ck_assert(yft_exists("n_000001.csv") && !yft_exists("n_000002.csv"));
+  hid_t f = H5Fopen("a.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  ck_assert_int_ge(f, 0);
+  ck_assert_int_gt(H5Lexists(f, "/frames/000002/v", H5P_DEFAULT), 0);
+  ck_assert_int_gt(H5Lexists(f, "/frames/000002/stress", H5P_DEFAULT), 0);
+  ck_assert_int_lt(H5Lexists(f, "/frames/000002/u", H5P_DEFAULT), 1);
+  ck_assert_int_lt(H5Lexists(f, "/frames/000003", H5P_DEFAULT), 1);
+  void *buf;
+  ck_assert_int_eq(h5_read(f, "/frames/000002/step", H5T_NATIVE_LLONG, &buf), 1);
+  ck_assert_int_eq(((long long *)buf)[0], 10);
+  free(buf);
+  ck_assert_int_eq(h5_read(f, "/frames/000002/time", H5T_NATIVE_DOUBLE, &buf), 1);
+  ck_assert_double_eq_tol(((double *)buf)[0], 10 * s->dt, 1e-12 * s->dt);
+  free(buf);
+  H5Fclose(f);
+  char *x = slurp("a.xmf");
+  ck_assert_int_eq(count_str(x, "GridType=\"Uniform\""), 3);
+  ck_assert_int_eq(count_str(x, "Name=\"u\""), 0);
+  free(x);
+  ck_assert_int_eq(chdir(cwd), 0);
+  rm_tmpdir();
+}
+END_TEST
+
+/* A wrong field name is a deck error naming the word and the valid fields; nothing is written. */
+START_TEST(test_deck_dump_errors) {
+  static const char *const bad[][2] = {
+      {"dump d h5 10 out.h5 fields u speed\n", "speed"},
+      {"dump d h5 0 out.h5\n", "N (steps between frames)"},
+      {"dump d h5 10 out.h5 fast\n", "expected fields or compress"},
+      {"dump d h5 10 a:b.h5\n", "may not contain ':'"},
+      {"dump d h5 10 out.h5\ndump d csv 10 n\n", "undump it first"},
+      {"undump nosuch\n", "no such dump"}};
+  for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+    char deck[512], *err, *dir;
+    snprintf(deck, sizeof deck, "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                                "mesh rect bar m 0 0 1 0.1 10 2\ntimestep auto\n%srun 10\n", bad[i][0]);
+    int rc = yft_run_binary("bad.deck", deck, NULL, &err, &dir);
+    ck_assert_msg(rc == YF_EXIT_DECK, "exit %d for %s", rc, bad[i][0]);
+    ck_assert_msg(strstr(err, i == 4 ? "bad.deck:5: error:" : "bad.deck:4: error:") && strstr(err, bad[i][1]),
+                  "stderr: %s", err);
+    if (i == 0) ck_assert_msg(strstr(err, "vonmises") != NULL, "valid fields not listed: %s", err);
+    char p[600];
+    snprintf(p, sizeof p, "%s/out.h5", dir);
+    ck_assert(!yft_exists(p));
+    snprintf(p, sizeof p, "rm -rf '%s'", dir);
+    ck_assert_int_eq(system(p), 0);
+    free(err);
+    free(dir);
+  }
+}
+END_TEST
+
 /* ---------------------------------------------------------------- I/O errors */
 
 static YfSim *cleanup_sim;
@@ -606,6 +680,8 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_h5_roundtrip_compressed);
   tcase_add_test(tc, test_h5_runs_and_topology);
   tcase_add_test(tc, test_csv);
+  tcase_add_test(tc, test_deck_dump);
+  tcase_add_test(tc, test_deck_dump_errors);
   tcase_add_test(tc, test_io_error);
   tcase_add_test(tc, test_kill_midway);
   suite_add_tcase(su, tc);
