@@ -244,7 +244,8 @@ END_TEST
 START_TEST(test_h5_roundtrip_compressed) { roundtrip(1); }
 END_TEST
 
-/* A second run continues the same file; a topology change starts /mesh_0001; undump closes. */
+/* A second run continues the same file (also after output_close_all); a topology change starts
+ * /mesh_0001; undump closes. */
 START_TEST(test_h5_runs_and_topology) {
   mk_tmpdir();
   YfSim s;
@@ -258,6 +259,7 @@ START_TEST(test_h5_runs_and_topology) {
   for (long st = 1; st <= 5; st++) { set_state(&s, st); output_step(&s); }
   output_run_end(&s);
   ck_assert_int_eq(output_frames(&s, "a"), 1);
+  output_close_all(&s);               /* closed between runs: the next frame reopens, appends */
   output_run_begin(&s);               /* second run starts at step 5: frame 1 */
   output_topology_changed(&s);
   for (long st = 6; st <= 10; st++) { set_state(&s, st); output_step(&s); } /* frame 2 at 10 */
@@ -272,6 +274,15 @@ START_TEST(test_h5_runs_and_topology) {
   ck_assert_int_gt(H5Lexists(f, "/frames/000002/u", H5P_DEFAULT), 0);
   ck_assert_int_lt(H5Lexists(f, "/frames/000002/v", H5P_DEFAULT), 1); /* not asked for */
   ck_assert_int_gt(H5Lexists(f, "/mesh_0001", H5P_DEFAULT), 0);
+  for (int k = 0; k < 3; k++) {
+    static const long long want[3] = {0, 5, 10};
+    char p[64];
+    void *buf;
+    snprintf(p, sizeof p, "/frames/%06d/step", k);
+    ck_assert_int_eq(h5_read(f, p, H5T_NATIVE_LLONG, &buf), 1);
+    ck_assert_int_eq(((long long *)buf)[0], want[k]);
+    free(buf);
+  }
   H5Fclose(f);
   char *x = slurp(xmf);
   ck_assert_int_eq(count_str(x, "GridType=\"Uniform\""), 3);
