@@ -29,7 +29,7 @@
 #include "run.h"
 #include "summary.h"
 
-#define JBLOCK 1024 /* joints per block of the force loop (break collection granularity) */
+#define JBLOCK 256 /* joints per block of the force loop (break collection granularity) */
 static int par_min = 4096;
 void joints_set_par_min(int n) { par_min = n < 0 ? 0 : n; }
 
