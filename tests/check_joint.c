@@ -246,9 +246,9 @@ static BarResult tension_bar(int nx, int law, double ramp_t) {
     for (int t = 0; t < s->model.tri.n; t++) {
       const int *v = s->model.tri.v + 3 * t;
       double xmin = INFINITY, xmax = -INFINITY;
-      for (int c = 0; c < 3; c++) {
-        xmin = fmin(xmin, s->model.node.x0[v[c]]);
-        xmax = fmax(xmax, s->model.node.x0[v[c]]);
+      for (int q3 = 0; q3 < 3; q3++) {
+        xmin = fmin(xmin, s->model.node.x0[v[q3]]);
+        xmax = fmax(xmax, s->model.node.x0[v[q3]]);
       }
       if (xmin <= 0.05 + 1e-9 && xmax >= 0.05 - 1e-9) {
         sx += s->model.tri.s[3 * t];
