@@ -363,6 +363,11 @@ void run_steps(YfSim *s, long nsteps) {
     sim_printf(s, "timestep auto: dt = %.6g s = %.3g x stable limit %.6g s (set by %s)\n", s->dt, s->dt_safety, limit, lim);
   } else if (!(s->dt > 0)) {
     yf_deck_error(NULL, "run: no time step set (use 'timestep DT' or 'timestep auto')");
+  } else if (s->dt > limit && s->y2d) {
+    /* Y2D never checks dt and its decks choose it by experience (ALGORITHMS.md 10): warn only */
+    yf_warn(s->dt_loc.file ? &s->dt_loc : NULL,
+            "the Y2D deck's time step %.6g s is above yfdem's conservative stable limit %.6g s (set by %s); "
+            "running it as Y2D would", s->dt, limit, lim);
   } else if (s->dt > limit) {
     yf_deck_error(s->dt_loc.file ? &s->dt_loc : NULL,
                   "timestep %.6g s is above the stable limit %.6g s (set by %s); use at most %.6g s or 'timestep auto'",
