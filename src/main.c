@@ -121,8 +121,6 @@ int main(int argc, char **argv) {
   finish(YF_EXIT_OK, "");
   deck_free(g_deck);
   run_free();
-  output_free(&g_sim);
-  bc_free(&g_sim);
   sim_free(&g_sim);
   return 0;
 }

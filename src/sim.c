@@ -9,6 +9,11 @@
 #include "deck.h"
 #include "err.h"
 #include "mesh.h"
+#include "bc.h"
+#include "contact.h"
+#include "joint.h"
+#include "output.h"
+#include "y2d_model.h"
 #include "region.h"
 
 void sim_init(YfSim *s) {
@@ -174,6 +179,11 @@ void cmd_timestep(YfSim *s, const YfArgs *a) {
 }
 
 void sim_free(YfSim *s) {
+  joints_free(s);
+  contact_free(s);
+  y2d_model_free(s);
+  bc_free(s);
+  output_free(s);
   for (int i = 0; i < s->nhist; i++) { free(s->hist[i].t); free(s->hist[i].v); }
   free(s->hist);
   model_free(&s->model);
