@@ -1,15 +1,748 @@
-/* contact.c: contact in the scene (see contact.h).  This first version has no contact: no deck
- * command enables it yet; the contact issue fills it in. */
+/* contact.c: contact in the scene (see contact.h for the commands, the Y2D rules it follows and
+ * the API read_y2d uses).
+ *
+ * This module owns the contact state of a simulation (YfContact): the rules of the deck, which
+ * triangles take part and in which rule sides (two 64-bit masks per triangle), the couple list
+ * with its friction memory, the per-couple force slots and the node lists that gather them.
+ * The kernels are contact_search.c (broad phase) and contact_pair.c (Y2D's potential contact).
+ *
+ * One step (contact_step):
+ *   detection   travel += 2 dt max|v| over participating nodes; when due (or at the first step,
+ *               or when the setup changed, or a joint broke in `joined skip` mode) a search over
+ *               the participating triangles' discs gives a fresh sorted couple list; friction
+ *               memory of persisting couples is merged in, and the node gather lists are rebuilt.
+ *   forces      every live couple (A = larger index, as Y2D sums it) writes 12 numbers into its
+ *               own slot (parallel over fixed blocks of couples, no atomics); a couple that
+ *               touched in neither direction and is farther than 2 buffer is dropped (Y2D).
+ *   gather      each touched node sums its slots in couple order and adds the sum to node.fx/fy,
+ *               so 1 or N threads give the same bits.  Energy: penalty energy (kernel estimate)
+ *               of this step and accumulated frictional dissipation, summed per block in order.
+ * Dropped couples stay in the list as dead slots (zero force) until a search, or until a
+ * quarter of the list is dead, when the list is compacted and the gather lists rebuilt.
+ *
+ * Units: SI, 2D per unit thickness: forces N/m, penalties Pa, energies J/m.
+ */
+#include <float.h>
 #include <math.h>
-#include <stdio.h>
-#include "contact.h"
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
 
-void contact_prepare(YfSim *s) { (void)s; }
-void contact_step(YfSim *s) { (void)s; }
-double contact_stable_dt(YfSim *s, char *what, size_t n) {
-  (void)s;
-  if (what && n) what[0] = 0;
-  return INFINITY;
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "contact.h"
+#include "contact_pair.h"
+#include "contact_search.h"
+#include "err.h"
+#include "joint.h"
+#include "run.h"
+
+#define MAX_RULES 64
+#define PAIR_BLK 1024      /* couples per block of the force loop: fixed, so sums do not depend on threads */
+#define PAR_MIN_DEF 2048   /* fewer couples than this: one thread (a parallel region costs microseconds) */
+#define BUFFER_FRAC 0.3    /* auto buffer = 0.3 x smallest edge (Y2D reference decks' DIEZON)  */
+
+typedef struct {
+  int ga, gb;   /* group indices of the two sides (-1: every triangle)  */
+  int native;   /* 1: from a deck command (pen_n required), 0: Y2D API    */
+  YfLoc loc;    /* where it was given (file name owned)                   */
+} Rule;
+
+typedef struct {
+  double pmax;  /* largest pen_n among the side's participating triangles [Pa] */
+  int body0;    /* body of the first triangle seen (-1: none)                 */
+  int multi;    /* more than one body on this side                            */
+} Side;
+
+typedef struct YfContact {
+  /* settings from the deck / API */
+  int nrule;
+  Rule rule[MAX_RULES];
+  int buffer_auto;
+  double buffer_set;     /* [m] when not auto                                   */
+  int joined_skip, surface_all, search_every, keep_shared;
+  unsigned char *uflag;  /* participation flags of the API (NULL: none given)   */
+  int nuflag;
+  int par_min;
+  int dirty;             /* settings changed since the last prepare             */
+
+  /* prepared for the current topology */
+  int prep_ntri, prep_nn;
+  double buffer;         /* [m]                                                 */
+  int nitem, *item;      /* participating triangles, increasing                 */
+  uint64_t *ma, *mb;     /* rule sides per triangle                             */
+  int npn, *pnode;       /* nodes of participating triangles, increasing        */
+  double *cx, *cy, *cr;  /* per item: centroid and radius [m]                   */
+  int nmat;
+  double *mpn, *mpt, *mmu; /* per material: pen_n, pen_t [Pa], friction         */
+  int *jpart, *jidx;     /* joined skip: 3 per triangle, partner triangle and joint (-1 none) */
+  const unsigned char *jstate;
+  double dt_limit;       /* contact_stable_dt, computed at prepare              */
+  char dt_what[192];
+
+  /* couples */
+  YfPairs pairs, fresh;
+  unsigned char *alive;
+  int cap_alive;
+  int nlive, ndead;
+  double *pf;            /* 12 per couple: forces on A's corners then B's [N/m] */
+  size_t cap_pf;
+  double *blk_e, *blk_d;
+  int *blk_rm, cap_blk;
+  /* gather lists: touched node t = touch[t] sums slots tslot[toff[t] .. toff[t+1]-1]; slot q of
+   * couple k = q / 6, corner q % 6 (0-2: A, 3-5: B); its force is pf[2 q], pf[2 q + 1]. */
+  int ntouch, *touch, *toff, *tslot;
+  int cap_touch, cap_tslot;
+  int *tcount;           /* per node, scratch of the rebuild (kept zero)        */
+  double *fcn;           /* per node: contact force of the last step [N/m]      */
+  int cap_nodes;
+  int fcn_valid;
+
+  YfSearchWork work;
+  YfSearchTrigger trig;
+  long nsearch;
+  long broken_seen;
+  int force_search;
+} YfContact;
+
+static double now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
-long contact_pairs(const YfSim *s) { (void)s; return 0; }
-void contact_free(YfSim *s) { (void)s; }
+
+/* ---------------------------------------------------------------- state */
+
+static YfContact *get(YfSim *s) {
+  if (!s->contact) {
+    YfContact *C = yf_calloc(1, sizeof *C, "contact state");
+    C->buffer_auto = 1;
+    C->par_min = PAR_MIN_DEF;
+    contact_pairs_init(&C->pairs);
+    contact_pairs_init(&C->fresh);
+    contact_search_work_init(&C->work);
+    s->contact = C;
+  }
+  return s->contact;
+}
+
+static void free_prepared(YfContact *C) {
+  free(C->item); free(C->ma); free(C->mb); free(C->pnode);
+  free(C->cx); free(C->cy); free(C->cr);
+  free(C->mpn); free(C->mpt); free(C->mmu);
+  free(C->jpart); free(C->jidx);
+  C->item = C->pnode = C->jpart = C->jidx = NULL;
+  C->ma = C->mb = NULL;
+  C->cx = C->cy = C->cr = C->mpn = C->mpt = C->mmu = NULL;
+  C->nitem = C->npn = C->nmat = 0;
+  C->prep_ntri = C->prep_nn = -1;
+}
+
+void contact_free(YfSim *s) {
+  YfContact *C = s->contact;
+  if (!C) return;
+  free_prepared(C);
+  for (int r = 0; r < C->nrule; r++) free((char *)C->rule[r].loc.file);
+  free(C->uflag);
+  contact_pairs_free(&C->pairs);
+  contact_pairs_free(&C->fresh);
+  free(C->alive); free(C->pf);
+  free(C->blk_e); free(C->blk_d); free(C->blk_rm);
+  free(C->touch); free(C->toff); free(C->tslot); free(C->tcount); free(C->fcn);
+  contact_search_work_free(&C->work);
+  free(C);
+  s->contact = NULL;
+}
+
+static int active(const YfContact *C) { return C && C->nrule > 0; }
+
+static Rule *add_rule(YfContact *C, int ga, int gb, int native, const YfLoc *loc, const YfArgs *a) {
+  for (int r = 0; r < C->nrule; r++) {
+    Rule *q = &C->rule[r];
+    if ((q->ga == ga && q->gb == gb) || (q->ga == gb && q->gb == ga)) return q; /* same rule again */
+  }
+  if (C->nrule >= MAX_RULES) {
+    if (a) arg_error(a, 0, "at most %d contact rules (pair/self lines)", MAX_RULES);
+    yf_deck_error(loc, "contact: at most %d contact rules", MAX_RULES);
+  }
+  Rule *q = &C->rule[C->nrule++];
+  q->ga = ga;
+  q->gb = gb;
+  q->native = native;
+  q->loc.file = loc && loc->file ? yf_strdup(loc->file) : NULL;
+  q->loc.line = loc ? loc->line : 0;
+  C->dirty = 1;
+  return q;
+}
+
+/* ---------------------------------------------------------------- API */
+
+void contact_enable_all(YfSim *s, double buffer) {
+  YfContact *C = get(s);
+  YF_ASSERT(buffer >= 0.0);
+  add_rule(C, -1, -1, 0, NULL, NULL);
+  C->buffer_auto = 0;
+  C->buffer_set = buffer;
+  C->keep_shared = 1;
+  C->joined_skip = 0;
+  C->search_every = 0;
+  C->dirty = 1;
+}
+
+void contact_set_participation(YfSim *s, const unsigned char *tri_flag, int n) {
+  YfContact *C = get(s);
+  free(C->uflag);
+  C->uflag = NULL;
+  C->nuflag = 0;
+  C->surface_all = 1;
+  if (tri_flag) {
+    C->uflag = yf_malloc((size_t)(n > 0 ? n : 1), "contact participation");
+    memcpy(C->uflag, tri_flag, (size_t)n);
+    C->nuflag = n;
+  }
+  C->dirty = 1;
+}
+
+void contact_set_keep_shared(YfSim *s, int keep) {
+  YfContact *C = get(s);
+  C->keep_shared = keep != 0;
+  C->dirty = 1;
+}
+
+void contact_set_par_min(YfSim *s, int n) {
+  YfContact *C = get(s);
+  C->par_min = n < 0 ? 0 : n;
+  if (C->work.par_min > C->par_min) C->work.par_min = C->par_min;
+}
+
+const double *contact_node_forces(const YfSim *s) {
+  const YfContact *C = s->contact;
+  return active(C) && C->fcn_valid ? C->fcn : NULL;
+}
+
+long contact_searches(const YfSim *s) { return s->contact ? s->contact->nsearch : 0; }
+int contact_participants(const YfSim *s) { return active(s->contact) ? s->contact->nitem : 0; }
+double contact_buffer(const YfSim *s) { return active(s->contact) ? s->contact->buffer : 0.0; }
+long contact_pairs(const YfSim *s) { return active(s->contact) ? s->contact->nlive : 0; }
+
+/* ---------------------------------------------------------------- deck command */
+
+static void group_names(const YfModel *m, char *buf, size_t cap) {
+  size_t k = 0;
+  buf[0] = 0;
+  for (int g = 0; g < m->ngroup && k + 2 < cap; g++) {
+    int w = snprintf(buf + k, cap - k, "%s%s", g ? " " : "", m->group[g].name);
+    if (w < 0) break;
+    k += (size_t)w;
+  }
+  if (!buf[0]) snprintf(buf, cap, "none");
+}
+
+/* Group word i of a contact command: must exist and hold triangles whose materials have pen_n. */
+static int rule_group(YfSim *s, const YfArgs *a, int i) {
+  YfModel *m = &s->model;
+  const char *name = arg_word(a, i, "group");
+  int g = model_group(m, name, 0);
+  if (g < 0) {
+    char have[1024];
+    group_names(m, have, sizeof have);
+    arg_error(a, i, "no such group or body (defined: %s)", have);
+  }
+  uint64_t bit = (uint64_t)1 << g;
+  int ntri = 0;
+  for (int t = 0; t < m->tri.n; t++) {
+    if (!(m->tri.gmask[t] & bit)) continue;
+    ntri++;
+    const YfMaterial *mt = &m->mat[m->tri.mat[t]];
+    if (!(mt->pen_n > 0))
+      arg_error(a, i, "material '%s' of its triangles has no normal contact penalty: add 'pen_n P' [Pa] "
+                "(typically 1-10 x E) to its material command", mt->name);
+  }
+  if (!ntri) arg_error(a, i, "group has no triangles (contact acts between triangles)");
+  return g;
+}
+
+/* contact pair G1 G2 | contact self G | contact off |
+ * contact KEY VALUE [KEY VALUE ...] with KEY buffer D|auto, joined keep|skip,
+ *                                         surface boundary|all, search travel|every */
+void cmd_contact(YfSim *s, const YfArgs *a) {
+  arg_count(a, 1, -1);
+  static const char *const words[] = {"pair", "self", "off", "buffer", "joined", "surface", "search", NULL};
+  int k = arg_choice(a, 0, "contact keyword", words);
+  if (k == 0) {
+    arg_count(a, 3, 3);
+    int g1 = rule_group(s, a, 1), g2 = rule_group(s, a, 2);
+    add_rule(get(s), g1, g2, 1, &a->loc, a);
+    return;
+  }
+  if (k == 1) {
+    arg_count(a, 2, 2);
+    int g = rule_group(s, a, 1);
+    add_rule(get(s), g, g, 1, &a->loc, a);
+    return;
+  }
+  if (k == 2) {
+    arg_count(a, 1, 1);
+    contact_free(s);
+    s->energy.contact = 0.0;
+    return;
+  }
+  YfContact *C = get(s);
+  for (int i = 0; i < a->n; i += 2) {
+    int key = arg_choice(a, i, "contact option", words + 3) + 3;
+    if (i + 1 >= a->n) arg_error(a, i, "option needs a value");
+    if (key == 3) {
+      if (!strcmp(a->w[i + 1], "auto")) {
+        C->buffer_auto = 1;
+      } else {
+        C->buffer_auto = 0;
+        C->buffer_set = arg_nonneg(a, i + 1, "buffer [m] (or auto)");
+      }
+    } else if (key == 4) {
+      static const char *const v[] = {"keep", "skip", NULL};
+      C->joined_skip = arg_choice(a, i + 1, "joined", v);
+    } else if (key == 5) {
+      static const char *const v[] = {"boundary", "all", NULL};
+      C->surface_all = arg_choice(a, i + 1, "surface", v);
+    } else {
+      static const char *const v[] = {"travel", "every", NULL};
+      C->search_every = arg_choice(a, i + 1, "search", v);
+    }
+  }
+  C->dirty = 1;
+}
+
+/* ---------------------------------------------------------------- setup */
+
+/* Nodes on a free boundary of the node topology: an edge used by one triangle only. */
+static unsigned char *boundary_nodes(const YfModel *m) {
+  int nn = m->node.n, nt = m->tri.n;
+  const int *v = m->tri.v;
+  int *off = yf_calloc((size_t)nn + 1, sizeof(int), "contact topology");
+  int *lst = yf_malloc((size_t)(3 * nt > 0 ? 3 * nt : 1) * sizeof(int), "contact topology");
+  for (int k = 0; k < 3 * nt; k++) off[v[k] + 1]++;
+  for (int i = 0; i < nn; i++) off[i + 1] += off[i];
+  int *fill = yf_calloc((size_t)nn + 1, sizeof(int), "contact topology");
+  for (int k = 0; k < 3 * nt; k++) lst[off[v[k]] + fill[v[k]]++] = k / 3;
+  free(fill);
+  unsigned char *bn = yf_calloc((size_t)nn + 1, 1, "contact boundary nodes");
+  for (int t = 0; t < nt; t++)
+    for (int c = 0; c < 3; c++) {
+      int p = v[3 * t + c], q = v[3 * t + (c + 1) % 3], shared = 0;
+      for (int u = off[p]; u < off[p + 1] && !shared; u++) {
+        int o = lst[u];
+        if (o == t) continue;
+        shared = v[3 * o] == q || v[3 * o + 1] == q || v[3 * o + 2] == q;
+      }
+      if (!shared) bn[p] = bn[q] = 1;
+    }
+  free(off);
+  free(lst);
+  return bn;
+}
+
+static int joined_keep(int i, int j, void *ctx) {
+  const YfContact *C = ctx;
+  for (int k = 0; k < 3; k++)
+    if (C->jpart[3 * i + k] == j && C->jstate[C->jidx[3 * i + k]] == 0) return 0;
+  return 1;
+}
+
+/* The contact penalty's stable time step (contact.h). */
+static void compute_stable_dt(YfSim *s, YfContact *C) {
+  const YfModel *m = &s->model;
+  Side A[MAX_RULES], B[MAX_RULES];
+  for (int r = 0; r < C->nrule; r++) A[r] = B[r] = (Side){0.0, -1, 0};
+  for (int k = 0; k < C->nitem; k++) {
+    int t = C->item[k], b = m->tri.body[t];
+    double p = C->mpn[m->tri.mat[t]];
+    for (int r = 0; r < C->nrule; r++)
+      for (int side = 0; side < 2; side++) {
+        uint64_t mk = side ? C->mb[t] : C->ma[t];
+        if (!(mk >> r & 1)) continue;
+        Side *q = side ? &B[r] : &A[r];
+        if (p > q->pmax) q->pmax = p;
+        if (q->body0 < 0) q->body0 = b;
+        else if (q->body0 != b) q->multi = 1;
+      }
+  }
+  unsigned char *jointed = yf_calloc((size_t)m->tri.n + 1, 1, "contact jointed");
+  const YfJoints *J = s->joints;
+  for (int j = 0; J && j < J->n; j++) jointed[J->tri[2 * j]] = jointed[J->tri[2 * j + 1]] = 1;
+  double best = INFINITY;
+  int which = -1;
+  double pbest = 0;
+  for (int k = 0; k < C->nitem; k++) {
+    int t = C->item[k], b = m->tri.body[t];
+    int meets = jointed[t] || m->body[b].fracture;
+    double pm = 0.0;
+    for (int r = 0; r < C->nrule; r++) {
+      if (C->ma[t] >> r & 1) {
+        if (B[r].pmax > pm) pm = B[r].pmax;
+        if (B[r].multi || (B[r].body0 >= 0 && B[r].body0 != b)) meets = 1;
+      }
+      if (C->mb[t] >> r & 1) {
+        if (A[r].pmax > pm) pm = A[r].pmax;
+        if (A[r].multi || (A[r].body0 >= 0 && A[r].body0 != b)) meets = 1;
+      }
+    }
+    double p = C->mpn[m->tri.mat[t]];
+    if (pm < p) p = pm;
+    if (!meets || !(p > 0)) continue;
+    const int *v = m->tri.v + 3 * t;
+    double mass = INFINITY, L2 = 0;
+    for (int c = 0; c < 3; c++) {
+      if (m->node.m[v[c]] < mass) mass = m->node.m[v[c]];
+      double dx = m->node.x0[v[(c + 1) % 3]] - m->node.x0[v[c]], dy = m->node.y0[v[(c + 1) % 3]] - m->node.y0[v[c]];
+      if (dx * dx + dy * dy > L2) L2 = dx * dx + dy * dy;
+    }
+    double area = 0.5 * m->tri.d0[t];
+    if (!(mass > 0) || !(area > 0)) continue;
+    double kn = 0.75 * p * L2 / area; /* 1.5 p L / h with h = 2 A / L */
+    double d = sqrt(2.0 * mass / kn);
+    if (d < best) { best = d; which = t; pbest = p; }
+  }
+  free(jointed);
+  C->dt_limit = best;
+  if (which >= 0)
+    snprintf(C->dt_what, sizeof C->dt_what, "contact penalty %.3g Pa at triangle %d (material %s)", pbest,
+             m->tri.id[which], m->mat[m->tri.mat[which]].name);
+  else
+    C->dt_what[0] = 0;
+}
+
+void contact_prepare(YfSim *s) {
+  YfContact *C = s->contact;
+  if (!active(C)) return;
+  YfModel *m = &s->model;
+  int nt = m->tri.n, nn = m->node.n;
+  if (!C->dirty && C->prep_ntri == nt && C->prep_nn == nn && C->nmat == m->nmat) {
+    compute_stable_dt(s, C); /* masses may have changed (cheap, setup only) */
+    return;
+  }
+  free_prepared(C);
+
+  /* rule sides per triangle */
+  C->ma = yf_calloc((size_t)nt + 1, sizeof(uint64_t), "contact masks");
+  C->mb = yf_calloc((size_t)nt + 1, sizeof(uint64_t), "contact masks");
+  for (int r = 0; r < C->nrule; r++) {
+    const Rule *q = &C->rule[r];
+    uint64_t bit = (uint64_t)1 << r;
+    for (int t = 0; t < nt; t++) {
+      uint64_t g = m->tri.gmask[t];
+      if (q->ga < 0 || (g >> q->ga & 1)) C->ma[t] |= bit;
+      if (q->gb < 0 || (g >> q->gb & 1)) C->mb[t] |= bit;
+    }
+  }
+
+  /* participation */
+  unsigned char *bn = (!C->surface_all && !C->uflag) ? boundary_nodes(m) : NULL;
+  C->item = yf_malloc((size_t)(nt > 0 ? nt : 1) * sizeof(int), "contact items");
+  C->nitem = 0;
+  for (int t = 0; t < nt; t++) {
+    if (!(C->ma[t] | C->mb[t])) continue;
+    int in;
+    if (C->uflag) in = t < C->nuflag && C->uflag[t];
+    else if (bn) in = bn[m->tri.v[3 * t]] || bn[m->tri.v[3 * t + 1]] || bn[m->tri.v[3 * t + 2]];
+    else in = 1;
+    if (in) C->item[C->nitem++] = t;
+    else C->ma[t] = C->mb[t] = 0; /* not a candidate of any couple */
+  }
+  free(bn);
+
+  /* materials: penalties and friction; a deck rule needs pen_n */
+  C->nmat = m->nmat;
+  C->mpn = yf_malloc((size_t)(m->nmat + 1) * sizeof(double), "contact materials");
+  C->mpt = yf_malloc((size_t)(m->nmat + 1) * sizeof(double), "contact materials");
+  C->mmu = yf_malloc((size_t)(m->nmat + 1) * sizeof(double), "contact materials");
+  for (int i = 0; i < m->nmat; i++) {
+    C->mpn[i] = m->mat[i].pen_n;
+    C->mpt[i] = m->mat[i].pen_t;
+    C->mmu[i] = m->mat[i].fric;
+  }
+  for (int k = 0; k < C->nitem; k++) {
+    int t = C->item[k];
+    const YfMaterial *mt = &m->mat[m->tri.mat[t]];
+    if (mt->pen_n > 0) continue;
+    for (int r = 0; r < C->nrule; r++)
+      if (C->rule[r].native && ((C->ma[t] | C->mb[t]) >> r & 1))
+        yf_deck_error(C->rule[r].loc.file ? &C->rule[r].loc : NULL,
+                      "contact: material '%s' (triangle %d) has no normal contact penalty: add 'pen_n P' [Pa] "
+                      "(typically 1-10 x E) to its material command", mt->name, m->tri.id[t]);
+  }
+
+  /* participating nodes (increasing) and the auto buffer */
+  unsigned char *mark = yf_calloc((size_t)nn + 1, 1, "contact nodes");
+  double hmin = INFINITY;
+  for (int k = 0; k < C->nitem; k++) {
+    const int *v = m->tri.v + 3 * C->item[k];
+    for (int c = 0; c < 3; c++) {
+      mark[v[c]] = 1;
+      int p = v[c], q = v[(c + 1) % 3];
+      double L = hypot(m->node.x0[q] - m->node.x0[p], m->node.y0[q] - m->node.y0[p]);
+      if (L < hmin) hmin = L;
+    }
+  }
+  C->pnode = yf_malloc((size_t)(nn > 0 ? nn : 1) * sizeof(int), "contact nodes");
+  C->npn = 0;
+  for (int i = 0; i < nn; i++)
+    if (mark[i]) C->pnode[C->npn++] = i;
+  free(mark);
+  C->buffer = C->buffer_auto ? (isfinite(hmin) ? BUFFER_FRAC * hmin : 0.0) : C->buffer_set;
+
+  /* joined couples (skip mode) */
+  if (C->joined_skip && s->joints && s->joints->n) {
+    const YfJoints *J = s->joints;
+    C->jpart = yf_malloc((size_t)3 * (nt > 0 ? nt : 1) * sizeof(int), "contact joined");
+    C->jidx = yf_malloc((size_t)3 * (nt > 0 ? nt : 1) * sizeof(int), "contact joined");
+    for (int k = 0; k < 3 * nt; k++) C->jpart[k] = C->jidx[k] = -1;
+    for (int j = 0; j < J->n; j++)
+      for (int side = 0; side < 2; side++) {
+        int t = J->tri[2 * j + side], o = J->tri[2 * j + 1 - side];
+        for (int k = 0; k < 3; k++)
+          if (C->jpart[3 * t + k] < 0) {
+            C->jpart[3 * t + k] = o;
+            C->jidx[3 * t + k] = j;
+            break;
+          }
+      }
+    C->jstate = J->state;
+    C->broken_seen = joints_broken(s);
+  }
+
+  C->cx = yf_malloc((size_t)(C->nitem + 1) * sizeof(double), "contact bounds");
+  C->cy = yf_malloc((size_t)(C->nitem + 1) * sizeof(double), "contact bounds");
+  C->cr = yf_malloc((size_t)(C->nitem + 1) * sizeof(double), "contact bounds");
+  if (C->cap_nodes < nn) {
+    C->tcount = yf_realloc(C->tcount, (size_t)nn * sizeof(int), "contact gather");
+    C->fcn = yf_realloc(C->fcn, (size_t)2 * nn * sizeof(double), "contact node forces");
+    C->cap_nodes = nn;
+  }
+  memset(C->tcount, 0, (size_t)nn * sizeof(int));
+  memset(C->fcn, 0, (size_t)2 * nn * sizeof(double));
+  C->fcn_valid = 0;
+
+  compute_stable_dt(s, C);
+  /* the first step after a (re)setup searches; couples of the old list that still pass keep
+   * their friction memory through the merge (triangle indices do not change) */
+  contact_trigger_init(&C->trig, C->buffer, 1e15);
+  C->force_search = 1;
+  C->ntouch = 0;
+  C->prep_ntri = nt;
+  C->prep_nn = nn;
+  C->dirty = 0;
+  sim_printf(s, "contact: %d rule%s, %d of %d triangles take part, buffer %.4g m%s\n", C->nrule,
+             C->nrule > 1 ? "s" : "", C->nitem, nt, C->buffer, C->joined_skip ? ", joined couples skipped" : "");
+}
+
+double contact_stable_dt(YfSim *s, char *what, size_t n) {
+  YfContact *C = s->contact;
+  if (!active(C) || !isfinite(C->dt_limit)) {
+    if (what && n) what[0] = 0;
+    return INFINITY;
+  }
+  if (what && n) snprintf(what, n, "%s", C->dt_what);
+  return C->dt_limit;
+}
+
+/* ---------------------------------------------------------------- detection */
+
+/* Node gather lists of the current couple list (all couples; dead ones have zero slots). */
+static void build_gather(YfSim *s, YfContact *C) {
+  const int *tv = s->model.tri.v;
+  int np = C->pairs.n;
+  const int *ij = C->pairs.ij;
+  int *cnt = C->tcount;
+  for (int k = 0; k < np; k++) {
+    const int *va = tv + 3 * ij[2 * k + 1], *vb = tv + 3 * ij[2 * k];
+    for (int c = 0; c < 3; c++) { cnt[va[c]]++; cnt[vb[c]]++; }
+  }
+  if (C->cap_touch < C->npn + 1) {
+    C->cap_touch = C->npn + 1;
+    C->touch = yf_realloc(C->touch, (size_t)C->cap_touch * sizeof(int), "contact gather");
+    C->toff = yf_realloc(C->toff, (size_t)(C->cap_touch + 1) * sizeof(int), "contact gather");
+  }
+  /* forces of nodes touched before but not now must read zero (the others keep the value of
+   * the last step until the next gather rewrites them) */
+  for (int t = 0; t < C->ntouch; t++)
+    if (!cnt[C->touch[t]]) C->fcn[2 * C->touch[t]] = C->fcn[2 * C->touch[t] + 1] = 0.0;
+  int nt = 0, off = 0;
+  for (int k = 0; k < C->npn; k++) {
+    int i = C->pnode[k];
+    if (!cnt[i]) continue;
+    C->touch[nt] = i;
+    C->toff[nt] = off;
+    off += cnt[i];
+    cnt[i] = C->toff[nt]; /* fill pointer */
+    nt++;
+  }
+  C->toff[nt] = off;
+  C->ntouch = nt;
+  if (C->cap_tslot < off) {
+    C->cap_tslot = off + off / 4 + 64;
+    C->tslot = yf_realloc(C->tslot, (size_t)C->cap_tslot * sizeof(int), "contact gather");
+  }
+  for (int k = 0; k < np; k++) {
+    const int *va = tv + 3 * ij[2 * k + 1], *vb = tv + 3 * ij[2 * k];
+    for (int c = 0; c < 3; c++) C->tslot[cnt[va[c]]++] = 6 * k + c;
+    for (int c = 0; c < 3; c++) C->tslot[cnt[vb[c]]++] = 6 * k + 3 + c;
+  }
+  for (int t = 0; t < nt; t++) cnt[C->touch[t]] = 0;
+}
+
+/* Room for the per-couple arrays of n couples. */
+static void couple_arrays(YfContact *C, int n) {
+  if (C->cap_alive < n) {
+    C->cap_alive = n + n / 4 + 64;
+    C->alive = yf_realloc(C->alive, (size_t)C->cap_alive, "contact couples");
+  }
+  if (C->cap_pf < (size_t)n * 12) {
+    C->cap_pf = ((size_t)n + (size_t)n / 4 + 64) * 12;
+    free(C->pf);
+    C->pf = yf_malloc(C->cap_pf * sizeof(double), "contact couple forces");
+  }
+  int nblk = (n + PAIR_BLK - 1) / PAIR_BLK;
+  if (C->cap_blk < nblk + 1) {
+    C->cap_blk = nblk + nblk / 4 + 16;
+    C->blk_e = yf_realloc(C->blk_e, (size_t)C->cap_blk * sizeof(double), "contact blocks");
+    C->blk_d = yf_realloc(C->blk_d, (size_t)C->cap_blk * sizeof(double), "contact blocks");
+    C->blk_rm = yf_realloc(C->blk_rm, (size_t)C->cap_blk * sizeof(int), "contact blocks");
+  }
+}
+
+static void search(YfSim *s, YfContact *C) {
+  const YfModel *m = &s->model;
+  contact_search_bounds(C->nitem, C->item, m->tri.v, m->node.x, m->node.y, C->cx, C->cy, C->cr);
+  /* couples dropped since the last search are forgotten (their friction memory too) */
+  if (C->ndead) contact_pairs_compact(&C->pairs, C->alive);
+  YfSearchFilter f = {0};
+  f.mask = C->ma;
+  f.mask2 = C->mb;
+  f.tri_v = C->keep_shared ? NULL : m->tri.v;
+  if (C->jpart) {
+    f.keep = joined_keep;
+    f.ctx = C;
+  }
+  contact_search(&C->work, C->nitem, C->item, C->cx, C->cy, C->cr, C->buffer, &f, &C->fresh);
+  contact_search_merge(&C->pairs, &C->fresh);
+  YfPairs tmp = C->pairs;
+  C->pairs = C->fresh;
+  C->fresh = tmp;
+  int n = C->pairs.n;
+  couple_arrays(C, n);
+  memset(C->alive, 1, (size_t)n);
+  memset(C->pf, 0, (size_t)n * 12 * sizeof(double));
+  C->nlive = n;
+  C->ndead = 0;
+  build_gather(s, C);
+  C->nsearch++;
+}
+
+/* ---------------------------------------------------------------- the step */
+
+void contact_step(YfSim *s) {
+  YfContact *C = s->contact;
+  if (!active(C)) return;
+  double t0 = now();
+  YfModel *m = &s->model;
+  YfNodes *nd = &m->node;
+  const double dt = s->dt;
+
+  /* detection (ALGORITHMS 5): travel of the previous half step's velocities */
+  double vmax2 = contact_vmax2(C->npn, C->pnode, nd->vx, nd->vy);
+  int due = contact_trigger_step(&C->trig, dt, vmax2);
+  if (C->jpart) {
+    long nb = joints_broken(s);
+    if (nb != C->broken_seen) { due = 1; C->broken_seen = nb; } /* newly free faces must see each other now */
+  }
+  if (due || C->force_search || C->search_every) {
+    if (!due) C->trig.travel = 0.0;
+    search(s, C);
+    C->force_search = 0;
+  }
+  double t1 = now();
+  yf_stage_time[YF_ST_DETECT] += t1 - t0;
+
+  /* forces: one slot per couple, parallel over fixed blocks */
+  const int np = C->pairs.n, nblk = (np + PAIR_BLK - 1) / PAIR_BLK;
+  const int *ij = C->pairs.ij, *tv = m->tri.v, *tmat = m->tri.mat;
+  double *gmem = C->pairs.g, *pf = C->pf;
+  unsigned char *alive = C->alive;
+  const double *x = nd->x, *y = nd->y, *vx = nd->vx, *vy = nd->vy;
+  const double *mpn = C->mpn, *mpt = C->mpt, *mmu = C->mmu;
+  const double rem2 = 4.0 * C->buffer * C->buffer;
+  #pragma omp parallel for schedule(static) if (np >= C->par_min && nblk > 1)
+  for (int b = 0; b < nblk; b++) {
+    int k1 = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np;
+    double e = 0.0, d = 0.0;
+    int rm = 0;
+    for (int k = b * PAIR_BLK; k < k1; k++) {
+      if (!alive[k]) continue;
+      int ti = ij[2 * k], tj = ij[2 * k + 1];
+      const int *va = tv + 3 * tj, *vb = tv + 3 * ti; /* A = the larger index (Y2D's order) */
+      double xa[3], ya[3], vxa[3], vya[3], xb[3], yb[3], vxb[3], vyb[3];
+      for (int c = 0; c < 3; c++) {
+        xa[c] = x[va[c]]; ya[c] = y[va[c]]; vxa[c] = vx[va[c]]; vya[c] = vy[va[c]];
+        xb[c] = x[vb[c]]; yb[c] = y[vb[c]]; vxb[c] = vx[vb[c]]; vyb[c] = vy[vb[c]];
+      }
+      int ma = tmat[tj], mb = tmat[ti];
+      double pn = mpn[ma] < mpn[mb] ? mpn[ma] : mpn[mb];
+      double pt = mpt[ma] < mpt[mb] ? mpt[ma] : mpt[mb];
+      double mu = mmu[ma] < mmu[mb] ? mmu[ma] : mmu[mb];
+      double *fa = pf + 12 * (size_t)k, *fb = fa + 6;
+      for (int c = 0; c < 12; c++) fa[c] = 0.0;
+      YfContactInfo info = {0, 0, 0, 0, 0, 0};
+      double d2;
+      int hit = contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, pn, pt, mu, dt, gmem + 6 * (size_t)k, fa, fb,
+                                   &d2, &info);
+      e += info.energy;
+      d += info.dissip;
+      if (!hit && d2 > rem2) { alive[k] = 0; rm++; }
+    }
+    C->blk_e[b] = e;
+    C->blk_d[b] = d;
+    C->blk_rm[b] = rm;
+  }
+  double esum = 0.0, dsum = 0.0;
+  int removed = 0;
+  for (int b = 0; b < nblk; b++) {
+    esum += C->blk_e[b];
+    dsum += C->blk_d[b];
+    removed += C->blk_rm[b];
+  }
+  s->energy.contact = esum;
+  s->energy.friction += dsum;
+
+  /* gather: each touched node sums its slots in couple order */
+  const int ntouch = C->ntouch, *touch = C->touch, *toff = C->toff, *tslot = C->tslot;
+  double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
+  #pragma omp parallel for schedule(static) if (ntouch >= C->par_min && ntouch >= 2 * PAIR_BLK)
+  for (int t = 0; t < ntouch; t++) {
+    int i = touch[t];
+    double sx = 0.0, sy = 0.0;
+    for (int q = toff[t]; q < toff[t + 1]; q++) {
+      const double *f = pf + 2 * (size_t)tslot[q];
+      sx += f[0];
+      sy += f[1];
+    }
+    fcn[2 * i] = sx;
+    fcn[2 * i + 1] = sy;
+    fx[i] += sx;
+    fy[i] += sy;
+  }
+  C->fcn_valid = 1;
+
+  /* dropped couples: compact once a quarter of the list is dead */
+  C->nlive -= removed;
+  C->ndead += removed;
+  if (C->ndead > 0 && 4 * C->ndead > C->pairs.n) {
+    contact_pairs_compact(&C->pairs, C->alive);
+    memset(C->alive, 1, (size_t)C->pairs.n);
+    C->ndead = 0;
+    /* slots are rewritten before they are read again, except the dead ones: none now */
+    build_gather(s, C);
+  }
+  yf_stage_time[YF_ST_CONTACT] += now() - t1;
+}
