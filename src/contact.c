@@ -718,7 +718,7 @@ void contact_step(YfSim *s) {
   /* gather: each touched node sums its slots in couple order */
   const int ntouch = C->ntouch, *touch = C->touch, *toff = C->toff, *tslot = C->tslot;
   double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
-  #pragma omp parallel for schedule(static) if (ntouch >= C->par_min && ntouch >= 2 * PAIR_BLK)
+  #pragma omp parallel for schedule(static) if (ntouch >= C->par_min)
   for (int t = 0; t < ntouch; t++) {
     int i = touch[t];
     double sx = 0.0, sy = 0.0;

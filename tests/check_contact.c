@@ -12,6 +12,8 @@
 #include "joint.h"
 #include "run.h"
 #include "summary.h"
+#include "y2d_model.h"
+#include "y2d_read.h"
 #include "yftest.h"
 
 static void quiet(void) { (void)!freopen("/dev/null", "w", stdout); }
@@ -249,6 +251,244 @@ START_TEST(test_resting_penetration_no_jitter) {
 }
 END_TEST
 
+/* ------------------------------------------------------------------ fast body, no missed couple */
+
+/* A 20 mm square (2 x 2 cells) 2 mm above a fixed plate 4 mm thick, falling at 40 m/s and spinning
+ * at 2000 rad/s (corner speed 68 m/s), frictionless.  The buffer (auto: 0.3 x 4 mm) is crossed
+ * many times between searches.  The same scene searching at every step must give bitwise the
+ * same state: a couple missing from the reused list would change the forces.  The body must
+ * bounce off the plate, not pass it. */
+static uint64_t fast_body(const char *mode, long *nsearch, double *vy_end, double *ymin) {
+  char deck[1024];
+  snprintf(deck, sizeof deck,
+           "material m elastic rho 1000 E 1e9 nu 0.25 plane_strain pen_n 1e10\n"
+           "mesh rect plate m 0 0 0.2 0.004 50 1\nfix hold plate fixed xy\n"
+           "mesh rect bullet m 0.09 0.006 0.11 0.026 2 2\ncontact pair bullet plate\ncontact search %s\n"
+           "timestep auto\nrun 0\n", mode);
+  YfSim *s = yft_run(deck);
+  YfNodes *n = &s->model.node;
+  int gb = model_group(&s->model, "bullet", 0);
+  for (int i = 0; i < n->n; i++)
+    if (n->gmask[i] >> gb & 1) {
+      double rx = n->x[i] - 0.1, ry = n->y[i] - 0.016, w = 2000;
+      n->vx[i] = -w * ry;
+      n->vy[i] = -40 + w * rx;
+    }
+  *ymin = INFINITY;
+  for (int k = 0; k < 30; k++) {
+    run_steps(s, 50);
+    Stat b = gstat(s, "bullet");
+    if (b.ymin < *ymin) *ymin = b.ymin;
+  }
+  *vy_end = gstat(s, "bullet").py / gstat(s, "bullet").m;
+  *nsearch = contact_searches(s);
+  return sim_state_hash(s);
+}
+
+START_TEST(test_fast_body_no_missed_couple) {
+  quiet();
+  long ns_t, ns_e;
+  double vy_t, vy_e, ymin_t, ymin_e;
+  uint64_t h_t = fast_body("travel", &ns_t, &vy_t, &ymin_t);
+  uint64_t h_e = fast_body("every", &ns_e, &vy_e, &ymin_e);
+  fprintf(stderr, "fast body: searches %ld (travel) vs %ld (every step), lowest point %.4g m, final vy %.3g m/s, "
+          "hashes %016llx %016llx\n", ns_t, ns_e, ymin_t, vy_t, (unsigned long long)h_t, (unsigned long long)h_e);
+  ck_assert_msg(h_t == h_e, "reusing the couple list changed the result");
+  ck_assert_int_lt(10 * ns_t, ns_e); /* the list was really reused */
+  ck_assert_double_gt(ymin_t, 0.004 - 0.001); /* stopped at the plate's surface (4 mm), overlap < 1 mm */
+  ck_assert_double_gt(vy_t, 10.0);            /* and bounced */
+}
+END_TEST
+
+/* ------------------------------------------------------------------ dense pack of fragments */
+
+/* A 12 x 12-cell fracturing block with weak joints on a fixed floor, struck by a heavy hammer at
+ * 20 m/s, friction 0.5: fragments, joined neighbours pressed together, sliding.  Every couple's
+ * forces are equal and opposite (the reaction is spread with weights that sum to 1), so the sum
+ * of all contact forces over the nodes vanishes to round-off: below 1e-12 of the largest nodal
+ * contact force (round-off of ~1e4 terms of 1e-16 each), at every sampled step. */
+static YfSim *pack_scene(void) {
+  return yft_run("material m elastic rho 2000 E 1e9 nu 0.2 plane_strain pen_n 1e10 pen_t 1e10 friction 0.5 damping 0.1\n"
+                 "material steel elastic rho 20000 E 2e10 nu 0.3 plane_strain pen_n 1e10 pen_t 1e10 friction 0.3\n"
+                 "jointprop j ft 2e5 fs 2e5 gf 5 pen 1e10\n"
+                 "mesh rect pack m 0 0 0.06 0.06 12 12 pattern alt\nfracture pack j\n"
+                 "mesh rect floor m -0.01 -0.01 0.07 0 16 2\nfix hold floor fixed xy\n"
+                 "mesh rect hammer steel 0.02 0.0605 0.04 0.0705 4 2\nvelocity hammer set 0 -20\n"
+                 "contact self pack\ncontact pair pack floor\ncontact pair hammer pack\n"
+                 "gravity 0 -9.81\ntimestep auto\nrun 0\n");
+}
+
+START_TEST(test_pack_forces_sum_to_zero) {
+  quiet();
+  YfSim *s = pack_scene();
+  double worst = 0, fmax_all = 0;
+  long maxpairs = 0;
+  for (int k = 0; k < 30; k++) {
+    run_steps(s, 40);
+    const double *f = contact_node_forces(s);
+    ck_assert_ptr_nonnull(f);
+    double sx = 0, sy = 0, fmax = 0;
+    for (int i = 0; i < s->model.node.n; i++) {
+      sx += f[2 * i];
+      sy += f[2 * i + 1];
+      double a = hypot(f[2 * i], f[2 * i + 1]);
+      if (a > fmax) fmax = a;
+    }
+    if (fmax > 0 && hypot(sx, sy) / fmax > worst) worst = hypot(sx, sy) / fmax;
+    if (fmax > fmax_all) fmax_all = fmax;
+    if (contact_pairs(s) > maxpairs) maxpairs = contact_pairs(s);
+  }
+  fprintf(stderr, "pack: |sum f| / max|f| <= %.3g, max nodal contact force %.3g N/m, %ld couples, %ld joints broken\n",
+          worst, fmax_all, maxpairs, joints_broken(s));
+  ck_assert_double_gt(fmax_all, 0);
+  ck_assert_int_gt(joints_broken(s), 0);
+  ck_assert_double_le(worst, 1e-12);
+}
+END_TEST
+
+/* The same scene with every parallel threshold at 0 (forced team work in the search, the couple
+ * blocks and the joints): 1 and 2 threads must give the same state hash after 600 steps. */
+START_TEST(test_threads_bitwise) {
+  quiet();
+  uint64_t h[2];
+  for (int t = 0; t < 2; t++) {
+    omp_set_num_threads(t + 1);
+    YfSim *s = pack_scene();
+    contact_set_par_min(s, 0);
+    joints_set_par_min(0);
+    run_steps(s, 600);
+    ck_assert_int_gt(contact_pairs(s), 1024); /* several couple blocks */
+    h[t] = sim_state_hash(s);
+    fprintf(stderr, "threads %d: hash %016llx, %ld couples, %ld searches\n", t + 1, (unsigned long long)h[t],
+            contact_pairs(s), contact_searches(s));
+  }
+  joints_set_par_min(4096);
+  ck_assert_msg(h[0] == h[1], "1 and 2 threads differ");
+}
+END_TEST
+
+/* ------------------------------------------------------------------ Y2D reference deck (a) */
+
+/* Reference deck (a) (elastic block falling on a base, contact, no friction) with contact switched
+ * on through the API read_y2d uses (every triangle with a boundary-flagged node, DIEZON, couples
+ * sharing a node kept): displacements at step 1000 (mid-impact) within 1e-8 of the largest, the
+ * tolerance of shared/y2d/README.md 4.2. */
+START_TEST(test_y2d_deck_a_api) {
+  quiet();
+  YfSim *s = yft_run("print loading\n");
+  y2d_load(s, "tests/y2d/decks/a_elastic_block.y", 0.5, NULL);
+  const YfY2d *y = s->y2d->deck;
+  YfModel *m = &s->model;
+  unsigned char *flag = calloc((size_t)m->tri.n + 1, 1);
+  for (int e = 0; e < s->y2d->ntri; e++) {
+    int in = y->iwfast == 0;
+    for (int c = 0; c < 3; c++) in |= y->i1nobf[y->i2elto[(long)e * y->melno + c]] == 1;
+    flag[s->y2d->tri0 + e] = (unsigned char)in;
+  }
+  contact_enable_all(s, y->diezon);
+  contact_set_participation(s, flag, m->tri.n);
+  free(flag);
+  run_steps(s, 1000);
+  FILE *f = fopen("tests/y2d/ref/a_elastic_block/corners_0001000.csv", "r");
+  ck_assert_ptr_nonnull(f);
+  char line[512];
+  ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
+  double umax = 0, dev = 0;
+  int rows = 0;
+  int e, c, nd;
+  double ux, uy, vx, vy;
+  while (fscanf(f, "%d,%d,%d,%lf,%lf,%lf,%lf", &e, &c, &nd, &ux, &uy, &vx, &vy) == 7) {
+    int i = m->tri.v[3 * (s->y2d->tri0 + e) + c];
+    double dx = m->node.x[i] - m->node.x0[i] - ux, dy = m->node.y[i] - m->node.y0[i] - uy;
+    if (hypot(ux, uy) > umax) umax = hypot(ux, uy);
+    if (hypot(dx, dy) > dev) dev = hypot(dx, dy);
+    rows++;
+  }
+  fclose(f);
+  fprintf(stderr, "y2d deck a via the API: step 1000 deviation %.3g of max |u| %.3g (%d corners), %ld couples\n",
+          dev / umax, umax, rows, contact_pairs(s));
+  ck_assert_int_eq(rows, 3 * 736);
+  ck_assert_double_le(dev, 1e-8 * umax);
+}
+END_TEST
+
+/* ------------------------------------------------------------------ deck interface */
+
+static const char *TWO = "material m elastic rho 1000 E 1e8 nu 0.25 plane_strain pen_n 1e9\n"
+                         "mesh rect a m 0 0 0.1 0.05 8 4\nmesh rect b m 0.102 0 0.202 0.05 8 4\n";
+
+/* Participation: with `surface boundary` a triangle takes part when one of its nodes is on a free
+ * boundary: for an nx x ny grid every triangle of the border cells, 2 (nx ny - (nx-2)(ny-2)) = 40
+ * of 64 per block; `surface all` takes all.  No contact command: no contact state at all;
+ * `contact off` forgets everything. */
+START_TEST(test_participation_and_off) {
+  quiet();
+  char deck[1024];
+  snprintf(deck, sizeof deck, "%scontact pair a b\ntimestep auto\nrun 1\n", TWO);
+  YfSim *s = yft_run(deck);
+  ck_assert_int_eq(contact_participants(s), 80);
+  ck_assert_double_eq_tol(contact_buffer(s), 0.3 * 0.0125, 1e-15);
+  snprintf(deck, sizeof deck, "%scontact pair a b\ncontact surface all buffer 0.002\ntimestep auto\nrun 1\n", TWO);
+  s = yft_run(deck);
+  ck_assert_int_eq(contact_participants(s), 128);
+  ck_assert_double_eq(contact_buffer(s), 0.002);
+  ck_assert_int_gt(contact_pairs(s), 0);
+  snprintf(deck, sizeof deck, "%stimestep auto\nrun 1\n", TWO);
+  s = yft_run(deck);
+  ck_assert_ptr_null(s->contact);
+  ck_assert_int_eq(contact_pairs(s), 0);
+  snprintf(deck, sizeof deck, "%scontact pair a b\ntimestep auto\nrun 1\ncontact off\nrun 1\n", TWO);
+  s = yft_run(deck);
+  ck_assert_ptr_null(s->contact);
+  ck_assert_double_eq(s->energy.contact, 0.0);
+}
+END_TEST
+
+/* Joined couples: in a fracturing body every joint's two triangles are a couple at distance 0
+ * (never dropped); `joined skip` leaves out exactly those while the joints are intact. */
+START_TEST(test_joined_skip_counts) {
+  quiet();
+  long np[2], nj = 0;
+  for (int k = 0; k < 2; k++) {
+    char deck[1024];
+    snprintf(deck, sizeof deck,
+             "material m elastic rho 1000 E 1e8 nu 0.25 plane_strain pen_n 1e9\n"
+             "jointprop j ft 1e6 fs 1e6 gf 10 pen 1e9\nmesh rect p m 0 0 0.06 0.04 6 4\nfracture p j\n"
+             "contact self p\ncontact joined %s\ntimestep auto\nrun 1\n", k ? "skip" : "keep");
+    YfSim *s = yft_run(deck);
+    np[k] = contact_pairs(s);
+    nj = joints_count(s);
+    ck_assert_int_eq(joints_broken(s), 0);
+  }
+  ck_assert_int_eq(nj, 3 * 6 * 4 - 6 - 4); /* internal edges of a 6 x 4 right-diagonal grid */
+  ck_assert_int_eq(np[0] - np[1], nj);
+}
+END_TEST
+
+/* Deck errors: a material without pen_n in a contact rule, a group that does not exist, a bad
+ * option value; each names the place and the word. */
+START_TEST(test_deck_errors) {
+  struct { const char *deck, *want1, *want2; } cases[] = {
+      {"material m elastic rho 1000 E 1e8 nu 0.25 plane_strain\nmesh rect a m 0 0 1 1 2 2\n"
+       "mesh rect b m 2 0 3 1 2 2\ncontact pair a b\n", "bad.deck:4", "pen_n"},
+      {"material m elastic rho 1000 E 1e8 nu 0.25 plane_strain pen_n 1e9\nmesh rect a m 0 0 1 1 2 2\n"
+       "contact pair a nope\n", "nope", "defined: a"},
+      {"material m elastic rho 1000 E 1e8 nu 0.25 plane_strain pen_n 1e9\nmesh rect a m 0 0 1 1 2 2\n"
+       "contact buffer -1\n", "bad.deck:3", "-1"},
+      {"material m elastic rho 1000 E 1e8 nu 0.25 plane_strain pen_n 1e9\nmesh rect a m 0 0 1 1 2 2\n"
+       "contact joined maybe\n", "maybe", "skip"},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    char *err = NULL, *dir = NULL;
+    int rc = yft_run_binary("bad.deck", cases[i].deck, NULL, &err, &dir);
+    ck_assert_msg(rc == 1, "case %zu: exit %d (%s)", i, rc, err ? err : "");
+    ck_assert_msg(strstr(err, cases[i].want1) && strstr(err, cases[i].want2), "case %zu: %s", i, err);
+    free(err);
+    free(dir);
+  }
+}
+END_TEST
+
 Suite *contact_suite(void) {
   Suite *s = suite_create("contact");
   TCase *t = tcase_create("physics");
@@ -258,6 +498,13 @@ Suite *contact_suite(void) {
   tcase_add_test(t, test_incline_sticks);
   tcase_add_test(t, test_incline_slides);
   tcase_add_test(t, test_resting_penetration_no_jitter);
+  tcase_add_test(t, test_fast_body_no_missed_couple);
+  tcase_add_test(t, test_pack_forces_sum_to_zero);
+  tcase_add_test(t, test_threads_bitwise);
+  tcase_add_test(t, test_y2d_deck_a_api);
+  tcase_add_test(t, test_participation_and_off);
+  tcase_add_test(t, test_joined_skip_counts);
+  tcase_add_test(t, test_deck_errors);
   suite_add_tcase(s, t);
   return s;
 }
