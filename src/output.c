@@ -7,6 +7,7 @@
  *   /mesh_NNNN/...                                  a later topology (output_topology_changed)
  *   /frames/NNNNNN/{time, step (scalars), x, u, v, f (n x 2), stress (ntri x 3: sxx syy sxy),
  *                   vonmises, sigma1 (ntri)}        one group per frame, frame index NNNNNN
+ *                  fc (n x 2): contact force per node, only in frames written while contact is on
  *
  * Datasets are contiguous and uncompressed by default: a frame is then one write per array,
  * which keeps a 1e5-triangle frame well under the cost of ten steps.  `compress` switches to
@@ -44,6 +45,7 @@
 #include <unistd.h>
 #include <hdf5.h>
 #include "output.h"
+#include "contact.h"
 #include "err.h"
 #include "y2dref.h"
 
@@ -76,7 +78,7 @@ typedef struct YfDump {
 } YfDump;
 
 static const char *const field_names[] = {"u", "v", "f", "stress", "vonmises", "sigma1",
-                                          "material", "body", "x", NULL};
+                                          "material", "body", "fc", "x", NULL};
 
 /* ---------------------------------------------------------------- small helpers */
 
@@ -303,7 +305,7 @@ static void xmf_attr(YfDump *d, const char *fname, const char *name, const char 
 }
 
 /* Append the <Grid> of the frame just written. */
-static void xmf_add_frame(YfDump *d, const char *frame, double time, long step, int n, int nt) {
+static void xmf_add_frame(YfDump *d, const char *frame, double time, long step, int n, int nt, int with_fc) {
   char fname[1024], mesh[32], p[128], dn2[48], dt3[48], dt1[48];
   xml_escape(fname, sizeof fname, d->h5name);
   mesh_name(mesh, sizeof mesh, d->topo);
@@ -331,6 +333,10 @@ static void xmf_add_frame(YfDump *d, const char *frame, double time, long step, 
     snprintf(p, sizeof p, "/frames/%s/%s", frame, attrs[i].name);
     xmf_attr(d, fname, attrs[i].name, attrs[i].type, attrs[i].center,
              attrs[i].dims == 2 ? dn2 : attrs[i].dims == 3 ? dt3 : dt1, 0, p);
+  }
+  if (with_fc) {
+    snprintf(p, sizeof p, "/frames/%s/fc", frame);
+    xmf_attr(d, fname, "fc", "Vector", "Node", dn2, 0, p);
   }
   if (d->fields & YF_FIELD_MATERIAL) {
     snprintf(p, sizeof p, "/%s/material", mesh);
@@ -428,10 +434,13 @@ static void h5_frame(YfSim *s, YfDump *d) {
     }
     h5_put(d, g, "sigma1", H5T_NATIVE_DOUBLE, 1, dt1, b);
   }
+  /* contact force per node: only while contact is on (else the field would be all zeros) */
+  const double *fc = (d->fields & YF_FIELD_FC) ? contact_node_forces(s) : NULL;
+  if (fc) h5_put(d, g, "fc", H5T_NATIVE_DOUBLE, 2, dn2, fc);
   if (H5Gclose(g) < 0) h5_fail(d, "close frame group");
   /* The frame must be complete in the file before the index names it. */
   if (H5Fflush(d->file, H5F_SCOPE_GLOBAL) < 0) h5_fail(d, "flush");
-  xmf_add_frame(d, frame, s->time, s->step, n, nt);
+  xmf_add_frame(d, frame, s->time, s->step, n, nt, fc != NULL);
   xmf_write(d);
 }
 
@@ -626,9 +635,9 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
       fields = 0;
       for (; i < a->n && strcmp(a->w[i], "compress") != 0; i++) {
         int k = arg_choice(a, i, "field", field_names);
-        if (k < 8) fields |= 1u << k; /* "x" (geometry) is always written */
+        if (k < 9) fields |= 1u << k; /* "x" (geometry) is always written */
       }
-      if (i == first) arg_error(a, first - 1, "expected field names after it (u v f stress vonmises sigma1 material body)");
+      if (i == first) arg_error(a, first - 1, "expected field names after it (u v f stress vonmises sigma1 material body fc)");
     } else if (style == YF_DUMP_H5 && strcmp(a->w[i], "compress") == 0) {
       compress = 1;
       i++;

@@ -28,7 +28,9 @@ enum {
   YF_FIELD_SIGMA1 = 1 << 5,   /* max principal in-plane stress (cell) [Pa]        */
   YF_FIELD_MATERIAL = 1 << 6, /* material index (cell)                            */
   YF_FIELD_BODY = 1 << 7,     /* body index (cell)                                */
-  YF_FIELD_ALL = (1 << 8) - 1
+  YF_FIELD_FC = 1 << 8,       /* contact force (node, 2 comps) [N/m]; written only
+                                 while contact is on (contact_node_forces)       */
+  YF_FIELD_ALL = (1 << 9) - 1
 };
 
 struct YfDump;

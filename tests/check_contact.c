@@ -3,6 +3,7 @@
  * penetration and its long-time stability, no missed couple for a fast body, action = reaction
  * in a dense pack, bitwise-identical results for 1 and 2 threads, and the deck interface. */
 #include <check.h>
+#include <hdf5.h>
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -444,6 +445,41 @@ START_TEST(test_participation_and_off) {
 }
 END_TEST
 
+/* HDF5 dumps carry the contact force per node (field fc) while contact is on: in a frame after
+ * the impact it is in every frame, with the node count's rows, and nonzero during the impact. */
+START_TEST(test_dump_contact_force_field) {
+  quiet();
+  char deck[2048], path[] = "/tmp/yfct_XXXXXX";
+  ck_assert_ptr_nonnull(mkdtemp(path));
+  snprintf(deck, sizeof deck, "%svelocity a set 2 0\ncontact pair a b\ntimestep auto\ndump d h5 100 %s/c.h5 fields u fc\nrun 800\n",
+           TWO, path);
+  YfSim *s = yft_run(deck);
+  char file[256];
+  snprintf(file, sizeof file, "%s/c.h5", path);
+  sim_free(s);
+  hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+  ck_assert_int_ge(f, 0);
+  double fmax = 0;
+  for (int fr = 1; fr <= 8; fr++) { /* frame 0 precedes the first contact evaluation: no fc */
+    char name[64];
+    snprintf(name, sizeof name, "/frames/%06d/fc", fr);
+    ck_assert_int_gt(H5Lexists(f, name, H5P_DEFAULT), 0);
+    hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
+    hid_t sp = H5Dget_space(d);
+    hsize_t dims[2];
+    H5Sget_simple_extent_dims(sp, dims, NULL);
+    ck_assert_int_eq((int)dims[0], 90); /* 2 blocks x 9 x 5 nodes */
+    double buf[180];
+    H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf);
+    for (int i = 0; i < 180; i++) fmax = fmax > fabs(buf[i]) ? fmax : fabs(buf[i]);
+    H5Sclose(sp);
+    H5Dclose(d);
+  }
+  H5Fclose(f);
+  ck_assert_double_gt(fmax, 0);
+}
+END_TEST
+
 /* Joined couples: in a fracturing body every joint's two triangles are a couple at distance 0
  * (never dropped); `joined skip` leaves out exactly those while the joints are intact. */
 START_TEST(test_joined_skip_counts) {
@@ -504,6 +540,7 @@ Suite *contact_suite(void) {
   tcase_add_test(t, test_y2d_deck_a_api);
   tcase_add_test(t, test_participation_and_off);
   tcase_add_test(t, test_joined_skip_counts);
+  tcase_add_test(t, test_dump_contact_force_field);
   tcase_add_test(t, test_deck_errors);
   suite_add_tcase(s, t);
   return s;
