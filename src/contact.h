@@ -90,7 +90,8 @@ void contact_set_par_min(YfSim *s, int n);
 
 /* ---- diagnostics (output, tests) ---- */
 /* Contact force of the last evaluated step per node (2 per node, fx fy) [N/m], NULL when
- * contact is off or no step has been evaluated since contact_prepare. */
+ * contact is off or no step has been evaluated since contact_prepare.  h5 dumps write it as the
+ * node field `fc` (so the frame written at the start of a run, before the first step, has none). */
 const double *contact_node_forces(const YfSim *s);
 /* Searches made so far. */
 long contact_searches(const YfSim *s);
