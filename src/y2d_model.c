@@ -304,9 +304,22 @@ static void y2d_setup_joints(YfSim *s, YfY2dRun *r, const YfY2d *y, unsigned cha
   free(jmap);
 }
 
-/* Contact between all participating triangles (FORMAT.md 5.3).  (Waiting for contact.c.) */
+/* Contact as Y2D has it (FORMAT.md 5.3, ALGORITHMS.md 5): MICOUP > 0 switches it on between every
+ * pair of participating triangles (same body and neighbours sharing nodes included), buffer
+ * DIEZON; with IWFAST > 0 only triangles with a corner whose input node has I1NOBF = 1 take part,
+ * and joint meshing flags all the new nodes of the meshed triangles. */
 static void y2d_setup_contact(YfSim *s, YfY2dRun *r, const YfY2d *y, const unsigned char *meshed) {
-  (void)s; (void)r; (void)y; (void)meshed;
+  if (y->micoup <= 0) return;
+  YfModel *m = &s->model;
+  unsigned char *flag = yf_calloc((size_t)m->tri.n + 1, 1, "contact participation");
+  for (int e = 0; e < r->ntri; e++) {
+    int in = y->iwfast == 0 || meshed[e];
+    for (int c = 0; c < 3 && !in; c++) in = y->i1nobf[y->i2elto[(long)e * y->melno + c]] == 1;
+    flag[r->tri0 + e] = (unsigned char)in;
+  }
+  contact_enable_all(s, y->diezon);
+  contact_set_participation(s, flag, m->tri.n);
+  free(flag);
 }
 
 void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from) {
