@@ -217,6 +217,20 @@ void contact_set_par_min(YfSim *s, int n) {
   if (C->work.par_min > C->par_min) C->work.par_min = C->par_min;
 }
 
+void contact_renumber_tris(YfSim *s, const int *tnew, int n) {
+  YfContact *C = s->contact;
+  if (!C) return;
+  if (C->uflag) {
+    unsigned char *u = yf_calloc((size_t)(n > C->nuflag ? n : C->nuflag) + 1, 1, "contact participation");
+    for (int t = 0; t < n && t < C->nuflag; t++) u[tnew[t]] = C->uflag[t];
+    for (int t = n; t < C->nuflag; t++) u[t] = C->uflag[t];
+    free(C->uflag);
+    C->uflag = u;
+  }
+  YF_ASSERT(C->pairs.n == 0); /* before the first search: no couple holds an index yet */
+  C->dirty = 1;
+}
+
 const double *contact_node_forces(const YfSim *s) {
   const YfContact *C = s->contact;
   return active(C) && C->fcn_valid ? C->fcn : NULL;

@@ -87,6 +87,10 @@ void contact_set_keep_shared(YfSim *s, int keep);
 /* Fewer pairs than this: the force stage runs on one thread (default 2048); also lowers the
  * search's own threshold when smaller.  Tests set 0 to force the parallel paths. */
 void contact_set_par_min(YfSim *s, int n);
+/* The triangles were renumbered (partition.c): tnew[old] = new for old < n.  Moves the
+ * participation flags of the API with their triangles and makes the next prepare start over
+ * (couples hold triangle indices: the renumbering happens before the first search only). */
+void contact_renumber_tris(YfSim *s, const int *tnew, int n);
 
 /* ---- diagnostics (output, tests) ---- */
 /* Contact force of the last evaluated step per node (2 per node, fx fy) [N/m], NULL when

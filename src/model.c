@@ -19,6 +19,7 @@ void model_free(YfModel *m) {
   free(t->xinv); free(t->d0); free(t->s); free(t->cf);
   free(m->mat); free(m->body);
   free(m->gather_off); free(m->gather_slot);
+  free(m->part_tri); free(m->tri_new);
   memset(m, 0, sizeof *m);
 }
 

@@ -100,6 +100,17 @@ typedef struct {
   const int *xslot_node;
   double *xslot_f;
   int prepared;    /* model_prepare done for the current topology               */
+  /* partition (partition.c): set by the deck's `partition`, applied once at the first run.
+   * Triangles of part p are part_tri[p]..part_tri[p+1]-1, and nodes are numbered in the order
+   * their triangles are met, so each part's data is contiguous.  tri_new maps a triangle index of
+   * before the renumbering (the order the deck made them in) to its current index (NULL: none). */
+  int part_method;   /* 0 auto, 1 metis, 2 none                                      */
+  int part_req;      /* parts asked for (0: default)                                  */
+  int part_done;     /* the renumbering has been applied (it is never redone)        */
+  int npart;         /* parts of the current order (1 when not partitioned)           */
+  int *part_tri;     /* npart + 1 triangle offsets                                    */
+  int *tri_new;      /* old triangle index -> current index, ntri_new entries          */
+  int ntri_new;
 } YfModel;
 
 void model_init(YfModel *m);

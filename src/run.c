@@ -24,14 +24,20 @@
 #include "output.h"
 #include "y2d_model.h"
 #include "summary.h"
+#include "partition.h"
 
 const char *const yf_stage_names[YF_NSTAGE] = {"elements", "joints", "detection", "contact", "gather", "update", "output"};
 double yf_stage_time[YF_NSTAGE];
 
-#define BLOCK 2048 /* triangles per block of the force loop: fixed, so sums do not depend on threads */
+static int BLOCK = 2048; /* triangles per block of the force loop: fixed, so sums do not depend on threads */
 /* Loops shorter than this run on one thread: a parallel region costs microseconds (much more on
  * a loaded machine) and results are the same bits either way. */
-#define PAR_MIN 16384
+static int PAR_MIN = 16384;
+/* Tests make small scenes run threaded (the bits must not change: check_parallel.c). */
+void run_set_par_min(int par_min, int block) {
+  PAR_MIN = par_min < 0 ? 0 : par_min;
+  if (block > 0) BLOCK = block;
+}
 
 /* Run-time state derived from the model (rebuilt by run_prepare). */
 static struct {
@@ -142,6 +148,7 @@ void run_prepare(YfSim *s) {
   if (!m->tri.n) yf_deck_error(NULL, "run: the scene has no triangles (use mesh, triangle or read_y2d first)");
   if (!m->prepared) {
     joints_insert(s); /* fracturing bodies get their own nodes per triangle and joints */
+    partition_apply(s); /* first run: METIS parts, nodes/triangles/joints renumbered part by part */
     material_consts(s);
     for (int i = 0; i < m->node.n; i++) m->node.m[i] = 0.0;
     int bad = tri_prepare(m, R.tm);

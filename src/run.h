@@ -26,5 +26,8 @@ const YfTriMat *run_tri_mats(void);
 void run_summary_update(YfSim *s);
 /* Release the loop's work arrays (at exit). */
 void run_free(void);
+/* Loops of the step shorter than par_min run on one thread; block = triangles per block of the
+ * force loop (default 16384 and 2048; tests lower them to run small scenes threaded). */
+void run_set_par_min(int par_min, int block);
 
 #endif

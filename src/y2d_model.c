@@ -31,6 +31,7 @@
 #include "err.h"
 #include "joint.h"
 #include "run.h"
+#include "partition.h"
 
 static YfY2d *deck_of(const YfY2dRun *r) { return (YfY2d *)r->deck; }
 
@@ -38,7 +39,7 @@ static YfY2d *deck_of(const YfY2dRun *r) { return (YfY2d *)r->deck; }
 
 int y2d_tri_of_elem(const YfSim *s, long e) {
   if (e < 0) return -1;
-  if (s->y2d) return e < s->y2d->ntri ? s->y2d->tri0 + (int)e : -1;
+  if (s->y2d) return e < s->y2d->ntri ? partition_tri(&s->model, s->y2d->tri0 + (int)e) : -1; /* through the renumbering */
   for (int t = 0; t < s->model.tri.n; t++)
     if (s->model.tri.id[t] == e) return t;
   return -1;
@@ -87,7 +88,7 @@ static void resolve(YfSim *s, YfY2dRun *r) {
   r->nle = 0;
   r->le = yf_malloc((size_t)(6 * r->ntri + 2) * sizeof(int), "y2d loaded edges");
   for (int e = 0; e < r->ntri; e++) {
-    int t = r->tri0 + e;
+    int t = partition_tri(m, r->tri0 + e);
     const int *v = m->tri.v + 3 * t;
     for (int j = 0; j < 3; j++) {
       int a = r->set[v[j]], b = r->set[v[(j + 1) % 3]];

@@ -20,6 +20,7 @@
 #include "elem_tri.h"
 #include "run.h"
 #include "y2d_model.h"
+#include "partition.h"
 
 typedef struct YfY2dRef {
   char *dir;
@@ -144,9 +145,11 @@ static void write_corners(YfSim *s, YfY2dRef *r) {
   fputs("elem,corner,node,ux,uy,vx,vy\n", f);
   const YfNodes *n = &s->model.node;
   const YfTris *t = &s->model.tri;
+  /* rows in input element order (the partition may have renumbered the triangles) */
   int e0 = s->y2d ? s->y2d->tri0 : 0, e1 = s->y2d ? s->y2d->tri0 + s->y2d->ntri : t->n;
-  for (int e = e0; e < e1; e++)
+  for (int eo = e0; eo < e1; eo++)
     for (int c = 0; c < 3; c++) {
+      int e = partition_tri(&s->model, eo);
       int i = t->v[3 * e + c];
       fprintf(f, "%d,%d,%d,%.16e,%.16e,%.16e,%.16e\n", t->id[e], c, y2d_input_node(s, i), n->x[i] - n->x0[i],
               n->y[i] - n->y0[i], n->vx[i], n->vy[i]);

@@ -1,0 +1,220 @@
+/* check_parallel.c: the same bits on any thread count, and the METIS renumbering changes nothing
+ * but the order of sums.
+ *
+ * The scene: a fracturing block (own nodes per triangle, a joint on every internal edge) that
+ * starts touching a fixed base at 20 m/s, with contact between the fragments and with the base:
+ * every stage of the step (elements, joints and breaks, detection, contact forces, gather,
+ * supports, update) is exercised.  The loops' single-thread thresholds are lowered to 0 and the
+ * triangle blocks to 64 so that a small scene runs threaded.
+ */
+#include <check.h>
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "contact.h"
+#include "joint.h"
+#include "partition.h"
+#include "run.h"
+#include "summary.h"
+#include "yftest.h"
+
+static void quiet(void) { freopen("/dev/null", "w", stdout); }
+
+#define SCENE(part)                                                                                      \
+  part "material m elastic rho 2340 E 26e9 nu 0.18 plane_stress pen_n 1e11 pen_t 1e10 friction 0.5\n"   \
+       "jointprop j ft 3.15e6 fs 3.15e6 gf 30 pen 1e11\n"                                              \
+       "mesh rect block m 0 0 0.02 0.01 20 10 pattern right\nfracture block j\n"                      \
+       "mesh rect base m -0.005 -0.002 0.025 0 15 2 pattern right\n"                                   \
+       "fix hold base fixed xy\nvelocity block set 3 -20.0\n"                                          \
+       "contact self block\ncontact pair block base\ntimestep auto safety 0.5\nthermo 0\n"
+
+typedef struct {
+  uint64_t hash;
+  long broken, pairs;
+} Run;
+
+static Run run_threads(const char *deck, int threads, long steps) {
+  YfSim *s = yft_run(deck);
+  run_set_par_min(0, 64);
+  joints_set_par_min(0);
+  contact_set_par_min(s, 0);
+  omp_set_num_threads(threads);
+  run_steps(s, steps);
+  Run r = {sim_state_hash(s), joints_broken(s), contact_pairs(s)};
+  sim_free(s);
+  omp_set_num_threads(2);
+  run_set_par_min(16384, 2048);
+  joints_set_par_min(4096);
+  return r;
+}
+
+/* 1, 2, 3 and 4 threads (3 and 4 oversubscribe two cores: short): the same state_hash, with
+ * fracture and contact active, partitioned (4 METIS parts) and not. */
+START_TEST(test_threads_bitwise) {
+  quiet();
+  const char *decks[] = {SCENE("partition metis parts 4\n"), SCENE("partition none\n")};
+  for (int d = 0; d < 2; d++) {
+    Run one = run_threads(decks[d], 1, 400);
+    ck_assert_int_gt(one.broken, 0);  /* fracture happened */
+    ck_assert_int_gt(one.pairs, 0);   /* and contact */
+    for (int t = 2; t <= 4; t++) {
+      Run r = run_threads(decks[d], t, 400);
+      ck_assert_msg(r.hash == one.hash, "deck %d: %d threads hash %016llx != 1 thread %016llx", d, t,
+                    (unsigned long long)r.hash, (unsigned long long)one.hash);
+      ck_assert_int_eq(r.broken, one.broken);
+      ck_assert_int_eq(r.pairs, one.pairs);
+    }
+  }
+}
+END_TEST
+
+/* Displacements and velocities of every triangle corner, by the triangle's index before any
+ * renumbering (the order the deck made them in). */
+static double *corner_state(const YfSim *s) {
+  int nt = s->model.tri.n;
+  double *u = malloc(sizeof(double) * 12 * nt);
+  const YfNodes *n = &s->model.node;
+  for (int t = 0; t < nt; t++) {
+    int e = partition_tri(&s->model, t);
+    for (int c = 0; c < 3; c++) {
+      int i = s->model.tri.v[3 * e + c];
+      double *q = u + 12 * t + 4 * c;
+      q[0] = n->x[i] - n->x0[i];
+      q[1] = n->y[i] - n->y0[i];
+      q[2] = n->vx[i];
+      q[3] = n->vy[i];
+    }
+  }
+  return u;
+}
+
+/* With and without the METIS renumbering, in the elastic phase (no joint broken yet): only the
+ * order of the force sums differs, so states agree to round-off (1e-12 of the largest value),
+ * compared triangle corner by triangle corner through the renumbering map.  Two scenes: a jointed
+ * cantilever set moving (elements, joints, supports: 200 steps) and the contact scene at 2 m/s
+ * (20 steps: Y2D's contact between faces that touch exactly, as jointed neighbours and the block
+ * on its base do, amplifies round-off by about 1e3 per 100 steps, so any change of summation
+ * order, this one or -O3's fused multiply-add, drifts at that rate; the check stays short). */
+#define CANTILEVER(part)                                                                              \
+  part "material m elastic rho 2340 E 26e9 nu 0.18 plane_stress\n"                                    \
+       "jointprop j ft 3.15e6 fs 3.15e6 gf 30 pen 1e11\n"                                             \
+       "mesh rect block m 0 0 0.04 0.01 40 10 pattern right\nfracture block j\n"                    \
+       "region L box -1 -1 1e-9 1\ngroup left node region L\nfix a left fixed xy\n"                  \
+       "velocity block set 0.2 -0.5\ntimestep auto safety 0.5\nthermo 0\n"
+#define SCENE2(part) SCENE(part) "velocity block set 0.3 -2.0\n"
+
+static void compare_renumbered(const char *deck_none, const char *deck_metis, long steps, int want_contact) {
+  YfSim *s = yft_run(deck_none);
+  run_steps(s, steps);
+  ck_assert_int_eq(joints_broken(s), 0);
+  if (want_contact) ck_assert_int_gt(contact_pairs(s), 0);
+  ck_assert_ptr_null(s->model.tri_new);
+  int nt = s->model.tri.n;
+  double *a = corner_state(s);
+  sim_free(s);
+
+  s = yft_run(deck_metis);
+  run_steps(s, steps);
+  ck_assert_int_eq(joints_broken(s), 0);
+  ck_assert_int_eq(s->model.npart, 6);
+  ck_assert_int_eq(s->model.tri.n, nt);
+  int moved = 0;
+  for (int t = 0; t < nt; t++) moved += partition_tri(&s->model, t) != t;
+  ck_assert_int_gt(moved, nt / 4); /* the order really changed */
+  double *b = corner_state(s);
+  sim_free(s);
+
+  double umax = 0, vmax = 0, du = 0, dv = 0;
+  for (int k = 0; k < 12 * nt; k++) {
+    int vel = (k % 4) >= 2;
+    double d = fabs(a[k] - b[k]), m = fabs(a[k]);
+    if (vel) { if (m > vmax) vmax = m; if (d > dv) dv = d; }
+    else { if (m > umax) umax = m; if (d > du) du = d; }
+  }
+  ck_assert_double_gt(umax, 0);
+  ck_assert_msg(du <= 1e-12 * umax, "displacements differ by %g of the largest", du / umax);
+  ck_assert_msg(dv <= 1e-12 * vmax, "velocities differ by %g of the largest", dv / vmax);
+  free(a);
+  free(b);
+}
+
+START_TEST(test_renumbering_same_physics) {
+  quiet();
+  compare_renumbered(CANTILEVER("partition none\n"), CANTILEVER("partition metis parts 6\n"), 200, 0);
+  compare_renumbered(SCENE2("partition none\n"), SCENE2("partition metis parts 6\n"), 20, 1);
+}
+END_TEST
+
+/* Parts are contiguous, balanced, and every node of a triangle follows the triangle order. */
+START_TEST(test_partition_layout) {
+  quiet();
+  YfSim *s = yft_run(SCENE("partition metis parts 5\n"));
+  run_steps(s, 1);
+  const YfModel *m = &s->model;
+  ck_assert_int_eq(m->npart, 5);
+  ck_assert_int_eq(m->part_tri[0], 0);
+  ck_assert_int_eq(m->part_tri[5], m->tri.n);
+  for (int p = 0; p < 5; p++) {
+    int size = m->part_tri[p + 1] - m->part_tri[p];
+    /* METIS' default imbalance tolerance is 3 % (ufactor 30), one triangle more for rounding */
+    ck_assert_int_le(size, (int)(1.03 * m->tri.n / 5) + 1);
+  }
+  /* nodes are numbered in the order the triangles meet them: a triangle's largest node index
+   * never exceeds 3 (t + 1) - 1 for triangles of fracturing bodies, and overall the first use of
+   * node i is no later than the first use of node i + 1 */
+  int *first = malloc(sizeof(int) * m->node.n);
+  for (int i = 0; i < m->node.n; i++) first[i] = -1;
+  for (int t = 0; t < m->tri.n; t++)
+    for (int c = 0; c < 3; c++)
+      if (first[m->tri.v[3 * t + c]] < 0) first[m->tri.v[3 * t + c]] = t;
+  for (int i = 0; i + 1 < m->node.n; i++)
+    if (first[i] >= 0 && first[i + 1] >= 0) ck_assert_int_le(first[i], first[i + 1]);
+  free(first);
+  /* joints follow their triangles, and their node slots are their triangles' corners */
+  const YfJoints *J = s->joints;
+  for (int j = 0; j < J->n; j++) {
+    for (int k = 0; k < 4; k++) ck_assert_int_eq(J->node[4 * j + k], m->tri.v[J->corner[4 * j + k]]);
+    if (j) {
+      int a0 = J->tri[2 * j - 2] < J->tri[2 * j - 1] ? J->tri[2 * j - 2] : J->tri[2 * j - 1];
+      int a1 = J->tri[2 * j] < J->tri[2 * j + 1] ? J->tri[2 * j] : J->tri[2 * j + 1];
+      ck_assert_int_le(a0, a1);
+    }
+  }
+  sim_free(s);
+}
+END_TEST
+
+START_TEST(test_partition_errors) {
+  struct {
+    const char *deck, *want1, *want2;
+  } cases[] = {
+      {"partition fancy\n", "fancy", "metis"},
+      {"partition metis parts 0\n", "number of parts", "0"},
+      {"partition none parts 4\n", "none", "parts"},
+      {"partition metis sizes 4\n", "sizes", "parts"},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    char *err = NULL, *dir = NULL;
+    int rc = yft_run_binary("bad.deck", cases[i].deck, NULL, &err, &dir);
+    ck_assert_msg(rc == 1, "case %zu: exit %d (%s)", i, rc, err ? err : "");
+    ck_assert_msg(strstr(err, "bad.deck:1") && strstr(err, cases[i].want1) && strstr(err, cases[i].want2),
+                  "case %zu: %s", i, err);
+    free(err);
+    free(dir);
+  }
+}
+END_TEST
+
+Suite *parallel_suite(void) {
+  Suite *s = suite_create("parallel");
+  TCase *t = tcase_create("determinism");
+  tcase_set_timeout(t, 180);
+  tcase_add_test(t, test_threads_bitwise);
+  tcase_add_test(t, test_renumbering_same_physics);
+  tcase_add_test(t, test_partition_layout);
+  tcase_add_test(t, test_partition_errors);
+  suite_add_tcase(s, t);
+  return s;
+}
