@@ -760,3 +760,53 @@ void contact_step(YfSim *s) {
   }
   yf_stage_time[YF_ST_CONTACT] += now() - t1;
 }
+
+/* ---------------------------------------------------------------- restart accessors (restart.c) */
+
+int contact_state_save(const YfSim *s, YfContactState *st) {
+  const YfContact *C = s->contact;
+  memset(st, 0, sizeof *st);
+  if (!active(C) || !C->cx) return 0; /* not prepared */
+  st->n = C->pairs.n;
+  st->ij = C->pairs.ij;
+  st->g = C->pairs.g;
+  st->alive = C->alive;
+  st->pf = C->pf;
+  st->nlive = C->nlive;
+  st->ndead = C->ndead;
+  st->travel = C->trig.travel;
+  st->nsearch = C->nsearch;
+  st->broken_seen = C->broken_seen;
+  st->force_search = C->force_search;
+  st->nn = C->prep_nn;
+  st->fcn = C->fcn;
+  st->fcn_valid = C->fcn_valid;
+  return 1;
+}
+
+int contact_state_load(YfSim *s, const YfContactState *st) {
+  YfContact *C = s->contact;
+  if (!active(C) || !C->cx) return -1;
+  int n = st->n;
+  contact_pairs_reserve(&C->pairs, n);
+  C->pairs.n = n;
+  if (n) {
+    memcpy(C->pairs.ij, st->ij, (size_t)n * 2 * sizeof(int));
+    memcpy(C->pairs.g, st->g, (size_t)n * 6 * sizeof(double));
+  }
+  couple_arrays(C, n);
+  if (n) {
+    memcpy(C->alive, st->alive, (size_t)n);
+    memcpy(C->pf, st->pf, (size_t)n * 12 * sizeof(double));
+  }
+  C->nlive = st->nlive;
+  C->ndead = st->ndead;
+  C->trig.travel = st->travel;
+  C->nsearch = st->nsearch;
+  C->broken_seen = st->broken_seen;
+  C->force_search = st->force_search;
+  build_gather(s, C);
+  if (st->fcn && st->nn == C->prep_nn) memcpy(C->fcn, st->fcn, (size_t)2 * st->nn * sizeof(double));
+  C->fcn_valid = st->fcn_valid;
+  return 0;
+}

@@ -104,4 +104,28 @@ int contact_participants(const YfSim *s);
 /* Buffer in use [m] (after contact_prepare). */
 double contact_buffer(const YfSim *s);
 
+/* ---- restart (restart.c) ---- */
+/* The dynamic contact state: what the next step needs besides the deck's settings. */
+typedef struct {
+  int n;                 /* couples in the list (live and dead)                    */
+  int *ij;               /* 2 per couple: triangle indices i < j                   */
+  double *g;             /* 6 per couple: friction memory [m^2]                    */
+  unsigned char *alive;  /* per couple: 0 = dropped since the last search          */
+  double *pf;            /* 12 per couple: couple forces of the last step [N/m]    */
+  int nlive, ndead;
+  double travel;         /* travel counter of the search trigger [m]               */
+  long nsearch, broken_seen;
+  int force_search;
+  int nn;                /* nodes of fcn                                           */
+  double *fcn;           /* 2 per node: contact force of the last step [N/m]       */
+  int fcn_valid;
+} YfContactState;
+/* Pointers into the live state (no copy; valid until the next step).  Returns 0 when contact
+ * is off or not prepared (nothing to save), 1 otherwise. */
+int contact_state_save(const YfSim *s, YfContactState *st);
+/* Copy a saved state into a prepared contact (after contact_prepare for the same scene):
+ * couple list, friction memory, forces, counters; rebuilds the node gather lists.  Returns 0,
+ * or -1 when contact is off here. */
+int contact_state_load(YfSim *s, const YfContactState *st);
+
 #endif

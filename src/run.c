@@ -25,6 +25,7 @@
 #include "y2d_model.h"
 #include "summary.h"
 #include "partition.h"
+#include "restart.h"
 
 const char *const yf_stage_names[YF_NSTAGE] = {"elements", "joints", "detection", "contact", "gather", "update", "output"};
 double yf_stage_time[YF_NSTAGE];
@@ -400,15 +401,24 @@ void run_steps(YfSim *s, long nsteps) {
     step_once(s);
     double t0 = now();
     output_step(s);
+    restart_step(s); /* periodic restart file when due */
     yf_stage_time[YF_ST_OUTPUT] += now() - t0;
     if (s->thermo_every > 0 && s->step % s->thermo_every == 0 && k + 1 < nsteps) thermo_line(s);
     if ((k + 1) % check_every == 0) energy_check(s);
     if (tty) progress(s, k + 1, nsteps, t_start);
     if (s->interrupted) {
+      /* finish cleanly: a restart of this step, its frame in every dump, files closed */
+      char why[512];
+      const char *rp = restart_on_interrupt(s, why, sizeof why);
+      output_write_all(s);
       output_run_end(s);
       s->wall_s += now() - R.t_wall0;
-      yf_exit_with(YF_EXIT_INTERRUPT, "interrupted at step %ld (time %.6g s): frames written so far are kept; "
-                   "rerun the deck with a longer run to continue", s->step, s->time);
+      if (rp[0])
+        yf_exit_with(YF_EXIT_INTERRUPT, "interrupted at step %ld (time %.6g s): restart written to '%s', frames so far "
+                     "kept; to continue, put 'read_restart %s' before the run command of the deck and make it "
+                     "'run %ld upto'", s->step, s->time, rp, rp, s->run_end_step);
+      yf_exit_with(YF_EXIT_INTERRUPT, "interrupted at step %ld (time %.6g s): frames written so far are kept, but no "
+                   "restart could be written (%s)", s->step, s->time, why);
     }
   }
   energy_check(s);
@@ -422,9 +432,9 @@ void run_steps(YfSim *s, long nsteps) {
              s->threads > 1 ? "s" : "");
 }
 
-/* run N | run (to the last step of a Y2D deck read by read_y2d) */
+/* run N [upto] | run (to the last step of a Y2D deck read by read_y2d) */
 void cmd_run(YfSim *s, const YfArgs *a) {
-  arg_count(a, 0, 1);
+  arg_count(a, 0, 2);
   long n;
   if (a->n == 0) {
     if (s->last_step <= 0) arg_error(a, 0, "give the number of steps (run without N needs a read_y2d deck)");
@@ -432,6 +442,11 @@ void cmd_run(YfSim *s, const YfArgs *a) {
     if (n < 0) n = 0;
   } else {
     n = arg_int(a, 0, "N", 0, 2000000000L);
+    if (a->n == 2) { /* upto: N is the step to reach (a deck continued from a restart) */
+      static const char *const w[] = {"upto", NULL};
+      arg_choice(a, 1, "run option", w);
+      n = n > s->step ? n - s->step : 0;
+    }
   }
   run_steps(s, n);
 }
@@ -463,3 +478,8 @@ void run_free(void) {
   free(R.xo); free(R.yo); free(R.vxo); free(R.vyo);
   memset(&R, 0, sizeof R);
 }
+
+/* Energy-check budget (energy put in so far): part of a restart, so a continued run checks
+ * against the same budget as the uninterrupted one. */
+double run_get_energy_budget(void) { return R.e_budget; }
+void run_set_energy_budget(double e) { R.e_budget = e; }

@@ -15,6 +15,7 @@
 #include "output.h"
 #include "y2d_model.h"
 #include "region.h"
+#include "restart.h"
 
 void sim_init(YfSim *s) {
   memset(s, 0, sizeof *s);
@@ -179,6 +180,7 @@ void cmd_timestep(YfSim *s, const YfArgs *a) {
 }
 
 void sim_free(YfSim *s) {
+  restart_free(s);
   joints_free(s);
   contact_free(s);
   y2d_model_free(s);

@@ -36,6 +36,7 @@ struct YfOutput;  /* output.c  */
 struct YfJoints;  /* joint.c   */
 struct YfContact; /* contact.c */
 struct YfY2dRun;  /* y2d_model.c: Y2D boundary-condition sets of a read_y2d scene */
+struct YfRestart; /* restart.c: periodic restart files and the interrupt restart */
 struct YfDeck;
 
 typedef struct YfSim {
@@ -63,6 +64,7 @@ typedef struct YfSim {
   struct YfContact *contact;
   struct YfY2dRun *y2d;   /* non-NULL after read_y2d: nodes follow Y2D's BC-set update   */
   long last_step;         /* `run` without N runs to this step (Y2D's MCSTEP), 0 = none   */
+  struct YfRestart *restart; /* restart.c (NULL until a restart command)                  */
 
   YfEnergy energy;
   long thermo_every;    /* thermo line every N steps (0: only at start and end of a run)    */

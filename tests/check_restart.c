@@ -1,0 +1,444 @@
+/* check_restart.c: exact restarts, interrupts and kills of the real binary.
+ *
+ *   - a fracturing beam hit by a block (fracture + contact, joints breaking on both sides of the
+ *     restart step): run 2N vs run N + write_restart + a new process with read_restart + run 2N
+ *     upto gives the same state_hash (bitwise), with 1 and 2 threads; the same through the
+ *     periodic FILE.a / FILE.b pair, and in-process (write and read in one test process);
+ *   - a restart read by a deck that builds another scene is refused (deck error, exit 1), a
+ *     missing or garbage restart is an I/O error (exit 2);
+ *   - SIGINT to a running yfdem: exit 4, a message naming the restart, a last frame, and the
+ *     continued run lands on the uninterrupted run's state_hash;
+ *   - SIGKILL to a running yfdem writing h5 frames: every frame its .xmf lists reads back.
+ */
+#include <check.h>
+#include <fcntl.h>
+#include <hdf5.h>
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+#include "joint.h"
+#include "restart.h"
+#include "summary.h"
+#include "yftest.h"
+
+/* A concrete beam on two steel supports, every internal edge a Weibull-scattered joint, hit by
+ * a steel block at 15 m/s: ~120 joints break in the first 200 steps and ~30 more by step 500,
+ * with ~1270 contact couples (hammer/beam, beam/supports and the beam's own fragments). */
+static const char *SCENE =
+    "material concrete elastic rho 2340 E 26e9 nu 0.18 plane_stress damping 0.1 pen_n 1e11 pen_t 1e10 friction 0.5\n"
+    "material steel elastic rho 7800 E 210e9 nu 0.3 plane_stress pen_n 1e11 pen_t 1e10 friction 0.3\n"
+    "mesh rect beam concrete 0 0 0.24 0.05 24 5\n"
+    "mesh rect left steel 0.01 -0.02 0.03 0 2 2\n"
+    "mesh rect right steel 0.21 -0.02 0.23 0 2 2\n"
+    "mesh rect hammer steel 0.105 0.0501 0.135 0.0801 3 3\n"
+    "jointprop cj ft 2e6 fs 4e6 gf 20 pen 1e11 weibull 6 seed 3\n"
+    "fracture beam cj\n"
+    "region floor box -1 -1 1 -0.0199\n"
+    "group floor node region floor\n"
+    "fix base floor fixed xy\n"
+    "velocity hammer set 0 -15\n"
+    "contact pair hammer beam\ncontact pair beam left\ncontact pair beam right\ncontact self beam\n"
+    "timestep auto\n"
+    "thermo 100\n";
+
+#define N_HALF 200
+#define N_FULL 500
+
+static char tmpdir[64];
+
+static void mk_tmpdir(void) {
+  snprintf(tmpdir, sizeof tmpdir, "/tmp/yfrs_XXXXXX");
+  ck_assert_ptr_nonnull(mkdtemp(tmpdir));
+}
+static void rm_tmpdir(void) {
+  char cmd[128];
+  snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
+  if (system(cmd)) {}
+}
+
+static void write_deck(const char *name, const char *extra_before, const char *tail) {
+  char path[256];
+  snprintf(path, sizeof path, "%s/%s", tmpdir, name);
+  FILE *f = fopen(path, "w");
+  ck_assert_ptr_nonnull(f);
+  fprintf(f, "%s%s%s", extra_before ? extra_before : "", SCENE, tail);
+  fclose(f);
+}
+
+static const char *binary(void) {
+  static char abs[1024];
+  const char *bin = getenv("YFDEM") ? getenv("YFDEM") : "./yfdem";
+  if (bin[0] == '/') return bin;
+  ck_assert_ptr_nonnull(getcwd(abs, sizeof abs - strlen(bin) - 2));
+  strcat(abs, "/");
+  strcat(abs, bin);
+  return abs;
+}
+
+static char *slurp(const char *path) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return calloc(1, 1);
+  fseek(f, 0, SEEK_END);
+  long n = ftell(f);
+  fseek(f, 0, SEEK_SET);
+  char *b = calloc(1, (size_t)n + 1);
+  if (fread(b, 1, (size_t)n, f) != (size_t)n) b[0] = 0;
+  fclose(f);
+  return b;
+}
+
+/* Start yfdem on deck NAME in tmpdir (summary NAME.json, stderr NAME.err); returns the pid. */
+static pid_t spawn(const char *name, int threads) {
+  const char *bin = binary();
+  pid_t pid = fork();
+  ck_assert_int_ge(pid, 0);
+  if (pid == 0) {
+    if (chdir(tmpdir)) _exit(127);
+    char sum[128], err[128], th[8];
+    snprintf(sum, sizeof sum, "%s.json", name);
+    snprintf(err, sizeof err, "%s.err", name);
+    snprintf(th, sizeof th, "%d", threads);
+    setenv("OMP_NUM_THREADS", th, 1);
+    int fo = open("/dev/null", O_WRONLY), fe = open(err, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fo, 1);
+    dup2(fe, 2);
+    execl(bin, bin, "-in", name, "-summary", sum, (char *)NULL);
+    _exit(127);
+  }
+  return pid;
+}
+
+static int wait_code(pid_t pid) {
+  int st;
+  ck_assert_int_eq(waitpid(pid, &st, 0), pid);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
+}
+
+/* Run deck NAME to the end; returns the exit code and the state hash of its summary. */
+static int run_deck(const char *name, int threads, char hash[17]) {
+  int code = wait_code(spawn(name, threads));
+  char path[256];
+  snprintf(path, sizeof path, "%s/%s.json", tmpdir, name);
+  char *j = slurp(path);
+  const char *h = strstr(j, "\"state_hash\": \"");
+  hash[0] = 0;
+  if (h) snprintf(hash, 17, "%s", h + 15);
+  free(j);
+  return code;
+}
+
+static char *err_of(const char *name) {
+  char path[256];
+  snprintf(path, sizeof path, "%s/%s.err", tmpdir, name);
+  return slurp(path);
+}
+
+static void expect_ok(const char *name, int threads, char hash[17]) {
+  int code = run_deck(name, threads, hash);
+  char *e = err_of(name);
+  ck_assert_msg(code == 0, "%s: exit %d: %s", name, code, e);
+  free(e);
+  ck_assert_int_eq((int)strlen(hash), 16);
+}
+
+static long broken_in(const char *name) {
+  char path[256];
+  snprintf(path, sizeof path, "%s/%s.json", tmpdir, name);
+  char *j = slurp(path);
+  const char *b = strstr(j, "\"joints_broken\": ");
+  long n = b ? strtol(b + 17, NULL, 10) : -1;
+  free(j);
+  return n;
+}
+
+/* ---------------------------------------------------------------- bitwise continuation */
+
+START_TEST(test_restart_bitwise) {
+  mk_tmpdir();
+  char tail[256];
+  snprintf(tail, sizeof tail, "run %d\n", N_FULL);
+  write_deck("full.deck", NULL, tail);
+  snprintf(tail, sizeof tail, "run %d\nwrite_restart half.restart\n", N_HALF);
+  write_deck("first.deck", NULL, tail);
+  snprintf(tail, sizeof tail, "read_restart half.restart\nrun %d upto\n", N_FULL);
+  write_deck("second.deck", NULL, tail);
+  char h_full[17], h_first[17], h_second[17], h_second1[17];
+  expect_ok("full.deck", 2, h_full);
+  expect_ok("first.deck", 2, h_first);
+  long b_half = broken_in("first.deck"), b_full = broken_in("full.deck");
+  /* the scene must exercise what a restart carries: joints breaking before and after it */
+  ck_assert_msg(b_half > 20 && b_full > b_half + 5, "broken joints: %ld at step %d, %ld at %d", b_half, N_HALF,
+                b_full, N_FULL);
+  expect_ok("second.deck", 2, h_second);
+  ck_assert_str_ne(h_first, h_full);
+  ck_assert_msg(!strcmp(h_second, h_full), "continued %s != uninterrupted %s", h_second, h_full);
+  ck_assert_int_eq(broken_in("second.deck"), b_full);
+  /* and on one thread (the run is bitwise thread-independent; so must the restart be) */
+  expect_ok("second.deck", 1, h_second1);
+  ck_assert_str_eq(h_second1, h_full);
+  rm_tmpdir();
+}
+END_TEST
+
+/* restart every N FILE: FILE.a and FILE.b alternate; read_restart FILE takes the newer. */
+START_TEST(test_restart_periodic) {
+  mk_tmpdir();
+  char tail[256];
+  snprintf(tail, sizeof tail, "run %d\n", N_FULL);
+  write_deck("full.deck", NULL, tail);
+  write_deck("periodic.deck", NULL, "restart every 150 ckpt\nrun 400\n"); /* ckpt.a at 150, ckpt.b at 300 */
+  snprintf(tail, sizeof tail, "read_restart ckpt\nrun %d upto\n", N_FULL);
+  write_deck("cont.deck", NULL, tail);
+  char h_full[17], h_p[17], h_c[17];
+  expect_ok("full.deck", 2, h_full);
+  expect_ok("periodic.deck", 2, h_p);
+  char a[256], b[256];
+  snprintf(a, sizeof a, "%s/ckpt.a", tmpdir);
+  snprintf(b, sizeof b, "%s/ckpt.b", tmpdir);
+  ck_assert(yft_exists(a) && yft_exists(b));
+  snprintf(a, sizeof a, "%s/ckpt.a.tmp", tmpdir);
+  ck_assert(!yft_exists(a)); /* no temporary left behind */
+  expect_ok("cont.deck", 2, h_c);
+  ck_assert_str_eq(h_c, h_full);
+  /* a writer killed in the middle of ckpt.b (a truncated file): the other one is used */
+  snprintf(b, sizeof b, "%s/ckpt.b", tmpdir);
+  ck_assert_int_eq(truncate(b, 3000), 0);
+  expect_ok("cont.deck", 2, h_c);
+  ck_assert_str_eq(h_c, h_full);
+  rm_tmpdir();
+}
+END_TEST
+
+/* In one process: run, write, free, rebuild, read, run (the API path, under the sanitizers). */
+START_TEST(test_restart_in_process) {
+  mk_tmpdir();
+  char deck[4096], path[256];
+  snprintf(path, sizeof path, "%s/ip.restart", tmpdir);
+  snprintf(deck, sizeof deck, "%srun %d\n", SCENE, N_FULL);
+  YfSim *s = yft_run(deck);
+  uint64_t h_full = sim_state_hash(s);
+  long b_full = joints_broken(s);
+  sim_free(s);
+  snprintf(deck, sizeof deck, "%srun %d\nwrite_restart %s\n", SCENE, N_HALF, path);
+  s = yft_run(deck);
+  sim_free(s);
+  snprintf(deck, sizeof deck, "%sread_restart %s\nrun %d upto\n", SCENE, path, N_FULL);
+  s = yft_run(deck);
+  ck_assert_int_eq(s->step, N_FULL);
+  ck_assert_int_eq(joints_broken(s), b_full);
+  ck_assert_msg(sim_state_hash(s) == h_full, "in-process continuation differs");
+  sim_free(s);
+  rm_tmpdir();
+}
+END_TEST
+
+/* ---------------------------------------------------------------- refusals */
+
+START_TEST(test_restart_refusals) {
+  mk_tmpdir();
+  write_deck("first.deck", NULL, "run 10\nwrite_restart r.restart\n");
+  char h[17];
+  expect_ok("first.deck", 1, h);
+  /* another mesh: counts differ */
+  char path[256];
+  snprintf(path, sizeof path, "%s/other.deck", tmpdir);
+  FILE *f = fopen(path, "w");
+  fputs("material m elastic rho 1000 E 1e9 nu 0.2 plane_stress\nmesh rect b m 0 0 1 1 2 2\n"
+        "timestep auto\nread_restart r.restart\nrun 10 upto\n", f);
+  fclose(f);
+  ck_assert_int_eq(run_deck("other.deck", 1, h), YF_EXIT_DECK);
+  char *e = err_of("other.deck");
+  ck_assert_msg(strstr(e, "other.deck:4:") && strstr(e, "different scene"), "%s", e);
+  free(e);
+  /* same counts, other joint strengths do not matter, another seed moves nothing... but a moved
+   * node does: shift the hammer by 1 um */
+  char *moved = strdup(SCENE);
+  char *q = strstr(moved, "0.105 0.0501");
+  memcpy(q, "0.105 0.0502", 12);
+  snprintf(path, sizeof path, "%s/moved.deck", tmpdir);
+  f = fopen(path, "w");
+  fprintf(f, "%sread_restart r.restart\nrun 20 upto\n", moved);
+  fclose(f);
+  free(moved);
+  ck_assert_int_eq(run_deck("moved.deck", 1, h), YF_EXIT_DECK);
+  e = err_of("moved.deck");
+  ck_assert_msg(strstr(e, "initial positions"), "%s", e);
+  free(e);
+  /* missing file: I/O error naming it; garbage: I/O error */
+  write_deck("missing.deck", NULL, "read_restart nowhere.restart\n");
+  ck_assert_int_eq(run_deck("missing.deck", 1, h), YF_EXIT_IO);
+  e = err_of("missing.deck");
+  ck_assert_msg(strstr(e, "nowhere.restart") && strstr(e, "missing.deck:"), "%s", e);
+  free(e);
+  snprintf(path, sizeof path, "%s/junk.restart", tmpdir);
+  f = fopen(path, "w");
+  fputs("\x89HDF\r\n\x1a\n garbage", f);
+  fclose(f);
+  write_deck("junk.deck", NULL, "read_restart junk.restart\n");
+  ck_assert_int_eq(run_deck("junk.deck", 1, h), YF_EXIT_IO);
+  e = err_of("junk.deck");
+  ck_assert_msg(strstr(e, "not a usable yfdem restart"), "%s", e);
+  free(e);
+  /* contact off in the reading deck: refused */
+  char *nocontact = strdup(SCENE);
+  char *c = strstr(nocontact, "contact pair");
+  *c = 0;
+  snprintf(path, sizeof path, "%s/nc.deck", tmpdir);
+  f = fopen(path, "w");
+  fprintf(f, "%stimestep auto\nread_restart r.restart\n", nocontact);
+  fclose(f);
+  free(nocontact);
+  ck_assert_int_eq(run_deck("nc.deck", 1, h), YF_EXIT_DECK);
+  e = err_of("nc.deck");
+  ck_assert_msg(strstr(e, "contact"), "%s", e);
+  free(e);
+  rm_tmpdir();
+}
+END_TEST
+
+/* ---------------------------------------------------------------- signals */
+
+/* Wait until file exists (bounded: 120 s, the machine may be loaded). */
+static int wait_for(const char *path) {
+  for (int i = 0; i < 12000; i++) {
+    if (yft_exists(path)) return 1;
+    usleep(10000);
+  }
+  return 0;
+}
+
+/* Every HDF5 reference "FILE:/PATH" of an .xmf, in order (malloc'd strings); returns the count. */
+static int xmf_items(const char *xmf, char **items, int cap) {
+  char *t = slurp(xmf);
+  int n = 0;
+  for (char *p = t; (p = strstr(p, "Format=\"HDF\">")) && n < cap;) {
+    p += 13;
+    char *e = strchr(p, '<');
+    if (!e) break;
+    items[n++] = strndup(p, (size_t)(e - p));
+    p = e;
+  }
+  free(t);
+  return n;
+}
+
+/* Step of the last frame an .xmf lists (-1: none). */
+static long xmf_last_step(const char *xmf) {
+  char *t = slurp(xmf);
+  long step = -1;
+  for (const char *p = t; (p = strstr(p, "<Information Name=\"step\" Value=\"")); p += 30) step = strtol(p + 32, NULL, 10);
+  free(t);
+  return step;
+}
+
+/* Read every dataset an .xmf refers to (paths relative to dir); returns the number read, or
+ * -1 - k when reference k does not read back (or holds a non-finite number). */
+static long read_all_items(const char *dir, const char *xmf) {
+  char *items[8192];
+  int n = xmf_items(xmf, items, 8192);
+  long result = n;
+  for (int k = 0; k < n; k++) {
+    char *colon = strstr(items[k], ":/");
+    char file[512];
+    if (!colon) { result = -1 - k; break; }
+    *colon = 0;
+    snprintf(file, sizeof file, "%s/%s", dir, items[k]);
+    hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t ds = f >= 0 ? H5Dopen2(f, colon + 1, H5P_DEFAULT) : -1;
+    int ok = ds >= 0;
+    if (ok) {
+      hid_t sp = H5Dget_space(ds);
+      hssize_t cnt = H5Sget_simple_extent_npoints(sp);
+      double *buf = malloc((size_t)(cnt > 0 ? cnt : 1) * sizeof(double));
+      ok = H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) >= 0;
+      for (hssize_t i = 0; ok && i < cnt; i++) ok = isfinite(buf[i]);
+      free(buf);
+      H5Sclose(sp);
+    }
+    if (ds >= 0) H5Dclose(ds);
+    if (f >= 0) H5Fclose(f);
+    if (!ok && result >= 0) result = -1 - k;
+  }
+  for (int k = 0; k < n; k++) free(items[k]);
+  return result;
+}
+
+START_TEST(test_sigint_restart) {
+  mk_tmpdir();
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  /* a run far too long to finish: its dump shows it is under way, then SIGINT */
+  write_deck("long.deck", NULL, "dump d h5 50 long.h5 fields u\nrun 1000000\n");
+  pid_t pid = spawn("long.deck", 2);
+  char xmf[256];
+  snprintf(xmf, sizeof xmf, "%s/long.xmf", tmpdir);
+  ck_assert(wait_for(xmf));
+  usleep(200000);
+  kill(pid, SIGINT);
+  int code = wait_code(pid);
+  char *e = err_of("long.deck");
+  ck_assert_msg(code == YF_EXIT_INTERRUPT, "exit %d: %s", code, e);
+  ck_assert_msg(strstr(e, "read_restart " YF_RESTART_DEFAULT) && strstr(e, "run 1000000 upto"), "%s", e);
+  long step = -1;
+  const char *p = strstr(e, "interrupted at step ");
+  if (p) step = strtol(p + 20, NULL, 10);
+  free(e);
+  ck_assert_int_gt(step, 0);
+  ck_assert_int_lt(step, 1000000);
+  /* the last frame is of the interrupted step, and every listed frame reads back */
+  ck_assert_int_eq(xmf_last_step(xmf), step);
+  ck_assert_int_gt(read_all_items(tmpdir, xmf), 0);
+  /* continue as the message says (a little further): same bits as the uninterrupted run */
+  char tail[128];
+  snprintf(tail, sizeof tail, "read_restart " YF_RESTART_DEFAULT "\nrun %ld upto\n", step + 150);
+  write_deck("cont.deck", NULL, tail);
+  snprintf(tail, sizeof tail, "run %ld\n", step + 150);
+  write_deck("full.deck", NULL, tail);
+  char h_full[17], h_c[17];
+  expect_ok("full.deck", 2, h_full);
+  expect_ok("cont.deck", 2, h_c);
+  ck_assert_str_eq(h_c, h_full);
+  rm_tmpdir();
+}
+END_TEST
+
+START_TEST(test_sigkill_frames_readable) {
+  mk_tmpdir();
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  /* frames every 2 steps of the whole state: the writer is inside a frame much of the time */
+  write_deck("k.deck", NULL, "dump d h5 2 k.h5 fields u v f stress fc\nrun 1000000\n");
+  static const useconds_t delay[] = {0, 150000, 400000};
+  for (size_t trial = 0; trial < 3; trial++) {
+    pid_t pid = spawn("k.deck", 1);
+    char xmf[256];
+    snprintf(xmf, sizeof xmf, "%s/k.xmf", tmpdir);
+    ck_assert(wait_for(xmf));
+    usleep(delay[trial]);
+    kill(pid, SIGKILL);
+    ck_assert_int_eq(wait_code(pid), 128 + SIGKILL);
+    long r = read_all_items(tmpdir, xmf);
+    ck_assert_msg(r > 0, "trial %zu: dataset reference %ld of the killed run's .xmf does not read back", trial, -1 - r);
+    unlink(xmf);
+  }
+  rm_tmpdir();
+}
+END_TEST
+
+Suite *restart_suite(void) {
+  Suite *s = suite_create("restart");
+  TCase *tc = tcase_create("restart");
+  tcase_set_timeout(tc, 300);
+  tcase_add_test(tc, test_restart_bitwise);
+  tcase_add_test(tc, test_restart_periodic);
+  tcase_add_test(tc, test_restart_in_process);
+  tcase_add_test(tc, test_restart_refusals);
+  tcase_add_test(tc, test_sigint_restart);
+  tcase_add_test(tc, test_sigkill_frames_readable);
+  suite_add_tcase(s, tc);
+  return s;
+}
