@@ -24,6 +24,7 @@
 #include "output.h"
 #include "y2d_model.h"
 #include "summary.h"
+#include "metrics.h"
 #include "partition.h"
 #include "restart.h"
 
@@ -401,6 +402,7 @@ void run_steps(YfSim *s, long nsteps) {
     step_once(s);
     double t0 = now();
     output_step(s);
+    metrics_step(s);
     restart_step(s); /* periodic restart file when due */
     yf_stage_time[YF_ST_OUTPUT] += now() - t0;
     if (s->thermo_every > 0 && s->step % s->thermo_every == 0 && k + 1 < nsteps) thermo_line(s);
@@ -471,6 +473,7 @@ void run_summary_update(YfSim *s) {
   summary_add_number("dt", s->dt);
   if (isfinite(s->dt_limit) && s->dt_limit > 0) summary_add_number("dt_limit", s->dt_limit);
   joints_summary(s);
+  metrics_summary(s);
 }
 
 void run_free(void) {

@@ -5,6 +5,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include "metrics.h"
 #include "sim.h"
 #include "deck.h"
 #include "err.h"
@@ -190,5 +191,6 @@ void sim_free(YfSim *s) {
   free(s->hist);
   model_free(&s->model);
   region_reset();
+  metrics_reset();
   mesh_reset();
 }

@@ -1,0 +1,285 @@
+#!/usr/bin/env python3
+"""yfplot: pictures of yfdem runs (the seed paper's figures, from yfdem's own output).
+
+Reads the HDF5 frames of a `dump ID h5 N FILE.h5` (one file per frame, STEM_NNNNNN.h5), the
+`fracture_log` CSV (one row per broken joint: step, time, x, y, mode, triA, triB, ...) and the
+`metrics log` CSV (energies and crack growth in time).  A broken joint is drawn as the edge that
+its two triangles shared, at the frame's current positions, so no crack data is needed in the
+frames themselves.  Fragments are the pieces connected through shared nodes and joints not yet
+broken at the frame's time.
+
+  yfplot.py cracks STEM --breaks breaks.csv --times 2e-4,1e-3,3e-3 [--title T] -o out.png
+      deformed mesh at the frames nearest to the given times [s], fragments coloured, cracks by
+      mode (I red, II blue, mixed green)  -- the paper's figures 6 and 9
+  yfplot.py stress STEM --time T [--body N] -o out.png
+      max principal stress contours [MPa] at the frame nearest to T (elastic variant, figure 7)
+  yfplot.py history LOG.csv -o out.png
+      energies (kinetic, strain, external work, damping, joint dissipation, contact) and crack
+      length by mode against time
+
+Needs numpy, h5py, matplotlib: `tools/install-deps --python` creates .venv with them; run as
+`.venv/bin/python tools/yfplot.py ...`.
+"""
+import argparse
+import csv
+import glob
+import os
+import sys
+
+try:
+    import numpy as np
+    import h5py
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import LineCollection, PolyCollection
+except ImportError as e:  # pragma: no cover
+    sys.exit("yfplot: %s: run `tools/install-deps --python` and use .venv/bin/python" % e)
+
+MODE_COLOR = {"I": "#d62728", "II": "#1f77b4", "mixed": "#2ca02c"}
+
+
+def frames(stem):
+    """Sorted frame files of a dump stem (STEM_NNNNNN.h5)."""
+    stem = stem[:-3] if stem.endswith(".h5") else stem
+    fs = sorted(glob.glob(stem + "_[0-9][0-9][0-9][0-9][0-9][0-9].h5"))
+    if not fs:
+        sys.exit("yfplot: no frames %s_NNNNNN.h5 (write them with `dump ID h5 N %s.h5`)" % (stem, stem))
+    return fs
+
+
+def read_frame(path):
+    with h5py.File(path, "r") as f:
+        d = {k: f[k][()] for k in ("time", "step", "x")}
+        d["tri"] = f["mesh/triangles"][()]
+        d["x0"] = f["mesh/x0"][()]
+        d["body"] = f["mesh/body"][()] if "mesh/body" in f else np.zeros(len(d["tri"]), int)
+        for k in ("sigma1", "stress", "u"):
+            if k in f:
+                d[k] = f[k][()]
+    return d
+
+
+def nearest_frame(stem, t):
+    fs = frames(stem)
+    times = []
+    for p in fs:
+        with h5py.File(p, "r") as f:
+            times.append(float(f["time"][()]))
+    i = int(np.argmin(np.abs(np.array(times) - t)))
+    return read_frame(fs[i])
+
+
+def read_breaks(path):
+    if not path or not os.path.exists(path):
+        return []
+    with open(path) as f:
+        return [dict(r, time=float(r["time"]), triA=int(r["triA"]), triB=int(r["triB"])) for r in csv.DictReader(f)]
+
+
+def shared_edge(fr, a, b):
+    """Node indices (in a) of the edge that triangles a and b shared initially."""
+    tri, x0 = fr["tri"], fr["x0"]
+    pb = [tuple(np.round(x0[n], 9)) for n in tri[b]]
+    nodes = [n for n in tri[a] if tuple(np.round(x0[n], 9)) in pb]
+    return nodes if len(nodes) == 2 else None
+
+
+def fragments(fr, broken_pairs):
+    """Fragment label per triangle: union through shared nodes and unbroken shared edges."""
+    tri, x0 = fr["tri"], fr["x0"]
+    nt = len(tri)
+    par = np.arange(nt)
+
+    def find(i):
+        while par[i] != i:
+            par[i] = par[par[i]]
+            i = par[i]
+        return i
+
+    def union(a, b):
+        a, b = find(a), find(b)
+        if a != b:
+            par[max(a, b)] = min(a, b)
+
+    first = {}
+    edges = {}
+    key = np.round(x0, 9)
+    for t in range(nt):
+        for c in range(3):
+            n = tri[t][c]
+            if n in first:
+                union(first[n], t)
+            else:
+                first[n] = t
+            m = tri[t][(c + 1) % 3]
+            e = tuple(sorted((tuple(key[n]), tuple(key[m]))))
+            edges.setdefault(e, []).append(t)
+    for ts in edges.values():
+        if len(ts) == 2 and (min(ts), max(ts)) not in broken_pairs and fr["body"][ts[0]] == fr["body"][ts[1]]:
+            union(ts[0], ts[1])
+    lab = np.array([find(t) for t in range(nt)])
+    _, lab = np.unique(lab, return_inverse=True)
+    return lab
+
+
+def draw_cracks(ax, fr, breaks, t):
+    segs = {m: [] for m in MODE_COLOR}
+    for b in breaks:
+        if b["time"] > t:
+            continue
+        e = shared_edge(fr, b["triA"], b["triB"])
+        if e:
+            segs.setdefault(b["mode"], []).append(fr["x"][e])
+    for m, s in segs.items():
+        if s:
+            ax.add_collection(LineCollection(s, colors=MODE_COLOR.get(m, "k"), linewidths=1.6, label="mode " + m))
+
+
+def cmd_cracks(a):
+    breaks = read_breaks(a.breaks)
+    times = [float(v) for v in a.times.split(",")]
+    n = len(times)
+    fig, axs = plt.subplots(n, 1, figsize=(a.width, a.height * n), squeeze=False)
+    cmap = plt.get_cmap("tab20")
+    for ax, t in zip(axs[:, 0], times):
+        fr = nearest_frame(a.stem, t)
+        tf = float(fr["time"])
+        pairs = {(min(b["triA"], b["triB"]), max(b["triA"], b["triB"])) for b in breaks if b["time"] <= tf}
+        lab = fragments(fr, pairs)
+        sizes = np.bincount(lab)
+        big = np.argmax(sizes)
+        colors = []
+        for t_, l in enumerate(lab):
+            if fr["body"][t_] != a.body:
+                colors.append("#555555")
+            elif sizes[l] == sizes.max() or l == big:
+                colors.append("#d9d9d9")
+            else:
+                colors.append(cmap(l % 20))
+        polys = fr["x"][fr["tri"]]
+        ax.add_collection(PolyCollection(polys, facecolors=colors, edgecolors="#9a9a9a", linewidths=0.15))
+        draw_cracks(ax, fr, breaks, tf)
+        nb = sum(1 for b in breaks if b["time"] <= tf)
+        nfr = len(np.unique(lab[fr["body"] == a.body]))
+        ax.set_title("t = %.3g ms: %d broken joints, %d pieces of the body" % (tf * 1e3, nb, nfr), fontsize=10)
+        ax.set_aspect("equal")
+        ax.autoscale_view()
+        if a.xlim:
+            ax.set_xlim(*[float(v) for v in a.xlim.split(",")])
+        if a.ylim:
+            ax.set_ylim(*[float(v) for v in a.ylim.split(",")])
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+    h, l = axs[0, 0].get_legend_handles_labels()
+    for ax in axs[1:, 0]:
+        hh, ll = ax.get_legend_handles_labels()
+        for x, y in zip(hh, ll):
+            if y not in l:
+                h.append(x)
+                l.append(y)
+    if h:
+        fig.legend(h, l, loc="lower center", ncol=3, fontsize=9)
+    if a.title:
+        fig.suptitle(a.title)
+    fig.tight_layout(rect=(0, 0.04, 1, 0.97))
+    fig.savefig(a.o, dpi=a.dpi)
+    print("yfplot: wrote", a.o)
+
+
+def cmd_stress(a):
+    fr = nearest_frame(a.stem, a.time)
+    if "sigma1" not in fr:
+        sys.exit("yfplot: frame has no sigma1 (dump ... fields sigma1)")
+    sel = fr["body"] == a.body
+    fig, ax = plt.subplots(figsize=(a.width, a.height))
+    import matplotlib.tri as mtri
+    tr = mtri.Triangulation(fr["x"][:, 0], fr["x"][:, 1], fr["tri"][sel])
+    s1 = fr["sigma1"][sel] / 1e6
+    lim = a.vmax if a.vmax else max(abs(s1.min()), abs(s1.max()))
+    pc = ax.tripcolor(tr, facecolors=s1, cmap="RdBu_r", vmin=-lim, vmax=lim)
+    fig.colorbar(pc, ax=ax, label="max principal stress [MPa] (tension > 0)", shrink=0.8)
+    if a.mark:
+        x, y = [float(v) for v in a.mark.split(",")]
+        ax.plot([x], [y], "k*", ms=12, label="first crack of the fracturing run")
+        ax.legend(loc="upper right", fontsize=8)
+    ax.set_aspect("equal")
+    ax.set_title(a.title or "elastic variant: max principal stress at t = %.3g ms" % (float(fr["time"]) * 1e3))
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    fig.tight_layout()
+    fig.savefig(a.o, dpi=a.dpi)
+    print("yfplot: wrote", a.o)
+
+
+def cmd_history(a):
+    with open(a.log) as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        sys.exit("yfplot: %s has no rows" % a.log)
+    col = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+    t = col["time"] * 1e3
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(a.width, a.height * 2), sharex=True)
+    for k, lab in (("kinetic", "kinetic"), ("strain", "strain (incl. joints)"), ("external_work", "external work"),
+                   ("damping", "damping"), ("joint_dissipated", "joint dissipation"), ("contact", "contact")):
+        if np.any(col[k] != 0):
+            ax1.plot(t, col[k], label=lab)
+    ax1.set_ylabel("energy [J/m]")
+    ax1.legend(fontsize=8)
+    ax1.grid(alpha=0.3)
+    for k, m in (("crack_I", "I"), ("crack_II", "II"), ("crack_mixed", "mixed")):
+        ax2.plot(t, col[k], color=MODE_COLOR[m], label="mode " + m)
+    ax2.plot(t, col["crack_I"] + col["crack_II"] + col["crack_mixed"], "k--", label="total")
+    ax2.set_ylabel("crack length [m]")
+    ax2.set_xlabel("time [ms]")
+    ax3 = ax2.twinx()
+    ax3.step(t, col["fragments"], color="#7f7f7f", where="post", lw=0.8)
+    ax3.set_ylabel("pieces of the body", color="#7f7f7f")
+    ax2.legend(fontsize=8, loc="upper left")
+    ax2.grid(alpha=0.3)
+    if a.title:
+        fig.suptitle(a.title)
+    fig.tight_layout()
+    fig.savefig(a.o, dpi=a.dpi)
+    print("yfplot: wrote", a.o)
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    sub = p.add_subparsers(dest="cmd", required=True)
+    c = sub.add_parser("cracks", help="crack pattern and fragments at chosen times")
+    c.add_argument("stem")
+    c.add_argument("--breaks", required=True)
+    c.add_argument("--times", required=True)
+    c.add_argument("--body", type=int, default=0, help="index of the cracking body (default 0)")
+    c.add_argument("--xlim")
+    c.add_argument("--ylim")
+    c.add_argument("--title")
+    c.add_argument("--width", type=float, default=9)
+    c.add_argument("--height", type=float, default=2.2)
+    c.set_defaults(fn=cmd_cracks)
+    s = sub.add_parser("stress", help="max principal stress contours")
+    s.add_argument("stem")
+    s.add_argument("--time", type=float, required=True)
+    s.add_argument("--body", type=int, default=0)
+    s.add_argument("--vmax", type=float)
+    s.add_argument("--mark", help="X,Y of a point to mark (first crack)")
+    s.add_argument("--title")
+    s.add_argument("--width", type=float, default=9)
+    s.add_argument("--height", type=float, default=2.6)
+    s.set_defaults(fn=cmd_stress)
+    h = sub.add_parser("history", help="energies and crack growth in time (metrics log CSV)")
+    h.add_argument("log")
+    h.add_argument("--title")
+    h.add_argument("--width", type=float, default=7)
+    h.add_argument("--height", type=float, default=2.6)
+    h.set_defaults(fn=cmd_history)
+    for q in (c, s, h):
+        q.add_argument("-o", required=True, help="output PNG")
+        q.add_argument("--dpi", type=int, default=110)
+    a = p.parse_args(argv)
+    a.fn(a)
+
+
+if __name__ == "__main__":
+    main()
