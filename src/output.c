@@ -1,39 +1,45 @@
 /* output.c: frames of the state for post-processing (see output.h for the contract).
  *
- * h5 dumps.  One HDF5 file per dump, laid out for XDMF 3 (ParaView: File > Open FILE.xmf):
+ * h5 dumps.  `dump ID h5 N FILE.h5` writes frame k to its own HDF5 file STEM_NNNNNN.h5 (STEM is
+ * FILE without its .h5/.hdf5/.hdf extension, NNNNNN the frame index k, zero-padded to 6 digits,
+ * the extension kept; .h5 when FILE has none) and an XDMF 3 index STEM.xmf that lists the frames
+ * (ParaView: File > Open STEM.xmf).  Each frame file is self-contained:
  *
  *   /mesh/{triangles (ntri x 3 int), material, body, tri_id (ntri int),
- *          node_id (n int), x0 (n x 2)}             topology, written at the first frame
- *   /mesh_NNNN/...                                  a later topology (output_topology_changed)
- *   /frames/NNNNNN/{time, step (scalars), x, u, v, f (n x 2), stress (ntri x 3: sxx syy sxy),
- *                   vonmises, sigma1 (ntri)}        one group per frame, frame index NNNNNN
- *                  fc (n x 2): contact force per node, only in frames written while contact is on
+ *          node_id (n int), x0 (n x 2)}                   the topology at this frame
+ *   /time, /step (scalars), /x, /u, /v, /f (n x 2), /stress (ntri x 3: sxx syy sxy),
+ *   /vonmises, /sigma1 (ntri),  /fc (n x 2): contact force per node, only while contact is on
  *
- * Datasets are contiguous and uncompressed by default: a frame is then one write per array,
- * which keeps a 1e5-triangle frame well under the cost of ten steps.  `compress` switches to
- * gzip (level 1, with shuffle) in chunks: half the size, ~20x the time of a raw frame.
+ * Why one file per frame: crash safety by construction.  A file is never modified once written.
+ * A frame goes to NAME.tmp, is closed (H5Fclose: every byte handed to the OS), renamed to NAME
+ * (atomic), and only then is the .xmf replaced atomically (STEM.xmf.tmp + rename) by an index
+ * that lists it.  A run killed at any moment therefore leaves an .xmf that lists only complete,
+ * never-again-touched files; at worst a stale NAME.tmp of the frame in progress.  The earlier
+ * design (one file, a group per frame, H5Fflush) updated shared metadata (group header,
+ * superblock) in place with multi-page writes, which SIGKILL can tear, losing earlier frames.
+ * It also makes topology changes (fracture inserting nodes) free: each file has its own /mesh.
+ * The cost is one file create/close per frame and the mesh arrays once per frame (~30 % of a
+ * frame's bytes): for 1e5 triangles ~7 ms with 5e4 nodes, ~17-20 ms with the 3e5 nodes of a
+ * fully jointed mesh (31 MB), measured on a loaded 2-core machine (README, Output).
  *
- * Why per-frame groups and not extendible datasets: a frame never changes what earlier frames
- * occupy in the file (fresh datasets at the end of the file; no chunk index or dataspace of an
- * old array is rewritten), so the only metadata shared between frames is the /frames group's
- * list of links.  /frames is a "compact" group whose object header is pre-sized for FRAMES_EST
- * links (H5Pset_est_link_info): adding a frame fills a slot of that one header in place, and the
- * header reaches the file in one write at the next flush, so there is no moment at which an
- * earlier frame's link is missing.  (With the classic symbol-table groups, or once the header
- * overflows, HDF5 splits or moves group metadata across several writes and a kill between them
- * can lose earlier frames: we measured this by crashing the writer at every write.)
- * After each frame: H5Fflush (everything of the frame reaches the OS), then the .xmf is replaced
- * atomically (tmp + fsync + rename).  The .xmf therefore never names a frame that is not fully
- * in the file; the kill test in tests/check_output.c SIGKILLs a writer mid-stream and reads back.
- * The file format is pinned to HDF5 1.8 (H5F_LIBVER_V18): new enough for compact groups, and its
- * superblock has no "open for writing" flag, which with the 1.10 format would make a killed
- * file refuse to open (in ParaView too) until `h5clear -s`.
+ * Durability: nothing is fsync'ed.  rename after close is enough against a killed process (the
+ * kernel has the data); after a power cut or OS crash the most recent frames and the index may
+ * be lost or, on file systems that reorder metadata and data, the .xmf may name a frame whose
+ * data did not reach the disk.  Guarding against that would need an fsync of each frame file
+ * and of the directory before the index names it (tens of ms per frame on a loaded disk).
+ *
+ * A new run (a new process) with the same dump starts again at frame 0 and rewrites the index
+ * from scratch; frame files of an earlier, longer run beyond the new count stay on disk but are
+ * not listed (delete STEM_*.h5 yourself if they are in the way).
+ *
+ * Datasets are contiguous and uncompressed by default: a frame is then one write per array.
+ * `compress` switches to gzip (level 1, with shuffle) in chunks: half the size, ~20x the time.
  *
  * csv dumps.  PREFIX_NNNNNN.csv (node id, x, y, ux, uy, vx, vy) per frame plus PREFIX_frames.csv
  * (frame, step, time, file) for scripts.
  *
  * The XDMF <Grid> text of every frame is kept in memory and the whole index is rewritten per
- * frame (a few hundred bytes per frame), so the index stays a plain, self-contained file.
+ * frame (about 2 kB per frame), so the index stays a plain, self-contained file.
  */
 #include <errno.h>
 #include <limits.h>
@@ -59,16 +65,15 @@ typedef struct YfDump {
   long every;         /* steps between frames                                          */
   unsigned fields;    /* YF_FIELD_* (h5)                                               */
   int compress;       /* gzip chunks (h5)                                              */
-  char *path;         /* h5 file, or csv prefix                                        */
-  char *xmf, *xmf_tmp;/* FILE.xmf and FILE.xmf.tmp                                     */
-  char *h5name;       /* file name without directory, as the .xmf refers to it         */
-  hid_t file, frames; /* open handles (h5), < 0 when closed                             */
-  int created;        /* file created in this process (a later open appends)           */
+  char *path;         /* h5 file as given (FILE.h5), or csv prefix                      */
+  char *stem, *ext;   /* h5: FILE without its extension, and the extension (".h5")      */
+  char *xmf, *xmf_tmp;/* STEM.xmf and STEM.xmf.tmp                                      */
+  char *cur, *cur_tmp;/* h5: the frame file being written (STEM_NNNNNN.h5) and its .tmp */
+  size_t curcap;      /* bytes allocated for cur and cur_tmp                           */
+  hid_t file;         /* the frame file while it is being written, else < 0            */
+  int created;        /* csv index created in this process (a later open appends)      */
   long nframe;        /* frames written                                                */
   long last_step;     /* step of the last frame (LONG_MIN: none)                       */
-  int topo;           /* mesh group index of the current topology (-1: none yet)       */
-  int topo_pending;   /* output_topology_changed since the last frame                  */
-  int topo_n, topo_nt;/* node and triangle counts of the current mesh group            */
   char *grids;        /* XDMF <Grid> elements of the frames so far                     */
   size_t glen, gcap;
   double *buf;        /* scratch for interleaved / derived arrays                      */
@@ -135,7 +140,7 @@ static const char *h5_message(void) {
 
 static void h5_fail(const YfDump *d, const char *what) __attribute__((noreturn));
 static void h5_fail(const YfDump *d, const char *what) {
-  yf_io_error(NULL, "dump %s: cannot write '%s' (%s): %s", d->id, d->path, what, h5_message());
+  yf_io_error(NULL, "dump %s: cannot write '%s' (%s): %s", d->id, d->cur, what, h5_message());
 }
 
 /* HDF5 prints its error stack by default; yfdem reports errors itself. */
@@ -195,59 +200,32 @@ static void h5_put(YfDump *d, hid_t loc, const char *name, hid_t type, int rank,
   H5Sclose(space);
 }
 
-/* Frames that /frames holds in its pre-sized object header (see the file comment). */
-#define FRAMES_EST 8192
-
+/* Create the frame file (as NAME.tmp; h5_frame renames it when it is complete). */
 static void h5_open(YfDump *d) {
   h5_quiet();
-  /* 1.8 file format: link messages in object headers (needed for the pre-sized /frames), and a
-   * version-2 superblock, which has no "open for writing" flag that would lock a killed file. */
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18);
   H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG); /* closing after an error also closes its objects */
-  if (!d->created) {
-    hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
-    H5Pset_est_link_info(fcpl, 16, 9); /* root: frames, mesh, mesh_NNNN... */
-    d->file = H5Fcreate(d->path, H5F_ACC_TRUNC, fcpl, fapl);
-    if (d->file < 0) h5_fail(d, "create file");
-    H5Pclose(fcpl);
-    H5Pclose(fapl);
-    d->created = 1;
-    hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE);
-    H5Pset_link_phase_change(gcpl, 65535, 65534);
-    H5Pset_est_link_info(gcpl, FRAMES_EST, 6);
-    d->frames = H5Gcreate2(d->file, "frames", H5P_DEFAULT, gcpl, H5P_DEFAULT);
-    if (d->frames < 0) h5_fail(d, "create /frames");
-    H5Pclose(gcpl);
-  } else { /* reopened after output_close_all / between runs: append */
-    d->file = H5Fopen(d->path, H5F_ACC_RDWR, fapl);
-    if (d->file < 0) h5_fail(d, "reopen file");
-    H5Pclose(fapl);
-    d->frames = H5Gopen2(d->file, "frames", H5P_DEFAULT);
-    if (d->frames < 0) h5_fail(d, "open /frames");
-  }
+  /* Default (earliest) file format: the widest range of readers, ParaView's bundled HDF5 too. */
+  d->file = H5Fcreate(d->cur_tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  if (d->file < 0) h5_fail(d, "create file"); /* before any other call: it clears the error stack */
+  H5Pclose(fapl);
 }
 
+/* Error path (output_close_all): close a frame file left open by a failure and remove it; the
+ * frames already renamed and indexed are untouched. */
 static void h5_close(YfDump *d) {
-  if (d->frames >= 0) H5Gclose(d->frames);
-  if (d->file >= 0) H5Fclose(d->file);
-  d->frames = d->file = -1;
+  if (d->file < 0) return;
+  H5Fclose(d->file);
+  d->file = -1;
+  if (d->cur_tmp) unlink(d->cur_tmp);
 }
 
-static void mesh_name(char *buf, size_t n, int topo) {
-  if (topo == 0) snprintf(buf, n, "mesh");
-  else snprintf(buf, n, "mesh_%04d", topo);
-}
-
-/* Write the current topology as a new mesh group. */
+/* Write the current topology to /mesh of the frame file. */
 static void h5_mesh(YfSim *s, YfDump *d) {
   const YfModel *m = &s->model;
   int n = m->node.n, nt = m->tri.n;
-  char name[32];
-  d->topo++;
-  mesh_name(name, sizeof name, d->topo);
-  hid_t g = H5Gcreate2(d->file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  if (g < 0) h5_fail(d, name);
+  hid_t g = H5Gcreate2(d->file, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  if (g < 0) h5_fail(d, "mesh");
   hsize_t dt[2] = {(hsize_t)nt, 3}, d1[1] = {(hsize_t)nt}, dn[1] = {(hsize_t)n};
   hsize_t dn2[2] = {(hsize_t)n, 2};
   h5_put(d, g, "triangles", H5T_NATIVE_INT, 2, dt, m->tri.v);
@@ -262,9 +240,6 @@ static void h5_mesh(YfSim *s, YfDump *d) {
   }
   h5_put(d, g, "x0", H5T_NATIVE_DOUBLE, 2, dn2, b);
   H5Gclose(g);
-  d->topo_pending = 0;
-  d->topo_n = n;
-  d->topo_nt = nt;
 }
 
 /* XML-safe copy of a file name (the .xmf refers to the .h5 by name). */
@@ -304,24 +279,23 @@ static void xmf_attr(YfDump *d, const char *fname, const char *name, const char 
   grids_printf(d, "        </Attribute>\n");
 }
 
-/* Append the <Grid> of the frame just written. */
-static void xmf_add_frame(YfDump *d, const char *frame, double time, long step, int n, int nt, int with_fc) {
-  char fname[1024], mesh[32], p[128], dn2[48], dt3[48], dt1[48];
-  xml_escape(fname, sizeof fname, d->h5name);
-  mesh_name(mesh, sizeof mesh, d->topo);
+/* Append the <Grid> of the frame just written (file d->cur; the .xmf sits in the same
+ * directory and names it without the directory, so the pair can be moved together). */
+static void xmf_add_frame(YfDump *d, double time, long step, int n, int nt, int with_fc) {
+  char fname[1024], p[32], dn2[48], dt3[48], dt1[48];
+  const char *base = strrchr(d->cur, '/');
+  xml_escape(fname, sizeof fname, base ? base + 1 : d->cur);
   snprintf(dn2, sizeof dn2, "%d 2", n);
   snprintf(dt3, sizeof dt3, "%d 3", nt);
   snprintf(dt1, sizeof dt1, "%d", nt);
-  grids_printf(d, "      <Grid Name=\"frame_%s\" GridType=\"Uniform\">\n", frame);
+  grids_printf(d, "      <Grid Name=\"frame_%06ld\" GridType=\"Uniform\">\n", d->nframe);
   grids_printf(d, "        <Time Value=\"%.17g\"/>\n", time);
   grids_printf(d, "        <Information Name=\"step\" Value=\"%ld\"/>\n", step);
   grids_printf(d, "        <Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\" "
                   "NodesPerElement=\"3\">\n", nt);
-  snprintf(p, sizeof p, "/%s/triangles", mesh);
-  xmf_item(d, fname, dt3, 1, p);
+  xmf_item(d, fname, dt3, 1, "/mesh/triangles");
   grids_printf(d, "        </Topology>\n        <Geometry GeometryType=\"XY\">\n");
-  snprintf(p, sizeof p, "/frames/%s/x", frame);
-  xmf_item(d, fname, dn2, 0, p);
+  xmf_item(d, fname, dn2, 0, "/x");
   grids_printf(d, "        </Geometry>\n");
   static const struct { unsigned bit; const char *name, *type, *center; int dims; } attrs[] = {
       {YF_FIELD_U, "u", "Vector", "Node", 2},         {YF_FIELD_V, "v", "Vector", "Node", 2},
@@ -330,26 +304,18 @@ static void xmf_add_frame(YfDump *d, const char *frame, double time, long step, 
       {YF_FIELD_SIGMA1, "sigma1", "Scalar", "Cell", 1}};
   for (size_t i = 0; i < sizeof attrs / sizeof attrs[0]; i++) {
     if (!(d->fields & attrs[i].bit)) continue;
-    snprintf(p, sizeof p, "/frames/%s/%s", frame, attrs[i].name);
+    snprintf(p, sizeof p, "/%s", attrs[i].name);
     xmf_attr(d, fname, attrs[i].name, attrs[i].type, attrs[i].center,
              attrs[i].dims == 2 ? dn2 : attrs[i].dims == 3 ? dt3 : dt1, 0, p);
   }
-  if (with_fc) {
-    snprintf(p, sizeof p, "/frames/%s/fc", frame);
-    xmf_attr(d, fname, "fc", "Vector", "Node", dn2, 0, p);
-  }
-  if (d->fields & YF_FIELD_MATERIAL) {
-    snprintf(p, sizeof p, "/%s/material", mesh);
-    xmf_attr(d, fname, "material", "Scalar", "Cell", dt1, 1, p);
-  }
-  if (d->fields & YF_FIELD_BODY) {
-    snprintf(p, sizeof p, "/%s/body", mesh);
-    xmf_attr(d, fname, "body", "Scalar", "Cell", dt1, 1, p);
-  }
+  if (with_fc) xmf_attr(d, fname, "fc", "Vector", "Node", dn2, 0, "/fc");
+  if (d->fields & YF_FIELD_MATERIAL) xmf_attr(d, fname, "material", "Scalar", "Cell", dt1, 1, "/mesh/material");
+  if (d->fields & YF_FIELD_BODY) xmf_attr(d, fname, "body", "Scalar", "Cell", dt1, 1, "/mesh/body");
   grids_printf(d, "      </Grid>\n");
 }
 
-/* Replace FILE.xmf atomically: a reader (or a killed run) sees the old or the new index. */
+/* Replace STEM.xmf atomically: a reader (or a killed run) sees the old or the new index.  Not
+ * fsync'ed: the frame files it names are not either (see the file comment, Durability). */
 static void xmf_write(YfDump *d) {
   FILE *f = fopen(d->xmf_tmp, "w");
   if (!f) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, d->xmf_tmp, strerror(errno));
@@ -360,7 +326,7 @@ static void xmf_write(YfDump *d) {
              "    <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", name);
   if (d->glen) fwrite(d->grids, 1, d->glen, f);
   fputs("    </Grid>\n  </Domain>\n</Xdmf>\n", f);
-  int bad = ferror(f) || fflush(f) != 0 || fsync(fileno(f)) != 0;
+  int bad = ferror(f) || fflush(f) != 0;
   int err = errno;
   if (fclose(f) != 0 && !bad) {
     bad = 1;
@@ -376,13 +342,11 @@ static void h5_frame(YfSim *s, YfDump *d) {
   const YfModel *m = &s->model;
   const YfNodes *nd = &m->node;
   int n = nd->n, nt = m->tri.n;
-  if (d->file < 0) h5_open(d);
-  if (d->topo < 0 || d->topo_pending || n != d->topo_n || nt != d->topo_nt) h5_mesh(s, d);
-
-  char frame[32];
-  snprintf(frame, sizeof frame, "%06ld", d->nframe);
-  hid_t g = H5Gcreate2(d->frames, frame, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  if (g < 0) h5_fail(d, "create frame group");
+  snprintf(d->cur, d->curcap, "%s_%06ld%s", d->stem, d->nframe, d->ext);
+  snprintf(d->cur_tmp, d->curcap, "%s.tmp", d->cur);
+  h5_open(d);
+  h5_mesh(s, d);
+  hid_t g = d->file; /* the frame's arrays are at the root */
   long long step = s->step;
   h5_put(d, g, "time", H5T_NATIVE_DOUBLE, 0, NULL, &s->time);
   h5_put(d, g, "step", H5T_NATIVE_LLONG, 0, NULL, &step);
@@ -437,10 +401,17 @@ static void h5_frame(YfSim *s, YfDump *d) {
   /* contact force per node: only while contact is on (else the field would be all zeros) */
   const double *fc = (d->fields & YF_FIELD_FC) ? contact_node_forces(s) : NULL;
   if (fc) h5_put(d, g, "fc", H5T_NATIVE_DOUBLE, 2, dn2, fc);
-  if (H5Gclose(g) < 0) h5_fail(d, "close frame group");
-  /* The frame must be complete in the file before the index names it. */
-  if (H5Fflush(d->file, H5F_SCOPE_GLOBAL) < 0) h5_fail(d, "flush");
-  xmf_add_frame(d, frame, s->time, s->step, n, nt, fc != NULL);
+  /* Complete and closed, then renamed, then indexed: the .xmf never names a partial file. */
+  herr_t st = H5Fclose(d->file);
+  d->file = -1;
+  if (st < 0) {
+    unlink(d->cur_tmp);
+    h5_fail(d, "close");
+  }
+  if (rename(d->cur_tmp, d->cur) != 0)
+    yf_io_error(NULL, "dump %s: cannot rename '%s' to '%s': %s", d->id, d->cur_tmp, d->cur,
+                strerror(errno));
+  xmf_add_frame(d, s->time, s->step, n, nt, fc != NULL);
   xmf_write(d);
 }
 
@@ -501,8 +472,8 @@ void output_step(YfSim *s) {
 }
 
 void output_run_end(YfSim *s) {
-  /* Every frame is flushed and indexed as it is written; nothing is pending here.  Files stay
-   * open for the next run (output_close_all closes them at exit). */
+  /* Every frame is closed and indexed as it is written; nothing is pending here (only csv
+   * indexes stay open for the next run; output_close_all closes them at exit). */
   (void)s;
 }
 
@@ -515,9 +486,8 @@ void output_write_all(YfSim *s) {
 }
 
 void output_topology_changed(YfSim *s) {
-  struct YfOutput *o = s->out;
-  if (!o) return;
-  for (int i = 0; i < o->ndump; i++) o->dump[i]->topo_pending = 1;
+  /* Nothing to do: every frame file carries the topology of its own step. */
+  (void)s;
 }
 
 static void dump_close(YfDump *d) {
@@ -534,7 +504,10 @@ static void dump_free(YfDump *d) {
   free(d->path);
   free(d->xmf);
   free(d->xmf_tmp);
-  free(d->h5name);
+  free(d->stem);
+  free(d->ext);
+  free(d->cur);
+  free(d->cur_tmp);
   free(d->grids);
   free(d->buf);
   y2dref_free(d->y2d);
@@ -577,18 +550,25 @@ int output_add_dump(YfSim *s, const char *id, int style, long every, const char 
   d->fields = fields & YF_FIELD_ALL;
   d->compress = compress;
   d->path = yf_strdup(path);
-  d->file = d->frames = -1;
+  d->file = -1;
   d->last_step = LONG_MIN;
-  d->topo = -1;
   if (style == YF_DUMP_H5) {
     const char *base = strrchr(path, '/');
-    d->h5name = yf_strdup(base ? base + 1 : path);
     size_t l = strlen(path);
-    const char *dot = strrchr(d->h5name, '.');
+    const char *dot = strrchr(base ? base + 1 : path, '.');
     if (dot && (strcmp(dot, ".h5") == 0 || strcmp(dot, ".hdf5") == 0 || strcmp(dot, ".hdf") == 0))
       l -= strlen(dot);
-    d->xmf = str_printf("%.*s.xmf", (int)l, path);
+    else
+      dot = ".h5";
+    d->stem = str_printf("%.*s", (int)l, path);
+    d->ext = yf_strdup(dot);
+    d->xmf = str_printf("%s.xmf", d->stem);
     d->xmf_tmp = str_printf("%s.tmp", d->xmf);
+    /* frame names are formatted in place per frame: room for a 20-digit index and ".tmp" */
+    d->curcap = l + strlen(d->ext) + 32;
+    d->cur = yf_malloc(d->curcap, "dump file name");
+    d->cur_tmp = yf_malloc(d->curcap, "dump file name");
+    d->cur[0] = d->cur_tmp[0] = 0;
   }
   o->dump[o->ndump++] = d;
   update_next_due(s);
@@ -657,9 +637,10 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
   for (int i = 0; o && i < o->ndump; i++)
     if (strcmp(o->dump[i]->path, path) == 0)
       arg_error(a, 3, "already written by dump '%s'", o->dump[i]->id);
-  output_add_dump(s, id, style, every, path, fields, compress);
+  int k = output_add_dump(s, id, style, every, path, fields, compress); /* creates s->out */
+  const YfDump *d = s->out->dump[k];
   if (style == YF_DUMP_H5)
-    sim_printf(s, "dump %s: every %ld steps to %s (index %s)\n", id, every, path, s->out->dump[s->out->ndump - 1]->xmf);
+    sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN%s (index %s)\n", id, every, d->stem, d->ext, d->xmf);
   else
     sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN.csv\n", id, every, path);
 }

@@ -1,13 +1,15 @@
 /* output.h: state dumps for post-processing (HDF5 + XDMF 3 for ParaView, CSV for scripts).
  *
- * output.c owns everything written per frame: up to YF_MAX_DUMPS dumps, each with its own file,
+ * output.c owns everything written per frame: up to YF_MAX_DUMPS dumps, each with its own files,
  * period and field list.  The step loop only calls output_step() after every completed step;
  * when no dump is due that costs one integer compare (YfOutput.next_due).
  *
- * Crash safety: a frame is complete on disk (H5Fflush) before the .xmf index that lists it is
- * replaced atomically (write FILE.xmf.tmp, fsync, rename), so a run killed at any moment leaves
- * an .xmf that lists only frames that can be read.  Files are created at the first frame (the
- * start of the first run after the dump command), so a deck error before `run` leaves no file.
+ * Crash safety by construction: an h5 dump (FILE.h5) writes each frame k to its own file
+ * FILE_NNNNNN.h5 (via NAME.tmp, close, rename) and never modifies a written file; only then is
+ * the index FILE.xmf replaced atomically (FILE.xmf.tmp + rename) by one that lists the frame.  A
+ * run killed at any moment leaves an .xmf that lists only complete frames (not fsync'ed: a power
+ * cut is not covered; see output.c).  Files are created at the first frame (the start of the
+ * first run after the dump command), so a deck error before `run` leaves no file.
  */
 #ifndef YF_OUTPUT_H
 #define YF_OUTPUT_H
@@ -61,11 +63,12 @@ void output_step(YfSim *s);      /* after each completed step: frames that are d
 void output_run_end(YfSim *s);   /* end of each run                                          */
 /* Write one frame of every dump now (whether due or not; skipped if this step is written). */
 void output_write_all(YfSim *s);
-/* Topology changed (triangles or node count): the next frame of every h5 dump starts a new
- * mesh group /mesh_NNNN that later frames reference. */
+/* Topology changed (triangles or node count).  Kept for callers; nothing to do, since every h5
+ * frame file carries the mesh of its own step. */
 void output_topology_changed(YfSim *s);
-/* Close every file cleanly (frames written so far stay readable).  Safe to call from the
- * error cleanup path and more than once; never exits. */
+/* Close what is open (csv indexes; a frame file a failure left half-written is removed).
+ * Frames written so far stay readable.  Safe from the error cleanup path and more than once;
+ * never exits. */
 void output_close_all(YfSim *s);
 /* output_close_all + free everything (sim_free). */
 void output_free(YfSim *s);

@@ -454,15 +454,14 @@ START_TEST(test_dump_contact_force_field) {
   snprintf(deck, sizeof deck, "%svelocity a set 2 0\ncontact pair a b\ntimestep auto\ndump d h5 100 %s/c.h5 fields u fc\nrun 800\n",
            TWO, path);
   YfSim *s = yft_run(deck);
-  char file[256];
-  snprintf(file, sizeof file, "%s/c.h5", path);
   sim_free(s);
-  hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
-  ck_assert_int_ge(f, 0);
   double fmax = 0;
   for (int fr = 1; fr <= 8; fr++) { /* frame 0 precedes the first contact evaluation: no fc */
-    char name[64];
-    snprintf(name, sizeof name, "/frames/%06d/fc", fr);
+    char file[256];
+    snprintf(file, sizeof file, "%s/c_%06d.h5", path, fr); /* one file per frame */
+    hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+    ck_assert_int_ge(f, 0);
+    const char *name = "/fc";
     ck_assert_int_gt(H5Lexists(f, name, H5P_DEFAULT), 0);
     hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
     hid_t sp = H5Dget_space(d);
@@ -474,8 +473,8 @@ START_TEST(test_dump_contact_force_field) {
     for (int i = 0; i < 180; i++) fmax = fmax > fabs(buf[i]) ? fmax : fabs(buf[i]);
     H5Sclose(sp);
     H5Dclose(d);
+    H5Fclose(f);
   }
-  H5Fclose(f);
   ck_assert_double_gt(fmax, 0);
 }
 END_TEST

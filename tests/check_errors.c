@@ -35,9 +35,11 @@ static void expect_fail(const char *deck, int code, const char *piece1, const ch
   ck_assert_msg(js != NULL, "no summary written");
   const char *word = code == 1 ? "\"deck_error\"" : code == 2 ? "\"io_error\"" : "\"numerical_failure\"";
   ck_assert_msg(strstr(js, word) != NULL, "summary lacks status %s:\n%s", word, js);
-  if (code != 3) {
-    snprintf(p, sizeof p, "%s/out.h5", dir);
+  if (code != 3) { /* h5 dumps write out_NNNNNN.h5 and out.xmf */
+    snprintf(p, sizeof p, "%s/out_000000.h5", dir);
     ck_assert_msg(!yft_exists(p), "a deck error left a partial output file");
+    snprintf(p, sizeof p, "%s/out.xmf", dir);
+    ck_assert_msg(!yft_exists(p), "a deck error left an output index");
   }
   free(js);
   free(err);
@@ -94,7 +96,9 @@ START_TEST(test_bad_mesh_file) {
   snprintf(p, sizeof p, "%s/err.txt", dir);
   char *e2 = slurp(p);
   ck_assert_msg(strstr(e2, "bad.msh:2") != NULL, "message should point into the mesh file: %s", e2);
-  snprintf(p, sizeof p, "%s/out.h5", dir);
+  snprintf(p, sizeof p, "%s/out_000000.h5", dir);
+  ck_assert(!yft_exists(p));
+  snprintf(p, sizeof p, "%s/out.xmf", dir);
   ck_assert(!yft_exists(p));
   free(e2);
   free(dir);
@@ -118,7 +122,7 @@ START_TEST(test_inverted_element_numerical_failure) {
   ck_assert_msg(strstr(err, "numerical failure at step") && strstr(err, "triangle") && strstr(err, "inverted"),
                 "message: %s", err);
   char p[600];
-  snprintf(p, sizeof p, "%s/out.h5", dir);
+  snprintf(p, sizeof p, "%s/out_000000.h5", dir);
   ck_assert_msg(yft_exists(p), "frames before the failure must be kept");
   snprintf(p, sizeof p, "%s/out.xmf", dir);
   char *x = slurp(p);

@@ -1,10 +1,11 @@
 /* check_output.c: dumps (HDF5 + XDMF, CSV), the summary JSON and the state hash.
  *
- * Facts checked: arrays read back from the .h5 are bit-identical to the model's at the frame's
- * step, frames land exactly every N steps plus at the run start, the .xmf lists exactly the
- * frames written and refers to them by a relative path, a writer killed by SIGKILL in the middle
- * of its stream leaves every frame its .xmf lists readable and exact, the summary has the
- * standard keys in order and never contains NaN, and the state hash sees a single flipped bit.
+ * Facts checked: arrays read back from each frame file STEM_NNNNNN.h5 are bit-identical to the
+ * model's at the frame's step, frames land exactly every N steps plus at the run start, each
+ * file carries the topology of its own frame, the .xmf lists exactly the frames written and
+ * refers to each frame's file by its bare name, a writer killed by SIGKILL at random moments
+ * leaves every frame its .xmf lists readable and exact, the summary has the standard keys in
+ * order and never contains NaN, and the state hash sees a single flipped bit.
  */
 #include <check.h>
 #include <errno.h>
@@ -117,27 +118,28 @@ static long h5_read(hid_t f, const char *path, hid_t type, void **out) {
   return st < 0 ? -1 : (long)n;
 }
 
-/* Compare frame k of file f with the state set_state(step) of a model built like s.
+/* The file of frame k of an h5 dump whose FILE is STEM.h5. */
+static void frame_path(char *out, size_t n, const char *stem, long k) {
+  snprintf(out, n, "%s_%06ld.h5", stem, k);
+}
+
+/* Compare the open frame file f with the state set_state(step) of a model built like s.
  * Returns 0 when every array is bit-identical. */
-static int check_frame(hid_t f, YfSim *s, long k, long step) {
+static int check_frame(hid_t f, YfSim *s, long step) {
   set_state(s, step);
   const YfModel *m = &s->model;
   int n = m->node.n, nt = m->tri.n, bad = 0;
-  char p[128];
   void *buf;
   double *b;
-  snprintf(p, sizeof p, "/frames/%06ld/time", k);
-  if (h5_read(f, p, H5T_NATIVE_DOUBLE, &buf) != 1) return 1;
+  if (h5_read(f, "/time", H5T_NATIVE_DOUBLE, &buf) != 1) return 1;
   bad |= ((double *)buf)[0] != s->time;
   free(buf);
-  snprintf(p, sizeof p, "/frames/%06ld/step", k);
-  if (h5_read(f, p, H5T_NATIVE_LLONG, &buf) != 1) return 1;
+  if (h5_read(f, "/step", H5T_NATIVE_LLONG, &buf) != 1) return 1;
   bad |= ((long long *)buf)[0] != step;
   free(buf);
-  static const char *const vec[] = {"x", "u", "v", "f"};
+  static const char *const vec[] = {"/x", "/u", "/v", "/f"};
   for (int q = 0; q < 4; q++) {
-    snprintf(p, sizeof p, "/frames/%06ld/%s", k, vec[q]);
-    if (h5_read(f, p, H5T_NATIVE_DOUBLE, &buf) != 2L * n) return 1;
+    if (h5_read(f, vec[q], H5T_NATIVE_DOUBLE, &buf) != 2L * n) return 1;
     b = buf;
     for (int i = 0; i < n; i++) {
       double ex[4][2] = {{m->node.x[i], m->node.y[i]},
@@ -148,11 +150,24 @@ static int check_frame(hid_t f, YfSim *s, long k, long step) {
     }
     free(buf);
   }
-  snprintf(p, sizeof p, "/frames/%06ld/stress", k);
-  if (h5_read(f, p, H5T_NATIVE_DOUBLE, &buf) != 3L * nt) return 1;
+  if (h5_read(f, "/stress", H5T_NATIVE_DOUBLE, &buf) != 3L * nt) return 1;
   bad |= memcmp(buf, m->tri.s, sizeof(double) * 3 * (size_t)nt) != 0;
   free(buf);
+  if (h5_read(f, "/mesh/triangles", H5T_NATIVE_INT, &buf) != 3L * nt) return 1;
+  bad |= memcmp(buf, m->tri.v, sizeof(int) * 3 * (size_t)nt) != 0;
+  free(buf);
   return bad;
+}
+
+/* check_frame on frame k of dump STEM; 0 ok, 1 wrong, 2 the file does not open. */
+static int check_frame_file(const char *stem, YfSim *s, long k, long step) {
+  char p[256];
+  frame_path(p, sizeof p, stem, k);
+  hid_t f = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) return 2;
+  int r = check_frame(f, s, step);
+  H5Fclose(f);
+  return r;
 }
 
 /* ---------------------------------------------------------------- h5 + xmf */
@@ -163,11 +178,13 @@ static void roundtrip(int compress) {
   mk_tmpdir();
   YfSim s;
   build(&s, 6);
-  char h5[128], xmf[128];
+  char h5[128], xmf[128], stem[128], p0[160];
   snprintf(h5, sizeof h5, "%s/out.h5", tmpdir);
+  snprintf(stem, sizeof stem, "%s/out", tmpdir);
   snprintf(xmf, sizeof xmf, "%s/out.xmf", tmpdir);
+  frame_path(p0, sizeof p0, stem, 0);
   ck_assert_int_eq(output_add_dump(&s, "d1", YF_DUMP_H5, 2, h5, YF_FIELD_ALL, compress), 0);
-  ck_assert_msg(!file_exists(h5), "file must not exist before the first frame");
+  ck_assert_msg(!file_exists(p0) && !file_exists(xmf), "no file before the first frame");
   set_state(&s, 0);
   output_run_begin(&s);
   for (long st = 1; st <= 4; st++) {
@@ -178,10 +195,19 @@ static void roundtrip(int compress) {
   output_run_end(&s);
   output_close_all(&s);
 
-  hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
+  ck_assert_msg(!file_exists(h5), "FILE.h5 itself is not written, only STEM_NNNNNN.h5");
+  for (long k = 0; k < 3; k++) {
+    ck_assert_msg(check_frame_file(stem, &s, k, 2 * k) == 0, "frame %ld differs", k);
+    char p[200];
+    frame_path(p, sizeof p, stem, k);
+    strcat(p, ".tmp");
+    ck_assert_msg(!file_exists(p), "%s left behind", p);
+  }
+  frame_path(p0, sizeof p0, stem, 3);
+  ck_assert(!file_exists(p0));
+  frame_path(p0, sizeof p0, stem, 1);
+  hid_t f = H5Fopen(p0, H5F_ACC_RDONLY, H5P_DEFAULT);
   ck_assert_int_ge(f, 0);
-  for (long k = 0; k < 3; k++) ck_assert_msg(check_frame(f, &s, k, 2 * k) == 0, "frame %ld differs", k);
-  ck_assert_int_lt(H5Lexists(f, "/frames/000003", H5P_DEFAULT), 1);
   void *buf;
   ck_assert_int_eq(h5_read(f, "/mesh/triangles", H5T_NATIVE_INT, &buf), 3L * s.model.tri.n);
   ck_assert_int_eq(memcmp(buf, s.model.tri.v, sizeof(int) * 3 * (size_t)s.model.tri.n), 0);
@@ -192,8 +218,8 @@ static void roundtrip(int compress) {
   /* von Mises and sigma1 of frame 1 (step 2) against their closed forms */
   set_state(&s, 2);
   double *vm, *s1;
-  ck_assert_int_eq(h5_read(f, "/frames/000001/vonmises", H5T_NATIVE_DOUBLE, (void **)&vm), s.model.tri.n);
-  ck_assert_int_eq(h5_read(f, "/frames/000001/sigma1", H5T_NATIVE_DOUBLE, (void **)&s1), s.model.tri.n);
+  ck_assert_int_eq(h5_read(f, "/vonmises", H5T_NATIVE_DOUBLE, (void **)&vm), s.model.tri.n);
+  ck_assert_int_eq(h5_read(f, "/sigma1", H5T_NATIVE_DOUBLE, (void **)&s1), s.model.tri.n);
   for (int e = 0; e < s.model.tri.n; e++) {
     double a = s.model.tri.s[3 * e], c = s.model.tri.s[3 * e + 1], t = s.model.tri.s[3 * e + 2];
     /* principal stresses from the eigenvalues of the 2x2 tensor; von Mises from them */
@@ -213,11 +239,19 @@ static void roundtrip(int compress) {
   ck_assert_int_eq(count_str(x, "GridType=\"Uniform\""), 3);
   ck_assert_int_eq(count_str(x, "TopologyType=\"Triangle\""), 3);
   ck_assert_int_eq(count_str(x, "GeometryType=\"XY\""), 3);
-  /* relative references only: every HDF item starts with the bare file name */
-  ck_assert_int_eq(count_str(x, "Format=\"HDF\">"), count_str(x, "Format=\"HDF\">out.h5:/"));
+  /* relative references only: every HDF item starts with the bare name of its frame's file */
+  ck_assert_int_eq(count_str(x, "Format=\"HDF\">"), count_str(x, "Format=\"HDF\">out_00000"));
   ck_assert_ptr_null(strstr(x, tmpdir));
-  ck_assert_ptr_nonnull(strstr(x, ">out.h5:/frames/000002/x<"));
-  ck_assert_ptr_nonnull(strstr(x, ">out.h5:/mesh/triangles<"));
+  for (int k = 0; k < 3; k++) {
+    char w[64];
+    snprintf(w, sizeof w, ">out_%06d.h5:/x<", k);
+    ck_assert_int_eq(count_str(x, w), 1);
+    snprintf(w, sizeof w, ">out_%06d.h5:/mesh/triangles<", k);
+    ck_assert_int_eq(count_str(x, w), 1);
+    snprintf(w, sizeof w, ">out_%06d.h5:/", k); /* x, 6 fields, triangles, material, body */
+    ck_assert_int_eq(count_str(x, w), 10);
+  }
+  ck_assert_ptr_null(strstr(x, ".tmp"));
   ck_assert_ptr_nonnull(strstr(x, "Center=\"Cell\""));
   ck_assert_ptr_nonnull(strstr(x, "Center=\"Node\""));
   /* the three times, in order, read back exactly */
@@ -244,14 +278,17 @@ END_TEST
 START_TEST(test_h5_roundtrip_compressed) { roundtrip(1); }
 END_TEST
 
-/* A second run continues the same file (also after output_close_all); a topology change starts
- * /mesh_0001; undump closes. */
+/* A second run continues the frame numbering (also after output_close_all); a frame after a
+ * topology change carries the new mesh in its own file while earlier files keep the old one;
+ * undump closes; a new dump with the same file (a rerun) starts again at frame 0 and its index
+ * lists only its own frames. */
 START_TEST(test_h5_runs_and_topology) {
   mk_tmpdir();
   YfSim s;
   build(&s, 3);
-  char h5[128], xmf[128];
+  char h5[128], xmf[128], stem[128], p[200];
   snprintf(h5, sizeof h5, "%s/t.h5", tmpdir);
+  snprintf(stem, sizeof stem, "%s/t", tmpdir);
   snprintf(xmf, sizeof xmf, "%s/t.xmf", tmpdir);
   output_add_dump(&s, "a", YF_DUMP_H5, 10, h5, YF_FIELD_U | YF_FIELD_MATERIAL, 0);
   set_state(&s, 0);
@@ -259,8 +296,11 @@ START_TEST(test_h5_runs_and_topology) {
   for (long st = 1; st <= 5; st++) { set_state(&s, st); output_step(&s); }
   output_run_end(&s);
   ck_assert_int_eq(output_frames(&s, "a"), 1);
-  output_close_all(&s);               /* closed between runs: the next frame reopens, appends */
+  output_close_all(&s);               /* closed between runs: the next frame goes on */
   output_run_begin(&s);               /* second run starts at step 5: frame 1 */
+  /* a new node and triangle (what fracture does to the node count) */
+  int nn = model_add_node(&s.model, 0.35, 0.05, 999, 0);
+  model_add_tri(&s.model, 6, nn, 7, 1, 77, 0);
   output_topology_changed(&s);
   for (long st = 6; st <= 10; st++) { set_state(&s, st); output_step(&s); } /* frame 2 at 10 */
   ck_assert_int_eq(output_frames(&s, "a"), 3);
@@ -269,29 +309,64 @@ START_TEST(test_h5_runs_and_topology) {
   ck_assert_int_eq(output_remove_dump(&s, "a"), 0);
   ck_assert_int_eq(output_frames(&s, "a"), -1);
   ck_assert_int_eq(output_remove_dump(&s, "a"), -1);
-  hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
-  ck_assert_int_ge(f, 0);
-  ck_assert_int_gt(H5Lexists(f, "/frames/000002/u", H5P_DEFAULT), 0);
-  ck_assert_int_lt(H5Lexists(f, "/frames/000002/v", H5P_DEFAULT), 1); /* not asked for */
-  ck_assert_int_gt(H5Lexists(f, "/mesh_0001", H5P_DEFAULT), 0);
+  static const long long want[3] = {0, 5, 10};
   for (int k = 0; k < 3; k++) {
-    static const long long want[3] = {0, 5, 10};
-    char p[64];
+    frame_path(p, sizeof p, stem, k);
+    hid_t f = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+    ck_assert_int_ge(f, 0);
     void *buf;
-    snprintf(p, sizeof p, "/frames/%06d/step", k);
-    ck_assert_int_eq(h5_read(f, p, H5T_NATIVE_LLONG, &buf), 1);
+    ck_assert_int_eq(h5_read(f, "/step", H5T_NATIVE_LLONG, &buf), 1);
     ck_assert_int_eq(((long long *)buf)[0], want[k]);
     free(buf);
+    ck_assert_int_gt(H5Lexists(f, "/u", H5P_DEFAULT), 0);
+    ck_assert_int_lt(H5Lexists(f, "/v", H5P_DEFAULT), 1); /* not asked for */
+    /* frames 0 and 1 were written before the change: 6 triangles, 8 nodes; frame 2: 7, 9 */
+    int nt = k < 2 ? 6 : 7, n = k < 2 ? 8 : 9;
+    ck_assert_int_eq(h5_read(f, "/mesh/triangles", H5T_NATIVE_INT, &buf), 3L * nt);
+    ck_assert_int_eq(memcmp(buf, s.model.tri.v, sizeof(int) * 3 * (size_t)nt), 0);
+    free(buf);
+    ck_assert_int_eq(h5_read(f, "/mesh/node_id", H5T_NATIVE_INT, &buf), n);
+    ck_assert_int_eq(((int *)buf)[n - 1], k < 2 ? 107 : 999);
+    free(buf);
+    ck_assert_int_eq(h5_read(f, "/u", H5T_NATIVE_DOUBLE, &buf), 2L * n);
+    free(buf);
+    H5Fclose(f);
   }
-  H5Fclose(f);
   char *x = slurp(xmf);
   ck_assert_int_eq(count_str(x, "GridType=\"Uniform\""), 3);
-  /* frames 0 and 1 (written before the change) use /mesh, frame 2 the new /mesh_0001 */
-  ck_assert_int_eq(count_str(x, ">t.h5:/mesh/triangles<"), 2);
-  ck_assert_int_eq(count_str(x, ">t.h5:/mesh_0001/triangles<"), 1);
+  ck_assert_int_eq(count_str(x, "NumberOfElements=\"6\""), 2);
+  ck_assert_int_eq(count_str(x, "NumberOfElements=\"7\""), 1);
+  ck_assert_int_eq(count_str(x, ">t_000002.h5:/mesh/triangles<"), 1);
+  ck_assert_int_eq(count_str(x, "Dimensions=\"9 2\""), 2); /* x and u of frame 2 */
   ck_assert_int_eq(count_str(x, "Name=\"material\""), 3);
   ck_assert_int_eq(count_str(x, "Name=\"stress\""), 0);
   free(x);
+  free_sim(&s);
+
+  /* Rerun (a fresh process's view): two frames; frame 2 of the longer run stays on disk, unlisted. */
+  build(&s, 3);
+  output_add_dump(&s, "a", YF_DUMP_H5, 10, h5, YF_FIELD_U, 0);
+  set_state(&s, 100);
+  output_run_begin(&s);
+  for (long st = 101; st <= 110; st++) { set_state(&s, st); output_step(&s); }
+  ck_assert_int_eq(output_frames(&s, "a"), 2);
+  x = slurp(xmf);
+  ck_assert_int_eq(count_str(x, "GridType=\"Uniform\""), 2);
+  ck_assert_ptr_null(strstr(x, "t_000002.h5"));
+  ck_assert_ptr_nonnull(strstr(x, "<Information Name=\"step\" Value=\"110\"/>"));
+  free(x);
+  frame_path(p, sizeof p, stem, 2);
+  ck_assert(file_exists(p));
+  hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT); /* never FILE.h5 itself */
+  ck_assert_int_lt(f, 0);
+  frame_path(p, sizeof p, stem, 1);
+  f = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+  ck_assert_int_ge(f, 0);
+  void *buf;
+  ck_assert_int_eq(h5_read(f, "/step", H5T_NATIVE_LLONG, &buf), 1);
+  ck_assert_int_eq(((long long *)buf)[0], 110);
+  free(buf);
+  H5Fclose(f);
   free_sim(&s);
   rm_tmpdir();
 }
@@ -361,17 +436,17 @@ START_TEST(test_deck_dump) {
   ck_assert_int_eq(output_frames(s, "a"), -1);
   ck_assert_int_eq(output_frames(s, "c"), 2); /* steps 0 and 10; the second run starts at 10 */
   ck_assert(yft_exists("n_000001.csv") && !yft_exists("n_000002.csv"));
-  hid_t f = H5Fopen("a.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+  ck_assert(!yft_exists("a.h5") && !yft_exists("a_000003.h5"));
+  hid_t f = H5Fopen("a_000002.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
   ck_assert_int_ge(f, 0);
-  ck_assert_int_gt(H5Lexists(f, "/frames/000002/v", H5P_DEFAULT), 0);
-  ck_assert_int_gt(H5Lexists(f, "/frames/000002/stress", H5P_DEFAULT), 0);
-  ck_assert_int_lt(H5Lexists(f, "/frames/000002/u", H5P_DEFAULT), 1);
-  ck_assert_int_lt(H5Lexists(f, "/frames/000003", H5P_DEFAULT), 1);
+  ck_assert_int_gt(H5Lexists(f, "/v", H5P_DEFAULT), 0);
+  ck_assert_int_gt(H5Lexists(f, "/stress", H5P_DEFAULT), 0);
+  ck_assert_int_lt(H5Lexists(f, "/u", H5P_DEFAULT), 1);
   void *buf;
-  ck_assert_int_eq(h5_read(f, "/frames/000002/step", H5T_NATIVE_LLONG, &buf), 1);
+  ck_assert_int_eq(h5_read(f, "/step", H5T_NATIVE_LLONG, &buf), 1);
   ck_assert_int_eq(((long long *)buf)[0], 10);
   free(buf);
-  ck_assert_int_eq(h5_read(f, "/frames/000002/time", H5T_NATIVE_DOUBLE, &buf), 1);
+  ck_assert_int_eq(h5_read(f, "/time", H5T_NATIVE_DOUBLE, &buf), 1);
   ck_assert_double_eq_tol(((double *)buf)[0], 10 * s->dt, 1e-12 * s->dt);
   free(buf);
   H5Fclose(f);
@@ -403,7 +478,9 @@ START_TEST(test_deck_dump_errors) {
                   "stderr: %s", err);
     if (i == 0) ck_assert_msg(strstr(err, "vonmises") != NULL, "valid fields not listed: %s", err);
     char p[600];
-    snprintf(p, sizeof p, "%s/out.h5", dir);
+    snprintf(p, sizeof p, "%s/out_000000.h5", dir);
+    ck_assert(!yft_exists(p));
+    snprintf(p, sizeof p, "%s/out.xmf", dir);
     ck_assert(!yft_exists(p));
     snprintf(p, sizeof p, "rm -rf '%s'", dir);
     ck_assert_int_eq(system(p), 0);
@@ -422,13 +499,15 @@ static void close_on_error(int code, const char *msg) {
   output_close_all(cleanup_sim);
 }
 
-/* A dump that cannot create its file ends the run with exit code 2 and a message naming the
- * file and the system's reason; the cleanup path closes the other dump, whose frame stays. */
+/* A dump that cannot create its frame file ends the run with exit code 2 and a message naming
+ * the file and the system's reason; the other dump's frame, written before, stays. */
 START_TEST(test_io_error) {
   mk_tmpdir();
-  char good[128], bad[128];
+  char good[128], bad[128], bad0[160], goodstem[128];
   snprintf(good, sizeof good, "%s/good.h5", tmpdir);
+  snprintf(goodstem, sizeof goodstem, "%s/good", tmpdir);
   snprintf(bad, sizeof bad, "%s/no_such_dir/bad.h5", tmpdir);
+  snprintf(bad0, sizeof bad0, "%s/no_such_dir/bad_000000.h5", tmpdir);
   int pfd[2];
   ck_assert_int_eq(pipe(pfd), 0);
   pid_t pid = fork();
@@ -456,13 +535,15 @@ START_TEST(test_io_error) {
   waitpid(pid, &status, 0);
   ck_assert(WIFEXITED(status));
   ck_assert_int_eq(WEXITSTATUS(status), YF_EXIT_IO);
-  ck_assert_msg(strstr(msg, "dump bad") && strstr(msg, bad) && strstr(msg, "No such file"), "message: %s", msg);
+  ck_assert_msg(strstr(msg, "dump bad") && strstr(msg, bad0) && strstr(msg, "No such file"), "message: %s", msg);
   YfSim s;
   build(&s, 2);
-  hid_t f = H5Fopen(good, H5F_ACC_RDONLY, H5P_DEFAULT);
-  ck_assert_int_ge(f, 0);
-  ck_assert_int_eq(check_frame(f, &s, 0, 0), 0);
-  H5Fclose(f);
+  ck_assert_int_eq(check_frame_file(goodstem, &s, 0, 0), 0);
+  char p[200];
+  snprintf(p, sizeof p, "%s/good.xmf", tmpdir);
+  char *x = slurp(p);
+  ck_assert_int_eq(count_str(x, ">good_000000.h5:/x<"), 1);
+  free(x);
   model_free(&s.model);
   rm_tmpdir();
 }
@@ -470,13 +551,15 @@ END_TEST
 
 /* ---------------------------------------------------------------- kill test */
 
-/* Fork a writer (period 1, 800 nodes) that reports through a pipe once frame 1 is flushed and
- * indexed, SIGKILL it after delay_us microseconds, then check that the .xmf lists >= 2 frames and
- * that every listed frame reads back exactly.  Returns the number of listed frames, -1 - k
- * when frame k is unreadable or wrong, or -1000 when the file does not open at all. */
+/* Fork a writer (period 1, 800 nodes, 798 triangles) into the fresh directory dir that reports
+ * through a pipe once frame 1 is indexed, SIGKILL it after delay_us microseconds, then check
+ * that the .xmf is a complete document listing >= 2 frames, frame k in k.xmf names k_NNNNNN.h5
+ * and every listed frame's file opens and reads back exactly.  Returns the number of listed
+ * frames, or -1 - k when frame k is unreadable or wrong (-1000 - k: its file does not open). */
 static long kill_trial(const char *dir, useconds_t delay_us) {
-  char h5[160], xmf[160];
+  char h5[160], xmf[160], stem[160];
   snprintf(h5, sizeof h5, "%s/k.h5", dir);
+  snprintf(stem, sizeof stem, "%s/k", dir);
   snprintf(xmf, sizeof xmf, "%s/k.xmf", dir);
   int pfd[2];
   ck_assert_int_eq(pipe(pfd), 0);
@@ -508,35 +591,52 @@ static long kill_trial(const char *dir, useconds_t delay_us) {
 
   char *x = slurp(xmf);
   long listed = count_str(x, "GridType=\"Uniform\"");
-  free(x);
+  size_t xl = strlen(x);
+  static const char end[] = "  </Domain>\n</Xdmf>\n";
+  ck_assert_msg(xl > strlen(end) && strcmp(x + xl - strlen(end), end) == 0, "the .xmf is not a complete document");
   ck_assert_int_ge(listed, 2);
+  ck_assert_ptr_null(strstr(x, ".tmp"));
+  char w[64];
+  for (long k = 0; k < listed; k++) {
+    snprintf(w, sizeof w, ">k_%06ld.h5:/x<", k);
+    ck_assert_msg(strstr(x, w) != NULL, "frame %ld is not indexed by its own file", k);
+  }
+  snprintf(w, sizeof w, "k_%06ld.h5", listed);
+  ck_assert_ptr_null(strstr(x, w));
+  free(x);
   YfSim s;
   build(&s, 399);
   long result = listed;
-  hid_t f = H5Fopen(h5, H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (f < 0) result = -1000;
-  for (long k = 0; f >= 0 && k < listed; k++)
-    if (check_frame(f, &s, k, k) != 0) {
-      result = -1 - k;
+  for (long k = 0; k < listed; k++) {
+    int r = check_frame_file(stem, &s, k, k);
+    if (r != 0) {
+      result = r == 2 ? -1000 - k : -1 - k;
       break;
     }
-  if (f >= 0) H5Fclose(f);
+  }
   model_free(&s.model);
   return result;
 }
 
+/* 20 kills at pseudo-random delays in [0, 5) ms after frame 1 (a fixed sequence, so a failure
+ * repeats with the same delay), each in a fresh directory. */
 START_TEST(test_kill_midway) {
-  mk_tmpdir();
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-  /* Kill right away (the writer is inside frame 2) and a little later (some frames on). */
-  static const useconds_t delay[] = {0, 300, 3000};
-  for (size_t i = 0; i < sizeof delay / sizeof delay[0]; i++) {
-    long r = kill_trial(tmpdir, delay[i]);
-    ck_assert_msg(r != -1000, "killed writer (delay %u us): the .h5 does not open", (unsigned)delay[i]);
-    ck_assert_msg(r >= 2, "killed writer (delay %u us): frame %ld listed in the .xmf is unreadable",
-                  (unsigned)delay[i], -1 - r);
+  unsigned long long rng = 0x9e3779b97f4a7c15ull;
+  long total = 0;
+  for (int i = 0; i < 20; i++) {
+    rng = rng * 6364136223846793005ull + 1442695040888963407ull; /* LCG (Knuth MMIX) */
+    useconds_t delay = i == 0 ? 0 : (useconds_t)((rng >> 33) % 5000);
+    mk_tmpdir();
+    long r = kill_trial(tmpdir, delay);
+    ck_assert_msg(r > -1000, "trial %d (delay %u us): frame %ld listed in the .xmf has no file",
+                  i, (unsigned)delay, -1000 - r);
+    ck_assert_msg(r >= 2, "trial %d (delay %u us): frame %ld listed in the .xmf is unreadable or wrong",
+                  i, (unsigned)delay, -1 - r);
+    total += r;
+    rm_tmpdir();
   }
-  rm_tmpdir();
+  ck_assert_int_ge(total, 40);
 }
 END_TEST
 
