@@ -116,6 +116,7 @@ void cmd_jointprop(YfSim *s, const YfArgs *a) {
   YfJointProp p;
   joint_prop_default(&p);
   p.irreversible = 1; /* native decks: damage never decreases (read_y2d keeps Y2D's reversible law) */
+  p.hreg = 0.0;       /* native decks: no absolute length in the law (units must not matter) */
   int given[4] = {0, 0, 0, 0}, het = YF_HET_NONE;
   double het_par = 0;
   unsigned long seed = 1;
@@ -609,7 +610,8 @@ static double stored_irrev(const YfJointProp *p, const double *x, const double *
     return -0.5 * (f[0] * dax + f[1] * day + f[2] * dbx + f[3] * dby);
   double ex = ((x[1] + x[2]) - (x[0] + x[3])) / 2.0, ey = ((y[1] + y[2]) - (y[0] + y[3])) / 2.0;
   double h = sqrt(ex * ex + ey * ey);
-  double e1x = ex / (h + 1e-10), e1y = ey / (h + 1e-10), nx = -e1y, ny = e1x;
+  double hr = h + p->hreg > 0.0 ? h + p->hreg : 1.0; /* as joint_force */
+  double e1x = ex / hr, e1y = ey / hr, nx = -e1y, ny = e1x;
   double op, sp;
   joint_lengths(p, h, fs, &op, NULL, &sp, NULL);
   double oa = dax * nx + day * ny, ob = dbx * nx + dby * ny, sa = dax * e1x + day * e1y, sb = dbx * e1x + dby * e1y;

@@ -155,6 +155,7 @@ void joint_prop_default(YfJointProp *p)
   p->bl_s = 1.0 / 3.0; /* ... where the stress is f_t/3 */
   p->ntab = 0;
   p->tab_area = 0.0;
+  p->hreg = 1e-10; /* Y2D's regularisation of the unit tangent */
 }
 
 /* Validate table points; shared by joint_prop_set_table and joint_prop_check. */
@@ -300,7 +301,9 @@ int joint_force(const YfJointProp *p, const double x[4], const double y[4], doub
   double ex = ((x[1] + x[2]) - (x[0] + x[3])) / 2.0;
   double ey = ((y[1] + y[2]) - (y[0] + y[3])) / 2.0;
   double h = sqrt(ex * ex + ey * ey);
-  double e1x = ex / (h + 1e-10), e1y = ey / (h + 1e-10);
+  double hr = h + p->hreg;
+  if (!(hr > 0.0)) hr = 1.0; /* a collapsed joint (h = 0, native): no direction, no force */
+  double e1x = ex / hr, e1y = ey / hr;
   double nx = -e1y, ny = e1x;
   double dax = x[0] - x[3], day = y[0] - y[3];
   double dbx = x[1] - x[2], dby = y[1] - y[2];

@@ -51,6 +51,9 @@ typedef struct {
   double tab_z[YF_JOINT_TAB_MAX]; /* normalised opening, 0 .. 1, strictly increasing          */
   double tab_s[YF_JOINT_TAB_MAX]; /* stress / f_t, 1 .. 0                                     */
   double tab_area;        /* integral of the normalised table                                    */
+  double hreg;            /* [m] added to the joint length in its unit tangent e/(h + hreg): Y2D's
+                             absolute 1e-10 (default, read_y2d); 0 for native decks, whose answers
+                             must not depend on the unit of length (a 1e-5 m joint would be off by 1e-5) */
 } YfJointProp;
 
 /* What one evaluation saw (optional output of joint_force). */

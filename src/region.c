@@ -154,6 +154,20 @@ void cmd_region(struct YfSim *sim, const YfArgs *a) {
   /* relative to the region's size; the magnitude term covers rounding of coordinates far
    * from the origin (a region small compared with its distance to 0) */
   g.tol = 1e-9 * size + 1e-13 * mag;
+  /* A region much larger than the scene (the half-plane idiom `box -1e30 -1e30 X 1e30`) must not
+   * get a tolerance larger than the scene itself: cap it by the same rule applied to the nodes
+   * meshed so far (mesher rounding scales with the scene, not with the region). */
+  const YfNodes *nd = &sim->model.node;
+  if (nd->n > 0) {
+    double bb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY}, nmag = 0;
+    for (int i = 0; i < nd->n; i++) {
+      bb[0] = fmin(bb[0], nd->x0[i]); bb[1] = fmin(bb[1], nd->y0[i]);
+      bb[2] = fmax(bb[2], nd->x0[i]); bb[3] = fmax(bb[3], nd->y0[i]);
+      nmag = fmax(nmag, fmax(fabs(nd->x0[i]), fabs(nd->y0[i])));
+    }
+    double cap = 1e-9 * fmax(bb[2] - bb[0], bb[3] - bb[1]) + 1e-13 * nmag;
+    if (cap > 0 && g.tol > cap) g.tol = cap;
+  }
   reg = yf_realloc(reg, (size_t)(nreg + 1) * sizeof *reg, "regions");
   reg[nreg++] = g;
 }

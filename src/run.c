@@ -269,10 +269,13 @@ static void step_once(YfSim *s) {
       int e = R.blk_bad[b];
       if (R.blk_badJ[b] <= 0)
         yf_numeric_error(s->step + 1, "triangle %d (material %s) inverted: J = %.6g (area ratio current/initial); "
-                         "the time step (%.6g s) may be too large or the body is crushed beyond what the law allows",
-                         m->tri.id[e], m->mat[m->tri.mat[e]].name, R.blk_badJ[b], s->dt);
-      yf_numeric_error(s->step + 1, "triangle %d (material %s): stress is not finite (NaN or inf)", m->tri.id[e],
-                       m->mat[m->tri.mat[e]].name);
+                         "the time step (%.6g s, stable limit %.6g s set by %s) may be too large or the body is "
+                         "crushed beyond what the law allows",
+                         m->tri.id[e], m->mat[m->tri.mat[e]].name, R.blk_badJ[b], s->dt, s->dt_limit, s->dt_limiter);
+      /* a non-finite stress is an overflow of a growing instability: say what limits the step */
+      yf_numeric_error(s->step + 1, "triangle %d (material %s): stress is not finite (NaN or inf): the motion "
+                       "blew up (time step %.6g s, stable limit %.6g s set by %s)", m->tri.id[e],
+                       m->mat[m->tri.mat[e]].name, s->dt, s->dt_limit, s->dt_limiter);
     }
     power += R.blk[b];
   }
