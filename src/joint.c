@@ -208,14 +208,25 @@ void cmd_fracture(YfSim *s, const YfArgs *a) {
   m->body[b].fracture = 1;
 }
 
-/* fracture_log FILE: the break record as CSV, rewritten at the end of every run. */
+/* fracture_log FILE [opened FILE2]: the break record as CSV, and optionally the opened-crack
+ * record (joints first past their peak) in the same columns, rewritten at the end of every run. */
 void cmd_fracture_log(YfSim *s, const YfArgs *a) {
-  arg_count(a, 1, 1);
+  arg_count(a, 1, 3);
+  if (a->n == 2) arg_error(a, 1, "expected 'opened FILE2' after FILE");
   YfJoints *J = jget(s);
   char *path = deck_resolve_path(a, a->w[0]);
   if (strlen(path) >= sizeof J->log_path) arg_error(a, 0, "path too long");
   snprintf(J->log_path, sizeof J->log_path, "%s", path);
   free(path);
+  J->open_log_path[0] = 0;
+  if (a->n == 3) {
+    static const char *const kw[] = {"opened", NULL};
+    arg_choice(a, 1, "option", kw);
+    path = deck_resolve_path(a, a->w[2]);
+    if (strlen(path) >= sizeof J->open_log_path) arg_error(a, 2, "path too long");
+    snprintf(J->open_log_path, sizeof J->open_log_path, "%s", path);
+    free(path);
+  }
 }
 
 /* ---------------- insertion ---------------- */
@@ -248,7 +259,7 @@ static void joints_reserve(YfJoints *J, int want) {
   while (cap < want) cap *= 2;
 #define JG(p, k) J->p = yf_realloc(J->p, (size_t)cap * (k) * sizeof *J->p, "joint " #p)
   JG(corner, 4); JG(node, 4); JG(tri, 2); JG(prop, 1); JG(k, 1); JG(fs, 1); JG(dmg, 3); JG(w, 1);
-  JG(z, 1); JG(L0, 1); JG(state, 1); JG(mode, 1); JG(f, 8); JG(pend, 1);
+  JG(z, 1); JG(L0, 1); JG(state, 1); JG(mode, 1); JG(f, 8); JG(pend, 1); JG(opened, 1);
 #undef JG
   J->cap = cap;
 }
@@ -406,6 +417,7 @@ int joints_insert_zone(YfSim *s, const unsigned char *tri_in_zone,
     J->dmg[3 * j] = J->dmg[3 * j + 1] = J->dmg[3 * j + 2] = 0.0;
     J->state[j] = 0;
     J->mode[j] = YF_JMODE_NONE;
+    J->opened[j] = 0;
     for (int c = 0; c < 8; c++) J->f[8 * j + c] = 0.0;
   }
   free(nj);
@@ -437,6 +449,7 @@ int joints_insert_zone(YfSim *s, const unsigned char *tri_in_zone,
   }
   J->nblk = (J->n + JBLOCK - 1) / JBLOCK;
   J->blk_nbreak = yf_realloc(J->blk_nbreak, (size_t)(J->nblk > 0 ? J->nblk : 1) * sizeof(int), "joint blocks");
+  J->blk_nopen = yf_realloc(J->blk_nopen, (size_t)(J->nblk > 0 ? J->nblk : 1) * sizeof(int), "joint blocks");
   register_slots(s);
   m->prepared = 0;
   if (s->out) output_topology_changed(s);
@@ -548,7 +561,7 @@ void joints_forces(YfSim *s) {
   #pragma omp parallel for schedule(static) if (nj >= par_min)
   for (int b = 0; b < nblk; b++) {
     YfJointProp lp;
-    int cur = -1, nbreak = 0;
+    int cur = -1, nbreak = 0, nopen = 0;
     int j1 = (b + 1) * JBLOCK < nj ? (b + 1) * JBLOCK : nj;
     for (int j = b * JBLOCK; j < j1; j++) {
       if (J->state[j]) continue;
@@ -565,6 +578,10 @@ void joints_forces(YfSim *s) {
       J->w[j] += work_inc(N, nd, fj, f, dtp);
       memcpy(fj, f, sizeof f);
       J->z[j] = info.zmax;
+      if (info.zmax > 0.0 && !J->opened[j]) { /* first time past the peak: an opened crack */
+        J->opened[j] = (unsigned char)(0x80 | (info.mode != YF_JMODE_NONE ? info.mode : YF_JMODE_MIXED));
+        nopen++;
+      }
       if (YF_JOINT_BROKEN(nfail)) {
         J->state[j] = 1;
         J->mode[j] = (unsigned char)(info.mode != YF_JMODE_NONE ? info.mode : YF_JMODE_MIXED);
@@ -572,6 +589,28 @@ void joints_forces(YfSim *s) {
       }
     }
     J->blk_nbreak[b] = nbreak;
+    J->blk_nopen[b] = nopen;
+  }
+  /* record the newly opened joints in joint order (before the breaks of the same step) */
+  for (int b = 0; b < nblk; b++) {
+    if (!J->blk_nopen[b]) continue;
+    int j1 = (b + 1) * JBLOCK < nj ? (b + 1) * JBLOCK : nj;
+    for (int j = b * JBLOCK; j < j1; j++) {
+      if (!(J->opened[j] & 0x80)) continue;
+      J->opened[j] &= 0x7f;
+      if (J->nopened == J->caporec) {
+        J->caporec = J->caporec ? 2 * J->caporec : 256;
+        J->orec = yf_realloc(J->orec, (size_t)J->caporec * sizeof *J->orec, "opened record");
+      }
+      const int *nd = J->node + 4 * j;
+      double mx = 0, my = 0;
+      for (int c = 0; c < 4; c++) {
+        mx += N->x[nd[c]];
+        my += N->y[nd[c]];
+      }
+      J->orec[J->nopened++] = (YfBreak){s->step + 1, s->time, 0.25 * mx, 0.25 * my, J->L0[j], J->opened[j],
+                                         J->tri[2 * j], J->tri[2 * j + 1], j};
+    }
   }
   /* record the new breaks in joint order */
   for (int b = 0; b < nblk; b++) {
@@ -724,6 +763,11 @@ double joints_stable_dt(YfSim *s, char *what, size_t n) {
 long joints_count(const YfSim *s) { return s->joints ? s->joints->n : 0; }
 long joints_broken(const YfSim *s) { return s->joints ? s->joints->nbroken : 0; }
 
+const YfBreak *joints_opened(const YfSim *s, int *n) {
+  *n = s->joints ? s->joints->nopened : 0;
+  return s->joints ? s->joints->orec : NULL;
+}
+
 const YfBreak *joints_breaks(const YfSim *s, int *n) {
   *n = s->joints ? s->joints->nrec : 0;
   return s->joints ? s->joints->rec : NULL;
@@ -784,22 +828,21 @@ static int dbl_desc(const void *a, const void *b) {
 
 static const char *mode_name(int md) { return md == YF_JMODE_I ? "I" : md == YF_JMODE_II ? "II" : "mixed"; }
 
-static void write_log(YfSim *s) {
-  YfJoints *J = s->joints;
+static void write_log(YfSim *s, const char *path, const YfBreak *rec, int nrec) {
   char tmp[1100];
-  snprintf(tmp, sizeof tmp, "%s.tmp", J->log_path);
+  snprintf(tmp, sizeof tmp, "%s.tmp", path);
   FILE *f = fopen(tmp, "w");
   if (!f) { /* runs from the exit path too: warn, never exit */
     yf_warn(NULL, "fracture_log: cannot write '%s'", tmp);
     return;
   }
   fprintf(f, "step,time,x,y,mode,triA,triB,length,joint\n");
-  for (int i = 0; i < J->nrec; i++) {
-    const YfBreak *b = &J->rec[i];
+  for (int i = 0; i < nrec; i++) {
+    const YfBreak *b = &rec[i];
     fprintf(f, "%ld,%.17g,%.17g,%.17g,%s,%d,%d,%.17g,%d\n", b->step, b->time, b->x, b->y, mode_name(b->mode),
             s->model.tri.id[b->triA], s->model.tri.id[b->triB], b->length, b->joint);
   }
-  if (fclose(f) != 0 || rename(tmp, J->log_path) != 0) yf_warn(NULL, "fracture_log: cannot write '%s'", J->log_path);
+  if (fclose(f) != 0 || rename(tmp, path) != 0) yf_warn(NULL, "fracture_log: cannot write '%s'", path);
 }
 
 void joints_summary(YfSim *s) {
@@ -815,6 +858,15 @@ void joints_summary(YfSim *s) {
   } else {
     summary_add_raw("first_break", "null");
   }
+  if (J->nopened) { /* the first joint past its peak (an opened, still cohesive crack) */
+    const YfBreak *b = &J->orec[0];
+    snprintf(buf, sizeof buf, "{\"step\": %ld, \"time\": %.17g, \"x\": %.17g, \"y\": %.17g, \"mode\": \"%s\"}", b->step,
+             b->time, b->x, b->y, mode_name(b->mode));
+    summary_add_raw("first_crack", buf);
+  } else {
+    summary_add_raw("first_crack", "null");
+  }
+  summary_add_number("joints_opened", J->nopened);
   double len[4] = {0, 0, 0, 0};
   for (int i = 0; i < J->nrec; i++) len[J->rec[i].mode == YF_JMODE_I ? 0 : J->rec[i].mode == YF_JMODE_II ? 1 : 2] += J->rec[i].length;
   len[3] = len[0] + len[1] + len[2];
@@ -834,7 +886,8 @@ void joints_summary(YfSim *s) {
   summary_add_raw("fragment_sizes", buf);
   free(fr);
   free(area);
-  if (J->log_path[0]) write_log(s);
+  if (J->log_path[0]) write_log(s, J->log_path, J->rec, J->nrec);
+  if (J->open_log_path[0]) write_log(s, J->open_log_path, J->orec, J->nopened);
 }
 
 void joints_free(YfSim *s) {
@@ -845,7 +898,7 @@ void joints_free(YfSim *s) {
   free(J->set); free(J->spec);
   free(J->corner); free(J->node); free(J->tri); free(J->prop); free(J->k); free(J->fs); free(J->dmg);
   free(J->w); free(J->z); free(J->L0); free(J->state); free(J->mode); free(J->f); free(J->pend);
-  free(J->blk_nbreak); free(J->rec);
+  free(J->blk_nbreak); free(J->rec); free(J->opened); free(J->blk_nopen); free(J->orec);
   free(J);
   s->joints = NULL;
   s->model.nxslot = 0;

@@ -13,7 +13,9 @@
  *   joints_energy(s)   from run_energies: returns the elastic energy stored in intact joints [J/m]
  *                      (added to energy.strain) and sets energy.joint_dissipated, both for the
  *                      current positions.
- *   joints_summary(s)  at the end of each run: summary keys and the fracture_log CSV.
+ *                      Joints first past their peak (damage > 0) are recorded the same way
+ *                      (opened cracks: joints_opened), at one compare per joint per step.
+ *   joints_summary(s)  at the end of each run: summary keys and the fracture_log CSV(s).
  *   The gather adds jf into nodes through the model's extra slots (model.xslot_*), so joint
  *   forces enter the node sums in a fixed order.
  *
@@ -22,7 +24,7 @@
  *             table FILE] [cohesion C friction MU] [damage reversible|irreversible]
  *             [floor y2d|none] [weibull M | normal CV] [seed S]
  *   fracture BODY JOINTPROP [region R | group G]
- *   fracture_log FILE
+ *   fracture_log FILE [opened FILE2]
  * Native defaults: law munjiza (Y2D's curve and constants), damage irreversible, floor y2d,
  * homogeneous, seed 1.
  *
@@ -88,6 +90,16 @@ typedef struct YfJoints {
   int nrec, caprec;
   YfBreak *rec;
   char log_path[1024];
+  /* Opened cracks (the fictitious crack of the cohesive model): a joint "opens" at the first
+   * evaluation that leaves damage z > 0 at a sampling point (opening beyond o_p or slip beyond
+   * s_p: past the peak of the law, softening but still transmitting stress).  opened[j]: 0 never,
+   * else the mode at that moment (YF_JMODE_*), | 0x80 until recorded.  The records (same layout
+   * as breaks; length = initial length) are appended in joint order per step, like breaks. */
+  unsigned char *opened;
+  int *blk_nopen;
+  int nopened, caporec;
+  YfBreak *orec;
+  char open_log_path[1024]; /* fracture_log ... opened FILE */
 } YfJoints;
 
 void joints_insert(YfSim *s);
@@ -128,6 +140,8 @@ int joints_insert_zone(YfSim *s, const unsigned char *tri_in_zone,
                        int (*prop_of_pair)(void *ctx, int triA, int triB), void *ctx);
 /* Break records so far (in detection order). */
 const YfBreak *joints_breaks(const YfSim *s, int *n);
+/* Opened-crack records so far (first evaluation past the peak of each joint, in detection order). */
+const YfBreak *joints_opened(const YfSim *s, int *n);
 /* Fragments: connected groups of triangles through shared nodes and unbroken joints.  Writes the
  * fragment index of each triangle into frag (may be NULL) and returns the count. */
 int joints_fragments(const YfSim *s, int *frag);

@@ -25,8 +25,8 @@ typedef struct {
   long step;
   double time;
   YfEnergy e;
-  long broken;
-  double len[3];
+  long broken, opened;
+  double len[3], olen[3];
   int frags;
   double s1max;
 } Sample;
@@ -46,6 +46,7 @@ static struct {
   int midspan;        /* region index, -1 none */
   int peak;           /* track stresses */
   double threshold;   /* stress_first_above threshold [Pa], 0 = none */
+  double until;       /* peak_stress only over times <= until [s] (INFINITY: the whole run) */
   char log_path[1024];
   long every;
   /* tracked */
@@ -62,12 +63,12 @@ static struct {
   int ntri_alloc, nnode_alloc, njoint_alloc;
   int *par, *first;
   unsigned char *intri;     /* triangle belongs to the measured body */
-  long nrec_seen;
-  double len_now[3];
+  long nrec_seen, norec_seen;
+  double len_now[3], olen_now[3]; /* broken / opened crack length by mode so far [m] */
   double s1_step;           /* max sigma1 of the last step (for the log) */
   Sample *smp;
   long nsmp, capsmp;
-} M = {.body = -1, .midspan = -1, .every = 100, .first_frag_time = -1};
+} M = {.body = -1, .midspan = -1, .every = 100, .first_frag_time = -1, .until = INFINITY};
 
 void metrics_reset(void) {
   free(M.par); free(M.first); free(M.intri); free(M.smp);
@@ -76,6 +77,7 @@ void metrics_reset(void) {
   M.midspan = -1;
   M.every = 100;
   M.first_frag_time = -1;
+  M.until = INFINITY;
 }
 
 /* ---- the command ---- */
@@ -130,12 +132,14 @@ void cmd_metrics(YfSim *s, const YfArgs *a) {
   }
   case 4: {
     static const char *const oo[] = {"on", "off", NULL};
-    arg_count(a, 2, 4);
+    arg_count(a, 2, 6);
     M.peak = arg_choice(a, 1, "switch", oo) == 0;
-    if (a->n > 2) {
-      static const char *const th[] = {"threshold", NULL};
-      arg_choice(a, 2, "option", th);
-      M.threshold = arg_pos(a, 3, "threshold S [Pa]");
+    for (int w = 2; w < a->n; w += 2) {
+      static const char *const th[] = {"threshold", "until", NULL};
+      int o = arg_choice(a, w, "option", th);
+      if (w + 1 >= a->n) arg_error(a, w, "'%s' needs a value", a->w[w]);
+      if (o == 0) M.threshold = arg_pos(a, w + 1, "threshold S [Pa]");
+      else M.until = arg_pos(a, w + 1, "until T [s]");
     }
     break;
   }
@@ -251,7 +255,9 @@ static void sample(YfSim *s) {
   q->time = s->time;
   q->e = s->energy;
   q->broken = s->joints ? s->joints->nbroken : 0;
+  q->opened = s->joints ? s->joints->nopened : 0;
   memcpy(q->len, M.len_now, sizeof q->len);
+  memcpy(q->olen, M.olen_now, sizeof q->olen);
   q->frags = count_fragments(s);
   q->s1max = M.s1_step;
 }
@@ -277,6 +283,9 @@ void metrics_step(YfSim *s) {
     for (long i = M.nrec_seen; i < J->nrec; i++)
       if (joint_measured(s, J->rec[i].joint)) M.len_now[mode_slot(J->rec[i].mode)] += J->rec[i].length;
     M.nrec_seen = J->nrec;
+    for (long i = M.norec_seen; i < J->nopened; i++)
+      if (joint_measured(s, J->orec[i].joint)) M.olen_now[mode_slot(J->orec[i].mode)] += J->orec[i].length;
+    M.norec_seen = J->nopened;
     if (M.first_frag_time < 0 && J->nbroken != M.last_nbroken) {
       M.last_nbroken = J->nbroken;
       if (count_fragments(s) > 1) M.first_frag_time = s->time;
@@ -303,7 +312,7 @@ void metrics_step(YfSim *s) {
       }
     }
     M.s1_step = best;
-    if (M.peak && bt >= 0 && (M.peak_step == 0 || best > M.peak_val)) {
+    if (M.peak && bt >= 0 && s->time <= M.until && (M.peak_step == 0 || best > M.peak_val)) {
       M.peak_val = best;
       M.peak_time = s->time;
       M.peak_step = s->step;
@@ -382,6 +391,117 @@ static void sput(Str *s, const char *fmt, ...) {
   }
 }
 
+/* Mirror symmetry score over opened (which = 0) or broken (1) joints of the measured body: the
+ * fraction whose mirror image (initial midpoints, tolerance 1e-3 of the shortest joint) is in the
+ * same set.  -1 when the set is empty or memory is short. */
+static double symmetry_score(const YfSim *s, int which) {
+  const YfJoints *J = s->joints;
+  Pt *p = malloc((size_t)(J->n + 1) * sizeof(Pt));
+  if (!p) return -1;
+  int nb = 0;
+  double lmin = INFINITY;
+  for (int j = 0; j < J->n; j++) {
+    if (!(which ? J->state[j] : J->opened[j]) || !joint_measured(s, j)) continue;
+    joint_geom(s, j, &p[nb].x, &p[nb].y);
+    if (J->L0[j] < lmin) lmin = J->L0[j];
+    nb++;
+  }
+  double score = -1;
+  if (nb) {
+    qsort(p, (size_t)nb, sizeof(Pt), pt_cmp);
+    double tol = 1e-3 * lmin;
+    int ok = 0;
+    for (int i = 0; i < nb; i++) {
+      double x = p[i].x, y = p[i].y;
+      if (M.mirror_axis == 1) x = 2 * M.mirror_c - x;
+      else y = 2 * M.mirror_c - y;
+      ok += pt_has(p, nb, x, y, tol);
+    }
+    score = (double)ok / nb;
+  }
+  free(p);
+  return score;
+}
+
+/* First mode I record (time order) of a measured joint whose initial midpoint is in region ri. */
+static const YfBreak *first_mode_i_in(const YfSim *s, const YfBreak *rec, int n, int ri) {
+  for (int i = 0; i < n; i++) {
+    double x, y;
+    joint_geom(s, rec[i].joint, &x, &y);
+    if (rec[i].mode == YF_JMODE_I && joint_measured(s, rec[i].joint) && region_contains(ri, x, y)) return &rec[i];
+  }
+  return NULL;
+}
+
+static void put_event(const char *key, const YfBreak *e) {
+  char buf[512];
+  if (!e) {
+    summary_add_raw(key, "null");
+    return;
+  }
+  snprintf(buf, sizeof buf, "{\"step\": %ld, \"time\": %.17g, \"x\": %.17g, \"y\": %.17g}", e->step, e->time, e->x, e->y);
+  summary_add_raw(key, buf);
+}
+
+/* Summary keys PFXcrack_length_by_region (by mode, orientation, count), PFXcrack_orientation and
+ * PFXcrack_orientation_at_first_fragment from the records rec[0..n-1] (initial midpoints). */
+static void region_lengths(const YfSim *s, const YfBreak *rec, int n, const char *pfx) {
+  char buf[512], key[96];
+  double rl[MAX_REG][8];
+  memset(rl, 0, sizeof rl);
+  double orient[3] = {0, 0, 0}, orient_ff[3] = {0, 0, 0};
+  for (int i = 0; i < n; i++) {
+    const YfBreak *b = &rec[i];
+    if (!joint_measured(s, b->joint)) continue;
+    double x, y;
+    int o = joint_geom(s, b->joint, &x, &y);
+    orient[o] += b->length;
+    if (M.first_frag_time >= 0 && b->time <= M.first_frag_time) orient_ff[o] += b->length;
+    for (int r = 0; r < M.nreg; r++) {
+      int in = 0;
+      for (int k = 0; k < M.reg[r].nr && !in; k++) in = region_contains(M.reg[r].r[k], x, y);
+      if (!in) continue;
+      rl[r][mode_slot(b->mode)] += b->length;
+      rl[r][3] += b->length;
+      rl[r][4 + (o == 2 ? 0 : o == 1 ? 1 : 2)] += b->length;
+      rl[r][7] += 1;
+    }
+  }
+  Str js = {0};
+  sput(&js, "{");
+  for (int r = 0; r < M.nreg; r++)
+    sput(&js,
+         "%s\"%s\": {\"I\": %.17g, \"II\": %.17g, \"mixed\": %.17g, \"total\": %.17g, \"inclined\": %.17g, "
+         "\"vertical\": %.17g, \"horizontal\": %.17g, \"count\": %d}",
+         r ? ", " : "", M.reg[r].name, rl[r][0], rl[r][1], rl[r][2], rl[r][3], rl[r][4], rl[r][5], rl[r][6], (int)rl[r][7]);
+  sput(&js, "}");
+  snprintf(key, sizeof key, "%scrack_length_by_region", pfx);
+  if (js.b) summary_add_raw(key, js.b);
+  free(js.b);
+  snprintf(key, sizeof key, "%scrack_orientation", pfx);
+  snprintf(buf, sizeof buf, "{\"vertical\": %.17g, \"horizontal\": %.17g, \"inclined\": %.17g}", orient[1], orient[0],
+           orient[2]);
+  summary_add_raw(key, buf);
+  snprintf(key, sizeof key, "%scrack_orientation_at_first_fragment", pfx);
+  if (M.first_frag_time >= 0) {
+    snprintf(buf, sizeof buf, "{\"vertical\": %.17g, \"horizontal\": %.17g, \"inclined\": %.17g}", orient_ff[1],
+             orient_ff[0], orient_ff[2]);
+    summary_add_raw(key, buf);
+  } else {
+    summary_add_raw(key, "null");
+  }
+  if (*pfx) { /* opened crack length by mode over the whole body (crack_length is joint.c's, broken) */
+    double len[4] = {0, 0, 0, 0};
+    for (int i = 0; i < n; i++)
+      if (joint_measured(s, rec[i].joint)) len[mode_slot(rec[i].mode)] += rec[i].length;
+    len[3] = len[0] + len[1] + len[2];
+    snprintf(key, sizeof key, "%scrack_length", pfx);
+    snprintf(buf, sizeof buf, "{\"I\": %.17g, \"II\": %.17g, \"mixed\": %.17g, \"total\": %.17g}", len[0], len[1], len[2],
+             len[3]);
+    summary_add_raw(key, buf);
+  }
+}
+
 static void write_log(YfSim *s) {
   char tmp[1100];
   snprintf(tmp, sizeof tmp, "%s.tmp", M.log_path);
@@ -391,12 +511,13 @@ static void write_log(YfSim *s) {
     return;
   }
   fprintf(f, "step,time,kinetic,strain,external_work,damping,joint_dissipated,contact,friction,broken,"
-             "crack_I,crack_II,crack_mixed,fragments,sigma1_max\n");
+             "crack_I,crack_II,crack_mixed,fragments,sigma1_max,opened,opened_I,opened_II,opened_mixed\n");
   for (long i = 0; i < M.nsmp; i++) {
     const Sample *q = &M.smp[i];
-    fprintf(f, "%ld,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%ld,%.10g,%.10g,%.10g,%d,%.10g\n", q->step, q->time,
-            q->e.kinetic, q->e.strain, q->e.external_work, q->e.damping, q->e.joint_dissipated, q->e.contact,
-            q->e.friction, q->broken, q->len[0], q->len[1], q->len[2], q->frags, q->s1max);
+    fprintf(f, "%ld,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%ld,%.10g,%.10g,%.10g,%d,%.10g,%ld,%.10g,%.10g,%.10g\n",
+            q->step, q->time, q->e.kinetic, q->e.strain, q->e.external_work, q->e.damping, q->e.joint_dissipated,
+            q->e.contact, q->e.friction, q->broken, q->len[0], q->len[1], q->len[2], q->frags, q->s1max, q->opened,
+            q->olen[0], q->olen[1], q->olen[2]);
   }
   if (fclose(f) != 0 || rename(tmp, M.log_path) != 0) yf_warn(NULL, "metrics log: cannot write '%s'", M.log_path);
 }
@@ -408,103 +529,39 @@ void metrics_summary(YfSim *s) {
   const YfJoints *J = s->joints;
   char buf[512];
 
-  /* symmetry: broken joints (initial midpoints) matched to their mirror images */
-  if (M.mirror_axis && J) {
-    int nb = 0;
-    Pt *p = malloc((size_t)(J->n + 1) * sizeof(Pt));
-    if (p) {
-      double lmin = INFINITY;
-      for (int j = 0; j < J->n; j++) {
-        if (!J->state[j] || !joint_measured(s, j)) continue;
-        joint_geom(s, j, &p[nb].x, &p[nb].y);
-        if (J->L0[j] < lmin) lmin = J->L0[j];
-        nb++;
-      }
-      if (nb) {
-        qsort(p, (size_t)nb, sizeof(Pt), pt_cmp);
-        double tol = 1e-3 * lmin;
-        int ok = 0;
-        for (int i = 0; i < nb; i++) {
-          double x = p[i].x, y = p[i].y;
-          if (M.mirror_axis == 1) x = 2 * M.mirror_c - x;
-          else y = 2 * M.mirror_c - y;
-          ok += pt_has(p, nb, x, y, tol);
-        }
-        summary_add_number("symmetry", (double)ok / nb);
-      } else {
-        summary_add_raw("symmetry", "null");
-      }
-      free(p);
-    }
-  } else if (M.mirror_axis) {
-    summary_add_raw("symmetry", "null");
+  /* symmetry about the mirror: over opened cracks (every joint past its peak, broken ones
+   * included: `symmetry`) and over broken joints only (`symmetry_broken`) */
+  if (M.mirror_axis) {
+    double so = J ? symmetry_score(s, 0) : -1, sb = J ? symmetry_score(s, 1) : -1;
+    if (so >= 0) summary_add_number("symmetry", so);
+    else summary_add_raw("symmetry", "null");
+    if (sb >= 0) summary_add_number("symmetry_broken", sb);
+    else summary_add_raw("symmetry_broken", "null");
   }
 
-  /* midspan crack: the first mode I break inside the region (records are in time order) */
+  /* midspan crack: the first mode I crack inside the midspan region: opened (past the peak of
+   * the law, the paper's fictitious crack: `midspan_crack_time`, `midspan_crack`) and broken
+   * (`midspan_break`) */
   if (M.midspan >= 0) {
-    const YfBreak *hit = NULL;
-    for (int i = 0; J && i < J->nrec && !hit; i++) {
-      double x, y;
-      joint_geom(s, J->rec[i].joint, &x, &y);
-      if (J->rec[i].mode == YF_JMODE_I && joint_measured(s, J->rec[i].joint) && region_contains(M.midspan, x, y))
-        hit = &J->rec[i];
+    int no = 0, nb = 0;
+    const YfBreak *ro = J ? J->orec : NULL, *rb = J ? J->rec : NULL;
+    if (J) {
+      no = J->nopened;
+      nb = J->nrec;
     }
-    if (hit) {
-      summary_add_number("midspan_crack_time", hit->time);
-      snprintf(buf, sizeof buf, "{\"step\": %ld, \"time\": %.17g, \"x\": %.17g, \"y\": %.17g}", hit->step, hit->time, hit->x,
-               hit->y);
-      summary_add_raw("midspan_crack", buf);
-    } else {
-      summary_add_raw("midspan_crack_time", "null");
-      summary_add_raw("midspan_crack", "null");
-    }
+    const YfBreak *ho = first_mode_i_in(s, ro, no, M.midspan), *hb = first_mode_i_in(s, rb, nb, M.midspan);
+    if (ho) summary_add_number("midspan_crack_time", ho->time);
+    else summary_add_raw("midspan_crack_time", "null");
+    put_event("midspan_crack", ho);
+    put_event("midspan_break", hb);
   }
 
-  /* crack length by region, mode and orientation; orientation overall and up to the first
-   * fragment */
-  {
-    double rl[MAX_REG][8];
-    memset(rl, 0, sizeof rl);
-    double orient[3] = {0, 0, 0}, orient_ff[3] = {0, 0, 0};
-    for (int i = 0; J && i < J->nrec; i++) {
-      const YfBreak *b = &J->rec[i];
-      if (!joint_measured(s, b->joint)) continue;
-      double x, y;
-      int o = joint_geom(s, b->joint, &x, &y);
-      orient[o] += b->length;
-      if (M.first_frag_time >= 0 && b->time <= M.first_frag_time) orient_ff[o] += b->length;
-      for (int r = 0; r < M.nreg; r++) {
-        int in = 0;
-        for (int k = 0; k < M.reg[r].nr && !in; k++) in = region_contains(M.reg[r].r[k], x, y);
-        if (!in) continue;
-        rl[r][mode_slot(b->mode)] += b->length;
-        rl[r][3] += b->length;
-        rl[r][4 + (o == 2 ? 0 : o == 1 ? 1 : 2)] += b->length;
-        rl[r][7] += 1;
-      }
-    }
-    Str js = {0};
-    sput(&js, "{");
-    for (int r = 0; r < M.nreg; r++)
-      sput(&js,
-           "%s\"%s\": {\"I\": %.17g, \"II\": %.17g, \"mixed\": %.17g, \"total\": %.17g, \"inclined\": %.17g, "
-           "\"vertical\": %.17g, \"horizontal\": %.17g, \"count\": %d}",
-           r ? ", " : "", M.reg[r].name, rl[r][0], rl[r][1], rl[r][2], rl[r][3], rl[r][4], rl[r][5], rl[r][6], (int)rl[r][7]);
-    sput(&js, "}");
-    if (js.b) summary_add_raw("crack_length_by_region", js.b);
-    free(js.b);
-    snprintf(buf, sizeof buf, "{\"vertical\": %.17g, \"horizontal\": %.17g, \"inclined\": %.17g}", orient[1], orient[0],
-             orient[2]);
-    summary_add_raw("crack_orientation", buf);
-    if (M.first_frag_time >= 0) {
-      summary_add_number("first_fragment_time", M.first_frag_time);
-      snprintf(buf, sizeof buf, "{\"vertical\": %.17g, \"horizontal\": %.17g, \"inclined\": %.17g}", orient_ff[1],
-               orient_ff[0], orient_ff[2]);
-      summary_add_raw("crack_orientation_at_first_fragment", buf);
-    } else {
-      summary_add_raw("first_fragment_time", "null");
-    }
-  }
+  /* crack length by region, mode and orientation, for opened and for broken joints;
+   * orientation overall and up to the first fragment */
+  region_lengths(s, J ? J->orec : NULL, J ? J->nopened : 0, "opened_");
+  region_lengths(s, J ? J->rec : NULL, J ? J->nrec : 0, "");
+  if (M.first_frag_time >= 0) summary_add_number("first_fragment_time", M.first_frag_time);
+  else summary_add_raw("first_fragment_time", "null");
 
   /* fragments of the measured body: area, initial and current centroid, mean velocity */
   {
@@ -561,8 +618,11 @@ void metrics_summary(YfSim *s) {
     if (M.peak_step > 0 && M.peak_tri >= 0 && M.peak_tri < m->tri.n) {
       double x, y;
       tri_centroid0(m, M.peak_tri, &x, &y);
-      snprintf(buf, sizeof buf, "{\"value\": %.17g, \"time\": %.17g, \"step\": %ld, \"x\": %.17g, \"y\": %.17g, \"tri\": %d}",
-               M.peak_val, M.peak_time, M.peak_step, x, y, M.peak_tri);
+      char until[40] = "null"; /* the window's end [s] (null: the whole run) */
+      if (isfinite(M.until)) snprintf(until, sizeof until, "%.17g", M.until);
+      snprintf(buf, sizeof buf,
+               "{\"value\": %.17g, \"time\": %.17g, \"step\": %ld, \"x\": %.17g, \"y\": %.17g, \"tri\": %d, \"until\": %s}",
+               M.peak_val, M.peak_time, M.peak_step, x, y, M.peak_tri, until);
       summary_add_raw("peak_stress", buf);
     } else {
       summary_add_raw("peak_stress", "null");

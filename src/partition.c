@@ -125,6 +125,10 @@ static void renumber_joints(YfSim *s, const int *tnew, const int *nnew) {
     J->rec[r].triA = tnew[J->rec[r].triA];
     J->rec[r].triB = tnew[J->rec[r].triB];
   }
+  for (int r = 0; r < J->nopened; r++) {
+    J->orec[r].triA = tnew[J->orec[r].triA];
+    J->orec[r].triB = tnew[J->orec[r].triB];
+  }
   int *key = yf_malloc((size_t)2 * nj * sizeof(int), "partition joints");
   for (int j = 0; j < nj; j++) {
     int a = J->tri[2 * j], b = J->tri[2 * j + 1];
@@ -152,9 +156,11 @@ static void renumber_joints(YfSim *s, const int *tnew, const int *nnew) {
   permute(J->L0, sizeof(double), nj, perm, tmp);
   permute(J->state, 1, nj, perm, tmp);
   permute(J->mode, 1, nj, perm, tmp);
+  permute(J->opened, 1, nj, perm, tmp);
   permute(J->f, 8 * sizeof(double), nj, perm, tmp);
   for (int k = 0; k < J->npend; k++) J->pend[k] = jnew[J->pend[k]];
   for (int r = 0; r < J->nrec; r++) J->rec[r].joint = jnew[J->rec[r].joint];
+  for (int r = 0; r < J->nopened; r++) J->orec[r].joint = jnew[J->orec[r].joint];
   free(tmp);
   free(perm);
   free(jnew);

@@ -197,6 +197,26 @@ static hid_t ropen(const R *r, const char *name) {
 
 /* ---------------------------------------------------------------- write */
 
+/* The opened-crack record (joint.h): flags and events, datasets opened, orec_step, orec_d
+ * (time x y length), orec_i (mode triA triB joint). */
+static void put_opened(W *w, hid_t g, const YfJoints *J) {
+  size_t nr = (size_t)J->nopened;
+  put(w, g, "opened", H5T_NATIVE_UCHAR, (size_t)J->n, J->opened);
+  long *rs = yf_malloc((nr ? nr : 1) * sizeof(long), "restart buffer");
+  double *rd = yf_malloc((nr ? nr : 1) * 4 * sizeof(double), "restart buffer");
+  int *ri = yf_malloc((nr ? nr : 1) * 4 * sizeof(int), "restart buffer");
+  for (size_t k = 0; k < nr; k++) {
+    const YfBreak *b = &J->orec[k];
+    rs[k] = b->step;
+    rd[4 * k] = b->time; rd[4 * k + 1] = b->x; rd[4 * k + 2] = b->y; rd[4 * k + 3] = b->length;
+    ri[4 * k] = b->mode; ri[4 * k + 1] = b->triA; ri[4 * k + 2] = b->triB; ri[4 * k + 3] = b->joint;
+  }
+  put(w, g, "orec_step", H5T_NATIVE_LONG, nr, rs);
+  put(w, g, "orec_d", H5T_NATIVE_DOUBLE, 4 * nr, rd);
+  put(w, g, "orec_i", H5T_NATIVE_INT, 4 * nr, ri);
+  free(rs); free(rd); free(ri);
+}
+
 static void write_all(W *w, YfSim *s) {
   YfModel *m = &s->model;
   const YfNodes *N = &m->node;
@@ -265,6 +285,7 @@ static void write_all(W *w, YfSim *s) {
     put(w, g, "rec_d", H5T_NATIVE_DOUBLE, 4 * nr, rd);
     put(w, g, "rec_i", H5T_NATIVE_INT, 4 * nr, ri);
     free(rs); free(rd); free(ri);
+    put_opened(w, g, J);
     /* generator state of each joint set (joints added later in the deck would draw from it) */
     for (int i = 0; i < J->nset; i++) {
       const gsl_rng *rng = J->set[i].rng;
@@ -510,6 +531,27 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
       J->rec[k] = (YfBreak){rs[k], rd[4 * k], rd[4 * k + 1], rd[4 * k + 2], rd[4 * k + 3],
                             ri[4 * k], ri[4 * k + 1], ri[4 * k + 2], ri[4 * k + 3]};
     free(rs); free(rd); free(ri);
+    /* opened cracks (absent in restarts written before they were recorded: none then) */
+    if (dlen(g, "opened") >= 0) {
+      get(&r, g, "opened", H5T_NATIVE_UCHAR, n, J->opened);
+      long no = dlen(g, "orec_step");
+      if (no < 0 || no > J->n) rfail(&r, "joints/orec_step out of range");
+      rs = yf_malloc((size_t)(no ? no : 1) * sizeof(long), "restart buffer");
+      rd = yf_malloc((size_t)(no ? no : 1) * 4 * sizeof(double), "restart buffer");
+      ri = yf_malloc((size_t)(no ? no : 1) * 4 * sizeof(int), "restart buffer");
+      get(&r, g, "orec_step", H5T_NATIVE_LONG, (size_t)no, rs);
+      get(&r, g, "orec_d", H5T_NATIVE_DOUBLE, 4 * (size_t)no, rd);
+      get(&r, g, "orec_i", H5T_NATIVE_INT, 4 * (size_t)no, ri);
+      if (J->caporec < no) {
+        J->caporec = (int)no;
+        J->orec = yf_realloc(J->orec, (size_t)J->caporec * sizeof *J->orec, "opened record");
+      }
+      J->nopened = (int)no;
+      for (long k = 0; k < no; k++)
+        J->orec[k] = (YfBreak){rs[k], rd[4 * k], rd[4 * k + 1], rd[4 * k + 2], rd[4 * k + 3],
+                               ri[4 * k], ri[4 * k + 1], ri[4 * k + 2], ri[4 * k + 3]};
+      free(rs); free(rd); free(ri);
+    }
     for (int i = 0; i < J->nset; i++) {
       char name[32];
       snprintf(name, sizeof name, "rng_%d", i);

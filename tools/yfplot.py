@@ -2,15 +2,16 @@
 """yfplot: pictures of yfdem runs (the seed paper's figures, from yfdem's own output).
 
 Reads the HDF5 frames of a `dump ID h5 N FILE.h5` (one file per frame, STEM_NNNNNN.h5), the
-`fracture_log` CSV (one row per broken joint: step, time, x, y, mode, triA, triB, ...) and the
-`metrics log` CSV (energies and crack growth in time).  A broken joint is drawn as the edge that
-its two triangles shared, at the frame's current positions, so no crack data is needed in the
-frames themselves.  Fragments are the pieces connected through shared nodes and joints not yet
-broken at the frame's time.
+`fracture_log FILE opened FILE2` CSVs (one row per broken joint, and one per joint that passed the
+peak of its law = an opened, still cohesive crack: step, time, x, y, mode, triA, triB, ...; triA and
+triB are triangle ids, mapped through the frame's /mesh/tri_id) and the `metrics log` CSV (energies
+and crack growth in time).  A crack is drawn as the edge that its two triangles shared, at the
+frame's current positions, so no crack data is needed in the frames themselves.  Fragments are the
+pieces connected through shared nodes and joints not yet broken at the frame's time.
 
-  yfplot.py cracks STEM --breaks breaks.csv --times 2e-4,1e-3,3e-3 [--title T] -o out.png
+  yfplot.py cracks STEM --breaks breaks.csv [--opened opened.csv] --times 2e-4,1e-3 -o out.png
       deformed mesh at the frames nearest to the given times [s], fragments coloured, cracks by
-      mode (I red, II blue, mixed green)  -- the paper's figures 6 and 9
+      mode (I red, II blue, mixed green): opened thin, broken bold  -- the paper's figures 6 and 9
   yfplot.py stress STEM --time T [--body N] -o out.png
       max principal stress contours [MPa] at the frame nearest to T (elastic variant, figure 7)
   yfplot.py history LOG.csv -o out.png
@@ -54,6 +55,8 @@ def read_frame(path):
         d["tri"] = f["mesh/triangles"][()]
         d["x0"] = f["mesh/x0"][()]
         d["body"] = f["mesh/body"][()] if "mesh/body" in f else np.zeros(len(d["tri"]), int)
+        if "mesh/tri_id" in f:
+            d["tri_id"] = f["mesh/tri_id"][()]
         for k in ("sigma1", "stress", "u"):
             if k in f:
                 d[k] = f[k][()]
@@ -71,14 +74,25 @@ def nearest_frame(stem, t):
 
 
 def read_breaks(path):
-    if not path or not os.path.exists(path):
+    if not path:
         return []
+    if not os.path.exists(path):
+        sys.exit("yfplot: no file %s" % path)
     with open(path) as f:
         return [dict(r, time=float(r["time"]), triA=int(r["triA"]), triB=int(r["triB"])) for r in csv.DictReader(f)]
 
 
+def tri_index(fr):
+    """Map triangle id (CSV triA/triB) -> triangle index in the frame."""
+    ids = fr.get("tri_id")
+    if ids is None:
+        return lambda i: i
+    m = {int(v): k for k, v in enumerate(ids)}
+    return lambda i: m[i]
+
+
 def shared_edge(fr, a, b):
-    """Node indices (in a) of the edge that triangles a and b shared initially."""
+    """Node indices (in a) of the edge that triangles a and b (indices) shared initially."""
     tri, x0 = fr["tri"], fr["x0"]
     pb = [tuple(np.round(x0[n], 9)) for n in tri[b]]
     nodes = [n for n in tri[a] if tuple(np.round(x0[n], 9)) in pb]
@@ -123,21 +137,25 @@ def fragments(fr, broken_pairs):
     return lab
 
 
-def draw_cracks(ax, fr, breaks, t):
+def draw_cracks(ax, fr, breaks, t, lw=1.6, what="broken", skip=()):
     segs = {m: [] for m in MODE_COLOR}
+    ix = tri_index(fr)
     for b in breaks:
-        if b["time"] > t:
+        if b["time"] > t or (b["triA"], b["triB"]) in skip:
             continue
-        e = shared_edge(fr, b["triA"], b["triB"])
+        e = shared_edge(fr, ix(b["triA"]), ix(b["triB"]))
         if e:
             segs.setdefault(b["mode"], []).append(fr["x"][e])
     for m, s in segs.items():
         if s:
-            ax.add_collection(LineCollection(s, colors=MODE_COLOR.get(m, "k"), linewidths=1.6, label="mode " + m))
+            ax.add_collection(LineCollection(s, colors=MODE_COLOR.get(m, "k"), linewidths=lw,
+                                             alpha=1.0 if what == "broken" else 0.8,
+                                             label="%s, mode %s" % (what, m)))
 
 
 def cmd_cracks(a):
     breaks = read_breaks(a.breaks)
+    opened = read_breaks(a.opened)
     times = [float(v) for v in a.times.split(",")]
     n = len(times)
     fig, axs = plt.subplots(n, 1, figsize=(a.width, a.height * n), squeeze=False)
@@ -145,7 +163,9 @@ def cmd_cracks(a):
     for ax, t in zip(axs[:, 0], times):
         fr = nearest_frame(a.stem, t)
         tf = float(fr["time"])
-        pairs = {(min(b["triA"], b["triB"]), max(b["triA"], b["triB"])) for b in breaks if b["time"] <= tf}
+        ix = tri_index(fr)
+        pairs = {(min(ix(b["triA"]), ix(b["triB"])), max(ix(b["triA"]), ix(b["triB"]))) for b in breaks
+                 if b["time"] <= tf}
         lab = fragments(fr, pairs)
         sizes = np.bincount(lab)
         big = np.argmax(sizes)
@@ -159,10 +179,14 @@ def cmd_cracks(a):
                 colors.append(cmap(l % 20))
         polys = fr["x"][fr["tri"]]
         ax.add_collection(PolyCollection(polys, facecolors=colors, edgecolors="#9a9a9a", linewidths=0.15))
+        done = {(b["triA"], b["triB"]) for b in breaks if b["time"] <= tf}
+        draw_cracks(ax, fr, opened, tf, lw=0.7, what="opened", skip=done)
         draw_cracks(ax, fr, breaks, tf)
-        nb = sum(1 for b in breaks if b["time"] <= tf)
+        nb = len(done)
+        no = sum(1 for b in opened if b["time"] <= tf)
         nfr = len(np.unique(lab[fr["body"] == a.body]))
-        ax.set_title("t = %.3g ms: %d broken joints, %d pieces of the body" % (tf * 1e3, nb, nfr), fontsize=10)
+        ax.set_title("t = %.3g ms: %s%d broken joints, %d pieces of the body" %
+                     (tf * 1e3, "%d opened, " % no if a.opened else "", nb, nfr), fontsize=10)
         ax.set_aspect("equal")
         ax.autoscale_view()
         if a.xlim:
@@ -228,14 +252,17 @@ def cmd_history(a):
     ax1.legend(fontsize=8)
     ax1.grid(alpha=0.3)
     for k, m in (("crack_I", "I"), ("crack_II", "II"), ("crack_mixed", "mixed")):
-        ax2.plot(t, col[k], color=MODE_COLOR[m], label="mode " + m)
-    ax2.plot(t, col["crack_I"] + col["crack_II"] + col["crack_mixed"], "k--", label="total")
+        ax2.plot(t, col[k], color=MODE_COLOR[m], lw=2, label="broken, mode " + m)
+    if "opened_I" in col:
+        for k, m in (("opened_I", "I"), ("opened_II", "II"), ("opened_mixed", "mixed")):
+            if np.any(col[k] != 0):
+                ax2.plot(t, col[k], color=MODE_COLOR[m], lw=0.9, ls=":", label="opened, mode " + m)
     ax2.set_ylabel("crack length [m]")
     ax2.set_xlabel("time [ms]")
     ax3 = ax2.twinx()
     ax3.step(t, col["fragments"], color="#7f7f7f", where="post", lw=0.8)
     ax3.set_ylabel("pieces of the body", color="#7f7f7f")
-    ax2.legend(fontsize=8, loc="upper left")
+    ax2.legend(fontsize=7, loc="upper left", ncol=2)
     ax2.grid(alpha=0.3)
     if a.title:
         fig.suptitle(a.title)
@@ -250,6 +277,7 @@ def main(argv=None):
     c = sub.add_parser("cracks", help="crack pattern and fragments at chosen times")
     c.add_argument("stem")
     c.add_argument("--breaks", required=True)
+    c.add_argument("--opened", help="opened-crack CSV (fracture_log ... opened FILE2)")
     c.add_argument("--times", required=True)
     c.add_argument("--body", type=int, default=0, help="index of the cracking body (default 0)")
     c.add_argument("--xlim")
