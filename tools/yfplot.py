@@ -222,10 +222,10 @@ def cmd_stress(a):
     s1 = fr["sigma1"][sel] / 1e6
     lim = a.vmax if a.vmax else max(abs(s1.min()), abs(s1.max()))
     pc = ax.tripcolor(tr, facecolors=s1, cmap="RdBu_r", vmin=-lim, vmax=lim)
-    fig.colorbar(pc, ax=ax, label="max principal stress [MPa] (tension > 0)", shrink=0.8)
+    fig.colorbar(pc, ax=ax, label="sigma1 [MPa]", shrink=0.8)
     if a.mark:
         x, y = [float(v) for v in a.mark.split(",")]
-        ax.plot([x], [y], "k*", ms=12, label="first crack of the fracturing run")
+        ax.plot([x], [y], "k*", ms=12, label="crack of the fracturing run")
         ax.legend(loc="upper right", fontsize=8)
     ax.set_aspect("equal")
     ax.set_title(a.title or "elastic variant: max principal stress at t = %.3g ms" % (float(fr["time"]) * 1e3))
@@ -243,26 +243,32 @@ def cmd_history(a):
         sys.exit("yfplot: %s has no rows" % a.log)
     col = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
     t = col["time"] * 1e3
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(a.width, a.height * 2), sharex=True)
+    has_open = "opened_I" in col
+    fig, axs = plt.subplots(3 if has_open else 2, 1, figsize=(a.width, a.height * (3 if has_open else 2)), sharex=True)
+    ax1, ax2 = axs[0], axs[-1]
     for k, lab in (("kinetic", "kinetic"), ("strain", "strain (incl. joints)"), ("external_work", "external work"),
                    ("damping", "damping"), ("joint_dissipated", "joint dissipation"), ("contact", "contact")):
         if np.any(col[k] != 0):
             ax1.plot(t, col[k], label=lab)
     ax1.set_ylabel("energy [J/m]")
-    ax1.legend(fontsize=8)
+    ax1.legend(fontsize=7, ncol=2)
     ax1.grid(alpha=0.3)
-    for k, m in (("crack_I", "I"), ("crack_II", "II"), ("crack_mixed", "mixed")):
-        ax2.plot(t, col[k], color=MODE_COLOR[m], lw=2, label="broken, mode " + m)
-    if "opened_I" in col:
+    if has_open:  # opened (past the peak, still cohesive) cracks: a panel of their own
         for k, m in (("opened_I", "I"), ("opened_II", "II"), ("opened_mixed", "mixed")):
             if np.any(col[k] != 0):
-                ax2.plot(t, col[k], color=MODE_COLOR[m], lw=0.9, ls=":", label="opened, mode " + m)
-    ax2.set_ylabel("crack length [m]")
+                axs[1].plot(t, col[k], color=MODE_COLOR[m], label="opened, mode " + m)
+        axs[1].set_ylabel("opened length [m]")
+        axs[1].legend(fontsize=7)
+        axs[1].grid(alpha=0.3)
+    for k, m in (("crack_I", "I"), ("crack_II", "II"), ("crack_mixed", "mixed")):
+        if np.any(col[k] != 0):
+            ax2.plot(t, col[k], color=MODE_COLOR[m], lw=2, label="broken, mode " + m)
+    ax2.set_ylabel("broken length [m]")
     ax2.set_xlabel("time [ms]")
     ax3 = ax2.twinx()
-    ax3.step(t, col["fragments"], color="#7f7f7f", where="post", lw=0.8)
+    ax3.step(t, col["fragments"], color="#7f7f7f", where="post", lw=0.8, label="pieces")
     ax3.set_ylabel("pieces of the body", color="#7f7f7f")
-    ax2.legend(fontsize=7, loc="upper left", ncol=2)
+    ax2.legend(fontsize=7, loc="center right")
     ax2.grid(alpha=0.3)
     if a.title:
         fig.suptitle(a.title)
