@@ -52,6 +52,7 @@
 #include <hdf5.h>
 #include "output.h"
 #include "contact.h"
+#include "joint.h"
 #include "err.h"
 #include "y2dref.h"
 
@@ -281,13 +282,19 @@ static void xmf_attr(YfDump *d, const char *fname, const char *name, const char 
 
 /* Append the <Grid> of the frame just written (file d->cur; the .xmf sits in the same
  * directory and names it without the directory, so the pair can be moved together). */
-static void xmf_add_frame(YfDump *d, double time, long step, int n, int nt, int with_fc) {
+static void xmf_add_frame(YfDump *d, double time, long step, int n, int nt, int with_fc, int ncrack) {
   char fname[1024], p[32], dn2[48], dt3[48], dt1[48];
   const char *base = strrchr(d->cur, '/');
   xml_escape(fname, sizeof fname, base ? base + 1 : d->cur);
   snprintf(dn2, sizeof dn2, "%d 2", n);
   snprintf(dt3, sizeof dt3, "%d 3", nt);
   snprintf(dt1, sizeof dt1, "%d", nt);
+  if (ncrack > 0) {
+    /* a frame with cracks is a spatial collection: the triangles and the crack segments */
+    grids_printf(d, "      <Grid Name=\"frame_%06ld\" GridType=\"Collection\" CollectionType=\"Spatial\">\n",
+                 d->nframe);
+    grids_printf(d, "        <Time Value=\"%.17g\"/>\n", time);
+  }
   grids_printf(d, "      <Grid Name=\"frame_%06ld\" GridType=\"Uniform\">\n", d->nframe);
   grids_printf(d, "        <Time Value=\"%.17g\"/>\n", time);
   grids_printf(d, "        <Information Name=\"step\" Value=\"%ld\"/>\n", step);
@@ -312,6 +319,23 @@ static void xmf_add_frame(YfDump *d, double time, long step, int n, int nt, int 
   if (d->fields & YF_FIELD_MATERIAL) xmf_attr(d, fname, "material", "Scalar", "Cell", dt1, 1, "/mesh/material");
   if (d->fields & YF_FIELD_BODY) xmf_attr(d, fname, "body", "Scalar", "Cell", dt1, 1, "/mesh/body");
   grids_printf(d, "      </Grid>\n");
+  if (ncrack > 0) {
+    char dc2[48], dc1[48], dp2[48];
+    snprintf(dc2, sizeof dc2, "%d 2", ncrack);
+    snprintf(dc1, sizeof dc1, "%d", ncrack);
+    snprintf(dp2, sizeof dp2, "%d 2", 2 * ncrack);
+    grids_printf(d, "      <Grid Name=\"cracks_%06ld\" GridType=\"Uniform\">\n", d->nframe);
+    grids_printf(d, "        <Topology TopologyType=\"Polyline\" NumberOfElements=\"%d\" NodesPerElement=\"2\">\n",
+                 ncrack);
+    xmf_item(d, fname, dc2, 1, "/cracks/segments");
+    grids_printf(d, "        </Topology>\n        <Geometry GeometryType=\"XY\">\n");
+    xmf_item(d, fname, dp2, 0, "/cracks/xy");
+    grids_printf(d, "        </Geometry>\n");
+    xmf_attr(d, fname, "crack_state", "Scalar", "Cell", dc1, 1, "/cracks/state");
+    xmf_attr(d, fname, "crack_mode", "Scalar", "Cell", dc1, 1, "/cracks/mode");
+    xmf_attr(d, fname, "damage", "Scalar", "Cell", dc1, 0, "/cracks/damage");
+    grids_printf(d, "      </Grid>\n    </Grid>\n");
+  }
 }
 
 /* Replace STEM.xmf atomically: a reader (or a killed run) sees the old or the new index.  Not
@@ -336,6 +360,54 @@ static void xmf_write(YfDump *d) {
   if (rename(d->xmf_tmp, d->xmf) != 0)
     yf_io_error(NULL, "dump %s: cannot rename '%s' to '%s': %s", d->id, d->xmf_tmp, d->xmf,
                 strerror(errno));
+}
+
+/* Cracks of a fracturing scene: every joint past its peak (opened: softening, still cohesive) or
+ * broken, as a 2-point segment from the middle of its end a node pair to the middle of its end b
+ * pair (current positions), with state (1 opened, 2 broken), mode (1 I, 2 II, 3 mixed: YF_JMODE_*) and the
+ * largest damage z of the last evaluation; plus the damage of every joint (/joint_damage).
+ * Returns the number of crack segments (0: no /cracks group). */
+static int h5_cracks(YfSim *s, YfDump *d) {
+  const YfJoints *j = s->joints;
+  if (!j || j->n == 0) return 0;
+  const YfNodes *nd = &s->model.node;
+  hsize_t dj[1] = {(hsize_t)j->n};
+  h5_put(d, d->file, "joint_damage", H5T_NATIVE_DOUBLE, 1, dj, j->z);
+  int nc = 0;
+  for (int k = 0; k < j->n; k++) nc += j->state[k] == 2 || (j->opened && j->opened[k]);
+  if (!nc) return 0;
+  double *xy = yf_malloc((size_t)nc * 4 * sizeof(double), "crack output");
+  double *dmg = yf_malloc((size_t)nc * sizeof(double), "crack output");
+  int *iv = yf_malloc((size_t)nc * 4 * sizeof(int), "crack output"); /* segments (2), state, mode */
+  int *state = iv + 2 * nc, *mode = iv + 3 * nc, c = 0;
+  for (int k = 0; k < j->n; k++) {
+    int broken = j->state[k] == 2, opened = j->opened && j->opened[k];
+    if (!broken && !opened) continue;
+    const int *q = j->node + 4 * k;
+    xy[4 * c] = 0.5 * (nd->x[q[0]] + nd->x[q[3]]);
+    xy[4 * c + 1] = 0.5 * (nd->y[q[0]] + nd->y[q[3]]);
+    xy[4 * c + 2] = 0.5 * (nd->x[q[1]] + nd->x[q[2]]);
+    xy[4 * c + 3] = 0.5 * (nd->y[q[1]] + nd->y[q[2]]);
+    iv[2 * c] = 2 * c;
+    iv[2 * c + 1] = 2 * c + 1;
+    state[c] = broken ? 2 : 1;
+    mode[c] = broken ? j->mode[k] : (j->opened[k] & 0x7f);
+    dmg[c] = broken ? 1.0 : j->z[k];
+    c++;
+  }
+  hid_t g = H5Gcreate2(d->file, "cracks", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  if (g < 0) h5_fail(d, "cracks");
+  hsize_t d2[2] = {(hsize_t)nc, 2}, dp[2] = {(hsize_t)(2 * nc), 2}, d1[1] = {(hsize_t)nc};
+  h5_put(d, g, "segments", H5T_NATIVE_INT, 2, d2, iv);
+  h5_put(d, g, "xy", H5T_NATIVE_DOUBLE, 2, dp, xy);
+  h5_put(d, g, "state", H5T_NATIVE_INT, 1, d1, state);
+  h5_put(d, g, "mode", H5T_NATIVE_INT, 1, d1, mode);
+  h5_put(d, g, "damage", H5T_NATIVE_DOUBLE, 1, d1, dmg);
+  H5Gclose(g);
+  free(xy);
+  free(dmg);
+  free(iv);
+  return nc;
 }
 
 static void h5_frame(YfSim *s, YfDump *d) {
@@ -401,6 +473,7 @@ static void h5_frame(YfSim *s, YfDump *d) {
   /* contact force per node: only while contact is on (else the field would be all zeros) */
   const double *fc = (d->fields & YF_FIELD_FC) ? contact_node_forces(s) : NULL;
   if (fc) h5_put(d, g, "fc", H5T_NATIVE_DOUBLE, 2, dn2, fc);
+  int ncrack = h5_cracks(s, d);
   /* Complete and closed, then renamed, then indexed: the .xmf never names a partial file. */
   herr_t st = H5Fclose(d->file);
   d->file = -1;
@@ -411,7 +484,7 @@ static void h5_frame(YfSim *s, YfDump *d) {
   if (rename(d->cur_tmp, d->cur) != 0)
     yf_io_error(NULL, "dump %s: cannot rename '%s' to '%s': %s", d->id, d->cur_tmp, d->cur,
                 strerror(errno));
-  xmf_add_frame(d, s->time, s->step, n, nt, fc != NULL);
+  xmf_add_frame(d, s->time, s->step, n, nt, fc != NULL, ncrack);
   xmf_write(d);
 }
 
