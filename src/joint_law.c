@@ -42,12 +42,16 @@
 
 #include <gsl/gsl_interp.h>
 
-/* Munjiza's softening curve, written as in ALGORITHMS 3.3. */
+/* Munjiza's softening curve, written as in ALGORITHMS 3.3.  Most sampling points of a scene are
+ * undamaged (z = 0, f = 1): they skip exp entirely, and (1 - z)^6 is three multiplications instead
+ * of pow (both agree with the formula to an ulp; the Y2D regressions check 1e-8). */
 static double soft_munjiza(double z)
 {
-  const double a = 0.63, b = 1.8, c = 6.0;
-  return (1.0 - ((a + b - 1.0) / (a + b)) * exp(z * (a + c * b) / ((a + b) * (1.0 - a - b)))) *
-         (a * (1.0 - z) + b * pow(1.0 - z, c));
+  const double a = 0.63, b = 1.8;
+  if (z == 0.0) return 1.0;
+  double u = 1.0 - z, u2 = u * u, u6 = u2 * u2 * u2; /* c = 6 */
+  return (1.0 - ((a + b - 1.0) / (a + b)) * exp(z * (a + 6.0 * b) / ((a + b) * (1.0 - a - b)))) *
+         (a * u + b * u6);
 }
 
 /* Piecewise linear through (tab_z, tab_s); same arithmetic as gsl_interp_linear, but with the
