@@ -4,6 +4,9 @@
 #   make demo     install what is missing (tools/install-deps), build, run the main example deck
 #   make check    install what tests need, build, run every Check suite through one runner
 #   make bench    element-steps per second, thread scaling, bytes per element
+#   make asan     the whole test suite under AddressSanitizer + UBSan (build-asan/; CI runs it)
+#   make fuzz     libFuzzer on the deck interpreter (clang; tools/fuzz/README.md), FUZZ_RUNS inputs
+#   make valgrind the example decks under valgrind: no definite leaks (tools/valgrind-decks)
 #
 # Required flags live in YF_CFLAGS so that `make CFLAGS=-O0` changes optimisation only.
 # -ffp-contract=off: no fused multiply-add, so results do not depend on the CPU (and match the
@@ -25,9 +28,11 @@ OBJ     := $(SRC:src/%.c=$(BUILD)/%.o)
 TSRC    := $(wildcard tests/check_*.c)
 TOBJ    := $(TSRC:tests/%.c=$(BUILD)/tests/%.o)
 
-.PHONY: all demo check test deps deps-test bench clean asan
+.PHONY: all demo check test deps deps-test bench clean asan fuzz valgrind
 
-all: yfdem
+BIN     ?= yfdem
+
+all: $(BIN)
 
 $(BUILD)/%.o: src/%.c $(wildcard src/*.h src/*.def) | $(BUILD)
 	$(CC) $(YF_CFLAGS) $(CFLAGS) -MMD -c $< -o $@
@@ -35,7 +40,7 @@ $(BUILD)/%.o: src/%.c $(wildcard src/*.h src/*.def) | $(BUILD)
 $(BUILD)/libyf.a: $(OBJ)
 	$(AR) rcs $@ $^
 
-yfdem: $(BUILD)/main.o $(BUILD)/libyf.a
+$(BIN): $(BUILD)/main.o $(BUILD)/libyf.a
 	$(CC) $(YF_CFLAGS) $(CFLAGS) $^ -o $@ $(LDLIBS)
 
 $(BUILD):
@@ -78,7 +83,24 @@ test: yfdem $(BUILD)/check_yfdem
 bench: yfdem
 	tools/bench
 
+# Sanitizers: a separate build (build-asan/yfdem + runner), the same suite.  Leaks are left to
+# `make valgrind` (test children and error exits leave memory to the OS by design); a longer
+# timeout covers the 2-3x slowdown.
+ASAN_FLAGS := -O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+asan: deps-test
+	$(MAKE) BUILD=build-asan BIN=build-asan/yfdem CFLAGS="$(ASAN_FLAGS)" build-asan/yfdem build-asan/check_yfdem
+	ASAN_OPTIONS=detect_leaks=0:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	CK_TIMEOUT_MULTIPLIER=4 OMP_NUM_THREADS=2 YFDEM=build-asan/yfdem build-asan/check_yfdem
+
+FUZZ_RUNS ?= 1000000
+fuzz:
+	tools/install-deps --dev
+	tools/fuzz/run $(FUZZ_RUNS)
+
+valgrind: yfdem
+	tools/valgrind-decks
+
 clean:
-	rm -rf $(BUILD) yfdem
+	rm -rf $(BUILD) build-asan build-fuzz yfdem
 
 -include $(wildcard $(BUILD)/*.d)

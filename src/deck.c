@@ -862,7 +862,7 @@ const char *arg_word(const YfArgs *a, int i, const char *what) {
 
 /* A hint when someone writes an expression where a plain number is expected. */
 static const char *num_hint(const char *w) {
-  if (strpbrk(w + 1, "+-*/^()") && !strpbrk(w, "eE")) return " (write an expression as $(...))";
+  if (w[0] && strpbrk(w + 1, "+-*/^()") && !strpbrk(w, "eE")) return " (write an expression as $(...))"; /* w may be "" */
   if (strpbrk(w, "*/^()")) return " (write an expression as $(...))";
   return "";
 }

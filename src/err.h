@@ -31,6 +31,9 @@ typedef struct {
 /* Cleanup hook run once before exit on any error (set by main). */
 typedef void (*YfCleanupFn)(int code, const char *message);
 void yf_set_cleanup(YfCleanupFn fn);
+/* Called instead of exit(code) after the cleanup when set (tools/fuzz: the harness longjmps back
+ * to the next input); it must not return.  NULL: exit. */
+void yf_set_exit_hook(void (*hook)(int code));
 
 /* "FILE:LINE: error: message" then exit(YF_EXIT_DECK). loc may be NULL (message has no place). */
 void yf_deck_error(const YfLoc *loc, const char *fmt, ...) __attribute__((noreturn, format(printf, 2, 3)));

@@ -30,6 +30,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "memcap.h"
 #include "mesh.h"
 
 typedef struct {
@@ -358,6 +359,9 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       msh_long(r, "the largest node tag");
       if (nblk < 0 || ntot < 0 || ntot > INT_MAX / 4)
         msh_fail(r, r->tokline, "bad counts in the $Nodes header (%ld blocks, %ld nodes)", nblk, ntot);
+      if ((double)ntot * (25.0 + YF_BYTES_PER_NODE) > yf_mem_cap()) /* before allocating */
+        msh_fail(r, hline, "%ld nodes need about %.3g GB of memory, more than the %.3g GB available", ntot,
+                 (double)ntot * (25.0 + YF_BYTES_PER_NODE) / 1e9, yf_mem_cap() / 1e9);
       ntag = yf_malloc((size_t)ntot * sizeof *ntag, "mesh nodes");
       nx = yf_malloc((size_t)ntot * sizeof *nx, "mesh nodes");
       ny = yf_malloc((size_t)ntot * sizeof *ny, "mesh nodes");

@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "memcap.h"
 #include "mesh.h"
 #include "sim.h"
 
@@ -210,6 +211,13 @@ static void mesh_rect(YfModel *m, const YfArgs *a) {
   long long ntri = (long long)nx * ny * (pat == PAT_CROSS ? 4 : 2);
   if (nnode > INT_MAX / 4 || ntri > INT_MAX / 8)
     arg_error(a, 7, "%lld x %lld cells is too large a mesh", (long long)nx, (long long)ny);
+  {
+    char what[160]; /* before any allocation: a size beyond memory is a deck error, not a crash */
+    snprintf(what, sizeof what, "mesh rect: %lld x %lld cells (%lld nodes, %lld triangles)", (long long)nx,
+             (long long)ny, nnode, ntri);
+    yf_mem_check(&a->loc, (double)(m->node.n + nnode) * YF_BYTES_PER_NODE + (double)(m->tri.n + ntri) * YF_BYTES_PER_TRI,
+                 what);
+  }
 
   int b = mesh_new_body(m, bname, mat, &a->loc, "mesh rect");
   uint64_t bit = (uint64_t)1 << m->body[b].group;

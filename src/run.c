@@ -453,6 +453,9 @@ void cmd_run(YfSim *s, const YfArgs *a) {
       n = n > s->step ? n - s->step : 0;
     }
   }
+  /* the common deck mistakes, reported at the run line (run_steps has no deck place) */
+  if (!s->model.tri.n) arg_error(a, -1, "the scene has no triangles (use mesh, triangle or read_y2d first)");
+  if (!s->dt_auto && !(s->dt > 0)) arg_error(a, -1, "no time step set (use 'timestep DT' or 'timestep auto' before run)");
   run_steps(s, n);
 }
 

@@ -28,6 +28,7 @@
 #include <string.h>
 #include "deck.h"
 #include "err.h"
+#include "memcap.h"
 #include "y2d_read.h"
 
 /* ------------------------------------------------------------------ key table */
@@ -439,8 +440,17 @@ static void alloc_array(YfY2d *y, int k) {
   const KeyDef *kd = &keydefs[k];
   if (kd->off == NOFF) return;
   long n = 1;
+  double bytes = is_int_type(kd->type) ? (double)sizeof(int) : (double)sizeof(double);
   for (int d = 0; d < ndims(kd->type); d++) {
     long c = dim_cap(y, k, d);
+    bytes *= c > 0 ? (double)c : 0.0;
+    if (bytes > yf_mem_cap()) { /* a capacity such as MNOPO 1e12: refuse before allocating */
+      int ck = kd->cap[d]; /* the capacity key: the error points at its line */
+      YfLoc l = ck >= 0 && y->given[ck] ? y->where[ck] : y->given[k] ? y->where[k] : y->end;
+      char what[160];
+      snprintf(what, sizeof what, "%s (at the capacity %s = %ld)", kd->full, ck >= 0 ? keydefs[ck].full : "fixed", c);
+      yf_mem_check(&l, bytes, what);
+    }
     n *= c > 0 ? c : 0;
   }
   void **pp = (void **)((char *)y + kd->off);

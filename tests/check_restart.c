@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -99,6 +100,7 @@ static pid_t spawn(const char *name, int threads) {
   pid_t pid = fork();
   ck_assert_int_ge(pid, 0);
   if (pid == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGKILL); /* a failed assertion in the test must not leave it running */
     if (chdir(tmpdir)) _exit(127);
     char sum[128], err[128], th[8];
     snprintf(sum, sizeof sum, "%s.json", name);

@@ -1,0 +1,86 @@
+/* check_corpus.c: every malformed input of tests/corpus (MANIFEST) through the real binary.
+ *
+ * Each row names an input (a deck, or a Y2D .y deck), the exit code it must give (1 deck error,
+ * 2 I/O error) and a piece of the message, which always starts with the FILE:LINE of the fault.
+ * The inputs cover truncated lines, wrong types, huge numbers, NaN and inf, negative counts,
+ * missing files, recursive includes, binary garbage, absurd sizes (mesh rect, .msh $Nodes,
+ * .y capacities: refused before allocation) and what the fuzzer found (fuzz_*.deck).  Besides
+ * the expected message: no crash (signal), no internal error, no sanitizer report.
+ * YFDEM_MEM_MAX=4e9 makes the memory refusals independent of the machine.
+ */
+#include <check.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include "err.h"
+
+static char *slurp(const char *path) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return calloc(1, 1);
+  fseek(f, 0, SEEK_END);
+  long n = ftell(f);
+  fseek(f, 0, SEEK_SET);
+  char *b = calloc(1, (size_t)n + 1);
+  if (fread(b, 1, (size_t)n, f) != (size_t)n) b[0] = 0;
+  fclose(f);
+  return b;
+}
+
+START_TEST(test_corpus) {
+  char dir[] = "/tmp/yfcorpus_XXXXXX";
+  ck_assert_ptr_nonnull(mkdtemp(dir));
+  char cmd[4096], cwd[1024];
+  ck_assert_ptr_nonnull(getcwd(cwd, sizeof cwd));
+  const char *bin = getenv("YFDEM") ? getenv("YFDEM") : "./yfdem";
+  char abs[1200];
+  snprintf(abs, sizeof abs, "%s%s%s", bin[0] == '/' ? "" : cwd, bin[0] == '/' ? "" : "/", bin);
+  snprintf(cmd, sizeof cmd, "cp -r tests/corpus/. %s/", dir);
+  ck_assert_int_eq(system(cmd), 0);
+  char man[1100];
+  snprintf(man, sizeof man, "%s/MANIFEST", dir);
+  FILE *f = fopen(man, "r");
+  ck_assert_ptr_nonnull(f);
+  char line[2048];
+  int rows = 0, bad = 0;
+  while (fgets(line, sizeof line, f)) {
+    if (line[0] == '#' || line[0] == '\n') continue;
+    line[strcspn(line, "\n")] = 0;
+    char *name = strtok(line, "\t"), *code_s = strtok(NULL, "\t"), *piece = strtok(NULL, "\t");
+    ck_assert_msg(name && code_s && piece, "bad MANIFEST row %d", rows + 1);
+    int want = atoi(code_s);
+    size_t L = strlen(name);
+    int is_y = L > 2 && !strcmp(name + L - 2, ".y");
+    snprintf(cmd, sizeof cmd, "cd %s && YFDEM_MEM_MAX=4e9 OMP_NUM_THREADS=1 timeout 120 %s %s %s >/dev/null 2>err.txt", dir,
+             abs, is_y ? "" : "-in", name);
+    int st = system(cmd);
+    int code = WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+    char ep[1100];
+    snprintf(ep, sizeof ep, "%s/err.txt", dir);
+    char *err = slurp(ep);
+    int ok = code == want && strstr(err, piece) && !strstr(err, "internal error") && !strstr(err, "Sanitizer") &&
+             !strstr(err, "runtime error");
+    if (!ok) {
+      bad++;
+      fprintf(stderr, "corpus %s: exit %d (want %d), expected '%s', got:\n%s\n", name, code, want, piece, err);
+    }
+    free(err);
+    rows++;
+  }
+  fclose(f);
+  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+  if (system(cmd)) {}
+  ck_assert_int_ge(rows, 50);
+  ck_assert_msg(bad == 0, "%d of %d corpus inputs gave another exit code or message (see above)", bad, rows);
+}
+END_TEST
+
+Suite *corpus_suite(void) {
+  Suite *s = suite_create("corpus");
+  TCase *tc = tcase_create("corpus");
+  tcase_set_timeout(tc, 600);
+  tcase_add_test(tc, test_corpus);
+  suite_add_tcase(s, tc);
+  return s;
+}

@@ -1,0 +1,3 @@
+$YINCL no_such_file.y
+$YDOIT
+$YSTOP
