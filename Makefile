@@ -75,7 +75,7 @@ demo: deps
 # Tests run at most 2 threads (the machines have 2 cores).
 check: deps-test
 	$(MAKE) yfdem $(BUILD)/check_yfdem
-	OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem
+	CK_TIMEOUT_MULTIPLIER=$${CK_TIMEOUT_MULTIPLIER:-3} OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem
 
 test: yfdem $(BUILD)/check_yfdem
 	OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem
