@@ -107,11 +107,6 @@ typedef struct YfContact {
   int force_search;
 } YfContact;
 
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* ---------------------------------------------------------------- state */
 
@@ -659,7 +654,7 @@ static void search(YfSim *s, YfContact *C) {
 void contact_step(YfSim *s) {
   YfContact *C = s->contact;
   if (!active(C)) return;
-  double t0 = now();
+  double t0 = yf_now();
   YfModel *m = &s->model;
   YfNodes *nd = &m->node;
   const double dt = s->dt;
@@ -676,7 +671,7 @@ void contact_step(YfSim *s) {
     search(s, C);
     C->force_search = 0;
   }
-  double t1 = now();
+  double t1 = yf_now();
   yf_stage_time[YF_ST_DETECT] += t1 - t0;
 
   /* forces: one slot per couple, parallel over fixed blocks */
@@ -758,7 +753,7 @@ void contact_step(YfSim *s) {
     /* slots are rewritten before they are read again, except the dead ones: none now */
     build_gather(s, C);
   }
-  yf_stage_time[YF_ST_CONTACT] += now() - t1;
+  yf_stage_time[YF_ST_CONTACT] += yf_now() - t1;
 }
 
 /* ---------------------------------------------------------------- restart accessors (restart.c) */

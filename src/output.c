@@ -144,8 +144,8 @@ static void h5_fail(const YfDump *d, const char *what) {
   yf_io_error(NULL, "dump %s: cannot write '%s' (%s): %s", d->id, d->cur, what, h5_message());
 }
 
-/* HDF5 prints its error stack by default; yfdem reports errors itself. */
-static void h5_quiet(void) {
+/* HDF5 prints its error stack by default; yfdem reports errors itself (restart.c uses it too). */
+void yf_h5_quiet(void) {
   static int done;
   if (!done) {
     H5open();
@@ -203,7 +203,7 @@ static void h5_put(YfDump *d, hid_t loc, const char *name, hid_t type, int rank,
 
 /* Create the frame file (as NAME.tmp; h5_frame renames it when it is complete). */
 static void h5_open(YfDump *d) {
-  h5_quiet();
+  yf_h5_quiet();
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
   H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG); /* closing after an error also closes its objects */
   /* Default (earliest) file format: the widest range of readers, ParaView's bundled HDF5 too. */

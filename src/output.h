@@ -72,6 +72,8 @@ void output_topology_changed(YfSim *s);
 void output_close_all(YfSim *s);
 /* output_close_all + free everything (sim_free). */
 void output_free(YfSim *s);
+/* Silence HDF5's own error printing (once); yfdem reports HDF5 errors itself. */
+void yf_h5_quiet(void);
 
 /* Frames written so far by dump id (-1 if no such dump); for tests and messages. */
 long output_frames(const YfSim *s, const char *id);

@@ -30,6 +30,7 @@
 #include <gsl/gsl_rng.h>
 #include <hdf5.h>
 #include "restart.h"
+#include "output.h"
 #include "contact.h"
 #include "err.h"
 #include "joint.h"
@@ -89,14 +90,6 @@ static uint64_t topo_hash(const YfSim *s) {
 
 /* ---------------------------------------------------------------- HDF5 helpers */
 
-static void h5_quiet(void) {
-  static int done;
-  if (!done) {
-    H5open();
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    done = 1;
-  }
-}
 
 typedef struct {
   hid_t file;
@@ -326,7 +319,7 @@ int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
     if (err) snprintf(err, nerr, "the model is not prepared yet (write_restart needs a run or read_restart first)");
     return -1;
   }
-  h5_quiet();
+  yf_h5_quiet();
   size_t L = strlen(path);
   char *tmp = yf_malloc(L + 8, "restart path");
   snprintf(tmp, L + 8, "%s.tmp", path);
@@ -379,7 +372,7 @@ static int exists(const char *p) {
 
 /* Step of a complete restart file, -1 when it is not one. */
 static long peek_step(const char *path) {
-  h5_quiet();
+  yf_h5_quiet();
   hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
   if (f < 0) return -1;
   long step = -1, one = 0;
@@ -432,7 +425,7 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   char *path = pick_file(path_in);
   if (!path)
     yf_io_error(loc, "read_restart: no restart '%s' (nor %s.a / %s.b): %s", path_in, path_in, path_in, strerror(ENOENT));
-  h5_quiet();
+  yf_h5_quiet();
   R r = {H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT), path, loc};
   if (r.file < 0) rfail(&r, "not an HDF5 file, or unreadable");
   hid_t g = ropen(&r, "meta");

@@ -56,7 +56,7 @@ static struct {
   double t_wall0;
 } R;
 
-static double now(void) {
+double yf_now(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
@@ -215,7 +215,7 @@ static void thermo_line(YfSim *s) {
   double bal = s->energy.kinetic + s->energy.strain + s->energy.contact + diss - ext;
   sim_printf(s, "%10ld %12.6e %13.6e %13.6e %13.6e %13.6e %13.6e %8ld %9ld %9.2f\n", s->step, s->time,
              s->energy.kinetic, s->energy.strain, ext, diss, bal, joints_broken(s), contact_pairs(s),
-             s->wall_s + (now() - R.t_wall0));
+             s->wall_s + (yf_now() - R.t_wall0));
 }
 
 /* Unstable runs show as energy growing without a source: stop them with a clear cause. */
@@ -231,7 +231,7 @@ static void energy_check(YfSim *s) {
 
 static void progress(YfSim *s, long done, long total, double t0) {
   static double last;
-  double t = now();
+  double t = yf_now();
   if (t - last < 0.5 && done < total) return;
   last = t;
   double frac = total ? (double)done / (double)total : 1.0;
@@ -252,7 +252,7 @@ static void step_once(YfSim *s) {
   YfNodes *n = &m->node;
   const int nn = n->n, nblk = R.nblk, nt = m->tri.n;
   const double dt = s->dt, gx = s->gx, gy = s->gy, alpha = s->mass_damping;
-  double t0 = now(), t1;
+  double t0 = yf_now(), t1;
 
   #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
   for (int b = 0; b < nblk; b++) {
@@ -280,13 +280,13 @@ static void step_once(YfSim *s) {
     power += R.blk[b];
   }
   s->energy.damping += power * dt;
-  t1 = now();
+  t1 = yf_now();
   yf_stage_time[YF_ST_ELEMENTS] += t1 - t0;
   t0 = t1;
 
   if (m->nxslot) {
     joints_forces(s);
-    t1 = now();
+    t1 = yf_now();
     yf_stage_time[YF_ST_JOINTS] += t1 - t0;
     t0 = t1;
   }
@@ -309,11 +309,11 @@ static void step_once(YfSim *s) {
   }
   bc_apply_loads(s);
   if (s->y2d) y2d_apply_loads(s); /* Y2D BC sets: edge pressure and shear traction */
-  t1 = now();
+  t1 = yf_now();
   yf_stage_time[YF_ST_GATHER] += t1 - t0;
   t0 = t1;
   contact_step(s); /* detection when due, then pair forces added in pair order (timed inside) */
-  t0 = now();
+  t0 = yf_now();
 
   /* update: v_{n+1/2}, then supports, then x_{n+1} */
   double *x = n->x, *y = n->y, *vx = n->vx, *vy = n->vy;
@@ -360,7 +360,7 @@ static void step_once(YfSim *s) {
   bc_constrain_positions(s, R.xo, R.yo, R.vxo, R.vyo);
   s->step++;
   s->time += dt;
-  t1 = now();
+  t1 = yf_now();
   yf_stage_time[YF_ST_UPDATE] += t1 - t0;
 }
 
@@ -395,7 +395,7 @@ void run_steps(YfSim *s, long nsteps) {
     tri_forces(&s->model, R.tm, 0, s->model.tri.n, &p);
   }
   output_run_begin(s);
-  R.t_wall0 = now();
+  R.t_wall0 = yf_now();
   double t_start = R.t_wall0;
   thermo_header(s);
   thermo_line(s);
@@ -403,11 +403,11 @@ void run_steps(YfSim *s, long nsteps) {
   long check_every = 100;
   for (long k = 0; k < nsteps; k++) {
     step_once(s);
-    double t0 = now();
+    double t0 = yf_now();
     output_step(s);
     metrics_step(s);
     restart_step(s); /* periodic restart file when due */
-    yf_stage_time[YF_ST_OUTPUT] += now() - t0;
+    yf_stage_time[YF_ST_OUTPUT] += yf_now() - t0;
     if (s->thermo_every > 0 && s->step % s->thermo_every == 0 && k + 1 < nsteps) thermo_line(s);
     if ((k + 1) % check_every == 0) energy_check(s);
     if (tty) progress(s, k + 1, nsteps, t_start);
@@ -417,7 +417,7 @@ void run_steps(YfSim *s, long nsteps) {
       const char *rp = restart_on_interrupt(s, why, sizeof why);
       output_write_all(s);
       output_run_end(s);
-      s->wall_s += now() - R.t_wall0;
+      s->wall_s += yf_now() - R.t_wall0;
       if (rp[0])
         yf_exit_with(YF_EXIT_INTERRUPT, "interrupted at step %ld (time %.6g s): restart written to '%s', frames so far "
                      "kept; to continue, put 'read_restart %s' before the run command of the deck and make it "
@@ -428,7 +428,7 @@ void run_steps(YfSim *s, long nsteps) {
   }
   energy_check(s);
   thermo_line(s);
-  double wall = now() - R.t_wall0;
+  double wall = yf_now() - R.t_wall0;
   s->wall_s += wall;
   s->elem_steps += (double)s->model.tri.n * (double)nsteps;
   output_run_end(s);

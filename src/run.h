@@ -9,6 +9,8 @@ enum { YF_ST_ELEMENTS, YF_ST_JOINTS, YF_ST_DETECT, YF_ST_CONTACT, YF_ST_GATHER, 
 extern const char *const yf_stage_names[YF_NSTAGE];
 extern double yf_stage_time[YF_NSTAGE]; /* seconds accumulated over all runs */
 
+/* Monotonic wall clock [s] (stage timers). */
+double yf_now(void);
 /* Prepare the model (masses, reference inverses, gather lists, bc) for stepping.  Idempotent. */
 void run_prepare(YfSim *s);
 /* Advance n steps. */
