@@ -51,7 +51,9 @@ static struct {
   double *blk_badJ;
   double *xo, *yo, *vxo, *vyo; /* positions and velocities before the update */
   int cap_nodes;
-  double e_budget;    /* energy put in so far (for the growth check) */
+  double e_budget;    /* kinetic + strain energy at the start (step 0 or the first run) [J/m]:
+                       * the growth check's budget and the thermo balance's reference */
+  int e_budget_set;
   double e_floor;     /* energy of a 1e-8 strain everywhere: below it, growth is round-off [J/m] */
   double t_wall0;
 } R;
@@ -212,7 +214,8 @@ static void thermo_line(YfSim *s) {
   run_energies(s);
   double ext = total_external(s);
   double diss = s->energy.damping + s->energy.joint_dissipated + s->energy.friction;
-  double bal = s->energy.kinetic + s->energy.strain + s->energy.contact + diss - ext;
+  /* balance: energy now + dissipated - (energy at the start + external work); ~0 when healthy */
+  double bal = s->energy.kinetic + s->energy.strain + s->energy.contact + diss - ext - R.e_budget;
   sim_printf(s, "%10ld %12.6e %13.6e %13.6e %13.6e %13.6e %13.6e %8ld %9ld %9.2f\n", s->step, s->time,
              s->energy.kinetic, s->energy.strain, ext, diss, bal, joints_broken(s), contact_pairs(s),
              s->wall_s + (yf_now() - R.t_wall0));
@@ -387,7 +390,10 @@ void run_steps(YfSim *s, long nsteps) {
   }
   s->threads = omp_get_max_threads();
   run_energies(s);
-  if (s->step == 0 || R.e_budget == 0) R.e_budget = s->energy.kinetic + s->energy.strain;
+  if (s->step == 0 || !R.e_budget_set) {
+    R.e_budget = s->energy.kinetic + s->energy.strain;
+    R.e_budget_set = 1;
+  }
   s->run_end_step = s->step + nsteps;
   {
     /* stresses of the current state, so the run's first frame shows them */
@@ -491,4 +497,7 @@ void run_free(void) {
 /* Energy-check budget (energy put in so far): part of a restart, so a continued run checks
  * against the same budget as the uninterrupted one. */
 double run_get_energy_budget(void) { return R.e_budget; }
-void run_set_energy_budget(double e) { R.e_budget = e; }
+void run_set_energy_budget(double e) {
+  R.e_budget = e;
+  R.e_budget_set = 1;
+}
