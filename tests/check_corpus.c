@@ -9,6 +9,7 @@
  * YFDEM_MEM_MAX=4e9 makes the memory refusals independent of the machine.
  */
 #include <check.h>
+#include "yftest.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,17 +17,7 @@
 #include <unistd.h>
 #include "err.h"
 
-static char *slurp(const char *path) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return calloc(1, 1);
-  fseek(f, 0, SEEK_END);
-  long n = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *b = calloc(1, (size_t)n + 1);
-  if (fread(b, 1, (size_t)n, f) != (size_t)n) b[0] = 0;
-  fclose(f);
-  return b;
-}
+static char *slurp(const char *path) { return yft_slurp(path, 1); }
 
 START_TEST(test_corpus) {
   char dir[] = "/tmp/yfcorpus_XXXXXX";

@@ -11,15 +11,7 @@
 #define MAT "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
 #define BAR MAT "mesh rect bar m 0 0 1 0.1 10 2\n"
 
-static char *slurp(const char *path) {
-  FILE *f = fopen(path, "r");
-  if (!f) return NULL;
-  char *b = calloc(1, 1 << 16);
-  size_t k = fread(b, 1, (1 << 16) - 1, f);
-  b[k] = 0;
-  fclose(f);
-  return b;
-}
+static char *slurp(const char *path) { return yft_slurp(path, 0); }
 
 /* Run deck text; assert exit code and that stderr contains each expected piece. */
 static void expect_fail(const char *deck, int code, const char *piece1, const char *piece2) {

@@ -87,15 +87,8 @@ static int file_exists(const char *p) {
 }
 
 static char *slurp(const char *path) {
-  FILE *f = fopen(path, "rb");
-  ck_assert_msg(f != NULL, "cannot open %s", path);
-  fseek(f, 0, SEEK_END);
-  long n = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *b = malloc((size_t)n + 1);
-  ck_assert_int_eq(fread(b, 1, (size_t)n, f), (size_t)n);
-  b[n] = 0;
-  fclose(f);
+  char *b = yft_slurp(path, 0);
+  ck_assert_msg(b != NULL, "cannot open %s", path);
   return b;
 }
 

@@ -82,17 +82,7 @@ static const char *binary(void) {
   return abs;
 }
 
-static char *slurp(const char *path) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return calloc(1, 1);
-  fseek(f, 0, SEEK_END);
-  long n = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *b = calloc(1, (size_t)n + 1);
-  if (fread(b, 1, (size_t)n, f) != (size_t)n) b[0] = 0;
-  fclose(f);
-  return b;
-}
+static char *slurp(const char *path) { return yft_slurp(path, 1); }
 
 /* Start yfdem on deck NAME in tmpdir (summary NAME.json, stderr NAME.err); returns the pid. */
 static pid_t spawn(const char *name, int threads) {

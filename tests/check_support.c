@@ -30,6 +30,18 @@ YfSim *yft_run(const char *deck_text) {
   return &t_sim;
 }
 
+char *yft_slurp(const char *path, int empty_if_missing) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return empty_if_missing ? calloc(1, 1) : NULL;
+  fseek(f, 0, SEEK_END);
+  long n = ftell(f);
+  fseek(f, 0, SEEK_SET);
+  char *b = calloc(1, (size_t)(n > 0 ? n : 0) + 1);
+  if (n > 0 && fread(b, 1, (size_t)n, f) != (size_t)n) b[0] = 0;
+  fclose(f);
+  return b;
+}
+
 int yft_exists(const char *path) {
   struct stat st;
   return stat(path, &st) == 0;

@@ -15,6 +15,9 @@ YfSim *yft_run(const char *deck_text);
 int yft_run_binary(const char *name, const char *deck_text, const char *extra_args, char **err, char **dir);
 /* Node nearest to (x, y) in the initial configuration. */
 int yft_node_at(const YfSim *s, double x, double y);
+/* Whole file as a string (caller frees); NULL when it cannot be opened, or "" when
+ * empty_if_missing is set. */
+char *yft_slurp(const char *path, int empty_if_missing);
 /* Whether a file exists. */
 int yft_exists(const char *path);
 
