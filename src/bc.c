@@ -326,7 +326,6 @@ void bc_apply_loads(YfSim *s) {
 void bc_constrain_velocities(YfSim *s, const double *vx_old, const double *vy_old) {
   if (!s->bc) return;
   YfNodes *n = &s->model.node;
-  double t1 = s->time + s->dt;
   for (int i = 0; i < s->bc->n; i++) {
     YfBcItem *it = &s->bc->item[i];
     if (it->kind != BC_FIXED && it->kind != BC_VELOCITY) continue;
@@ -347,7 +346,6 @@ void bc_constrain_velocities(YfSim *s, const double *vx_old, const double *vy_ol
       }
     }
   }
-  (void)t1;
 }
 
 void bc_constrain_positions(YfSim *s, const double *x_old, const double *y_old, const double *vx_old,

@@ -183,15 +183,13 @@ void run_prepare(YfSim *s) {
 void run_energies(YfSim *s) {
   YfModel *m = &s->model;
   const YfNodes *n = &m->node;
-  double ke = 0, pg = 0;
+  double ke = 0;
   for (int i = 0; i < n->n; i++) {
     ke += 0.5 * n->m[i] * (n->vx[i] * n->vx[i] + n->vy[i] * n->vy[i]);
-    pg += n->m[i] * (s->gx * (n->x[i] - n->x0[i]) + s->gy * (n->y[i] - n->y0[i]));
   }
   s->energy.kinetic = ke;
   s->energy.strain = R.tm ? tri_strain_energy(m, R.tm, 0, m->tri.n) : 0.0;
   s->energy.strain += joints_energy(s); /* intact joints' stored energy; sets energy.joint_dissipated */
-  (void)pg;
 }
 
 /* Gravity's work is a function of the state: sum m g . (x - x0). */
