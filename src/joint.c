@@ -30,6 +30,7 @@
 #include "summary.h"
 
 #define JBLOCK 256 /* joints per block of the force loop (break collection granularity) */
+#define JBATCH 32  /* joints whose geometry is computed ahead of their law (3 KB of stack) */
 static int par_min = 4096;
 void joints_set_par_min(int n) { par_min = n < 0 ? 0 : n; }
 
@@ -65,6 +66,7 @@ int joints_add_set(YfSim *s, const char *name, const YfJointProp *p, int het, do
   memset(js, 0, sizeof *js);
   snprintf(js->name, sizeof js->name, "%s", name);
   js->p = *p;
+  joint_pre_init(&js->p, &js->pre);
   js->het = het;
   js->het_par = het_par;
   js->seed = seed;
@@ -253,10 +255,10 @@ static int nj_cmp(const void *pa, const void *pb) {
   return a->kA - b->kA;
 }
 
+/* Exact capacity: joints come in one batch per insertion, whose size is known. */
 static void joints_reserve(YfJoints *J, int want) {
   if (want <= J->cap) return;
-  int cap = J->cap ? J->cap : 256;
-  while (cap < want) cap *= 2;
+  int cap = want;
 #define JG(p, k) J->p = yf_realloc(J->p, (size_t)cap * (k) * sizeof *J->p, "joint " #p)
   JG(corner, 4); JG(node, 4); JG(tri, 2); JG(prop, 1); JG(k, 1); JG(fs, 1); JG(dmg, 3); JG(w, 1);
   JG(z, 1); JG(L0, 1); JG(state, 1); JG(mode, 1); JG(f, 8); JG(pend, 1); JG(opened, 1);
@@ -330,6 +332,7 @@ static void split_nodes(YfModel *m, const unsigned char *zone) {
   memcpy(opar, N->parent, (size_t)nn * sizeof(int));
   memcpy(obody, N->body, (size_t)nn * sizeof(int));
   memcpy(ogm, N->gmask, (size_t)nn * sizeof(uint64_t));
+  model_reserve(m, nnew - N->n, 0); /* exact: the split's node count is known */
   while (N->n < nnew) model_add_node(m, 0, 0, 0, -1);
   N->n = nnew;
   double *dst[9] = {N->x, N->y, N->x0, N->y0, N->vx, N->vy, N->fx, N->fy, N->m};
@@ -527,6 +530,14 @@ static inline double work_inc(const YfNodes *N, const int *nd, const double *fo,
   return w * dt;
 }
 
+/* work_inc with the four nodes' velocities given (v: vx, vy of node 0..3): the same arithmetic. */
+static inline double work_inc_v(const double *v, const double *fo, const double *fn, double dt) {
+  double w = 0;
+  for (int c = 0; c < 4; c++)
+    w -= 0.5 * ((fo[2 * c] + fn[2 * c]) * v[2 * c] + (fo[2 * c + 1] + fn[2 * c + 1]) * v[2 * c + 1]);
+  return w * dt;
+}
+
 /* Scaled property of joint j (heterogeneity factor on the strengths and the fracture energy). */
 static inline void scaled_prop(const YfJoints *J, int j, YfJointProp *lp, int *cur) {
   if (*cur != J->prop[j]) {
@@ -562,30 +573,51 @@ void joints_forces(YfSim *s) {
   for (int b = 0; b < nblk; b++) {
     YfJointProp lp;
     int cur = -1, nbreak = 0, nopen = 0;
-    int j1 = (b + 1) * JBLOCK < nj ? (b + 1) * JBLOCK : nj;
-    for (int j = b * JBLOCK; j < j1; j++) {
-      if (J->state[j]) continue;
-      scaled_prop(J, j, &lp, &cur);
-      const int *nd = J->node + 4 * j;
-      double x[4], y[4], f[8];
-      for (int c = 0; c < 4; c++) {
-        x[c] = N->x[nd[c]];
-        y[c] = N->y[nd[c]];
+    int jb1 = (b + 1) * JBLOCK < nj ? (b + 1) * JBLOCK : nj;
+    for (int j0 = b * JBLOCK; j0 < jb1; j0 += JBATCH) {
+      int j1 = j0 + JBATCH < jb1 ? j0 + JBATCH : jb1;
+      /* the geometry of the batch first: a short loop whose square roots and divisions (the
+       * latency of a joint) overlap from joint to joint; then the law of each */
+      YfJointGeom g[JBATCH];
+      double vel[JBATCH][8]; /* the nodes' velocities for the work, loaded alongside positions */
+      for (int j = j0; j < j1; j++) {
+        if (J->state[j]) continue;
+        const int *nd = J->node + 4 * j;
+        double x[4], y[4], *v = vel[j - j0];
+        for (int c = 0; c < 4; c++) {
+          x[c] = N->x[nd[c]];
+          y[c] = N->y[nd[c]];
+          v[2 * c] = N->vx[nd[c]];
+          v[2 * c + 1] = N->vy[nd[c]];
+        }
+        joint_geometry_inline(J->set[J->prop[j]].p.hreg, x, y, &g[j - j0]);
       }
-      YfJointInfo info;
-      int nfail = joint_force(&lp, x, y, J->fs + j, J->dmg + 3 * j, f, &info);
-      double *fj = J->f + 8 * j;
-      J->w[j] += work_inc(N, nd, fj, f, dtp);
-      memcpy(fj, f, sizeof f);
-      J->z[j] = info.zmax;
-      if (info.zmax > 0.0 && !J->opened[j]) { /* first time past the peak: an opened crack */
-        J->opened[j] = (unsigned char)(0x80 | (info.mode != YF_JMODE_NONE ? info.mode : YF_JMODE_MIXED));
-        nopen++;
-      }
-      if (YF_JOINT_BROKEN(nfail)) {
-        J->state[j] = 1;
-        J->mode[j] = (unsigned char)(info.mode != YF_JMODE_NONE ? info.mode : YF_JMODE_MIXED);
-        nbreak++;
+      for (int j = j0; j < j1; j++) {
+        if (J->state[j]) continue;
+        scaled_prop(J, j, &lp, &cur);
+        double f[8];
+        YfJointInfo info;
+        /* factor 1 (every joint of a homogeneous set): the set's precomputed lengths apply */
+        YfJointPre pre;
+        const YfJointPre *pc = &J->set[J->prop[j]].pre;
+        if (J->k[j] != 1.0) {
+          joint_pre_init(&lp, &pre);
+          pc = &pre;
+        }
+        int nfail = joint_force_geom(&lp, pc, &g[j - j0], J->fs + j, J->dmg + 3 * j, f, &info);
+        double *fj = J->f + 8 * j;
+        J->w[j] += work_inc_v(vel[j - j0], fj, f, dtp);
+        memcpy(fj, f, sizeof f);
+        J->z[j] = info.zmax;
+        if (info.zmax > 0.0 && !J->opened[j]) { /* first time past the peak: an opened crack */
+          J->opened[j] = (unsigned char)(0x80 | (info.mode != YF_JMODE_NONE ? info.mode : YF_JMODE_MIXED));
+          nopen++;
+        }
+        if (YF_JOINT_BROKEN(nfail)) {
+          J->state[j] = 1;
+          J->mode[j] = (unsigned char)(info.mode != YF_JMODE_NONE ? info.mode : YF_JMODE_MIXED);
+          nbreak++;
+        }
       }
     }
     J->blk_nbreak[b] = nbreak;
@@ -732,12 +764,17 @@ double joints_stable_dt(YfSim *s, char *what, size_t n) {
   }
   double best = INFINITY;
   int bj = -1;
+  /* the undamped triangle limit, once per triangle (a triangle has up to 3 joints x 2 corners:
+   * its eigenvalue iteration is the cost of this function); NAN = not computed yet */
+  double *dtt = yf_malloc((size_t)(m->tri.n > 0 ? m->tri.n : 1) * sizeof(double), "joint dt");
+  for (int t = 0; t < m->tri.n; t++) dtt[t] = NAN;
   for (int j = 0; j < J->n; j++) {
     if (J->state[j]) continue;
     for (int c = 0; c < 4; c++) {
       int i = J->node[4 * j + c], t = tri_of[i];
       if (!(N->m[i] > 0) || t < 0) continue;
-      double dt0 = tri_stable_dt(m, tm0, t);
+      if (isnan(dtt[t])) dtt[t] = tri_stable_dt(m, tm0, t);
+      double dt0 = dtt[t];
       double wt2 = isfinite(dt0) && dt0 > 0 ? 4.0 / (dt0 * dt0) : 0.0;
       double w = sqrt(wt2 + P[i] / N->m[i]);
       const YfTriMat *mt = tm + m->tri.mat[t];
@@ -755,6 +792,7 @@ double joints_stable_dt(YfSim *s, char *what, size_t n) {
   free(P);
   free(tri_of);
   free(tm0);
+  free(dtt);
   return best;
 }
 

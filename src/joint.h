@@ -56,6 +56,7 @@ enum { YF_HET_NONE = 0, YF_HET_WEIBULL, YF_HET_NORMAL };
 typedef struct {
   char name[YF_NAME_MAX];
   YfJointProp p;
+  YfJointPre pre;      /* joint_pre_init(p): for joints of heterogeneity factor 1        */
   int het;             /* YF_HET_*                                         */
   double het_par;      /* Weibull modulus M or normal coefficient of variation */
   unsigned long seed;  /* GSL mt19937 seed                                   */

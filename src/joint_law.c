@@ -298,33 +298,59 @@ static double envelope_ray(const JointLens *L, double o, double as, double D)
   return (-B + sqrt(disc > 0.0 ? disc : 0.0)) / (2.0 * A);
 }
 
-int joint_force(const YfJointProp *p, const double x[4], const double y[4], double *fs_state,
-                double *dmg, double f[8], YfJointInfo *info)
+void joint_pre_init(const YfJointProp *p, YfJointPre *c)
 {
-  /* 3.1 geometry */
-  double ex = ((x[1] + x[2]) - (x[0] + x[3])) / 2.0;
-  double ey = ((y[1] + y[2]) - (y[0] + y[3])) / 2.0;
-  double h = sqrt(ex * ex + ey * ey);
-  double hr = h + p->hreg;
-  if (!(hr > 0.0)) hr = 1.0; /* a collapsed joint (h = 0, native): no direction, no force */
-  double e1x = ex / hr, e1y = ey / hr;
-  double nx = -e1y, ny = e1x;
-  double dax = x[0] - x[3], day = y[0] - y[3];
-  double dbx = x[1] - x[2], dby = y[1] - y[2];
-  double sa = dax * e1x + day * e1y, sb = dbx * e1x + dby * e1y;
-  double oa = dax * nx + day * ny, ob = dbx * nx + dby * ny;
-  double po[3] = {oa, (oa + ob) / 2.0, ob};
-  double ps[3] = {sa, (sa + sb) / 2.0, sb};
+  c->ot = soft_length(p, p->ft);
+  c->fs0 = joint_fs_init(p);
+  c->st0 = soft_length(p, c->fs0);
+}
 
-  /* 3.2 strengths: lengths from the shear strength at the start of the call */
+/* Two divisions as one packed instruction (GCC/Clang vector extension; plain scalar code where
+ * the target has no vectors).  Each lane is an IEEE division, so the bits are those of a / b and
+ * c / d: half the divider work for the pairs the law divides together. */
+typedef double yf_v2 __attribute__((vector_size(16)));
+static inline void div2(double a, double b, double c, double d, double *ab, double *cd)
+{
+  yf_v2 q = (yf_v2){a, c} / (yf_v2){b, d};
+  *ab = q[0];
+  *cd = q[1];
+}
+
+void joint_geometry(double hreg, const double x[4], const double y[4], YfJointGeom *g)
+{
+  joint_geometry_inline(hreg, x, y, g);
+}
+
+/* The law of one joint from its geometry (ALGORITHMS 3.2-3.7).  ot: the softening length of f_t
+ * before the floor; st0: the one of the shear strength fs0 (used when the joint's current strength
+ * is fs0, i.e. always without Mohr-Coulomb).  Operations are those of the document in its order;
+ * what is skipped is only what cannot change a bit: g(0) = 1 for every law (no call for an
+ * undamaged point), the mode of the info is worked out for the most damaged point alone, and
+ * lengths that do not depend on the joint's geometry come precomputed. */
+static inline int law_core(const YfJointProp *p, double ot, double fs0, double st0, const YfJointGeom *g,
+                           double *fs_state, double *dmg, double f[8], YfJointInfo *info)
+{
+  const double h = g->h, e1x = g->e1x, e1y = g->e1y, nx = -e1y, ny = e1x;
+  const double *po = g->po, *ps = g->ps;
+
+  /* 3.2 strengths: lengths from the shear strength at the start of the call (as joint_lengths) */
   double fs = fs_state ? *fs_state : joint_fs_init(p);
   JointLens L = {.ft = p->ft, .coh = p->coh, .phi = p->phi};
-  joint_lengths(p, h, fs, &L.op, &L.ot, &L.sp, &L.st);
+  div2(2.0 * h * p->ft, p->pen, 2.0 * h * fs, p->pen, &L.op, &L.sp);
+  L.ot = ot;
+  L.st = fs == fs0 ? st0 : soft_length(p, fs);
+  if (p->y2d_floor) { /* fmax of two positive lengths */
+    double o2 = 2.0 * L.op, s2 = 2.0 * L.sp;
+    if (o2 > L.ot) L.ot = o2;
+    if (s2 > L.st) L.st = s2;
+  }
 
-  const double w[3] = {h / 6.0, h / 3.0, h / 6.0};
+  double w[3];
+  div2(h, 6.0, h, 3.0, &w[0], &w[1]);
+  w[2] = w[0];
   double qx[3], qy[3];
   int nfail = 0, kmax = -1;
-  double zmax = 0.0, cx[3] = {0, 0, 0}, cy[3] = {0, 0, 0};
+  double zmax = 0.0, lmax = 1.0;
 
   for (int k = 0; k < 3; k++) {
     double o = po[k], s = ps[k], as = fabs(s);
@@ -342,43 +368,47 @@ int joint_force(const YfJointProp *p, const double x[4], const double y[4], doub
       }
     }
     if (z >= 1.0) nfail++;
-    double fz = joint_soft(p, z);
+    double fz = z == 0.0 ? 1.0 : joint_soft(p, z); /* g(0) = 1 exactly for every law */
 
-    /* 3.4 normal stress (compression: undamaged penalty o p/h) */
-    double sigma;
-    if (o < 0.0)
-      sigma = 2.0 * o * L.ft / L.op;
-    else if (lam == 1.0)
-      sigma = sigma_tension(&L, o, fz);
-    else if (lam > 0.0)
-      sigma = sigma_tension(&L, lam * o, fz) / lam;
-    else
-      sigma = 0.0;
-
-    /* 3.5 Mohr-Coulomb: replace f_s before this point's tau; kept for the next points/calls */
-    if (L.coh > 0.0) fs = sigma > 0.0 ? L.coh : L.coh - sigma * L.phi;
-
-    /* 3.4 shear stress, sign of s */
-    double tau;
-    if (lam == 1.0)
-      tau = tau_mag(&L, as, fz, fs);
-    else if (lam > 0.0 && as > 0.0)
-      tau = tau_mag(&L, lam * as, fz, fs) / lam;
-    else
-      tau = 0.0;
+    double sigma, tau;
+    if (lam == 1.0) {
+      /* on the envelope (always in Y2D's reversible law): the two quotients of 3.4, packed.
+       * ro: o/o_p for 0 <= o <= o_p, or the compression stress 2 o f_t/o_p (penalty o p/h) */
+      double ro, rs;
+      div2(o < 0.0 ? 2.0 * o * L.ft : o, L.op, as, L.sp, &ro, &rs);
+      if (o < 0.0)
+        sigma = ro;
+      else if (o <= L.op)
+        sigma = (2.0 * ro - ro * ro) * fz * L.ft;
+      else
+        sigma = fz * L.ft;
+      /* 3.5 Mohr-Coulomb: replace f_s before this point's tau; kept for the next points/calls */
+      if (L.coh > 0.0) fs = sigma > 0.0 ? L.coh : L.coh - sigma * L.phi;
+      tau = as > L.sp ? fz * fs : (2.0 * rs - rs * rs) * fz * fs;
+    } else {
+      /* 3.4 normal stress (compression: undamaged penalty o p/h) */
+      if (o < 0.0)
+        sigma = 2.0 * o * L.ft / L.op;
+      else if (lam > 0.0)
+        sigma = sigma_tension(&L, lam * o, fz) / lam;
+      else
+        sigma = 0.0;
+      if (L.coh > 0.0) fs = sigma > 0.0 ? L.coh : L.coh - sigma * L.phi;
+      /* 3.4 shear stress on the secant branch */
+      if (lam > 0.0 && as > 0.0)
+        tau = tau_mag(&L, lam * as, fz, fs) / lam;
+      else
+        tau = 0.0;
+    }
     if (s < 0.0) tau = -tau;
 
     qx[k] = tau * e1x + sigma * nx;
     qy[k] = tau * e1y + sigma * ny;
 
-    if (info) { /* normalised distances beyond the peaks, on the envelope */
-      double ol = (lam > 0.0 ? lam : 1.0) * o, sl = (lam > 0.0 ? lam : 1.0) * as;
-      cx[k] = ol > L.op ? (ol - L.op) / L.ot : 0.0;
-      cy[k] = sl > L.sp ? (sl - L.sp) / L.st : 0.0;
-      if (z > zmax) {
-        zmax = z;
-        kmax = k;
-      }
+    if (z > zmax) { /* the most damaged point (first of equals) and its ray scale */
+      zmax = z;
+      kmax = k;
+      lmax = lam;
     }
   }
   if (fs_state) *fs_state = fs;
@@ -400,7 +430,11 @@ int joint_force(const YfJointProp *p, const double x[4], const double y[4], doub
     info->zmax = zmax;
     info->mode = YF_JMODE_NONE;
     if (kmax >= 0) {
-      double a = cx[kmax], b = cy[kmax];
+      /* normalised distances beyond the peaks, on the envelope */
+      double sc = lmax > 0.0 ? lmax : 1.0;
+      double ol = sc * po[kmax], sl = sc * fabs(ps[kmax]);
+      double a = ol > L.op ? (ol - L.op) / L.ot : 0.0;
+      double b = sl > L.sp ? (sl - L.sp) / L.st : 0.0;
       if (b <= a / 9.0 && a > 0.0)
         info->mode = YF_JMODE_I;
       else if (a <= b / 9.0 && b > 0.0)
@@ -410,4 +444,20 @@ int joint_force(const YfJointProp *p, const double x[4], const double y[4], doub
     }
   }
   return nfail;
+}
+
+int joint_force(const YfJointProp *p, const double x[4], const double y[4], double *fs_state,
+                double *dmg, double f[8], YfJointInfo *info)
+{
+  YfJointPre c;
+  YfJointGeom g;
+  joint_pre_init(p, &c);
+  joint_geometry_inline(p->hreg, x, y, &g);
+  return law_core(p, c.ot, c.fs0, c.st0, &g, fs_state, dmg, f, info);
+}
+
+int joint_force_geom(const YfJointProp *p, const YfJointPre *c, const YfJointGeom *g, double *fs_state,
+                     double *dmg, double f[8], YfJointInfo *info)
+{
+  return law_core(p, c->ot, c->fs0, c->st0, g, fs_state, dmg, f, info);
 }

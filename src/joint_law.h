@@ -26,6 +26,7 @@
  */
 #ifndef YF_JOINT_LAW_H
 #define YF_JOINT_LAW_H
+#include <math.h>
 #include <stddef.h>
 
 enum { YF_SOFT_MUNJIZA = 0, YF_SOFT_MUNJIZA_GF, YF_SOFT_LINEAR, YF_SOFT_BILINEAR, YF_SOFT_TABLE,
@@ -111,5 +112,48 @@ int joint_force(const YfJointProp *p, const double x[4], const double y[4], doub
                 double *dmg, double f[8], YfJointInfo *info);
 
 #define YF_JOINT_BROKEN(nfail) ((nfail) >= 2)
+
+/* What joint_force derives from the property set alone (no geometry, no state): computed once
+ * per set by joint_pre_init, so the step loop does not redo it for every joint. */
+typedef struct {
+  double ot;  /* softening length of f_t before the 2 o_p floor [m]                   */
+  double fs0; /* initial shear strength joint_fs_init(p) [Pa]                            */
+  double st0; /* softening length of fs0 before the floor [m] (used while fs = fs0)      */
+} YfJointPre;
+void joint_pre_init(const YfJointProp *p, YfJointPre *c);
+
+/* The geometry of a joint (ALGORITHMS 3.1): all the law needs of the four positions. */
+typedef struct {
+  double h;            /* current length [m]                                          */
+  double e1x, e1y;     /* tangent e/(h + hreg); the normal is (-e1y, e1x)             */
+  double po[3], ps[3]; /* opening and slip at end a, middle, end b [m]                */
+} YfJointGeom;
+
+/* 3.1 in the document's order of operations (inline: the step loop computes the geometry of a
+ * batch of joints first, a short loop whose square roots and divisions overlap; then the law). */
+static inline void joint_geometry_inline(double hreg, const double x[4], const double y[4], YfJointGeom *g)
+{
+  double ex = ((x[1] + x[2]) - (x[0] + x[3])) / 2.0;
+  double ey = ((y[1] + y[2]) - (y[0] + y[3])) / 2.0;
+  double h = sqrt(ex * ex + ey * ey);
+  double hr = h + hreg;
+  if (!(hr > 0.0)) hr = 1.0; /* a collapsed joint (h = 0, native): no direction, no force */
+  double e1x = ex / hr, e1y = ey / hr;
+  double nx = -e1y, ny = e1x;
+  double dax = x[0] - x[3], day = y[0] - y[3];
+  double dbx = x[1] - x[2], dby = y[1] - y[2];
+  double sa = dax * e1x + day * e1y, sb = dbx * e1x + dby * e1y;
+  double oa = dax * nx + day * ny, ob = dbx * nx + dby * ny;
+  g->h = h;
+  g->e1x = e1x;
+  g->e1y = e1y;
+  g->po[0] = oa; g->po[1] = (oa + ob) / 2.0; g->po[2] = ob;
+  g->ps[0] = sa; g->ps[1] = (sa + sb) / 2.0; g->ps[2] = sb;
+}
+void joint_geometry(double hreg, const double x[4], const double y[4], YfJointGeom *g);
+/* joint_force in two halves: g = joint_geometry(p->hreg, x, y), c = joint_pre_init(p) (or of the
+ * same property values); the same results, bit for bit. */
+int joint_force_geom(const YfJointProp *p, const YfJointPre *c, const YfJointGeom *g, double *fs_state,
+                     double *dmg, double f[8], YfJointInfo *info);
 
 #endif
