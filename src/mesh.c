@@ -225,6 +225,7 @@ static void mesh_rect(YfModel *m, const YfArgs *a) {
   if ((long long)nid + nnode > INT_MAX || (long long)tid + ntri > INT_MAX)
     arg_error(a, 7, "user ids would overflow");
 
+  model_reserve(m, (int)nnode, (int)ntri); /* counts known: exact sizes */
   /* Grid coordinates: the last row/column is placed exactly on x1/y1 so that regions and
    * supports selecting the edge x = x1 catch every node there. */
   int base = m->node.n;

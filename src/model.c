@@ -1,6 +1,8 @@
 /* model.c: growing and querying the scene arrays (see model.h).
  *
- * Arrays grow geometrically while a deck builds the scene; nothing here runs inside the step.
+ * Arrays grow geometrically while a deck builds the scene, or to the exact size when the builder
+ * knows the count (model_reserve: meshing, read_y2d, joint insertion), so that a large scene does
+ * not carry up to twice its size in capacity; nothing here runs inside the step.
  */
 #include <stdio.h>
 #include <string.h>
@@ -25,10 +27,12 @@ void model_free(YfModel *m) {
 
 #define GROW(p, cap, k) p = yf_realloc(p, (size_t)(cap) * (k) * sizeof *(p), #p)
 
-static void nodes_reserve(YfNodes *n, int want) {
+/* exact: capacity = want (model_reserve); else doubling (one node or triangle at a time) */
+static void nodes_reserve(YfNodes *n, int want, int exact) {
   if (want <= n->cap) return;
   int cap = n->cap ? n->cap : 64;
   while (cap < want) cap *= 2;
+  if (exact) cap = want;
   GROW(n->x, cap, 1); GROW(n->y, cap, 1); GROW(n->x0, cap, 1); GROW(n->y0, cap, 1);
   GROW(n->vx, cap, 1); GROW(n->vy, cap, 1); GROW(n->fx, cap, 1); GROW(n->fy, cap, 1);
   GROW(n->m, cap, 1); GROW(n->id, cap, 1); GROW(n->parent, cap, 1); GROW(n->body, cap, 1);
@@ -36,19 +40,25 @@ static void nodes_reserve(YfNodes *n, int want) {
   n->cap = cap;
 }
 
-static void tris_reserve(YfTris *t, int want) {
+static void tris_reserve(YfTris *t, int want, int exact) {
   if (want <= t->cap) return;
   int cap = t->cap ? t->cap : 64;
   while (cap < want) cap *= 2;
+  if (exact) cap = want;
   GROW(t->v, cap, 3); GROW(t->mat, cap, 1); GROW(t->body, cap, 1); GROW(t->id, cap, 1);
   GROW(t->gmask, cap, 1); GROW(t->xinv, cap, 4); GROW(t->d0, cap, 1); GROW(t->s, cap, 3);
   GROW(t->cf, cap, 6);
   t->cap = cap;
 }
 
+void model_reserve(YfModel *m, int nodes, int tris) {
+  if (nodes > 0) nodes_reserve(&m->node, m->node.n + nodes, 1);
+  if (tris > 0) tris_reserve(&m->tri, m->tri.n + tris, 1);
+}
+
 int model_add_node(YfModel *m, double x, double y, int id, int body) {
   YfNodes *n = &m->node;
-  nodes_reserve(n, n->n + 1);
+  nodes_reserve(n, n->n + 1, 0);
   int i = n->n++;
   n->x[i] = n->x0[i] = x;
   n->y[i] = n->y0[i] = y;
@@ -64,7 +74,7 @@ int model_add_node(YfModel *m, double x, double y, int id, int body) {
 
 int model_add_tri(YfModel *m, int n0, int n1, int n2, int mat, int id, int body) {
   YfTris *t = &m->tri;
-  tris_reserve(t, t->n + 1);
+  tris_reserve(t, t->n + 1, 0);
   int e = t->n++;
   t->v[3 * e] = n0; t->v[3 * e + 1] = n1; t->v[3 * e + 2] = n2;
   t->mat[e] = mat;

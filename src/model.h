@@ -115,6 +115,9 @@ typedef struct {
 
 void model_init(YfModel *m);
 void model_free(YfModel *m);
+/* Room for exactly `nodes` more nodes and `tris` more triangles (no-op where there is room):
+ * builders that know their counts call it first. */
+void model_reserve(YfModel *m, int nodes, int tris);
 /* Append a node / triangle; return its index.  Grows arrays geometrically. */
 int model_add_node(YfModel *m, double x, double y, int id, int body);
 int model_add_tri(YfModel *m, int n0, int n1, int n2, int mat, int id, int body);

@@ -165,19 +165,23 @@ void run_prepare(YfSim *s) {
     R.blk = yf_calloc((size_t)R.nblk, sizeof(double), "block sums");
     R.blk_bad = yf_calloc((size_t)R.nblk, sizeof(int), "block flags");
     R.blk_badJ = yf_calloc((size_t)R.nblk, sizeof(double), "block J");
-    if (R.cap_nodes < m->node.n) {
-      R.cap_nodes = m->node.n;
-      R.xo = yf_realloc(R.xo, (size_t)R.cap_nodes * sizeof(double), "old positions");
-      R.yo = yf_realloc(R.yo, (size_t)R.cap_nodes * sizeof(double), "old positions");
-      R.vxo = yf_realloc(R.vxo, (size_t)R.cap_nodes * sizeof(double), "old velocities");
-      R.vyo = yf_realloc(R.vyo, (size_t)R.cap_nodes * sizeof(double), "old velocities");
-    }
     R.e_floor = 0;
     for (int e = 0; e < m->tri.n; e++) R.e_floor += 1e-16 * m->mat[m->tri.mat[e]].E * 0.5 * m->tri.d0[e];
     m->prepared = 1;
   }
   bc_prepare(s);
   contact_prepare(s);
+  /* positions and velocities before the update: read only by bc.c's supports and loads and by
+   * the mass damping, so kept only when one of them is active (fix/load commands and damping may
+   * come between runs: checked at every run) */
+  if ((bc_count(s) > 0 || s->mass_damping > 0) && R.cap_nodes < m->node.n) {
+    R.cap_nodes = m->node.n;
+    R.xo = yf_realloc(R.xo, (size_t)R.cap_nodes * sizeof(double), "old positions");
+    R.yo = yf_realloc(R.yo, (size_t)R.cap_nodes * sizeof(double), "old positions");
+    R.vxo = yf_realloc(R.vxo, (size_t)R.cap_nodes * sizeof(double), "old velocities");
+    R.vyo = yf_realloc(R.vyo, (size_t)R.cap_nodes * sizeof(double), "old velocities");
+  }
+  y2d_release_deck(s); /* the scene is built: the .y deck's arrays are no longer needed */
 }
 
 void run_energies(YfSim *s) {
@@ -316,20 +320,21 @@ static void step_once(YfSim *s) {
   contact_step(s); /* detection when due, then pair forces added in pair order (timed inside) */
   t0 = yf_now();
 
-  /* update: v_{n+1/2}, then supports, then x_{n+1} */
+  /* update: v_{n+1/2}, then supports, then x_{n+1}.  The old positions and velocities are
+   * copied inside the update loops (no separate pass), and only when something reads them. */
   double *x = n->x, *y = n->y, *vx = n->vx, *vy = n->vy;
   const double *fx = n->fx, *fy = n->fy, *ms = n->m;
-  memcpy(R.xo, x, (size_t)nn * sizeof(double));
-  memcpy(R.yo, y, (size_t)nn * sizeof(double));
-  memcpy(R.vxo, vx, (size_t)nn * sizeof(double));
-  memcpy(R.vyo, vy, (size_t)nn * sizeof(double));
+  const int keep = bc_count(s) > 0 || alpha > 0;
+  double *xo = keep ? R.xo : NULL, *yo = keep ? R.yo : NULL, *vxo = keep ? R.vxo : NULL, *vyo = keep ? R.vyo : NULL;
   if (s->y2d) {
-    y2d_update_velocities(s); /* Y2D's BC-set update (kinds, local frames, time factors) */
+    y2d_update_velocities(s, nn >= PAR_MIN, vxo, vyo); /* Y2D's BC-set update (kinds, local frames, time factors) */
   } else if (alpha > 0) {
     /* central-difference mass damping: v+ = ((1 - a dt/2) v- + dt f/m) / (1 + a dt/2) */
     const double c1 = 1.0 - 0.5 * alpha * dt, c2 = 1.0 / (1.0 + 0.5 * alpha * dt);
     #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
     for (int i = 0; i < nn; i++) {
+      vxo[i] = vx[i];
+      vyo[i] = vy[i];
       if (!(ms[i] > 1e-300)) continue;
       vx[i] = (c1 * vx[i] + dt * (fx[i] / ms[i] + gx)) * c2;
       vy[i] = (c1 * vy[i] + dt * (fy[i] / ms[i] + gy)) * c2;
@@ -337,28 +342,36 @@ static void step_once(YfSim *s) {
   } else {
     #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
     for (int i = 0; i < nn; i++) {
+      if (vxo) {
+        vxo[i] = vx[i];
+        vyo[i] = vy[i];
+      }
       if (!(ms[i] > 1e-300)) continue;
       vx[i] += dt * (fx[i] / ms[i] + gx);
       vy[i] += dt * (fy[i] / ms[i] + gy);
     }
   }
-  bc_constrain_velocities(s, R.vxo, R.vyo);
+  bc_constrain_velocities(s, vxo, vyo);
   if (alpha > 0) {
     /* dissipated: alpha m |v_n|^2 dt with v_n the mean of the two half-step velocities, after
      * the supports (a held node dissipates nothing); summed serially: same bits on any threads */
     double diss = 0;
     for (int i = 0; i < nn; i++) {
-      double ax = 0.5 * (vx[i] + R.vxo[i]), ay = 0.5 * (vy[i] + R.vyo[i]);
+      double ax = 0.5 * (vx[i] + vxo[i]), ay = 0.5 * (vy[i] + vyo[i]);
       diss += ms[i] * (ax * ax + ay * ay);
     }
     s->energy.damping += alpha * diss * dt;
   }
   #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
   for (int i = 0; i < nn; i++) {
+    if (xo) {
+      xo[i] = x[i];
+      yo[i] = y[i];
+    }
     x[i] += dt * vx[i];
     y[i] += dt * vy[i];
   }
-  bc_constrain_positions(s, R.xo, R.yo, R.vxo, R.vyo);
+  bc_constrain_positions(s, xo, yo, vxo, vyo);
   s->step++;
   s->time += dt;
   t1 = yf_now();

@@ -69,35 +69,47 @@ static double set_factor(const YfY2dRun *r, int b, double t) {
 static void resolve(YfSim *s, YfY2dRun *r) {
   YfModel *m = &s->model;
   const YfNodes *n = &m->node;
-  const YfY2d *y = deck_of(r);
   r->nn = n->n;
   free(r->set);
   free(r->lf);
   free(r->le);
+  r->lf = NULL;
+  r->le = NULL;
   r->set = yf_malloc((size_t)(n->n + 1) * sizeof(int), "y2d node sets");
-  r->lf = yf_calloc((size_t)(2 * n->n + 2), sizeof(double), "y2d edge loads");
+  r->nublk = (n->n + Y2D_UBLOCK - 1) / Y2D_UBLOCK;
+  free(r->ublk);
+  r->ublk = yf_calloc((size_t)r->nublk + 1, sizeof(double), "y2d update blocks");
   /* a node of the deck (or a copy of one: copies keep group masks and ids) has the set of its
    * input node; nodes added by native commands have none */
   for (int i = 0; i < n->n; i++) {
     int in = n->id[i];
     int mine = (n->gmask[i] & r->gbit) && in >= 0 && in < r->nnode;
-    r->set[i] = mine ? y->i1nopr[in] : -1;
+    r->set[i] = mine ? r->setof[in] : -1;
     if (r->set[i] >= r->nset) r->set[i] = -1;
   }
-  /* triangle edges whose two end nodes both carry a pressure or both a shear traction */
-  r->nle = 0;
-  r->le = yf_malloc((size_t)(6 * r->ntri + 2) * sizeof(int), "y2d loaded edges");
-  for (int e = 0; e < r->ntri; e++) {
-    int t = partition_tri(m, r->tri0 + e);
-    const int *v = m->tri.v + 3 * t;
-    for (int j = 0; j < 3; j++) {
-      int a = r->set[v[j]], b = r->set[v[(j + 1) % 3]];
-      if (a < 0 || b < 0) continue;
-      if ((r->ap[a] != 0 && r->ap[b] != 0) || (r->at[a] != 0 && r->at[b] != 0)) {
-        r->le[2 * r->nle] = t;
-        r->le[2 * r->nle + 1] = j;
-        r->nle++;
+  /* triangle edges whose two end nodes both carry a pressure or both a shear traction (counted,
+   * then listed: scenes without edge loads keep no per-node load array) */
+  for (int pass = 0; pass < 2; pass++) {
+    r->nle = 0;
+    for (int e = 0; e < r->ntri; e++) {
+      int t = partition_tri(m, r->tri0 + e);
+      const int *v = m->tri.v + 3 * t;
+      for (int j = 0; j < 3; j++) {
+        int a = r->set[v[j]], b = r->set[v[(j + 1) % 3]];
+        if (a < 0 || b < 0) continue;
+        if ((r->ap[a] != 0 && r->ap[b] != 0) || (r->at[a] != 0 && r->at[b] != 0)) {
+          if (pass) {
+            r->le[2 * r->nle] = t;
+            r->le[2 * r->nle + 1] = j;
+          }
+          r->nle++;
+        }
       }
+    }
+    if (!pass) {
+      if (!r->nle) break;
+      r->le = yf_malloc((size_t)(2 * r->nle) * sizeof(int), "y2d loaded edges");
+      r->lf = yf_calloc((size_t)(2 * n->n + 2), sizeof(double), "y2d edge loads");
     }
   }
 }
@@ -147,34 +159,40 @@ void y2d_apply_loads(YfSim *s) {
   }
 }
 
-void y2d_update_velocities(YfSim *s) {
-  YfY2dRun *r = s->y2d;
-  if (!r) return;
-  YfNodes *n = &s->model.node;
-  if (r->nn != n->n) resolve(s, r);
-  const double dt = s->dt, gy = r->gy;
+/* Nodes i0..i1-1 of the velocity update; returns the external work of this range [J/m].
+ * Velocities follow ALGORITHMS 7 operation by operation (same bits as a serial loop whatever the
+ * range).  The work of node i is dt R.(v0 + v1)/2 with R = m (v1 - v0)/dt - f_int - m g, written
+ * multiplied through by dt so that no division is needed. */
+static double update_range(const YfY2dRun *r, YfNodes *n, const YfSim *s, int i0, int i1, double *vxo,
+                           double *vyo) {
+  const double dt = s->dt, gy = r->gy, ngx = s->gx, ngy = s->gy;
   double *vx = n->vx, *vy = n->vy;
-  const double *fx = n->fx, *fy = n->fy, *ms = n->m, *lf = r->lf;
+  const double *fx = n->fx, *fy = n->fy, *ms = n->m, *lf = r->lf, *amp = r->acur;
+  const int *set = r->set, *kind = r->kind;
   double work = 0.0;
-  for (int i = 0; i < n->n; i++) {
-    int b = r->set[i];
+  for (int i = i0; i < i1; i++) {
+    int b = set[i];
     double m = ms[i];
+    double vx0 = vx[i], vy0 = vy[i];
+    if (vxo) { /* the step's old velocities, for bc.c's supports (fused: no extra pass) */
+      vxo[i] = vx0;
+      vyo[i] = vy0;
+    }
     if (b < 0) {
       /* a node added by native commands after read_y2d: the generic update */
       if (!(m > 1e-300)) continue;
-      vx[i] += dt * (fx[i] / m + s->gx);
-      vy[i] += dt * (fy[i] / m + s->gy);
+      vx[i] = vx0 + dt * (fx[i] / m + ngx);
+      vy[i] = vy0 + dt * (fy[i] / m + ngy);
       continue;
     }
     if (!(m > 1e-10)) continue; /* Y2D: nodes without mass are not moved */
     const double *R = r->R + 4 * b, *Ri = r->Ri + 4 * b;
-    double vx0 = vx[i], vy0 = vy[i];
     double gfx = fx[i], gfy = fy[i] + m * gy; /* gravity as a force in global y */
     double u[2] = {Ri[0] * vx0 + Ri[1] * vy0, Ri[2] * vx0 + Ri[3] * vy0};
     double q[2] = {Ri[0] * gfx + Ri[1] * gfy, Ri[2] * gfx + Ri[3] * gfy};
     for (int d = 0; d < 2; d++) {
-      double A = r->amp[2 * b + d] * r->phi[b];
-      switch (r->kind[2 * b + d]) {
+      double A = amp[2 * b + d];
+      switch (kind[2 * b + d]) {
       case Y2D_KIND_FORCE: u[d] += dt * (A + q[d]) / m; break;
       case Y2D_KIND_ACCEL: u[d] += dt * (A + q[d] / m); break;
       case Y2D_KIND_VELOCITY: u[d] = A; break;
@@ -186,10 +204,33 @@ void y2d_update_velocities(YfSim *s) {
     vy[i] = vy1;
     /* work of everything that is not an internal force: loads, supports, prescribed motion
      * (gravity's work is counted by run.c from positions) */
-    double rx = m * (vx1 - vx0) / dt - (fx[i] - lf[2 * i]);
-    double ry = m * (vy1 - vy0) / dt - (fy[i] - lf[2 * i + 1]) - m * gy;
-    work += dt * 0.5 * (rx * (vx1 + vx0) + ry * (vy1 + vy0));
+    double lfx = lf ? lf[2 * i] : 0.0, lfy = lf ? lf[2 * i + 1] : 0.0; /* no edge loads: none */
+    double rxdt = m * (vx1 - vx0) - dt * (fx[i] - lfx);
+    double rydt = m * (vy1 - vy0) - dt * (fy[i] - lfy) - dt * m * gy;
+    work += 0.5 * (rxdt * (vx1 + vx0) + rydt * (vy1 + vy0));
   }
+  return work;
+}
+
+void y2d_update_velocities(YfSim *s, int par, double *vxo, double *vyo) {
+  YfY2dRun *r = s->y2d;
+  if (!r) return;
+  YfNodes *n = &s->model.node;
+  if (r->nn != n->n) resolve(s, r);
+  /* amplitudes of this step (the same product as per node, once per set) */
+  for (int b = 0; b < r->nset; b++) {
+    r->acur[2 * b] = r->amp[2 * b] * r->phi[b];
+    r->acur[2 * b + 1] = r->amp[2 * b + 1] * r->phi[b];
+  }
+  const int nn = n->n, nb = r->nublk;
+  /* work summed per fixed block of nodes, blocks added in order: the same bits on any threads */
+  #pragma omp parallel for schedule(static) if (par)
+  for (int k = 0; k < nb; k++) {
+    int i1 = (k + 1) * Y2D_UBLOCK < nn ? (k + 1) * Y2D_UBLOCK : nn;
+    r->ublk[k] = update_range(r, n, s, k * Y2D_UBLOCK, i1, vxo, vyo);
+  }
+  double work = 0.0;
+  for (int k = 0; k < nb; k++) work += r->ublk[k];
   s->energy.external_work += work;
 }
 
@@ -371,6 +412,7 @@ void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from) {
   int g = model_group(m, "y2d", 1);
   if (g < 0) yf_deck_error(from, "read_y2d: no room for group 'y2d' (at most %d groups)", YF_MAX_GROUPS);
   r->gbit = (uint64_t)1 << g;
+  model_reserve(m, nn, ne); /* counts known: exact sizes */
   r->node0 = m->node.n;
   r->nnode = nn;
   for (int i = 0; i < nn; i++) {
@@ -412,6 +454,7 @@ void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from) {
   r->R = yf_malloc((size_t)(4 * ns + 4) * sizeof(double), "y2d frames");
   r->Ri = yf_malloc((size_t)(4 * ns + 4) * sizeof(double), "y2d frames");
   r->phi = yf_malloc((size_t)(ns + 1) * sizeof(double), "y2d factors");
+  r->acur = yf_calloc((size_t)(2 * ns + 2), sizeof(double), "y2d amplitudes");
   for (int b = 0; b < ns; b++) {
     r->kind[2 * b] = y->i1pnfx[b];
     r->kind[2 * b + 1] = y->i1pnfy[b];
@@ -448,7 +491,15 @@ void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from) {
   free(meshed);
   free(pmat);
   free(pbody);
+  /* the BC set of each input node is all resolve() needs of the deck later (copies made by
+   * joint insertion, partition renumbering): y2d_release_deck can then free the deck's arrays */
+  r->setof = yf_malloc((size_t)(nn + 1) * sizeof(int), "y2d input node sets");
+  for (int i = 0; i < nn; i++) r->setof[i] = y->i1nopr[i];
   resolve(s, r);
+}
+
+void y2d_release_deck(YfSim *s) {
+  if (s->y2d && s->y2d->deck) y2d_free_arrays(deck_of(s->y2d));
 }
 
 void y2d_model_free(YfSim *s) {
@@ -461,6 +512,7 @@ void y2d_model_free(YfSim *s) {
   free(r->path);
   free(r->kind); free(r->amp); free(r->ap); free(r->at); free(r->R); free(r->Ri);
   free(r->tt); free(r->tf); free(r->phi); free(r->set); free(r->le); free(r->lf);
+  free(r->acur); free(r->ublk); free(r->setof);
   free(r);
   s->y2d = NULL;
 }

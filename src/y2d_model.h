@@ -8,7 +8,7 @@
  *
  * Contract with run.c (active only when sim->y2d != NULL, i.e. after read_y2d):
  *   y2d_apply_loads(s)        after the gather: edge pressures and shear tractions of the sets.
- *   y2d_update_velocities(s)  replaces the generic velocity update for every node: v_{n+1/2}
+ *   y2d_update_velocities(s, par, vxo, vyo) replaces the generic velocity update for every node: v_{n+1/2}
  *                             from forces, gravity and each set's kinds in its local frame.
  *                             Native fixes and loads given after read_y2d still act on top.
  */
@@ -24,7 +24,8 @@ enum { Y2D_KIND_FORCE = 1, Y2D_KIND_ACCEL = 2, Y2D_KIND_VELOCITY = 3 };
  * when joint insertion adds nodes). */
 typedef struct YfY2dRun {
   char *path;          /* the .y file                                                        */
-  void *deck;          /* the YfY2d as read (owned; YfLoc file names of messages point here)  */
+  void *deck;          /* the YfY2d as read (owned; YfLoc file names of messages point here);
+                          its arrays are freed at the first run (y2d_release_deck)           */
   double volfac;       /* factor of the volumetric term: 0.5 book Y2D, 1 Y-Geo family          */
   int tri0, ntri;      /* triangles tri0 .. tri0+ntri-1 are the input elements 0..ntri-1       */
   int node0, nnode;    /* at read: nodes node0 .. node0+nnode-1 are the input nodes 0..nnode-1
@@ -40,9 +41,13 @@ typedef struct YfY2dRun {
   int tables_on, npts; /* time tables: on/off, points per table                               */
   double *tt, *tf;     /* [nset][npts]: times [s], factors [-]                                 */
   double *phi;         /* [nset]: time factor at the current step's t_n                        */
+  double *acur;        /* [2 nset]: amp * phi of the current step                              */
   /* per node (resolved for the current node count) */
   int nn;              /* node count the arrays below were built for                           */
+  int *setof;          /* [nnode]: BC set of each input node (the deck's I1NOPR), -1 none       */
   int *set;            /* BC set of each node (copies inherit their parent's), -1 none         */
+  int nublk;           /* blocks of Y2D_UBLOCK nodes of the velocity update                    */
+  double *ublk;        /* [nublk]: external work of each block of the last update [J/m]        */
   /* loaded triangle edges: triangle, local edge j (edge from corner j to j+1) */
   int nle;
   int *le;
@@ -51,13 +56,21 @@ typedef struct YfY2dRun {
 } YfY2dRun;
 
 void y2d_apply_loads(YfSim *s);
-void y2d_update_velocities(YfSim *s);
+/* Nodes per block of the velocity update: fixed, so the work sum does not depend on threads. */
+#define Y2D_UBLOCK 4096
+/* par: run the node blocks on threads; vxo, vyo (or NULL): receive the velocities before the
+ * update (bc.c's supports need them). */
+void y2d_update_velocities(YfSim *s, int par, double *vxo, double *vyo);
 /* `yfdem FILE.y`: read_y2d FILE.y then run to MCSTEP. */
 void y2d_run_file(YfSim *s, const char *path);
 /* Build the scene of a .y deck into s (programmatic form of read_y2d; from: where it was asked,
  * for messages, may be NULL).  volfac: 0.5 (book Y2D) or 1 (Y-Geo family decks). */
 void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from);
 void y2d_model_free(YfSim *s);
+/* Free the deck's arrays (allocated at its capacities MELEM, MNOPO...: often several times the
+ * model) once the scene no longer needs them: run.c calls it when the first run is prepared.
+ * The deck's scalars and file names stay (messages point at them). */
+void y2d_release_deck(YfSim *s);
 /* Deck command: read_y2d FILE [volfac 0.5|1] */
 void cmd_read_y2d(YfSim *s, const YfArgs *a);
 

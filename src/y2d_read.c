@@ -1277,7 +1277,7 @@ int y2d_read(const char *path, YfY2d *out, const YfLoc *from) {
   return 0;
 }
 
-void y2d_free(YfY2d *y) {
+void y2d_free_arrays(YfY2d *y) {
   if (!y) return;
   for (int k = 0; k < Y2D_NKEYS; k++) {
     const KeyDef *kd = &keydefs[k];
@@ -1286,6 +1286,11 @@ void y2d_free(YfY2d *y) {
     free(*pp);
     *pp = NULL;
   }
+}
+
+void y2d_free(YfY2d *y) {
+  if (!y) return;
+  y2d_free_arrays(y);
   for (int i = 0; i < y->nfiles; i++) free(y->files[i]);
   free(y->files);
   y->files = NULL;

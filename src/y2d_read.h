@@ -194,6 +194,9 @@ typedef struct {
  * deck gave nothing; D2NCC is a copy of D2NCI when not given.  Returns 0. */
 int y2d_read(const char *path, YfY2d *out, const YfLoc *from);
 void y2d_free(YfY2d *y);
+/* Free the arrays only (set to NULL); scalars, given/where and the file names (which YfLoc
+ * places of messages point at) stay valid until y2d_free. */
+void y2d_free_arrays(YfY2d *y);
 /* 1 if the file name ends in ".y". */
 int y2d_is_y_file(const char *path);
 

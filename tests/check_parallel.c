@@ -70,6 +70,42 @@ START_TEST(test_threads_bitwise) {
 }
 END_TEST
 
+/* A Y2D deck through read_y2d (its own velocity update with BC sets, joints with breaks, contact):
+ * 1, 2 and 3 threads give the same state, breaks, couples and external work, bit for bit. */
+START_TEST(test_threads_bitwise_y2d) {
+  quiet();
+  uint64_t h1 = 0;
+  long b1 = 0, p1 = 0;
+  double w1 = 0;
+  for (int t = 1; t <= 3; t++) {
+    YfSim *s = yft_run("read_y2d tests/y2d/decks/b_beam_impact.y\n");
+    run_set_par_min(0, 64);
+    joints_set_par_min(0);
+    contact_set_par_min(s, 0);
+    omp_set_num_threads(t);
+    run_steps(s, 1500); /* 17 joints broken by then */
+    uint64_t h = sim_state_hash(s);
+    long b = joints_broken(s), p = contact_pairs(s);
+    double w = s->energy.external_work;
+    sim_free(s);
+    omp_set_num_threads(2);
+    run_set_par_min(16384, 2048);
+    joints_set_par_min(4096);
+    if (t == 1) {
+      h1 = h, b1 = b, p1 = p, w1 = w;
+      ck_assert_int_gt(b1, 0);
+      ck_assert_int_gt(p1, 0);
+      continue;
+    }
+    ck_assert_msg(h == h1, "%d threads hash %016llx != 1 thread %016llx", t, (unsigned long long)h,
+                  (unsigned long long)h1);
+    ck_assert_int_eq(b, b1);
+    ck_assert_int_eq(p, p1);
+    ck_assert_msg(memcmp(&w, &w1, sizeof w) == 0, "%d threads: external work %.17g != %.17g", t, w, w1);
+  }
+}
+END_TEST
+
 /* Displacements and velocities of every triangle corner, by the triangle's index before any
  * renumbering (the order the deck made them in). */
 static double *corner_state(const YfSim *s) {
@@ -212,6 +248,7 @@ Suite *parallel_suite(void) {
   TCase *t = tcase_create("determinism");
   tcase_set_timeout(t, 180);
   tcase_add_test(t, test_threads_bitwise);
+  tcase_add_test(t, test_threads_bitwise_y2d);
   tcase_add_test(t, test_renumbering_same_physics);
   tcase_add_test(t, test_partition_layout);
   tcase_add_test(t, test_partition_errors);
