@@ -159,6 +159,15 @@ void y2d_apply_loads(YfSim *s) {
   }
 }
 
+/* a/b and c/d as one packed division (GCC/Clang vector extension): each lane is an IEEE
+ * division, so the bits are those of the two scalar divisions, at half the divider work. */
+typedef double y2d_v2 __attribute__((vector_size(16)));
+static inline void div_pair(double a, double b, double c, double d, double *ab, double *cd) {
+  y2d_v2 q = (y2d_v2){a, c} / (y2d_v2){b, d};
+  *ab = q[0];
+  *cd = q[1];
+}
+
 /* Nodes i0..i1-1 of the velocity update; returns the external work of this range [J/m].
  * Velocities follow ALGORITHMS 7 operation by operation (same bits as a serial loop whatever the
  * range).  The work of node i is dt R.(v0 + v1)/2 with R = m (v1 - v0)/dt - f_int - m g, written
@@ -181,25 +190,27 @@ static double update_range(const YfY2dRun *r, YfNodes *n, const YfSim *s, int i0
     if (b < 0) {
       /* a node added by native commands after read_y2d: the generic update */
       if (!(m > 1e-300)) continue;
-      vx[i] = vx0 + dt * (fx[i] / m + ngx);
-      vy[i] = vy0 + dt * (fy[i] / m + ngy);
+      double ax, ay;
+      div_pair(fx[i], m, fy[i], m, &ax, &ay);
+      vx[i] = vx0 + dt * (ax + ngx);
+      vy[i] = vy0 + dt * (ay + ngy);
       continue;
     }
     if (!(m > 1e-10)) continue; /* Y2D: nodes without mass are not moved */
     const double *R = r->R + 4 * b, *Ri = r->Ri + 4 * b;
     double gfx = fx[i], gfy = fy[i] + m * gy; /* gravity as a force in global y */
-    double u[2] = {Ri[0] * vx0 + Ri[1] * vy0, Ri[2] * vx0 + Ri[3] * vy0};
-    double q[2] = {Ri[0] * gfx + Ri[1] * gfy, Ri[2] * gfx + Ri[3] * gfy};
-    for (int d = 0; d < 2; d++) {
-      double A = amp[2 * b + d];
-      switch (kind[2 * b + d]) {
-      case Y2D_KIND_FORCE: u[d] += dt * (A + q[d]) / m; break;
-      case Y2D_KIND_ACCEL: u[d] += dt * (A + q[d] / m); break;
-      case Y2D_KIND_VELOCITY: u[d] = A; break;
-      default: break; /* frozen: velocity kept, forces ignored */
-      }
-    }
-    double vx1 = R[0] * u[0] + R[1] * u[1], vy1 = R[2] * u[0] + R[3] * u[1];
+    double u0 = Ri[0] * vx0 + Ri[1] * vy0, u1 = Ri[2] * vx0 + Ri[3] * vy0;
+    double q0 = Ri[0] * gfx + Ri[1] * gfy, q1 = Ri[2] * gfx + Ri[3] * gfy;
+    /* per local direction: kind 1 force u += dt (A + q)/m, 2 acceleration u += dt (A + q/m),
+     * 3 prescribed velocity u = A, anything else frozen (velocity kept, forces ignored); the two
+     * directions' divisions by m as one pair */
+    const int k0 = kind[2 * b], k1 = kind[2 * b + 1];
+    const double A0 = amp[2 * b], A1 = amp[2 * b + 1];
+    double d0, d1;
+    div_pair(k0 == Y2D_KIND_FORCE ? dt * (A0 + q0) : q0, m, k1 == Y2D_KIND_FORCE ? dt * (A1 + q1) : q1, m, &d0, &d1);
+    u0 = k0 == Y2D_KIND_FORCE ? u0 + d0 : k0 == Y2D_KIND_ACCEL ? u0 + dt * (A0 + d0) : k0 == Y2D_KIND_VELOCITY ? A0 : u0;
+    u1 = k1 == Y2D_KIND_FORCE ? u1 + d1 : k1 == Y2D_KIND_ACCEL ? u1 + dt * (A1 + d1) : k1 == Y2D_KIND_VELOCITY ? A1 : u1;
+    double vx1 = R[0] * u0 + R[1] * u1, vy1 = R[2] * u0 + R[3] * u1;
     vx[i] = vx1;
     vy[i] = vy1;
     /* work of everything that is not an internal force: loads, supports, prescribed motion
