@@ -84,18 +84,20 @@ typedef struct YfContact {
 
   /* couples */
   YfPairs pairs, fresh;
-  unsigned char *alive;
+  unsigned char *alive;  /* per couple: 0 dropped, 1 live (the screen marks 2: needs the kernel) */
   int cap_alive;
   int nlive, ndead;
-  double *pf;            /* 12 per couple: forces on A's corners then B's [N/m] */
-  size_t cap_pf;
+  double *tg;            /* per triangle: the screen's record of this step (YF_TRI_GEOM) */
+  int cap_tg;
   double *blk_e, *blk_d;
-  int *blk_rm, cap_blk;
-  /* gather lists: touched node t = touch[t] sums slots tslot[toff[t] .. toff[t+1]-1]; slot q of
-   * couple k = q / 6, corner q % 6 (0-2: A, 3-5: B); its force is pf[2 q], pf[2 q + 1]. */
-  int ntouch, *touch, *toff, *tslot;
-  int cap_touch, cap_tslot;
-  int *tcount;           /* per node, scratch of the rebuild (kept zero)        */
+  int *blk_rm, *blk_busy, *blk_off, cap_blk;
+  /* forces of the couples that touched this step, in couple order: couple hk[h], 12 numbers
+   * hf[12 h ..] (A's corners, then B's) [N/m]; room for cap_hit */
+  int *hk, nhit, cap_hit, max_busy;
+  /* nodes that received contact force at the last step (fcn nonzero only there) */
+  int ntouch, *touch, cap_touch;
+  int *tmark;            /* per node: 1 while in touch[] (kept zero otherwise)  */
+  double *hf;
   double *fcn;           /* per node: contact force of the last step [N/m]      */
   int cap_nodes;
   int fcn_valid;
@@ -143,9 +145,10 @@ void contact_free(YfSim *s) {
   free(C->uflag);
   contact_pairs_free(&C->pairs);
   contact_pairs_free(&C->fresh);
-  free(C->alive); free(C->pf);
-  free(C->blk_e); free(C->blk_d); free(C->blk_rm);
-  free(C->touch); free(C->toff); free(C->tslot); free(C->tcount); free(C->fcn);
+  free(C->alive); free(C->tg);
+  free(C->blk_e); free(C->blk_d); free(C->blk_rm); free(C->blk_busy); free(C->blk_off);
+  free(C->hk); free(C->hf);
+  free(C->touch); free(C->tmark); free(C->fcn);
   contact_search_work_free(&C->work);
   free(C);
   s->contact = NULL;
@@ -525,13 +528,20 @@ void contact_prepare(YfSim *s) {
   C->cy = yf_malloc((size_t)(C->nitem + 1) * sizeof(double), "contact bounds");
   C->cr = yf_malloc((size_t)(C->nitem + 1) * sizeof(double), "contact bounds");
   if (C->cap_nodes < nn) {
-    C->tcount = yf_realloc(C->tcount, (size_t)nn * sizeof(int), "contact gather");
+    C->tmark = yf_realloc(C->tmark, (size_t)nn * sizeof(int), "contact gather");
     C->fcn = yf_realloc(C->fcn, (size_t)2 * nn * sizeof(double), "contact node forces");
+    C->touch = yf_realloc(C->touch, (size_t)nn * sizeof(int), "contact gather");
     C->cap_nodes = nn;
   }
-  memset(C->tcount, 0, (size_t)nn * sizeof(int));
+  memset(C->tmark, 0, (size_t)nn * sizeof(int));
   memset(C->fcn, 0, (size_t)2 * nn * sizeof(double));
+  C->ntouch = 0;
   C->fcn_valid = 0;
+  if (C->cap_tg < nt) {
+    free(C->tg);
+    C->tg = yf_malloc((size_t)(nt > 0 ? nt : 1) * YF_TRI_GEOM * sizeof(double), "contact triangle records");
+    C->cap_tg = nt;
+  }
 
   compute_stable_dt(s, C);
   /* the first step after a (re)setup searches; couples of the old list that still pass keep
@@ -558,59 +568,11 @@ double contact_stable_dt(YfSim *s, char *what, size_t n) {
 
 /* ---------------------------------------------------------------- detection */
 
-/* Node gather lists of the current couple list (all couples; dead ones have zero slots). */
-static void build_gather(YfSim *s, YfContact *C) {
-  const int *tv = s->model.tri.v;
-  int np = C->pairs.n;
-  const int *ij = C->pairs.ij;
-  int *cnt = C->tcount;
-  for (int k = 0; k < np; k++) {
-    const int *va = tv + 3 * ij[2 * k + 1], *vb = tv + 3 * ij[2 * k];
-    for (int c = 0; c < 3; c++) { cnt[va[c]]++; cnt[vb[c]]++; }
-  }
-  if (C->cap_touch < C->npn + 1) {
-    C->cap_touch = C->npn + 1;
-    C->touch = yf_realloc(C->touch, (size_t)C->cap_touch * sizeof(int), "contact gather");
-    C->toff = yf_realloc(C->toff, (size_t)(C->cap_touch + 1) * sizeof(int), "contact gather");
-  }
-  /* forces of nodes touched before but not now must read zero (the others keep the value of
-   * the last step until the next gather rewrites them) */
-  for (int t = 0; t < C->ntouch; t++)
-    if (!cnt[C->touch[t]]) C->fcn[2 * C->touch[t]] = C->fcn[2 * C->touch[t] + 1] = 0.0;
-  int nt = 0, off = 0;
-  for (int k = 0; k < C->npn; k++) {
-    int i = C->pnode[k];
-    if (!cnt[i]) continue;
-    C->touch[nt] = i;
-    C->toff[nt] = off;
-    off += cnt[i];
-    cnt[i] = C->toff[nt]; /* fill pointer */
-    nt++;
-  }
-  C->toff[nt] = off;
-  C->ntouch = nt;
-  if (C->cap_tslot < off) {
-    C->cap_tslot = off + off / 4 + 64;
-    C->tslot = yf_realloc(C->tslot, (size_t)C->cap_tslot * sizeof(int), "contact gather");
-  }
-  for (int k = 0; k < np; k++) {
-    const int *va = tv + 3 * ij[2 * k + 1], *vb = tv + 3 * ij[2 * k];
-    for (int c = 0; c < 3; c++) C->tslot[cnt[va[c]]++] = 6 * k + c;
-    for (int c = 0; c < 3; c++) C->tslot[cnt[vb[c]]++] = 6 * k + 3 + c;
-  }
-  for (int t = 0; t < nt; t++) cnt[C->touch[t]] = 0;
-}
-
 /* Room for the per-couple arrays of n couples. */
 static void couple_arrays(YfContact *C, int n) {
   if (C->cap_alive < n) {
     C->cap_alive = n + n / 4 + 64;
     C->alive = yf_realloc(C->alive, (size_t)C->cap_alive, "contact couples");
-  }
-  if (C->cap_pf < (size_t)n * 12) {
-    C->cap_pf = ((size_t)n + (size_t)n / 4 + 64) * 12;
-    free(C->pf);
-    C->pf = yf_malloc(C->cap_pf * sizeof(double), "contact couple forces");
   }
   int nblk = (n + PAIR_BLK - 1) / PAIR_BLK;
   if (C->cap_blk < nblk + 1) {
@@ -618,7 +580,21 @@ static void couple_arrays(YfContact *C, int n) {
     C->blk_e = yf_realloc(C->blk_e, (size_t)C->cap_blk * sizeof(double), "contact blocks");
     C->blk_d = yf_realloc(C->blk_d, (size_t)C->cap_blk * sizeof(double), "contact blocks");
     C->blk_rm = yf_realloc(C->blk_rm, (size_t)C->cap_blk * sizeof(int), "contact blocks");
+    C->blk_busy = yf_realloc(C->blk_busy, (size_t)C->cap_blk * sizeof(int), "contact blocks");
+    C->blk_off = yf_realloc(C->blk_off, (size_t)(C->cap_blk + 1) * sizeof(int), "contact blocks");
   }
+}
+
+/* Room for the forces of n touching couples.  Made at each search for twice the most couples
+ * that have needed the kernel in one step so far (at least 1/16 of the list), so a step grows
+ * it only when contact spreads past that (rarely, geometrically). */
+static void hit_room(YfContact *C, int n) {
+  if (C->cap_hit >= n) return;
+  C->cap_hit = n + n / 2 + 64;
+  free(C->hk);
+  free(C->hf);
+  C->hk = yf_malloc((size_t)C->cap_hit * sizeof(int), "contact hits");
+  C->hf = yf_malloc((size_t)C->cap_hit * 12 * sizeof(double), "contact hits");
 }
 
 static void search(YfSim *s, YfContact *C) {
@@ -642,10 +618,10 @@ static void search(YfSim *s, YfContact *C) {
   int n = C->pairs.n;
   couple_arrays(C, n);
   memset(C->alive, 1, (size_t)n);
-  memset(C->pf, 0, (size_t)n * 12 * sizeof(double));
   C->nlive = n;
   C->ndead = 0;
-  build_gather(s, C);
+  int want = 2 * C->max_busy, floor16 = n / 16;
+  hit_room(C, want > floor16 ? want : floor16);
   C->nsearch++;
 }
 
@@ -674,23 +650,61 @@ void contact_step(YfSim *s) {
   double t1 = yf_now();
   yf_stage_time[YF_ST_DETECT] += t1 - t0;
 
-  /* forces: one slot per couple, parallel over fixed blocks */
-  const int np = C->pairs.n, nblk = (np + PAIR_BLK - 1) / PAIR_BLK;
-  const int *ij = C->pairs.ij, *tv = m->tri.v, *tmat = m->tri.mat;
-  double *gmem = C->pairs.g, *pf = C->pf;
-  unsigned char *alive = C->alive;
+  /* the screen's triangle records of this step (participating triangles only) */
+  const int *tv = m->tri.v, *tmat = m->tri.mat, *item = C->item, nitem = C->nitem;
   const double *x = nd->x, *y = nd->y, *vx = nd->vx, *vy = nd->vy;
-  const double *mpn = C->mpn, *mpt = C->mpt, *mmu = C->mmu;
+  double *tg = C->tg;
+  #pragma omp parallel for schedule(static) if (nitem >= C->par_min)
+  for (int q = 0; q < nitem; q++) {
+    const int t = item[q], *v = tv + 3 * t;
+    double xs[3] = {x[v[0]], x[v[1]], x[v[2]]}, ys[3] = {y[v[0]], y[v[1]], y[v[2]]};
+    contact_pair_geom(xs, ys, tg + (size_t)YF_TRI_GEOM * t);
+  }
+
+  /* pass 1, the screen: couples whose edges all miss give no force (only their distance decides
+   * whether they stay); the others are marked 2 and counted per fixed block */
+  const int np = C->pairs.n, nblk = (np + PAIR_BLK - 1) / PAIR_BLK;
+  const int *ij = C->pairs.ij;
+  unsigned char *alive = C->alive;
   const double rem2 = 4.0 * C->buffer * C->buffer;
   #pragma omp parallel for schedule(static) if (np >= C->par_min && nblk > 1)
   for (int b = 0; b < nblk; b++) {
-    int k1 = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np;
-    double e = 0.0, d = 0.0;
-    int rm = 0;
+    int k1 = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np, rm = 0, busy = 0;
     for (int k = b * PAIR_BLK; k < k1; k++) {
       if (!alive[k]) continue;
+      const double *ra = tg + (size_t)YF_TRI_GEOM * ij[2 * k + 1], *rb = tg + (size_t)YF_TRI_GEOM * ij[2 * k];
+      int q = contact_pair_quiet(ra, rb, rem2);
+      if (q == 0) { alive[k] = 2; busy++; }
+      else if (q == 2) { alive[k] = 0; rm++; }
+    }
+    C->blk_rm[b] = rm;
+    C->blk_busy[b] = busy;
+  }
+  int nbusy = 0;
+  for (int b = 0; b < nblk; b++) {
+    C->blk_off[b] = nbusy;
+    nbusy += C->blk_busy[b];
+  }
+  C->blk_off[nblk] = nbusy;
+  if (nbusy > C->max_busy) C->max_busy = nbusy;
+  hit_room(C, nbusy); /* rarely grows: see hit_room */
+
+  /* pass 2: the kernel on the marked couples (A = the larger index, Y2D's order), each writing
+   * its 12 forces into its place in couple order; no atomics, same bits on any thread count */
+  double *gmem = C->pairs.g, *hf = C->hf;
+  int *hk = C->hk;
+  const double *mpn = C->mpn, *mpt = C->mpt, *mmu = C->mmu;
+  #pragma omp parallel for schedule(dynamic, 1) if (nbusy >= 64 && nblk > 1)
+  for (int b = 0; b < nblk; b++) {
+    double e = 0.0, d = 0.0;
+    int rm = 0, h = C->blk_off[b];
+    if (h == C->blk_off[b + 1]) { C->blk_e[b] = C->blk_d[b] = 0.0; continue; }
+    int k1 = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np;
+    for (int k = b * PAIR_BLK; k < k1; k++) {
+      if (alive[k] != 2) continue;
+      alive[k] = 1;
       int ti = ij[2 * k], tj = ij[2 * k + 1];
-      const int *va = tv + 3 * tj, *vb = tv + 3 * ti; /* A = the larger index (Y2D's order) */
+      const int *va = tv + 3 * tj, *vb = tv + 3 * ti;
       double xa[3], ya[3], vxa[3], vya[3], xb[3], yb[3], vxb[3], vyb[3];
       for (int c = 0; c < 3; c++) {
         xa[c] = x[va[c]]; ya[c] = y[va[c]]; vxa[c] = vx[va[c]]; vya[c] = vy[va[c]];
@@ -700,7 +714,7 @@ void contact_step(YfSim *s) {
       double pn = mpn[ma] < mpn[mb] ? mpn[ma] : mpn[mb];
       double pt = mpt[ma] < mpt[mb] ? mpt[ma] : mpt[mb];
       double mu = mmu[ma] < mmu[mb] ? mmu[ma] : mmu[mb];
-      double *fa = pf + 12 * (size_t)k, *fb = fa + 6;
+      double *fa = hf + 12 * (size_t)h, *fb = fa + 6;
       for (int c = 0; c < 12; c++) fa[c] = 0.0;
       YfContactInfo info = {0, 0, 0, 0, 0, 0};
       double d2;
@@ -708,11 +722,12 @@ void contact_step(YfSim *s) {
                                    &d2, &info);
       e += info.energy;
       d += info.dissip;
+      hk[h++] = k;
       if (!hit && d2 > rem2) { alive[k] = 0; rm++; }
     }
     C->blk_e[b] = e;
     C->blk_d[b] = d;
-    C->blk_rm[b] = rm;
+    C->blk_rm[b] += rm;
   }
   double esum = 0.0, dsum = 0.0;
   int removed = 0;
@@ -723,24 +738,35 @@ void contact_step(YfSim *s) {
   }
   s->energy.contact = esum;
   s->energy.friction += dsum;
+  C->nhit = nbusy;
 
-  /* gather: each touched node sums its slots in couple order */
-  const int ntouch = C->ntouch, *touch = C->touch, *toff = C->toff, *tslot = C->tslot;
+  /* scatter, serial and in couple order: each node's contact force is the sum of its
+   * couples' contributions in couple order (A's corners before B's), then added to node.fx */
   double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
-  #pragma omp parallel for schedule(static) if (ntouch >= C->par_min)
-  for (int t = 0; t < ntouch; t++) {
-    int i = touch[t];
-    double sx = 0.0, sy = 0.0;
-    for (int q = toff[t]; q < toff[t + 1]; q++) {
-      const double *f = pf + 2 * (size_t)tslot[q];
-      sx += f[0];
-      sy += f[1];
-    }
-    fcn[2 * i] = sx;
-    fcn[2 * i + 1] = sy;
-    fx[i] += sx;
-    fy[i] += sy;
+  int *touch = C->touch, *tmark = C->tmark, ntouch = C->ntouch;
+  for (int q = 0; q < ntouch; q++) {
+    int i = touch[q];
+    fcn[2 * i] = fcn[2 * i + 1] = 0.0;
+    tmark[i] = 0;
   }
+  ntouch = 0;
+  for (int h = 0; h < nbusy; h++) {
+    int k = hk[h];
+    const int *vv[2] = {tv + 3 * ij[2 * k + 1], tv + 3 * ij[2 * k]};
+    const double *f = hf + 12 * (size_t)h;
+    for (int c = 0; c < 6; c++) {
+      int i = vv[c / 3][c % 3];
+      if (!tmark[i]) { tmark[i] = 1; touch[ntouch++] = i; }
+      fcn[2 * i] += f[2 * c];
+      fcn[2 * i + 1] += f[2 * c + 1];
+    }
+  }
+  for (int q = 0; q < ntouch; q++) {
+    int i = touch[q];
+    fx[i] += fcn[2 * i];
+    fy[i] += fcn[2 * i + 1];
+  }
+  C->ntouch = ntouch;
   C->fcn_valid = 1;
 
   /* dropped couples: compact once a quarter of the list is dead */
@@ -750,8 +776,6 @@ void contact_step(YfSim *s) {
     contact_pairs_compact(&C->pairs, C->alive);
     memset(C->alive, 1, (size_t)C->pairs.n);
     C->ndead = 0;
-    /* slots are rewritten before they are read again, except the dead ones: none now */
-    build_gather(s, C);
   }
   yf_stage_time[YF_ST_CONTACT] += yf_now() - t1;
 }
@@ -766,7 +790,6 @@ int contact_state_save(const YfSim *s, YfContactState *st) {
   st->ij = C->pairs.ij;
   st->g = C->pairs.g;
   st->alive = C->alive;
-  st->pf = C->pf;
   st->nlive = C->nlive;
   st->ndead = C->ndead;
   st->travel = C->trig.travel;
@@ -790,18 +813,24 @@ int contact_state_load(YfSim *s, const YfContactState *st) {
     memcpy(C->pairs.g, st->g, (size_t)n * 6 * sizeof(double));
   }
   couple_arrays(C, n);
-  if (n) {
-    memcpy(C->alive, st->alive, (size_t)n);
-    memcpy(C->pf, st->pf, (size_t)n * 12 * sizeof(double));
-  }
+  if (n) memcpy(C->alive, st->alive, (size_t)n);
   C->nlive = st->nlive;
   C->ndead = st->ndead;
   C->trig.travel = st->travel;
   C->nsearch = st->nsearch;
   C->broken_seen = st->broken_seen;
   C->force_search = st->force_search;
-  build_gather(s, C);
-  if (st->fcn && st->nn == C->prep_nn) memcpy(C->fcn, st->fcn, (size_t)2 * st->nn * sizeof(double));
+  /* the nodes that carry contact force of the last step (zeroed before the next scatter) */
+  for (int q = 0; q < C->ntouch; q++) C->tmark[C->touch[q]] = 0;
+  C->ntouch = 0;
+  if (st->fcn && st->nn == C->prep_nn) {
+    memcpy(C->fcn, st->fcn, (size_t)2 * st->nn * sizeof(double));
+    for (int i = 0; i < st->nn; i++)
+      if (C->fcn[2 * i] != 0.0 || C->fcn[2 * i + 1] != 0.0) {
+        C->tmark[i] = 1;
+        C->touch[C->ntouch++] = i;
+      }
+  }
   C->fcn_valid = st->fcn_valid;
   return 0;
 }

@@ -111,7 +111,6 @@ typedef struct {
   int *ij;               /* 2 per couple: triangle indices i < j                   */
   double *g;             /* 6 per couple: friction memory [m^2]                    */
   unsigned char *alive;  /* per couple: 0 = dropped since the last search          */
-  double *pf;            /* 12 per couple: couple forces of the last step [N/m]    */
   int nlive, ndead;
   double travel;         /* travel counter of the search trigger [m]               */
   long nsearch, broken_seen;
