@@ -12,7 +12,6 @@
 #include <check.h>
 #include <float.h>
 #include <math.h>
-#include <stdio.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -662,7 +661,6 @@ START_TEST(test_screen_matches_kernel)
         }
       }
   }
-  fprintf(stderr, "SCREENTEST quiet %d busy %d dropped %d bad %d\n", quiet, busy, dropped, bad);
   ck_assert_int_eq(bad, 0);
   ck_assert_int_gt(quiet, 10000);
   ck_assert_int_gt(busy, 1000);
