@@ -90,7 +90,7 @@ typedef struct YfContact {
   double *tg;            /* per triangle: the screen's record of this step (YF_TRI_GEOM) */
   int cap_tg;
   double *blk_e, *blk_d;
-  int *blk_rm, *blk_busy, *blk_off, cap_blk;
+  int *blk_rm, *blk_busy, *blk_off, *blk_need, *blk_goff, cap_blk;
   /* forces of the couples that touched this step, in couple order: couple hk[h], 12 numbers
    * hf[12 h ..] (A's corners, then B's) [N/m]; room for cap_hit */
   int *hk, nhit, cap_hit, max_busy;
@@ -99,6 +99,7 @@ typedef struct YfContact {
   int *tmark;            /* per node: 1 while in touch[] (kept zero otherwise)  */
   double *hf;
   double *fcn;           /* per node: contact force of the last step [N/m]      */
+  double *gdense;        /* restart: the friction memory, 6 per couple (copy)   */
   int cap_nodes;
   int fcn_valid;
 
@@ -147,6 +148,7 @@ void contact_free(YfSim *s) {
   contact_pairs_free(&C->fresh);
   free(C->alive); free(C->tg);
   free(C->blk_e); free(C->blk_d); free(C->blk_rm); free(C->blk_busy); free(C->blk_off);
+  free(C->blk_need); free(C->blk_goff); free(C->gdense);
   free(C->hk); free(C->hf);
   free(C->touch); free(C->tmark); free(C->fcn);
   contact_search_work_free(&C->work);
@@ -582,6 +584,8 @@ static void couple_arrays(YfContact *C, int n) {
     C->blk_rm = yf_realloc(C->blk_rm, (size_t)C->cap_blk * sizeof(int), "contact blocks");
     C->blk_busy = yf_realloc(C->blk_busy, (size_t)C->cap_blk * sizeof(int), "contact blocks");
     C->blk_off = yf_realloc(C->blk_off, (size_t)(C->cap_blk + 1) * sizeof(int), "contact blocks");
+    C->blk_need = yf_realloc(C->blk_need, (size_t)C->cap_blk * sizeof(int), "contact blocks");
+    C->blk_goff = yf_realloc(C->blk_goff, (size_t)(C->cap_blk + 1) * sizeof(int), "contact blocks");
   }
 }
 
@@ -622,6 +626,8 @@ static void search(YfSim *s, YfContact *C) {
   C->ndead = 0;
   int want = 2 * C->max_busy, floor16 = n / 16;
   hit_room(C, want > floor16 ? want : floor16);
+  /* friction memory slots: room for the couples that have touched and as many again */
+  contact_pairs_greserve(&C->pairs, 2 * C->pairs.ng + n / 64 + 256);
   C->nsearch++;
 }
 
@@ -665,29 +671,34 @@ void contact_step(YfSim *s) {
    * whether they stay); the others are marked 2 and counted per fixed block */
   const int np = C->pairs.n, nblk = (np + PAIR_BLK - 1) / PAIR_BLK;
   const int *ij = C->pairs.ij;
+  int *gi = C->pairs.gi;
   unsigned char *alive = C->alive;
   const double rem2 = 4.0 * C->buffer * C->buffer;
   #pragma omp parallel for schedule(static) if (np >= C->par_min && nblk > 1)
   for (int b = 0; b < nblk; b++) {
-    int k1 = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np, rm = 0, busy = 0;
+    int k1 = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np, rm = 0, busy = 0, need = 0;
     for (int k = b * PAIR_BLK; k < k1; k++) {
       if (!alive[k]) continue;
       const double *ra = tg + (size_t)YF_TRI_GEOM * ij[2 * k + 1], *rb = tg + (size_t)YF_TRI_GEOM * ij[2 * k];
       int q = contact_pair_quiet(ra, rb, rem2);
-      if (q == 0) { alive[k] = 2; busy++; }
+      if (q == 0) { alive[k] = 2; busy++; need += gi[k] < 0; }
       else if (q == 2) { alive[k] = 0; rm++; }
     }
     C->blk_rm[b] = rm;
     C->blk_busy[b] = busy;
+    C->blk_need[b] = need;
   }
-  int nbusy = 0;
+  int nbusy = 0, ng = C->pairs.ng;
   for (int b = 0; b < nblk; b++) {
     C->blk_off[b] = nbusy;
     nbusy += C->blk_busy[b];
+    C->blk_goff[b] = ng;
+    ng += C->blk_need[b];
   }
   C->blk_off[nblk] = nbusy;
   if (nbusy > C->max_busy) C->max_busy = nbusy;
   hit_room(C, nbusy); /* rarely grows: see hit_room */
+  contact_pairs_greserve(&C->pairs, ng); /* rarely grows: reserved at each search */
 
   /* pass 2: the kernel on the marked couples (A = the larger index, Y2D's order), each writing
    * its 12 forces into its place in couple order; no atomics, same bits on any thread count */
@@ -697,7 +708,7 @@ void contact_step(YfSim *s) {
   #pragma omp parallel for schedule(dynamic, 1) if (nbusy >= 64 && nblk > 1)
   for (int b = 0; b < nblk; b++) {
     double e = 0.0, d = 0.0;
-    int rm = 0, h = C->blk_off[b];
+    int rm = 0, h = C->blk_off[b], slot = C->blk_goff[b];
     if (h == C->blk_off[b + 1]) { C->blk_e[b] = C->blk_d[b] = 0.0; continue; }
     int k1 = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np;
     for (int k = b * PAIR_BLK; k < k1; k++) {
@@ -718,8 +729,12 @@ void contact_step(YfSim *s) {
       for (int c = 0; c < 12; c++) fa[c] = 0.0;
       YfContactInfo info = {0, 0, 0, 0, 0, 0};
       double d2;
-      int hit = contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, pn, pt, mu, dt, gmem + 6 * (size_t)k, fa, fb,
-                                   &d2, &info);
+      if (gi[k] < 0) { /* first contact of the couple: a zeroed slot, numbered in couple order */
+        gi[k] = slot++;
+        memset(gmem + 6 * (size_t)gi[k], 0, 6 * sizeof *gmem);
+      }
+      int hit = contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, pn, pt, mu, dt, gmem + 6 * (size_t)gi[k], fa,
+                                   fb, &d2, &info);
       e += info.energy;
       d += info.dissip;
       hk[h++] = k;
@@ -739,6 +754,7 @@ void contact_step(YfSim *s) {
   s->energy.contact = esum;
   s->energy.friction += dsum;
   C->nhit = nbusy;
+  C->pairs.ng = ng;
 
   /* scatter, serial and in couple order: each node's contact force is the sum of its
    * couples' contributions in couple order (A's corners before B's), then added to node.fx */
@@ -783,12 +799,17 @@ void contact_step(YfSim *s) {
 /* ---------------------------------------------------------------- restart accessors (restart.c) */
 
 int contact_state_save(const YfSim *s, YfContactState *st) {
-  const YfContact *C = s->contact;
+  YfContact *C = s->contact; /* keeps the dense copy of the friction memory */
   memset(st, 0, sizeof *st);
   if (!active(C) || !C->cx) return 0; /* not prepared */
   st->n = C->pairs.n;
   st->ij = C->pairs.ij;
-  st->g = C->pairs.g;
+  /* the friction memory as 6 values per couple (the file format; zeros where a couple has no slot) */
+  free(C->gdense);
+  C->gdense = yf_calloc((size_t)(st->n > 0 ? st->n : 1) * 6, sizeof(double), "restart friction memory");
+  for (int k = 0; k < st->n; k++)
+    if (C->pairs.gi[k] >= 0) memcpy(C->gdense + 6 * (size_t)k, C->pairs.g + 6 * (size_t)C->pairs.gi[k], 6 * sizeof(double));
+  st->g = C->gdense;
   st->alive = C->alive;
   st->nlive = C->nlive;
   st->ndead = C->ndead;
@@ -808,9 +829,21 @@ int contact_state_load(YfSim *s, const YfContactState *st) {
   int n = st->n;
   contact_pairs_reserve(&C->pairs, n);
   C->pairs.n = n;
+  C->pairs.ng = 0;
   if (n) {
     memcpy(C->pairs.ij, st->ij, (size_t)n * 2 * sizeof(int));
-    memcpy(C->pairs.g, st->g, (size_t)n * 6 * sizeof(double));
+    int used = 0;
+    for (int k = 0; k < n; k++) {
+      const double *g = st->g + 6 * (size_t)k;
+      C->pairs.gi[k] = -(g[0] != 0.0 || g[1] != 0.0 || g[2] != 0.0 || g[3] != 0.0 || g[4] != 0.0 || g[5] != 0.0);
+      used -= C->pairs.gi[k];
+    }
+    contact_pairs_greserve(&C->pairs, 2 * used + n / 64 + 256);
+    for (int k = 0; k < n; k++) { /* gi -1 marks the couples with memory, 0 the others */
+      int has = C->pairs.gi[k] < 0;
+      C->pairs.gi[k] = -1;
+      if (has) memcpy(contact_pairs_gslot(&C->pairs, k), st->g + 6 * (size_t)k, 6 * sizeof(double));
+    }
   }
   couple_arrays(C, n);
   if (n) memcpy(C->alive, st->alive, (size_t)n);

@@ -109,7 +109,8 @@ double contact_buffer(const YfSim *s);
 typedef struct {
   int n;                 /* couples in the list (live and dead)                    */
   int *ij;               /* 2 per couple: triangle indices i < j                   */
-  double *g;             /* 6 per couple: friction memory [m^2]                    */
+  double *g;             /* 6 per couple: friction memory [m^2] (save: a copy the
+                            contact state owns until the next save)              */
   unsigned char *alive;  /* per couple: 0 = dropped since the last search          */
   int nlive, ndead;
   double travel;         /* travel counter of the search trigger [m]               */
