@@ -95,8 +95,7 @@ typedef struct YfContact {
    * hf[12 h ..] (A's corners, then B's) [N/m]; room for cap_hit */
   int *hk, nhit, cap_hit, max_busy;
   /* nodes that received contact force at the last step (fcn nonzero only there) */
-  int ntouch, *touch, cap_touch;
-  int *tmark;            /* per node: 1 while in touch[] (kept zero otherwise)  */
+  unsigned char *tmark;  /* per node: 1 when fcn holds a contact force of the last step */
   double *hf;
   double *fcn;           /* per node: contact force of the last step [N/m]      */
   double *gdense;        /* restart: the friction memory, 6 per couple (copy)   */
@@ -150,7 +149,7 @@ void contact_free(YfSim *s) {
   free(C->blk_e); free(C->blk_d); free(C->blk_rm); free(C->blk_busy); free(C->blk_off);
   free(C->blk_need); free(C->blk_goff); free(C->gdense);
   free(C->hk); free(C->hf);
-  free(C->touch); free(C->tmark); free(C->fcn);
+  free(C->tmark); free(C->fcn);
   contact_search_work_free(&C->work);
   free(C);
   s->contact = NULL;
@@ -530,14 +529,12 @@ void contact_prepare(YfSim *s) {
   C->cy = yf_malloc((size_t)(C->nitem + 1) * sizeof(double), "contact bounds");
   C->cr = yf_malloc((size_t)(C->nitem + 1) * sizeof(double), "contact bounds");
   if (C->cap_nodes < nn) {
-    C->tmark = yf_realloc(C->tmark, (size_t)nn * sizeof(int), "contact gather");
+    C->tmark = yf_realloc(C->tmark, (size_t)nn, "contact gather");
     C->fcn = yf_realloc(C->fcn, (size_t)2 * nn * sizeof(double), "contact node forces");
-    C->touch = yf_realloc(C->touch, (size_t)nn * sizeof(int), "contact gather");
     C->cap_nodes = nn;
   }
-  memset(C->tmark, 0, (size_t)nn * sizeof(int));
+  memset(C->tmark, 0, (size_t)nn);
   memset(C->fcn, 0, (size_t)2 * nn * sizeof(double));
-  C->ntouch = 0;
   C->fcn_valid = 0;
   if (C->cap_tg < nt) {
     free(C->tg);
@@ -550,7 +547,6 @@ void contact_prepare(YfSim *s) {
    * their friction memory through the merge (triangle indices do not change) */
   contact_trigger_init(&C->trig, C->buffer, 1e15);
   C->force_search = 1;
-  C->ntouch = 0;
   C->prep_ntri = nt;
   C->prep_nn = nn;
   C->dirty = 0;
@@ -756,33 +752,38 @@ void contact_step(YfSim *s) {
   C->nhit = nbusy;
   C->pairs.ng = ng;
 
-  /* scatter, serial and in couple order: each node's contact force is the sum of its
-   * couples' contributions in couple order (A's corners before B's), then added to node.fx */
+  /* scatter in couple order: each node's contact force is the sum of its couples'
+   * contributions in couple order (A's corners before B's), then added to node.fx.  Thread t
+   * owns the nodes of one contiguous range and reads every record, so each node's sum has the
+   * same order (and bits) on any thread count. */
   double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
-  int *touch = C->touch, *tmark = C->tmark, ntouch = C->ntouch;
-  for (int q = 0; q < ntouch; q++) {
-    int i = touch[q];
-    fcn[2 * i] = fcn[2 * i + 1] = 0.0;
-    tmark[i] = 0;
-  }
-  ntouch = 0;
-  for (int h = 0; h < nbusy; h++) {
-    int k = hk[h];
-    const int *vv[2] = {tv + 3 * ij[2 * k + 1], tv + 3 * ij[2 * k]};
-    const double *f = hf + 12 * (size_t)h;
-    for (int c = 0; c < 6; c++) {
-      int i = vv[c / 3][c % 3];
-      if (!tmark[i]) { tmark[i] = 1; touch[ntouch++] = i; }
-      fcn[2 * i] += f[2 * c];
-      fcn[2 * i + 1] += f[2 * c + 1];
+  unsigned char *tmark = C->tmark;
+  const int nn = nd->n;
+  #pragma omp parallel if (nbusy >= C->par_min / 8 && nn >= C->par_min)
+  {
+    int nth = 1, me = 0;
+#ifdef _OPENMP
+    nth = omp_get_num_threads();
+    me = omp_get_thread_num();
+#endif
+    const int n0 = (int)((long)nn * me / nth), n1 = (int)((long)nn * (me + 1) / nth);
+    for (int i = n0; i < n1; i++)
+      if (tmark[i]) { fcn[2 * i] = fcn[2 * i + 1] = 0.0; tmark[i] = 0; }
+    for (int h = 0; h < nbusy; h++) {
+      int k = hk[h];
+      const int *vv[2] = {tv + 3 * ij[2 * k + 1], tv + 3 * ij[2 * k]};
+      const double *f = hf + 12 * (size_t)h;
+      for (int c = 0; c < 6; c++) {
+        int i = vv[c / 3][c % 3];
+        if (i < n0 || i >= n1) continue;
+        tmark[i] = 1;
+        fcn[2 * i] += f[2 * c];
+        fcn[2 * i + 1] += f[2 * c + 1];
+      }
     }
+    for (int i = n0; i < n1; i++)
+      if (tmark[i]) { fx[i] += fcn[2 * i]; fy[i] += fcn[2 * i + 1]; }
   }
-  for (int q = 0; q < ntouch; q++) {
-    int i = touch[q];
-    fx[i] += fcn[2 * i];
-    fy[i] += fcn[2 * i + 1];
-  }
-  C->ntouch = ntouch;
   C->fcn_valid = 1;
 
   /* dropped couples: compact once a quarter of the list is dead */
@@ -854,15 +855,9 @@ int contact_state_load(YfSim *s, const YfContactState *st) {
   C->broken_seen = st->broken_seen;
   C->force_search = st->force_search;
   /* the nodes that carry contact force of the last step (zeroed before the next scatter) */
-  for (int q = 0; q < C->ntouch; q++) C->tmark[C->touch[q]] = 0;
-  C->ntouch = 0;
   if (st->fcn && st->nn == C->prep_nn) {
     memcpy(C->fcn, st->fcn, (size_t)2 * st->nn * sizeof(double));
-    for (int i = 0; i < st->nn; i++)
-      if (C->fcn[2 * i] != 0.0 || C->fcn[2 * i + 1] != 0.0) {
-        C->tmark[i] = 1;
-        C->touch[C->ntouch++] = i;
-      }
+    for (int i = 0; i < st->nn; i++) C->tmark[i] = C->fcn[2 * i] != 0.0 || C->fcn[2 * i + 1] != 0.0;
   }
   C->fcn_valid = st->fcn_valid;
   return 0;
