@@ -3,22 +3,30 @@
  *
  * This module owns the contact state of a simulation (YfContact): the rules of the deck, which
  * triangles take part and in which rule sides (two 64-bit masks per triangle), the couple list
- * with its friction memory, the per-couple force slots and the node lists that gather them.
- * The kernels are contact_search.c (broad phase) and contact_pair.c (Y2D's potential contact).
+ * with its (sparse) friction memory, the per-step triangle records of the screen and the forces
+ * of the couples that touch.  The kernels are contact_search.c (broad phase) and contact_pair.c
+ * (Y2D's potential contact and the screen).
  *
  * One step (contact_step):
  *   detection   travel += 2 dt max|v| over participating nodes; when due (or at the first step,
  *               or when the setup changed, or a joint broke in `joined skip` mode) a search over
  *               the participating triangles' discs gives a fresh sorted couple list; friction
- *               memory of persisting couples is merged in, and the node gather lists are rebuilt.
- *   forces      every live couple (A = larger index, as Y2D sums it) writes 12 numbers into its
- *               own slot (parallel over fixed blocks of couples, no atomics); a couple that
+ *               memory of persisting couples is merged in.
+ *   records     each participating triangle's corners, edge normals and twice-area, once.
+ *   screen      every live couple (A = larger index, as Y2D sums it): when every contactor edge
+ *               of both directions has both ends outside one target edge line (98 % of the
+ *               couples of a fracturing body), the couple gives no force and only its distance
+ *               decides whether it stays; the others are marked (parallel over fixed blocks).
+ *   kernel      the marked couples run the full kernel and write their 12 forces into a compact
+ *               list in couple order (offsets from per-block counts: no atomics); a couple that
  *               touched in neither direction and is farther than 2 buffer is dropped (Y2D).
- *   gather      each touched node sums its slots in couple order and adds the sum to node.fx/fy,
- *               so 1 or N threads give the same bits.  Energy: penalty energy (kernel estimate)
- *               of this step and accumulated frictional dissipation, summed per block in order.
- * Dropped couples stay in the list as dead slots (zero force) until a search, or until a
- * quarter of the list is dead, when the list is compacted and the gather lists rebuilt.
+ *   scatter     each node's contact force is the sum of its couples' forces in couple order,
+ *               added to node.fx/fy, so 1 or N threads give the same bits.  Energy: penalty
+ *               energy (kernel estimate) of this step and accumulated frictional dissipation,
+ *               summed per block in order.
+ * Dropped couples stay in the list as dead entries until a search, or until a quarter of the
+ * list is dead, when the list is compacted.  Memory per couple: 8 B indices, 4 B friction slot,
+ * 1 B state; 48 B of friction memory only for couples that have touched.
  *
  * Units: SI, 2D per unit thickness: forces N/m, penalties Pa, energies J/m.
  */
