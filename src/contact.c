@@ -709,7 +709,7 @@ void contact_step(YfSim *s) {
   double *gmem = C->pairs.g, *hf = C->hf;
   int *hk = C->hk;
   const double *mpn = C->mpn, *mpt = C->mpt, *mmu = C->mmu;
-  #pragma omp parallel for schedule(dynamic, 1) if (nbusy >= 64 && nblk > 1)
+  #pragma omp parallel for schedule(dynamic, 1) if (nbusy >= C->par_min / 32 && nblk > 1)
   for (int b = 0; b < nblk; b++) {
     double e = 0.0, d = 0.0;
     int rm = 0, h = C->blk_off[b], slot = C->blk_goff[b];
