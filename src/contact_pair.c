@@ -61,6 +61,7 @@ int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3]
       bn[i][k] = ((xt[k] - xc[i]) * mx[k] + (yt[k] - yc[i]) * my[k]) * invD;
 
   int nforce = 0;
+  double hk[3] = {-1.0, -1.0, -1.0}; /* target heights over each edge [m], when first needed */
   double dmin = *dmin2; /* local: no store-to-load chain through the pointer */
   for (int e = 0; e < 3; e++) {
     int a = e, b = e < 2 ? e + 1 : 0;
@@ -139,18 +140,19 @@ int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3]
       double s2 = bs[i], p2 = pmin3(al, dl, s2), h = s2 - s1;
       I0 += 0.5 * h * (p1 + p2);
       I1 += h * (p1 * (2.0 * s1 + s2) + p2 * (s1 + 2.0 * s2)) / 6.0;
-      if (info) { /* energy estimate: int h_k P^2 ds with the active edge k of this piece */
+      if (info) { /* energy estimate: 3 int h_k P^2 ds with the active edge k of this piece */
         double sm = 0.5 * (s1 + s2);
         int k = 0;
         double bk = al[0] + sm * dl[0];
         for (int q = 1; q < 3; q++)
           if (al[q] + sm * dl[q] < bk) { bk = al[q] + sm * dl[q]; k = q; }
-        double hk = D / sqrt(mx[k] * mx[k] + my[k] * my[k]);
-        I2h += hk * h * (p1 * p1 + p1 * p2 + p2 * p2) / 3.0;
+        if (!(hk[k] >= 0.0)) hk[k] = D / sqrt(mx[k] * mx[k] + my[k] * my[k]); /* once per edge */
+        I2h += hk[k] * h * (p1 * p1 + p1 * p2 + p2 * p2);
       }
       s1 = s2;
       p1 = p2;
     }
+    I2h /= 3.0;
     double F = 3.0 * pn * I0;
     double Fb = 3.0 * pn * I1;
     double Fa = F - Fb;
