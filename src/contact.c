@@ -3,22 +3,30 @@
  *
  * This module owns the contact state of a simulation (YfContact): the rules of the deck, which
  * triangles take part and in which rule sides (two 64-bit masks per triangle), the couple list
- * with its friction memory, the per-couple force slots and the node lists that gather them.
- * The kernels are contact_search.c (broad phase) and contact_pair.c (Y2D's potential contact).
+ * with its (sparse) friction memory, the per-step triangle records of the screen and the forces
+ * of the couples that touch.  The kernels are contact_search.c (broad phase) and contact_pair.c
+ * (Y2D's potential contact and the screen).
  *
  * One step (contact_step):
  *   detection   travel += 2 dt max|v| over participating nodes; when due (or at the first step,
  *               or when the setup changed, or a joint broke in `joined skip` mode) a search over
  *               the participating triangles' discs gives a fresh sorted couple list; friction
- *               memory of persisting couples is merged in, and the node gather lists are rebuilt.
- *   forces      every live couple (A = larger index, as Y2D sums it) writes 12 numbers into its
- *               own slot (parallel over fixed blocks of couples, no atomics); a couple that
+ *               memory of persisting couples is merged in.
+ *   records     each participating triangle's corners, edge normals and twice-area, once.
+ *   screen      every live couple (A = larger index, as Y2D sums it): when every contactor edge
+ *               of both directions has both ends outside one target edge line (98 % of the
+ *               couples of a fracturing body), the couple gives no force and only its distance
+ *               decides whether it stays; the others are marked (parallel over fixed blocks).
+ *   kernel      the marked couples run the full kernel and write their 12 forces into a compact
+ *               list in couple order (offsets from per-block counts: no atomics); a couple that
  *               touched in neither direction and is farther than 2 buffer is dropped (Y2D).
- *   gather      each touched node sums its slots in couple order and adds the sum to node.fx/fy,
- *               so 1 or N threads give the same bits.  Energy: penalty energy (kernel estimate)
- *               of this step and accumulated frictional dissipation, summed per block in order.
- * Dropped couples stay in the list as dead slots (zero force) until a search, or until a
- * quarter of the list is dead, when the list is compacted and the gather lists rebuilt.
+ *   scatter     each node's contact force is the sum of its couples' forces in couple order,
+ *               added to node.fx/fy, so 1 or N threads give the same bits.  Energy: penalty
+ *               energy (kernel estimate) of this step and accumulated frictional dissipation,
+ *               summed per block in order.
+ * Dropped couples stay in the list as dead entries until a search, or until a quarter of the
+ * list is dead, when the list is compacted.  Memory per couple: 8 B indices, 4 B friction slot,
+ * 1 B state; 48 B of friction memory only for couples that have touched.
  *
  * Units: SI, 2D per unit thickness: forces N/m, penalties Pa, energies J/m.
  */
@@ -84,19 +92,21 @@ typedef struct YfContact {
 
   /* couples */
   YfPairs pairs, fresh;
-  unsigned char *alive;
+  unsigned char *alive;  /* per couple: 0 dropped, 1 live (the screen marks 2: needs the kernel) */
   int cap_alive;
   int nlive, ndead;
-  double *pf;            /* 12 per couple: forces on A's corners then B's [N/m] */
-  size_t cap_pf;
+  double *tg;            /* per triangle: the screen's record of this step (YF_TRI_GEOM) */
+  int cap_tg;
   double *blk_e, *blk_d;
-  int *blk_rm, cap_blk;
-  /* gather lists: touched node t = touch[t] sums slots tslot[toff[t] .. toff[t+1]-1]; slot q of
-   * couple k = q / 6, corner q % 6 (0-2: A, 3-5: B); its force is pf[2 q], pf[2 q + 1]. */
-  int ntouch, *touch, *toff, *tslot;
-  int cap_touch, cap_tslot;
-  int *tcount;           /* per node, scratch of the rebuild (kept zero)        */
+  int *blk_rm, *blk_busy, *blk_off, *blk_need, *blk_goff, cap_blk;
+  /* forces of the couples that touched this step, in couple order: couple hk[h], 12 numbers
+   * hf[12 h ..] (A's corners, then B's) [N/m]; room for cap_hit */
+  int *hk, nhit, cap_hit, max_busy;
+  /* nodes that received contact force at the last step (fcn nonzero only there) */
+  unsigned char *tmark;  /* per node: 1 when fcn holds a contact force of the last step */
+  double *hf;
   double *fcn;           /* per node: contact force of the last step [N/m]      */
+  double *gdense;        /* restart: the friction memory, 6 per couple (copy)   */
   int cap_nodes;
   int fcn_valid;
 
@@ -143,9 +153,11 @@ void contact_free(YfSim *s) {
   free(C->uflag);
   contact_pairs_free(&C->pairs);
   contact_pairs_free(&C->fresh);
-  free(C->alive); free(C->pf);
-  free(C->blk_e); free(C->blk_d); free(C->blk_rm);
-  free(C->touch); free(C->toff); free(C->tslot); free(C->tcount); free(C->fcn);
+  free(C->alive); free(C->tg);
+  free(C->blk_e); free(C->blk_d); free(C->blk_rm); free(C->blk_busy); free(C->blk_off);
+  free(C->blk_need); free(C->blk_goff); free(C->gdense);
+  free(C->hk); free(C->hf);
+  free(C->tmark); free(C->fcn);
   contact_search_work_free(&C->work);
   free(C);
   s->contact = NULL;
@@ -525,20 +537,24 @@ void contact_prepare(YfSim *s) {
   C->cy = yf_malloc((size_t)(C->nitem + 1) * sizeof(double), "contact bounds");
   C->cr = yf_malloc((size_t)(C->nitem + 1) * sizeof(double), "contact bounds");
   if (C->cap_nodes < nn) {
-    C->tcount = yf_realloc(C->tcount, (size_t)nn * sizeof(int), "contact gather");
+    C->tmark = yf_realloc(C->tmark, (size_t)nn, "contact gather");
     C->fcn = yf_realloc(C->fcn, (size_t)2 * nn * sizeof(double), "contact node forces");
     C->cap_nodes = nn;
   }
-  memset(C->tcount, 0, (size_t)nn * sizeof(int));
+  memset(C->tmark, 0, (size_t)nn);
   memset(C->fcn, 0, (size_t)2 * nn * sizeof(double));
   C->fcn_valid = 0;
+  if (C->cap_tg < nt) {
+    free(C->tg);
+    C->tg = yf_malloc((size_t)(nt > 0 ? nt : 1) * YF_TRI_GEOM * sizeof(double), "contact triangle records");
+    C->cap_tg = nt;
+  }
 
   compute_stable_dt(s, C);
   /* the first step after a (re)setup searches; couples of the old list that still pass keep
    * their friction memory through the merge (triangle indices do not change) */
   contact_trigger_init(&C->trig, C->buffer, 1e15);
   C->force_search = 1;
-  C->ntouch = 0;
   C->prep_ntri = nt;
   C->prep_nn = nn;
   C->dirty = 0;
@@ -558,59 +574,11 @@ double contact_stable_dt(YfSim *s, char *what, size_t n) {
 
 /* ---------------------------------------------------------------- detection */
 
-/* Node gather lists of the current couple list (all couples; dead ones have zero slots). */
-static void build_gather(YfSim *s, YfContact *C) {
-  const int *tv = s->model.tri.v;
-  int np = C->pairs.n;
-  const int *ij = C->pairs.ij;
-  int *cnt = C->tcount;
-  for (int k = 0; k < np; k++) {
-    const int *va = tv + 3 * ij[2 * k + 1], *vb = tv + 3 * ij[2 * k];
-    for (int c = 0; c < 3; c++) { cnt[va[c]]++; cnt[vb[c]]++; }
-  }
-  if (C->cap_touch < C->npn + 1) {
-    C->cap_touch = C->npn + 1;
-    C->touch = yf_realloc(C->touch, (size_t)C->cap_touch * sizeof(int), "contact gather");
-    C->toff = yf_realloc(C->toff, (size_t)(C->cap_touch + 1) * sizeof(int), "contact gather");
-  }
-  /* forces of nodes touched before but not now must read zero (the others keep the value of
-   * the last step until the next gather rewrites them) */
-  for (int t = 0; t < C->ntouch; t++)
-    if (!cnt[C->touch[t]]) C->fcn[2 * C->touch[t]] = C->fcn[2 * C->touch[t] + 1] = 0.0;
-  int nt = 0, off = 0;
-  for (int k = 0; k < C->npn; k++) {
-    int i = C->pnode[k];
-    if (!cnt[i]) continue;
-    C->touch[nt] = i;
-    C->toff[nt] = off;
-    off += cnt[i];
-    cnt[i] = C->toff[nt]; /* fill pointer */
-    nt++;
-  }
-  C->toff[nt] = off;
-  C->ntouch = nt;
-  if (C->cap_tslot < off) {
-    C->cap_tslot = off + off / 4 + 64;
-    C->tslot = yf_realloc(C->tslot, (size_t)C->cap_tslot * sizeof(int), "contact gather");
-  }
-  for (int k = 0; k < np; k++) {
-    const int *va = tv + 3 * ij[2 * k + 1], *vb = tv + 3 * ij[2 * k];
-    for (int c = 0; c < 3; c++) C->tslot[cnt[va[c]]++] = 6 * k + c;
-    for (int c = 0; c < 3; c++) C->tslot[cnt[vb[c]]++] = 6 * k + 3 + c;
-  }
-  for (int t = 0; t < nt; t++) cnt[C->touch[t]] = 0;
-}
-
 /* Room for the per-couple arrays of n couples. */
 static void couple_arrays(YfContact *C, int n) {
   if (C->cap_alive < n) {
     C->cap_alive = n + n / 4 + 64;
     C->alive = yf_realloc(C->alive, (size_t)C->cap_alive, "contact couples");
-  }
-  if (C->cap_pf < (size_t)n * 12) {
-    C->cap_pf = ((size_t)n + (size_t)n / 4 + 64) * 12;
-    free(C->pf);
-    C->pf = yf_malloc(C->cap_pf * sizeof(double), "contact couple forces");
   }
   int nblk = (n + PAIR_BLK - 1) / PAIR_BLK;
   if (C->cap_blk < nblk + 1) {
@@ -618,7 +586,23 @@ static void couple_arrays(YfContact *C, int n) {
     C->blk_e = yf_realloc(C->blk_e, (size_t)C->cap_blk * sizeof(double), "contact blocks");
     C->blk_d = yf_realloc(C->blk_d, (size_t)C->cap_blk * sizeof(double), "contact blocks");
     C->blk_rm = yf_realloc(C->blk_rm, (size_t)C->cap_blk * sizeof(int), "contact blocks");
+    C->blk_busy = yf_realloc(C->blk_busy, (size_t)C->cap_blk * sizeof(int), "contact blocks");
+    C->blk_off = yf_realloc(C->blk_off, (size_t)(C->cap_blk + 1) * sizeof(int), "contact blocks");
+    C->blk_need = yf_realloc(C->blk_need, (size_t)C->cap_blk * sizeof(int), "contact blocks");
+    C->blk_goff = yf_realloc(C->blk_goff, (size_t)(C->cap_blk + 1) * sizeof(int), "contact blocks");
   }
+}
+
+/* Room for the forces of n touching couples.  Made at each search for twice the most couples
+ * that have needed the kernel in one step so far (at least 1/16 of the list), so a step grows
+ * it only when contact spreads past that (rarely, geometrically). */
+static void hit_room(YfContact *C, int n) {
+  if (C->cap_hit >= n) return;
+  C->cap_hit = n + n / 2 + 64;
+  free(C->hk);
+  free(C->hf);
+  C->hk = yf_malloc((size_t)C->cap_hit * sizeof(int), "contact hits");
+  C->hf = yf_malloc((size_t)C->cap_hit * 12 * sizeof(double), "contact hits");
 }
 
 static void search(YfSim *s, YfContact *C) {
@@ -642,10 +626,12 @@ static void search(YfSim *s, YfContact *C) {
   int n = C->pairs.n;
   couple_arrays(C, n);
   memset(C->alive, 1, (size_t)n);
-  memset(C->pf, 0, (size_t)n * 12 * sizeof(double));
   C->nlive = n;
   C->ndead = 0;
-  build_gather(s, C);
+  int want = 2 * C->max_busy, floor16 = n / 16;
+  hit_room(C, want > floor16 ? want : floor16);
+  /* friction memory slots: room for the couples that have touched and as many again */
+  contact_pairs_greserve(&C->pairs, 2 * C->pairs.ng + n / 64 + 256);
   C->nsearch++;
 }
 
@@ -674,23 +660,66 @@ void contact_step(YfSim *s) {
   double t1 = yf_now();
   yf_stage_time[YF_ST_DETECT] += t1 - t0;
 
-  /* forces: one slot per couple, parallel over fixed blocks */
-  const int np = C->pairs.n, nblk = (np + PAIR_BLK - 1) / PAIR_BLK;
-  const int *ij = C->pairs.ij, *tv = m->tri.v, *tmat = m->tri.mat;
-  double *gmem = C->pairs.g, *pf = C->pf;
-  unsigned char *alive = C->alive;
+  /* the screen's triangle records of this step (participating triangles only) */
+  const int *tv = m->tri.v, *tmat = m->tri.mat, *item = C->item, nitem = C->nitem;
   const double *x = nd->x, *y = nd->y, *vx = nd->vx, *vy = nd->vy;
-  const double *mpn = C->mpn, *mpt = C->mpt, *mmu = C->mmu;
+  double *tg = C->tg;
+  #pragma omp parallel for schedule(static) if (nitem >= C->par_min)
+  for (int q = 0; q < nitem; q++) {
+    const int t = item[q], *v = tv + 3 * t;
+    double xs[3] = {x[v[0]], x[v[1]], x[v[2]]}, ys[3] = {y[v[0]], y[v[1]], y[v[2]]};
+    contact_pair_geom(xs, ys, tg + (size_t)YF_TRI_GEOM * t);
+  }
+
+  /* pass 1, the screen: couples whose edges all miss give no force (only their distance decides
+   * whether they stay); the others are marked 2 and counted per fixed block */
+  const int np = C->pairs.n, nblk = (np + PAIR_BLK - 1) / PAIR_BLK;
+  const int *ij = C->pairs.ij;
+  int *gi = C->pairs.gi;
+  unsigned char *alive = C->alive;
   const double rem2 = 4.0 * C->buffer * C->buffer;
   #pragma omp parallel for schedule(static) if (np >= C->par_min && nblk > 1)
   for (int b = 0; b < nblk; b++) {
-    int k1 = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np;
-    double e = 0.0, d = 0.0;
-    int rm = 0;
+    int k1 = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np, rm = 0, busy = 0, need = 0;
     for (int k = b * PAIR_BLK; k < k1; k++) {
       if (!alive[k]) continue;
+      const double *ra = tg + (size_t)YF_TRI_GEOM * ij[2 * k + 1], *rb = tg + (size_t)YF_TRI_GEOM * ij[2 * k];
+      int q = contact_pair_quiet(ra, rb, rem2);
+      if (q == 0) { alive[k] = 2; busy++; need += gi[k] < 0; }
+      else if (q == 2) { alive[k] = 0; rm++; }
+    }
+    C->blk_rm[b] = rm;
+    C->blk_busy[b] = busy;
+    C->blk_need[b] = need;
+  }
+  int nbusy = 0, ng = C->pairs.ng;
+  for (int b = 0; b < nblk; b++) {
+    C->blk_off[b] = nbusy;
+    nbusy += C->blk_busy[b];
+    C->blk_goff[b] = ng;
+    ng += C->blk_need[b];
+  }
+  C->blk_off[nblk] = nbusy;
+  if (nbusy > C->max_busy) C->max_busy = nbusy;
+  hit_room(C, nbusy); /* rarely grows: see hit_room */
+  contact_pairs_greserve(&C->pairs, ng); /* rarely grows: reserved at each search */
+
+  /* pass 2: the kernel on the marked couples (A = the larger index, Y2D's order), each writing
+   * its 12 forces into its place in couple order; no atomics, same bits on any thread count */
+  double *gmem = C->pairs.g, *hf = C->hf;
+  int *hk = C->hk;
+  const double *mpn = C->mpn, *mpt = C->mpt, *mmu = C->mmu;
+  #pragma omp parallel for schedule(dynamic, 1) if (nbusy >= C->par_min / 32 && nblk > 1)
+  for (int b = 0; b < nblk; b++) {
+    double e = 0.0, d = 0.0;
+    int rm = 0, h = C->blk_off[b], slot = C->blk_goff[b];
+    if (h == C->blk_off[b + 1]) { C->blk_e[b] = C->blk_d[b] = 0.0; continue; }
+    int k1 = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np;
+    for (int k = b * PAIR_BLK; k < k1; k++) {
+      if (alive[k] != 2) continue;
+      alive[k] = 1;
       int ti = ij[2 * k], tj = ij[2 * k + 1];
-      const int *va = tv + 3 * tj, *vb = tv + 3 * ti; /* A = the larger index (Y2D's order) */
+      const int *va = tv + 3 * tj, *vb = tv + 3 * ti;
       double xa[3], ya[3], vxa[3], vya[3], xb[3], yb[3], vxb[3], vyb[3];
       for (int c = 0; c < 3; c++) {
         xa[c] = x[va[c]]; ya[c] = y[va[c]]; vxa[c] = vx[va[c]]; vya[c] = vy[va[c]];
@@ -700,19 +729,24 @@ void contact_step(YfSim *s) {
       double pn = mpn[ma] < mpn[mb] ? mpn[ma] : mpn[mb];
       double pt = mpt[ma] < mpt[mb] ? mpt[ma] : mpt[mb];
       double mu = mmu[ma] < mmu[mb] ? mmu[ma] : mmu[mb];
-      double *fa = pf + 12 * (size_t)k, *fb = fa + 6;
+      double *fa = hf + 12 * (size_t)h, *fb = fa + 6;
       for (int c = 0; c < 12; c++) fa[c] = 0.0;
       YfContactInfo info = {0, 0, 0, 0, 0, 0};
       double d2;
-      int hit = contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, pn, pt, mu, dt, gmem + 6 * (size_t)k, fa, fb,
-                                   &d2, &info);
+      if (gi[k] < 0) { /* first contact of the couple: a zeroed slot, numbered in couple order */
+        gi[k] = slot++;
+        memset(gmem + 6 * (size_t)gi[k], 0, 6 * sizeof *gmem);
+      }
+      int hit = contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, pn, pt, mu, dt, gmem + 6 * (size_t)gi[k], fa,
+                                   fb, &d2, &info);
       e += info.energy;
       d += info.dissip;
+      hk[h++] = k;
       if (!hit && d2 > rem2) { alive[k] = 0; rm++; }
     }
     C->blk_e[b] = e;
     C->blk_d[b] = d;
-    C->blk_rm[b] = rm;
+    C->blk_rm[b] += rm;
   }
   double esum = 0.0, dsum = 0.0;
   int removed = 0;
@@ -723,23 +757,40 @@ void contact_step(YfSim *s) {
   }
   s->energy.contact = esum;
   s->energy.friction += dsum;
+  C->nhit = nbusy;
+  C->pairs.ng = ng;
 
-  /* gather: each touched node sums its slots in couple order */
-  const int ntouch = C->ntouch, *touch = C->touch, *toff = C->toff, *tslot = C->tslot;
+  /* scatter in couple order: each node's contact force is the sum of its couples'
+   * contributions in couple order (A's corners before B's), then added to node.fx.  Thread t
+   * owns the nodes of one contiguous range and reads every record, so each node's sum has the
+   * same order (and bits) on any thread count. */
   double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
-  #pragma omp parallel for schedule(static) if (ntouch >= C->par_min)
-  for (int t = 0; t < ntouch; t++) {
-    int i = touch[t];
-    double sx = 0.0, sy = 0.0;
-    for (int q = toff[t]; q < toff[t + 1]; q++) {
-      const double *f = pf + 2 * (size_t)tslot[q];
-      sx += f[0];
-      sy += f[1];
+  unsigned char *tmark = C->tmark;
+  const int nn = nd->n;
+  #pragma omp parallel if (nbusy >= C->par_min / 8 && nn >= C->par_min)
+  {
+    int nth = 1, me = 0;
+#ifdef _OPENMP
+    nth = omp_get_num_threads();
+    me = omp_get_thread_num();
+#endif
+    const int n0 = (int)((long)nn * me / nth), n1 = (int)((long)nn * (me + 1) / nth);
+    for (int i = n0; i < n1; i++)
+      if (tmark[i]) { fcn[2 * i] = fcn[2 * i + 1] = 0.0; tmark[i] = 0; }
+    for (int h = 0; h < nbusy; h++) {
+      int k = hk[h];
+      const int *vv[2] = {tv + 3 * ij[2 * k + 1], tv + 3 * ij[2 * k]};
+      const double *f = hf + 12 * (size_t)h;
+      for (int c = 0; c < 6; c++) {
+        int i = vv[c / 3][c % 3];
+        if (i < n0 || i >= n1) continue;
+        tmark[i] = 1;
+        fcn[2 * i] += f[2 * c];
+        fcn[2 * i + 1] += f[2 * c + 1];
+      }
     }
-    fcn[2 * i] = sx;
-    fcn[2 * i + 1] = sy;
-    fx[i] += sx;
-    fy[i] += sy;
+    for (int i = n0; i < n1; i++)
+      if (tmark[i]) { fx[i] += fcn[2 * i]; fy[i] += fcn[2 * i + 1]; }
   }
   C->fcn_valid = 1;
 
@@ -750,8 +801,6 @@ void contact_step(YfSim *s) {
     contact_pairs_compact(&C->pairs, C->alive);
     memset(C->alive, 1, (size_t)C->pairs.n);
     C->ndead = 0;
-    /* slots are rewritten before they are read again, except the dead ones: none now */
-    build_gather(s, C);
   }
   yf_stage_time[YF_ST_CONTACT] += yf_now() - t1;
 }
@@ -759,14 +808,18 @@ void contact_step(YfSim *s) {
 /* ---------------------------------------------------------------- restart accessors (restart.c) */
 
 int contact_state_save(const YfSim *s, YfContactState *st) {
-  const YfContact *C = s->contact;
+  YfContact *C = s->contact; /* keeps the dense copy of the friction memory */
   memset(st, 0, sizeof *st);
   if (!active(C) || !C->cx) return 0; /* not prepared */
   st->n = C->pairs.n;
   st->ij = C->pairs.ij;
-  st->g = C->pairs.g;
+  /* the friction memory as 6 values per couple (the file format; zeros where a couple has no slot) */
+  free(C->gdense);
+  C->gdense = yf_calloc((size_t)(st->n > 0 ? st->n : 1) * 6, sizeof(double), "restart friction memory");
+  for (int k = 0; k < st->n; k++)
+    if (C->pairs.gi[k] >= 0) memcpy(C->gdense + 6 * (size_t)k, C->pairs.g + 6 * (size_t)C->pairs.gi[k], 6 * sizeof(double));
+  st->g = C->gdense;
   st->alive = C->alive;
-  st->pf = C->pf;
   st->nlive = C->nlive;
   st->ndead = C->ndead;
   st->travel = C->trig.travel;
@@ -785,23 +838,35 @@ int contact_state_load(YfSim *s, const YfContactState *st) {
   int n = st->n;
   contact_pairs_reserve(&C->pairs, n);
   C->pairs.n = n;
+  C->pairs.ng = 0;
   if (n) {
     memcpy(C->pairs.ij, st->ij, (size_t)n * 2 * sizeof(int));
-    memcpy(C->pairs.g, st->g, (size_t)n * 6 * sizeof(double));
+    int used = 0;
+    for (int k = 0; k < n; k++) {
+      const double *g = st->g + 6 * (size_t)k;
+      C->pairs.gi[k] = -(g[0] != 0.0 || g[1] != 0.0 || g[2] != 0.0 || g[3] != 0.0 || g[4] != 0.0 || g[5] != 0.0);
+      used -= C->pairs.gi[k];
+    }
+    contact_pairs_greserve(&C->pairs, 2 * used + n / 64 + 256);
+    for (int k = 0; k < n; k++) { /* gi -1 marks the couples with memory, 0 the others */
+      int has = C->pairs.gi[k] < 0;
+      C->pairs.gi[k] = -1;
+      if (has) memcpy(contact_pairs_gslot(&C->pairs, k), st->g + 6 * (size_t)k, 6 * sizeof(double));
+    }
   }
   couple_arrays(C, n);
-  if (n) {
-    memcpy(C->alive, st->alive, (size_t)n);
-    memcpy(C->pf, st->pf, (size_t)n * 12 * sizeof(double));
-  }
+  if (n) memcpy(C->alive, st->alive, (size_t)n);
   C->nlive = st->nlive;
   C->ndead = st->ndead;
   C->trig.travel = st->travel;
   C->nsearch = st->nsearch;
   C->broken_seen = st->broken_seen;
   C->force_search = st->force_search;
-  build_gather(s, C);
-  if (st->fcn && st->nn == C->prep_nn) memcpy(C->fcn, st->fcn, (size_t)2 * st->nn * sizeof(double));
+  /* the nodes that carry contact force of the last step (zeroed before the next scatter) */
+  if (st->fcn && st->nn == C->prep_nn) {
+    memcpy(C->fcn, st->fcn, (size_t)2 * st->nn * sizeof(double));
+    for (int i = 0; i < st->nn; i++) C->tmark[i] = C->fcn[2 * i] != 0.0 || C->fcn[2 * i + 1] != 0.0;
+  }
   C->fcn_valid = st->fcn_valid;
   return 0;
 }

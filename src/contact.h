@@ -6,7 +6,8 @@
  *   contact_prepare(s)  in run_prepare after joints_insert and masses: participation and pairs
  *                       filters from the deck's contact commands; nothing when contact is off.
  *   contact_step(s)     each step after the joint forces and the gather: detection if due, then
- *                       pair forces (parallel over pairs into per-pair slots), then added into
+ *                       the screen and the pair forces (parallel over fixed blocks of couples,
+ *                       touching couples into a compact list in couple order), then added into
  *                       node.fx/fy in pair order (deterministic).  Accumulates contact energy
  *                       and frictional dissipation into s->energy.
  *   contact_stable_dt   the contact penalty's limit (see below); INFINITY without contact.
@@ -109,9 +110,9 @@ double contact_buffer(const YfSim *s);
 typedef struct {
   int n;                 /* couples in the list (live and dead)                    */
   int *ij;               /* 2 per couple: triangle indices i < j                   */
-  double *g;             /* 6 per couple: friction memory [m^2]                    */
+  double *g;             /* 6 per couple: friction memory [m^2] (save: a copy the
+                            contact state owns until the next save)              */
   unsigned char *alive;  /* per couple: 0 = dropped since the last search          */
-  double *pf;            /* 12 per couple: couple forces of the last step [N/m]    */
   int nlive, ndead;
   double travel;         /* travel counter of the search trigger [m]               */
   long nsearch, broken_seen;
@@ -124,7 +125,7 @@ typedef struct {
  * is off or not prepared (nothing to save), 1 otherwise. */
 int contact_state_save(const YfSim *s, YfContactState *st);
 /* Copy a saved state into a prepared contact (after contact_prepare for the same scene):
- * couple list, friction memory, forces, counters; rebuilds the node gather lists.  Returns 0,
+ * couple list, friction memory, node contact forces, counters.  Returns 0,
  * or -1 when contact is off here. */
 int contact_state_load(YfSim *s, const YfContactState *st);
 

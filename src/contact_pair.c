@@ -61,6 +61,7 @@ int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3]
       bn[i][k] = ((xt[k] - xc[i]) * mx[k] + (yt[k] - yc[i]) * my[k]) * invD;
 
   int nforce = 0;
+  double hk[3] = {-1.0, -1.0, -1.0}; /* target heights over each edge [m], when first needed */
   double dmin = *dmin2; /* local: no store-to-load chain through the pointer */
   for (int e = 0; e < 3; e++) {
     int a = e, b = e < 2 ? e + 1 : 0;
@@ -139,18 +140,19 @@ int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3]
       double s2 = bs[i], p2 = pmin3(al, dl, s2), h = s2 - s1;
       I0 += 0.5 * h * (p1 + p2);
       I1 += h * (p1 * (2.0 * s1 + s2) + p2 * (s1 + 2.0 * s2)) / 6.0;
-      if (info) { /* energy estimate: int h_k P^2 ds with the active edge k of this piece */
+      if (info) { /* energy estimate: 3 int h_k P^2 ds with the active edge k of this piece */
         double sm = 0.5 * (s1 + s2);
         int k = 0;
         double bk = al[0] + sm * dl[0];
         for (int q = 1; q < 3; q++)
           if (al[q] + sm * dl[q] < bk) { bk = al[q] + sm * dl[q]; k = q; }
-        double hk = D / sqrt(mx[k] * mx[k] + my[k] * my[k]);
-        I2h += hk * h * (p1 * p1 + p1 * p2 + p2 * p2) / 3.0;
+        if (!(hk[k] >= 0.0)) hk[k] = D / sqrt(mx[k] * mx[k] + my[k] * my[k]); /* once per edge */
+        I2h += hk[k] * h * (p1 * p1 + p1 * p2 + p2 * p2);
       }
       s1 = s2;
       p1 = p2;
     }
+    I2h /= 3.0;
     double F = 3.0 * pn * I0;
     double Fb = 3.0 * pn * I1;
     double Fa = F - Fb;
@@ -230,4 +232,105 @@ int contact_pair_force(const double xa[3], const double ya[3], const double vxa[
   n += contact_pair_dir(xb, yb, vxb, vyb, xa, ya, vxa, vya, pn, pt, mu, dt, g + 3, fb, fa, &d2, info);
   if (dmin2) *dmin2 = d2;
   return n > 0;
+}
+
+/* ---------------------------------------------------------------- the screen */
+
+void contact_pair_geom(const double x[3], const double y[3], double rec[YF_TRI_GEOM])
+{
+  for (int k = 0; k < 3; k++) {
+    int k1 = (k + 1) % 3;
+    rec[k] = x[k];
+    rec[3 + k] = y[k];
+    rec[6 + k] = y[k1] - y[k];    /* mx, as contact_pair_dir */
+    rec[9 + k] = -(x[k1] - x[k]); /* my */
+  }
+  double D = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+  rec[12] = D;
+  rec[13] = 1.0 / D;
+  rec[14] = rec[15] = 0.0;
+}
+
+/* The screen works on the three contactor corners at once, one per lane of a 4-wide vector
+ * (GCC vector extensions: two SSE2 halves on plain x86-64, one AVX register where the CPU has
+ * it); every lane does contact_pair_dir's arithmetic term by term, so the bits are the same. */
+typedef double v4d __attribute__((vector_size(32)));
+typedef long long v4l __attribute__((vector_size(32)));
+
+/* beta_k of the contactor corners (lanes) for target edge k (as contact_pair_dir's bn[.][k]) */
+#define BETA(t, k, XC, YC) ((((t)[k] - (XC)) * (t)[6 + (k)] + ((t)[3 + (k)] - (YC)) * (t)[9 + (k)]) * (t)[13])
+/* lanes of u where the mask m is set, else of w */
+#define BLEND(m, u, w) ((v4d)(((m) & (v4l)(u)) | (~(m) & (v4l)(w))))
+
+typedef struct {
+  v4d b[3]; /* b[k]: beta_k of contactor corner (lane) i */
+} Betas;
+
+/* One direction, contactor record c on target record t: the betas, and whether every contactor
+ * edge (i, i+1) has both ends outside one target edge. */
+static inline int screen_dir(const double *t, const double *c, Betas *B)
+{
+  const v4d XC = {c[0], c[1], c[2], c[0]}, YC = {c[3], c[4], c[5], c[3]};
+  const v4l rot = {1, 2, 0, 3};
+  v4l any = {0, 0, 0, 0};
+  for (int k = 0; k < 3; k++) {
+    v4d bk = BETA(t, k, XC, YC);
+    B->b[k] = bk;
+    v4l o = bk < EPS;                     /* corner i outside edge k */
+    any |= o & __builtin_shuffle(o, rot); /* ... and corner i+1 too  */
+  }
+  return any[0] && any[1] && any[2];
+}
+
+/* For each start corner e (lane) of one direction: the smallest beta and the squared length of
+ * its target edge, chosen as contact_pair_dir chooses kmin; 1 if for some corner
+ * num = beta^2 D^2 < c m2.  With c = rem2 / 4 that settles the couple as kept: the kernel's
+ * distance sequence passes that edge and ends at most a few ulps above num / m2 < rem2 / 4. */
+static inline int screen_near(const double *t, const Betas *B, double c)
+{
+  const double D = t[12];
+  const double q0 = t[6] * t[6] + t[9] * t[9], q1 = t[7] * t[7] + t[10] * t[10], q2 = t[8] * t[8] + t[11] * t[11];
+  v4d a = B->b[0], m2 = {q0, q0, q0, q0};
+  v4l s1 = B->b[1] < a;
+  a = BLEND(s1, B->b[1], a);
+  m2 = BLEND(s1, ((v4d){q1, q1, q1, q1}), m2);
+  v4l s2 = B->b[2] < a;
+  a = BLEND(s2, B->b[2], a);
+  m2 = BLEND(s2, ((v4d){q2, q2, q2, q2}), m2);
+  v4l near = a * a * (D * D) < c * m2;
+  return near[0] || near[1] || near[2];
+}
+
+/* contact_pair_dir's skip path for the three edges of one direction, exactly: lowers *dmin. */
+static inline void screen_dmin(const double *t, const Betas *B, double *dmin)
+{
+  const double D = t[12];
+  double d = *dmin;
+  for (int e = 0; e < 3; e++) {
+    double al0 = B->b[0][e], al1 = B->b[1][e], al2 = B->b[2][e];
+    int kmin = 0;
+    double a = al0;
+    if (al1 < a) { kmin = 1; a = al1; }
+    if (al2 < a) { kmin = 2; a = al2; }
+    double m2 = t[6 + kmin] * t[6 + kmin] + t[9 + kmin] * t[9 + kmin];
+    double num = a * a * (D * D);
+    if (num < d * m2) d = num / m2;
+  }
+  *dmin = d;
+}
+
+__attribute__((target_clones("avx2", "default")))
+int contact_pair_quiet(const double ra[YF_TRI_GEOM], const double rb[YF_TRI_GEOM], double rem2)
+{
+  if (!(ra[12] > 0.0) || !(rb[12] > 0.0)) /* the kernel ignores degenerate triangles: d2 = DBL_MAX */
+    return DBL_MAX > rem2 ? 2 : 1;
+  Betas b1, b2;
+  if (!screen_dir(ra, rb, &b1)) return 0; /* B as contactor on target A */
+  if (!screen_dir(rb, ra, &b2)) return 0; /* A on B */
+  const double c = 0.25 * rem2;
+  if (screen_near(ra, &b1, c) || screen_near(rb, &b2, c)) return 1;
+  double d = DBL_MAX;
+  screen_dmin(ra, &b1, &d);
+  screen_dmin(rb, &b2, &d);
+  return d > rem2 ? 2 : 1;
 }

@@ -63,4 +63,25 @@ int contact_pair_force(const double xa[3], const double ya[3], const double vxa[
                        double pn, double pt, double mu, double dt, double g[6],
                        double fa[6], double fb[6], double *dmin2, YfContactInfo *info);
 
+/* ---- the screen: a couple whose edges all miss (the common case) without the full kernel ----
+ * Most couples of a fracturing body are neighbours whose edges only meet at corners: every
+ * contactor edge has both ends outside one target edge line (6.2), in both directions, so the
+ * couple gives no force and only its removal distance matters.  The screen decides that from a
+ * per-triangle record computed once per step, with the kernel's own arithmetic term by term, so
+ * a couple it passes gets exactly what contact_pair_force would give (same dmin2 bits). */
+#define YF_TRI_GEOM 16 /* doubles per triangle record: x[3] y[3] mx[3] my[3] D 1/D (2 spare) */
+/* The record of a triangle with corners x, y (CCW) [m]: corners, target edge normals m_k (6.1,
+ * length = edge length) and twice the area D [m^2]. */
+void contact_pair_geom(const double x[3], const double y[3], double rec[YF_TRI_GEOM]);
+/* The screen of couple (A, B) (records ra, rb; A as in contact_pair_force) against the removal
+ * distance rem2 = (2 buffer)^2 [m^2].  Returns
+ *   0  some edge is not skipped by the "both ends outside one target edge" test: the couple
+ *      needs contact_pair_force;
+ *   1  every edge of both directions is skipped (or a triangle is degenerate): no force, no
+ *      change of friction memory, and contact_pair_force's dmin2 would be <= rem2 (keep);
+ *   2  the same, with dmin2 > rem2 (Y2D drops the couple).
+ * Decisions 1 and 2 are exactly contact_pair_force's (same arithmetic; the distance sequence
+ * stops early only once its value is settled below rem2 / 2). */
+int contact_pair_quiet(const double ra[YF_TRI_GEOM], const double rb[YF_TRI_GEOM], double rem2);
+
 #endif

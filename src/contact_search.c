@@ -41,6 +41,7 @@ void contact_pairs_init(YfPairs *p) { memset(p, 0, sizeof *p); }
 void contact_pairs_free(YfPairs *p)
 {
   free(p->ij);
+  free(p->gi);
   free(p->g);
   memset(p, 0, sizeof *p);
 }
@@ -51,8 +52,27 @@ void contact_pairs_reserve(YfPairs *p, int n)
   int cap = p->cap > 0 ? p->cap : 1024;
   while (cap < n) cap = cap > (1 << 29) ? n : 2 * cap;
   p->ij = yf_realloc(p->ij, (size_t)cap * 2 * sizeof *p->ij, "contact couples");
-  p->g = yf_realloc(p->g, (size_t)cap * 6 * sizeof *p->g, "contact friction memory");
+  p->gi = yf_realloc(p->gi, (size_t)cap * sizeof *p->gi, "contact couples");
   p->cap = cap;
+}
+
+void contact_pairs_greserve(YfPairs *p, int n)
+{
+  if (n <= p->gcap) return;
+  int cap = p->gcap > 0 ? p->gcap : 256;
+  while (cap < n) cap = cap > (1 << 28) ? n : 2 * cap;
+  p->g = yf_realloc(p->g, (size_t)cap * 6 * sizeof *p->g, "contact friction memory");
+  p->gcap = cap;
+}
+
+double *contact_pairs_gslot(YfPairs *p, int k)
+{
+  if (p->gi[k] < 0) {
+    YF_ASSERT(p->ng < p->gcap);
+    p->gi[k] = p->ng++;
+    memset(p->g + 6 * (size_t)p->gi[k], 0, 6 * sizeof *p->g);
+  }
+  return p->g + 6 * (size_t)p->gi[k];
 }
 
 int contact_pairs_compact(YfPairs *p, const unsigned char *keep)
@@ -63,7 +83,7 @@ int contact_pairs_compact(YfPairs *p, const unsigned char *keep)
     if (m != k) {
       p->ij[2 * m] = p->ij[2 * k];
       p->ij[2 * m + 1] = p->ij[2 * k + 1];
-      memcpy(p->g + 6 * m, p->g + 6 * k, 6 * sizeof *p->g);
+      p->gi[m] = p->gi[k]; /* the slot of a dropped pair stays unused until the next merge */
     }
     m++;
   }
@@ -319,14 +339,18 @@ void contact_search(YfSearchWork *w, int n, const int *tri, const double *cx, co
 void contact_search_merge(const YfPairs *old, YfPairs *fresh)
 {
   int a = 0;
+  fresh->ng = 0;
+  contact_pairs_greserve(fresh, old->ng);
   for (int k = 0; k < fresh->n; k++) {
     int i = fresh->ij[2 * k], j = fresh->ij[2 * k + 1];
     while (a < old->n && (old->ij[2 * a] < i || (old->ij[2 * a] == i && old->ij[2 * a + 1] < j))) a++;
-    double *g = fresh->g + 6 * (size_t)k;
-    if (a < old->n && old->ij[2 * a] == i && old->ij[2 * a + 1] == j)
-      memcpy(g, old->g + 6 * (size_t)a, 6 * sizeof *g);
-    else
-      memset(g, 0, 6 * sizeof *g);
+    fresh->gi[k] = -1;
+    if (a < old->n && old->ij[2 * a] == i && old->ij[2 * a + 1] == j && old->gi[a] >= 0) {
+      const double *g = old->g + 6 * (size_t)old->gi[a];
+      if (g[0] == 0.0 && g[1] == 0.0 && g[2] == 0.0 && g[3] == 0.0 && g[4] == 0.0 && g[5] == 0.0) continue;
+      fresh->gi[k] = fresh->ng++;
+      memcpy(fresh->g + 6 * (size_t)fresh->gi[k], g, 6 * sizeof *g);
+    }
   }
 }
 

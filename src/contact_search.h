@@ -14,17 +14,26 @@
 #include <stdint.h>
 
 /* A couple list: pairs (ij[2k], ij[2k+1]) with ij[2k] < ij[2k+1], sorted lexicographically, and
- * the 6 sliding values of each couple (contact_pair.h: index dir*3 + contactor edge). */
+ * the 6 sliding values of each couple (contact_pair.h: index dir*3 + contactor edge), kept
+ * sparse: few couples ever touch (1-2 % of a fracturing body's neighbour couples), so a couple
+ * has a slot in the pool g only from its first contact on; without one its six values are 0. */
 typedef struct {
   int n, cap;
-  int *ij;   /* 2 per pair: triangle indices                   */
-  double *g; /* 6 per pair: friction memory [m^2]              */
+  int *ij;   /* 2 per pair: triangle indices                             */
+  int *gi;   /* per pair: slot in g, -1 = none (friction memory all zero)  */
+  int ng, gcap;
+  double *g; /* 6 per slot: friction memory [m^2]                        */
 } YfPairs;
 
 void contact_pairs_init(YfPairs *p);
 void contact_pairs_free(YfPairs *p);
 /* Make room for n pairs (keeps content; grows geometrically, never shrinks). */
 void contact_pairs_reserve(YfPairs *p, int n);
+/* Room for n slots of friction memory (keeps content; grows geometrically). */
+void contact_pairs_greserve(YfPairs *p, int n);
+/* The six sliding values of pair k (a zeroed slot is taken when it has none; room must have
+ * been reserved). */
+double *contact_pairs_gslot(YfPairs *p, int k);
 /* Keep only pairs k with keep[k] != 0, in order (e.g. couples removed by the force routine).
  * Returns the new count. */
 int contact_pairs_compact(YfPairs *p, const unsigned char *keep);
@@ -71,8 +80,9 @@ void contact_search_bounds(int n, const int *tri, const int *tri_v, const double
 void contact_search(YfSearchWork *w, int n, const int *tri, const double *cx, const double *cy,
                     const double *r, double buffer, const YfSearchFilter *f, YfPairs *out);
 
-/* Fill fresh->g: the 6 sliding values of a pair also present in old are copied, new pairs get
- * zeros.  Both lists must be sorted (as contact_search makes them).  O(old->n + fresh->n). */
+/* Fill fresh's friction memory: a pair also present in old gets a copy of its six values (in a
+ * slot of fresh's pool, in pair order, only when they are not all zero), new pairs none (zeros).
+ * Both lists must be sorted (as contact_search makes them).  O(old->n + fresh->n). */
 void contact_search_merge(const YfPairs *old, YfPairs *fresh);
 
 /* Travel trigger (ALGORITHMS 5): travel += 2 dt sqrt(vmax2) each step; a search is due when

@@ -14,7 +14,7 @@
  *   /nodes/{x, y, x0, y0, vx, vy, fx, fy, m}                      (nnode each, [m], [m/s], [N/m], [kg/m])
  *   /joints/{k, fs, dmg(3), w, z, f(8), state, mode, pend, nbroken, diss_broken, dt_prev,
  *            rec_step, rec_d(4: time x y length), rec_i(4: mode triA triB joint), rng_SET}
- *   /contact/{ij(2), g(6), alive, pf(12), nlive, ndead, travel, nsearch, broken_seen,
+ *   /contact/{ij(2), g(6), alive, nlive, ndead, travel, nsearch, broken_seen,
  *             force_search, fcn(2 nnode), fcn_valid}                 (only when contact is on)
  * /meta/complete is written last; a file without it is refused.
  */
@@ -297,7 +297,6 @@ static void write_all(W *w, YfSim *s) {
     put(w, g, "ij", H5T_NATIVE_INT, 2 * np, cs.ij);
     put(w, g, "g", H5T_NATIVE_DOUBLE, 6 * np, cs.g);
     put(w, g, "alive", H5T_NATIVE_UCHAR, np, cs.alive);
-    put(w, g, "pf", H5T_NATIVE_DOUBLE, 12 * np, cs.pf);
     put_l(w, g, "nlive", cs.nlive);
     put_l(w, g, "ndead", cs.ndead);
     put_d(w, g, "travel", cs.travel);
@@ -570,12 +569,10 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
     st.ij = yf_malloc((size_t)(np ? np : 1) * 2 * sizeof(int), "restart buffer");
     st.g = yf_malloc((size_t)(np ? np : 1) * 6 * sizeof(double), "restart buffer");
     st.alive = yf_malloc((size_t)(np ? np : 1), "restart buffer");
-    st.pf = yf_malloc((size_t)(np ? np : 1) * 12 * sizeof(double), "restart buffer");
     st.fcn = yf_malloc((nn ? nn : 1) * 2 * sizeof(double), "restart buffer");
     get(&r, g, "ij", H5T_NATIVE_INT, 2 * (size_t)np, st.ij);
     get(&r, g, "g", H5T_NATIVE_DOUBLE, 6 * (size_t)np, st.g);
     get(&r, g, "alive", H5T_NATIVE_UCHAR, (size_t)np, st.alive);
-    get(&r, g, "pf", H5T_NATIVE_DOUBLE, 12 * (size_t)np, st.pf);
     for (long k = 0; k < 2 * np; k++)
       if (st.ij[k] < 0 || st.ij[k] >= m->tri.n) rfail(&r, "contact/ij: triangle index out of range");
     st.nlive = (int)get_l(&r, g, "nlive");
@@ -595,7 +592,7 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
     st.fcn_valid = st.fcn ? (int)get_l(&r, g, "fcn_valid") : 0;
     H5Gclose(g);
     contact_state_load(s, &st);
-    free(st.ij); free(st.g); free(st.alive); free(st.pf); free(st.fcn);
+    free(st.ij); free(st.g); free(st.alive); free(st.fcn);
   }
   H5Fclose(r.file);
 

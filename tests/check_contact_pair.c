@@ -480,8 +480,14 @@ START_TEST(test_search_merge_keeps_friction)
   contact_pairs_init(&fresh);
   contact_search_bounds(N, NULL, tv, x, y, cx, cy, r);
   contact_search(&w, N, NULL, cx, cy, r, 0.1, NULL, &old);
-  for (int k = 0; k < old.n; k++)
-    for (int q = 0; q < 6; q++) old.g[6 * k + q] = gval(old.ij[2 * k], old.ij[2 * k + 1], q);
+  contact_pairs_greserve(&old, old.n);
+  old.ng = 0;
+  for (int k = 0; k < old.n; k++) {
+    old.gi[k] = -1;
+    if (k % 5 == 4) continue; /* some couples never touched: no memory */
+    double *g = contact_pairs_gslot(&old, k);
+    for (int q = 0; q < 6; q++) g[q] = gval(old.ij[2 * k], old.ij[2 * k + 1], q);
+  }
   /* Drop every third old couple (as the force routine would), then move everything. */
   unsigned char *keep = malloc(old.n > 0 ? old.n : 1);
   for (int k = 0; k < old.n; k++) keep[k] = (k % 3 != 0);
@@ -493,10 +499,14 @@ START_TEST(test_search_merge_keeps_friction)
   contact_search_merge(&old, &fresh);
   int carried = 0, fresh0 = 0, bad = 0;
   for (int k = 0; k < fresh.n; k++) {
-    int i = fresh.ij[2 * k], j = fresh.ij[2 * k + 1], found = 0;
+    int i = fresh.ij[2 * k], j = fresh.ij[2 * k + 1], found = 0, had = 0;
     for (int a = 0; a < old.n; a++) /* linear scan: the test's own reference */
-      if (old.ij[2 * a] == i && old.ij[2 * a + 1] == j) { found = 1; break; }
-    for (int q = 0; q < 6; q++) bad += !(fresh.g[6 * k + q] == (found ? gval(i, j, q) : 0.0));
+      if (old.ij[2 * a] == i && old.ij[2 * a + 1] == j) { found = 1; had = old.gi[a] >= 0; break; }
+    for (int q = 0; q < 6; q++) {
+      double want = found && had ? gval(i, j, q) : 0.0;
+      double got = fresh.gi[k] >= 0 ? fresh.g[6 * fresh.gi[k] + q] : 0.0;
+      bad += !(got == want);
+    }
     carried += found;
     fresh0 += !found;
   }
@@ -618,6 +628,56 @@ START_TEST(test_random_pairs_conserve)
 }
 END_TEST
 
+/* The screen (contact_pair_quiet) must decide exactly as the kernel: on neighbours of a jointed
+ * mesh (own nodes per triangle, corners coincident up to a random nudge of 1e-9..1e-1 of the
+ * cell), a couple it calls quiet gets no force and no friction change from contact_pair_force,
+ * and keep/drop agrees with the kernel's dmin2 against rem2, including rem2 within an ulp of
+ * dmin2. */
+START_TEST(test_screen_matches_kernel)
+{
+  rng_state = 7;
+  enum { NC = 3, NT = 2 * NC * NC };
+  int quiet = 0, busy = 0, dropped = 0, bad = 0;
+  for (int trial = 0; trial < 400; trial++) {
+    double X[NT][3], Y[NT][3], V[NT][3] = {{0}};
+    double nudge = pow(10.0, -9.0 + 8.0 * urand());
+    for (int c = 0; c < NC * NC; c++) { /* cell (i, j) of side 1, two triangles "right" */
+      double x0 = c % NC, y0 = c / NC;
+      double tx[2][3] = {{x0, x0 + 1, x0 + 1}, {x0, x0 + 1, x0}}, ty[2][3] = {{y0, y0, y0 + 1}, {y0, y0 + 1, y0 + 1}};
+      for (int h = 0; h < 2; h++)
+        for (int q = 0; q < 3; q++) {
+          X[2 * c + h][q] = tx[h][q] + nudge * (urand() - 0.5);
+          Y[2 * c + h][q] = ty[h][q] + nudge * (urand() - 0.5);
+        }
+    }
+    double rec[NT][YF_TRI_GEOM];
+    for (int t = 0; t < NT; t++) contact_pair_geom(X[t], Y[t], rec[t]);
+    for (int i = 0; i < NT; i++)
+      for (int j = i + 1; j < NT; j++) {
+        double g[6] = {0}, fa[6] = {0}, fb[6] = {0}, d2;
+        int r = contact_pair_force(X[j], Y[j], V[j], V[j], X[i], Y[i], V[i], V[i], 1e10, 1e9, 0.3, 1e-4, g, fa, fb,
+                                   &d2, NULL);
+        double rems[4] = {0.3, d2 < DBL_MAX ? d2 : 1.0, d2 < DBL_MAX ? nextafter(d2, 0.0) : 2.0,
+                          d2 < DBL_MAX ? 4.0 * d2 : 3.0};
+        for (int q = 0; q < 4; q++) {
+          int s = contact_pair_quiet(rec[j], rec[i], rems[q]);
+          if (s == 0) { busy++; continue; }
+          quiet++;
+          double sum = 0;
+          for (int c = 0; c < 6; c++) sum += fabs(fa[c]) + fabs(fb[c]) + fabs(g[c]);
+          if (r != 0 || sum != 0.0) bad++;
+          if ((s == 2) != (d2 > rems[q])) bad++;
+          dropped += s == 2;
+        }
+      }
+  }
+  ck_assert_int_eq(bad, 0);
+  ck_assert_int_gt(quiet, 10000);
+  ck_assert_int_gt(busy, 1000);
+  ck_assert_int_gt(dropped, 1000);
+}
+END_TEST
+
 Suite *contact_pair_suite(void)
 {
   Suite *s = suite_create("contact_pair");
@@ -630,6 +690,7 @@ Suite *contact_pair_suite(void)
   tcase_add_test(tc, test_conservation);
   tcase_add_test(tc, test_monotonic_symmetric);
   tcase_add_test(tc, test_random_pairs_conserve);
+  tcase_add_test(tc, test_screen_matches_kernel);
   suite_add_tcase(s, tc);
   tc = tcase_create("friction");
   tcase_add_test(tc, test_friction_stick_then_slide);

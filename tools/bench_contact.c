@@ -80,7 +80,7 @@ static void run(int ntri_target, double jitter)
   /* warm-up: grows the workspace and both lists */
   contact_search_bounds(nt, NULL, tv, x, y, cx, cy, r);
   contact_search(&w, nt, NULL, cx, cy, r, buffer, NULL, &old);
-  memset(old.g, 0, (size_t)old.n * 6 * sizeof *old.g);
+  for (int k = 0; k < old.n; k++) old.gi[k] = -1; /* no friction memory yet */
   contact_search(&w, nt, NULL, cx, cy, r, buffer, NULL, &p);
 
   int reps = nt >= 1000000 ? 3 : nt >= 100000 ? 10 : 50;
@@ -102,6 +102,7 @@ static void run(int ntri_target, double jitter)
   int nreps = nt >= 1000000 ? 1 : nt >= 100000 ? 3 : 20;
   long touching = 0;
   YfContactInfo info = {0};
+  double *gm = calloc((size_t)p.n * 6 + 1, sizeof *gm); /* friction memory, 6 per couple */
   double t0 = cpu();
   for (int k = 0; k < nreps; k++) {
     for (int c = 0; c < p.n; c++) {
@@ -113,7 +114,7 @@ static void run(int ntri_target, double jitter)
         xb[q] = x[vb[q]]; yb[q] = y[vb[q]]; vxb[q] = vx[vb[q]]; vyb[q] = vy[vb[q]];
       }
       touching += contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, 1e10, 1e10, 0.5, 1e-7,
-                                     p.g + 6 * (size_t)c, fa, fb, &d2, k == 0 ? &info : NULL);
+                                     gm + 6 * (size_t)c, fa, fb, &d2, k == 0 ? &info : NULL);
       for (int q = 0; q < 3; q++) {
         fx[va[q]] += fa[2 * q]; fy[va[q]] += fa[2 * q + 1];
         fx[vb[q]] += fb[2 * q]; fy[vb[q]] += fb[2 * q + 1];
@@ -126,6 +127,7 @@ static void run(int ntri_target, double jitter)
          "%5.2f M couples/s\n",
          nt, p.n, (double)p.n / nt, (double)w.tested / nt, (int)(100.0 * touching / nreps / p.n), tb * 1e3,
          ts * 1e3, nt / ts * 1e-6, p.n / ts * 1e-6, tm * 1e3, tn * 1e3, p.n / tn * 1e-6);
+  free(gm);
   contact_pairs_free(&old);
   contact_pairs_free(&p);
   contact_search_work_free(&w);
