@@ -101,7 +101,7 @@ typedef struct YfContact {
   int *blk_rm, *blk_busy, *blk_off, *blk_need, *blk_goff, cap_blk;
   /* forces of the couples that touched this step, in couple order: couple hk[h], 12 numbers
    * hf[12 h ..] (A's corners, then B's) [N/m]; room for cap_hit */
-  int *hk, nhit, cap_hit, max_busy;
+  int *hk, cap_hit, max_busy;
   /* nodes that received contact force at the last step (fcn nonzero only there) */
   unsigned char *tmark;  /* per node: 1 when fcn holds a contact force of the last step */
   double *hf;
@@ -757,7 +757,6 @@ void contact_step(YfSim *s) {
   }
   s->energy.contact = esum;
   s->energy.friction += dsum;
-  C->nhit = nbusy;
   C->pairs.ng = ng;
 
   /* scatter in couple order: each node's contact force is the sum of its couples'

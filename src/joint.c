@@ -519,23 +519,23 @@ void joints_insert(YfSim *s) {
 
 /* ---------------- the force stage ---------------- */
 
-/* Work increment of joint j over the last step: -(f_old + f_new)/2 . dx, dx = dt v of each node
- * (the step moved every node by dt v_{n+1/2}). */
-static inline double work_inc(const YfNodes *N, const int *nd, const double *fo, const double *fn, double dt) {
-  double w = 0;
-  for (int c = 0; c < 4; c++) {
-    int i = nd[c];
-    w -= 0.5 * ((fo[2 * c] + fn[2 * c]) * N->vx[i] + (fo[2 * c + 1] + fn[2 * c + 1]) * N->vy[i]);
-  }
-  return w * dt;
-}
-
-/* work_inc with the four nodes' velocities given (v: vx, vy of node 0..3): the same arithmetic. */
+/* Work increment of a joint over the last step: -(f_old + f_new)/2 . dx, dx = dt v of each node
+ * (the step moved every node by dt v_{n+1/2}); v: vx, vy of its nodes 0..3. */
 static inline double work_inc_v(const double *v, const double *fo, const double *fn, double dt) {
   double w = 0;
   for (int c = 0; c < 4; c++)
     w -= 0.5 * ((fo[2 * c] + fn[2 * c]) * v[2 * c] + (fo[2 * c + 1] + fn[2 * c + 1]) * v[2 * c + 1]);
   return w * dt;
+}
+
+/* The same with the velocities read from the nodes nd[0..3]. */
+static inline double work_inc(const YfNodes *N, const int *nd, const double *fo, const double *fn, double dt) {
+  double v[8];
+  for (int c = 0; c < 4; c++) {
+    v[2 * c] = N->vx[nd[c]];
+    v[2 * c + 1] = N->vy[nd[c]];
+  }
+  return work_inc_v(v, fo, fn, dt);
 }
 
 /* Scaled property of joint j (heterogeneity factor on the strengths and the fracture energy). */

@@ -35,6 +35,7 @@
  * the undamaged penalty sigma = o p/h as in Y2D.
  */
 #include "joint_law.h"
+#include "yfvec.h"
 
 #include <float.h>
 #include <math.h>
@@ -305,17 +306,6 @@ void joint_pre_init(const YfJointProp *p, YfJointPre *c)
   c->st0 = soft_length(p, c->fs0);
 }
 
-/* Two divisions as one packed instruction (GCC/Clang vector extension; plain scalar code where
- * the target has no vectors).  Each lane is an IEEE division, so the bits are those of a / b and
- * c / d: half the divider work for the pairs the law divides together. */
-typedef double yf_v2 __attribute__((vector_size(16)));
-static inline void div2(double a, double b, double c, double d, double *ab, double *cd)
-{
-  yf_v2 q = (yf_v2){a, c} / (yf_v2){b, d};
-  *ab = q[0];
-  *cd = q[1];
-}
-
 void joint_geometry(double hreg, const double x[4], const double y[4], YfJointGeom *g)
 {
   joint_geometry_inline(hreg, x, y, g);
@@ -336,7 +326,7 @@ static inline int law_core(const YfJointProp *p, double ot, double fs0, double s
   /* 3.2 strengths: lengths from the shear strength at the start of the call (as joint_lengths) */
   double fs = fs_state ? *fs_state : joint_fs_init(p);
   JointLens L = {.ft = p->ft, .coh = p->coh, .phi = p->phi};
-  div2(2.0 * h * p->ft, p->pen, 2.0 * h * fs, p->pen, &L.op, &L.sp);
+  yf_div2(2.0 * h * p->ft, p->pen, 2.0 * h * fs, p->pen, &L.op, &L.sp);
   L.ot = ot;
   L.st = fs == fs0 ? st0 : soft_length(p, fs);
   if (p->y2d_floor) { /* fmax of two positive lengths */
@@ -346,7 +336,7 @@ static inline int law_core(const YfJointProp *p, double ot, double fs0, double s
   }
 
   double w[3];
-  div2(h, 6.0, h, 3.0, &w[0], &w[1]);
+  yf_div2(h, 6.0, h, 3.0, &w[0], &w[1]);
   w[2] = w[0];
   double qx[3], qy[3];
   int nfail = 0, kmax = -1;
@@ -375,7 +365,7 @@ static inline int law_core(const YfJointProp *p, double ot, double fs0, double s
       /* on the envelope (always in Y2D's reversible law): the two quotients of 3.4, packed.
        * ro: o/o_p for 0 <= o <= o_p, or the compression stress 2 o f_t/o_p (penalty o p/h) */
       double ro, rs;
-      div2(o < 0.0 ? 2.0 * o * L.ft : o, L.op, as, L.sp, &ro, &rs);
+      yf_div2(o < 0.0 ? 2.0 * o * L.ft : o, L.op, as, L.sp, &ro, &rs);
       if (o < 0.0)
         sigma = ro;
       else if (o <= L.op)

@@ -26,6 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "y2d_model.h"
+#include "yfvec.h"
 #include "y2d_read.h"
 #include "contact.h"
 #include "err.h"
@@ -159,15 +160,6 @@ void y2d_apply_loads(YfSim *s) {
   }
 }
 
-/* a/b and c/d as one packed division (GCC/Clang vector extension): each lane is an IEEE
- * division, so the bits are those of the two scalar divisions, at half the divider work. */
-typedef double y2d_v2 __attribute__((vector_size(16)));
-static inline void div_pair(double a, double b, double c, double d, double *ab, double *cd) {
-  y2d_v2 q = (y2d_v2){a, c} / (y2d_v2){b, d};
-  *ab = q[0];
-  *cd = q[1];
-}
-
 /* Nodes i0..i1-1 of the velocity update; returns the external work of this range [J/m].
  * Velocities follow ALGORITHMS 7 operation by operation (same bits as a serial loop whatever the
  * range).  The work of node i is dt R.(v0 + v1)/2 with R = m (v1 - v0)/dt - f_int - m g, written
@@ -191,7 +183,7 @@ static double update_range(const YfY2dRun *r, YfNodes *n, const YfSim *s, int i0
       /* a node added by native commands after read_y2d: the generic update */
       if (!(m > 1e-300)) continue;
       double ax, ay;
-      div_pair(fx[i], m, fy[i], m, &ax, &ay);
+      yf_div2(fx[i], m, fy[i], m, &ax, &ay);
       vx[i] = vx0 + dt * (ax + ngx);
       vy[i] = vy0 + dt * (ay + ngy);
       continue;
@@ -207,7 +199,7 @@ static double update_range(const YfY2dRun *r, YfNodes *n, const YfSim *s, int i0
     const int k0 = kind[2 * b], k1 = kind[2 * b + 1];
     const double A0 = amp[2 * b], A1 = amp[2 * b + 1];
     double d0, d1;
-    div_pair(k0 == Y2D_KIND_FORCE ? dt * (A0 + q0) : q0, m, k1 == Y2D_KIND_FORCE ? dt * (A1 + q1) : q1, m, &d0, &d1);
+    yf_div2(k0 == Y2D_KIND_FORCE ? dt * (A0 + q0) : q0, m, k1 == Y2D_KIND_FORCE ? dt * (A1 + q1) : q1, m, &d0, &d1);
     u0 = k0 == Y2D_KIND_FORCE ? u0 + d0 : k0 == Y2D_KIND_ACCEL ? u0 + dt * (A0 + d0) : k0 == Y2D_KIND_VELOCITY ? A0 : u0;
     u1 = k1 == Y2D_KIND_FORCE ? u1 + d1 : k1 == Y2D_KIND_ACCEL ? u1 + dt * (A1 + d1) : k1 == Y2D_KIND_VELOCITY ? A1 : u1;
     double vx1 = R[0] * u0 + R[1] * u1, vy1 = R[2] * u0 + R[3] * u1;
