@@ -137,6 +137,19 @@ static void bounded(const char *deck, double f, long steps, double *first, doubl
   sim_free(s);
 }
 
+/* The deck run at `factor` x its stable step stops with exit 3 at once, naming the failure and
+ * `cause` and `cause2` (may be NULL) in its message. */
+static void assert_stopped(const char *deck, double factor, const char *what, const char *cause, const char *cause2) {
+  char msg[4096];
+  DtCase c = {deck, factor, 20000};
+  int code = child_run(dt_case, &c, msg, sizeof msg);
+  fprintf(stderr, "dt %s %.2g: exit %d: %s", what, factor, code, msg);
+  ck_assert_int_eq(code, 3);
+  ck_assert_ptr_nonnull(strstr(msg, "numerical failure at step"));
+  ck_assert_ptr_nonnull(strstr(msg, cause));
+  if (cause2) ck_assert_ptr_nonnull(strstr(msg, cause2));
+}
+
 /* Central differences are stable for omega dt < 2.  For one free triangle the element bound is
  * the exact omega_max: at 0.9 of it the energy stays bounded (its half-step reading swings by up
  * to 1/(1 - 0.81) but does not grow: the second half peaks no higher than the first, +1%), at 1.1
@@ -144,18 +157,12 @@ static void bounded(const char *deck, double f, long steps, double *first, doubl
 START_TEST(test_dt_triangle_limit) {
   quiet();
   double e1, e2;
-  char lim[128], msg[4096];
+  char lim[128];
   bounded(TRI1, 0.9, 20000, &e1, &e2, lim, sizeof lim);
   fprintf(stderr, "dt triangle: limiter '%s', 0.9: peak energy %.3f then %.3f\n", lim, e1, e2);
   ck_assert_msg(strstr(lim, "triangle 1") != NULL, "limiter %s", lim);
   ck_assert_double_le(e2, 1.01 * e1);
-  DtCase c = {TRI1, 1.1, 20000};
-  int code = child_run(dt_case, &c, msg, sizeof msg);
-  fprintf(stderr, "dt triangle 1.1: exit %d: %s", code, msg);
-  ck_assert_int_eq(code, 3);
-  ck_assert_ptr_nonnull(strstr(msg, "numerical failure at step"));
-  ck_assert_ptr_nonnull(strstr(msg, "triangle 1"));
-  ck_assert_ptr_nonnull(strstr(msg, "stable limit"));
+  assert_stopped(TRI1, 1.1, "triangle", "triangle 1", "stable limit");
 }
 END_TEST
 
@@ -165,17 +172,12 @@ END_TEST
 START_TEST(test_dt_joint_limit) {
   quiet();
   double e1, e2;
-  char lim[128], msg[4096];
+  char lim[128];
   bounded(JOINT1, 0.9, 20000, &e1, &e2, lim, sizeof lim);
   fprintf(stderr, "dt joint: limiter '%s', 0.9: peak energy %.4f then %.4f\n", lim, e1, e2);
   ck_assert_msg(strstr(lim, "joint 0 (jointprop j") != NULL, "limiter %s", lim);
   ck_assert_double_le(e2, 1.01 * e1);
-  DtCase c = {JOINT1, 1.3, 20000};
-  int code = child_run(dt_case, &c, msg, sizeof msg);
-  fprintf(stderr, "dt joint 1.3: exit %d: %s", code, msg);
-  ck_assert_int_eq(code, 3);
-  ck_assert_ptr_nonnull(strstr(msg, "numerical failure at step"));
-  ck_assert_ptr_nonnull(strstr(msg, "stable limit"));
+  assert_stopped(JOINT1, 1.3, "joint", "stable limit", NULL);
 }
 END_TEST
 
@@ -183,7 +185,6 @@ END_TEST
  * separate with momentum kept to round-off; at 1.6 the penalty spring blows up: exit 3. */
 START_TEST(test_dt_contact_limit) {
   quiet();
-  char msg[4096];
   YfSim *s = yft_run(CONTACT1);
   char lim[128];
   snprintf(lim, sizeof lim, "%s", s->dt_limiter);
@@ -200,12 +201,7 @@ START_TEST(test_dt_contact_limit) {
   ck_assert_double_lt(a.px, 0.0); /* they bounced */
   ck_assert_double_gt(b.px, 0.0);
   sim_free(s);
-  DtCase c = {CONTACT1, 1.6, 20000};
-  int code = child_run(dt_case, &c, msg, sizeof msg);
-  fprintf(stderr, "dt contact 1.6: exit %d: %s", code, msg);
-  ck_assert_int_eq(code, 3);
-  ck_assert_ptr_nonnull(strstr(msg, "numerical failure at step"));
-  ck_assert_ptr_nonnull(strstr(msg, "contact penalty"));
+  assert_stopped(CONTACT1, 1.6, "contact", "contact penalty", NULL);
 }
 END_TEST
 
