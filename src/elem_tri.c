@@ -70,29 +70,133 @@ static inline double tri_stress(const double *x, const double *y, const double *
   return J;
 }
 
+/* One triangle, scalar: the reference arithmetic of the kernel (the tail of a range and any range
+ * of fewer than 4 triangles). */
+static inline void tri_one(const double *x, const double *y, const double *vx, const double *vy, YfTris *t,
+                           const YfTriMat *tm, int e, double *J, double *kdd) {
+  const int *v = t->v + 3 * e;
+  const YfTriMat *mt = tm + t->mat[e];
+  double T[3], dd = 0.0;
+  *J = tri_stress(x, y, vx, vy, v, t->xinv + 4 * e, t->d0[e], mt, T, &dd);
+  *kdd = mt->k * dd;
+  double *s = t->s + 3 * e;
+  s[0] = T[0]; s[1] = T[1]; s[2] = T[2];
+  double *cf = t->cf + 6 * e;
+  for (int i = 0; i < 3; i++) {
+    int j = v[(i + 1) % 3], k = v[(i + 2) % 3];
+    double nx = y[k] - y[j], ny = x[j] - x[k];
+    cf[2 * i] = 0.5 * (T[0] * nx + T[2] * ny);
+    cf[2 * i + 1] = 0.5 * (T[2] * nx + T[1] * ny);
+  }
+}
+
+/* Four triangles e..e+3 at once, one per lane of a 4-wide vector (GCC vector extensions: one AVX
+ * register where the CPU has it, two SSE2 halves otherwise).  Every lane does tri_stress's and
+ * tri_one's operations in their order (no FMA: -ffp-contract=off), so each triangle gets the bits
+ * of the scalar code; lanes whose material has k = 0 keep D = 0 and the stress without k D, as
+ * the scalar branch does.  tests/check_physics.c compares the two triangle by triangle. */
+typedef double v4d __attribute__((vector_size(32)));
+typedef long long v4l __attribute__((vector_size(32)));
+#define LANES(expr) {expr(0), expr(1), expr(2), expr(3)}
+#define BLEND(msk, u, w) ((v4d)(((msk) & (v4l)(u)) | (~(msk) & (v4l)(w))))
+
+static inline __attribute__((always_inline)) void tri_four(const double *x, const double *y, const double *vx, const double *vy, YfTris *t,
+                            const YfTriMat *tm, int e, double J[4], double kdd[4]) {
+  const int *v = t->v + 3 * e;
+  const YfTriMat *m0 = tm + t->mat[e], *m1 = tm + t->mat[e + 1], *m2 = tm + t->mat[e + 2], *m3 = tm + t->mat[e + 3];
+  const double *xi = t->xinv + 4 * e, *d0p = t->d0 + e;
+#define N(a, c, l) a[v[3 * (l) + (c)]]
+#define X0(l) N(x, 0, l)
+#define X1(l) N(x, 1, l)
+#define X2(l) N(x, 2, l)
+#define Y0(l) N(y, 0, l)
+#define Y1(l) N(y, 1, l)
+#define Y2(l) N(y, 2, l)
+  const v4d ax0 = LANES(X0), ax1 = LANES(X1), ax2 = LANES(X2);
+  const v4d ay0 = LANES(Y0), ay1 = LANES(Y1), ay2 = LANES(Y2);
+#define XI(c) (v4d){xi[c], xi[4 + (c)], xi[8 + (c)], xi[12 + (c)]}
+  const v4d xi0 = XI(0), xi1 = XI(1), xi2 = XI(2), xi3 = XI(3);
+  const v4d d0 = {d0p[0], d0p[1], d0p[2], d0p[3]};
+  const v4d mu2 = {m0->mu2, m1->mu2, m2->mu2, m3->mu2}, lamv = {m0->lamv, m1->lamv, m2->lamv, m3->lamv};
+  const v4d kv = {m0->k, m1->k, m2->k, m3->k};
+  /* tri_stress */
+  v4d x1 = ax1 - ax0, x2 = ax2 - ax0, y1 = ay1 - ay0, y2 = ay2 - ay0;
+  v4d F11 = x1 * xi0 + x2 * xi2, F12 = x1 * xi1 + x2 * xi3;
+  v4d F21 = y1 * xi0 + y2 * xi2, F22 = y1 * xi1 + y2 * xi3;
+  v4d dc = x1 * y2 - x2 * y1;
+  v4d idc = 1.0 / dc;
+  v4d Jv = dc / d0;
+  v4d E11 = 0.5 * (F11 * F11 + F12 * F12 - 1.0);
+  v4d E22 = 0.5 * (F21 * F21 + F22 * F22 - 1.0);
+  v4d E12 = 0.5 * (F11 * F21 + F12 * F22);
+  v4d iJ = d0 * idc;
+  v4d a = mu2 * iJ;
+  v4d vol = lamv * (Jv - iJ);
+  v4d s11 = a * E11 + vol, s22 = a * E22 + vol, s12 = a * E12;
+  v4d D11 = {0, 0, 0, 0}, D22 = D11, D12 = D11;
+  v4l visc = kv != 0.0;
+  if (visc[0] | visc[1] | visc[2] | visc[3]) {
+#define U(c, l) N(vx, c, l)
+#define W(c, l) N(vy, c, l)
+#define U0(l) U(0, l)
+#define U1(l) U(1, l)
+#define U2(l) U(2, l)
+#define W0(l) W(0, l)
+#define W1(l) W(1, l)
+#define W2(l) W(2, l)
+    const v4d au0 = LANES(U0), au1 = LANES(U1), au2 = LANES(U2), aw0 = LANES(W0), aw1 = LANES(W1), aw2 = LANES(W2);
+    v4d u1 = au1 - au0, u2 = au2 - au0, w1 = aw1 - aw0, w2 = aw2 - aw0;
+    v4d L11 = (u1 * y2 - u2 * y1) * idc, L12 = (-u1 * x2 + u2 * x1) * idc;
+    v4d L21 = (w1 * y2 - w2 * y1) * idc, L22 = (-w1 * x2 + w2 * x1) * idc;
+    D11 = BLEND(visc, L11, D11);
+    D22 = BLEND(visc, L22, D22);
+    D12 = BLEND(visc, 0.5 * (L12 + L21), D12);
+    s11 = BLEND(visc, s11 + kv * D11, s11);
+    s22 = BLEND(visc, s22 + kv * D22, s22);
+    s12 = BLEND(visc, s12 + kv * D12, s12);
+  }
+  v4d dd = (D11 * D11 + D22 * D22 + 2.0 * D12 * D12) * 0.5 * dc;
+  v4d kd = kv * dd;
+  /* corner forces: corner i gets half the stress times the normal of the opposite edge (j, k) */
+  v4d fx0 = 0.5 * (s11 * (ay2 - ay1) + s12 * (ax1 - ax2)), fy0 = 0.5 * (s12 * (ay2 - ay1) + s22 * (ax1 - ax2));
+  v4d fx1 = 0.5 * (s11 * (ay0 - ay2) + s12 * (ax2 - ax0)), fy1 = 0.5 * (s12 * (ay0 - ay2) + s22 * (ax2 - ax0));
+  v4d fx2 = 0.5 * (s11 * (ay1 - ay0) + s12 * (ax0 - ax1)), fy2 = 0.5 * (s12 * (ay1 - ay0) + s22 * (ax0 - ax1));
+  for (int l = 0; l < 4; l++) {
+    double *s = t->s + 3 * (e + l), *cf = t->cf + 6 * (e + l);
+    s[0] = s11[l]; s[1] = s22[l]; s[2] = s12[l];
+    cf[0] = fx0[l]; cf[1] = fy0[l]; cf[2] = fx1[l]; cf[3] = fy1[l]; cf[4] = fx2[l]; cf[5] = fy2[l];
+    J[l] = Jv[l];
+    kdd[l] = kd[l];
+  }
+}
+
+__attribute__((target_clones("avx2", "default")))
 void tri_forces(YfModel *m, const YfTriMat *tm, int e0, int e1, YfTriPass *out) {
   const double *x = m->node.x, *y = m->node.y, *vx = m->node.vx, *vy = m->node.vy;
   YfTris *t = &m->tri;
   int bad = -1;
   double badJ = 0.0, power = 0.0;
-  for (int e = e0; e < e1; e++) {
-    const int *v = t->v + 3 * e;
-    const YfTriMat *mt = tm + t->mat[e];
-    double T[3], dd = 0.0;
-    double J = tri_stress(x, y, vx, vy, v, t->xinv + 4 * e, t->d0[e], mt, T, &dd);
+  const double *s = t->s;
+  int e = e0;
+  for (; e + 4 <= e1; e += 4) {
+    double J[4], kdd[4];
+    tri_four(x, y, vx, vy, t, tm, e, J, kdd);
+    for (int l = 0; l < 4; l++) { /* in triangle order, as the scalar loop */
+      const double *T = s + 3 * (e + l);
+      if (!(J[l] > 0.0) || !isfinite(T[0] + T[1] + T[2])) {
+        if (bad < 0) { bad = e + l; badJ = J[l]; }
+      }
+      power += kdd[l];
+    }
+  }
+  for (; e < e1; e++) {
+    double J, kdd;
+    tri_one(x, y, vx, vy, t, tm, e, &J, &kdd);
+    const double *T = s + 3 * e;
     if (!(J > 0.0) || !isfinite(T[0] + T[1] + T[2])) {
       if (bad < 0) { bad = e; badJ = J; }
     }
-    power += mt->k * dd;
-    double *s = t->s + 3 * e;
-    s[0] = T[0]; s[1] = T[1]; s[2] = T[2];
-    double *cf = t->cf + 6 * e;
-    for (int i = 0; i < 3; i++) {
-      int j = v[(i + 1) % 3], k = v[(i + 2) % 3];
-      double nx = y[k] - y[j], ny = x[j] - x[k];
-      cf[2 * i] = 0.5 * (T[0] * nx + T[2] * ny);
-      cf[2 * i + 1] = 0.5 * (T[2] * nx + T[1] * ny);
-    }
+    power += kdd;
   }
   out->bad = bad;
   out->badJ = badJ;

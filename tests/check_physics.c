@@ -26,6 +26,67 @@ static void deform(YfSim *s, const double F[4], double cx, double cy) {
   ck_assert_int_eq(p.bad, -1);
 }
 
+/* tri_forces runs four triangles per vector: each triangle must get exactly the bits of the
+ * scalar code (the range's tail, or a range of one), with viscous (k > 0) and inviscid (k = 0)
+ * materials mixed inside one vector and a distorted, moving mesh (so every term is non-trivial). */
+START_TEST(test_tri_four_lanes_match_scalar) {
+  quiet();
+  YfSim *s = yft_run("material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                     "material v elastic rho 2000 E 3e9 nu 0.3 plane_strain visc 1e3\n"
+                     "mesh rect a m 0 0 1 0.5 5 3 pattern cross\nmesh rect b v 1 0 2 0.5 3 3 pattern alt\n"
+                     "timestep auto\n");
+  run_prepare(s);
+  YfModel *m = &s->model;
+  YfNodes *n = &m->node;
+  const int nt = m->tri.n;
+  /* mix the materials triangle by triangle so the lanes of one vector differ */
+  for (int e = 0; e < nt; e++) m->tri.mat[e] = (e * 7 / 3) % 2;
+  unsigned long r = 12345;
+  for (int i = 0; i < n->n; i++) {
+    double q[4];
+    for (int c = 0; c < 4; c++) {
+      r = r * 6364136223846793005UL + 1442695040888963407UL;
+      q[c] = (double)(r >> 11) / 9007199254740992.0 - 0.5;
+    }
+    n->x[i] = n->x0[i] + 0.01 * q[0];
+    n->y[i] = n->y0[i] + 0.01 * q[1];
+    n->vx[i] = 3.0 * q[2];
+    n->vy[i] = -2.0 * q[3];
+  }
+  const YfTriMat *tm = run_tri_mats();
+  YfTriPass all, one;
+  tri_forces(m, tm, 0, nt, &all);
+  ck_assert_int_ge(nt, 8);
+  double *s_all = malloc(3 * nt * sizeof(double)), *cf_all = malloc(6 * nt * sizeof(double));
+  memcpy(s_all, m->tri.s, 3 * nt * sizeof(double));
+  memcpy(cf_all, m->tri.cf, 6 * nt * sizeof(double));
+  double power = 0.0;
+  for (int e = 0; e < nt; e++) {
+    memset(m->tri.s + 3 * e, 0xff, 3 * sizeof(double));
+    memset(m->tri.cf + 6 * e, 0xff, 6 * sizeof(double));
+    tri_forces(m, tm, e, e + 1, &one);
+    ck_assert_int_eq(one.bad, -1);
+    power += one.visc_power;
+    ck_assert_msg(!memcmp(s_all + 3 * e, m->tri.s + 3 * e, 3 * sizeof(double)), "stress of triangle %d differs", e);
+    ck_assert_msg(!memcmp(cf_all + 6 * e, m->tri.cf + 6 * e, 6 * sizeof(double)), "corner forces of triangle %d differ", e);
+  }
+  ck_assert_int_eq(all.bad, -1);
+  ck_assert_msg(power > 0.0 && !memcmp(&power, &all.visc_power, sizeof power), "viscous power differs");
+  /* an inverted triangle inside a vector is reported by its index, as the scalar loop does */
+  int e = 4 * (nt / 8) + 1, *v = m->tri.v + 3 * e;
+  double tx = n->x[v[1]], ty = n->y[v[1]];
+  n->x[v[1]] = n->x[v[2]];
+  n->y[v[1]] = n->y[v[2]];
+  n->x[v[2]] = tx;
+  n->y[v[2]] = ty;
+  tri_forces(m, tm, 0, nt, &all);
+  ck_assert_int_le(all.bad, e);
+  ck_assert_int_ge(all.bad, 0);
+  free(s_all);
+  free(cf_all);
+}
+END_TEST
+
 /* Patch test: a uniform deformation gives the same stress in every triangle, equal to the law
  * evaluated with that F, and zero net force on every interior node (to round-off). */
 START_TEST(test_patch_uniform_strain) {
@@ -233,6 +294,7 @@ Suite *physics_suite(void) {
   Suite *s = suite_create("physics");
   TCase *k = tcase_create("triangle");
   tcase_add_test(k, test_patch_uniform_strain);
+  tcase_add_test(k, test_tri_four_lanes_match_scalar);
   tcase_add_test(k, test_uniaxial_stress_matches_E);
   tcase_add_test(k, test_uniaxial_plane_strain);
   tcase_add_test(k, test_rigid_rotation_zero_force);
