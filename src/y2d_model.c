@@ -164,54 +164,136 @@ void y2d_apply_loads(YfSim *s) {
  * Velocities follow ALGORITHMS 7 operation by operation (same bits as a serial loop whatever the
  * range).  The work of node i is dt R.(v0 + v1)/2 with R = m (v1 - v0)/dt - f_int - m g, written
  * multiplied through by dt so that no division is needed. */
+/* Y2D's update of one node i that has a BC set (b >= 0) and mass above 1e-10; returns its
+ * external work increment (see update_range). */
+static inline double update_one(const YfY2dRun *r, YfNodes *n, double dt, int i, double *vxo, double *vyo) {
+  const int b = r->set[i];
+  const double m = n->m[i], gy = r->gy, vx0 = n->vx[i], vy0 = n->vy[i], *lf = r->lf;
+  const double *R = r->R + 4 * b, *Ri = r->Ri + 4 * b;
+  double gfx = n->fx[i], gfy = n->fy[i] + m * gy; /* gravity as a force in global y */
+  double u0 = Ri[0] * vx0 + Ri[1] * vy0, u1 = Ri[2] * vx0 + Ri[3] * vy0;
+  double q0 = Ri[0] * gfx + Ri[1] * gfy, q1 = Ri[2] * gfx + Ri[3] * gfy;
+  /* per local direction: kind 1 force u += dt (A + q)/m, 2 acceleration u += dt (A + q/m),
+   * 3 prescribed velocity u = A, anything else frozen (velocity kept, forces ignored); the two
+   * directions' divisions by m as one pair */
+  const int k0 = r->kind[2 * b], k1 = r->kind[2 * b + 1];
+  const double A0 = r->acur[2 * b], A1 = r->acur[2 * b + 1];
+  double d0, d1;
+  yf_div2(k0 == Y2D_KIND_FORCE ? dt * (A0 + q0) : q0, m, k1 == Y2D_KIND_FORCE ? dt * (A1 + q1) : q1, m, &d0, &d1);
+  u0 = k0 == Y2D_KIND_FORCE ? u0 + d0 : k0 == Y2D_KIND_ACCEL ? u0 + dt * (A0 + d0) : k0 == Y2D_KIND_VELOCITY ? A0 : u0;
+  u1 = k1 == Y2D_KIND_FORCE ? u1 + d1 : k1 == Y2D_KIND_ACCEL ? u1 + dt * (A1 + d1) : k1 == Y2D_KIND_VELOCITY ? A1 : u1;
+  double vx1 = R[0] * u0 + R[1] * u1, vy1 = R[2] * u0 + R[3] * u1;
+  if (vxo) { /* the step's old velocities, for bc.c's supports (fused: no extra pass) */
+    vxo[i] = vx0;
+    vyo[i] = vy0;
+  }
+  n->vx[i] = vx1;
+  n->vy[i] = vy1;
+  /* work of everything that is not an internal force: loads, supports, prescribed motion
+   * (gravity's work is counted by run.c from positions) */
+  double lfx = lf ? lf[2 * i] : 0.0, lfy = lf ? lf[2 * i + 1] : 0.0; /* no edge loads: none */
+  double rxdt = m * (vx1 - vx0) - dt * (n->fx[i] - lfx);
+  double rydt = m * (vy1 - vy0) - dt * (n->fy[i] - lfy) - dt * m * gy;
+  return 0.5 * (rxdt * (vx1 + vx0) + rydt * (vy1 + vy0));
+}
+
+/* update_one for nodes i..i+3 of one BC set b at once, one node per lane of a 4-wide vector (an
+ * AVX register where the CPU has it): every lane does update_one's operations in their order (the
+ * set's kinds choose the same branch in every lane), so each node gets the bits of the scalar
+ * code (tests/check_y2d_regress.c compares them).  Their work increments go to w[0..3], added in
+ * node order by the caller.  Nodes of one set are usually consecutive (a body's nodes). */
+typedef double v4d __attribute__((vector_size(32)));
+
+static inline __attribute__((always_inline)) void update_four(const YfY2dRun *r, YfNodes *n, double dt, int i, int b,
+                                                               double *vxo, double *vyo, double w[4]) {
+  const double *R = r->R + 4 * b, *Ri = r->Ri + 4 * b, *lf = r->lf, gy = r->gy;
+  const int k0 = r->kind[2 * b], k1 = r->kind[2 * b + 1];
+  const double A0 = r->acur[2 * b], A1 = r->acur[2 * b + 1];
+#define LD(a) (v4d){a[i], a[i + 1], a[i + 2], a[i + 3]}
+  const v4d m = LD(n->m), vx0 = LD(n->vx), vy0 = LD(n->vy), fx = LD(n->fx), fy = LD(n->fy);
+#undef LD
+  v4d gfx = fx, gfy = fy + m * gy;
+  v4d u0 = Ri[0] * vx0 + Ri[1] * vy0, u1 = Ri[2] * vx0 + Ri[3] * vy0;
+  v4d q0 = Ri[0] * gfx + Ri[1] * gfy, q1 = Ri[2] * gfx + Ri[3] * gfy;
+  v4d d0 = (k0 == Y2D_KIND_FORCE ? dt * (A0 + q0) : q0) / m;
+  v4d d1 = (k1 == Y2D_KIND_FORCE ? dt * (A1 + q1) : q1) / m;
+  v4d A0v = {A0, A0, A0, A0}, A1v = {A1, A1, A1, A1};
+  u0 = k0 == Y2D_KIND_FORCE ? u0 + d0 : k0 == Y2D_KIND_ACCEL ? u0 + dt * (A0 + d0) : k0 == Y2D_KIND_VELOCITY ? A0v : u0;
+  u1 = k1 == Y2D_KIND_FORCE ? u1 + d1 : k1 == Y2D_KIND_ACCEL ? u1 + dt * (A1 + d1) : k1 == Y2D_KIND_VELOCITY ? A1v : u1;
+  v4d vx1 = R[0] * u0 + R[1] * u1, vy1 = R[2] * u0 + R[3] * u1;
+  v4d lfx = {0, 0, 0, 0}, lfy = lfx;
+  if (lf) {
+    lfx = (v4d){lf[2 * i], lf[2 * i + 2], lf[2 * i + 4], lf[2 * i + 6]};
+    lfy = (v4d){lf[2 * i + 1], lf[2 * i + 3], lf[2 * i + 5], lf[2 * i + 7]};
+  }
+  v4d rxdt = m * (vx1 - vx0) - dt * (fx - lfx);
+  v4d rydt = m * (vy1 - vy0) - dt * (fy - lfy) - dt * m * gy;
+  v4d wk = 0.5 * (rxdt * (vx1 + vx0) + rydt * (vy1 + vy0));
+  if (vxo) {
+    for (int l = 0; l < 4; l++) {
+      vxo[i + l] = vx0[l];
+      vyo[i + l] = vy0[l];
+    }
+  }
+  for (int l = 0; l < 4; l++) {
+    n->vx[i + l] = vx1[l];
+    n->vy[i + l] = vy1[l];
+    w[l] = wk[l];
+  }
+}
+
+/* Any node i: the generic update for nodes added by native commands after read_y2d (no set),
+ * nothing for Y2D's massless nodes, else update_one with its work added to *work. */
+static inline void update_node(const YfY2dRun *r, YfNodes *n, const YfSim *s, int i, double *vxo, double *vyo,
+                               double *work) {
+  const int b = r->set[i];
+  const double m = n->m[i];
+  if (b >= 0 && m > 1e-10) {
+    *work += update_one(r, n, s->dt, i, vxo, vyo);
+    return;
+  }
+  if (vxo) {
+    vxo[i] = n->vx[i];
+    vyo[i] = n->vy[i];
+  }
+  if (b < 0 && m > 1e-300) {
+    double ax, ay;
+    yf_div2(n->fx[i], m, n->fy[i], m, &ax, &ay);
+    n->vx[i] = n->vx[i] + s->dt * (ax + s->gx);
+    n->vy[i] = n->vy[i] + s->dt * (ay + s->gy);
+  }
+  /* b >= 0 with mass <= 1e-10: Y2D does not move nodes without mass */
+}
+
+static int scalar_only; /* tests: every node through update_node (the reference of update_four) */
+void y2d_update_scalar_only(int on) { scalar_only = on; }
+
+/* ALGORITHMS 7 on nodes [i0, i1); returns the external work of the step there (summed in node
+ * order).  Groups of four ordinary nodes of one set go through update_four, the others one by one. */
+__attribute__((target_clones("avx2", "default")))
 static double update_range(const YfY2dRun *r, YfNodes *n, const YfSim *s, int i0, int i1, double *vxo,
                            double *vyo) {
-  const double dt = s->dt, gy = r->gy, ngx = s->gx, ngy = s->gy;
-  double *vx = n->vx, *vy = n->vy;
-  const double *fx = n->fx, *fy = n->fy, *ms = n->m, *lf = r->lf, *amp = r->acur;
-  const int *set = r->set, *kind = r->kind;
+  const int *set = r->set;
+  const double *ms = n->m;
   double work = 0.0;
-  for (int i = i0; i < i1; i++) {
-    int b = set[i];
-    double m = ms[i];
-    double vx0 = vx[i], vy0 = vy[i];
-    if (vxo) { /* the step's old velocities, for bc.c's supports (fused: no extra pass) */
-      vxo[i] = vx0;
-      vyo[i] = vy0;
+  int i = scalar_only ? i1 : i0;
+  if (scalar_only)
+    for (int j = i0; j < i1; j++) update_node(r, n, s, j, vxo, vyo, &work);
+  for (; i + 4 <= i1; i += 4) {
+    const int b = set[i];
+    if (b >= 0 && set[i + 1] == b && set[i + 2] == b && set[i + 3] == b && ms[i] > 1e-10 && ms[i + 1] > 1e-10 &&
+        ms[i + 2] > 1e-10 && ms[i + 3] > 1e-10) {
+      double w[4];
+      update_four(r, n, s->dt, i, b, vxo, vyo, w);
+      work += w[0];
+      work += w[1];
+      work += w[2];
+      work += w[3];
+    } else {
+      for (int j = i; j < i + 4; j++) update_node(r, n, s, j, vxo, vyo, &work);
     }
-    if (b < 0) {
-      /* a node added by native commands after read_y2d: the generic update */
-      if (!(m > 1e-300)) continue;
-      double ax, ay;
-      yf_div2(fx[i], m, fy[i], m, &ax, &ay);
-      vx[i] = vx0 + dt * (ax + ngx);
-      vy[i] = vy0 + dt * (ay + ngy);
-      continue;
-    }
-    if (!(m > 1e-10)) continue; /* Y2D: nodes without mass are not moved */
-    const double *R = r->R + 4 * b, *Ri = r->Ri + 4 * b;
-    double gfx = fx[i], gfy = fy[i] + m * gy; /* gravity as a force in global y */
-    double u0 = Ri[0] * vx0 + Ri[1] * vy0, u1 = Ri[2] * vx0 + Ri[3] * vy0;
-    double q0 = Ri[0] * gfx + Ri[1] * gfy, q1 = Ri[2] * gfx + Ri[3] * gfy;
-    /* per local direction: kind 1 force u += dt (A + q)/m, 2 acceleration u += dt (A + q/m),
-     * 3 prescribed velocity u = A, anything else frozen (velocity kept, forces ignored); the two
-     * directions' divisions by m as one pair */
-    const int k0 = kind[2 * b], k1 = kind[2 * b + 1];
-    const double A0 = amp[2 * b], A1 = amp[2 * b + 1];
-    double d0, d1;
-    yf_div2(k0 == Y2D_KIND_FORCE ? dt * (A0 + q0) : q0, m, k1 == Y2D_KIND_FORCE ? dt * (A1 + q1) : q1, m, &d0, &d1);
-    u0 = k0 == Y2D_KIND_FORCE ? u0 + d0 : k0 == Y2D_KIND_ACCEL ? u0 + dt * (A0 + d0) : k0 == Y2D_KIND_VELOCITY ? A0 : u0;
-    u1 = k1 == Y2D_KIND_FORCE ? u1 + d1 : k1 == Y2D_KIND_ACCEL ? u1 + dt * (A1 + d1) : k1 == Y2D_KIND_VELOCITY ? A1 : u1;
-    double vx1 = R[0] * u0 + R[1] * u1, vy1 = R[2] * u0 + R[3] * u1;
-    vx[i] = vx1;
-    vy[i] = vy1;
-    /* work of everything that is not an internal force: loads, supports, prescribed motion
-     * (gravity's work is counted by run.c from positions) */
-    double lfx = lf ? lf[2 * i] : 0.0, lfy = lf ? lf[2 * i + 1] : 0.0; /* no edge loads: none */
-    double rxdt = m * (vx1 - vx0) - dt * (fx[i] - lfx);
-    double rydt = m * (vy1 - vy0) - dt * (fy[i] - lfy) - dt * m * gy;
-    work += 0.5 * (rxdt * (vx1 + vx0) + rydt * (vy1 + vy0));
   }
+  for (; i < i1; i++) update_node(r, n, s, i, vxo, vyo, &work);
   return work;
 }
 

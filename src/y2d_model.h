@@ -61,6 +61,8 @@ void y2d_apply_loads(YfSim *s);
 /* par: run the node blocks on threads; vxo, vyo (or NULL): receive the velocities before the
  * update (bc.c's supports need them). */
 void y2d_update_velocities(YfSim *s, int par, double *vxo, double *vyo);
+/* Tests: 1 sends every node through the scalar update (the reference of the 4-wide one). */
+void y2d_update_scalar_only(int on);
 /* `yfdem FILE.y`: read_y2d FILE.y then run to MCSTEP. */
 void y2d_run_file(YfSim *s, const char *path);
 /* Build the scene of a .y deck into s (programmatic form of read_y2d; from: where it was asked,

@@ -19,6 +19,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "run.h"
+#include "y2d_model.h"
 #include "yftest.h"
 
 #define REF "tests/y2d/ref/"
@@ -407,6 +408,73 @@ START_TEST(test_bc_edge_loads) {
 }
 END_TEST
 
+/* The update runs four nodes of one BC set per vector: with every kind (force, acceleration,
+ * prescribed velocity, frozen), rotated frames, gravity, edge loads and time factors, each node's
+ * velocity and the external work must be the bits of the scalar update.  A strip of 16 triangles
+ * (18 nodes: groups of one set, a group of mixed sets and a scalar tail), 5 steps so the
+ * triangles deform. */
+START_TEST(test_bc_vector_update_matches_scalar) {
+  enum { NC = 8, NN = 2 * (NC + 1), NE = 2 * NC };
+  static const int set_of[NN] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 3, 3, 3, 3, 0};
+  char deck[4096];
+  int o = snprintf(deck, sizeof deck,
+                   "/YD/YDC/MCSTEP 5 /YD/YDC/DCSTEC 1e-6 /YD/YDC/DCGRAY -9.81\n"
+                   "/YD/YDE/MELEM %d /YD/YDE/NELEM %d /YD/YDE/MELST 1 /YD/YDE/NELST 1 /YD/YDE/MELNO 3 "
+                   "/YD/YDE/NELNO 3\n/YD/YDE/I1ELPR %d", NE, NE, NE);
+  for (int e = 0; e < NE; e++) o += snprintf(deck + o, sizeof deck - o, " 0");
+  o += snprintf(deck + o, sizeof deck - o, "\n/YD/YDE/I2ELTO 21 3 %d", NE);
+  for (int c = 0; c < NC; c++) /* cell c: bottom c, c+1; top NC+1+c, NC+2+c; counter-clockwise */
+    o += snprintf(deck + o, sizeof deck - o, " %d %d %d %d %d %d", c, c + 1, NC + 1 + c, c + 1, NC + 2 + c, NC + 1 + c);
+  o += snprintf(deck + o, sizeof deck - o, "\n/YD/YDN/MNODIM 2 /YD/YDN/NNODIM 2 /YD/YDN/MNOPO %d /YD/YDN/NNOPO %d\n"
+                "/YD/YDN/D2NCI 21 2 %d", NN, NN, NN);
+  for (int i = 0; i < NN; i++) /* a slightly irregular strip, so the triangles differ */
+    o += snprintf(deck + o, sizeof deck - o, " %g %g", (double)(i % (NC + 1)) + 0.05 * (i % 3), (double)(i / (NC + 1)) + 0.03 * (i % 5));
+  o += snprintf(deck + o, sizeof deck - o, "\n/YD/YDN/D2NVC 21 2 %d", NN);
+  for (int i = 0; i < NN; i++) o += snprintf(deck + o, sizeof deck - o, " %g %g", 0.1 * (i % 4) - 0.15, 0.07 * (i % 6) - 0.2);
+  o += snprintf(deck + o, sizeof deck - o, "\n/YD/YDN/I1NOPR %d", NN);
+  for (int i = 0; i < NN; i++) o += snprintf(deck + o, sizeof deck - o, " %d", set_of[i]);
+  snprintf(deck + o, sizeof deck - o,
+           "\n/YD/YDPE/MPROP 1 /YD/YDPE/NPROP 1 /YD/YDPE/I1PTYP 1 1 /YD/YDPE/D1PERO 1 3000\n"
+           "/YD/YDPE/D1PELA 1 1e9 /YD/YDPE/D1PEMU 1 1e9 /YD/YDPE/D1PSEM 1 0\n"
+           "/YD/YDPN/MPNSET 4 /YD/YDPN/NPNSET 4\n"
+           "/YD/YDPN/I1PNFX 4 3 1 2 0 /YD/YDPN/I1PNFY 4 1 2 1 2\n"
+           "/YD/YDPN/D1PNAX 4 1 0 5 0 /YD/YDPN/D1PNAY 4 0.5 -10 -3 7\n"
+           "/YD/YDPN/D1PNAP 4 0 100 0 50 /YD/YDPN/D1PNAT 4 0 40 0 -20\n"
+           "/YD/YDPN/D1PNXX 4 0.8660254037844387 1 0.6 1 /YD/YDPN/D1PNXY 4 0.5 0 0.8 0\n"
+           "/YD/YDPN/D1PNYX 4 -0.5 0 -0.8 0 /YD/YDPN/D1PNYY 4 0.8660254037844387 1 0.6 1\n"
+           "/YD/YDPN/MPNFACT 2 /YD/YDPN/NPNFACT 2\n"
+           "/YD/YDPN/D3PNFAC 123 2 4 2 0 1e-5 0 1e-5 0 1e-5 0 1e-5  0 0.5 0 0.5 0 0.5 0 0.5\n$YDOIT\n$YSTOP\n");
+  double v[2][2 * NN], w[2];
+  for (int scalar = 0; scalar < 2; scalar++) {
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/yf_y2dvec_XXXXXX.y");
+    int fd = mkstemps(path, 2);
+    ck_assert_int_ge(fd, 0);
+    FILE *f = fdopen(fd, "w");
+    fputs(deck, f);
+    fclose(f);
+    char cmds[128];
+    snprintf(cmds, sizeof cmds, "read_y2d %s\nrun 5\n", path);
+    y2d_update_scalar_only(scalar);
+    YfSim *s = yft_run(cmds);
+    y2d_update_scalar_only(0);
+    unlink(path);
+    ck_assert_int_eq(s->model.node.n, NN);
+    ck_assert_int_eq(s->step, 5);
+    for (int i = 0; i < NN; i++) {
+      v[scalar][2 * i] = s->model.node.vx[i];
+      v[scalar][2 * i + 1] = s->model.node.vy[i];
+    }
+    w[scalar] = s->energy.external_work;
+  }
+  for (int i = 0; i < 2 * NN; i++)
+    ck_assert_msg(!memcmp(&v[0][i], &v[1][i], sizeof(double)), "node %d %s: %.17g (vector) vs %.17g (scalar)", i / 2,
+                  i % 2 ? "vy" : "vx", v[0][i], v[1][i]);
+  ck_assert_msg(!memcmp(&w[0], &w[1], sizeof(double)), "external work %.17g vs %.17g", w[0], w[1]);
+  ck_assert(w[0] != 0.0);
+}
+END_TEST
+
 /* Unsupported parts of a deck are refused with the .y line; volfac takes only 0.5 or 1. */
 START_TEST(test_read_y2d_refusals) {
   char *err = NULL, *dir = NULL;
@@ -498,6 +566,7 @@ Suite *y2d_regress_suite(void) {
   tcase_add_test(tb, test_bc_kinds_frames_gravity);
   tcase_add_test(tb, test_bc_time_tables);
   tcase_add_test(tb, test_bc_edge_loads);
+  tcase_add_test(tb, test_bc_vector_update_matches_scalar);
   tcase_add_test(tb, test_read_y2d_refusals);
   tcase_add_test(tb, test_read_y2d_volfac);
   suite_add_tcase(s, tb);
