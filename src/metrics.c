@@ -36,6 +36,13 @@ typedef struct {
   int nr, r[MAX_REG_SHAPES]; /* region indices (union) */
 } Reg;
 
+/* Largest sigma1 of one block of triangles and the first triangle reaching the threshold. */
+typedef struct {
+  double best, above_val;
+  int bt, above;
+} PeakBlk;
+#define MBLK 4096 /* triangles per block of the sigma1 scan */
+
 static struct {
   int on;             /* any metrics command given */
   int body;           /* measured body, -1 = every fracturing body */
@@ -63,6 +70,7 @@ static struct {
   int ntri_alloc, nnode_alloc, njoint_alloc;
   int *par, *first;
   unsigned char *intri;     /* triangle belongs to the measured body */
+  PeakBlk *blk;             /* per block of MBLK triangles: the step's largest sigma1 (parallel) */
   long nrec_seen, norec_seen;
   double len_now[3], olen_now[3]; /* broken / opened crack length by mode so far [m] */
   double s1_step;           /* max sigma1 of the last step (for the log) */
@@ -71,7 +79,7 @@ static struct {
 } M = {.body = -1, .midspan = -1, .every = 100, .first_frag_time = -1, .until = INFINITY};
 
 void metrics_reset(void) {
-  free(M.par); free(M.first); free(M.intri); free(M.smp);
+  free(M.par); free(M.first); free(M.intri); free(M.smp); free(M.blk);
   memset(&M, 0, sizeof M);
   M.body = -1;
   M.midspan = -1;
@@ -185,14 +193,16 @@ static int tri_measured(const YfSim *s, int t) {
 static int ensure_arrays(YfSim *s) {
   const YfModel *m = &s->model;
   if (M.par && M.ntri_alloc == m->tri.n && M.nnode_alloc == m->node.n) return 1;
-  free(M.par); free(M.first); free(M.intri);
+  free(M.par); free(M.first); free(M.intri); free(M.blk);
   M.par = malloc((size_t)(m->tri.n + 1) * sizeof(int));
   M.first = malloc((size_t)(m->node.n + 1) * sizeof(int));
   M.intri = malloc((size_t)(m->tri.n + 1));
-  if (!M.par || !M.first || !M.intri) {
-    free(M.par); free(M.first); free(M.intri);
+  M.blk = malloc(((size_t)m->tri.n / MBLK + 1) * sizeof(PeakBlk));
+  if (!M.par || !M.first || !M.intri || !M.blk) {
+    free(M.par); free(M.first); free(M.intri); free(M.blk);
     M.par = M.first = NULL;
     M.intri = NULL;
+    M.blk = NULL;
     return 0;
   }
   M.ntri_alloc = m->tri.n;
@@ -292,23 +302,47 @@ void metrics_step(YfSim *s) {
     }
   }
   if (M.peak || M.log_path[0]) {
+    /* the largest sigma1 (first triangle of equals) and the first triangle at the threshold, per
+     * fixed block on all threads, the blocks combined in order: the serial scan's answer */
+    const int nt = m->tri.n, nb = (nt + MBLK - 1) / MBLK;
+    const int want_above = M.peak && M.threshold > 0 && !M.above_found;
+    const double thr = M.threshold;
+    const unsigned char *in = M.intri;
+    const double *ts = m->tri.s;
+    PeakBlk *pb = M.blk;
+    #pragma omp parallel for schedule(static) if (nb > 1)
+    for (int b = 0; b < nb; b++) {
+      PeakBlk r = {-INFINITY, 0.0, -1, -1};
+      const int t1 = (b + 1) * MBLK < nt ? (b + 1) * MBLK : nt;
+      for (int t = b * MBLK; t < t1; t++) {
+        if (!in[t]) continue;
+        const double *st = ts + 3 * t;
+        double c = 0.5 * (st[0] + st[1]), rr = hypot(0.5 * (st[0] - st[1]), st[2]);
+        double s1 = c + rr;
+        if (s1 > r.best) {
+          r.best = s1;
+          r.bt = t;
+        }
+        if (want_above && r.above < 0 && s1 >= thr) {
+          r.above = t;
+          r.above_val = s1;
+        }
+      }
+      pb[b] = r;
+    }
     double best = -INFINITY;
     int bt = -1;
-    for (int t = 0; t < m->tri.n; t++) {
-      if (!M.intri[t]) continue;
-      const double *st = &m->tri.s[3 * t];
-      double c = 0.5 * (st[0] + st[1]), r = hypot(0.5 * (st[0] - st[1]), st[2]);
-      double s1 = c + r;
-      if (s1 > best) {
-        best = s1;
-        bt = t;
+    for (int b = 0; b < nb; b++) {
+      if (pb[b].best > best) {
+        best = pb[b].best;
+        bt = pb[b].bt;
       }
-      if (M.peak && M.threshold > 0 && !M.above_found && s1 >= M.threshold) {
+      if (want_above && !M.above_found && pb[b].above >= 0) {
         M.above_found = 1;
-        M.above_val = s1;
+        M.above_val = pb[b].above_val;
         M.above_time = s->time;
         M.above_step = s->step;
-        M.above_tri = t;
+        M.above_tri = pb[b].above;
       }
     }
     M.s1_step = best;
