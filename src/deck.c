@@ -552,6 +552,13 @@ static void parse_lines(DeckSource *s, const char *text, size_t len) {
   for (size_t i = 0; i <= len; i++) {
     char c = i < len ? text[i] : '\n';
     if (i == len && !cur.n && !in_t) break;
+    if (i < len && c == 0) { /* a NUL would silently cut the line short: say where it is */
+      YfLoc l = {s->name, line};
+      size_t col = 1;
+      for (size_t k = i; k > 0 && text[k - 1] != '\n'; k--) col++;
+      yf_deck_error(&l, "a NUL byte at column %zu: a deck is plain text (is this a binary file, or a UTF-16 "
+                        "text? save it as UTF-8 or ASCII)", col);
+    }
     if (in_t) {
       if (i == len) in_t = 0; /* unterminated: the word splitter reports it */
       else if (!strncmp(text + i, "\"\"\"", 3) && i + 3 <= len) {

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
+#include <unistd.h>
 #include "yftest.h"
 
 #define MAT "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
@@ -37,6 +38,29 @@ static void expect_fail(const char *deck, int code, const char *piece1, const ch
   free(err);
   free(dir);
 }
+
+/* A NUL byte (a binary file, a UTF-16 deck) is refused with the file, line and column, instead of
+ * cutting the line short silently. */
+START_TEST(test_nul_byte_in_deck) {
+  char path[] = "/tmp/yf_nul_XXXXXX";
+  ck_assert_ptr_nonnull(mkdtemp(path));
+  char file[64];
+  snprintf(file, sizeof file, "%s/nul.deck", path);
+  FILE *f = fopen(file, "wb");
+  static const char text[] = "material m elastic rho 1 E 1 nu 0.1\nmesh rect b m 0 0 1 1 2 2\0 pattern right\nrun 1\n";
+  fwrite(text, 1, sizeof text - 1, f);
+  fclose(f);
+  char deck[128], *err = NULL, *dir = NULL;
+  snprintf(deck, sizeof deck, "include %s\n", file);
+  int rc = yft_run_binary("main.deck", deck, "", &err, &dir);
+  ck_assert_msg(rc == 1, "exit %d, stderr:\n%s", rc, err);
+  ck_assert_msg(strstr(err, "nul.deck:2: error: a NUL byte at column 26") != NULL, "stderr:\n%s", err);
+  unlink(file);
+  rmdir(path);
+  free(err);
+  free(dir);
+}
+END_TEST
 
 START_TEST(test_unknown_command_suggests) {
   expect_fail(BAR "dump d h5 10 out.h5\nfxi hold bar fixed xy\nrun 10\n", 1, "bad.deck:4: error:", "did you mean 'fix'");
@@ -131,6 +155,7 @@ Suite *errors_suite(void) {
   TCase *t = tcase_create("deck");
   tcase_set_timeout(t, 60);
   tcase_add_test(t, test_unknown_command_suggests);
+  tcase_add_test(t, test_nul_byte_in_deck);
   tcase_add_test(t, test_wrong_argument_count);
   tcase_add_test(t, test_non_numeric_number);
   tcase_add_test(t, test_unknown_group);
