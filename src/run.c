@@ -327,7 +327,9 @@ static void step_once(YfSim *s) {
   const int keep = bc_count(s) > 0 || alpha > 0;
   double *xo = keep ? R.xo : NULL, *yo = keep ? R.yo : NULL, *vxo = keep ? R.vxo : NULL, *vyo = keep ? R.vyo : NULL;
   if (s->y2d) {
-    y2d_update_velocities(s, nn >= PAR_MIN, vxo, vyo); /* Y2D's BC-set update (kinds, local frames, time factors) */
+    /* Y2D's BC-set update (kinds, local frames, time factors); with nothing between the velocity
+     * and position updates (!keep: no supports, no damping) it moves the nodes too, in cache */
+    y2d_update_velocities(s, nn >= PAR_MIN, vxo, vyo, !keep);
   } else if (alpha > 0) {
     /* central-difference mass damping: v+ = ((1 - a dt/2) v- + dt f/m) / (1 + a dt/2) */
     const double c1 = 1.0 - 0.5 * alpha * dt, c2 = 1.0 / (1.0 + 0.5 * alpha * dt);
@@ -340,15 +342,22 @@ static void step_once(YfSim *s) {
       vy[i] = (c1 * vy[i] + dt * (fy[i] / ms[i] + gy)) * c2;
     }
   } else {
+    /* with nothing between the velocity and position updates (!keep) one pass does both */
+    const int move = !keep;
     #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
     for (int i = 0; i < nn; i++) {
       if (vxo) {
         vxo[i] = vx[i];
         vyo[i] = vy[i];
       }
-      if (!(ms[i] > 1e-300)) continue;
-      vx[i] += dt * (fx[i] / ms[i] + gx);
-      vy[i] += dt * (fy[i] / ms[i] + gy);
+      if (ms[i] > 1e-300) {
+        vx[i] += dt * (fx[i] / ms[i] + gx);
+        vy[i] += dt * (fy[i] / ms[i] + gy);
+      }
+      if (move) {
+        x[i] += dt * vx[i];
+        y[i] += dt * vy[i];
+      }
     }
   }
   bc_constrain_velocities(s, vxo, vyo);
@@ -362,14 +371,16 @@ static void step_once(YfSim *s) {
     }
     s->energy.damping += alpha * diss * dt;
   }
-  #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
-  for (int i = 0; i < nn; i++) {
-    if (xo) {
-      xo[i] = x[i];
-      yo[i] = y[i];
+  if (keep) { /* (else the velocity update moved the nodes itself) */
+    #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
+    for (int i = 0; i < nn; i++) {
+      if (xo) {
+        xo[i] = x[i];
+        yo[i] = y[i];
+      }
+      x[i] += dt * vx[i];
+      y[i] += dt * vy[i];
     }
-    x[i] += dt * vx[i];
-    y[i] += dt * vy[i];
   }
   bc_constrain_positions(s, xo, yo, vxo, vyo);
   s->step++;

@@ -272,7 +272,7 @@ void y2d_update_scalar_only(int on) { scalar_only = on; }
  * order).  Groups of four ordinary nodes of one set go through update_four, the others one by one. */
 __attribute__((target_clones("avx2", "default")))
 static double update_range(const YfY2dRun *r, YfNodes *n, const YfSim *s, int i0, int i1, double *vxo,
-                           double *vyo) {
+                           double *vyo, int move) {
   const int *set = r->set;
   const double *ms = n->m;
   double work = 0.0;
@@ -294,10 +294,18 @@ static double update_range(const YfY2dRun *r, YfNodes *n, const YfSim *s, int i0
     }
   }
   for (; i < i1; i++) update_node(r, n, s, i, vxo, vyo, &work);
+  if (move) { /* run.c's x += dt v of these nodes while they are in cache (same operations) */
+    const double dt = s->dt, *vx = n->vx, *vy = n->vy;
+    double *x = n->x, *y = n->y;
+    for (int j = i0; j < i1; j++) {
+      x[j] += dt * vx[j];
+      y[j] += dt * vy[j];
+    }
+  }
   return work;
 }
 
-void y2d_update_velocities(YfSim *s, int par, double *vxo, double *vyo) {
+void y2d_update_velocities(YfSim *s, int par, double *vxo, double *vyo, int move) {
   YfY2dRun *r = s->y2d;
   if (!r) return;
   YfNodes *n = &s->model.node;
@@ -312,7 +320,7 @@ void y2d_update_velocities(YfSim *s, int par, double *vxo, double *vyo) {
   #pragma omp parallel for schedule(static) if (par)
   for (int k = 0; k < nb; k++) {
     int i1 = (k + 1) * Y2D_UBLOCK < nn ? (k + 1) * Y2D_UBLOCK : nn;
-    r->ublk[k] = update_range(r, n, s, k * Y2D_UBLOCK, i1, vxo, vyo);
+    r->ublk[k] = update_range(r, n, s, k * Y2D_UBLOCK, i1, vxo, vyo, move);
   }
   double work = 0.0;
   for (int k = 0; k < nb; k++) work += r->ublk[k];

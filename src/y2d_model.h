@@ -8,9 +8,11 @@
  *
  * Contract with run.c (active only when sim->y2d != NULL, i.e. after read_y2d):
  *   y2d_apply_loads(s)        after the gather: edge pressures and shear tractions of the sets.
- *   y2d_update_velocities(s, par, vxo, vyo) replaces the generic velocity update for every node: v_{n+1/2}
- *                             from forces, gravity and each set's kinds in its local frame.
- *                             Native fixes and loads given after read_y2d still act on top.
+ *   y2d_update_velocities(s, par, vxo, vyo, move) replaces the generic velocity update for every node:
+ *                             v_{n+1/2} from forces, gravity and each set's kinds in its local frame.
+ *                             Native fixes and loads given after read_y2d still act on top.  move = 1
+ *                             (only when nothing acts between the two, i.e. no native supports and
+ *                             no damping) also does run.c's x += dt v, block by block in cache.
  */
 #ifndef YF_Y2D_MODEL_H
 #define YF_Y2D_MODEL_H
@@ -60,7 +62,7 @@ void y2d_apply_loads(YfSim *s);
 #define Y2D_UBLOCK 4096
 /* par: run the node blocks on threads; vxo, vyo (or NULL): receive the velocities before the
  * update (bc.c's supports need them). */
-void y2d_update_velocities(YfSim *s, int par, double *vxo, double *vyo);
+void y2d_update_velocities(YfSim *s, int par, double *vxo, double *vyo, int move);
 /* Tests: 1 sends every node through the scalar update (the reference of the 4-wide one). */
 void y2d_update_scalar_only(int on);
 /* `yfdem FILE.y`: read_y2d FILE.y then run to MCSTEP. */
