@@ -12,6 +12,7 @@
  */
 #include <math.h>
 #include <omp.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,6 +31,7 @@
 #include "summary.h"
 
 #define JBLOCK 256 /* joints per block of the force loop (break collection granularity) */
+#define PF_GROUPS 4
 static int par_min = 4096;
 void joints_set_par_min(int n) { par_min = n < 0 ? 0 : n; }
 
@@ -650,12 +652,30 @@ static void joints_block(YfJoints *J, const YfNodes *N, int jb0, int jb1, double
   int cur = -1, nbreak = 0, nopen = 0;
   int j = jb0;
   for (; j + 4 <= jb1; j += 4) {
-    int elig = fast_ok(J, j) | fast_ok(J, j + 1) << 1 | fast_ok(J, j + 2) << 2 | fast_ok(J, j + 3) << 3;
+    if (j + 4 * PF_GROUPS + 4 <= jb1) { /* the lines a later group will need (node gathers are not streams) */
+      const int *np = J->node + 4 * (j + 4 * PF_GROUPS);
+      for (int l = 0; l < 4; l++) {
+        int a = np[4 * l], b = np[4 * l + 3];
+        __builtin_prefetch(N->x + a); __builtin_prefetch(N->y + a); __builtin_prefetch(N->vx + a); __builtin_prefetch(N->vy + a);
+        __builtin_prefetch(N->x + b); __builtin_prefetch(N->y + b); __builtin_prefetch(N->vx + b); __builtin_prefetch(N->vy + b);
+      }
+      __builtin_prefetch(J->f + 8 * (j + 4 * PF_GROUPS), 1);
+      __builtin_prefetch(J->f + 8 * (j + 4 * PF_GROUPS) + 16, 1);
+    }
+    /* the common case first: four intact joints of one reversible set without Mohr-Coulomb */
+    const int *pr = J->prop + j;
+    uint32_t st4;
+    memcpy(&st4, J->state + j, sizeof st4);
+    const YfJointProp *p0 = &J->set[pr[0]].p;
+    int elig;
+    if (!st4 && pr[1] == pr[0] && pr[2] == pr[0] && pr[3] == pr[0] && !p0->irreversible && !(p0->coh > 0.0))
+      elig = 15;
+    else
+      elig = fast_ok(J, j) | fast_ok(J, j + 1) << 1 | fast_ok(J, j + 2) << 2 | fast_ok(J, j + 3) << 3;
     int done = 0;
     if (elig) {
       const int *nd = J->node + 4 * j; /* nd[4 l + c]: node c of lane l */
-      const YfJointProp *p0 = &J->set[J->prop[j]].p, *p1 = &J->set[J->prop[j + 1]].p;
-      const YfJointProp *p2 = &J->set[J->prop[j + 2]].p, *p3 = &J->set[J->prop[j + 3]].p;
+      const YfJointProp *p1 = &J->set[pr[1]].p, *p2 = &J->set[pr[2]].p, *p3 = &J->set[pr[3]].p;
       const yf_v4 hreg = {p0->hreg, p1->hreg, p2->hreg, p3->hreg}, ft = {p0->ft, p1->ft, p2->ft, p3->ft};
       const yf_v4 pen = {p0->pen, p1->pen, p2->pen, p3->pen};
       yf_v4 k, fs, ftk, x[4], y[4], vx[4], vy[4];
@@ -683,11 +703,20 @@ static void joints_block(YfJoints *J, const YfNodes *N, int jb0, int jb1, double
         w = w * dtp;
         lanes_to_rows(f, done, fj, fj + 8, fj + 16, fj + 24);
         lanes_to_rows(f + 4, done, fj + 4, fj + 12, fj + 20, fj + 28);
-        for (int l = 0; l < 4; l++)
-          if (done >> l & 1) {
-            J->w[j + l] += w[l];
-            J->z[j + l] = 0.0;
-          }
+        if (done == 15) {
+          yf_v4 wj;
+          const yf_v4 zero = {0.0, 0.0, 0.0, 0.0};
+          memcpy(&wj, J->w + j, sizeof wj);
+          wj = wj + w;
+          memcpy(J->w + j, &wj, sizeof wj);
+          memcpy(J->z + j, &zero, sizeof zero);
+        } else {
+          for (int l = 0; l < 4; l++)
+            if (done >> l & 1) {
+              J->w[j + l] += w[l];
+              J->z[j + l] = 0.0;
+            }
+        }
       }
     }
     for (int l = 0; l < 4; l++)
