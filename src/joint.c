@@ -644,83 +644,104 @@ static void joint_general_n(YfJoints *J, const YfNodes *N, int j, double dtp, Yf
 /* Joints jb0 .. jb1-1 (one block), four consecutive joints at a time: the ones fast_ok accepts go
  * through joint_force_fast4 together (their per-joint arrays are one vector load each), and the
  * lanes it declines (a point past its peak) and the others take joint_general.  Each joint's
- * results depend on that joint alone, so the order in which they are done does not matter. */
+ * results depend on that joint alone, so the order in which they are done does not matter.
+ * A batch of NGRP groups of four goes through the geometry first, then the law and the work: two
+ * short loops whose square roots and divisions (the latency of a group) overlap from group to
+ * group, where one long loop would leave them in sequence. */
+#define NGRP 8
 __attribute__((target_clones("avx2", "default")))
 static void joints_block(YfJoints *J, const YfNodes *N, int jb0, int jb1, double dtp, int *nbreak_out,
                          int *nopen_out) {
   YfJointProp lp;
   int cur = -1, nbreak = 0, nopen = 0;
   int j = jb0;
-  for (; j + 4 <= jb1; j += 4) {
-    if (j + 4 * PF_GROUPS + 4 <= jb1) { /* the lines a later group will need (node gathers are not streams) */
-      const int *np = J->node + 4 * (j + 4 * PF_GROUPS);
-      for (int l = 0; l < 4; l++) {
-        int a = np[4 * l], b = np[4 * l + 3];
-        __builtin_prefetch(N->x + a); __builtin_prefetch(N->y + a); __builtin_prefetch(N->vx + a); __builtin_prefetch(N->vy + a);
-        __builtin_prefetch(N->x + b); __builtin_prefetch(N->y + b); __builtin_prefetch(N->vx + b); __builtin_prefetch(N->vy + b);
+  struct {
+    YfJointGeom4 g;
+    yf_v4 ft, fs, pen, vx[4], vy[4];
+  } B[NGRP];
+  int elig[NGRP];
+  while (j + 4 <= jb1) {
+    int ng = (jb1 - j) / 4 < NGRP ? (jb1 - j) / 4 : NGRP;
+    for (int q = 0; q < ng; q++) {
+      const int jq = j + 4 * q;
+      if (jq + 4 * PF_GROUPS + 4 <= jb1) { /* the lines a later group will need (node gathers are not streams) */
+        const int *np = J->node + 4 * (jq + 4 * PF_GROUPS);
+        for (int l = 0; l < 4; l++) {
+          int a = np[4 * l], b = np[4 * l + 3];
+          __builtin_prefetch(N->x + a); __builtin_prefetch(N->y + a); __builtin_prefetch(N->vx + a); __builtin_prefetch(N->vy + a);
+          __builtin_prefetch(N->x + b); __builtin_prefetch(N->y + b); __builtin_prefetch(N->vx + b); __builtin_prefetch(N->vy + b);
+        }
+        __builtin_prefetch(J->f + 8 * (jq + 4 * PF_GROUPS), 1);
+        __builtin_prefetch(J->f + 8 * (jq + 4 * PF_GROUPS) + 16, 1);
       }
-      __builtin_prefetch(J->f + 8 * (j + 4 * PF_GROUPS), 1);
-      __builtin_prefetch(J->f + 8 * (j + 4 * PF_GROUPS) + 16, 1);
-    }
-    /* the common case first: four intact joints of one reversible set without Mohr-Coulomb */
-    const int *pr = J->prop + j;
-    uint32_t st4;
-    memcpy(&st4, J->state + j, sizeof st4);
-    const YfJointProp *p0 = &J->set[pr[0]].p;
-    int elig;
-    if (!st4 && pr[1] == pr[0] && pr[2] == pr[0] && pr[3] == pr[0] && !p0->irreversible && !(p0->coh > 0.0))
-      elig = 15;
-    else
-      elig = fast_ok(J, j) | fast_ok(J, j + 1) << 1 | fast_ok(J, j + 2) << 2 | fast_ok(J, j + 3) << 3;
-    int done = 0;
-    if (elig) {
-      const int *nd = J->node + 4 * j; /* nd[4 l + c]: node c of lane l */
+      /* the common case first: four intact joints of one reversible set without Mohr-Coulomb */
+      const int *pr = J->prop + jq;
+      uint32_t st4;
+      memcpy(&st4, J->state + jq, sizeof st4);
+      const YfJointProp *p0 = &J->set[pr[0]].p;
+      int e;
+      if (!st4 && pr[1] == pr[0] && pr[2] == pr[0] && pr[3] == pr[0] && !p0->irreversible && !(p0->coh > 0.0))
+        e = 15;
+      else
+        e = fast_ok(J, jq) | fast_ok(J, jq + 1) << 1 | fast_ok(J, jq + 2) << 2 | fast_ok(J, jq + 3) << 3;
+      elig[q] = e;
+      if (!e) continue;
+      const int *nd = J->node + 4 * jq; /* nd[4 l + c]: node c of lane l */
       const YfJointProp *p1 = &J->set[pr[1]].p, *p2 = &J->set[pr[2]].p, *p3 = &J->set[pr[3]].p;
       const yf_v4 hreg = {p0->hreg, p1->hreg, p2->hreg, p3->hreg}, ft = {p0->ft, p1->ft, p2->ft, p3->ft};
-      const yf_v4 pen = {p0->pen, p1->pen, p2->pen, p3->pen};
-      yf_v4 k, fs, ftk, x[4], y[4], vx[4], vy[4];
-      memcpy(&k, J->k + j, sizeof k);
-      ftk = ft * k; /* as scaled_prop */
-      memcpy(&fs, J->fs + j, sizeof fs);
+      B[q].pen = (yf_v4){p0->pen, p1->pen, p2->pen, p3->pen};
+      yf_v4 k, x[4], y[4];
+      memcpy(&k, J->k + jq, sizeof k);
+      B[q].ft = ft * k; /* as scaled_prop */
+      memcpy(&B[q].fs, J->fs + jq, sizeof B[q].fs);
       for (int c = 0; c < 4; c++) {
         int n0 = nd[c], n1 = nd[4 + c], n2 = nd[8 + c], n3 = nd[12 + c];
         x[c] = (yf_v4){N->x[n0], N->x[n1], N->x[n2], N->x[n3]};
         y[c] = (yf_v4){N->y[n0], N->y[n1], N->y[n2], N->y[n3]};
-        vx[c] = (yf_v4){N->vx[n0], N->vx[n1], N->vx[n2], N->vx[n3]};
-        vy[c] = (yf_v4){N->vy[n0], N->vy[n1], N->vy[n2], N->vy[n3]};
+        B[q].vx[c] = (yf_v4){N->vx[n0], N->vx[n1], N->vx[n2], N->vx[n3]};
+        B[q].vy[c] = (yf_v4){N->vy[n0], N->vy[n1], N->vy[n2], N->vy[n3]};
       }
-      yf_v4 f[8];
-      done = joint_force_fast4(x, y, &hreg, &ftk, &fs, &pen, f) & elig;
-      if (done) {
-        double *fj = J->f + 8 * j;
-        yf_v4 fo[8];
-        rows_to_lanes(fj, fj + 8, fj + 16, fj + 24, fo);
-        rows_to_lanes(fj + 4, fj + 12, fj + 20, fj + 28, fo + 4);
-        /* work_inc_v lane by lane (v: vx, vy of node c) */
-        yf_v4 w = {0.0, 0.0, 0.0, 0.0};
-        for (int c = 0; c < 4; c++)
-          w -= 0.5 * ((fo[2 * c] + f[2 * c]) * vx[c] + (fo[2 * c + 1] + f[2 * c + 1]) * vy[c]);
-        w = w * dtp;
-        lanes_to_rows(f, done, fj, fj + 8, fj + 16, fj + 24);
-        lanes_to_rows(f + 4, done, fj + 4, fj + 12, fj + 20, fj + 28);
-        if (done == 15) {
-          yf_v4 wj;
-          const yf_v4 zero = {0.0, 0.0, 0.0, 0.0};
-          memcpy(&wj, J->w + j, sizeof wj);
-          wj = wj + w;
-          memcpy(J->w + j, &wj, sizeof wj);
-          memcpy(J->z + j, &zero, sizeof zero);
-        } else {
-          for (int l = 0; l < 4; l++)
-            if (done >> l & 1) {
-              J->w[j + l] += w[l];
-              J->z[j + l] = 0.0;
-            }
+      joint_geometry4(x, y, &hreg, &B[q].g);
+    }
+    for (int q = 0; q < ng; q++) {
+      const int jq = j + 4 * q;
+      int done = 0;
+      if (elig[q]) {
+        yf_v4 f[8];
+        done = joint_law4(&B[q].g, &B[q].ft, &B[q].fs, &B[q].pen, f) & elig[q];
+        if (done) {
+          double *fj = J->f + 8 * jq;
+          yf_v4 fo[8];
+          rows_to_lanes(fj, fj + 8, fj + 16, fj + 24, fo);
+          rows_to_lanes(fj + 4, fj + 12, fj + 20, fj + 28, fo + 4);
+          /* work_inc_v lane by lane (v: vx, vy of node c) */
+          yf_v4 w = {0.0, 0.0, 0.0, 0.0};
+          for (int c = 0; c < 4; c++)
+            w -= 0.5 * ((fo[2 * c] + f[2 * c]) * B[q].vx[c] + (fo[2 * c + 1] + f[2 * c + 1]) * B[q].vy[c]);
+          w = w * dtp;
+          lanes_to_rows(f, done, fj, fj + 8, fj + 16, fj + 24);
+          lanes_to_rows(f + 4, done, fj + 4, fj + 12, fj + 20, fj + 28);
+          if (done == 15) {
+            yf_v4 wj;
+            const yf_v4 zero = {0.0, 0.0, 0.0, 0.0};
+            memcpy(&wj, J->w + jq, sizeof wj);
+            wj = wj + w;
+            memcpy(J->w + jq, &wj, sizeof wj);
+            memcpy(J->z + jq, &zero, sizeof zero);
+          } else {
+            for (int l = 0; l < 4; l++)
+              if (done >> l & 1) {
+                J->w[jq + l] += w[l];
+                J->z[jq + l] = 0.0;
+              }
+          }
         }
       }
+      if (done != 15)
+        for (int l = 0; l < 4; l++)
+          if (!(done >> l & 1) && !J->state[jq + l]) joint_general_n(J, N, jq + l, dtp, &lp, &cur, &nbreak, &nopen);
     }
-    for (int l = 0; l < 4; l++)
-      if (!(done >> l & 1) && !J->state[j + l]) joint_general_n(J, N, j + l, dtp, &lp, &cur, &nbreak, &nopen);
+    j += 4 * ng;
   }
   for (; j < jb1; j++)
     if (!J->state[j]) joint_general_n(J, N, j, dtp, &lp, &cur, &nbreak, &nopen);

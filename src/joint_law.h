@@ -171,9 +171,13 @@ void joint_geometry(double hreg, const double x[4], const double y[4], YfJointGe
  * (bit l set: f[.][l] is joint_force's, the joint stays undamaged, fs and damage unchanged, zmax
  * 0, no failure; clear: some sampling point is past its peak, or a value is NaN: the lane's f is
  * meaningless, use joint_force_geom). */
-static inline __attribute__((always_inline)) int
-joint_force_fast4(const yf_v4 x[4], const yf_v4 y[4], const yf_v4 *hreg, const yf_v4 *ft_, const yf_v4 *fs_,
-                  const yf_v4 *pen, yf_v4 f[8])
+/* The geometry half of joint_force_fast4 (joint_geometry_inline per lane). */
+typedef struct {
+  yf_v4 h, e1x, e1y, po[3], ps[3];
+} YfJointGeom4;
+
+static inline __attribute__((always_inline)) void
+joint_geometry4(const yf_v4 x[4], const yf_v4 y[4], const yf_v4 *hreg, YfJointGeom4 *g)
 {
   const yf_v4 zero = {0.0, 0.0, 0.0, 0.0}, one = {1.0, 1.0, 1.0, 1.0};
   /* 3.1 geometry: joint_geometry_inline term by term */
@@ -189,7 +193,19 @@ joint_force_fast4(const yf_v4 x[4], const yf_v4 y[4], const yf_v4 *hreg, const y
   yf_v4 dbx = x[1] - x[2], dby = y[1] - y[2];
   yf_v4 sa = dax * e1x + day * e1y, sb = dbx * e1x + dby * e1y;
   yf_v4 oa = dax * nx + day * ny, ob = dbx * nx + dby * ny;
-  yf_v4 po[3] = {oa, (oa + ob) / 2.0, ob}, ps[3] = {sa, (sa + sb) / 2.0, sb};
+  g->h = h;
+  g->e1x = e1x;
+  g->e1y = e1y;
+  g->po[0] = oa; g->po[1] = (oa + ob) / 2.0; g->po[2] = ob;
+  g->ps[0] = sa; g->ps[1] = (sa + sb) / 2.0; g->ps[2] = sb;
+}
+
+/* The law half of joint_force_fast4 (law_core's z = 0 branch per lane); returns the accepted lanes. */
+static inline __attribute__((always_inline)) int
+joint_law4(const YfJointGeom4 *g, const yf_v4 *ft_, const yf_v4 *fs_, const yf_v4 *pen, yf_v4 f[8])
+{
+  const yf_v4 zero = {0.0, 0.0, 0.0, 0.0};
+  const yf_v4 h = g->h, e1x = g->e1x, e1y = g->e1y, nx = -e1y, ny = e1x;
   /* 3.2 peak opening and slip, nodal weights h/6, h/3 (law_core's packed pairs, lane-wise) */
   const yf_v4 ft = *ft_, fs = *fs_;
   yf_v4 op = 2.0 * h * ft / *pen, sp = 2.0 * h * fs / *pen;
@@ -197,7 +213,7 @@ joint_force_fast4(const yf_v4 x[4], const yf_v4 y[4], const yf_v4 *hreg, const y
   yf_v4l ok = {-1, -1, -1, -1};
   yf_v4 qx[3], qy[3];
   for (int k = 0; k < 3; k++) {
-    yf_v4 o = po[k], s = ps[k], as = YF_ABS4(s);
+    yf_v4 o = g->po[k], s = g->ps[k], as = YF_ABS4(s);
     ok &= (o <= op) & (as <= sp); /* z = 0 at this point (NaN: not accepted) */
     /* 3.4 with g = 1: ro = o/o_p, or the compression stress 2 o f_t/o_p; rs = |s|/s_p */
     yf_v4l neg = o < zero;
@@ -218,6 +234,15 @@ joint_force_fast4(const yf_v4 x[4], const yf_v4 y[4], const yf_v4 *hreg, const y
   f[6] = w0 * qx[0] + w1 * qx[1];
   f[7] = w0 * qy[0] + w1 * qy[1];
   return (int)((ok[0] & 1) | (ok[1] & 2) | (ok[2] & 4) | (ok[3] & 8));
+}
+
+static inline __attribute__((always_inline)) int
+joint_force_fast4(const yf_v4 x[4], const yf_v4 y[4], const yf_v4 *hreg, const yf_v4 *ft, const yf_v4 *fs,
+                  const yf_v4 *pen, yf_v4 f[8])
+{
+  YfJointGeom4 g;
+  joint_geometry4(x, y, hreg, &g);
+  return joint_law4(&g, ft, fs, pen, f);
 }
 /* joint_force in two halves: g = joint_geometry(p->hreg, x, y), c = joint_pre_init(p) (or of the
  * same property values); the same results, bit for bit. */
