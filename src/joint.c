@@ -8,10 +8,17 @@
  * joints and recorded serially in joint order; every sum over joints is serial.  So 1 or N
  * threads give the same bits, and a scene without fracture has no joints and pays nothing.
  *
+ * Speed: in a running scene nearly every joint is intact and before its peak, and then its forces
+ * need no law, no damage memory and no state update.  The force stage takes such joints four at a
+ * time (joint_force_fast4 of joint_law.h: one joint per lane of a 4-wide vector, each lane doing
+ * joint_force's IEEE operations in its order, so the bits are the scalar law's); a joint past its
+ * peak, with damage memory already damaged, or with Mohr-Coulomb takes the scalar law.
+ *
  * Units: SI, 2D per unit thickness (forces N/m, energies J/m, fracture energy J/m^2).
  */
 #include <math.h>
 #include <omp.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,7 +37,7 @@
 #include "summary.h"
 
 #define JBLOCK 256 /* joints per block of the force loop (break collection granularity) */
-#define JBATCH 32  /* joints whose geometry is computed ahead of their law (3 KB of stack) */
+#define PF_GROUPS 4
 static int par_min = 4096;
 void joints_set_par_min(int n) { par_min = n < 0 ? 0 : n; }
 
@@ -552,6 +559,202 @@ static inline void scaled_prop(const YfJoints *J, int j, YfJointProp *lp, int *c
   lp->gf = b->gf * k;
 }
 
+/* The general path of one intact joint: joint_force_geom with the (scaled) property set, the
+ * work increment, and the opened / failed marks.  x, y, v: its nodes' positions and velocities. */
+static void joint_general(YfJoints *J, int j, const double x[4], const double y[4], const double v[8],
+                          double dtp, YfJointProp *lp, int *cur, int *nbreak, int *nopen) {
+  scaled_prop(J, j, lp, cur);
+  YfJointGeom g;
+  joint_geometry_inline(lp->hreg, x, y, &g);
+  double f[8];
+  YfJointInfo info;
+  /* factor 1 (every joint of a homogeneous set): the set's precomputed lengths apply */
+  YfJointPre pre;
+  const YfJointPre *pc = &J->set[J->prop[j]].pre;
+  if (J->k[j] != 1.0) {
+    joint_pre_init(lp, &pre);
+    pc = &pre;
+  }
+  int nfail = joint_force_geom(lp, pc, &g, J->fs + j, J->dmg + 3 * j, f, &info);
+  double *fj = J->f + 8 * j;
+  J->w[j] += work_inc_v(v, fj, f, dtp);
+  memcpy(fj, f, sizeof f);
+  J->z[j] = info.zmax;
+  if (info.zmax > 0.0 && !J->opened[j]) { /* first time past the peak: an opened crack */
+    J->opened[j] = (unsigned char)(0x80 | (info.mode != YF_JMODE_NONE ? info.mode : YF_JMODE_MIXED));
+    (*nopen)++;
+  }
+  if (YF_JOINT_BROKEN(nfail)) {
+    J->state[j] = 1;
+    J->mode[j] = (unsigned char)(info.mode != YF_JMODE_NONE ? info.mode : YF_JMODE_MIXED);
+    (*nbreak)++;
+  }
+}
+
+/* The lines of J->f of four joints (four components each, from component c0) as four vectors,
+ * one per component, lane l = joint l; and back.  A 4x4 transpose: moves only, exact. */
+static inline void rows_to_lanes(const double *r0, const double *r1, const double *r2, const double *r3,
+                                 yf_v4 out[4]) {
+  yf_v4 a, b, c, d;
+  memcpy(&a, r0, sizeof a);
+  memcpy(&b, r1, sizeof b);
+  memcpy(&c, r2, sizeof c);
+  memcpy(&d, r3, sizeof d);
+  const yf_v4l lo = {0, 4, 2, 6}, hi = {1, 5, 3, 7}, q0 = {0, 1, 4, 5}, q1 = {2, 3, 6, 7};
+  yf_v4 t0 = __builtin_shuffle(a, b, lo), t1 = __builtin_shuffle(a, b, hi);
+  yf_v4 t2 = __builtin_shuffle(c, d, lo), t3 = __builtin_shuffle(c, d, hi);
+  out[0] = __builtin_shuffle(t0, t2, q0);
+  out[1] = __builtin_shuffle(t1, t3, q0);
+  out[2] = __builtin_shuffle(t0, t2, q1);
+  out[3] = __builtin_shuffle(t1, t3, q1);
+}
+
+static inline void lanes_to_rows(const yf_v4 in[4], int mask, double *r0, double *r1, double *r2, double *r3) {
+  const yf_v4l lo = {0, 4, 2, 6}, hi = {1, 5, 3, 7}, q0 = {0, 1, 4, 5}, q1 = {2, 3, 6, 7};
+  yf_v4 t0 = __builtin_shuffle(in[0], in[1], lo), t1 = __builtin_shuffle(in[0], in[1], hi);
+  yf_v4 t2 = __builtin_shuffle(in[2], in[3], lo), t3 = __builtin_shuffle(in[2], in[3], hi);
+  yf_v4 a = __builtin_shuffle(t0, t2, q0), b = __builtin_shuffle(t1, t3, q0);
+  yf_v4 c = __builtin_shuffle(t0, t2, q1), d = __builtin_shuffle(t1, t3, q1);
+  if (mask & 1) memcpy(r0, &a, sizeof a);
+  if (mask & 2) memcpy(r1, &b, sizeof b);
+  if (mask & 4) memcpy(r2, &c, sizeof c);
+  if (mask & 8) memcpy(r3, &d, sizeof d);
+}
+
+/* Whether joint j may be offered to joint_force_fast4: intact, no Mohr-Coulomb (its shear
+ * strength never changes), and reversible or not damaged yet (joint_force leaves its state as it
+ * is while every point stays before its peak). */
+static inline int fast_ok(const YfJoints *J, int j) {
+  if (J->state[j]) return 0;
+  const YfJointProp *p = &J->set[J->prop[j]].p;
+  if (p->coh > 0.0) return 0;
+  if (!p->irreversible) return 1;
+  const double *d = J->dmg + 3 * j;
+  return d[0] == 0.0 && d[1] == 0.0 && d[2] == 0.0;
+}
+
+/* The general path for joint j, reading its nodes. */
+static void joint_general_n(YfJoints *J, const YfNodes *N, int j, double dtp, YfJointProp *lp, int *cur,
+                            int *nbreak, int *nopen) {
+  const int *nd = J->node + 4 * j;
+  double x[4], y[4], v[8];
+  for (int c = 0; c < 4; c++) {
+    x[c] = N->x[nd[c]];
+    y[c] = N->y[nd[c]];
+    v[2 * c] = N->vx[nd[c]];
+    v[2 * c + 1] = N->vy[nd[c]];
+  }
+  joint_general(J, j, x, y, v, dtp, lp, cur, nbreak, nopen);
+}
+
+/* Joints jb0 .. jb1-1 (one block), four consecutive joints at a time: the ones fast_ok accepts go
+ * through joint_force_fast4 together (their per-joint arrays are one vector load each), and the
+ * lanes it declines (a point past its peak) and the others take joint_general.  Each joint's
+ * results depend on that joint alone, so the order in which they are done does not matter.
+ * A batch of NGRP groups of four goes through the geometry first, then the law and the work: two
+ * short loops whose square roots and divisions (the latency of a group) overlap from group to
+ * group, where one long loop would leave them in sequence. */
+#define NGRP 8
+__attribute__((target_clones("avx2", "default")))
+static void joints_block(YfJoints *J, const YfNodes *N, int jb0, int jb1, double dtp, int *nbreak_out,
+                         int *nopen_out) {
+  YfJointProp lp;
+  int cur = -1, nbreak = 0, nopen = 0;
+  int j = jb0;
+  struct {
+    YfJointGeom4 g;
+    yf_v4 ft, fs, pen, vx[4], vy[4];
+  } B[NGRP];
+  int elig[NGRP];
+  while (j + 4 <= jb1) {
+    int ng = (jb1 - j) / 4 < NGRP ? (jb1 - j) / 4 : NGRP;
+    for (int q = 0; q < ng; q++) {
+      const int jq = j + 4 * q;
+      if (jq + 4 * PF_GROUPS + 4 <= jb1) { /* the lines a later group will need (node gathers are not streams) */
+        const int *np = J->node + 4 * (jq + 4 * PF_GROUPS);
+        for (int l = 0; l < 4; l++) {
+          int a = np[4 * l], b = np[4 * l + 3];
+          __builtin_prefetch(N->x + a); __builtin_prefetch(N->y + a); __builtin_prefetch(N->vx + a); __builtin_prefetch(N->vy + a);
+          __builtin_prefetch(N->x + b); __builtin_prefetch(N->y + b); __builtin_prefetch(N->vx + b); __builtin_prefetch(N->vy + b);
+        }
+        __builtin_prefetch(J->f + 8 * (jq + 4 * PF_GROUPS), 1);
+        __builtin_prefetch(J->f + 8 * (jq + 4 * PF_GROUPS) + 16, 1);
+      }
+      /* the common case first: four intact joints of one reversible set without Mohr-Coulomb */
+      const int *pr = J->prop + jq;
+      uint32_t st4;
+      memcpy(&st4, J->state + jq, sizeof st4);
+      const YfJointProp *p0 = &J->set[pr[0]].p;
+      int e;
+      if (!st4 && pr[1] == pr[0] && pr[2] == pr[0] && pr[3] == pr[0] && !p0->irreversible && !(p0->coh > 0.0))
+        e = 15;
+      else
+        e = fast_ok(J, jq) | fast_ok(J, jq + 1) << 1 | fast_ok(J, jq + 2) << 2 | fast_ok(J, jq + 3) << 3;
+      elig[q] = e;
+      if (!e) continue;
+      const int *nd = J->node + 4 * jq; /* nd[4 l + c]: node c of lane l */
+      const YfJointProp *p1 = &J->set[pr[1]].p, *p2 = &J->set[pr[2]].p, *p3 = &J->set[pr[3]].p;
+      const yf_v4 hreg = {p0->hreg, p1->hreg, p2->hreg, p3->hreg}, ft = {p0->ft, p1->ft, p2->ft, p3->ft};
+      B[q].pen = (yf_v4){p0->pen, p1->pen, p2->pen, p3->pen};
+      yf_v4 k, x[4], y[4];
+      memcpy(&k, J->k + jq, sizeof k);
+      B[q].ft = ft * k; /* as scaled_prop */
+      memcpy(&B[q].fs, J->fs + jq, sizeof B[q].fs);
+      for (int c = 0; c < 4; c++) {
+        int n0 = nd[c], n1 = nd[4 + c], n2 = nd[8 + c], n3 = nd[12 + c];
+        x[c] = (yf_v4){N->x[n0], N->x[n1], N->x[n2], N->x[n3]};
+        y[c] = (yf_v4){N->y[n0], N->y[n1], N->y[n2], N->y[n3]};
+        B[q].vx[c] = (yf_v4){N->vx[n0], N->vx[n1], N->vx[n2], N->vx[n3]};
+        B[q].vy[c] = (yf_v4){N->vy[n0], N->vy[n1], N->vy[n2], N->vy[n3]};
+      }
+      joint_geometry4(x, y, &hreg, &B[q].g);
+    }
+    for (int q = 0; q < ng; q++) {
+      const int jq = j + 4 * q;
+      int done = 0;
+      if (elig[q]) {
+        yf_v4 f[8];
+        done = joint_law4(&B[q].g, &B[q].ft, &B[q].fs, &B[q].pen, f) & elig[q];
+        if (done) {
+          double *fj = J->f + 8 * jq;
+          yf_v4 fo[8];
+          rows_to_lanes(fj, fj + 8, fj + 16, fj + 24, fo);
+          rows_to_lanes(fj + 4, fj + 12, fj + 20, fj + 28, fo + 4);
+          /* work_inc_v lane by lane (v: vx, vy of node c) */
+          yf_v4 w = {0.0, 0.0, 0.0, 0.0};
+          for (int c = 0; c < 4; c++)
+            w -= 0.5 * ((fo[2 * c] + f[2 * c]) * B[q].vx[c] + (fo[2 * c + 1] + f[2 * c + 1]) * B[q].vy[c]);
+          w = w * dtp;
+          lanes_to_rows(f, done, fj, fj + 8, fj + 16, fj + 24);
+          lanes_to_rows(f + 4, done, fj + 4, fj + 12, fj + 20, fj + 28);
+          if (done == 15) {
+            yf_v4 wj;
+            const yf_v4 zero = {0.0, 0.0, 0.0, 0.0};
+            memcpy(&wj, J->w + jq, sizeof wj);
+            wj = wj + w;
+            memcpy(J->w + jq, &wj, sizeof wj);
+            memcpy(J->z + jq, &zero, sizeof zero);
+          } else {
+            for (int l = 0; l < 4; l++)
+              if (done >> l & 1) {
+                J->w[jq + l] += w[l];
+                J->z[jq + l] = 0.0;
+              }
+          }
+        }
+      }
+      if (done != 15)
+        for (int l = 0; l < 4; l++)
+          if (!(done >> l & 1) && !J->state[jq + l]) joint_general_n(J, N, jq + l, dtp, &lp, &cur, &nbreak, &nopen);
+    }
+    j += 4 * ng;
+  }
+  for (; j < jb1; j++)
+    if (!J->state[j]) joint_general_n(J, N, j, dtp, &lp, &cur, &nbreak, &nopen);
+  *nbreak_out = nbreak;
+  *nopen_out = nopen;
+}
+
 void joints_forces(YfSim *s) {
   YfJoints *J = s->joints;
   if (!J || !J->n) return;
@@ -571,57 +774,8 @@ void joints_forces(YfSim *s) {
   const int nj = J->n, nblk = J->nblk;
   #pragma omp parallel for schedule(static) if (nj >= par_min)
   for (int b = 0; b < nblk; b++) {
-    YfJointProp lp;
-    int cur = -1, nbreak = 0, nopen = 0;
     int jb1 = (b + 1) * JBLOCK < nj ? (b + 1) * JBLOCK : nj;
-    for (int j0 = b * JBLOCK; j0 < jb1; j0 += JBATCH) {
-      int j1 = j0 + JBATCH < jb1 ? j0 + JBATCH : jb1;
-      /* the geometry of the batch first: a short loop whose square roots and divisions (the
-       * latency of a joint) overlap from joint to joint; then the law of each */
-      YfJointGeom g[JBATCH];
-      double vel[JBATCH][8]; /* the nodes' velocities for the work, loaded alongside positions */
-      for (int j = j0; j < j1; j++) {
-        if (J->state[j]) continue;
-        const int *nd = J->node + 4 * j;
-        double x[4], y[4], *v = vel[j - j0];
-        for (int c = 0; c < 4; c++) {
-          x[c] = N->x[nd[c]];
-          y[c] = N->y[nd[c]];
-          v[2 * c] = N->vx[nd[c]];
-          v[2 * c + 1] = N->vy[nd[c]];
-        }
-        joint_geometry_inline(J->set[J->prop[j]].p.hreg, x, y, &g[j - j0]);
-      }
-      for (int j = j0; j < j1; j++) {
-        if (J->state[j]) continue;
-        scaled_prop(J, j, &lp, &cur);
-        double f[8];
-        YfJointInfo info;
-        /* factor 1 (every joint of a homogeneous set): the set's precomputed lengths apply */
-        YfJointPre pre;
-        const YfJointPre *pc = &J->set[J->prop[j]].pre;
-        if (J->k[j] != 1.0) {
-          joint_pre_init(&lp, &pre);
-          pc = &pre;
-        }
-        int nfail = joint_force_geom(&lp, pc, &g[j - j0], J->fs + j, J->dmg + 3 * j, f, &info);
-        double *fj = J->f + 8 * j;
-        J->w[j] += work_inc_v(vel[j - j0], fj, f, dtp);
-        memcpy(fj, f, sizeof f);
-        J->z[j] = info.zmax;
-        if (info.zmax > 0.0 && !J->opened[j]) { /* first time past the peak: an opened crack */
-          J->opened[j] = (unsigned char)(0x80 | (info.mode != YF_JMODE_NONE ? info.mode : YF_JMODE_MIXED));
-          nopen++;
-        }
-        if (YF_JOINT_BROKEN(nfail)) {
-          J->state[j] = 1;
-          J->mode[j] = (unsigned char)(info.mode != YF_JMODE_NONE ? info.mode : YF_JMODE_MIXED);
-          nbreak++;
-        }
-      }
-    }
-    J->blk_nbreak[b] = nbreak;
-    J->blk_nopen[b] = nopen;
+    joints_block(J, N, b * JBLOCK, jb1, dtp, &J->blk_nbreak[b], &J->blk_nopen[b]);
   }
   /* record the newly opened joints in joint order (before the breaks of the same step) */
   for (int b = 0; b < nblk; b++) {

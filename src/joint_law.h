@@ -28,6 +28,7 @@
 #define YF_JOINT_LAW_H
 #include <math.h>
 #include <stddef.h>
+#include "yfvec.h"
 
 enum { YF_SOFT_MUNJIZA = 0, YF_SOFT_MUNJIZA_GF, YF_SOFT_LINEAR, YF_SOFT_BILINEAR, YF_SOFT_TABLE,
        YF_SOFT_NLAW };
@@ -151,6 +152,98 @@ static inline void joint_geometry_inline(double hreg, const double x[4], const d
   g->ps[0] = sa; g->ps[1] = (sa + sb) / 2.0; g->ps[2] = sb;
 }
 void joint_geometry(double hreg, const double x[4], const double y[4], YfJointGeom *g);
+
+/* ---- the common case, four joints at once ----
+ * In a running scene nearly every joint is intact and before its peak at all three sampling
+ * points (o <= o_p and |s| <= s_p: damage z = 0, g(z) = 1 for every law).  Then joint_force
+ * reduces to the geometry, the pre-peak quadratics and the nodal weights, with no dependence on
+ * the law, the floor, o_t, s_t or the damage memory.  joint_force_fast4 does exactly that for four
+ * joints, one per lane, with each lane doing joint_force's IEEE operations in joint_force's order
+ * (geometry of joint_geometry_inline, then law_core's z = 0 branch), so a lane it accepts has the
+ * bits joint_force would give.  The caller may offer only joints for which joint_force would not
+ * touch the state: no Mohr-Coulomb (coh == 0, so fs stays) and, if irreversible, all three
+ * damage values 0 (then z = 0 >= D keeps them 0 and the secant branch is not taken). */
+/* Lane l = joint l: x[c], y[c]: positions of nodes 0..3 (joint_force's x, y) [m]; hreg: the
+ * property's hreg [m]; ft: tensile strength as joint_force sees it (p->ft, scaled) [Pa]; fs: the
+ * current shear strength (*fs_state) [Pa]; pen: penalty [Pa].  (Pointers: a 32-byte vector passed
+ * by value would change the ABI between a function's AVX and default builds.)
+ * Forces f[c] (c as joint_force's f[8]) of the four lanes; returns the lanes it accepts as bits
+ * (bit l set: f[.][l] is joint_force's, the joint stays undamaged, fs and damage unchanged, zmax
+ * 0, no failure; clear: some sampling point is past its peak, or a value is NaN: the lane's f is
+ * meaningless, use joint_force_geom). */
+/* The geometry half of joint_force_fast4 (joint_geometry_inline per lane). */
+typedef struct {
+  yf_v4 h, e1x, e1y, po[3], ps[3];
+} YfJointGeom4;
+
+static inline __attribute__((always_inline)) void
+joint_geometry4(const yf_v4 x[4], const yf_v4 y[4], const yf_v4 *hreg, YfJointGeom4 *g)
+{
+  const yf_v4 zero = {0.0, 0.0, 0.0, 0.0}, one = {1.0, 1.0, 1.0, 1.0};
+  /* 3.1 geometry: joint_geometry_inline term by term */
+  yf_v4 ex = ((x[1] + x[2]) - (x[0] + x[3])) / 2.0;
+  yf_v4 ey = ((y[1] + y[2]) - (y[0] + y[3])) / 2.0;
+  yf_v4 h = ex * ex + ey * ey;
+  yf_sqrt4(&h);
+  yf_v4 hr = h + *hreg;
+  hr = YF_SEL4(hr > zero, hr, one);
+  yf_v4 e1x = ex / hr, e1y = ey / hr;
+  yf_v4 nx = -e1y, ny = e1x;
+  yf_v4 dax = x[0] - x[3], day = y[0] - y[3];
+  yf_v4 dbx = x[1] - x[2], dby = y[1] - y[2];
+  yf_v4 sa = dax * e1x + day * e1y, sb = dbx * e1x + dby * e1y;
+  yf_v4 oa = dax * nx + day * ny, ob = dbx * nx + dby * ny;
+  g->h = h;
+  g->e1x = e1x;
+  g->e1y = e1y;
+  g->po[0] = oa; g->po[1] = (oa + ob) / 2.0; g->po[2] = ob;
+  g->ps[0] = sa; g->ps[1] = (sa + sb) / 2.0; g->ps[2] = sb;
+}
+
+/* The law half of joint_force_fast4 (law_core's z = 0 branch per lane); returns the accepted lanes. */
+static inline __attribute__((always_inline)) int
+joint_law4(const YfJointGeom4 *g, const yf_v4 *ft_, const yf_v4 *fs_, const yf_v4 *pen, yf_v4 f[8])
+{
+  const yf_v4 zero = {0.0, 0.0, 0.0, 0.0};
+  const yf_v4 h = g->h, e1x = g->e1x, e1y = g->e1y, nx = -e1y, ny = e1x;
+  /* 3.2 peak opening and slip, nodal weights h/6, h/3 (law_core's packed pairs, lane-wise) */
+  const yf_v4 ft = *ft_, fs = *fs_;
+  yf_v4 op = 2.0 * h * ft / *pen, sp = 2.0 * h * fs / *pen;
+  yf_v4 w0 = h / 6.0, w1 = h / 3.0;
+  yf_v4l ok = {-1, -1, -1, -1};
+  yf_v4 qx[3], qy[3];
+  for (int k = 0; k < 3; k++) {
+    yf_v4 o = g->po[k], s = g->ps[k], as = YF_ABS4(s);
+    ok &= (o <= op) & (as <= sp); /* z = 0 at this point (NaN: not accepted) */
+    /* 3.4 with g = 1: ro = o/o_p, or the compression stress 2 o f_t/o_p; rs = |s|/s_p */
+    yf_v4l neg = o < zero;
+    yf_v4 ro = YF_SEL4(neg, 2.0 * o * ft, o) / op, rs = as / sp;
+    yf_v4 sigma = YF_SEL4(neg, ro, (2.0 * ro - ro * ro) * ft);
+    yf_v4 tau = (2.0 * rs - rs * rs) * fs;
+    tau = YF_SEL4(s < zero, -tau, tau);
+    qx[k] = tau * e1x + sigma * nx;
+    qy[k] = tau * e1y + sigma * ny;
+  }
+  /* 3.6 nodal forces: A's nodes (0, 1) get -w q, B's (3, 2) +w q (w2 = w0) */
+  f[0] = -w0 * qx[0] - w1 * qx[1];
+  f[1] = -w0 * qy[0] - w1 * qy[1];
+  f[2] = -w1 * qx[1] - w0 * qx[2];
+  f[3] = -w1 * qy[1] - w0 * qy[2];
+  f[4] = w1 * qx[1] + w0 * qx[2];
+  f[5] = w1 * qy[1] + w0 * qy[2];
+  f[6] = w0 * qx[0] + w1 * qx[1];
+  f[7] = w0 * qy[0] + w1 * qy[1];
+  return (int)((ok[0] & 1) | (ok[1] & 2) | (ok[2] & 4) | (ok[3] & 8));
+}
+
+static inline __attribute__((always_inline)) int
+joint_force_fast4(const yf_v4 x[4], const yf_v4 y[4], const yf_v4 *hreg, const yf_v4 *ft, const yf_v4 *fs,
+                  const yf_v4 *pen, yf_v4 f[8])
+{
+  YfJointGeom4 g;
+  joint_geometry4(x, y, hreg, &g);
+  return joint_law4(&g, ft, fs, pen, f);
+}
 /* joint_force in two halves: g = joint_geometry(p->hreg, x, y), c = joint_pre_init(p) (or of the
  * same property values); the same results, bit for bit. */
 int joint_force_geom(const YfJointProp *p, const YfJointPre *c, const YfJointGeom *g, double *fs_state,

@@ -440,6 +440,100 @@ START_TEST(test_threads_bitwise) {
 }
 END_TEST
 
+/* ---- the force stage against the scalar law ---- */
+
+#define STAGE_DECK(jp)                                                                                \
+  MAT "jointprop j ft 3e6 fs 3e6 gf 100 pen 1e11 " jp "\n"                                            \
+      "mesh rect bar m 0 0 0.1 0.02 31 6 pattern alt\nfracture bar j\n"                            \
+      "region L box -1 -1 1e-9 1\nregion R box 0.099999 -1 1 1\n"                                  \
+      "group left node region L\ngroup right node region R\n"                                      \
+      "fix a left fixed xy\nhistory h ramp 0 1e-3\nfix b right displacement 1.5e-4 NULL history h\n" \
+      "damping mass 3000\ntimestep auto\n"
+
+/* One call of joints_forces against joint_force joint by joint (scaled property as joint.c
+ * scales it, the work increment of joint.h's trapezoid rule): forces, work, damage, shear
+ * strength and zmax must be the same bits for every intact joint, whichever path joint.c took
+ * (four at a time, a declined lane, or the scalar law).  Counts joints past their peak (*npast)
+ * and before it (*nbefore). */
+static void stage_vs_scalar(YfSim *s, int *npast, int *nbefore) {
+  YfJoints *J = s->joints;
+  const YfNodes *N = &s->model.node;
+  const int n = J->n;
+  double *f = malloc(sizeof(double) * 8 * n), *w = malloc(sizeof(double) * n), *z = malloc(sizeof(double) * n);
+  double *fs = malloc(sizeof(double) * n), *dmg = malloc(sizeof(double) * 3 * n);
+  unsigned char *st = malloc(n);
+  memcpy(st, J->state, n);
+  for (int j = 0; j < n; j++) {
+    if (st[j]) continue;
+    const YfJointProp *b = &J->set[J->prop[j]].p;
+    YfJointProp p = *b;
+    double k = J->k[j];
+    p.ft = b->ft * k;
+    p.fs = b->fs * k;
+    p.coh = b->coh * k;
+    p.gf = b->gf * k;
+    const int *nd = J->node + 4 * j;
+    double x[4], y[4], v[8];
+    for (int c = 0; c < 4; c++) {
+      x[c] = N->x[nd[c]];
+      y[c] = N->y[nd[c]];
+      v[2 * c] = N->vx[nd[c]];
+      v[2 * c + 1] = N->vy[nd[c]];
+    }
+    fs[j] = J->fs[j];
+    memcpy(dmg + 3 * j, J->dmg + 3 * j, sizeof(double) * 3);
+    YfJointInfo info;
+    joint_force(&p, x, y, fs + j, dmg + 3 * j, f + 8 * j, &info);
+    const double *fo = J->f + 8 * j, *fn = f + 8 * j;
+    double dw = 0;
+    for (int c = 0; c < 4; c++)
+      dw -= 0.5 * ((fo[2 * c] + fn[2 * c]) * v[2 * c] + (fo[2 * c + 1] + fn[2 * c + 1]) * v[2 * c + 1]);
+    w[j] = J->w[j] + dw * J->dt_prev;
+    z[j] = info.zmax;
+    if (info.zmax > 0) (*npast)++;
+    else (*nbefore)++;
+  }
+  joints_forces(s);
+  for (int j = 0; j < n; j++) {
+    if (st[j]) continue;
+    ck_assert_msg(!memcmp(f + 8 * j, J->f + 8 * j, sizeof(double) * 8), "joint %d: forces differ", j);
+    ck_assert_msg(!memcmp(w + j, J->w + j, sizeof(double)), "joint %d: work differs", j);
+    ck_assert_msg(!memcmp(z + j, J->z + j, sizeof(double)), "joint %d: zmax differs", j);
+    ck_assert_msg(!memcmp(fs + j, J->fs + j, sizeof(double)), "joint %d: shear strength differs", j);
+    ck_assert_msg(!memcmp(dmg + 3 * j, J->dmg + 3 * j, sizeof(double) * 3), "joint %d: damage differs", j);
+  }
+  free(f); free(w); free(z); free(fs); free(dmg); free(st);
+}
+
+/* The tension bar until it breaks, checked every 100 steps, for: a Weibull field with damage
+ * memory (factors k != 1, damaged joints leave the four-at-a-time path for good), Y2D's
+ * reversible law with a normal field, and Mohr-Coulomb (never on the fast path). */
+START_TEST(test_force_stage_bitwise) {
+  quiet();
+  static const char *const decks[] = {
+      STAGE_DECK("law linear weibull 4 seed 7"),
+      STAGE_DECK("law munjiza damage reversible normal 0.2 seed 3"),
+      STAGE_DECK("law bilinear cohesion 2e6 friction 0.5"),
+  };
+  for (int d = 0; d < 3; d++) {
+    YfSim *s = yft_run(decks[d]);
+    int npast = 0, nbefore = 0;
+    for (int k = 0; k < 50; k++) {
+      run_steps(s, 100);
+      if (k == 0) {
+        ck_assert_int_gt(s->joints->n, 256);   /* two blocks */
+        ck_assert_int_ne(s->joints->n % 4, 0); /* a remainder after the groups of four */
+      }
+      stage_vs_scalar(s, &npast, &nbefore);
+    }
+    ck_assert_int_gt(npast, 0);
+    ck_assert_int_gt(nbefore, 0);
+    if (d == 0) ck_assert_int_gt(joints_broken(s), 0);
+    release(s);
+  }
+}
+END_TEST
+
 /* The joints' stable time step bounds the real one: a jointed concrete beam (Y2D reference deck
  * (b) proportions: h = 5 mm, rho 2340, p = 1e11, E 26 GPa, beta 0.5) struck impulsively stays
  * bounded at the limit itself; the limit is below Y2D's measured instability (2.5e-7 s) and the
@@ -539,6 +633,7 @@ Suite *joint_suite(void) {
   tcase_add_test(tc, test_broken_never_again);
   tcase_add_test(tc, test_seed_determinism);
   tcase_add_test(tc, test_threads_bitwise);
+  tcase_add_test(tc, test_force_stage_bitwise);
   tcase_add_test(tc, test_stable_dt_bound);
   tcase_add_test(tc, test_deck_errors);
   tcase_add_test(tc, test_summary_and_log);

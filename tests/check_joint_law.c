@@ -676,6 +676,145 @@ START_TEST(test_prop_check)
 }
 END_TEST
 
+/* ---------------------------------------------------------------- four joints at once */
+
+/* Uniform in [a, b). */
+static double urand(unsigned *seed, double a, double b) { return a + (b - a) * (rand_r(seed) / (RAND_MAX + 1.0)); }
+
+/* A relative displacement for one end: around the peak t (> 0) so that the measured value falls
+ * on either side of it by an ulp or so, well inside, in compression, past the peak, or zero. */
+static double near_peak(unsigned *seed, double t, double cf)
+{
+  switch (rand_r(seed) % 6) {
+  case 0: return t / cf * (1.0 + urand(seed, -3e-15, 3e-15));
+  case 1: return t / cf;
+  case 2: return urand(seed, -1.0, 1.0) * t;
+  case 3: return urand(seed, 1.0, 1.5) * t;
+  case 4: return -urand(seed, 0.0, 3.0) * t;
+  default: return 0.0;
+  }
+}
+
+/* A strength t such that 2 h t/pen rounds to target exactly (NAN if no t within 400 ulps). */
+static double tune_strength(double h, double pen, double target)
+{
+  double t = target * pen / (2.0 * h);
+  for (int i = 0; i < 400; i++) {
+    double v = 2.0 * h * t / pen;
+    if (v == target) return t;
+    t = nextafter(t, v < target ? INFINITY : -INFINITY);
+  }
+  return NAN;
+}
+
+/* An axis-aligned joint (h = 2^-7, hreg = 0) whose measured opening o and slip s are exact
+ * multiples of 2^-57 (every sum of the geometry is exact), with f_t and the shear strength tuned
+ * so that the peaks o_p, s_p are o or its neighbour below or above (likewise s): the accept test
+ * o <= o_p, |s| <= s_p is then exercised to the last ulp.  Returns 0 if no tuning was found. */
+static int exact_lane(unsigned *seed, YfJointProp *q, double *fsv, double x[4], double y[4])
+{
+  const double h = 0x1p-7;
+  q->hreg = 0.0;
+  double o = ldexp(floor(ldexp(urand(seed, 0.5, 1.5) * 2.0 * h * q->ft / q->pen, 57)), -57);
+  double s = ldexp(floor(ldexp(urand(seed, 0.5, 1.5) * 2.0 * h * *fsv / q->pen, 57)), -57);
+  double to = rand_r(seed) % 3 == 0 ? o : nextafter(o, rand_r(seed) % 2 ? INFINITY : -INFINITY);
+  double ts = rand_r(seed) % 3 == 0 ? s : nextafter(s, rand_r(seed) % 2 ? INFINITY : -INFINITY);
+  double ft = tune_strength(h, q->pen, to), fs = tune_strength(h, q->pen, ts);
+  if (isnan(ft) || isnan(fs)) return 0;
+  q->ft = ft;
+  *fsv = fs;
+  if (rand_r(seed) % 2) s = -s;
+  x[0] = s; x[3] = 0.0; x[1] = h + s; x[2] = h;
+  y[0] = o; y[3] = 0.0; y[1] = o; y[2] = 0.0;
+  return 1;
+}
+
+/* joint_force_fast4 against joint_force, bit for bit, on random joints of every law, damage
+ * model, floor and hreg, with scaled strengths and shear strengths off their initial value;
+ * openings and slips straddle the peaks (exact_lane: by one ulp), so lanes of one call mix
+ * accepted and declined joints.  An accepted lane must be exactly joint_force's forces with no change of state; every
+ * finite lane joint_force leaves undamaged must be accepted. */
+START_TEST(test_fast4_bitwise)
+{
+  unsigned seed = 2024u;
+  int nacc = 0, nrej = 0, nmixed = 0, nexact = 0;
+  for (int trial = 0; trial < 20000; trial++) {
+    YfJointProp p[4];
+    double xs[4][4], ys[4][4], fsv[4];
+    int isnan_lane[4] = {0, 0, 0, 0};
+    for (int l = 0; l < 4; l++) {
+      YfJointProp *q = &p[l];
+      prop_law(q, all_laws[rand_r(&seed) % 5]);
+      q->irreversible = rand_r(&seed) % 2;
+      q->y2d_floor = rand_r(&seed) % 2;
+      q->hreg = rand_r(&seed) % 3 ? 1e-10 : 0.0;
+      double k = rand_r(&seed) % 2 ? 1.0 : urand(&seed, 0.3, 2.0); /* heterogeneity factor */
+      q->ft *= k;
+      q->fs *= k * (rand_r(&seed) % 4 ? 1.0 : urand(&seed, 0.2, 3.0));
+      q->gf *= k;
+      q->pen *= rand_r(&seed) % 2 ? 1.0 : urand(&seed, 0.1, 10.0);
+      fsv[l] = rand_r(&seed) % 4 ? joint_fs_init(q) : urand(&seed, 0.5, 2.0) * q->fs;
+      double h = urand(&seed, 1e-4, 2e-2), th = urand(&seed, -M_PI, M_PI);
+      double cf = h / (h + q->hreg), op = 2.0 * h * q->ft / q->pen, sp = 2.0 * h * fsv[l] / q->pen;
+      double ex = cos(th), ey = sin(th), nx = -ey, ny = ex, px = urand(&seed, -1, 1), py = urand(&seed, -1, 1);
+      double oa = near_peak(&seed, op, cf), ob = near_peak(&seed, op, cf);
+      double sa = near_peak(&seed, sp, cf), sb = near_peak(&seed, sp, cf);
+      if (rand_r(&seed) % 3 == 0) ob = oa; /* the middle point at the peak too */
+      if (rand_r(&seed) % 3 == 0) sb = sa;
+      double dax = oa * nx + sa * ex, day = oa * ny + sa * ey, dbx = ob * nx + sb * ex, dby = ob * ny + sb * ey;
+      double qx = px + h * ex, qy = py + h * ey;
+      xs[l][0] = px + dax / 2; ys[l][0] = py + day / 2;
+      xs[l][3] = px - dax / 2; ys[l][3] = py - day / 2;
+      xs[l][1] = qx + dbx / 2; ys[l][1] = qy + dby / 2;
+      xs[l][2] = qx - dbx / 2; ys[l][2] = qy - dby / 2;
+      if (rand_r(&seed) % 2 && exact_lane(&seed, q, &fsv[l], xs[l], ys[l])) {
+        nexact++;
+        continue;
+      }
+      if (trial % 101 == 7 && l == 1) { /* a collapsed native joint: h = 0, hreg = 0 */
+        q->hreg = 0.0;
+        for (int c = 0; c < 4; c++) { xs[l][c] = px; ys[l][c] = py; }
+      }
+      if (trial % 103 == 5 && l == 2) { xs[l][rand_r(&seed) % 4] = NAN; isnan_lane[l] = 1; }
+    }
+    yf_v4 x[4], y[4], f[8];
+    yf_v4 hreg = {p[0].hreg, p[1].hreg, p[2].hreg, p[3].hreg}, ft = {p[0].ft, p[1].ft, p[2].ft, p[3].ft};
+    yf_v4 fs = {fsv[0], fsv[1], fsv[2], fsv[3]}, pen = {p[0].pen, p[1].pen, p[2].pen, p[3].pen};
+    for (int c = 0; c < 4; c++) {
+      x[c] = (yf_v4){xs[0][c], xs[1][c], xs[2][c], xs[3][c]};
+      y[c] = (yf_v4){ys[0][c], ys[1][c], ys[2][c], ys[3][c]};
+    }
+    int acc = joint_force_fast4(x, y, &hreg, &ft, &fs, &pen, f);
+    ck_assert_int_eq(acc & ~15, 0);
+    int na = __builtin_popcount((unsigned)acc);
+    if (na > 0 && na < 4) nmixed++;
+    for (int l = 0; l < 4; l++) {
+      double fr[8], fsr = fsv[l], dmg[3] = {0.0, 0.0, 0.0}, fl[8];
+      YfJointInfo info;
+      int nfail = joint_force(&p[l], xs[l], ys[l], &fsr, dmg, fr, &info);
+      for (int c = 0; c < 8; c++) fl[c] = f[c][l];
+      if (acc >> l & 1) {
+        nacc++;
+        ck_assert_msg(!isnan_lane[l], "trial %d lane %d: a NaN position accepted", trial, l);
+        ck_assert_msg(!memcmp(fl, fr, sizeof fr), "trial %d lane %d: forces differ (%.17g vs %.17g ...)", trial, l,
+                      fl[0], fr[0]);
+        ck_assert(!memcmp(&fsr, &fsv[l], sizeof fsr));
+        const double z3[3] = {0.0, 0.0, 0.0};
+        ck_assert(!memcmp(dmg, z3, sizeof z3));
+        ck_assert(info.zmax == 0.0 && nfail == 0 && info.mode == YF_JMODE_NONE);
+      } else {
+        nrej++;
+        ck_assert_msg(isnan_lane[l] || info.zmax > 0.0, "trial %d lane %d: undamaged joint declined", trial, l);
+      }
+    }
+  }
+  ck_assert_int_gt(nacc, 10000);
+  ck_assert_int_gt(nrej, 10000);
+  ck_assert_int_gt(nmixed, 5000);
+  ck_assert_int_gt(nexact, 10000);
+}
+END_TEST
+
 Suite *joint_law_suite(void)
 {
   Suite *s = suite_create("joint_law");
@@ -713,6 +852,10 @@ Suite *joint_law_suite(void)
 
   tc = tcase_create("Mohr-Coulomb");
   tcase_add_test(tc, test_mohr_coulomb);
+  suite_add_tcase(s, tc);
+
+  tc = tcase_create("four joints at once");
+  tcase_add_test(tc, test_fast4_bitwise);
   suite_add_tcase(s, tc);
 
   tc = tcase_create("property checks");
