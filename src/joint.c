@@ -772,7 +772,10 @@ void joints_forces(YfSim *s) {
   }
   J->npend = 0;
   const int nj = J->n, nblk = J->nblk;
-  #pragma omp parallel for schedule(static) if (nj >= par_min)
+  /* dynamic: a block of intact joints costs a fraction of one past its peak (scalar law, softening
+   * curve), and the damaged ones cluster where the scene breaks; results are per joint and per
+   * block, so the schedule cannot change a bit */
+  #pragma omp parallel for schedule(dynamic, 8) if (nj >= par_min)
   for (int b = 0; b < nblk; b++) {
     int jb1 = (b + 1) * JBLOCK < nj ? (b + 1) * JBLOCK : nj;
     joints_block(J, N, b * JBLOCK, jb1, dtp, &J->blk_nbreak[b], &J->blk_nopen[b]);
