@@ -720,10 +720,10 @@ void contact_step(YfSim *s) {
       alive[k] = 1;
       int ti = ij[2 * k], tj = ij[2 * k + 1];
       const int *va = tv + 3 * tj, *vb = tv + 3 * ti;
-      double xa[3], ya[3], vxa[3], vya[3], xb[3], yb[3], vxb[3], vyb[3];
+      double vxa[3], vya[3], vxb[3], vyb[3];
       for (int c = 0; c < 3; c++) {
-        xa[c] = x[va[c]]; ya[c] = y[va[c]]; vxa[c] = vx[va[c]]; vya[c] = vy[va[c]];
-        xb[c] = x[vb[c]]; yb[c] = y[vb[c]]; vxb[c] = vx[vb[c]]; vyb[c] = vy[vb[c]];
+        vxa[c] = vx[va[c]]; vya[c] = vy[va[c]];
+        vxb[c] = vx[vb[c]]; vyb[c] = vy[vb[c]];
       }
       int ma = tmat[tj], mb = tmat[ti];
       double pn = mpn[ma] < mpn[mb] ? mpn[ma] : mpn[mb];
@@ -737,8 +737,8 @@ void contact_step(YfSim *s) {
         gi[k] = slot++;
         memset(gmem + 6 * (size_t)gi[k], 0, 6 * sizeof *gmem);
       }
-      int hit = contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, pn, pt, mu, dt, gmem + 6 * (size_t)gi[k], fa,
-                                   fb, &d2, &info);
+      int hit = contact_pair_force_rec(tg + (size_t)YF_TRI_GEOM * tj, vxa, vya, tg + (size_t)YF_TRI_GEOM * ti, vxb,
+                                       vyb, pn, pt, mu, dt, gmem + 6 * (size_t)gi[k], fa, fb, &d2, &info);
       e += info.energy;
       d += info.dissip;
       hk[h++] = k;

@@ -19,13 +19,82 @@
  * case, costs half as much).  Checked against the book-Y reference of deck (a) (contact, no
  * friction): displacements agree to 7e-11 of the largest at steps 1000-4000 and the couple count
  * matches at every output.  The summation order of forces on shared nodes is the caller's.
+ *
+ * Speed without changing a bit: each triangle's geometry (corners, normals, D, 1/D) is computed
+ * once per step into a record (contact_pair_geom) that both the screen (contact_pair_quiet: does
+ * the couple need the kernel at all?) and the kernel read; per couple only the barycentric
+ * values are computed, three lanes at a time.  Vector lanes do exactly the scalar operations of
+ * the equations (no FMA, same operand order), and every division whose quotient is used has the
+ * same operands as in the plain formulas, so the results are those of the scalar code
+ * (tests/check_contact_pair.c keeps that code as the reference and compares bits).  The screen
+ * and the kernel come in an AVX2 version and a portable one, chosen once at load time.
  */
 #include "contact_pair.h"
 
 #include <float.h>
 #include <math.h>
 
+#include "yfvec.h"
+
 #define EPS YF_CONTACT_EPS
+
+/* ---------------------------------------------------------------- the triangle record */
+
+void contact_pair_geom(const double x[3], const double y[3], double rec[YF_TRI_GEOM])
+{
+  double q[3];
+#pragma GCC unroll 3
+  for (int k = 0; k < 3; k++) {
+    int k1 = (k + 1) % 3;
+    rec[k] = x[k];
+    rec[3 + k] = y[k];
+    rec[6 + k] = y[k1] - y[k];    /* mx, as contact_pair_dir */
+    rec[9 + k] = -(x[k1] - x[k]); /* my */
+    q[k] = rec[6 + k] * rec[6 + k] + rec[9 + k] * rec[9 + k]; /* |m_k|^2 as the kernel's m2 */
+  }
+  double D = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+  rec[12] = D;
+  /* NaN for a degenerate triangle: its betas as a target are NaN, so no edge of the couple is
+   * skipped and the screen looks at D only on that (rare) path */
+  rec[13] = D > 0.0 ? 1.0 / D : NAN;
+  double qmin = q[0];
+  if (q[1] < qmin) qmin = q[1];
+  if (q[2] < qmin) qmin = q[2];
+  rec[14] = (D * D) / qmin; /* the largest squared height D^2 / |m_k|^2 [m^2] (bounds distances) */
+  rec[15] = 0.0;
+}
+
+/* 4-wide vectors of three corners or edges (GCC vector extensions: two SSE2 halves on plain
+ * x86-64, one AVX register in the AVX2 versions); every lane does the scalar arithmetic term by
+ * term, so the bits are the same. */
+typedef double v4d __attribute__((vector_size(32)));
+typedef long long v4l __attribute__((vector_size(32)));
+
+/* lanes of u where the mask m is set, else of w */
+#define BLEND(m, u, w) ((v4d)(((m) & (v4l)(u)) | (~(m) & (v4l)(w))))
+
+/* The sign bits of the 4 lanes of a comparison mask: one instruction with AVX, four extractions
+ * without (the two versions of the screen and of the kernel pass the one their target has). */
+typedef int (*Mask4)(const v4l *);
+__attribute__((target("avx2"), always_inline)) static inline int mask4_avx2(const v4l *m)
+{
+  return __builtin_ia32_movmskpd256((v4d)*m);
+}
+__attribute__((always_inline)) static inline int mask4_any(const v4l *m)
+{
+  const v4l v = *m;
+  return (int)((v[0] & 1) | (v[1] & 2) | (v[2] & 4) | (v[3] & 8));
+}
+
+/* *v = corners p[0..2] in lanes 0..2 and p[0] again in lane 3 (reads p[3], unused): lane 3
+ * repeats corner 0 bit for bit, so the screen's lane masks need no trimming */
+__attribute__((always_inline)) static inline void corners(const double *p, v4d *v)
+{
+  __builtin_memcpy(v, p, sizeof *v);
+  *v = __builtin_shuffle(*v, (v4l){0, 1, 2, 0});
+}
+
+/* ---------------------------------------------------------------- the kernel */
 
 /* P(s) = min_k beta_k(s) at parameter s of the edge. */
 static inline double pmin3(const double al[3], const double dl[3], double s)
@@ -37,34 +106,49 @@ static inline double pmin3(const double al[3], const double dl[3], double s)
   return p;
 }
 
-int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3], const double vyt[3],
-                     const double xc[3], const double yc[3], const double vxc[3], const double vyc[3],
-                     double pn, double pt, double mu, double dt, double g[3],
-                     double ft[6], double fc[6], double *dmin2, YfContactInfo *info)
+/* One direction on the triangle records (contact_pair_geom): contactor c on target t.  The
+ * record holds the target's normals, D and 1/D and the contactor's D (the separation test's
+ * scale), so only the betas are computed here.  Vectors hold the three target edges (or
+ * corners) k in lanes 0..2, loaded straight from the record (lane 3 is the record's next value,
+ * never used); every lane does the scalar arithmetic of the equations, so the bits are those of
+ * plain scalar code. */
+__attribute__((always_inline)) static inline int pair_dir(const double *t, const double *c, const double vxt[3],
+                                                         const double vyt[3], const double vxc[3], const double vyc[3],
+                                                         double pn, double pt, double mu, double dt, double g[3],
+                                                         double ft[6], double fc[6], double *dmin2,
+                                                         YfContactInfo *info, Mask4 mask)
 {
   /* 6.1: target normals (outward for CCW corners, length = edge length) and twice-area. */
-  double D = (xt[1] - xt[0]) * (yt[2] - yt[0]) - (yt[1] - yt[0]) * (xt[2] - xt[0]);
-  double Dc = (xc[1] - xc[0]) * (yc[2] - yc[0]) - (yc[1] - yc[0]) * (xc[2] - xc[0]);
+  const double D = t[12], Dc = c[12];
   if (!(D > 0.0) || !(Dc > 0.0)) return 0; /* degenerate or inverted: the element check reports it */
-  double mx[3], my[3];
-  for (int k = 0; k < 3; k++) {
-    int k1 = (k + 1) % 3;
-    mx[k] = yt[k1] - yt[k];
-    my[k] = -(xt[k1] - xt[k]);
+  const double *xc = c, *yc = c + 3;
+  v4d XT, YT, MX, MY;
+  __builtin_memcpy(&XT, t, sizeof XT);
+  __builtin_memcpy(&YT, t + 3, sizeof YT);
+  __builtin_memcpy(&MX, t + 6, sizeof MX);
+  __builtin_memcpy(&MY, t + 9, sizeof MY);
+  /* beta_k of every contactor node i, bn[i][k], with 1/D from the record.  (Multiplying by 1/D
+   * instead of dividing by D changes values by an ulp at most; it halves the cost of the
+   * common, far-apart couple.) */
+  double bn[3][4];
+  {
+    const v4d iD = {t[13], t[13], t[13], t[13]};
+#pragma GCC unroll 3
+    for (int i = 0; i < 3; i++) {
+      v4d b = ((XT - xc[i]) * MX + (YT - yc[i]) * MY) * iD;
+      __builtin_memcpy(bn[i], &b, sizeof b);
+    }
   }
-  /* beta_k of every contactor node: bn[i][k].  (Multiplying by 1/D instead of dividing by D
-   * changes values by an ulp at most; it halves the cost of the common, far-apart couple.) */
-  double invD = 1.0 / D;
-  double bn[3][3];
-  for (int i = 0; i < 3; i++)
-    for (int k = 0; k < 3; k++)
-      bn[i][k] = ((xt[k] - xc[i]) * mx[k] + (yt[k] - yc[i]) * my[k]) * invD;
 
+  /* |m_k|^2 (the squared edge lengths [m^2]) and, at the first edge in contact, the heights
+   * D / |m_k| [m] of the energy estimate, lane by lane as the scalar formulas */
+  const v4d Q = MX * MX + MY * MY;
+  double hk[4];
+  int have_hk = 0;
   int nforce = 0;
-  double hk[3] = {-1.0, -1.0, -1.0}; /* target heights over each edge [m], when first needed */
   double dmin = *dmin2; /* local: no store-to-load chain through the pointer */
   for (int e = 0; e < 3; e++) {
-    int a = e, b = e < 2 ? e + 1 : 0;
+    const int a = e, b = e < 2 ? e + 1 : 0;
     const double *al = bn[a], *ga = bn[b];
     double ncx = yc[b] - yc[a], ncy = -(xc[b] - xc[a]); /* contactor edge outward normal, |n_c| = L */
 
@@ -72,25 +156,24 @@ int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3]
      * settles most couples), or when the edge line does not separate the target's corners:
      * c_m = ((x_a - y_m) . n_c) / Dc is the contactor's barycentric function of this edge at
      * target corner m, positive on the contactor's inner side (compared as c_m Dc vs eps Dc). */
-    int skip = (al[0] < EPS && ga[0] < EPS) || (al[1] < EPS && ga[1] < EPS) || (al[2] < EPS && ga[2] < EPS);
+    v4d AL, GA;
+    __builtin_memcpy(&AL, al, sizeof AL);
+    __builtin_memcpy(&GA, ga, sizeof GA);
+    v4l out = (AL < EPS) & (GA < EPS);
+    int skip = (mask(&out) & 7) != 0;
     if (!skip) {
       double ep = EPS * Dc;
-      int allpos = 1, allneg = 1;
-      for (int m = 0; m < 3; m++) {
-        double c = (xc[a] - xt[m]) * ncx + (yc[a] - yt[m]) * ncy;
-        if (!(c > -ep)) allpos = 0;
-        if (!(c < ep)) allneg = 0;
-      }
-      skip = allpos || allneg;
+      v4d cm = (xc[a] - XT) * ncx + (yc[a] - YT) * ncy;
+      v4l pos = cm > -ep, neg = cm < ep;
+      skip = (mask(&pos) & 7) == 7 || (mask(&neg) & 7) == 7;
     }
     if (skip) {
       /* distance^2 of the start node to the line of the target edge with the smallest alpha:
        * alpha^2 / (|m_k|/D)^2, compared without dividing first. */
-      int kmin = 0;
-      if (al[1] < al[kmin]) kmin = 1;
-      if (al[2] < al[kmin]) kmin = 2;
-      double m2 = mx[kmin] * mx[kmin] + my[kmin] * my[kmin];
-      double num = al[kmin] * al[kmin] * (D * D);
+      double amin = al[0], m2 = Q[0];
+      if (al[1] < amin) { amin = al[1]; m2 = Q[1]; }
+      if (al[2] < amin) { amin = al[2]; m2 = Q[2]; }
+      double num = amin * amin * (D * D);
       if (num < dmin * m2) dmin = num / m2;
       continue;
     }
@@ -98,6 +181,7 @@ int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3]
     /* 6.3: contact interval [s_min, s_max] of the edge inside the target. */
     double dl[3];
     double smin = 0.0, smax = 1.0;
+#pragma GCC unroll 3
     for (int k = 0; k < 3; k++) {
       dl[k] = ga[k] - al[k];
       if (al[k] < 0.0 && ga[k] > EPS) {
@@ -111,13 +195,14 @@ int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3]
     }
     if (smax <= smin) continue;
 
-    /* Breakpoints: the ends and the kinks of min_k beta_k strictly inside (two lines cross and
-     * the third is larger there), sorted. */
+    /* Breakpoints, sorted: s_min, the kinks of min_k beta_k strictly inside (two lines cross
+     * and the third is larger there), s_max.  Only the kinks need sorting. */
     double bs[5];
-    int nb = 0;
-    bs[nb++] = smin;
-    bs[nb++] = smax;
+    int nb = 1;
+    bs[0] = smin;
+#pragma GCC unroll 2
     for (int i = 0; i < 2; i++)
+#pragma GCC unroll 2
       for (int j = i + 1; j < 3; j++) {
         double den = dl[i] - dl[j];
         if (den == 0.0) continue; /* parallel lines never cross */
@@ -126,15 +211,21 @@ int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3]
         int m = 3 - i - j;
         if (al[m] + s * dl[m] > al[i] + s * dl[i]) bs[nb++] = s;
       }
-    for (int i = 1; i < nb; i++) { /* insertion sort of at most 5 values */
+    for (int i = 2; i < nb; i++) { /* insertion sort of at most 3 kinks, all above bs[0] */
       double v = bs[i];
       int j = i - 1;
-      while (j >= 0 && bs[j] > v) { bs[j + 1] = bs[j]; j--; }
+      while (bs[j] > v) { bs[j + 1] = bs[j]; j--; }
       bs[j + 1] = v;
     }
+    bs[nb++] = smax;
 
     /* Exact integrals of the piecewise-linear P: int P ds and int P s ds. */
     double I0 = 0.0, I1 = 0.0, I2h = 0.0;
+    if (info && !have_hk) {
+#pragma GCC unroll 3
+      for (int k = 0; k < 3; k++) hk[k] = D / sqrt(Q[k]);
+      have_hk = 1;
+    }
     double s1 = bs[0], p1 = pmin3(al, dl, s1);
     for (int i = 1; i < nb; i++) {
       double s2 = bs[i], p2 = pmin3(al, dl, s2), h = s2 - s1;
@@ -144,9 +235,9 @@ int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3]
         double sm = 0.5 * (s1 + s2);
         int k = 0;
         double bk = al[0] + sm * dl[0];
+#pragma GCC unroll 2
         for (int q = 1; q < 3; q++)
           if (al[q] + sm * dl[q] < bk) { bk = al[q] + sm * dl[q]; k = q; }
-        if (!(hk[k] >= 0.0)) hk[k] = D / sqrt(mx[k] * mx[k] + my[k] * my[k]); /* once per edge */
         I2h += hk[k] * h * (p1 * p1 + p1 * p2 + p2 * p2);
       }
       s1 = s2;
@@ -167,6 +258,7 @@ int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3]
       for (int i = 0; i < nb; i++) sbar += bs[i];
       sbar /= nb;
       double vtx = 0.0, vty = 0.0;
+#pragma GCC unroll 3
       for (int k = 0; k < 3; k++) {
         double bk = al[k] + sbar * dl[k];
         int v = (k + 2) % 3; /* beta_k belongs to target vertex k+2 */
@@ -186,7 +278,8 @@ int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3]
         slip = fabs(gtrial - g[e]);
       }
       if (F > 0.0) {
-        double wa = Fa / F, wb = Fb / F;
+        double wa, wb; /* Fa / F and Fb / F in one packed division */
+        yf_div2(Fa, F, Fb, F, &wa, &wb);
         fax += Ft * wa * tcx;
         fay += Ft * wa * tcy;
         fbx += Ft * wb * tcx;
@@ -201,10 +294,15 @@ int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3]
     fc[2 * b] += fbx;
     fc[2 * b + 1] += fby;
     /* 6.5: reaction; target vertex v carries beta_(v+1) (beta_k belongs to vertex k+2). */
-    for (int v = 0; v < 3; v++) {
-      int k = (v + 1) % 3;
-      ft[2 * v] -= fax * al[k] + fbx * ga[k];
-      ft[2 * v + 1] -= fay * al[k] + fby * ga[k];
+    {
+      /* ft[2v + c] -= f_a,c al[v+1] + f_b,c ga[v+1] for vertices v = 0, 1 (one vector) and 2 */
+      const v4d FA = {fax, fay, fax, fay}, FB = {fbx, fby, fbx, fby};
+      v4d f01;
+      __builtin_memcpy(&f01, ft, sizeof f01);
+      f01 -= FA * __builtin_shuffle(AL, (v4l){1, 1, 2, 2}) + FB * __builtin_shuffle(GA, (v4l){1, 1, 2, 2});
+      __builtin_memcpy(ft, &f01, sizeof f01);
+      ft[4] -= fax * al[0] + fbx * ga[0];
+      ft[5] -= fay * al[0] + fby * ga[0];
     }
     nforce++;
 
@@ -222,92 +320,116 @@ int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3]
   return nforce;
 }
 
+int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3], const double vyt[3],
+                     const double xc[3], const double yc[3], const double vxc[3], const double vyc[3],
+                     double pn, double pt, double mu, double dt, double g[3],
+                     double ft[6], double fc[6], double *dmin2, YfContactInfo *info)
+{
+  double rt[YF_TRI_GEOM], rc[YF_TRI_GEOM];
+  contact_pair_geom(xt, yt, rt);
+  contact_pair_geom(xc, yc, rc);
+  return pair_dir(rt, rc, vxt, vyt, vxc, vyc, pn, pt, mu, dt, g, ft, fc, dmin2, info, mask4_any);
+}
+
+/* both directions of a couple (contact_pair_force_rec) with the given lane-mask function */
+__attribute__((always_inline)) static inline int pair_force(const double *ra, const double *vxa, const double *vya,
+                                                           const double *rb, const double *vxb, const double *vyb,
+                                                           double pn, double pt, double mu, double dt, double g[6],
+                                                           double fa[6], double fb[6], double *dmin2,
+                                                           YfContactInfo *info, Mask4 mask)
+{
+  double d2 = DBL_MAX;
+  int n = pair_dir(ra, rb, vxa, vya, vxb, vyb, pn, pt, mu, dt, g, fa, fb, &d2, info, mask);
+  n += pair_dir(rb, ra, vxb, vyb, vxa, vya, pn, pt, mu, dt, g + 3, fb, fa, &d2, info, mask);
+  if (dmin2) *dmin2 = d2;
+  return n > 0;
+}
+
+__attribute__((target("avx2"))) static int force_rec_avx2(const double *ra, const double *vxa, const double *vya,
+                                                          const double *rb, const double *vxb, const double *vyb,
+                                                          double pn, double pt, double mu, double dt, double g[6],
+                                                          double fa[6], double fb[6], double *dmin2,
+                                                          YfContactInfo *info)
+{
+  return pair_force(ra, vxa, vya, rb, vxb, vyb, pn, pt, mu, dt, g, fa, fb, dmin2, info, mask4_avx2);
+}
+
+int contact_pair_force_rec_any(const double ra[YF_TRI_GEOM], const double vxa[3], const double vya[3],
+                               const double rb[YF_TRI_GEOM], const double vxb[3], const double vyb[3],
+                               double pn, double pt, double mu, double dt, double g[6],
+                               double fa[6], double fb[6], double *dmin2, YfContactInfo *info)
+{
+  return pair_force(ra, vxa, vya, rb, vxb, vyb, pn, pt, mu, dt, g, fa, fb, dmin2, info, mask4_any);
+}
+
+/* contact_pair_force_rec resolves to the AVX2 version once, where the CPU has it */
+typedef int (*ForceRecFn)(const double *, const double *, const double *, const double *, const double *,
+                          const double *, double, double, double, double, double *, double *, double *, double *,
+                          YfContactInfo *);
+static ForceRecFn resolve_force_rec(void)
+{
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2") ? force_rec_avx2 : contact_pair_force_rec_any;
+}
+int contact_pair_force_rec(const double ra[YF_TRI_GEOM], const double vxa[3], const double vya[3],
+                           const double rb[YF_TRI_GEOM], const double vxb[3], const double vyb[3],
+                           double pn, double pt, double mu, double dt, double g[6],
+                           double fa[6], double fb[6], double *dmin2, YfContactInfo *info)
+  __attribute__((ifunc("resolve_force_rec")));
+
 int contact_pair_force(const double xa[3], const double ya[3], const double vxa[3], const double vya[3],
                        const double xb[3], const double yb[3], const double vxb[3], const double vyb[3],
                        double pn, double pt, double mu, double dt, double g[6],
                        double fa[6], double fb[6], double *dmin2, YfContactInfo *info)
 {
-  double d2 = DBL_MAX;
-  int n = contact_pair_dir(xa, ya, vxa, vya, xb, yb, vxb, vyb, pn, pt, mu, dt, g, fa, fb, &d2, info);
-  n += contact_pair_dir(xb, yb, vxb, vyb, xa, ya, vxa, vya, pn, pt, mu, dt, g + 3, fb, fa, &d2, info);
-  if (dmin2) *dmin2 = d2;
-  return n > 0;
+  double ra[YF_TRI_GEOM], rb[YF_TRI_GEOM];
+  contact_pair_geom(xa, ya, ra);
+  contact_pair_geom(xb, yb, rb);
+  return contact_pair_force_rec(ra, vxa, vya, rb, vxb, vyb, pn, pt, mu, dt, g, fa, fb, dmin2, info);
 }
 
 /* ---------------------------------------------------------------- the screen */
 
-void contact_pair_geom(const double x[3], const double y[3], double rec[YF_TRI_GEOM])
+/* One direction, contactor record c on target record t: b[k] = beta_k of the contactor corners
+ * (lanes; contact_pair_dir's bn[i][k] term by term), and whether every contactor edge (i, i+1)
+ * has both ends outside one target edge. */
+__attribute__((always_inline)) static inline int screen_dir(const double *t, const double *c, v4d b[3], Mask4 mask)
 {
+  const v4d iD = {t[13], t[13], t[13], t[13]};
+  v4d XC, YC;
+  corners(c, &XC);
+  corners(c + 3, &YC);
+  v4l both = {0, 0, 0, 0};
+#pragma GCC unroll 3
   for (int k = 0; k < 3; k++) {
-    int k1 = (k + 1) % 3;
-    rec[k] = x[k];
-    rec[3 + k] = y[k];
-    rec[6 + k] = y[k1] - y[k];    /* mx, as contact_pair_dir */
-    rec[9 + k] = -(x[k1] - x[k]); /* my */
+    v4d bk = ((t[k] - XC) * t[6 + k] + (t[3 + k] - YC) * t[9 + k]) * iD;
+    b[k] = bk;
+    v4l o = bk < EPS;                                    /* corner i outside edge k */
+    both |= o & __builtin_shuffle(o, (v4l){1, 2, 0, 1}); /* ... and corner i+1 too   */
   }
-  double D = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
-  rec[12] = D;
-  rec[13] = 1.0 / D;
-  rec[14] = rec[15] = 0.0;
+  return mask(&both) == 15;
 }
 
-/* The screen works on the three contactor corners at once, one per lane of a 4-wide vector
- * (GCC vector extensions: two SSE2 halves on plain x86-64, one AVX register where the CPU has
- * it); every lane does contact_pair_dir's arithmetic term by term, so the bits are the same. */
-typedef double v4d __attribute__((vector_size(32)));
-typedef long long v4l __attribute__((vector_size(32)));
-
-/* beta_k of the contactor corners (lanes) for target edge k (as contact_pair_dir's bn[.][k]) */
-#define BETA(t, k, XC, YC) ((((t)[k] - (XC)) * (t)[6 + (k)] + ((t)[3 + (k)] - (YC)) * (t)[9 + (k)]) * (t)[13])
-/* lanes of u where the mask m is set, else of w */
-#define BLEND(m, u, w) ((v4d)(((m) & (v4l)(u)) | (~(m) & (v4l)(w))))
-
-typedef struct {
-  v4d b[3]; /* b[k]: beta_k of contactor corner (lane) i */
-} Betas;
-
-/* One direction, contactor record c on target record t: the betas, and whether every contactor
- * edge (i, i+1) has both ends outside one target edge. */
-static inline int screen_dir(const double *t, const double *c, Betas *B)
+/* 1 if some start corner e (lane) of one direction has a = min_k beta_k with a^2 H2 < c, where
+ * H2 >= D^2 / |m_kmin|^2: then the kernel's distance of that edge, a^2 D^2 / |m_kmin|^2, is below
+ * c too (to a few ulps).  With c = rem2 / 4 that settles the couple as kept: the kernel's
+ * distance sequence passes that edge and ends at most a few ulps above it, far below rem2. */
+__attribute__((always_inline)) static inline int screen_near(const double *t, const v4d b[3], double c, Mask4 mask)
 {
-  const v4d XC = {c[0], c[1], c[2], c[0]}, YC = {c[3], c[4], c[5], c[3]};
-  const v4l rot = {1, 2, 0, 3};
-  v4l any = {0, 0, 0, 0};
-  for (int k = 0; k < 3; k++) {
-    v4d bk = BETA(t, k, XC, YC);
-    B->b[k] = bk;
-    v4l o = bk < EPS;                     /* corner i outside edge k */
-    any |= o & __builtin_shuffle(o, rot); /* ... and corner i+1 too  */
-  }
-  return any[0] && any[1] && any[2];
-}
-
-/* For each start corner e (lane) of one direction: the smallest beta and the squared length of
- * its target edge, chosen as contact_pair_dir chooses kmin; 1 if for some corner
- * num = beta^2 D^2 < c m2.  With c = rem2 / 4 that settles the couple as kept: the kernel's
- * distance sequence passes that edge and ends at most a few ulps above num / m2 < rem2 / 4. */
-static inline int screen_near(const double *t, const Betas *B, double c)
-{
-  const double D = t[12];
-  const double q0 = t[6] * t[6] + t[9] * t[9], q1 = t[7] * t[7] + t[10] * t[10], q2 = t[8] * t[8] + t[11] * t[11];
-  v4d a = B->b[0], m2 = {q0, q0, q0, q0};
-  v4l s1 = B->b[1] < a;
-  a = BLEND(s1, B->b[1], a);
-  m2 = BLEND(s1, ((v4d){q1, q1, q1, q1}), m2);
-  v4l s2 = B->b[2] < a;
-  a = BLEND(s2, B->b[2], a);
-  m2 = BLEND(s2, ((v4d){q2, q2, q2, q2}), m2);
-  v4l near = a * a * (D * D) < c * m2;
-  return near[0] || near[1] || near[2];
+  v4d a = b[0];
+  a = BLEND(b[1] < a, b[1], a);
+  a = BLEND(b[2] < a, b[2], a);
+  v4l near = a * a * t[14] < c;
+  return mask(&near) != 0;
 }
 
 /* contact_pair_dir's skip path for the three edges of one direction, exactly: lowers *dmin. */
-static inline void screen_dmin(const double *t, const Betas *B, double *dmin)
+__attribute__((always_inline)) static inline void screen_dmin(const double *t, const v4d b[3], double *dmin)
 {
   const double D = t[12];
   double d = *dmin;
   for (int e = 0; e < 3; e++) {
-    double al0 = B->b[0][e], al1 = B->b[1][e], al2 = B->b[2][e];
+    double al0 = b[0][e], al1 = b[1][e], al2 = b[2][e];
     int kmin = 0;
     double a = al0;
     if (al1 < a) { kmin = 1; a = al1; }
@@ -319,18 +441,50 @@ static inline void screen_dmin(const double *t, const Betas *B, double *dmin)
   *dmin = d;
 }
 
-__attribute__((target_clones("avx2", "default")))
-int contact_pair_quiet(const double ra[YF_TRI_GEOM], const double rb[YF_TRI_GEOM], double rem2)
+/* The rare couple that no edge settles as near (Y2D drops most of them): the kernel's distance
+ * sequence of both directions, exactly.  Out of line, so that the common path keeps the betas in
+ * registers; it recomputes them (same arithmetic, same bits). */
+__attribute__((noinline)) static int quiet_far(const double *ra, const double *rb, double rem2)
 {
-  if (!(ra[12] > 0.0) || !(rb[12] > 0.0)) /* the kernel ignores degenerate triangles: d2 = DBL_MAX */
-    return DBL_MAX > rem2 ? 2 : 1;
-  Betas b1, b2;
-  if (!screen_dir(ra, rb, &b1)) return 0; /* B as contactor on target A */
-  if (!screen_dir(rb, ra, &b2)) return 0; /* A on B */
-  const double c = 0.25 * rem2;
-  if (screen_near(ra, &b1, c) || screen_near(rb, &b2, c)) return 1;
+  v4d b1[3], b2[3];
+  screen_dir(ra, rb, b1, mask4_any);
+  screen_dir(rb, ra, b2, mask4_any);
   double d = DBL_MAX;
-  screen_dmin(ra, &b1, &d);
-  screen_dmin(rb, &b2, &d);
+  screen_dmin(ra, b1, &d);
+  screen_dmin(rb, b2, &d);
   return d > rem2 ? 2 : 1;
 }
+
+__attribute__((always_inline)) static inline int quiet(const double *ra, const double *rb, double rem2, Mask4 mask)
+{
+  v4d b1[3], b2[3];
+  /* a degenerate triangle (NaN 1/D) fails here as a target, so the quiet path never checks D */
+  if (!screen_dir(ra, rb, b1, mask) || !screen_dir(rb, ra, b2, mask)) {
+    if (!(ra[12] > 0.0) || !(rb[12] > 0.0)) /* the kernel ignores degenerate triangles: d2 = DBL_MAX */
+      return DBL_MAX > rem2 ? 2 : 1;
+    return 0;
+  }
+  /* the bound needs rem2 / 4 exact and far from underflow (else the exact path decides) */
+  const double c = rem2 >= 0x1p-900 ? 0.25 * rem2 : 0.0;
+  if (screen_near(ra, b1, c, mask) || screen_near(rb, b2, c, mask)) return 1;
+  return quiet_far(ra, rb, rem2);
+}
+
+__attribute__((target("avx2"))) static int quiet_avx2(const double *ra, const double *rb, double rem2)
+{
+  return quiet(ra, rb, rem2, mask4_avx2);
+}
+int contact_pair_quiet_any(const double ra[YF_TRI_GEOM], const double rb[YF_TRI_GEOM], double rem2)
+{
+  return quiet(ra, rb, rem2, mask4_any);
+}
+
+/* contact_pair_quiet resolves to the AVX2 version once, where the CPU has it (as target_clones) */
+typedef int (*QuietFn)(const double *, const double *, double);
+static QuietFn resolve_quiet(void)
+{
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2") ? quiet_avx2 : contact_pair_quiet_any;
+}
+int contact_pair_quiet(const double ra[YF_TRI_GEOM], const double rb[YF_TRI_GEOM], double rem2)
+  __attribute__((ifunc("resolve_quiet")));

@@ -18,6 +18,7 @@
 #define YF_CONTACT_PAIR_H
 
 #define YF_CONTACT_EPS 1e-10 /* barycentric tolerance of Y2D (dimensionless) */
+#define YF_TRI_GEOM 16 /* doubles per triangle record: x[3] y[3] mx[3] my[3] D 1/D H2 (1 spare) */
 
 /* Optional diagnostics of a kernel call, ADDED to (the caller zeroes them). */
 typedef struct {
@@ -63,15 +64,27 @@ int contact_pair_force(const double xa[3], const double ya[3], const double vxa[
                        double pn, double pt, double mu, double dt, double g[6],
                        double fa[6], double fb[6], double *dmin2, YfContactInfo *info);
 
+/* contact_pair_force on the couple's triangle records (contact_pair_geom of this step's corner
+ * positions) instead of the corners: the same numbers, without recomputing the geometry. */
+int contact_pair_force_rec(const double ra[YF_TRI_GEOM], const double vxa[3], const double vya[3],
+                           const double rb[YF_TRI_GEOM], const double vxb[3], const double vyb[3],
+                           double pn, double pt, double mu, double dt, double g[6],
+                           double fa[6], double fb[6], double *dmin2, YfContactInfo *info);
+/* The portable version (what contact_pair_force_rec runs without AVX2), for the tests. */
+int contact_pair_force_rec_any(const double ra[YF_TRI_GEOM], const double vxa[3], const double vya[3],
+                               const double rb[YF_TRI_GEOM], const double vxb[3], const double vyb[3],
+                               double pn, double pt, double mu, double dt, double g[6],
+                               double fa[6], double fb[6], double *dmin2, YfContactInfo *info);
+
 /* ---- the screen: a couple whose edges all miss (the common case) without the full kernel ----
  * Most couples of a fracturing body are neighbours whose edges only meet at corners: every
  * contactor edge has both ends outside one target edge line (6.2), in both directions, so the
  * couple gives no force and only its removal distance matters.  The screen decides that from a
  * per-triangle record computed once per step, with the kernel's own arithmetic term by term, so
  * a couple it passes gets exactly what contact_pair_force would give (same dmin2 bits). */
-#define YF_TRI_GEOM 16 /* doubles per triangle record: x[3] y[3] mx[3] my[3] D 1/D (2 spare) */
 /* The record of a triangle with corners x, y (CCW) [m]: corners, target edge normals m_k (6.1,
- * length = edge length) and twice the area D [m^2]. */
+ * length = edge length), twice the area D [m^2], 1/D (NaN when D <= 0: the degenerate mark the
+ * screen relies on) and H2 = D^2 / min_k |m_k|^2, the largest squared height [m^2]. */
 void contact_pair_geom(const double x[3], const double y[3], double rec[YF_TRI_GEOM]);
 /* The screen of couple (A, B) (records ra, rb; A as in contact_pair_force) against the removal
  * distance rem2 = (2 buffer)^2 [m^2].  Returns
@@ -80,8 +93,11 @@ void contact_pair_geom(const double x[3], const double y[3], double rec[YF_TRI_G
  *   1  every edge of both directions is skipped (or a triangle is degenerate): no force, no
  *      change of friction memory, and contact_pair_force's dmin2 would be <= rem2 (keep);
  *   2  the same, with dmin2 > rem2 (Y2D drops the couple).
- * Decisions 1 and 2 are exactly contact_pair_force's (same arithmetic; the distance sequence
- * stops early only once its value is settled below rem2 / 2). */
+ * Decisions 1 and 2 are exactly contact_pair_force's (same arithmetic; "keep" is also decided
+ * early by a bound: some edge's distance is at most a quarter of rem2, to a few ulps). */
 int contact_pair_quiet(const double ra[YF_TRI_GEOM], const double rb[YF_TRI_GEOM], double rem2);
+/* The portable version (plain x86-64 vectors) that contact_pair_quiet runs on a CPU without
+ * AVX2; exposed so that the tests check both. */
+int contact_pair_quiet_any(const double ra[YF_TRI_GEOM], const double rb[YF_TRI_GEOM], double rem2);
 
 #endif

@@ -678,6 +678,373 @@ START_TEST(test_screen_matches_kernel)
 }
 END_TEST
 
+/* The screen on couples of random shapes (slivers included, heights in a ratio up to ~1e3),
+ * placed corner to corner, edge to edge or apart by about the removal distance, plus degenerate
+ * (collapsed or inverted) triangles: the decision agrees with the kernel for removal distances
+ * around the kernel's dmin2 (the "near" bound's margin of a factor 4 included), a degenerate
+ * couple never needs the kernel, and the AVX2 and portable versions agree. */
+static void random_tri(double x[3], double y[3], double cx, double cy, double s)
+{
+  double th = 6.283185307179586 * urand(), el = pow(10.0, -3.0 * urand()); /* elongation */
+  double px[3] = {0.0, 1.0, urand()}, py[3] = {0.0, 0.0, el * (0.05 + urand())};
+  for (int q = 0; q < 3; q++) {
+    x[q] = cx + s * (cos(th) * px[q] - sin(th) * py[q]);
+    y[q] = cy + s * (sin(th) * px[q] + cos(th) * py[q]);
+  }
+}
+
+START_TEST(test_screen_shapes_and_degenerate)
+{
+  rng_state = 4242;
+  int quiet = 0, busy = 0, dropped = 0, degen = 0, bad = 0, badany = 0;
+  for (int it = 0; it < 60000; it++) {
+    double X[2][3], Y[2][3], V[3] = {0, 0, 0};
+    random_tri(X[0], Y[0], 0.0, 0.0, 1.0);
+    int mode = it % 4;
+    if (mode == 0) { /* B shares a corner of A (nudged) and points away */
+      int c = (int)(3 * urand());
+      random_tri(X[1], Y[1], X[0][c], Y[0][c], 0.3 + urand());
+      double nud = pow(10.0, -10.0 + 9.0 * urand());
+      X[1][0] = X[0][c] + nud * (urand() - 0.5); Y[1][0] = Y[0][c] + nud * (urand() - 0.5);
+    } else if (mode == 1) { /* B is A's mirror over one of A's edges (an intact mesh's neighbour) */
+      int e = (int)(3 * urand()), f = (e + 1) % 3, o = (e + 2) % 3;
+      double ex = X[0][f] - X[0][e], ey = Y[0][f] - Y[0][e], t = urand();
+      double nx = ey, ny = -ex, h = ((X[0][o] - X[0][e]) * nx + (Y[0][o] - Y[0][e]) * ny) / (nx * nx + ny * ny);
+      double nud = pow(10.0, -10.0 + 9.0 * urand());
+      X[1][0] = X[0][f] + nud * (urand() - 0.5); Y[1][0] = Y[0][f] + nud * (urand() - 0.5);
+      X[1][1] = X[0][e] + nud * (urand() - 0.5); Y[1][1] = Y[0][e] + nud * (urand() - 0.5);
+      X[1][2] = X[0][e] + t * ex - (0.2 + urand()) * h * nx; Y[1][2] = Y[0][e] + t * ey - (0.2 + urand()) * h * ny;
+    } else { /* B anywhere near A */
+      random_tri(X[1], Y[1], 2.0 * (urand() - 0.5), 2.0 * (urand() - 0.5), 0.2 + urand());
+    }
+    if (it % 97 == 0) { /* collapse B onto a line (D = 0 exactly) */
+      X[1][2] = X[1][0]; Y[1][2] = Y[1][0];
+      degen++;
+    } else if (it % 89 == 0) { /* invert A (clockwise) */
+      double t = X[0][1]; X[0][1] = X[0][2]; X[0][2] = t;
+      t = Y[0][1]; Y[0][1] = Y[0][2]; Y[0][2] = t;
+      degen++;
+    }
+    int isdeg = it % 97 == 0 || it % 89 == 0;
+    int a = it & 1, b = 1 - a; /* either triangle as A */
+    double rec[2][YF_TRI_GEOM];
+    contact_pair_geom(X[0], Y[0], rec[0]);
+    contact_pair_geom(X[1], Y[1], rec[1]);
+    double g[6] = {0}, fa[6] = {0}, fb[6] = {0}, d2;
+    int r = contact_pair_force(X[a], Y[a], V, V, X[b], Y[b], V, V, 1e10, 1e9, 0.3, 1e-4, g, fa, fb, &d2, NULL);
+    double base = d2 < DBL_MAX ? d2 : 1.0;
+    double rems[8] = {0.1 * base, 0.3 * base, 0.6 * base, nextafter(base, 0.0), base, 1.7 * base, 3.5 * base,
+                      4.5 * base};
+    for (int q = 0; q < 8; q++) {
+      int sv = contact_pair_quiet(rec[a], rec[b], rems[q]);
+      if (contact_pair_quiet_any(rec[a], rec[b], rems[q]) != sv) badany++;
+      if (isdeg && sv == 0) bad++; /* a degenerate couple is settled without the kernel */
+      if (sv == 0) { busy++; continue; }
+      quiet++;
+      double sum = 0;
+      for (int c = 0; c < 6; c++) sum += fabs(fa[c]) + fabs(fb[c]) + fabs(g[c]);
+      if (r != 0 || sum != 0.0) bad++;
+      if ((sv == 2) != (d2 > rems[q])) bad++;
+      dropped += sv == 2;
+    }
+  }
+  ck_assert_int_eq(bad, 0);
+  ck_assert_int_eq(badany, 0);
+  ck_assert_int_gt(quiet, 100000);
+  ck_assert_int_gt(busy, 10000);
+  ck_assert_int_gt(dropped, 50000);
+  ck_assert_int_gt(degen, 1000);
+}
+END_TEST
+
+/* ------------------------------------------------------------------ the kernel as it was */
+
+/* contact_pair_dir as first written (plain scalar code, geometry from the corners), kept
+ * verbatim as the reference of the optimised kernel: every force, friction memory, distance
+ * and diagnostic must come out with the same bits. */
+/* P(s) = min_k beta_k(s) at parameter s of the edge. */
+static inline double ref_pmin3(const double al[3], const double dl[3], double s)
+{
+  double b0 = al[0] + s * dl[0], b1 = al[1] + s * dl[1], b2 = al[2] + s * dl[2];
+  double p = b0;
+  if (b1 < p) p = b1;
+  if (b2 < p) p = b2;
+  return p;
+}
+
+static int ref_dir(const double xt[3], const double yt[3], const double vxt[3], const double vyt[3],
+                     const double xc[3], const double yc[3], const double vxc[3], const double vyc[3],
+                     double pn, double pt, double mu, double dt, double g[3],
+                     double ft[6], double fc[6], double *dmin2, YfContactInfo *info)
+{
+  /* 6.1: target normals (outward for CCW corners, length = edge length) and twice-area. */
+  double D = (xt[1] - xt[0]) * (yt[2] - yt[0]) - (yt[1] - yt[0]) * (xt[2] - xt[0]);
+  double Dc = (xc[1] - xc[0]) * (yc[2] - yc[0]) - (yc[1] - yc[0]) * (xc[2] - xc[0]);
+  if (!(D > 0.0) || !(Dc > 0.0)) return 0; /* degenerate or inverted: the element check reports it */
+  double mx[3], my[3];
+  for (int k = 0; k < 3; k++) {
+    int k1 = (k + 1) % 3;
+    mx[k] = yt[k1] - yt[k];
+    my[k] = -(xt[k1] - xt[k]);
+  }
+  /* beta_k of every contactor node: bn[i][k].  (Multiplying by 1/D instead of dividing by D
+   * changes values by an ulp at most; it halves the cost of the common, far-apart couple.) */
+  double invD = 1.0 / D;
+  double bn[3][3];
+  for (int i = 0; i < 3; i++)
+    for (int k = 0; k < 3; k++)
+      bn[i][k] = ((xt[k] - xc[i]) * mx[k] + (yt[k] - yc[i]) * my[k]) * invD;
+
+  int nforce = 0;
+  double hk[3] = {-1.0, -1.0, -1.0}; /* target heights over each edge [m], when first needed */
+  double dmin = *dmin2; /* local: no store-to-load chain through the pointer */
+  for (int e = 0; e < 3; e++) {
+    int a = e, b = e < 2 ? e + 1 : 0;
+    const double *al = bn[a], *ga = bn[b];
+    double ncx = yc[b] - yc[a], ncy = -(xc[b] - xc[a]); /* contactor edge outward normal, |n_c| = L */
+
+    /* 6.2: skip when both ends are outside one target edge (tested first: it is cheap and
+     * settles most couples), or when the edge line does not separate the target's corners:
+     * c_m = ((x_a - y_m) . n_c) / Dc is the contactor's barycentric function of this edge at
+     * target corner m, positive on the contactor's inner side (compared as c_m Dc vs eps Dc). */
+    int skip = (al[0] < YF_CONTACT_EPS && ga[0] < YF_CONTACT_EPS) || (al[1] < YF_CONTACT_EPS && ga[1] < YF_CONTACT_EPS) || (al[2] < YF_CONTACT_EPS && ga[2] < YF_CONTACT_EPS);
+    if (!skip) {
+      double ep = YF_CONTACT_EPS * Dc;
+      int allpos = 1, allneg = 1;
+      for (int m = 0; m < 3; m++) {
+        double c = (xc[a] - xt[m]) * ncx + (yc[a] - yt[m]) * ncy;
+        if (!(c > -ep)) allpos = 0;
+        if (!(c < ep)) allneg = 0;
+      }
+      skip = allpos || allneg;
+    }
+    if (skip) {
+      /* distance^2 of the start node to the line of the target edge with the smallest alpha:
+       * alpha^2 / (|m_k|/D)^2, compared without dividing first. */
+      int kmin = 0;
+      if (al[1] < al[kmin]) kmin = 1;
+      if (al[2] < al[kmin]) kmin = 2;
+      double m2 = mx[kmin] * mx[kmin] + my[kmin] * my[kmin];
+      double num = al[kmin] * al[kmin] * (D * D);
+      if (num < dmin * m2) dmin = num / m2;
+      continue;
+    }
+
+    /* 6.3: contact interval [s_min, s_max] of the edge inside the target. */
+    double dl[3];
+    double smin = 0.0, smax = 1.0;
+    for (int k = 0; k < 3; k++) {
+      dl[k] = ga[k] - al[k];
+      if (al[k] < 0.0 && ga[k] > YF_CONTACT_EPS) {
+        double s = al[k] / (al[k] - ga[k]);
+        if (s > smin) smin = s;
+      }
+      if (al[k] > YF_CONTACT_EPS && ga[k] < 0.0) {
+        double s = al[k] / (al[k] - ga[k]);
+        if (s < smax) smax = s;
+      }
+    }
+    if (smax <= smin) continue;
+
+    /* Breakpoints: the ends and the kinks of min_k beta_k strictly inside (two lines cross and
+     * the third is larger there), sorted. */
+    double bs[5];
+    int nb = 0;
+    bs[nb++] = smin;
+    bs[nb++] = smax;
+    for (int i = 0; i < 2; i++)
+      for (int j = i + 1; j < 3; j++) {
+        double den = dl[i] - dl[j];
+        if (den == 0.0) continue; /* parallel lines never cross */
+        double s = (al[j] - al[i]) / den;
+        if (!(s > smin && s < smax)) continue;
+        int m = 3 - i - j;
+        if (al[m] + s * dl[m] > al[i] + s * dl[i]) bs[nb++] = s;
+      }
+    for (int i = 1; i < nb; i++) { /* insertion sort of at most 5 values */
+      double v = bs[i];
+      int j = i - 1;
+      while (j >= 0 && bs[j] > v) { bs[j + 1] = bs[j]; j--; }
+      bs[j + 1] = v;
+    }
+
+    /* Exact integrals of the piecewise-linear P: int P ds and int P s ds. */
+    double I0 = 0.0, I1 = 0.0, I2h = 0.0;
+    double s1 = bs[0], p1 = ref_pmin3(al, dl, s1);
+    for (int i = 1; i < nb; i++) {
+      double s2 = bs[i], p2 = ref_pmin3(al, dl, s2), h = s2 - s1;
+      I0 += 0.5 * h * (p1 + p2);
+      I1 += h * (p1 * (2.0 * s1 + s2) + p2 * (s1 + 2.0 * s2)) / 6.0;
+      if (info) { /* energy estimate: 3 int h_k P^2 ds with the active edge k of this piece */
+        double sm = 0.5 * (s1 + s2);
+        int k = 0;
+        double bk = al[0] + sm * dl[0];
+        for (int q = 1; q < 3; q++)
+          if (al[q] + sm * dl[q] < bk) { bk = al[q] + sm * dl[q]; k = q; }
+        if (!(hk[k] >= 0.0)) hk[k] = D / sqrt(mx[k] * mx[k] + my[k] * my[k]); /* once per edge */
+        I2h += hk[k] * h * (p1 * p1 + p1 * p2 + p2 * p2);
+      }
+      s1 = s2;
+      p1 = p2;
+    }
+    I2h /= 3.0;
+    double F = 3.0 * pn * I0;
+    double Fb = 3.0 * pn * I1;
+    double Fa = F - Fb;
+    double fax = -Fa * ncx, fay = -Fa * ncy;
+    double fbx = -Fb * ncx, fby = -Fb * ncy;
+
+    /* 6.4: friction on the edge. */
+    double tcx = xc[b] - xc[a], tcy = yc[b] - yc[a]; /* unnormalised tangent */
+    double Ft = 0.0, w = 0.0, slip = 0.0;
+    {
+      double sbar = 0.0;
+      for (int i = 0; i < nb; i++) sbar += bs[i];
+      sbar /= nb;
+      double vtx = 0.0, vty = 0.0;
+      for (int k = 0; k < 3; k++) {
+        double bk = al[k] + sbar * dl[k];
+        int v = (k + 2) % 3; /* beta_k belongs to target vertex k+2 */
+        vtx += bk * vxt[v];
+        vty += bk * vyt[v];
+      }
+      double vcx = (1.0 - sbar) * vxc[a] + sbar * vxc[b];
+      double vcy = (1.0 - sbar) * vyc[a] + sbar * vyc[b];
+      w = (vtx - vcx) * tcx + (vty - vcy) * tcy;
+      g[e] += w * dt;
+      Ft = pt * g[e];
+      double cap = mu * fabs(F);
+      if (fabs(Ft) > cap) {
+        double gtrial = g[e];
+        Ft = copysign(cap, Ft);
+        g[e] = Ft / pt;
+        slip = fabs(gtrial - g[e]);
+      }
+      if (F > 0.0) {
+        double wa = Fa / F, wb = Fb / F;
+        fax += Ft * wa * tcx;
+        fay += Ft * wa * tcy;
+        fbx += Ft * wb * tcx;
+        fby += Ft * wb * tcy;
+      } else {
+        Ft = 0.0; /* no normal force, nothing to share the tangential force with */
+      }
+    }
+
+    fc[2 * a] += fax;
+    fc[2 * a + 1] += fay;
+    fc[2 * b] += fbx;
+    fc[2 * b + 1] += fby;
+    /* 6.5: reaction; target vertex v carries beta_(v+1) (beta_k belongs to vertex k+2). */
+    for (int v = 0; v < 3; v++) {
+      int k = (v + 1) % 3;
+      ft[2 * v] -= fax * al[k] + fbx * ga[k];
+      ft[2 * v + 1] -= fay * al[k] + fby * ga[k];
+    }
+    nforce++;
+
+    if (info) {
+      double L = sqrt(ncx * ncx + ncy * ncy);
+      info->nedge++;
+      info->fn += fabs(F) * L;
+      info->ft += fabs(Ft) * L;
+      info->work_t += Ft * w * dt;
+      info->dissip += fabs(Ft) * slip;
+      info->energy += 1.5 * pn * L * I2h;
+    }
+  }
+  *dmin2 = dmin;
+  return nforce;
+}
+
+/* Random couples of every kind the kernel branches on (overlapping triangles, mesh neighbours
+ * sharing an edge or a corner up to a nudge, slivers, one triangle inside the other, parallel
+ * edges), random velocities and friction memories, a few steps each: contact_pair_force and
+ * contact_pair_force_rec (AVX2 and portable) give exactly the reference's numbers. */
+static void random_couple(int mode, double xa[3], double ya[3], double xb[3], double yb[3])
+{
+  if (mode == 0) { /* two random CCW triangles near each other */
+    for (int q = 0; q < 3; q++) {
+      double th = q * 2.0943951023931957 + 0.6 * (urand() - 0.5);
+      xa[q] = 0.5 * cos(th) + 0.2 * urand(); ya[q] = 0.5 * sin(th) + 0.2 * urand();
+      th = q * 2.0943951023931957 + 0.6 * (urand() - 0.5);
+      xb[q] = 0.6 + 0.5 * cos(th) + 0.4 * (urand() - 0.5); yb[q] = 0.5 * sin(th) + 0.4 * (urand() - 0.5);
+    }
+  } else if (mode == 1) { /* the two triangles of a cell, nudged by 1e-12 .. 1e-1 */
+    double e = pow(10.0, -12.0 + 11.0 * urand());
+    xa[0] = 0; ya[0] = 0; xa[1] = 1; ya[1] = 0; xa[2] = 1; ya[2] = 1;
+    xb[0] = 0; yb[0] = 0; xb[1] = 1; yb[1] = 1; xb[2] = 0; yb[2] = 1;
+    for (int q = 0; q < 3; q++) {
+      xb[q] += e * (urand() - 0.5); yb[q] += e * (urand() - 0.5);
+      xa[q] += e * (urand() - 0.5); ya[q] += e * (urand() - 0.5);
+    }
+  } else if (mode == 2) { /* random shapes (slivers too) anywhere near each other */
+    random_tri(xa, ya, 0.0, 0.0, 1.0);
+    random_tri(xb, yb, 1.2 * (urand() - 0.5), 1.2 * (urand() - 0.5), 0.2 + urand());
+  } else if (mode == 3) { /* B small, inside or across A */
+    random_tri(xa, ya, 0.0, 0.0, 1.0);
+    random_tri(xb, yb, 0.3 + 0.4 * urand(), 0.1 * urand(), 0.05 + 0.3 * urand());
+  } else { /* corners on a grid: parallel edges, shared corners, exact zeros */
+    for (int q = 0; q < 3; q++) {
+      xa[q] = (double)(int)(4 * urand()) * 0.25; ya[q] = (double)(int)(4 * urand()) * 0.25;
+      xb[q] = (double)(int)(4 * urand()) * 0.25; yb[q] = (double)(int)(4 * urand()) * 0.25;
+    }
+  }
+}
+
+static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+START_TEST(test_kernel_matches_reference)
+{
+  rng_state = 2718;
+  int bad = 0, forced = 0, sliding = 0;
+  for (int it = 0; it < 200000; it++) {
+    double xa[3], ya[3], xb[3], yb[3], vxa[3], vya[3], vxb[3], vyb[3];
+    random_couple(it % 5, xa, ya, xb, yb);
+    double vs = pow(10.0, -3.0 + 4.0 * urand());
+    for (int q = 0; q < 3; q++) {
+      vxa[q] = vs * (urand() - 0.5); vya[q] = vs * (urand() - 0.5);
+      vxb[q] = vs * (urand() - 0.5); vyb[q] = vs * (urand() - 0.5);
+    }
+    double pn = 1e10, pt = urand() < 0.2 ? 0.0 : 1e9, mu = urand() < 0.2 ? 0.0 : 0.5 * urand(), dt = 1e-4;
+    double g0[6];
+    for (int q = 0; q < 6; q++) g0[q] = urand() < 0.5 ? 0.0 : 1e-5 * (urand() - 0.5);
+    double gr[6], g1[6], g2[6];
+    memcpy(gr, g0, sizeof g0); memcpy(g1, g0, sizeof g0); memcpy(g2, g0, sizeof g0);
+    for (int step = 0; step < 2; step++) {
+      double far[6] = {0}, fbr[6] = {0}, fa1[6] = {0}, fb1[6] = {0}, fa2[6] = {0}, fb2[6] = {0};
+      double dr = DBL_MAX, d1, d2;
+      YfContactInfo ir = {0, 0, 0, 0, 0, 0}, i1 = ir, i2 = ir;
+      int nr = ref_dir(xa, ya, vxa, vya, xb, yb, vxb, vyb, pn, pt, mu, dt, gr, far, fbr, &dr, &ir);
+      nr += ref_dir(xb, yb, vxb, vyb, xa, ya, vxa, vya, pn, pt, mu, dt, gr + 3, fbr, far, &dr, &ir);
+      int r1 = contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, pn, pt, mu, dt, g1, fa1, fb1, &d1, &i1);
+      double ra[YF_TRI_GEOM], rb[YF_TRI_GEOM];
+      contact_pair_geom(xa, ya, ra);
+      contact_pair_geom(xb, yb, rb);
+      int r2 = (it & 1 ? contact_pair_force_rec : contact_pair_force_rec_any)(ra, vxa, vya, rb, vxb, vyb, pn, pt, mu,
+                                                                             dt, g2, fa2, fb2, &d2, step ? &i2 : NULL);
+      if (!step) i2 = ir;
+      if (r1 != (nr > 0) || r2 != (nr > 0) || !same_bits(d1, dr) || !same_bits(d2, dr)) bad++;
+      for (int q = 0; q < 6; q++)
+        if (!same_bits(fa1[q], far[q]) || !same_bits(fb1[q], fbr[q]) || !same_bits(g1[q], gr[q]) ||
+            !same_bits(fa2[q], far[q]) || !same_bits(fb2[q], fbr[q]) || !same_bits(g2[q], gr[q]))
+          bad++;
+      const YfContactInfo *in[2] = {&i1, &i2};
+      for (int q = 0; q < 2; q++)
+        if (in[q]->nedge != ir.nedge || !same_bits(in[q]->fn, ir.fn) || !same_bits(in[q]->ft, ir.ft) ||
+            !same_bits(in[q]->work_t, ir.work_t) || !same_bits(in[q]->dissip, ir.dissip) ||
+            !(fabs(in[q]->energy - ir.energy) <= 1e-12 * fabs(ir.energy)))
+          bad++;
+      forced += ir.nedge;
+      sliding += ir.dissip > 0.0;
+    }
+  }
+  ck_assert_int_eq(bad, 0);
+  ck_assert_int_gt(forced, 100000);
+  ck_assert_int_gt(sliding, 10000);
+}
+END_TEST
+
 Suite *contact_pair_suite(void)
 {
   Suite *s = suite_create("contact_pair");
@@ -691,6 +1058,8 @@ Suite *contact_pair_suite(void)
   tcase_add_test(tc, test_monotonic_symmetric);
   tcase_add_test(tc, test_random_pairs_conserve);
   tcase_add_test(tc, test_screen_matches_kernel);
+  tcase_add_test(tc, test_screen_shapes_and_degenerate);
+  tcase_add_test(tc, test_kernel_matches_reference);
   suite_add_tcase(s, tc);
   tc = tcase_create("friction");
   tcase_add_test(tc, test_friction_stick_then_slide);
