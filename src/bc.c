@@ -323,6 +323,36 @@ void bc_apply_loads(YfSim *s) {
   }
 }
 
+void bc_save_old(YfSim *s, double *x_old, double *y_old, double *vx_old, double *vy_old) {
+  if (!s->bc) return;
+  const YfNodes *n = &s->model.node;
+  for (int i = 0; i < s->bc->n; i++) {
+    const YfBcItem *it = &s->bc->item[i];
+    for (int k = 0; k < it->nn; k++) {
+      int j = it->nodes[k];
+      x_old[j] = n->x[j];
+      y_old[j] = n->y[j];
+      vx_old[j] = n->vx[j];
+      vy_old[j] = n->vy[j];
+    }
+  }
+}
+
+void bc_redo_positions(YfSim *s, const double *x_old, const double *y_old) {
+  if (!s->bc) return;
+  YfNodes *n = &s->model.node;
+  const double dt = s->dt;
+  for (int i = 0; i < s->bc->n; i++) {
+    const YfBcItem *it = &s->bc->item[i];
+    if (it->kind != BC_FIXED && it->kind != BC_VELOCITY) continue;
+    for (int k = 0; k < it->nn; k++) {
+      int j = it->nodes[k];
+      n->x[j] = x_old[j] + dt * n->vx[j];
+      n->y[j] = y_old[j] + dt * n->vy[j];
+    }
+  }
+}
+
 void bc_constrain_velocities(YfSim *s, const double *vx_old, const double *vy_old) {
   if (!s->bc) return;
   YfNodes *n = &s->model.node;

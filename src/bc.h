@@ -14,6 +14,13 @@ void bc_apply_loads(YfSim *s);
 void bc_constrain_velocities(YfSim *s, const double *vx_old, const double *vy_old);
 void bc_constrain_positions(YfSim *s, const double *x_old, const double *y_old, const double *vx_old,
                             const double *vy_old);
+/* Without damping only the supported and loaded nodes need their state before the update: copy
+ * x, y, vx, vy of those nodes into the node-indexed arrays (other entries are left alone).  After
+ * the update has moved every node with its free velocity and bc_constrain_velocities has changed
+ * some, bc_redo_positions moves the fixed / prescribed-velocity nodes again from their old
+ * positions, as x_old + dt v (the operation of the plain position update). */
+void bc_save_old(YfSim *s, double *x_old, double *y_old, double *vx_old, double *vy_old);
+void bc_redo_positions(YfSim *s, const double *x_old, const double *y_old);
 /* Per-node flags: bit 0 x is prescribed, bit 1 y is prescribed (used by contact/energy). */
 const unsigned char *bc_node_flags(const YfSim *s);
 /* Time-step limit implied by anything in bc (none today): INFINITY. */

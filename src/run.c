@@ -320,16 +320,21 @@ static void step_once(YfSim *s) {
   contact_step(s); /* detection when due, then pair forces added in pair order (timed inside) */
   t0 = yf_now();
 
-  /* update: v_{n+1/2}, then supports, then x_{n+1}.  The old positions and velocities are
-   * copied inside the update loops (no separate pass), and only when something reads them. */
+  /* update: v_{n+1/2}, then supports, then x_{n+1}.  With damping every node's old velocity is
+   * read, and the old state is copied inside the update loops; without, only the supported and
+   * loaded nodes' old state is (bc_save_old), one pass moves every node with its free velocity,
+   * and the supported nodes are moved again after their velocities are imposed: the same
+   * operations on every value as velocity update, supports, then position update. */
   double *x = n->x, *y = n->y, *vx = n->vx, *vy = n->vy;
   const double *fx = n->fx, *fy = n->fy, *ms = n->m;
-  const int keep = bc_count(s) > 0 || alpha > 0;
-  double *xo = keep ? R.xo : NULL, *yo = keep ? R.yo : NULL, *vxo = keep ? R.vxo : NULL, *vyo = keep ? R.vyo : NULL;
+  const int keep = alpha > 0, nbc = bc_count(s);
+  double *xo = keep || nbc ? R.xo : NULL, *yo = keep || nbc ? R.yo : NULL;
+  double *vxo = keep || nbc ? R.vxo : NULL, *vyo = keep || nbc ? R.vyo : NULL;
+  if (nbc && !keep) bc_save_old(s, xo, yo, vxo, vyo);
   if (s->y2d) {
-    /* Y2D's BC-set update (kinds, local frames, time factors); with nothing between the velocity
-     * and position updates (!keep: no supports, no damping) it moves the nodes too, in cache */
-    y2d_update_velocities(s, nn >= PAR_MIN, vxo, vyo, !keep);
+    /* Y2D's BC-set update (kinds, local frames, time factors); without damping it moves the
+     * nodes too, block by block while they are in cache */
+    y2d_update_velocities(s, nn >= PAR_MIN, keep ? vxo : NULL, keep ? vyo : NULL, !keep);
   } else if (alpha > 0) {
     /* central-difference mass damping: v+ = ((1 - a dt/2) v- + dt f/m) / (1 + a dt/2) */
     const double c1 = 1.0 - 0.5 * alpha * dt, c2 = 1.0 / (1.0 + 0.5 * alpha * dt);
@@ -342,22 +347,14 @@ static void step_once(YfSim *s) {
       vy[i] = (c1 * vy[i] + dt * (fy[i] / ms[i] + gy)) * c2;
     }
   } else {
-    /* with nothing between the velocity and position updates (!keep) one pass does both */
-    const int move = !keep;
     #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
     for (int i = 0; i < nn; i++) {
-      if (vxo) {
-        vxo[i] = vx[i];
-        vyo[i] = vy[i];
-      }
       if (ms[i] > 1e-300) {
         vx[i] += dt * (fx[i] / ms[i] + gx);
         vy[i] += dt * (fy[i] / ms[i] + gy);
       }
-      if (move) {
-        x[i] += dt * vx[i];
-        y[i] += dt * vy[i];
-      }
+      x[i] += dt * vx[i];
+      y[i] += dt * vy[i];
     }
   }
   bc_constrain_velocities(s, vxo, vyo);
@@ -370,17 +367,15 @@ static void step_once(YfSim *s) {
       diss += ms[i] * (ax * ax + ay * ay);
     }
     s->energy.damping += alpha * diss * dt;
-  }
-  if (keep) { /* (else the velocity update moved the nodes itself) */
     #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
     for (int i = 0; i < nn; i++) {
-      if (xo) {
-        xo[i] = x[i];
-        yo[i] = y[i];
-      }
+      xo[i] = x[i];
+      yo[i] = y[i];
       x[i] += dt * vx[i];
       y[i] += dt * vy[i];
     }
+  } else if (nbc) {
+    bc_redo_positions(s, xo, yo);
   }
   bc_constrain_positions(s, xo, yo, vxo, vyo);
   s->step++;
