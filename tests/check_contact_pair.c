@@ -628,6 +628,22 @@ START_TEST(test_random_pairs_conserve)
 }
 END_TEST
 
+/* Outcome s of the screen (0 busy, 1 keep, 2 drop) against the kernel's answer for the same couple
+ * (return r, forces fa, fb, friction g, distance d2) at removal distance rem2: a quiet couple must
+ * have no force and no friction change, and dropped exactly when d2 > rem2.  Counts into t. */
+typedef struct { int busy, quiet, dropped, bad; } Tally;
+static void tally_screen(int s, int r, const double fa[6], const double fb[6], const double g[6], double d2,
+                         double rem2, Tally *t)
+{
+  if (s == 0) { t->busy++; return; }
+  t->quiet++;
+  double sum = 0;
+  for (int c = 0; c < 6; c++) sum += fabs(fa[c]) + fabs(fb[c]) + fabs(g[c]);
+  if (r != 0 || sum != 0.0) t->bad++;
+  if ((s == 2) != (d2 > rem2)) t->bad++;
+  t->dropped += s == 2;
+}
+
 /* The screen (contact_pair_quiet) must decide exactly as the kernel: on neighbours of a jointed
  * mesh (own nodes per triangle, corners coincident up to a random nudge of 1e-9..1e-1 of the
  * cell), a couple it calls quiet gets no force and no friction change from contact_pair_force,
@@ -637,7 +653,7 @@ START_TEST(test_screen_matches_kernel)
 {
   rng_state = 7;
   enum { NC = 3, NT = 2 * NC * NC };
-  int quiet = 0, busy = 0, dropped = 0, bad = 0;
+  Tally tl = {0, 0, 0, 0};
   for (int trial = 0; trial < 400; trial++) {
     double X[NT][3], Y[NT][3], V[NT][3] = {{0}};
     double nudge = pow(10.0, -9.0 + 8.0 * urand());
@@ -659,22 +675,13 @@ START_TEST(test_screen_matches_kernel)
                                    &d2, NULL);
         double rems[4] = {0.3, d2 < DBL_MAX ? d2 : 1.0, d2 < DBL_MAX ? nextafter(d2, 0.0) : 2.0,
                           d2 < DBL_MAX ? 4.0 * d2 : 3.0};
-        for (int q = 0; q < 4; q++) {
-          int s = contact_pair_quiet(rec[j], rec[i], rems[q]);
-          if (s == 0) { busy++; continue; }
-          quiet++;
-          double sum = 0;
-          for (int c = 0; c < 6; c++) sum += fabs(fa[c]) + fabs(fb[c]) + fabs(g[c]);
-          if (r != 0 || sum != 0.0) bad++;
-          if ((s == 2) != (d2 > rems[q])) bad++;
-          dropped += s == 2;
-        }
+        for (int q = 0; q < 4; q++) tally_screen(contact_pair_quiet(rec[j], rec[i], rems[q]), r, fa, fb, g, d2, rems[q], &tl);
       }
   }
-  ck_assert_int_eq(bad, 0);
-  ck_assert_int_gt(quiet, 10000);
-  ck_assert_int_gt(busy, 1000);
-  ck_assert_int_gt(dropped, 1000);
+  ck_assert_int_eq(tl.bad, 0);
+  ck_assert_int_gt(tl.quiet, 10000);
+  ck_assert_int_gt(tl.busy, 1000);
+  ck_assert_int_gt(tl.dropped, 1000);
 }
 END_TEST
 
@@ -696,7 +703,8 @@ static void random_tri(double x[3], double y[3], double cx, double cy, double s)
 START_TEST(test_screen_shapes_and_degenerate)
 {
   rng_state = 4242;
-  int quiet = 0, busy = 0, dropped = 0, degen = 0, bad = 0, badany = 0;
+  int degen = 0, badany = 0;
+  Tally tl = {0, 0, 0, 0};
   for (int it = 0; it < 60000; it++) {
     double X[2][3], Y[2][3], V[3] = {0, 0, 0};
     random_tri(X[0], Y[0], 0.0, 0.0, 1.0);
@@ -738,21 +746,15 @@ START_TEST(test_screen_shapes_and_degenerate)
     for (int q = 0; q < 8; q++) {
       int sv = contact_pair_quiet(rec[a], rec[b], rems[q]);
       if (contact_pair_quiet_any(rec[a], rec[b], rems[q]) != sv) badany++;
-      if (isdeg && sv == 0) bad++; /* a degenerate couple is settled without the kernel */
-      if (sv == 0) { busy++; continue; }
-      quiet++;
-      double sum = 0;
-      for (int c = 0; c < 6; c++) sum += fabs(fa[c]) + fabs(fb[c]) + fabs(g[c]);
-      if (r != 0 || sum != 0.0) bad++;
-      if ((sv == 2) != (d2 > rems[q])) bad++;
-      dropped += sv == 2;
+      if (isdeg && sv == 0) tl.bad++; /* a degenerate couple is settled without the kernel */
+      tally_screen(sv, r, fa, fb, g, d2, rems[q], &tl);
     }
   }
-  ck_assert_int_eq(bad, 0);
+  ck_assert_int_eq(tl.bad, 0);
   ck_assert_int_eq(badany, 0);
-  ck_assert_int_gt(quiet, 100000);
-  ck_assert_int_gt(busy, 10000);
-  ck_assert_int_gt(dropped, 50000);
+  ck_assert_int_gt(tl.quiet, 100000);
+  ck_assert_int_gt(tl.busy, 10000);
+  ck_assert_int_gt(tl.dropped, 50000);
   ck_assert_int_gt(degen, 1000);
 }
 END_TEST
