@@ -366,7 +366,10 @@ int contact_pair_force_rec_any(const double ra[YF_TRI_GEOM], const double vxa[3]
 typedef int (*ForceRecFn)(const double *, const double *, const double *, const double *, const double *,
                           const double *, double, double, double, double, double *, double *, double *, double *,
                           YfContactInfo *);
-static ForceRecFn resolve_force_rec(void)
+/* Resolvers run while the dynamic linker relocates the program, before sanitizer runtimes are
+ * set up: they must not be instrumented (an ASan build would fault on its first shadow check). */
+#define YF_RESOLVER __attribute__((no_sanitize("address", "undefined")))
+YF_RESOLVER static ForceRecFn resolve_force_rec(void)
 {
   __builtin_cpu_init();
   return __builtin_cpu_supports("avx2") ? force_rec_avx2 : contact_pair_force_rec_any;
@@ -481,7 +484,7 @@ int contact_pair_quiet_any(const double ra[YF_TRI_GEOM], const double rb[YF_TRI_
 
 /* contact_pair_quiet resolves to the AVX2 version once, where the CPU has it (as target_clones) */
 typedef int (*QuietFn)(const double *, const double *, double);
-static QuietFn resolve_quiet(void)
+YF_RESOLVER static QuietFn resolve_quiet(void)
 {
   __builtin_cpu_init();
   return __builtin_cpu_supports("avx2") ? quiet_avx2 : contact_pair_quiet_any;
