@@ -583,6 +583,8 @@ START_TEST(test_trigger)
 }
 END_TEST
 
+static void random_couple(int mode, double xa[3], double ya[3], double xb[3], double yb[3]);
+
 /* ------------------------------------------------------------------ random pairs */
 
 START_TEST(test_random_pairs_conserve)
@@ -600,12 +602,7 @@ START_TEST(test_random_pairs_conserve)
       vxa[q] = urand() - 0.5; vya[q] = urand() - 0.5; vxb[q] = urand() - 0.5; vyb[q] = urand() - 0.5;
     }
     if (mode == 0) { /* two random CCW triangles near each other */
-      for (int q = 0; q < 3; q++) {
-        double th = q * 2.0943951023931957 + 0.6 * (urand() - 0.5);
-        xa[q] = 0.5 * cos(th) + 0.2 * urand(); ya[q] = 0.5 * sin(th) + 0.2 * urand();
-        th = q * 2.0943951023931957 + 0.6 * (urand() - 0.5);
-        xb[q] = 0.6 + 0.5 * cos(th) + 0.4 * (urand() - 0.5); yb[q] = 0.5 * sin(th) + 0.4 * (urand() - 0.5);
-      }
+      random_couple(0, xa, ya, xb, yb);
     } else { /* the two triangles of a unit square cell (shared diagonal), perhaps nudged */
       double e = mode == 1 ? 0.0 : 0.02 * (urand() - 0.5);
       xa[0] = 0; ya[0] = 0; xa[1] = 1; ya[1] = 0; xa[2] = 1; ya[2] = 1;
