@@ -42,6 +42,7 @@
  * frame (about 2 kB per frame), so the index stays a plain, self-contained file.
  */
 #include <errno.h>
+#include <fcntl.h>
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>
@@ -339,24 +340,44 @@ static void xmf_add_frame(YfDump *d, double time, long step, int n, int nt, int 
 }
 
 /* Replace STEM.xmf atomically: a reader (or a killed run) sees the old or the new index.  Not
- * fsync'ed: the frame files it names are not either (see the file comment, Durability). */
+ * fsync'ed: the frame files it names are not either (see the file comment, Durability).
+ *
+ * Why fallocate: ext4 (auto_da_alloc, on by default) starts writeback of a file's delayed-
+ * allocation blocks when a rename replaces another file, so that the replacement survives a
+ * crash; that made each index rename cost ~2 ms on this project's machines, more than the frame
+ * itself (1e4 triangles).  Blocks reserved with fallocate before the write are not delayed, so
+ * the rename finds nothing to flush (index: 9 ms -> 1.5 ms per 50 frames, measured).  Where
+ * fallocate is not supported it is simply skipped. */
 static void xmf_write(YfDump *d) {
-  FILE *f = fopen(d->xmf_tmp, "w");
-  if (!f) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, d->xmf_tmp, strerror(errno));
   char name[YF_NAME_MAX * 6 + 1];
   xml_escape(name, sizeof name, d->id);
-  fprintf(f, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
-             "<Xdmf Version=\"3.0\">\n  <Domain>\n"
-             "    <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", name);
-  if (d->glen) fwrite(d->grids, 1, d->glen, f);
-  fputs("    </Grid>\n  </Domain>\n</Xdmf>\n", f);
-  int bad = ferror(f) || fflush(f) != 0;
-  int err = errno;
-  if (fclose(f) != 0 && !bad) {
-    bad = 1;
-    err = errno;
+  char head[YF_NAME_MAX * 6 + 256];
+  static const char tail[] = "    </Grid>\n  </Domain>\n</Xdmf>\n";
+  int hl = snprintf(head, sizeof head,
+                    "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+                    "<Xdmf Version=\"3.0\">\n  <Domain>\n"
+                    "    <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n",
+                    name);
+  const char *part[3] = {head, d->grids ? d->grids : "", tail};
+  size_t plen[3] = {(size_t)hl, d->glen, sizeof tail - 1};
+  int fd = open(d->xmf_tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, d->xmf_tmp, strerror(errno));
+#ifdef __linux__
+  (void)fallocate(fd, 0, 0, (off_t)(plen[0] + plen[1] + plen[2])); /* an optimisation only */
+#endif
+  int err = 0;
+  for (int i = 0; i < 3 && !err; i++)
+    for (size_t done = 0; done < plen[i] && !err;) {
+      ssize_t w = write(fd, part[i] + done, plen[i] - done);
+      if (w > 0) done += (size_t)w;
+      else if (w < 0 && errno == EINTR) continue;
+      else err = w < 0 ? errno : EIO;
+    }
+  if (close(fd) != 0 && !err) err = errno;
+  if (err) {
+    unlink(d->xmf_tmp);
+    yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, d->xmf_tmp, strerror(err));
   }
-  if (bad) yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, d->xmf_tmp, strerror(err));
   if (rename(d->xmf_tmp, d->xmf) != 0)
     yf_io_error(NULL, "dump %s: cannot rename '%s' to '%s': %s", d->id, d->xmf_tmp, d->xmf,
                 strerror(errno));
@@ -481,6 +502,11 @@ static void h5_frame(YfSim *s, YfDump *d) {
     unlink(d->cur_tmp);
     h5_fail(d, "close");
   }
+  /* A frame file of an earlier run with this name is listed by no index any more (this run's
+   * index was rewritten at its frame 0), so it is removed first: ext4 flushes a file that
+   * replaces another by rename (see xmf_write), ~3 ms per frame when a deck is run again in the
+   * same directory.  Frame 0 keeps the atomic replace: the earlier run's index still lists it. */
+  if (d->nframe > 0) unlink(d->cur);
   if (rename(d->cur_tmp, d->cur) != 0)
     yf_io_error(NULL, "dump %s: cannot rename '%s' to '%s': %s", d->id, d->cur_tmp, d->cur,
                 strerror(errno));
