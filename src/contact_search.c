@@ -28,6 +28,7 @@
 /* Below this many items a search runs on one thread: waking a team costs more than it saves
  * (and on a loaded machine a descheduled worker can stall a barrier for a time slice). */
 #define YF_SEARCH_PAR_MIN 20000
+#define YF_SEARCH_MAX_THREADS 1024
 
 struct YfPairBuf {
   int n, cap;
@@ -323,35 +324,102 @@ void contact_search(YfSearchWork *w, int n, const int *tri, const double *cx, co
     w->buf[t] = bl;
   }
 
-  /* Concatenate the per-thread lists in thread (= item range) order. */
-  int total = 0;
-  for (int t = 0; t < nthr_used; t++) total += w->buf[t].n;
-  contact_pairs_reserve(out, total);
-  int off = 0;
+  /* Concatenate the per-thread lists in thread (= item range) order, each thread copying its
+   * own (a fresh list's first touch of its pages is most of this copy's cost at 1e6 couples). */
+  int total = 0, off[YF_SEARCH_MAX_THREADS + 1];
+  YF_ASSERT(nthr_used <= YF_SEARCH_MAX_THREADS);
   for (int t = 0; t < nthr_used; t++) {
-    memcpy(out->ij + 2 * (size_t)off, w->buf[t].ij, (size_t)w->buf[t].n * 2 * sizeof *out->ij);
-    off += w->buf[t].n;
+    off[t] = total;
+    total += w->buf[t].n;
   }
+  contact_pairs_reserve(out, total);
+#pragma omp parallel for schedule(static, 1) num_threads(nthr_used) if (nthr_used > 1)
+  for (int t = 0; t < nthr_used; t++)
+    memcpy(out->ij + 2 * (size_t)off[t], w->buf[t].ij, (size_t)w->buf[t].n * 2 * sizeof *out->ij);
   out->n = total;
   w->tested = tested;
 }
 
-void contact_search_merge(const YfPairs *old, YfPairs *fresh)
+/* Is old couple a before key (i, j) in the list order? */
+static inline int pair_before(const int *ij, int a, int i, int j)
 {
-  int a = 0;
-  fresh->ng = 0;
-  contact_pairs_greserve(fresh, old->ng);
-  for (int k = 0; k < fresh->n; k++) {
+  return ij[2 * a] < i || (ij[2 * a] == i && ij[2 * a + 1] < j);
+}
+
+/* The first couple of old not before (i, j) (binary search: the list is sorted). */
+static int lower_bound(const YfPairs *old, int i, int j)
+{
+  int lo = 0, hi = old->n;
+  while (lo < hi) {
+    int mid = lo + (hi - lo) / 2;
+    if (pair_before(old->ij, mid, i, j)) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
+}
+
+/* Fixed chunks of fresh couples, each finding its start in old by binary search.  Pass 1 marks
+ * every fresh couple with the old slot of its memory (or -1) and counts per chunk; pass 2 numbers
+ * the slots in couple order from the chunk counts and copies the memory, so the result is the
+ * serial merge's on any thread count. */
+#define MERGE_CHUNK 65536
+
+static int merge_mark(const YfPairs *old, YfPairs *fresh, int k0, int k1)
+{
+  int a = lower_bound(old, fresh->ij[2 * k0], fresh->ij[2 * k0 + 1]), used = 0;
+  for (int k = k0; k < k1; k++) {
     int i = fresh->ij[2 * k], j = fresh->ij[2 * k + 1];
-    while (a < old->n && (old->ij[2 * a] < i || (old->ij[2 * a] == i && old->ij[2 * a + 1] < j))) a++;
+    while (a < old->n && pair_before(old->ij, a, i, j)) a++;
     fresh->gi[k] = -1;
     if (a < old->n && old->ij[2 * a] == i && old->ij[2 * a + 1] == j && old->gi[a] >= 0) {
       const double *g = old->g + 6 * (size_t)old->gi[a];
       if (g[0] == 0.0 && g[1] == 0.0 && g[2] == 0.0 && g[3] == 0.0 && g[4] == 0.0 && g[5] == 0.0) continue;
-      fresh->gi[k] = fresh->ng++;
-      memcpy(fresh->g + 6 * (size_t)fresh->gi[k], g, 6 * sizeof *g);
+      fresh->gi[k] = old->gi[a];
+      used++;
     }
   }
+  return used;
+}
+
+static void merge_copy(const YfPairs *old, YfPairs *fresh, int k0, int k1, int slot)
+{
+  for (int k = k0; k < k1; k++) {
+    if (fresh->gi[k] < 0) continue;
+    const double *g = old->g + 6 * (size_t)fresh->gi[k];
+    fresh->gi[k] = slot++;
+    memcpy(fresh->g + 6 * (size_t)fresh->gi[k], g, 6 * sizeof *g);
+  }
+}
+
+void contact_search_merge(const YfPairs *old, YfPairs *fresh)
+{
+  fresh->ng = 0;
+  contact_pairs_greserve(fresh, old->ng);
+  const int n = fresh->n, nch = (n + MERGE_CHUNK - 1) / MERGE_CHUNK;
+  if (n == 0) return;
+  if (old->ng == 0) { /* nothing to carry over */
+    for (int k = 0; k < n; k++) fresh->gi[k] = -1;
+    return;
+  }
+  int *cnt = yf_malloc((size_t)(nch + 1) * sizeof *cnt, "contact merge"); /* once per search */
+#pragma omp parallel for schedule(static) if (nch > 1)
+  for (int c = 0; c < nch; c++) {
+    int k1 = (c + 1) * MERGE_CHUNK < n ? (c + 1) * MERGE_CHUNK : n;
+    cnt[c] = merge_mark(old, fresh, c * MERGE_CHUNK, k1);
+  }
+  int total = 0;
+  for (int c = 0; c < nch; c++) {
+    int u = cnt[c];
+    cnt[c] = total;
+    total += u;
+  }
+#pragma omp parallel for schedule(static) if (nch > 1)
+  for (int c = 0; c < nch; c++) {
+    int k1 = (c + 1) * MERGE_CHUNK < n ? (c + 1) * MERGE_CHUNK : n;
+    merge_copy(old, fresh, c * MERGE_CHUNK, k1, cnt[c]);
+  }
+  fresh->ng = total;
+  free(cnt);
 }
 
 /* ---------------------------------------------------------------- travel trigger */

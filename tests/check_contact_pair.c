@@ -519,6 +519,89 @@ START_TEST(test_search_merge_keeps_friction)
 }
 END_TEST
 
+/* The merge runs in fixed chunks of fresh couples on all threads: on lists of several chunks it
+ * must give what one serial two-pointer merge gives (slots numbered in couple order, all-zero
+ * memory not carried), bit for bit, on 1 and 2 threads. */
+START_TEST(test_search_merge_chunks_match_serial)
+{
+  enum { NO = 300000, NF = 280000 };
+  YfPairs old, fresh;
+  contact_pairs_init(&old);
+  contact_pairs_init(&fresh);
+  contact_pairs_reserve(&old, NO);
+  contact_pairs_reserve(&fresh, NF);
+  rng_state = 4242;
+  /* sorted keys (i, j): old steps through i with random partners; fresh keeps ~2/3 of old's
+   * couples and adds new ones between them */
+  int n = 0, i = 0, j = 1;
+  while (n < NO) {
+    if (urand() < 0.2) { i++; j = i + 1; }
+    j += 1 + (int)(3 * urand());
+    old.ij[2 * n] = i; old.ij[2 * n + 1] = j; n++;
+  }
+  old.n = NO;
+  contact_pairs_greserve(&old, NO);
+  old.ng = 0;
+  for (int k = 0; k < NO; k++) {
+    old.gi[k] = -1;
+    double u = urand();
+    if (u < 0.5) continue;                  /* never touched */
+    double *g = contact_pairs_gslot(&old, k);
+    if (u < 0.6) continue;                  /* touched, memory back to zero: not carried */
+    for (int q = 0; q < 6; q++) g[q] = urand() - 0.5;
+  }
+  int a = 0, f = 0;
+  while (f < NF && a < NO) {
+    if (urand() < 0.66) { fresh.ij[2 * f] = old.ij[2 * a]; fresh.ij[2 * f + 1] = old.ij[2 * a + 1]; f++; }
+    else if (urand() < 0.5 && (a + 1 == NO || old.ij[2 * a] != old.ij[2 * a + 2] || old.ij[2 * a + 1] + 1 < old.ij[2 * a + 3])) {
+      fresh.ij[2 * f] = old.ij[2 * a]; fresh.ij[2 * f + 1] = old.ij[2 * a + 1] + 1; f++; /* a new key after a */
+      if (a + 1 < NO && old.ij[2 * a] == old.ij[2 * a + 2] && old.ij[2 * a + 3] == old.ij[2 * a + 1] + 1) f--;
+    }
+    a++;
+  }
+  fresh.n = f;
+  ck_assert_int_gt(fresh.n, 3 * 65536);
+  for (int k = 1; k < fresh.n; k++) /* the merge's precondition: strictly sorted keys */
+    ck_assert(fresh.ij[2 * k - 2] < fresh.ij[2 * k] ||
+              (fresh.ij[2 * k - 2] == fresh.ij[2 * k] && fresh.ij[2 * k - 1] < fresh.ij[2 * k + 1]));
+  /* the reference: one serial two-pointer pass */
+  int *rgi = malloc((size_t)fresh.n * sizeof *rgi), rng = 0;
+  double *rg = malloc((size_t)fresh.n * 6 * sizeof *rg);
+  for (int k = 0, p = 0; k < fresh.n; k++) {
+    int fi = fresh.ij[2 * k], fj = fresh.ij[2 * k + 1];
+    while (p < NO && (old.ij[2 * p] < fi || (old.ij[2 * p] == fi && old.ij[2 * p + 1] < fj))) p++;
+    rgi[k] = -1;
+    if (p < NO && old.ij[2 * p] == fi && old.ij[2 * p + 1] == fj && old.gi[p] >= 0) {
+      const double *g = old.g + 6 * (size_t)old.gi[p];
+      int nz = 0;
+      for (int q = 0; q < 6; q++) nz |= g[q] != 0.0;
+      if (!nz) continue;
+      rgi[k] = rng;
+      memcpy(rg + 6 * (size_t)rng, g, 6 * sizeof *g);
+      rng++;
+    }
+  }
+  ck_assert_int_gt(rng, 1000);
+  for (int t = 1; t <= 2; t++) {
+    omp_set_num_threads(t);
+    contact_search_merge(&old, &fresh);
+    ck_assert_int_eq(fresh.ng, rng);
+    int bad = 0;
+    for (int k = 0; k < fresh.n; k++) {
+      bad += fresh.gi[k] != rgi[k];
+      if (rgi[k] >= 0 && fresh.gi[k] == rgi[k])
+        bad += memcmp(fresh.g + 6 * (size_t)rgi[k], rg + 6 * (size_t)rgi[k], 6 * sizeof(double)) != 0;
+    }
+    ck_assert_msg(bad == 0, "%d threads: %d couples differ from the serial merge", t, bad);
+  }
+  omp_set_num_threads(2);
+  free(rgi);
+  free(rg);
+  contact_pairs_free(&old);
+  contact_pairs_free(&fresh);
+}
+END_TEST
+
 START_TEST(test_search_large_sampled)
 {
   /* 2e5 triangles: the list is strictly sorted, every pair satisfies the distance test, and for
@@ -1068,6 +1151,7 @@ Suite *contact_pair_suite(void)
   tc = tcase_create("search");
   tcase_set_timeout(tc, 60);
   tcase_add_test(tc, test_search_equals_brute_force);
+  tcase_add_test(tc, test_search_merge_chunks_match_serial);
   tcase_add_test(tc, test_search_filters_and_threads);
   tcase_add_test(tc, test_search_merge_keeps_friction);
   tcase_add_test(tc, test_search_large_sampled);
