@@ -21,7 +21,8 @@
  *               list in couple order (offsets from per-block counts: no atomics); a couple that
  *               touched in neither direction and is farther than 2 buffer is dropped (Y2D).
  *   scatter     each node's contact force is the sum of its couples' forces in couple order,
- *               added to node.fx/fy, so 1 or N threads give the same bits.  Energy: penalty
+ *               added to node.fx/fy, so 1 or N threads give the same bits (one thread adds
+ *               them during the kernel pass instead, in the same order: no list).  Energy: penalty
  *               energy (kernel estimate) of this step and accumulated frictional dissipation,
  *               summed per block in order.
  * Dropped couples stay in the list as dead entries until a search, or until a quarter of the
@@ -637,6 +638,80 @@ static void search(YfSim *s, YfContact *C) {
 
 /* ---------------------------------------------------------------- the step */
 
+/* What pass 2 of contact_step reads and where it puts the forces: the hit list (hf, hk: several
+ * threads) or the node sums directly (fcn, tmark: one thread, blocks in order). */
+typedef struct {
+  const int *ij, *tv, *tmat;
+  int *gi;
+  unsigned char *alive;
+  const double *vx, *vy, *tg;
+  double *gmem;
+  const double *mpn, *mpt, *mmu;
+  double dt, rem2;
+  int np;
+  double *hf;
+  int *hk;
+  double *fcn;
+  unsigned char *tmark;
+} KernelPass;
+
+/* The kernel on the marked couples of block b, in couple order: friction slots numbered from the
+ * block's offset, energy and dissipation summed per block, couples dropped as Y2D drops them. */
+static void kernel_block(YfContact *C, const KernelPass *P, int b) {
+  double e = 0.0, d = 0.0;
+  int rm = 0, h = C->blk_off[b], slot = C->blk_goff[b];
+  if (h == C->blk_off[b + 1]) { C->blk_e[b] = C->blk_d[b] = 0.0; return; }
+  const int *ij = P->ij, *tv = P->tv, *tmat = P->tmat;
+  int *gi = P->gi;
+  unsigned char *alive = P->alive;
+  const double *vx = P->vx, *vy = P->vy, *tg = P->tg;
+  double *gmem = P->gmem;
+  int k1 = (b + 1) * PAIR_BLK < P->np ? (b + 1) * PAIR_BLK : P->np;
+  for (int k = b * PAIR_BLK; k < k1; k++) {
+    if (alive[k] != 2) continue;
+    alive[k] = 1;
+    int ti = ij[2 * k], tj = ij[2 * k + 1];
+    const int *va = tv + 3 * tj, *vb = tv + 3 * ti;
+    double vxa[3], vya[3], vxb[3], vyb[3];
+    for (int c = 0; c < 3; c++) {
+      vxa[c] = vx[va[c]]; vya[c] = vy[va[c]];
+      vxb[c] = vx[vb[c]]; vyb[c] = vy[vb[c]];
+    }
+    int ma = tmat[tj], mb = tmat[ti];
+    double pn = P->mpn[ma] < P->mpn[mb] ? P->mpn[ma] : P->mpn[mb];
+    double pt = P->mpt[ma] < P->mpt[mb] ? P->mpt[ma] : P->mpt[mb];
+    double mu = P->mmu[ma] < P->mmu[mb] ? P->mmu[ma] : P->mmu[mb];
+    double loc[12];
+    double *fa = P->hf ? P->hf + 12 * (size_t)h : loc, *fb = fa + 6;
+    for (int c = 0; c < 12; c++) fa[c] = 0.0;
+    YfContactInfo info = {0, 0, 0, 0, 0, 0};
+    double d2;
+    if (gi[k] < 0) { /* first contact of the couple: a zeroed slot, numbered in couple order */
+      gi[k] = slot++;
+      memset(gmem + 6 * (size_t)gi[k], 0, 6 * sizeof *gmem);
+    }
+    int hit = contact_pair_force_rec(tg + (size_t)YF_TRI_GEOM * tj, vxa, vya, tg + (size_t)YF_TRI_GEOM * ti, vxb,
+                                     vyb, pn, pt, mu, P->dt, gmem + 6 * (size_t)gi[k], fa, fb, &d2, &info);
+    e += info.energy;
+    d += info.dissip;
+    if (P->hf) {
+      P->hk[h] = k;
+    } else { /* one thread: the scatter's additions, here (A's corners, then B's) */
+      for (int c = 0; c < 6; c++) {
+        int i = c < 3 ? va[c] : vb[c - 3];
+        P->tmark[i] = 1;
+        P->fcn[2 * i] += fa[2 * c];
+        P->fcn[2 * i + 1] += fa[2 * c + 1];
+      }
+    }
+    h++;
+    if (!hit && d2 > P->rem2) { alive[k] = 0; rm++; }
+  }
+  C->blk_e[b] = e;
+  C->blk_d[b] = d;
+  C->blk_rm[b] += rm;
+}
+
 void contact_step(YfSim *s) {
   YfContact *C = s->contact;
   if (!active(C)) return;
@@ -701,52 +776,38 @@ void contact_step(YfSim *s) {
   }
   C->blk_off[nblk] = nbusy;
   if (nbusy > C->max_busy) C->max_busy = nbusy;
-  hit_room(C, nbusy); /* rarely grows: see hit_room */
   contact_pairs_greserve(&C->pairs, ng); /* rarely grows: reserved at each search */
 
-  /* pass 2: the kernel on the marked couples (A = the larger index, Y2D's order), each writing
-   * its 12 forces into its place in couple order; no atomics, same bits on any thread count */
-  double *gmem = C->pairs.g, *hf = C->hf;
-  int *hk = C->hk;
-  const double *mpn = C->mpn, *mpt = C->mpt, *mmu = C->mmu;
-  #pragma omp parallel for schedule(dynamic, 1) if (nbusy >= C->par_min / 32 && nblk > 1)
-  for (int b = 0; b < nblk; b++) {
-    double e = 0.0, d = 0.0;
-    int rm = 0, h = C->blk_off[b], slot = C->blk_goff[b];
-    if (h == C->blk_off[b + 1]) { C->blk_e[b] = C->blk_d[b] = 0.0; continue; }
-    int k1 = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np;
-    for (int k = b * PAIR_BLK; k < k1; k++) {
-      if (alive[k] != 2) continue;
-      alive[k] = 1;
-      int ti = ij[2 * k], tj = ij[2 * k + 1];
-      const int *va = tv + 3 * tj, *vb = tv + 3 * ti;
-      double vxa[3], vya[3], vxb[3], vyb[3];
-      for (int c = 0; c < 3; c++) {
-        vxa[c] = vx[va[c]]; vya[c] = vy[va[c]];
-        vxb[c] = vx[vb[c]]; vyb[c] = vy[vb[c]];
-      }
-      int ma = tmat[tj], mb = tmat[ti];
-      double pn = mpn[ma] < mpn[mb] ? mpn[ma] : mpn[mb];
-      double pt = mpt[ma] < mpt[mb] ? mpt[ma] : mpt[mb];
-      double mu = mmu[ma] < mmu[mb] ? mmu[ma] : mmu[mb];
-      double *fa = hf + 12 * (size_t)h, *fb = fa + 6;
-      for (int c = 0; c < 12; c++) fa[c] = 0.0;
-      YfContactInfo info = {0, 0, 0, 0, 0, 0};
-      double d2;
-      if (gi[k] < 0) { /* first contact of the couple: a zeroed slot, numbered in couple order */
-        gi[k] = slot++;
-        memset(gmem + 6 * (size_t)gi[k], 0, 6 * sizeof *gmem);
-      }
-      int hit = contact_pair_force_rec(tg + (size_t)YF_TRI_GEOM * tj, vxa, vya, tg + (size_t)YF_TRI_GEOM * ti, vxb,
-                                       vyb, pn, pt, mu, dt, gmem + 6 * (size_t)gi[k], fa, fb, &d2, &info);
-      e += info.energy;
-      d += info.dissip;
-      hk[h++] = k;
-      if (!hit && d2 > rem2) { alive[k] = 0; rm++; }
-    }
-    C->blk_e[b] = e;
-    C->blk_d[b] = d;
-    C->blk_rm[b] += rm;
+  /* pass 2: the kernel on the marked couples (A = the larger index, Y2D's order).  On several
+   * threads each couple writes its 12 forces into its place of the hit list, in couple order
+   * (no atomics), and the scatter below sums them per node in couple order.  On one thread the
+   * blocks run in order anyway, so each couple's forces go straight into the node sums, in the
+   * scatter's order: the same additions in the same order, the same bits, without the list
+   * (100 B per touching couple written and read back; PERF.md at 1e4: 43 000 of them). */
+  int nthr = 1;
+#ifdef _OPENMP
+  nthr = omp_get_max_threads();
+#endif
+  const int serial = !(nbusy >= C->par_min / 32 && nblk > 1) || nthr == 1;
+  KernelPass P = {ij, tv, tmat, gi, alive, vx, vy, tg, C->pairs.g, C->mpn, C->mpt, C->mmu, dt, rem2, np,
+                  NULL, NULL, NULL, NULL};
+  double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
+  unsigned char *tmark = C->tmark;
+  const int nn = nd->n;
+  if (serial) {
+    for (int i = 0; i < nn; i++)
+      if (tmark[i]) { fcn[2 * i] = fcn[2 * i + 1] = 0.0; tmark[i] = 0; }
+    P.fcn = fcn;
+    P.tmark = tmark;
+    for (int b = 0; b < nblk; b++) kernel_block(C, &P, b);
+    for (int i = 0; i < nn; i++)
+      if (tmark[i]) { fx[i] += fcn[2 * i]; fy[i] += fcn[2 * i + 1]; }
+  } else {
+    hit_room(C, nbusy); /* rarely grows: see hit_room */
+    P.hf = C->hf;
+    P.hk = C->hk;
+    #pragma omp parallel for schedule(dynamic, 1)
+    for (int b = 0; b < nblk; b++) kernel_block(C, &P, b);
   }
   double esum = 0.0, dsum = 0.0;
   int removed = 0;
@@ -763,11 +824,10 @@ void contact_step(YfSim *s) {
    * contributions in couple order (A's corners before B's), then added to node.fx.  Thread t
    * owns the nodes of one contiguous range and reads every record, so each node's sum has the
    * same order (and bits) on any thread count. */
-  double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
-  unsigned char *tmark = C->tmark;
-  const int nn = nd->n;
-  #pragma omp parallel if (nbusy >= C->par_min / 8 && nn >= C->par_min)
-  {
+  const int *hk = C->hk;
+  const double *hf = C->hf;
+  #pragma omp parallel if (!serial && nbusy >= C->par_min / 8 && nn >= C->par_min)
+  if (!serial) {
     int nth = 1, me = 0;
 #ifdef _OPENMP
     nth = omp_get_num_threads();

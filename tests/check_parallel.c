@@ -33,6 +33,7 @@ static void quiet(void) { freopen("/dev/null", "w", stdout); }
 typedef struct {
   uint64_t hash;
   long broken, pairs;
+  double econtact, friction; /* not in the hash: the contact stage's per-block sums */
 } Run;
 
 static Run run_threads(const char *deck, int threads, long steps) {
@@ -42,7 +43,7 @@ static Run run_threads(const char *deck, int threads, long steps) {
   contact_set_par_min(s, 0);
   omp_set_num_threads(threads);
   run_steps(s, steps);
-  Run r = {sim_state_hash(s), joints_broken(s), contact_pairs(s)};
+  Run r = {sim_state_hash(s), joints_broken(s), contact_pairs(s), s->energy.contact, s->energy.friction};
   sim_free(s);
   omp_set_num_threads(2);
   run_set_par_min(16384, 2048);
@@ -59,12 +60,18 @@ START_TEST(test_threads_bitwise) {
     Run one = run_threads(decks[d], 1, 400);
     ck_assert_int_gt(one.broken, 0);  /* fracture happened */
     ck_assert_int_gt(one.pairs, 0);   /* and contact */
+    ck_assert(one.friction > 0.0);    /* with sliding */
     for (int t = 2; t <= 4; t++) {
       Run r = run_threads(decks[d], t, 400);
       ck_assert_msg(r.hash == one.hash, "deck %d: %d threads hash %016llx != 1 thread %016llx", d, t,
                     (unsigned long long)r.hash, (unsigned long long)one.hash);
       ck_assert_int_eq(r.broken, one.broken);
       ck_assert_int_eq(r.pairs, one.pairs);
+      /* one thread sums contact forces straight into the nodes, several through the hit list */
+      ck_assert_msg(memcmp(&r.econtact, &one.econtact, sizeof r.econtact) == 0 &&
+                    memcmp(&r.friction, &one.friction, sizeof r.friction) == 0,
+                    "deck %d: %d threads contact energy %.17g, friction %.17g != %.17g, %.17g", d, t,
+                    r.econtact, r.friction, one.econtact, one.friction);
     }
   }
 }
