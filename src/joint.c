@@ -922,15 +922,24 @@ double joints_stable_dt(YfSim *s, char *what, size_t n) {
   double best = INFINITY;
   int bj = -1;
   /* the undamped triangle limit, once per triangle (a triangle has up to 3 joints x 2 corners:
-   * its eigenvalue iteration is the cost of this function); NAN = not computed yet */
+   * its eigenvalue iteration is the cost of this function); NAN = not needed */
   double *dtt = yf_malloc((size_t)(m->tri.n > 0 ? m->tri.n : 1) * sizeof(double), "joint dt");
   for (int t = 0; t < m->tri.n; t++) dtt[t] = NAN;
+  for (int j = 0; j < J->n; j++) { /* mark the triangles needed (0), then compute them on all threads */
+    if (J->state[j]) continue;
+    for (int c = 0; c < 4; c++) {
+      int i = J->node[4 * j + c], t = tri_of[i];
+      if (N->m[i] > 0 && t >= 0) dtt[t] = 0.0;
+    }
+  }
+  #pragma omp parallel for schedule(static) if (m->tri.n >= 16384)
+  for (int t = 0; t < m->tri.n; t++)
+    if (dtt[t] == 0.0) dtt[t] = tri_stable_dt(m, tm0, t);
   for (int j = 0; j < J->n; j++) {
     if (J->state[j]) continue;
     for (int c = 0; c < 4; c++) {
       int i = J->node[4 * j + c], t = tri_of[i];
       if (!(N->m[i] > 0) || t < 0) continue;
-      if (isnan(dtt[t])) dtt[t] = tri_stable_dt(m, tm0, t);
       double dt0 = dtt[t];
       double wt2 = isfinite(dt0) && dt0 > 0 ? 4.0 / (dt0 * dt0) : 0.0;
       double w = sqrt(wt2 + P[i] / N->m[i]);
