@@ -28,6 +28,7 @@
 #include "joint.h"
 #include "contact.h"
 #include "deck.h"
+#include "edgesort.h"
 #include "elem_tri.h"
 #include "err.h"
 #include "mesh.h"
@@ -240,17 +241,7 @@ void cmd_fracture_log(YfSim *s, const YfArgs *a) {
 
 /* ---------------- insertion ---------------- */
 
-typedef struct {
-  int lo, hi, t, k;
-} Edge;
-
-static int edge_cmp(const void *pa, const void *pb) {
-  const Edge *a = pa, *b = pb;
-  if (a->lo != b->lo) return a->lo < b->lo ? -1 : 1;
-  if (a->hi != b->hi) return a->hi < b->hi ? -1 : 1;
-  if (a->t != b->t) return a->t < b->t ? -1 : 1;
-  return a->k - b->k;
-}
+typedef YfEdgeRec Edge;
 
 typedef struct {
   int A, kA, B, kB, set;
@@ -384,7 +375,7 @@ int joints_insert_zone(YfSim *s, const unsigned char *tri_in_zone,
       int a = m->tri.v[3 * t + c], b = m->tri.v[3 * t + (c + 1) % 3];
       E[3 * t + c] = (Edge){a < b ? a : b, a < b ? b : a, t, c};
     }
-  qsort(E, (size_t)nt * 3, sizeof *E, edge_cmp);
+  yf_edges_sort(E, (long)nt * 3);
   NewJoint *nj = yf_malloc(((size_t)nt * 3 / 2 + 1) * sizeof *nj, "joints");
   int nnj = 0;
   for (int i = 0; i < 3 * nt;) {

@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "edgesort.h"
 #include "memcap.h"
 #include "mesh.h"
 #include "sim.h"
@@ -549,22 +550,11 @@ void cmd_triangles(struct YfSim *sim, const YfArgs *a) {
 /* ------------------------------------------------------------------------------------------ */
 /* topology queries                                                                            */
 
-typedef struct {
-  int lo, hi; /* root node indices of the edge, lo < hi */
-  int tri, k; /* triangle and local edge k (corners k, k+1) */
-} EdgeRec;
-
-static int edge_cmp(const void *pa, const void *pb) {
-  const EdgeRec *a = pa, *b = pb;
-  if (a->lo != b->lo) return a->lo < b->lo ? -1 : 1;
-  if (a->hi != b->hi) return a->hi < b->hi ? -1 : 1;
-  if (a->tri != b->tri) return a->tri < b->tri ? -1 : 1;
-  return a->k - b->k;
-}
+typedef YfEdgeRec EdgeRec; /* lo < hi: root node indices; t triangle, k local edge (corners k, k+1) */
 
 static int bnd_cmp(const void *pa, const void *pb) {
   const EdgeRec *a = pa, *b = pb;
-  if (a->tri != b->tri) return a->tri < b->tri ? -1 : 1;
+  if (a->t != b->t) return a->t < b->t ? -1 : 1;
   return a->k - b->k;
 }
 
@@ -580,16 +570,16 @@ int mesh_boundary_edges(const YfModel *m, uint64_t groupbit, int **edges) {
       EdgeRec *e = &r[3 * t + k];
       e->lo = a < b ? a : b;
       e->hi = a < b ? b : a;
-      e->tri = t;
+      e->t = t;
       e->k = k;
     }
-  qsort(r, (size_t)nt * 3, sizeof *r, edge_cmp);
+  yf_edges_sort(r, (long)nt * 3);
   int nb = 0;
   for (int i = 0; i < 3 * nt;) {
     int j = i + 1;
     while (j < 3 * nt && r[j].lo == r[i].lo && r[j].hi == r[i].hi) j++;
     if (j == i + 1) {
-      int t = r[i].tri, k = r[i].k;
+      int t = r[i].t, k = r[i].k;
       int a = m->tri.v[3 * t + k], b = m->tri.v[3 * t + (k + 1) % 3];
       if ((m->node.gmask[a] & groupbit) && (m->node.gmask[b] & groupbit)) r[nb++] = r[i];
     }
@@ -599,8 +589,8 @@ int mesh_boundary_edges(const YfModel *m, uint64_t groupbit, int **edges) {
   if (nb > 0) {
     int *e = yf_malloc((size_t)nb * 2 * sizeof *e, "boundary edges");
     for (int i = 0; i < nb; i++) {
-      e[2 * i] = m->tri.v[3 * r[i].tri + r[i].k];
-      e[2 * i + 1] = m->tri.v[3 * r[i].tri + (r[i].k + 1) % 3];
+      e[2 * i] = m->tri.v[3 * r[i].t + r[i].k];
+      e[2 * i + 1] = m->tri.v[3 * r[i].t + (r[i].k + 1) % 3];
     }
     *edges = e;
   }

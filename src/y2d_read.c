@@ -27,6 +27,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "deck.h"
+#include "edgesort.h"
 #include "err.h"
 #include "memcap.h"
 #include "y2d_read.h"
@@ -819,15 +820,8 @@ static void require(const YfY2d *y, int k, const char *why) {
                   why, y->has_ydoit ? "$YDOIT" : "the end of the deck");
 }
 
-typedef struct {
-  int a, b, e;
-} Edge;
-static int edge_cmp(const void *p, const void *q) {
-  const Edge *x = p, *z = q;
-  if (x->a != z->a) return x->a < z->a ? -1 : 1;
-  if (x->b != z->b) return x->b < z->b ? -1 : 1;
-  return x->e < z->e ? -1 : x->e > z->e;
-}
+/* An edge (lo < hi node indices) of element t, local edge k (edgesort.h). */
+typedef YfEdgeRec Edge;
 
 /* Sorted list of the edges of the triangles with sel[e] != 0 (sel NULL: all). */
 static Edge *edge_list(const YfY2d *y, const unsigned char *sel, long *ne) {
@@ -838,13 +832,14 @@ static Edge *edge_list(const YfY2d *y, const unsigned char *sel, long *ne) {
     const int *v = &y->i2elto[e * y->melno];
     for (int k = 0; k < 3; k++) {
       int a = v[k], b = v[(k + 1) % 3];
-      ed[n].a = a < b ? a : b;
-      ed[n].b = a < b ? b : a;
-      ed[n].e = (int)e;
+      ed[n].lo = a < b ? a : b;
+      ed[n].hi = a < b ? b : a;
+      ed[n].t = (int)e;
+      ed[n].k = k;
       n++;
     }
   }
-  qsort(ed, (size_t)n, sizeof *ed, edge_cmp);
+  yf_edges_sort(ed, n);
   *ne = n;
   return ed;
 }
@@ -907,7 +902,7 @@ static void check_meshing(const YfY2d *y) {
     long n3, E = 0;
     Edge *ed = edge_list(y, sel, &n3);
     for (long i = 0; i < n3; i++)
-      if (i == 0 || ed[i].a != ed[i - 1].a || ed[i].b != ed[i - 1].b) E++;
+      if (i == 0 || ed[i].lo != ed[i - 1].lo || ed[i].hi != ed[i - 1].hi) E++;
     free(ed);
     for (int c = code; c > 0; c /= 10) {
       switch (c % 10) {
@@ -1208,11 +1203,11 @@ static void check_deck(YfY2d *y) {
     long ne, nflag = 0, first = -1;
     Edge *ed = edge_list(y, sel, &ne);
     for (long i = 0; i < ne; i++) {
-      int single = (i == 0 || ed[i].a != ed[i - 1].a || ed[i].b != ed[i - 1].b) &&
-                   (i + 1 == ne || ed[i].a != ed[i + 1].a || ed[i].b != ed[i + 1].b);
+      int single = (i == 0 || ed[i].lo != ed[i - 1].lo || ed[i].hi != ed[i - 1].hi) &&
+                   (i + 1 == ne || ed[i].lo != ed[i + 1].lo || ed[i].hi != ed[i + 1].hi);
       if (!single) continue;
       for (int q = 0; q < 2; q++) {
-        int n = q ? ed[i].b : ed[i].a;
+        int n = q ? ed[i].hi : ed[i].lo;
         if (y->i1nobf[n] != 1) {
           if (first < 0) first = n;
           nflag++;

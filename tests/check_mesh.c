@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include "deck.h"
+#include "edgesort.h"
 #include "mesh.h"
 #include "model.h"
 #include "region.h"
@@ -816,10 +817,59 @@ START_TEST(test_groups) {
 }
 END_TEST
 
+/* The edge sort (a counting sort by lo, then each node's run) must give qsort's order with the
+ * (lo, hi, t, k) comparator: on a real mesh's edges (shared edges: equal (lo, hi)), on random
+ * records with long runs (a fan: more than the insertion-sort limit), and with a negative lo
+ * (the general path). */
+static int edge_rec_cmp(const void *pa, const void *pb) {
+  const YfEdgeRec *a = pa, *b = pb;
+  if (a->lo != b->lo) return a->lo < b->lo ? -1 : 1;
+  if (a->hi != b->hi) return a->hi < b->hi ? -1 : 1;
+  if (a->t != b->t) return a->t < b->t ? -1 : 1;
+  return (a->k > b->k) - (a->k < b->k);
+}
+
+START_TEST(test_edge_sort_matches_qsort) {
+  enum { N = 30000 };
+  YfEdgeRec *a = malloc(N * sizeof *a), *b = malloc(N * sizeof *b);
+  unsigned long long rng = 12345;
+#define RND() (rng = rng * 6364136223846793005ull + 1442695040888963407ull, (int)(rng >> 33))
+  for (int trial = 0; trial < 4; trial++) {
+    long n = 0;
+    if (trial == 0) { /* the edges of a structured mesh, 3 per triangle, in generation order */
+      const int nx = 60, ny = 40;
+      for (int t = 0; t < 2 * nx * ny; t++) {
+        int c = t / 2, i = c % nx, j = c / nx, n0 = j * (nx + 1) + i, v[3];
+        if (t % 2 == 0) { v[0] = n0; v[1] = n0 + 1; v[2] = n0 + nx + 2; }
+        else { v[0] = n0; v[1] = n0 + nx + 2; v[2] = n0 + nx + 1; }
+        for (int k = 0; k < 3; k++) {
+          int p = v[k], q = v[(k + 1) % 3];
+          a[n++] = (YfEdgeRec){p < q ? p : q, p < q ? q : p, t, k};
+        }
+      }
+    } else {
+      for (; n < N; n++) {
+        int lo = trial == 1 ? RND() % 5000 : RND() % 40; /* trial 2: runs of ~750 (qsort path) */
+        a[n] = (YfEdgeRec){lo, lo + RND() % 7, RND() % 9000, RND() % 3};
+        if (trial == 3 && n % 1000 == 7) a[n].lo = -1 - RND() % 3; /* not a node index */
+      }
+    }
+    memcpy(b, a, (size_t)n * sizeof *a);
+    qsort(b, (size_t)n, sizeof *b, edge_rec_cmp);
+    yf_edges_sort(a, n);
+    ck_assert_msg(memcmp(a, b, (size_t)n * sizeof *a) == 0, "trial %d: the order differs from qsort's", trial);
+  }
+#undef RND
+  free(a);
+  free(b);
+}
+END_TEST
+
 Suite *mesh_suite(void) {
   Suite *s = suite_create("mesh");
   TCase *tc = tcase_create("rect");
   tcase_add_test(tc, test_rect_patterns);
+  tcase_add_test(tc, test_edge_sort_matches_qsort);
   tcase_add_test(tc, test_rect_diagonals);
   tcase_add_test(tc, test_rect_two_bodies_ids_min_edge);
   tcase_add_test(tc, test_rect_errors);
