@@ -225,13 +225,13 @@ double tri_strain_energy(const YfModel *m, const YfTriMat *tm, int e0, int e1) {
   return sum;
 }
 
-double tri_stable_dt(const YfModel *m, const YfTriMat *tm, int e) {
+double tri_omega_max(const YfModel *m, const YfTriMat *tm, int e) {
   /* Linearised element: K_e = A B^T C B, M_e = (rho A / 3) I.  The non-zero eigenvalues of
    * B^T C B are those of the 3x3 product C G with G = B B^T, so omega_max^2 = 3 lmax(C G)/rho. */
   const int *v = m->tri.v + 3 * e;
   const double *X = m->node.x0, *Y = m->node.y0;
   double A2 = m->tri.d0[e];
-  if (!(A2 > 0)) return 0.0;
+  if (!(A2 > 0)) return -1.0;
   double b[3], c[3];
   for (int i = 0; i < 3; i++) {
     int j = v[(i + 1) % 3], k = v[(i + 2) % 3];
@@ -264,10 +264,19 @@ double tri_stable_dt(const YfModel *m, const YfTriMat *tm, int e) {
     if (fabs(lnew - lmax) <= 1e-13 * lnew) { lmax = lnew; break; }
     lmax = lnew;
   }
-  double w = sqrt(3.0 * lmax / mt->rho);
+  return sqrt(3.0 * lmax / mt->rho);
+}
+
+double tri_dt_of_omega(double w, const YfTriMat *mt) {
+  if (w < 0) return 0.0; /* degenerate triangle */
   if (!(w > 0)) return INFINITY;
+  double mu = 0.5 * mt->mu2, lam = 2.0 * mt->lamv; /* small-strain Lame of the law */
   /* Viscous term: damping ratio of the highest mode xi = w k / (2 (lam + 2 mu)); central
    * differences are stable for dt <= (2/w)(sqrt(1 + xi^2) - xi). */
   double xi = w * mt->k / (2.0 * (lam + 2.0 * mu));
   return 2.0 / w * (sqrt(1.0 + xi * xi) - xi);
+}
+
+double tri_stable_dt(const YfModel *m, const YfTriMat *tm, int e) {
+  return tri_dt_of_omega(tri_omega_max(m, tm, e), tm + m->tri.mat[e]);
 }

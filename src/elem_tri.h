@@ -29,5 +29,10 @@ double tri_strain_energy(const YfModel *m, const YfTriMat *tm, int e0, int e1);
  * (an upper bound of the mesh's highest frequency, Irons' element-by-element theorem), reduced
  * for the viscous term.  Uses initial positions. [s] */
 double tri_stable_dt(const YfModel *m, const YfTriMat *tm, int e);
+/* Its two halves: the linearised element's highest angular frequency omega_max [rad/s] (-1 for a
+ * degenerate triangle; it depends on rho, lambda and mu, not on the viscosity), the costly part,
+ * and the stable step for that omega with material mt's viscosity [s]. */
+double tri_omega_max(const YfModel *m, const YfTriMat *tm, int e);
+double tri_dt_of_omega(double w, const YfTriMat *mt);
 
 #endif

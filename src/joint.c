@@ -882,7 +882,7 @@ double joints_energy(YfSim *s) {
 
 /* ---------------- stable time step ---------------- */
 
-double joints_stable_dt(YfSim *s, char *what, size_t n) {
+double joints_stable_dt(YfSim *s, const double *tri_w, char *what, size_t n) {
   if (what && n) what[0] = 0;
   YfJoints *J = s->joints;
   if (!J || !J->n) return INFINITY;
@@ -925,7 +925,7 @@ double joints_stable_dt(YfSim *s, char *what, size_t n) {
   }
   #pragma omp parallel for schedule(static) if (m->tri.n >= 16384)
   for (int t = 0; t < m->tri.n; t++)
-    if (dtt[t] == 0.0) dtt[t] = tri_stable_dt(m, tm0, t);
+    if (dtt[t] == 0.0) dtt[t] = tri_w ? tri_dt_of_omega(tri_w[t], tm0 + m->tri.mat[t]) : tri_stable_dt(m, tm0, t);
   for (int j = 0; j < J->n; j++) {
     if (J->state[j]) continue;
     for (int c = 0; c < 4; c++) {

@@ -105,8 +105,9 @@ typedef struct YfJoints {
 
 void joints_insert(YfSim *s);
 void joints_forces(YfSim *s);
-/* Stable time step limit of the joints' penalty [s] (INFINITY without joints); *what names it. */
-double joints_stable_dt(YfSim *s, char *what, size_t n);
+/* Stable time step limit of the joints' penalty [s] (INFINITY without joints); *what names it.
+ * tri_w: each triangle's tri_omega_max, when the caller has them (NULL: computed here). */
+double joints_stable_dt(YfSim *s, const double *tri_w, char *what, size_t n);
 /* Counts for the summary and thermo. */
 long joints_count(const YfSim *s);
 long joints_broken(const YfSim *s);

@@ -121,18 +121,19 @@ double run_model_bytes(const YfSim *s) {
 
 double run_stable_dt(YfSim *s, char *limiter, size_t n) {
   YfModel *m = &s->model;
-  double best = INFINITY;
+  double best = INFINITY, *w;
   int which = -1;
   {
     /* every triangle's limit on all threads (a power iteration each: 1 s per 1e6 triangles at
      * setup), then the smallest, first of equals, in order: the serial loop's answer */
     const int nt = m->tri.n;
-    double *d = yf_malloc((size_t)(nt > 0 ? nt : 1) * sizeof *d, "stable time step");
+    w = yf_malloc((size_t)(nt > 0 ? nt : 1) * sizeof *w, "stable time step");
     #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
-    for (int e = 0; e < nt; e++) d[e] = tri_stable_dt(m, R.tm, e);
-    for (int e = 0; e < nt; e++)
-      if (d[e] < best) { best = d[e]; which = e; }
-    free(d);
+    for (int e = 0; e < nt; e++) w[e] = tri_omega_max(m, R.tm, e);
+    for (int e = 0; e < nt; e++) {
+      double d = tri_dt_of_omega(w[e], R.tm + m->tri.mat[e]);
+      if (d < best) { best = d; which = e; }
+    }
   }
   if (limiter) {
     if (which >= 0)
@@ -141,7 +142,8 @@ double run_stable_dt(YfSim *s, char *limiter, size_t n) {
       snprintf(limiter, n, "nothing (no triangles)");
   }
   char what[96];
-  double dj = joints_stable_dt(s, what, sizeof what);
+  double dj = joints_stable_dt(s, w, what, sizeof what); /* the same omegas, without viscosity */
+  free(w);
   if (dj < best) {
     best = dj;
     if (limiter) snprintf(limiter, n, "%s", what);
