@@ -826,8 +826,9 @@ void contact_step(YfSim *s) {
    * same order (and bits) on any thread count. */
   const int *hk = C->hk;
   const double *hf = C->hf;
-  #pragma omp parallel if (!serial && nbusy >= C->par_min / 8 && nn >= C->par_min)
-  if (!serial) {
+  if (!serial)
+  #pragma omp parallel if (nbusy >= C->par_min / 8 && nn >= C->par_min)
+  {
     int nth = 1, me = 0;
 #ifdef _OPENMP
     nth = omp_get_num_threads();

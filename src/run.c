@@ -121,19 +121,17 @@ double run_model_bytes(const YfSim *s) {
 
 double run_stable_dt(YfSim *s, char *limiter, size_t n) {
   YfModel *m = &s->model;
-  double best = INFINITY, *w;
+  double best = INFINITY;
   int which = -1;
-  {
-    /* every triangle's limit on all threads (a power iteration each: 1 s per 1e6 triangles at
-     * setup), then the smallest, first of equals, in order: the serial loop's answer */
-    const int nt = m->tri.n;
-    w = yf_malloc((size_t)(nt > 0 ? nt : 1) * sizeof *w, "stable time step");
-    #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
-    for (int e = 0; e < nt; e++) w[e] = tri_omega_max(m, R.tm, e);
-    for (int e = 0; e < nt; e++) {
-      double d = tri_dt_of_omega(w[e], R.tm + m->tri.mat[e]);
-      if (d < best) { best = d; which = e; }
-    }
+  /* every triangle's omega_max on all threads (a power iteration each: 1 s per 1e6 triangles at
+   * setup), then the smallest limit, first of equals, in order: the serial loop's answer */
+  const int nt = m->tri.n;
+  double *w = yf_malloc((size_t)(nt > 0 ? nt : 1) * sizeof *w, "stable time step");
+  #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
+  for (int e = 0; e < nt; e++) w[e] = tri_omega_max(m, R.tm, e);
+  for (int e = 0; e < nt; e++) {
+    double d = tri_dt_of_omega(w[e], R.tm + m->tri.mat[e]);
+    if (d < best) { best = d; which = e; }
   }
   if (limiter) {
     if (which >= 0)
