@@ -74,7 +74,8 @@ typedef struct YfDump {
   size_t curcap;      /* bytes allocated for cur and cur_tmp                           */
   hid_t file;         /* the frame file while it is being written, else < 0            */
   int created;        /* csv index created in this process (a later open appends)      */
-  long nframe;        /* frames written                                                */
+  long nframe;        /* frames written (including those of a continued series)        */
+  long first;         /* number of this process's first frame (> 0: a continued series) */
   long last_step;     /* step of the last frame (LONG_MIN: none)                       */
   char *grids;        /* XDMF <Grid> elements of the frames so far                     */
   size_t glen, gcap;
@@ -503,10 +504,11 @@ static void h5_frame(YfSim *s, YfDump *d) {
     h5_fail(d, "close");
   }
   /* A frame file of an earlier run with this name is listed by no index any more (this run's
-   * index was rewritten at its frame 0), so it is removed first: ext4 flushes a file that
+   * index was rewritten at its first frame), so it is removed first: ext4 flushes a file that
    * replaces another by rename (see xmf_write), ~3 ms per frame when a deck is run again in the
-   * same directory.  Frame 0 keeps the atomic replace: the earlier run's index still lists it. */
-  if (d->nframe > 0) unlink(d->cur);
+   * same directory.  The first frame of this process (0, or the first after the frames of a
+   * continued series) keeps the atomic replace: the earlier run's index still lists it. */
+  if (d->nframe > d->first) unlink(d->cur);
   if (rename(d->cur_tmp, d->cur) != 0)
     yf_io_error(NULL, "dump %s: cannot rename '%s' to '%s': %s", d->id, d->cur_tmp, d->cur,
                 strerror(errno));
@@ -542,9 +544,120 @@ static void csv_frame(YfSim *s, YfDump *d) {
   free(path);
 }
 
+/* ---------------------------------------------------------------- continuing after a restart */
+
+/* A run continued from a restart (read_restart) continues each dump's series instead of starting
+ * it again at frame 0, which would overwrite the frames of the run it continues: at the dump's
+ * first frame, the index the earlier run left (STEM.xmf or PREFIX_frames.csv) keeps its frames of
+ * steps before the current one, numbered 0, 1, ... in order, and the new frames follow.  Frames of
+ * the earlier run at or after this step (written before it was stopped) leave the index; their
+ * files are overwritten as the new frames reach their numbers.  An index that is missing, or not
+ * one yfdem wrote, starts a new series. */
+
+/* The whole of a file, NUL-terminated (NULL if it cannot be read). */
+static char *read_text(const char *path, size_t *len) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return NULL;
+  size_t cap = 1 << 16, n = 0;
+  char *t = yf_malloc(cap, "index text");
+  for (size_t r; (r = fread(t + n, 1, cap - n - 1, f)) > 0;) {
+    n += r;
+    if (n + 1 == cap) t = yf_realloc(t, cap *= 2, "index text");
+  }
+  int bad = ferror(f);
+  fclose(f);
+  if (bad) {
+    free(t);
+    return NULL;
+  }
+  t[n] = 0;
+  *len = n;
+  return t;
+}
+
+/* STEM.xmf: the frames of the earlier run with step < s->step become this series' first frames. */
+static long h5_adopt(YfSim *s, YfDump *d) {
+  size_t len;
+  char *t = read_text(d->xmf, &len);
+  if (!t) return 0;
+  static const char open_tag[] = "CollectionType=\"Temporal\">\n", close_tag[] = "    </Grid>\n  </Domain>",
+                    frame_tag[] = "<Grid Name=\"frame_", step_tag[] = "<Information Name=\"step\" Value=\"";
+  char *a = strstr(t, open_tag), *z = NULL;
+  for (char *q = a; q && (q = strstr(q, close_tag)); q++) z = q;
+  long kept = 0;
+  if (a && z && z > a) {
+    a += sizeof open_tag - 1;
+    /* a frame runs from the first line that names frame_K to the first line naming another K */
+    char *keep_end = a, *p = a;
+    long cur = -1;
+    while (p < z) {
+      char *g = strstr(p, frame_tag);
+      char *next = g && g < z ? g : z;
+      long k = next < z ? strtol(next + sizeof frame_tag - 1, NULL, 10) : -1;
+      if (next < z && k == cur) { /* the Uniform grid of a Collection frame: same frame */
+        p = next + 1;
+        continue;
+      }
+      if (cur >= 0) { /* frame cur runs from keep_end to the start of next's line */
+        char *end = next;
+        while (end > keep_end && end[-1] != '\n') end--;
+        char *st = strstr(keep_end, step_tag);
+        long step = st && st < end ? strtol(st + sizeof step_tag - 1, NULL, 10) : LONG_MAX;
+        if (cur != kept || step >= s->step) break;
+        kept++;
+        keep_end = end;
+      }
+      if (next >= z) break;
+      cur = k;
+      p = next + 1;
+    }
+    if (kept) grids_printf(d, "%.*s", (int)(keep_end - a), a);
+  }
+  free(t);
+  return kept;
+}
+
+/* PREFIX_frames.csv: its rows of frames with step < s->step stay, and the index is rewritten. */
+static long csv_adopt(YfSim *s, YfDump *d) {
+  char *ip = str_printf("%s_frames.csv", d->path);
+  size_t len;
+  char *t = read_text(ip, &len);
+  long kept = 0;
+  char *keep_end = NULL;
+  static const char head[] = "frame,step,time,file\n";
+  if (t && !strncmp(t, head, sizeof head - 1)) {
+    char *p = t + sizeof head - 1;
+    for (char *nl; (nl = strchr(p, '\n')); p = nl + 1) {
+      char *e;
+      long k = strtol(p, &e, 10), step = *e == ',' ? strtol(e + 1, NULL, 10) : LONG_MAX;
+      if (k != kept || step >= s->step) break;
+      kept++;
+      keep_end = nl + 1;
+    }
+  }
+  if (kept) {
+    d->csv_index = fopen(ip, "w");
+    if (!d->csv_index) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, strerror(errno));
+    fwrite(t, 1, (size_t)(keep_end - t), d->csv_index);
+    d->created = 1;
+  }
+  free(t);
+  free(ip);
+  return kept;
+}
+
+static void dump_adopt(YfSim *s, YfDump *d) {
+  long kept = d->style == YF_DUMP_H5 ? h5_adopt(s, d) : d->style == YF_DUMP_CSV ? csv_adopt(s, d) : 0;
+  if (!kept) return;
+  d->nframe = d->first = kept;
+  sim_printf(s, "dump %s: continuing the series of the earlier run: its %ld frame%s before step %ld kept, "
+             "the next is frame %ld\n", d->id, kept, kept == 1 ? "" : "s", s->step, kept);
+}
+
 /* ---------------------------------------------------------------- frames */
 
 static void write_frame(YfSim *s, YfDump *d) {
+  if (s->restored && d->nframe == 0 && d->last_step == LONG_MIN) dump_adopt(s, d);
   if (d->style == YF_DUMP_Y2DREF) y2dref_frame(s, d->y2d);
   else if (d->style == YF_DUMP_H5) h5_frame(s, d);
   else csv_frame(s, d);

@@ -65,6 +65,7 @@ typedef struct YfSim {
   struct YfY2dRun *y2d;   /* non-NULL after read_y2d: nodes follow Y2D's BC-set update   */
   long last_step;         /* `run` without N runs to this step (Y2D's MCSTEP), 0 = none   */
   struct YfRestart *restart; /* restart.c (NULL until a restart command)                  */
+  int restored;           /* 1 after read_restart: a dump's first frame continues its series */
 
   YfEnergy energy;
   long thermo_every;    /* thermo line every N steps (0: only at start and end of a run)    */

@@ -4,6 +4,8 @@
  *     restart step): run 2N vs run N + write_restart + a new process with read_restart + run 2N
  *     upto gives the same state_hash (bitwise), with 1 and 2 threads; the same through the
  *     periodic FILE.a / FILE.b pair, and in-process (write and read in one test process);
+ *   - the dumps of a continued run continue the earlier run's series (index and frames equal the
+ *     uninterrupted run's);
  *   - a restart read by a deck that builds another scene is refused (deck error, exit 1), a
  *     missing or garbage restart is an I/O error (exit 2);
  *   - SIGINT to a running yfdem: exit 4, a message naming the restart, a last frame, and the
@@ -230,6 +232,72 @@ START_TEST(test_restart_in_process) {
 }
 END_TEST
 
+/* ---------------------------------------------------------------- dumps of a continued run */
+
+/* Text of tmpdir/NAME with every "from" replaced by "to" (malloc'd). */
+static char *slurp_renamed(const char *name, const char *from, const char *to) {
+  char path[256];
+  snprintf(path, sizeof path, "%s/%s", tmpdir, name);
+  char *t = slurp(path), *out = malloc(2 * strlen(t) + 1), *o = out;
+  ck_assert_ptr_nonnull(out);
+  size_t lf = strlen(from);
+  for (const char *p = t; *p;)
+    if (lf && !strncmp(p, from, lf)) { o += sprintf(o, "%s", to); p += lf; }
+    else *o++ = *p++;
+  *o = 0;
+  free(t);
+  return out;
+}
+
+/* /x of frame file tmpdir/NAME into x (n doubles at most); returns the count. */
+static size_t frame_x(const char *name, double *x, size_t n) {
+  char path[256];
+  snprintf(path, sizeof path, "%s/%s", tmpdir, name);
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  ck_assert_msg(f >= 0, "%s does not open", path);
+  hid_t d = H5Dopen2(f, "/x", H5P_DEFAULT), sp = H5Dget_space(d);
+  size_t m = (size_t)H5Sget_simple_extent_npoints(sp);
+  ck_assert(m <= n);
+  ck_assert(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, x) >= 0);
+  H5Sclose(sp); H5Dclose(d); H5Fclose(f);
+  return m;
+}
+
+/* A run continued from a restart continues its dumps' series: the earlier run's frames before the
+ * restart step stay listed, the ones it wrote after that step are replaced, and the index and the
+ * frames equal those of the uninterrupted run (h5 + xmf, and csv). */
+START_TEST(test_restart_dumps_continue) {
+  mk_tmpdir();
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  write_deck("full.deck", NULL, "dump d h5 50 f.h5 fields u\ndump c csv 50 f\nrun 300\n");
+  /* the first run goes past its restart (frames at 200 and 250 the continued run writes again) */
+  write_deck("first.deck", NULL, "dump d h5 50 p.h5 fields u\ndump c csv 50 p\nrun 200\n"
+                                 "write_restart half.restart\nrun 250 upto\n");
+  write_deck("second.deck", NULL, "dump d h5 50 p.h5 fields u\ndump c csv 50 p\n"
+                                  "read_restart half.restart\nrun 300 upto\n");
+  char h[17];
+  expect_ok("full.deck", 2, h);
+  expect_ok("first.deck", 2, h);
+  expect_ok("second.deck", 1, h);
+  char *xf = slurp_renamed("f.xmf", "f_0", "p_0"), *xp = slurp_renamed("p.xmf", "", "");
+  ck_assert_msg(strstr(xp, "frame_000006") && !strstr(xp, "frame_000007"), "p.xmf does not list frames 0-6");
+  /* frame names, steps, times (17 digits), dimensions (messages kept short: Check caps them) */
+  ck_assert_msg(!strcmp(xp, xf), "p.xmf differs from the uninterrupted run's f.xmf (names aside)");
+  free(xf); free(xp);
+  char *cf = slurp_renamed("f_frames.csv", "f_0", "p_0"), *cp = slurp_renamed("p_frames.csv", "", "");
+  ck_assert_msg(!strcmp(cp, cf), "p_frames.csv differs from the uninterrupted run's f_frames.csv");
+  free(cf); free(cp);
+  static double a[4096], b[4096];
+  const char *names[][2] = {{"f_000002.h5", "p_000002.h5"}, {"f_000005.h5", "p_000005.h5"}, {"f_000006.h5", "p_000006.h5"}};
+  for (int k = 0; k < 3; k++) {
+    size_t n = frame_x(names[k][0], a, 4096);
+    ck_assert_uint_eq(frame_x(names[k][1], b, 4096), n);
+    ck_assert_msg(!memcmp(a, b, n * sizeof *a), "%s differs from %s", names[k][1], names[k][0]);
+  }
+  rm_tmpdir();
+}
+END_TEST
+
 /* ---------------------------------------------------------------- refusals */
 
 START_TEST(test_restart_refusals) {
@@ -428,6 +496,7 @@ Suite *restart_suite(void) {
   tcase_add_test(tc, test_restart_bitwise);
   tcase_add_test(tc, test_restart_periodic);
   tcase_add_test(tc, test_restart_in_process);
+  tcase_add_test(tc, test_restart_dumps_continue);
   tcase_add_test(tc, test_restart_refusals);
   tcase_add_test(tc, test_sigint_restart);
   tcase_add_test(tc, test_sigkill_frames_readable);
