@@ -80,8 +80,8 @@ demo: deps
 	$(MAKE) yfdem
 	./yfdem -in decks/beam.deck -summary demo_summary.json
 	@echo "demo: summary (first_crack, midspan_crack_time, symmetry, ...) in demo_summary.json;"
-	@echo "      frames decks/beam.xmf (ParaView) + decks/beam_NNNNNN.h5, cracks decks/beam_breaks.csv"
-	@echo "      and decks/beam_opened.csv, history decks/beam_metrics.csv; pictures: README, The seed paper's scenes"
+	@echo "      frames beam.xmf (ParaView) + beam_NNNNNN.h5, cracks beam_breaks.csv and beam_opened.csv,"
+	@echo "      history beam_metrics.csv (outputs go to the working directory); pictures: README, The seed paper's scenes"
 
 # Tests run at most 2 threads (the machines have 2 cores).
 check: deps-test

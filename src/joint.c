@@ -224,18 +224,15 @@ void cmd_fracture_log(YfSim *s, const YfArgs *a) {
   arg_count(a, 1, 3);
   if (a->n == 2) arg_error(a, 1, "expected 'opened FILE2' after FILE");
   YfJoints *J = jget(s);
-  char *path = deck_resolve_path(a, a->w[0]);
-  if (strlen(path) >= sizeof J->log_path) arg_error(a, 0, "path too long");
-  snprintf(J->log_path, sizeof J->log_path, "%s", path);
-  free(path);
+  /* outputs, like dumps: relative to the working directory */
+  if (strlen(a->w[0]) >= sizeof J->log_path) arg_error(a, 0, "path too long");
+  snprintf(J->log_path, sizeof J->log_path, "%s", a->w[0]);
   J->open_log_path[0] = 0;
   if (a->n == 3) {
     static const char *const kw[] = {"opened", NULL};
     arg_choice(a, 1, "option", kw);
-    path = deck_resolve_path(a, a->w[2]);
-    if (strlen(path) >= sizeof J->open_log_path) arg_error(a, 2, "path too long");
-    snprintf(J->open_log_path, sizeof J->open_log_path, "%s", path);
-    free(path);
+    if (strlen(a->w[2]) >= sizeof J->open_log_path) arg_error(a, 2, "path too long");
+    snprintf(J->open_log_path, sizeof J->open_log_path, "%s", a->w[2]);
   }
 }
 

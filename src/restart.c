@@ -654,21 +654,35 @@ void cmd_write_restart(YfSim *s, const YfArgs *a) {
   arg_count(a, 1, 1);
   if (!s->model.tri.n) arg_error(a, 0, "the scene has no triangles: nothing to write");
   run_prepare(s); /* a restart before the first run holds the prepared initial state */
-  char *p = deck_resolve_path(a, arg_word(a, 0, "FILE"));
+  const char *p = arg_word(a, 0, "FILE"); /* an output: relative to the working directory */
   char err[1024];
-  if (restart_write(s, p, err, sizeof err)) {
-    free(p);
-    yf_io_error(&a->loc, "write_restart: %s", err);
-  }
+  if (restart_write(s, p, err, sizeof err)) yf_io_error(&a->loc, "write_restart: %s", err);
   sim_printf(s, "write_restart: %s at step %ld\n", p, s->step);
-  free(p);
 }
 
 /* read_restart FILE */
 void cmd_read_restart(YfSim *s, const YfArgs *a) {
   arg_count(a, 1, 1);
-  char *p = deck_resolve_path(a, arg_word(a, 0, "FILE"));
-  restart_read(s, p, &a->loc);
+  /* Restarts are written relative to the working directory (write_restart, restart every, an
+   * interrupt), so that is where FILE is looked for first; a deck run from elsewhere may keep
+   * its restart beside itself, so the deck's directory is the second place. */
+  const char *w = arg_word(a, 0, "FILE");
+  char *here = pick_file(w), *p = NULL, *there = NULL;
+  if (!here) {
+    p = deck_resolve_path(a, w);
+    there = pick_file(p);
+  }
+  if (!here && !there) {
+    YfLoc l = a->loc;
+    char msg[2200];
+    snprintf(msg, sizeof msg, "no restart '%s' (nor %s.a / %s.b) in the working directory, nor '%s' beside the deck",
+             w, w, w, p);
+    free(p);
+    yf_io_error(&l, "read_restart: %s: %s", msg, strerror(ENOENT));
+  }
+  restart_read(s, here ? w : p, &a->loc);
+  free(here);
+  free(there);
   free(p);
 }
 
@@ -688,6 +702,6 @@ void cmd_restart(YfSim *s, const YfArgs *a) {
   arg_count(a, 3, 3);
   r->every = arg_int(a, 1, "N (steps)", 1, LONG_MAX);
   free(r->base);
-  r->base = deck_resolve_path(a, arg_word(a, 2, "FILE"));
+  r->base = yf_strdup(arg_word(a, 2, "FILE")); /* an output: relative to the working directory */
   r->next = 0;
 }

@@ -6,6 +6,8 @@
  *     periodic FILE.a / FILE.b pair, and in-process (write and read in one test process);
  *   - the dumps of a continued run continue the earlier run's series (index and frames equal the
  *     uninterrupted run's);
+ *   - restarts and fracture logs are written to the working directory; read_restart looks there,
+ *     then beside the deck;
  *   - a restart read by a deck that builds another scene is refused (deck error, exit 1), a
  *     missing or garbage restart is an I/O error (exit 2);
  *   - SIGINT to a running yfdem: exit 4, a message naming the restart, a last frame, and the
@@ -298,6 +300,44 @@ START_TEST(test_restart_dumps_continue) {
 }
 END_TEST
 
+/* Files yfdem writes are relative to the working directory, whatever the deck's directory
+ * (LAMMPS's rule): a deck in sub/ run from tmpdir puts its restart and fracture log in tmpdir;
+ * read_restart finds a restart in the working directory first, else beside the deck. */
+START_TEST(test_restart_paths) {
+  mk_tmpdir();
+  char path[256], h_full[17], h[17];
+  snprintf(path, sizeof path, "%s/sub", tmpdir);
+  ck_assert_int_eq(mkdir(path, 0755), 0);
+  write_deck("sub/full.deck", NULL, "run 300\n");
+  write_deck("sub/a.deck", NULL, "fracture_log br.csv\nrun 200\nwrite_restart r.restart\n");
+  write_deck("sub/b.deck", NULL, "read_restart r.restart\nrun 300 upto\n");
+  expect_ok("sub/full.deck", 2, h_full);
+  expect_ok("sub/a.deck", 2, h);
+  snprintf(path, sizeof path, "%s/r.restart", tmpdir);
+  ck_assert_msg(yft_exists(path), "write_restart did not write to the working directory");
+  snprintf(path, sizeof path, "%s/br.csv", tmpdir);
+  ck_assert_msg(yft_exists(path), "fracture_log did not write to the working directory");
+  snprintf(path, sizeof path, "%s/sub/br.csv", tmpdir);
+  ck_assert(!yft_exists(path));
+  expect_ok("sub/b.deck", 2, h);
+  ck_assert_str_eq(h, h_full);
+  /* a restart kept beside the deck is found there too */
+  char from[256], to[256];
+  snprintf(from, sizeof from, "%s/r.restart", tmpdir);
+  snprintf(to, sizeof to, "%s/sub/r.restart", tmpdir);
+  ck_assert_int_eq(rename(from, to), 0);
+  expect_ok("sub/b.deck", 2, h);
+  ck_assert_str_eq(h, h_full);
+  /* and in neither place: an I/O error naming both */
+  ck_assert_int_eq(unlink(to), 0);
+  ck_assert_int_eq(run_deck("sub/b.deck", 1, h), 2);
+  char *e = err_of("sub/b.deck");
+  ck_assert_msg(strstr(e, "working directory") && strstr(e, "sub/r.restart"), "%s", e);
+  free(e);
+  rm_tmpdir();
+}
+END_TEST
+
 /* ---------------------------------------------------------------- refusals */
 
 START_TEST(test_restart_refusals) {
@@ -497,6 +537,7 @@ Suite *restart_suite(void) {
   tcase_add_test(tc, test_restart_periodic);
   tcase_add_test(tc, test_restart_in_process);
   tcase_add_test(tc, test_restart_dumps_continue);
+  tcase_add_test(tc, test_restart_paths);
   tcase_add_test(tc, test_restart_refusals);
   tcase_add_test(tc, test_sigint_restart);
   tcase_add_test(tc, test_sigkill_frames_readable);
