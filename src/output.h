@@ -13,6 +13,7 @@
  */
 #ifndef YF_OUTPUT_H
 #define YF_OUTPUT_H
+#include <stddef.h>
 #include "sim.h"
 #include "deck.h"
 
@@ -77,5 +78,11 @@ void yf_h5_quiet(void);
 
 /* Frames written so far by dump id (-1 if no such dump); for tests and messages. */
 long output_frames(const YfSim *s, const char *id);
+/* Times the .xmf index of h5 dump id was rewritten (-1 if no such dump); for tests. */
+long output_index_writes(const YfSim *s, const char *id);
+/* The index rewrite policy (see output.c, xmf_write): indexes up to small_bytes are rewritten
+ * at every frame, larger ones when gap x their last rewrite time has passed.  Defaults 1 MiB
+ * and 20; for tests. */
+void output_set_index_policy(size_t small_bytes, double gap);
 
 #endif

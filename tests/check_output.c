@@ -452,6 +452,37 @@ START_TEST(test_deck_dump) {
 }
 END_TEST
 
+/* A long series of frequent frames: the index is not rewritten at every frame (its cost grows
+ * with the frames it lists), yet when the run ends it lists every frame, the last one included.
+ * The policy is set so that every rewrite after the first is put off (any index is "large", the
+ * gap is never reached): the index is written at the first frame and at the end of the run. */
+START_TEST(test_long_series_index) {
+  mk_tmpdir();
+  char cwd[1024];
+  ck_assert_ptr_nonnull(getcwd(cwd, sizeof cwd));
+  ck_assert_int_eq(chdir(tmpdir), 0);
+  output_set_index_policy(0, 1e300);
+  YfSim *s = yft_run("material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                     "mesh rect bar m 0 0 1 0.1 4 1\n"
+                     "velocity bar set 0.1 0.05\n"
+                     "timestep auto\n"
+                     "dump a h5 1 a.h5 fields u\n"
+                     "run 2000\n");
+  output_set_index_policy((size_t)1 << 20, 20.0);
+  ck_assert_int_eq(output_frames(s, "a"), 2001);
+  ck_assert_int_eq(output_index_writes(s, "a"), 2);
+  char *x = slurp("a.xmf");
+  ck_assert_int_eq(count_str(x, "GridType=\"Uniform\""), 2001);
+  const char *last = strstr(x, "Name=\"frame_002000\"");
+  ck_assert_ptr_nonnull(last);
+  ck_assert_ptr_nonnull(strstr(last, "<Information Name=\"step\" Value=\"2000\"/>"));
+  free(x);
+  sim_free(s);
+  ck_assert_int_eq(chdir(cwd), 0);
+  rm_tmpdir();
+}
+END_TEST
+
 /* A wrong field name is a deck error naming the word and the valid fields; nothing is written. */
 START_TEST(test_deck_dump_errors) {
   static const char *const bad[][2] = {
@@ -785,6 +816,7 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_h5_runs_and_topology);
   tcase_add_test(tc, test_csv);
   tcase_add_test(tc, test_deck_dump);
+  tcase_add_test(tc, test_long_series_index);
   tcase_add_test(tc, test_deck_dump_errors);
   tcase_add_test(tc, test_io_error);
   tcase_add_test(tc, test_kill_midway);
