@@ -27,7 +27,7 @@ PKGLIB  := $(H5ARCHIVE) -lsz -lz -ldl $(shell pkg-config --libs gsl 2>/dev/null)
 else
 PKGLIB  := $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 endif
-CFLAGS  ?= -O2 -g
+CFLAGS  ?= -O3 -g
 YF_CFLAGS := -std=c11 -D_GNU_SOURCE -fopenmp -ffp-contract=off -Wall -Wextra -Wshadow \
              -Wno-unused-parameter -Isrc $(PKGCF)
 LDLIBS  := $(PKGLIB) -lmetis -lm

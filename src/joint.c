@@ -690,8 +690,11 @@ static void joints_block(YfJoints *J, const YfNodes *N, int jb0, int jb1, double
       memcpy(&B[q].fs, J->fs + jq, sizeof B[q].fs);
       for (int c = 0; c < 4; c++) {
         int n0 = nd[c], n1 = nd[4 + c], n2 = nd[8 + c], n3 = nd[12 + c];
-        x[c] = (yf_v4){N->x[n0], N->x[n1], N->x[n2], N->x[n3]};
-        y[c] = (yf_v4){N->y[n0], N->y[n1], N->y[n2], N->y[n3]};
+        /* through plain arrays: GCC 12 at -O3 takes the vector literals, in the clone without
+         * AVX, for partial writes of x[c] and warns (-Wmaybe-uninitialized); same code */
+        const double xl[4] = {N->x[n0], N->x[n1], N->x[n2], N->x[n3]}, yl[4] = {N->y[n0], N->y[n1], N->y[n2], N->y[n3]};
+        memcpy(&x[c], xl, sizeof xl);
+        memcpy(&y[c], yl, sizeof yl);
         B[q].vx[c] = (yf_v4){N->vx[n0], N->vx[n1], N->vx[n2], N->vx[n3]};
         B[q].vy[c] = (yf_v4){N->vy[n0], N->vy[n1], N->vy[n2], N->vy[n3]};
       }

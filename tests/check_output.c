@@ -201,7 +201,7 @@ static void roundtrip(int compress) {
   frame_path(p0, sizeof p0, stem, 1);
   hid_t f = H5Fopen(p0, H5F_ACC_RDONLY, H5P_DEFAULT);
   ck_assert_int_ge(f, 0);
-  void *buf;
+  void *buf = NULL;
   ck_assert_int_eq(h5_read(f, "/mesh/triangles", H5T_NATIVE_INT, &buf), 3L * s.model.tri.n);
   ck_assert_int_eq(memcmp(buf, s.model.tri.v, sizeof(int) * 3 * (size_t)s.model.tri.n), 0);
   free(buf);
