@@ -13,7 +13,8 @@
  * Why one file per frame: crash safety by construction.  A file is never modified once written.
  * A frame goes to NAME.tmp, is closed (H5Fclose: every byte handed to the OS), renamed to NAME
  * (atomic), and only then is the .xmf replaced atomically (STEM.xmf.tmp + rename) by an index
- * that lists it (at once, or for a long series of frequent frames a little later: xmf_write).  A run killed at any moment therefore leaves an .xmf that lists only complete,
+ * that lists it (at once, or for a long series of frequent frames a little later: xmf_write).
+ * A run killed at any moment therefore leaves an .xmf that lists only complete,
  * never-again-touched files; at worst a stale NAME.tmp of the frame in progress.  The earlier
  * design (one file, a group per frame, H5Fflush) updated shared metadata (group header,
  * superblock) in place with multi-page writes, which SIGKILL can tear, losing earlier frames.
@@ -29,7 +30,7 @@
  * and of the directory before the index names it (tens of ms per frame on a loaded disk).
  *
  * A new run (a new process) with the same dump starts again at frame 0 and rewrites the index
- * from scratch; frame files of an earlier, longer run beyond the new count stay on disk but are
+ * from scratch (a run continued by read_restart continues the series instead: dump_adopt); frame files of an earlier, longer run beyond the new count stay on disk but are
  * not listed (delete STEM_*.h5 yourself if they are in the way).
  *
  * Datasets are contiguous and uncompressed by default: a frame is then one write per array.
