@@ -30,8 +30,9 @@
  * and of the directory before the index names it (tens of ms per frame on a loaded disk).
  *
  * A new run (a new process) with the same dump starts again at frame 0 and rewrites the index
- * from scratch (a run continued by read_restart continues the series instead: dump_adopt); frame files of an earlier, longer run beyond the new count stay on disk but are
- * not listed (delete STEM_*.h5 yourself if they are in the way).
+ * from scratch (a run continued by read_restart continues the series instead: dump_adopt);
+ * frame files of an earlier, longer run beyond the new count stay on disk but are not listed
+ * (delete STEM_*.h5 yourself if they are in the way).
  *
  * Datasets are contiguous and uncompressed by default: a frame is then one write per array.
  * `compress` switches to gzip (level 1, with shuffle) in chunks: half the size, ~20x the time.
