@@ -4,6 +4,7 @@
  * message is kept for the summary JSON.  The cleanup hook runs at most once, so a failure inside
  * cleanup cannot loop.
  */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -130,4 +131,25 @@ char *yf_strdup(const char *s) {
   char *p = yf_malloc(n, "string");
   memcpy(p, s, n);
   return p;
+}
+
+char *yf_read_file(const char *path, size_t *len, const char *what) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return NULL;
+  size_t cap = 1 << 16, n = 0;
+  char *t = yf_malloc(cap, what);
+  for (size_t r; (r = fread(t + n, 1, cap - n - 1, f)) > 0;) {
+    n += r;
+    if (n + 1 == cap) t = yf_realloc(t, cap *= 2, what);
+  }
+  int bad = ferror(f), err = errno;
+  fclose(f);
+  if (bad) {
+    free(t);
+    errno = err ? err : EIO;
+    return NULL;
+  }
+  t[n] = 0;
+  *len = n;
+  return t;
 }

@@ -57,5 +57,8 @@ void *yf_malloc(size_t n, const char *what);
 void *yf_calloc(size_t n, size_t size, const char *what);
 void *yf_realloc(void *p, size_t n, const char *what);
 char *yf_strdup(const char *s);
+/* The whole of file path, NUL-terminated, its length (without the NUL) in *len; NULL with errno
+ * set if it cannot be opened or read.  what names it for an allocation failure. */
+char *yf_read_file(const char *path, size_t *len, const char *what);
 
 #endif

@@ -186,20 +186,8 @@ static void unsupported(Msh *r, int line, long type, int dim, long etag) {
 }
 
 static char *slurp(const char *path, const YfLoc *from, size_t *len) {
-  FILE *fp = fopen(path, "rb");
-  if (!fp) yf_io_error(from, "mesh gmsh: cannot open '%s': %s", path, strerror(errno));
-  size_t cap = 1 << 16, n = 0;
-  char *buf = yf_malloc(cap, "mesh file");
-  for (;;) {
-    size_t k = fread(buf + n, 1, cap - n, fp);
-    n += k;
-    if (n < cap) break;
-    cap *= 2;
-    buf = yf_realloc(buf, cap, "mesh file");
-  }
-  if (ferror(fp)) yf_io_error(from, "mesh gmsh: error reading '%s': %s", path, strerror(errno));
-  fclose(fp);
-  *len = n;
+  char *buf = yf_read_file(path, len, "mesh file");
+  if (!buf) yf_io_error(from, "mesh gmsh: cannot open '%s': %s", path, strerror(errno));
   return buf;
 }
 

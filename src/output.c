@@ -605,31 +605,10 @@ static void csv_frame(YfSim *s, YfDump *d) {
  * files are overwritten as the new frames reach their numbers.  An index that is missing, or not
  * one yfdem wrote, starts a new series. */
 
-/* The whole of a file, NUL-terminated (NULL if it cannot be read). */
-static char *read_text(const char *path, size_t *len) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return NULL;
-  size_t cap = 1 << 16, n = 0;
-  char *t = yf_malloc(cap, "index text");
-  for (size_t r; (r = fread(t + n, 1, cap - n - 1, f)) > 0;) {
-    n += r;
-    if (n + 1 == cap) t = yf_realloc(t, cap *= 2, "index text");
-  }
-  int bad = ferror(f);
-  fclose(f);
-  if (bad) {
-    free(t);
-    return NULL;
-  }
-  t[n] = 0;
-  *len = n;
-  return t;
-}
-
 /* STEM.xmf: the frames of the earlier run with step < s->step become this series' first frames. */
 static long h5_adopt(YfSim *s, YfDump *d) {
   size_t len;
-  char *t = read_text(d->xmf, &len);
+  char *t = yf_read_file(d->xmf, &len, "index text");
   if (!t) return 0;
   static const char open_tag[] = "CollectionType=\"Temporal\">\n", close_tag[] = "    </Grid>\n  </Domain>",
                     frame_tag[] = "<Grid Name=\"frame_", step_tag[] = "<Information Name=\"step\" Value=\"";
@@ -672,7 +651,7 @@ static long h5_adopt(YfSim *s, YfDump *d) {
 static long csv_adopt(YfSim *s, YfDump *d) {
   char *ip = str_printf("%s_frames.csv", d->path);
   size_t len;
-  char *t = read_text(ip, &len);
+  char *t = yf_read_file(ip, &len, "index text");
   long kept = 0;
   char *keep_end = NULL;
   static const char head[] = "frame,step,time,file\n";

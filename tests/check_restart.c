@@ -236,7 +236,7 @@ END_TEST
 
 /* ---------------------------------------------------------------- dumps of a continued run */
 
-/* Text of tmpdir/NAME with every "from" replaced by "to" (malloc'd). */
+/* Text of tmpdir/NAME with every "from" replaced by "to" (malloc'd; from = "" : as it is). */
 static char *slurp_renamed(const char *name, const char *from, const char *to) {
   char path[256];
   snprintf(path, sizeof path, "%s/%s", tmpdir, name);
