@@ -17,6 +17,7 @@
 #include "run.h"
 #include "sim.h"
 #include "summary.h"
+#include "threads.h"
 #include "y2d_model.h"
 
 #ifndef YF_VERSION
@@ -37,6 +38,8 @@ static void usage(FILE *fp) {
           "  -log FILE         copy everything printed to FILE\n"
           "  -echo             print each command before running it\n"
           "  -summary FILE     write a JSON summary at the end (also after an error)\n"
+          "  -threads N|auto   N: run every step on exactly N threads; auto (the default): one thread or\n"
+          "                    OMP_NUM_THREADS (default: the cores), whichever the step's timing finds faster\n"
           "  -h [COMMAND]      this help, or the usage of one deck command\n"
           "  -reference        print the deck reference (markdown) and exit\n"
           "  -version          print the version\n"
@@ -99,6 +102,18 @@ int main(int argc, char **argv) {
       echo = 1;
     } else if (!strcmp(o, "-summary") && i + 1 < argc) {
       snprintf(g_sim.summary_path, sizeof g_sim.summary_path, "%s", argv[++i]);
+    } else if (!strcmp(o, "-threads") && i + 1 < argc) {
+      const char *v = argv[++i];
+      char *end;
+      long n = strtol(v, &end, 10);
+      if (!strcmp(v, "auto")) {
+        threads_set(0);
+      } else if (end == v || *end || n < 1 || n > 4096) {
+        fprintf(stderr, "yfdem: -threads '%s': expected a whole number of threads from 1 to 4096, or auto\n", v);
+        return YF_EXIT_DECK;
+      } else {
+        threads_set((int)n);
+      }
     } else if (o[0] != '-' && !in) {
       in = o;
     } else {

@@ -5,13 +5,13 @@
 #include <check.h>
 #include <hdf5.h>
 #include <math.h>
-#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "contact.h"
 #include "joint.h"
 #include "run.h"
+#include "threads.h"
 #include "summary.h"
 #include "y2d_model.h"
 #include "y2d_read.h"
@@ -353,7 +353,7 @@ START_TEST(test_threads_bitwise) {
   quiet();
   uint64_t h[2];
   for (int t = 0; t < 2; t++) {
-    omp_set_num_threads(t + 1);
+    threads_set(t + 1); /* exactly, on every step */
     YfSim *s = pack_scene();
     contact_set_par_min(s, 0);
     joints_set_par_min(0);
@@ -364,6 +364,7 @@ START_TEST(test_threads_bitwise) {
             contact_pairs(s), contact_searches(s));
   }
   joints_set_par_min(4096);
+  threads_set(0);
   ck_assert_msg(h[0] == h[1], "1 and 2 threads differ");
 }
 END_TEST

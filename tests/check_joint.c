@@ -10,12 +10,12 @@
  */
 #include <check.h>
 #include <math.h>
-#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "joint.h"
 #include "run.h"
+#include "threads.h"
 #include "summary.h"
 #include "yftest.h"
 
@@ -428,10 +428,11 @@ END_TEST
 START_TEST(test_threads_bitwise) {
   quiet();
   joints_set_par_min(0);
-  omp_set_num_threads(1);
+  threads_set(1); /* exactly, on every step */
   HetRun a = het_run(HET_DECK("7", ""));
-  omp_set_num_threads(2);
+  threads_set(2);
   HetRun b = het_run(HET_DECK("7", ""));
+  threads_set(0);
   ck_assert_int_gt(a.nj, 256); /* at least two blocks of joints */
   ck_assert_int_gt(a.nb, 0);
   ck_assert(same_run(&a, &b));

@@ -8,8 +8,8 @@
  * triangle blocks to 64 so that a small scene runs threaded.
  */
 #include <check.h>
-#include <math.h>
 #include <omp.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +18,7 @@
 #include "partition.h"
 #include "run.h"
 #include "summary.h"
+#include "threads.h"
 #include "yftest.h"
 
 static void quiet(void) { freopen("/dev/null", "w", stdout); }
@@ -41,11 +42,11 @@ static Run run_threads(const char *deck, int threads, long steps) {
   run_set_par_min(0, 64);
   joints_set_par_min(0);
   contact_set_par_min(s, 0);
-  omp_set_num_threads(threads);
+  threads_set(threads); /* exactly this many on every step (no governor) */
   run_steps(s, steps);
   Run r = {sim_state_hash(s), joints_broken(s), contact_pairs(s), s->energy.contact, s->energy.friction};
   sim_free(s);
-  omp_set_num_threads(2);
+  threads_set(0);
   run_set_par_min(16384, 2048);
   joints_set_par_min(4096);
   return r;
@@ -89,13 +90,13 @@ START_TEST(test_threads_bitwise_y2d) {
     run_set_par_min(0, 64);
     joints_set_par_min(0);
     contact_set_par_min(s, 0);
-    omp_set_num_threads(t);
+    threads_set(t);
     run_steps(s, 1500); /* 17 joints broken by then */
     uint64_t h = sim_state_hash(s);
     long b = joints_broken(s), p = contact_pairs(s);
     double w = s->energy.external_work;
     sim_free(s);
-    omp_set_num_threads(2);
+    threads_set(0);
     run_set_par_min(16384, 2048);
     joints_set_par_min(4096);
     if (t == 1) {
@@ -109,6 +110,109 @@ START_TEST(test_threads_bitwise_y2d) {
     ck_assert_int_eq(b, b1);
     ck_assert_int_eq(p, p1);
     ck_assert_msg(memcmp(&w, &w1, sizeof w) == 0, "%d threads: external work %.17g != %.17g", t, w, w1);
+  }
+}
+END_TEST
+
+/* The governor (threads.c) switching between 1 and 2 threads every few steps (probes every
+ * step) gives the state of a run on 1 thread, bit for bit: the count may change between steps. */
+START_TEST(test_threads_switching_bitwise) {
+  quiet();
+  Run one = run_threads(SCENE("partition metis parts 4\n"), 1, 300);
+  YfSim *s = yft_run(SCENE("partition metis parts 4\n"));
+  run_set_par_min(0, 64);
+  joints_set_par_min(0);
+  contact_set_par_min(s, 0);
+  threads_set(0);
+  threads_set_probe(1, 1);
+  omp_set_num_threads(2);
+  run_steps(s, 300);
+  long on1, on2;
+  threads_last_run(&on1, &on2);
+  uint64_t h = sim_state_hash(s);
+  sim_free(s);
+  threads_set_probe(100, 1600);
+  run_set_par_min(16384, 2048);
+  joints_set_par_min(4096);
+  ck_assert_int_eq(on1 + on2, 300);
+  ck_assert_msg(on1 >= 30 && on2 >= 30, "steps on 1 thread %ld, on 2 %ld: the governor did not switch", on1, on2);
+  ck_assert_msg(h == one.hash, "switching hash %016llx != 1 thread %016llx", (unsigned long long)h,
+                (unsigned long long)one.hash);
+}
+END_TEST
+
+/* The governor's choices, fed with made-up step times [s]: 1 thread takes 1.0, the team `busy`
+ * while the machine is busy and 0.55 while it is idle (2 threads 1.8x faster).  `busy_from` and
+ * `busy_to` bound the busy steps. */
+static void feed(YfGov *g, long steps, double busy, long busy_from, long busy_to, long *on2_busy, long *on1_idle) {
+  int cur = g->cur;
+  *on2_busy = *on1_idle = 0;
+  for (long k = 0; k < steps; k++) {
+    int b = k >= busy_from && k < busy_to;
+    double t = cur == 1 ? 1.0 : (b ? busy : 0.55);
+    if (b && cur > 1) ++*on2_busy;
+    if (!b && cur == 1 && k >= 200 && k - busy_to >= 200) ++*on1_idle; /* after 200 steps to settle */
+    cur = gov_step(g, t);
+    ck_assert(cur == 1 || cur == 2);
+  }
+}
+
+START_TEST(test_threads_governor) {
+  YfGov g;
+  long on2_busy, on1_idle;
+  /* busy throughout, 2 threads 3x slower: at most 3 steps per probe, probes rarer and rarer
+   * (x4, up to every 1600 steps): 10000 steps cost at most 1 % more than 1 thread */
+  gov_init(&g, 2);
+  feed(&g, 10000, 3.0, 0, 10000, &on2_busy, &on1_idle);
+  ck_assert_msg(2.0 * (double)on2_busy <= 0.01 * 10000, "%ld steps on 2 threads", on2_busy);
+  /* 10x slower (issue 24's demo): a probe stops after its first timed step: at most 2 % */
+  gov_init(&g, 2);
+  feed(&g, 10000, 10.0, 0, 10000, &on2_busy, &on1_idle);
+  ck_assert_msg(9.0 * (double)on2_busy <= 0.02 * 10000, "%ld steps on 2 threads", on2_busy);
+  /* idle throughout: two threads within a few steps, one thread only in probes */
+  gov_init(&g, 2);
+  feed(&g, 10000, 3.0, -1, -1, &on2_busy, &on1_idle);
+  ck_assert_int_eq(g.best, 2);
+  ck_assert_msg(on1_idle <= 0.005 * 10000, "%ld idle steps on 1 thread", on1_idle);
+  /* idle, then a competitor for 3000 steps, then idle again: back to 1 thread within ~20 steps
+   * of its arrival (the slower window triggers a probe), back to 2 within 1600 after it leaves */
+  gov_init(&g, 2);
+  feed(&g, 8000, 3.0, 3000, 6000, &on2_busy, &on1_idle);
+  ck_assert_msg(on2_busy <= 20, "%ld busy steps on 2 threads", on2_busy);
+  ck_assert_int_eq(g.best, 2);
+  /* one thread to choose from: always 1 */
+  gov_init(&g, 1);
+  ck_assert_int_eq(gov_step(&g, 1.0), 1);
+}
+END_TEST
+
+/* -threads N: the summary reports N threads and the state is the default run's; a bad count is
+ * a clear error with the deck exit code. */
+START_TEST(test_threads_option) {
+  const char *deck = SCENE("partition none\n") "run 50\n";
+  char *err = NULL, *dir = NULL, path[512];
+  uint64_t hash[2] = {0, 0};
+  const char *args[2] = {"-threads 2 -summary s.json", "-threads 1 -summary s.json"};
+  for (int k = 0; k < 2; k++) {
+    int rc = yft_run_binary("t.deck", deck, args[k], &err, &dir);
+    ck_assert_msg(rc == 0, "%s: exit %d (%s)", args[k], rc, err ? err : "");
+    snprintf(path, sizeof path, "%s/s.json", dir);
+    char *js = yft_slurp(path, 0);
+    ck_assert_ptr_nonnull(strstr(js, k ? "\"threads\": 1," : "\"threads\": 2,"));
+    const char *hp = strstr(js, "\"state_hash\": \"");
+    ck_assert_ptr_nonnull(hp);
+    hash[k] = strtoull(hp + 15, NULL, 16);
+    free(js);
+    free(err);
+    free(dir);
+  }
+  ck_assert(hash[0] == hash[1] && hash[0] != 0);
+  const char *bad[] = {"-threads 0", "-threads two", "-threads 2x"};
+  for (int k = 0; k < 3; k++) {
+    int rc = yft_run_binary("t.deck", deck, bad[k], &err, &dir);
+    ck_assert_msg(rc == 1 && strstr(err, "-threads") && strstr(err, "auto"), "%s: exit %d (%s)", bad[k], rc, err);
+    free(err);
+    free(dir);
   }
 }
 END_TEST
@@ -256,6 +360,9 @@ Suite *parallel_suite(void) {
   tcase_set_timeout(t, 180);
   tcase_add_test(t, test_threads_bitwise);
   tcase_add_test(t, test_threads_bitwise_y2d);
+  tcase_add_test(t, test_threads_switching_bitwise);
+  tcase_add_test(t, test_threads_governor);
+  tcase_add_test(t, test_threads_option);
   tcase_add_test(t, test_renumbering_same_physics);
   tcase_add_test(t, test_partition_layout);
   tcase_add_test(t, test_partition_errors);

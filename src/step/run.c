@@ -21,6 +21,7 @@
 #include "err.h"
 #include "joint.h"
 #include "partition.h"
+#include "threads.h"
 
 const char *const yf_stage_names[YF_NSTAGE] = {"elements", "joints", "detection", "contact", "gather", "update", "output"};
 double yf_stage_time[YF_NSTAGE];
@@ -430,7 +431,7 @@ void run_steps(YfSim *s, long nsteps) {
                   "timestep %.6g s is above the stable limit %.6g s (set by %s); use at most %.6g s or 'timestep auto'",
                   s->dt, limit, lim, limit);
   }
-  s->threads = omp_get_max_threads();
+  s->threads = threads_run_begin(); /* the most threads a step may use (threads.c chooses) */
   run_energies(s);
   if (s->step == 0 || !R.e_budget_set) {
     R.e_budget = s->energy.kinetic + s->energy.strain;
@@ -451,8 +452,10 @@ void run_steps(YfSim *s, long nsteps) {
   int tty = s->progress && isatty(2);
   long check_every = 100;
   for (long k = 0; k < nsteps; k++) {
+    double ts = yf_now();
     step_once(s);
     double t0 = yf_now();
+    threads_after_step(t0 - ts); /* the next step's thread count (same bits on any) */
     ev.kind = YF_EV_STEP; /* frames, metrics samples and periodic restarts when due */
     sim_notify(s, &ev);
     yf_stage_time[YF_ST_OUTPUT] += yf_now() - t0;
@@ -478,8 +481,11 @@ void run_steps(YfSim *s, long nsteps) {
   double wall = yf_now() - R.t_wall0;
   s->wall_s += wall;
   s->elem_steps += (double)s->model.tri.n * (double)nsteps;
+  char how[160];
+  const char *shared = threads_run_end(how, sizeof how);
   ev.kind = YF_EV_RUN_END;
   sim_notify(s, &ev);
+  if (shared) sim_printf(s, "%s\n", shared);
   sim_printf(s, "run: %ld steps of %d triangles in %.3f s wall (%.3g element-steps/s on %d thread%s)\n", nsteps,
              s->model.tri.n, wall, wall > 0 ? (double)s->model.tri.n * (double)nsteps / wall : 0.0, s->threads,
              s->threads > 1 ? "s" : "");
