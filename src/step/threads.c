@@ -86,21 +86,27 @@ int gov_step(YfGov *g, double seconds) {
     --g->left;
     if (g->n < YF_GOV_WINDOW) break;
     if (g->tref <= 0) g->tref = median(g->t, YF_GOV_WINDOW);
-    /* the machine changed (a competitor came or went, or the scene got costlier): probe now */
-    if (g->left > 0 && median(g->t, YF_GOV_WINDOW) <= 1.5 * g->tref) break;
+    /* the team's steps got slower (a competitor came): probe one thread now.  One thread's
+     * own slowdowns (noise of a busy machine, a costlier scene) wait for the next probe. */
+    if (g->left > 0 && (g->cur == 1 || median(g->t, YF_GOV_WINDOW) <= 1.5 * g->tref)) break;
     g->phase = 2;
     g->cur = g->best > 1 ? 1 : g->cap;
-    g->n = -1; /* the switch's first step (a team waking up) is not timed */
+    g->n = -1; /* the switch's first step (a team waking up): see below */
     break;
   case 2: { /* the other count */
-    if (g->n >= 0) g->probe[g->n] = seconds;
-    g->n++;
     const double tc = median(g->t, YF_GOV_WINDOW);
-    int done = g->n == YF_GOV_WINDOW, win = 0;
-    if (done) {
+    int done = 0, win = 0;
+    if (g->n < 0) /* the switch's step (a team waking up) is not in the median, but 3x slower
+                   * on its own it has lost already */
+      done = seconds > 3.0 * tc;
+    else
+      g->probe[g->n] = seconds;
+    g->n++;
+    if (g->n == YF_GOV_WINDOW) {
+      done = 1;
       win = probe_wins(g, median(g->probe, g->n), tc);
-    } else if (g->n >= 1) { /* clearly losing: its first step 3x the median, or its fastest
-                             * of two or more 30 % behind (a probe on a busy machine is costly) */
+    } else if (!done && g->n >= 1) { /* clearly losing: its first step 3x the median, or its
+                                      * fastest of two or more 30 % behind */
       double fast = g->probe[0];
       for (int i = 1; i < g->n; i++) fast = g->probe[i] < fast ? g->probe[i] : fast;
       done = fast > (g->n == 1 ? 3.0 : 1.3) * tc;
