@@ -89,6 +89,7 @@ check: deps-test
 	$(MAKE) yfdem $(BUILD)/check_yfdem
 	CK_TIMEOUT_MULTIPLIER=$${CK_TIMEOUT_MULTIPLIER:-3} OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem
 	YFDEM=./yfdem tests/paraview/run
+	YFDEM=./yfdem tests/convert/run
 
 test: yfdem $(BUILD)/check_yfdem
 	OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem

@@ -291,7 +291,7 @@ static int rule_group(YfSim *s, const YfArgs *a, int i) {
  *                                         surface boundary|all, search travel|every */
 void cmd_contact(YfSim *s, const YfArgs *a) {
   arg_count(a, 1, -1);
-  static const char *const words[] = {"pair", "self", "off", "buffer", "joined", "surface", "search", NULL};
+  static const char *const words[] = {"pair", "self", "off", "buffer", "joined", "surface", "search", "shared", NULL};
   int k = arg_choice(a, 0, "contact keyword", words);
   if (k == 0) {
     arg_count(a, 3, 3);
@@ -328,9 +328,12 @@ void cmd_contact(YfSim *s, const YfArgs *a) {
     } else if (key == 5) {
       static const char *const v[] = {"boundary", "all", NULL};
       C->surface_all = arg_choice(a, i + 1, "surface", v);
-    } else {
+    } else if (key == 6) {
       static const char *const v[] = {"travel", "every", NULL};
       C->search_every = arg_choice(a, i + 1, "search", v);
+    } else { /* couples of triangles that share a node: skipped (default), or kept as Y2D keeps them */
+      static const char *const v[] = {"skip", "keep", NULL};
+      C->keep_shared = arg_choice(a, i + 1, "shared", v);
     }
   }
   C->dirty = 1;
