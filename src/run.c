@@ -12,6 +12,7 @@
 #include <sys/resource.h>
 #include <stdlib.h>
 #include <string.h>
+#include "report.h"
 #include <time.h>
 #include <unistd.h>
 #include "run.h"
@@ -215,6 +216,10 @@ static double gravity_work(const YfSim *s) {
 static double total_external(const YfSim *s) { return s->energy.external_work + gravity_work(s); }
 
 static void thermo_header(YfSim *s) {
+  if (report_custom()) {
+    report_thermo_header(s);
+    return;
+  }
   sim_printf(s, "%10s %12s %13s %13s %13s %13s %13s %8s %9s %9s\n", "Step", "Time", "KinEng", "StrainEng", "ExtWork",
              "Dissipated", "Balance", "Broken", "Pairs", "Wall");
 }
@@ -225,6 +230,13 @@ static void thermo_line(YfSim *s) {
   double diss = s->energy.damping + s->energy.joint_dissipated + s->energy.friction;
   /* balance: energy now + dissipated - (energy at the start + external work); ~0 when healthy */
   double bal = s->energy.kinetic + s->energy.strain + s->energy.contact + diss - ext - R.e_budget;
+  if (report_custom()) {
+    const double std[YF_TH_N] = {(double)s->step, s->time, s->energy.kinetic, s->energy.strain, ext, diss, bal,
+                                 (double)joints_broken(s), (double)contact_pairs(s),
+                                 s->wall_s + (yf_now() - R.t_wall0)};
+    report_thermo_line(s, std);
+    return;
+  }
   sim_printf(s, "%10ld %12.6e %13.6e %13.6e %13.6e %13.6e %13.6e %8ld %9ld %9.2f\n", s->step, s->time,
              s->energy.kinetic, s->energy.strain, ext, diss, bal, joints_broken(s), contact_pairs(s),
              s->wall_s + (yf_now() - R.t_wall0));
@@ -391,6 +403,8 @@ static void step_once(YfSim *s) {
   yf_stage_time[YF_ST_UPDATE] += t1 - t0;
 }
 
+static void timing_table(YfSim *s, const double *stage0, double wall);
+
 void run_steps(YfSim *s, long nsteps) {
   run_prepare(s);
   char lim[96];
@@ -425,6 +439,9 @@ void run_steps(YfSim *s, long nsteps) {
     tri_forces(&s->model, R.tm, 0, s->model.tri.n, &p);
   }
   output_run_begin(s);
+  report_step(s, 1);
+  double stage0[YF_NSTAGE];
+  memcpy(stage0, yf_stage_time, sizeof stage0);
   R.t_wall0 = yf_now();
   double t_start = R.t_wall0;
   thermo_header(s);
@@ -436,6 +453,7 @@ void run_steps(YfSim *s, long nsteps) {
     double t0 = yf_now();
     output_step(s);
     metrics_step(s);
+    report_step(s, 0);
     restart_step(s); /* periodic restart file when due */
     yf_stage_time[YF_ST_OUTPUT] += yf_now() - t0;
     if (s->thermo_every > 0 && s->step % s->thermo_every == 0 && k + 1 < nsteps) thermo_line(s);
@@ -465,6 +483,22 @@ void run_steps(YfSim *s, long nsteps) {
   sim_printf(s, "run: %ld steps of %d triangles in %.3f s wall (%.3g element-steps/s on %d thread%s)\n", nsteps,
              s->model.tri.n, wall, wall > 0 ? (double)s->model.tri.n * (double)nsteps / wall : 0.0, s->threads,
              s->threads > 1 ? "s" : "");
+  timing_table(s, stage0, wall);
+}
+
+/* Where this run's wall time went, by stage, as LAMMPS prints its breakdown after a run (the
+ * -summary JSON has the totals over all runs in stage_seconds).  "other" is the rest: thermo
+ * lines, energy checks, restarts, the progress bar. */
+static void timing_table(YfSim *s, const double *stage0, double wall) {
+  sim_printf(s, "%-10s %10s %7s\n", "stage", "seconds", "%run");
+  double sum = 0.0;
+  for (int i = 0; i < YF_NSTAGE; i++) {
+    double t = yf_stage_time[i] - stage0[i];
+    sum += t;
+    sim_printf(s, "%-10s %10.3f %7.1f\n", yf_stage_names[i], t, wall > 0 ? 100.0 * t / wall : 0.0);
+  }
+  double other = wall - sum > 0 ? wall - sum : 0.0;
+  sim_printf(s, "%-10s %10.3f %7.1f\n", "other", other, wall > 0 ? 100.0 * other / wall : 0.0);
 }
 
 /* run N [upto] | run (to the last step of a Y2D deck read by read_y2d) */

@@ -14,6 +14,7 @@
 #include "contact.h"
 #include "joint.h"
 #include "output.h"
+#include "report.h"
 #include "y2d_model.h"
 #include "region.h"
 #include "restart.h"
@@ -31,10 +32,14 @@ void sim_printf(YfSim *s, const char *fmt, ...) {
   va_start(ap, fmt);
   vfprintf(stdout, fmt, ap);
   va_end(ap);
+  /* thermo lines and messages reach the screen and the log at once, also when stdout is a file or
+   * a pipe (nohup, a batch queue), where the C library would hold them in a 4 KB buffer */
+  fflush(stdout);
   if (s && s->log) {
     va_start(ap, fmt);
     vfprintf(s->log, fmt, ap);
     va_end(ap);
+    fflush(s->log);
   }
 }
 
@@ -187,6 +192,7 @@ void sim_free(YfSim *s) {
   y2d_model_free(s);
   bc_free(s);
   output_free(s);
+  report_reset();
   for (int i = 0; i < s->nhist; i++) { free(s->hist[i].t); free(s->hist[i].v); }
   free(s->hist);
   model_free(&s->model);
