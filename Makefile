@@ -90,6 +90,7 @@ check: deps-test
 	CK_TIMEOUT_MULTIPLIER=$${CK_TIMEOUT_MULTIPLIER:-3} OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem
 	YFDEM=./yfdem tests/paraview/run
 	YFDEM=./yfdem tests/convert/run
+	YFDEM=./yfdem tests/readme/run
 
 test: yfdem $(BUILD)/check_yfdem
 	OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem
