@@ -39,7 +39,7 @@ static void usage(FILE *fp) {
           "  -echo             print each command before running it\n"
           "  -summary FILE     write a JSON summary at the end (also after an error)\n"
           "  -h [COMMAND]      this help, or the usage of one deck command\n"
-          "  -reference        print the deck reference (markdown) and exit\n"
+          "  -reference [sections]  print the deck reference (markdown table, or a section per command)\n"
           "  -version          print the version\n"
           "exit codes: 0 ok, 1 deck error, 2 I/O error, 3 numerical failure, 4 interrupted, 70 internal error\n\n"
           "deck commands:\n",
@@ -89,7 +89,8 @@ int main(int argc, char **argv) {
       usage(stdout);
       return 0;
     } else if (!strcmp(o, "-reference")) {
-      commands_print_reference(stdout);
+      if (i + 1 < argc && !strcmp(argv[i + 1], "sections")) commands_print_sections(stdout);
+      else commands_print_reference(stdout);
       return 0;
     } else if (!strcmp(o, "-version") || !strcmp(o, "--version")) {
       printf("yfdem %s\n", YF_VERSION);
