@@ -49,7 +49,6 @@ static void usage(FILE *fp) {
 
 static void finish(int code, const char *message) {
   output_close_all(&g_sim);
-  report_close();
   run_summary_update(&g_sim);
   if (g_sim.summary_path[0]) summary_write(&g_sim, g_sim.summary_path, code, message);
   if (g_sim.log) {
@@ -70,6 +69,7 @@ int main(int argc, char **argv) {
   g_sim.progress = 1;
   yf_set_cleanup(finish);
   g_deck = deck_new(&g_sim);
+  io_attach(&g_sim); /* dumps, metrics and restarts (and the interrupt restart) observe the run loop */
   const char *in = NULL, *log_path = "log.yfdem"; /* as LAMMPS writes log.lammps */
   int echo = 0;
   for (int i = 1; i < argc; i++) {
