@@ -20,7 +20,8 @@
 #include "err.h"
 #include "mesh.h"
 
-enum { BC_FIXED, BC_VELOCITY, BC_DISPLACEMENT, BC_POINT, BC_TRACTION, BC_PRESSURE };
+enum { BC_FIXED = YF_BCI_FIXED, BC_VELOCITY = YF_BCI_VELOCITY, BC_DISPLACEMENT = YF_BCI_DISPLACEMENT,
+       BC_POINT = YF_BCI_POINT, BC_TRACTION = YF_BCI_TRACTION, BC_PRESSURE = YF_BCI_PRESSURE };
 
 typedef struct {
   char id[YF_NAME_MAX];
@@ -277,6 +278,22 @@ void bc_prepare(YfSim *s) {
     if (it->kind <= BC_DISPLACEMENT)
       for (int k = 0; k < it->nn; k++) b->flags[it->nodes[k]] |= (unsigned char)(it->has[0] | (it->has[1] << 1));
   }
+}
+
+void bc_info(const YfSim *s, int i, YfBcInfo *out) {
+  const YfBcItem *it = &s->bc->item[i];
+  out->id = it->id;
+  out->kind = it->kind;
+  out->group = it->group;
+  out->has[0] = it->has[0];
+  out->has[1] = it->has[1];
+  out->a[0] = it->a[0];
+  out->a[1] = it->a[1];
+  out->hist = it->hist;
+  out->node_id = it->node_id;
+  out->px = it->px;
+  out->py = it->py;
+  out->loc = it->loc;
 }
 
 const unsigned char *bc_node_flags(const YfSim *s) { return s->bc ? s->bc->flags : NULL; }

@@ -118,7 +118,7 @@ static void read_table(const YfArgs *a, int i, YfJointProp *p) {
 }
 
 /* jointprop NAME ft FT fs FS gf GF pen P [law ...] [cohesion C friction MU] [damage ...]
- *           [floor y2d|none] [weibull M | normal CV] [seed S] */
+ *           [floor y2d|none] [weibull M | normal CV] [seed S] [tangent exact|y2d] */
 void cmd_jointprop(YfSim *s, const YfArgs *a) {
   arg_count(a, 1, -1);
   const char *name = arg_word(a, 0, "name");
@@ -131,7 +131,7 @@ void cmd_jointprop(YfSim *s, const YfArgs *a) {
   double het_par = 0;
   unsigned long seed = 1;
   static const char *const keys[] = {"ft", "fs", "gf", "pen", "law", "cohesion", "friction", "damage", "floor",
-                                     "weibull", "normal", "seed", NULL};
+                                     "weibull", "normal", "seed", "tangent", NULL};
   static const char *const laws[] = {"munjiza", "munjiza_gf", "linear", "bilinear", "table", NULL};
   static const char *const dmg[] = {"reversible", "irreversible", NULL};
   static const char *const floors[] = {"y2d", "none", NULL};
@@ -172,6 +172,12 @@ void cmd_jointprop(YfSim *s, const YfArgs *a) {
       het_par = arg_pos(a, i + 1, k == 9 ? "Weibull modulus" : "coefficient of variation");
       break;
     case 11: seed = (unsigned long)arg_int(a, i + 1, "seed", 0, 4294967295L); break;
+    case 12: {
+      /* y2d: Y2D's unit tangent e/(h + 1e-10 m) (an absolute length: the scene must be in m) */
+      static const char *const tang[] = {"exact", "y2d", NULL};
+      p.hreg = arg_choice(a, i + 1, "tangent", tang) ? 1e-10 : 0.0;
+      break;
+    }
     }
     i += 2;
   }
@@ -216,6 +222,19 @@ void cmd_fracture(YfSim *s, const YfArgs *a) {
   J->spec = yf_realloc(J->spec, (size_t)(J->nspec + 1) * sizeof *J->spec, "fracture specs");
   J->spec[J->nspec++] = sp;
   m->body[b].fracture = 1;
+}
+
+int joints_body_set(const YfSim *s, int body, const YfLoc **partial) {
+  const YfJoints *J = s->joints;
+  int set = -1;
+  *partial = NULL;
+  for (int q = 0; J && q < J->nspec; q++) {
+    const YfFracSpec *sp = &J->spec[q];
+    if (sp->body != body) continue;
+    if (sp->region >= 0 || sp->group >= 0) *partial = &sp->loc;
+    else set = sp->set;
+  }
+  return set;
 }
 
 /* fracture_log FILE [opened FILE2]: the break record as CSV, and optionally the opened-crack
