@@ -321,7 +321,9 @@ void cmd_write_y2d(YfSim *s, const YfArgs *a) {
   /* ---- time tables ---- */
   int tables = 0;
   for (int b = 0; b < nset; b++) tables |= sets[b].hist >= 0;
-  int npts = 0, capk = 4096;
+  int npts = 0, capk = 4;
+  for (int h = 0; h < s->nhist; h++)
+    if (s->hist[h].kind == YF_HIST_TABLE && s->hist[h].npts + 4 > capk) capk = s->hist[h].npts + 4;
   double *knot = NULL;
   double tfar = 0;
   if (tables) {
