@@ -193,20 +193,20 @@ void cmd_write_y2d(YfSim *s, const YfArgs *a) {
   for (int q = 0; q < nbci; q++) {
     YfBcInfo it;
     bc_info(s, q, &it);
-    if (it.kind == YF_BCI_DISPLACEMENT)
+    if (it.kind == BC_DISPLACEMENT)
       yf_deck_error(&it.loc, "write_y2d: fix '%s' prescribes a displacement: Y2D has no displacement condition "
                     "(prescribe the velocity instead)", it.id);
-    if (it.kind == YF_BCI_FIXED || it.kind == YF_BCI_VELOCITY) {
+    if (it.kind == BC_FIXED || it.kind == BC_VELOCITY) {
       uint64_t bit = (uint64_t)1 << it.group;
       for (int i = 0; i < nn; i++)
         if (ngm[i] & bit)
           for (int c = 0; c < 2; c++)
             if (it.has[c]) {
               nbc[i].k[c] = 3;
-              nbc[i].a[c] = it.kind == YF_BCI_FIXED ? 0.0 : it.a[c];
-              chist[2 * i + c] = it.kind == YF_BCI_FIXED ? -1 : it.hist;
+              nbc[i].a[c] = it.kind == BC_FIXED ? 0.0 : it.a[c];
+              chist[2 * i + c] = it.kind == BC_FIXED ? -1 : it.hist;
             }
-    } else if (it.kind == YF_BCI_POINT) {
+    } else if (it.kind == BC_POINT) {
       int tgt = -1;
       double best = INFINITY;
       for (int i = 0; i < nn; i++) {
@@ -238,7 +238,7 @@ void cmd_write_y2d(YfSim *s, const YfArgs *a) {
         int j = ed[2 * e], k = ed[2 * e + 1];
         double dx = nx0[k] - nx0[j], dy = ny0[k] - ny0[j], L = hypot(dx, dy);
         double p = it.a[0], sh = 0.0;
-        if (it.kind == YF_BCI_TRACTION) { /* t = -p n + q t: n outward (dy, -dx)/L, t CCW (dx, dy)/L */
+        if (it.kind == BC_TRACTION) { /* t = -p n + q t: n outward (dy, -dx)/L, t CCW (dx, dy)/L */
           p = -(it.a[0] * dy - it.a[1] * dx) / L;
           sh = (it.a[0] * dx + it.a[1] * dy) / L;
         }
