@@ -1,4 +1,4 @@
-/* y2d_write.c: write_y2d FILE steps N, a native scene as a Y2D input deck (see y2d_write.h and
+/* y2d_write.c: a native scene as a Y2D input deck (the write_y2d command, deck/cmd_write_y2d.c) (see y2d_write.h and
  * docs/y2d_decks.md for the mapping).
  *
  * This module owns the translation from the scene (model, joints, contact, bc, histories) to the
@@ -71,13 +71,13 @@ static void put_d2(FILE *f, const char *key, long n2, const double *a, const dou
 /* ------------------------------------------------------------------ time tables */
 
 /* Knots of history h over [0, tfar] (its value is linear between them, held outside). */
-static int hist_knots(const YfSim *s, int h, double tfar, double *t, int cap, const YfArgs *a) {
+static int hist_knots(const YfSim *s, int h, double tfar, double *t, int cap, const YfLoc *loc) {
   int n = 0;
   t[n++] = 0.0;
   if (h >= 0) {
     const YfHistory *H = &s->hist[h];
     if (H->kind == YF_HIST_SINE)
-      arg_error(a, 0, "history '%s' is a sine: Y2D's time tables are piecewise linear (give it as a table)", H->name);
+      yf_deck_error(loc, "history '%s' is a sine: Y2D's time tables are piecewise linear (give it as a table)", H->name);
     if (H->kind == YF_HIST_RAMP) {
       if (H->t0 > 0 && H->t0 < tfar) t[n++] = H->t0;
       if (H->t1 > 0 && H->t1 < tfar) t[n++] = H->t1;
@@ -92,23 +92,17 @@ static int hist_knots(const YfSim *s, int h, double tfar, double *t, int cap, co
 
 /* ------------------------------------------------------------------ the command */
 
-/* write_y2d FILE steps N */
-void cmd_write_y2d(YfSim *s, const YfArgs *a) {
-  arg_count(a, 3, 3);
-  const char *path = arg_word(a, 0, "file");
-  static const char *const kw[] = {"steps", NULL};
-  arg_choice(a, 1, "keyword", kw);
-  long steps = arg_int(a, 2, "steps", 1, 2000000000L);
+void y2d_write(YfSim *s, const char *path, long steps, const YfLoc *loc) {
   YfModel *m = &s->model;
-  if (s->y2d) arg_error(a, 0, "this scene was read from a Y2D deck (%s): run that deck in Y2D", s->y2d->path);
+  if (s->y2d) yf_deck_error(loc, "this scene was read from a Y2D deck (%s): run that deck in Y2D", s->y2d->path);
   if (m->prepared || s->step > 0)
-    arg_error(a, 0, "write_y2d exports the scene as the deck set it up: put it before the first run (Y2D "
+    yf_deck_error(loc, "write_y2d exports the scene as the deck set it up: put it before the first run (Y2D "
               "inserts the joints and starts at step 0)");
-  if (!m->tri.n) arg_error(a, 0, "the scene has no triangles");
+  if (!m->tri.n) yf_deck_error(loc, "the scene has no triangles");
   if (s->gx != 0)
-    arg_error(a, 0, "gravity has an x component (%g m/s^2): Y2D's 2D gravity acts along y only (DCGRAY)", s->gx);
+    yf_deck_error(loc, "gravity has an x component (%g m/s^2): Y2D's 2D gravity acts along y only (DCGRAY)", s->gx);
   if (s->mass_damping > 0)
-    arg_error(a, 0, "mass damping (damping mass %g): Y2D has no mass-proportional damping (only the material's "
+    yf_deck_error(loc, "mass damping (damping mass %g): Y2D has no mass-proportional damping (only the material's "
               "viscous term, material damping BETA or visc K)", s->mass_damping);
 
   /* ---- the mesh as the deck built it (before fracture splits it) ---- */
@@ -155,9 +149,9 @@ void cmd_write_y2d(YfSim *s, const YfArgs *a) {
                       : js->p.irreversible ? "damage irreversible (Y2D's joints have no damage memory: damage reversible)"
                       : js->het != YF_HET_NONE ? "random strengths (weibull/normal): Y2D's joint sets are homogeneous"
                       : NULL;
-    if (why) arg_error(a, 0, "jointprop '%s' of body '%s' cannot be written for Y2D: %s", js->name, m->body[b].name, why);
+    if (why) yf_deck_error(loc, "jointprop '%s' of body '%s' cannot be written for Y2D: %s", js->name, m->body[b].name, why);
     if (js->p.hreg != 1e-10)
-      yf_warn(&a->loc, "write_y2d: jointprop '%s': Y2D's joints take the unit tangent as e/(h + 1e-10 m), this one as "
+      yf_warn(loc, "write_y2d: jointprop '%s': Y2D's joints take the unit tangent as e/(h + 1e-10 m), this one as "
               "e/h (a relative change of 1e-10 m / h in the joint forces); 'tangent y2d' gives Y2D's", js->name);
     if (jmap[bset[b]] < 0) { jsrc[njs] = bset[b]; jmap[bset[b]] = njs++; }
     int k = 0;
@@ -266,7 +260,7 @@ void cmd_write_y2d(YfSim *s, const YfArgs *a) {
     for (int c = 0; c < 3; c++) {
       if (cand[c] == -2) continue;
       if (h != -2 && h != cand[c])
-        arg_error(a, 0, "node %d: its conditions have different time histories (%s and %s): a Y2D BC set has one "
+        yf_deck_error(loc, "node %d: its conditions have different time histories (%s and %s): a Y2D BC set has one "
                   "time table", m->node.id[i], h >= 0 ? s->hist[h].name : "none",
                   cand[c] >= 0 ? s->hist[cand[c]].name : "none");
       h = cand[c];
@@ -281,7 +275,7 @@ void cmd_write_y2d(YfSim *s, const YfArgs *a) {
       ny2d += (nbc[j].ap != 0 && nbc[k].ap != 0) || (nbc[j].at != 0 && nbc[k].at != 0);
     }
   if (ny2d > nedge)
-    arg_error(a, 0, "the edge loads would act on %ld triangle edges in Y2D but on %ld in yfdem: Y2D loads every "
+    yf_deck_error(loc, "the edge loads would act on %ld triangle edges in Y2D but on %ld in yfdem: Y2D loads every "
               "edge whose two nodes carry loaded sets (inner edges and faces between two loaded faces included)",
               ny2d, nedge);
   /* sets: 0 free, then in node order */
@@ -306,16 +300,16 @@ void cmd_write_y2d(YfSim *s, const YfArgs *a) {
     char lim[96];
     dt = s->dt_safety * run_stable_dt(s, lim, sizeof lim);
   }
-  if (!(dt > 0)) arg_error(a, 0, "no time step is set (timestep DT or timestep auto)");
+  if (!(dt > 0)) yf_deck_error(loc, "no time step is set (timestep DT or timestep auto)");
   const YfTriMat *tm = run_tri_mats();
   YfContactExport ce;
   int con = contact_export(s, &ce);
   if (con && !ce.all_pairs)
-    yf_warn(&a->loc, "write_y2d: Y2D's contact acts between every pair of participating triangles; the scene's %d "
+    yf_warn(loc, "write_y2d: Y2D's contact acts between every pair of participating triangles; the scene's %d "
             "contact rule(s) are widened to all pairs (pairs no rule takes, such as two triangles of one unjointed "
             "body, are evaluated too)", ce.nrule);
   if (con && ce.joined_skip)
-    yf_warn(&a->loc, "write_y2d: 'contact joined skip' has no Y2D equivalent: Y2D evaluates couples of joined "
+    yf_warn(loc, "write_y2d: 'contact joined skip' has no Y2D equivalent: Y2D evaluates couples of joined "
             "triangles too (joined keep)");
 
   /* ---- time tables ---- */
@@ -336,7 +330,7 @@ void cmd_write_y2d(YfSim *s, const YfArgs *a) {
     knot = yf_malloc((size_t)(nset * capk) * sizeof(double), "write_y2d tables");
     int *kn = yf_malloc((size_t)nset * sizeof(int), "write_y2d tables");
     for (int b = 0; b < nset; b++) {
-      kn[b] = hist_knots(s, sets[b].hist, tfar, knot + (size_t)b * capk, capk, a);
+      kn[b] = hist_knots(s, sets[b].hist, tfar, knot + (size_t)b * capk, capk, loc);
       if (kn[b] > npts) npts = kn[b];
     }
     for (int b = 0; b < nset; b++) /* all sets share the number of points: repeat the last one */
@@ -349,8 +343,8 @@ void cmd_write_y2d(YfSim *s, const YfArgs *a) {
   char *tmp = yf_malloc(plen, "path");
   snprintf(tmp, plen, "%s.tmp", path);
   FILE *f = fopen(tmp, "w");
-  if (!f) yf_io_error(&a->loc, "write_y2d: cannot write '%s': %s", tmp, strerror(errno));
-  fprintf(f, "/* written by yfdem write_y2d from %s line %d */\n", a->loc.file ? a->loc.file : "?", a->loc.line);
+  if (!f) yf_io_error(loc, "write_y2d: cannot write '%s': %s", tmp, strerror(errno));
+  fprintf(f, "/* written by yfdem write_y2d from %s line %d */\n", loc && loc->file ? loc->file : "?", loc ? loc->line : 0);
   fprintf(f, "/* %d nodes, %d triangles, %d element properties, %d BC sets%s */\n", nn, nt, np, nset,
           nrow ? ", joints inserted by Y2D at step 0" : "");
   long melem = nt + 3L * nzone + 1, mnopo = nn + 3L * nzone + 1;
@@ -462,8 +456,8 @@ void cmd_write_y2d(YfSim *s, const YfArgs *a) {
   }
   fprintf(f, "$YDOIT\n$YSTOP\n");
   int bad = ferror(f);
-  if (fclose(f) != 0 || bad) yf_io_error(&a->loc, "write_y2d: cannot write '%s': %s", tmp, strerror(errno));
-  if (rename(tmp, path) != 0) yf_io_error(&a->loc, "write_y2d: cannot rename '%s' to '%s': %s", tmp, path, strerror(errno));
+  if (fclose(f) != 0 || bad) yf_io_error(loc, "write_y2d: cannot write '%s': %s", tmp, strerror(errno));
+  if (rename(tmp, path) != 0) yf_io_error(loc, "write_y2d: cannot rename '%s' to '%s': %s", tmp, path, strerror(errno));
   sim_printf(s, "write_y2d: %s: %d nodes, %d triangles, %d properties, %d BC sets, %d joint set(s), dt %.6g s, %ld steps\n",
              path, nn, nt, np, nset, njs, dt, steps);
   free(tmp); free(ik); free(sc); free(col); free(icol); free(knot);

@@ -10,9 +10,11 @@
  */
 #ifndef YF_Y2D_WRITE_H
 #define YF_Y2D_WRITE_H
-#include "deck.h"
+#include "err.h"
 #include "sim.h"
 
-void cmd_write_y2d(YfSim *s, const YfArgs *a);
+/* Write the scene (before its first run) to path as a Y2D deck that runs `steps` steps; loc is
+ * the command's place for messages.  Deck errors name what Y2D cannot express. */
+void y2d_write(YfSim *s, const char *path, long steps, const YfLoc *loc);
 
 #endif
