@@ -150,20 +150,10 @@ void bc_prepare(YfSim *s) {
   }
 }
 
-void bc_info(const YfSim *s, int i, YfBcInfo *out) {
+const YfBcSpec *bc_spec(const YfSim *s, int i, const char **id) {
   const YfBcItem *it = &s->bc->item[i];
-  out->id = it->id;
-  out->kind = it->kind;
-  out->group = it->group;
-  out->has[0] = it->has[0];
-  out->has[1] = it->has[1];
-  out->a[0] = it->a[0];
-  out->a[1] = it->a[1];
-  out->hist = it->hist;
-  out->node_id = it->node_id;
-  out->px = it->px;
-  out->py = it->py;
-  out->loc = it->loc;
+  *id = it->id;
+  return &it->sp;
 }
 
 const unsigned char *bc_node_flags(const YfSim *s) { return s->bc ? s->bc->flags : NULL; }

@@ -50,19 +50,8 @@ const unsigned char *bc_node_flags(const YfSim *s);
 /* Time-step limit implied by anything in bc (none today): INFINITY. */
 void bc_free(YfSim *s);
 /* One fix or load as the deck gave it (write_y2d, y2d_write.c); i = 0..bc_count-1, in deck
- * order (later items override earlier ones on a node component). */
-typedef struct {
-  const char *id;
-  int kind;       /* BC_*                                                              */
-  int group;      /* fixes and edge loads                                              */
-  int has[2];     /* component x, y given                                              */
-  double a[2];    /* amplitude: velocity [m/s], displacement [m], force [N/m], traction, pressure [Pa] */
-  int hist;       /* history index, -1: factor 1                                       */
-  int node_id;    /* point load: node id, -1 when given by position px, py [m]          */
-  double px, py;
-  YfLoc loc;
-} YfBcInfo;
-void bc_info(const YfSim *s, int i, YfBcInfo *out);
+ * order (later items override earlier ones on a node component); *id receives its ID. */
+const YfBcSpec *bc_spec(const YfSim *s, int i, const char **id);
 int bc_count(const YfSim *s);
 
 #endif

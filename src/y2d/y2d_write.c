@@ -185,11 +185,11 @@ void y2d_write(YfSim *s, const char *path, long steps, const YfLoc *loc) {
   int nbci = bc_count(s);
   long nedge = 0; /* boundary edges yfdem's edge loads act on */
   for (int q = 0; q < nbci; q++) {
-    YfBcInfo it;
-    bc_info(s, q, &it);
+    const char *bc_id;
+    const YfBcSpec it = *bc_spec(s, q, &bc_id);
     if (it.kind == BC_DISPLACEMENT)
       yf_deck_error(&it.loc, "write_y2d: fix '%s' prescribes a displacement: Y2D has no displacement condition "
-                    "(prescribe the velocity instead)", it.id);
+                    "(prescribe the velocity instead)", bc_id);
     if (it.kind == BC_FIXED || it.kind == BC_VELOCITY) {
       uint64_t bit = (uint64_t)1 << it.group;
       for (int i = 0; i < nn; i++)
@@ -212,7 +212,7 @@ void y2d_write(YfSim *s, const char *path, long steps, const YfLoc *loc) {
         double d = (nx0[i] - it.px) * (nx0[i] - it.px) + (ny0[i] - it.py) * (ny0[i] - it.py);
         if (d < best) { best = d; tgt = i; }
       }
-      if (tgt < 0) yf_deck_error(&it.loc, "write_y2d: load '%s' has no node to act on", it.id);
+      if (tgt < 0) yf_deck_error(&it.loc, "write_y2d: load '%s' has no node to act on", bc_id);
       /* Y2D gives every copy of a node its set: the load is shared by the copies, as yfdem does */
       int copies = zuse[tgt] + (ouse[tgt] > 0);
       if (copies < 1) copies = 1;
@@ -220,7 +220,7 @@ void y2d_write(YfSim *s, const char *path, long steps, const YfLoc *loc) {
         if (nbc[tgt].k[c] == 3 || it.a[c] == 0) continue; /* a held direction ignores forces (both programs) */
         if (nbc[tgt].a[c] != 0 && chist[2 * tgt + c] != it.hist)
           yf_deck_error(&it.loc, "write_y2d: load '%s' and another load act on node %d with different histories: "
-                        "a Y2D BC set has one time table", it.id, m->node.id[tgt]);
+                        "a Y2D BC set has one time table", bc_id, m->node.id[tgt]);
         nbc[tgt].a[c] += it.a[c] / copies;
         chist[2 * tgt + c] = it.hist;
       }
@@ -243,7 +243,7 @@ void y2d_write(YfSim *s, const char *path, long steps, const YfLoc *loc) {
                          fabs(nbc[i].at - sh) > 1e-12 * (fabs(p) + fabs(sh)) || ehist[i] != it.hist))
             yf_deck_error(&it.loc, "write_y2d: load '%s' changes direction along its boundary, or meets another edge "
                           "load, at node %d: Y2D's edge loads are one normal pressure and one shear per node set "
-                          "(straight faces)", it.id, m->node.id[i]);
+                          "(straight faces)", bc_id, m->node.id[i]);
           nbc[i].ap = p;
           nbc[i].at = sh;
           ehist[i] = it.hist;
