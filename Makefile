@@ -2,7 +2,8 @@
 #
 #   make          build ./yfdem
 #   make demo     install what is missing (tools/install-deps), build, run the main example deck
-#   make check    install what tests need, build, run every Check suite through one runner
+#   make check    install what tests need, build, run every Check suite through one runner, then
+#                 the dumps in a real ParaView (tests/paraview/run)
 #   make bench    element-steps per second, thread scaling, bytes per element
 #   make asan     the whole test suite under AddressSanitizer + UBSan (build-asan/; CI runs it)
 #   make fuzz     libFuzzer on the deck interpreter (clang; tools/fuzz/README.md), FUZZ_RUNS inputs
@@ -93,6 +94,9 @@ demo: deps
 check: deps-test
 	$(MAKE) yfdem $(BUILD)/check_yfdem
 	CK_TIMEOUT_MULTIPLIER=$${CK_TIMEOUT_MULTIPLIER:-3} OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem
+	YFDEM=./yfdem tests/paraview/run
+	YFDEM=./yfdem tests/convert/run
+	YFDEM=./yfdem tests/readme/run
 
 test: yfdem $(BUILD)/check_yfdem
 	OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem

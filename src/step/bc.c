@@ -150,6 +150,12 @@ void bc_prepare(YfSim *s) {
   }
 }
 
+const YfBcSpec *bc_spec(const YfSim *s, int i, const char **id) {
+  const YfBcItem *it = &s->bc->item[i];
+  *id = it->id;
+  return &it->sp;
+}
+
 const unsigned char *bc_node_flags(const YfSim *s) { return s->bc ? s->bc->flags : NULL; }
 
 static double factor(const YfSim *s, int hist, double t) {
