@@ -513,10 +513,9 @@ void run_steps(YfSim *s, long nsteps) {
   const char *shared = threads_run_end(how, sizeof how);
   ev.kind = YF_EV_RUN_END;
   sim_notify(s, &ev);
-  if (shared) sim_printf(s, "%s\n", shared);
-  sim_printf(s, "run: %ld steps of %d triangles in %.3f s wall (%.3g element-steps/s on %d thread%s)\n", nsteps,
+  sim_printf(s, "run: %ld steps of %d triangles in %.3f s wall (%.3g element-steps/s on %d thread%s%s%s)\n", nsteps,
              s->model.tri.n, wall, wall > 0 ? (double)s->model.tri.n * (double)nsteps / wall : 0.0, s->threads,
-             s->threads > 1 ? "s" : "");
+             s->threads > 1 ? "s" : "", shared ? "; " : "", shared ? shared : "");
   timing_table(s, stage0, wall);
 }
 
