@@ -26,9 +26,6 @@ double run_model_bytes(const YfSim *s);
 const YfTriMat *run_tri_mats(void);
 /* Fill the summary's counts and the loop's extra keys (also on the error path). */
 void run_summary_update(YfSim *s);
-/* Energy budget of the energy check [J/m] (restart.c saves and restores it). */
-double run_get_energy_budget(void);
-void run_set_energy_budget(double e);
 /* Release the loop's work arrays (at exit). */
 void run_free(void);
 /* Loops of the step shorter than par_min run on one thread; block = triangles per block of the

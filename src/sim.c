@@ -17,11 +17,13 @@
 #include "y2d_model.h"
 #include "region.h"
 #include "restart.h"
+#include "energy.h"
 
 void sim_init(YfSim *s) {
   memset(s, 0, sizeof *s);
   model_init(&s->model);
   s->dt_safety = 0.5;
+  s->ebal_tol = YF_EBAL_TOL;
   s->thermo_every = 0;
   s->threads = 1;
 }
