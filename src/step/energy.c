@@ -17,9 +17,10 @@
  * mode creates energy that grows exponentially, whether it stays as motion or is booked as
  * damping, fracture or friction.  With tol = ebal_tol (default YF_EBAL_TOL) x the energy given
  * + the energy of a 1e-8 strain everywhere (round-off), a run stops (exit 3) when
- *   - r > tol and r exceeds the energy given (more than any resolution error at s <= 0.7), or
- *   - r > tol and r still grew by tol/10 at each of GROWING checks in a row (energy from nowhere,
- *     wherever it went), or
+ *   - r > tol and r exceeds the largest offset a stable step can show, max(1, s^2 / (1 - s^2))
+ *     times the energy given (the energy given alone above the limit), or
+ *   - r > tol and r rose to a new high, by tol/10, at each of GROWING checks in a row (energy from
+ *     nowhere, wherever it went: a bounded offset stops setting new highs), or
  *   - a dissipation is negative.
  * Dissipation beyond what the scene was given is energy from nowhere too: it is part of r.  The message names the step, the energy that grew most
  * since the last closed check and the stage that owns it, and what to change.
@@ -46,13 +47,13 @@ static struct {
   double floor;      /* energy of a 1e-8 strain everywhere [J/m] */
   double last[NT];   /* the terms at the last closed check */
   long last_step;
-  double r_prev;     /* the residual at the previous check */
+  double r_max;      /* the largest residual of the checks so far */
   int streak;        /* consecutive checks above the tolerance with the residual still growing */
   int warned;        /* warn mode: one warning per run */
 } E;
 
-/* Checks in a row (100 steps apart) that a residual above the tolerance must keep growing, by a
- * tenth of the tolerance each, before the run is stopped (below the energy given). */
+/* Checks in a row (100 steps apart) at which a residual above the tolerance must reach a new high,
+ * by a tenth of the tolerance each, before the run is stopped (below the hard bound). */
 #define GROWING 3
 
 void energy_reset(void) { memset(&E, 0, sizeof E); }
@@ -102,7 +103,7 @@ void energy_run_begin(YfSim *s, double e_floor) {
   }
   terms(s, E.last);
   E.last_step = s->step;
-  E.r_prev = energy_balance(s);
+  E.r_max = energy_balance(s);
   E.streak = 0;
   E.warned = 0;
 }
@@ -143,6 +144,11 @@ void energy_check(YfSim *s) {
   double diss = t[T_DAMP] + t[T_FRACT] + t[T_FRIC];
   double r = energy_balance(s);
   double tol = s->ebal_tol * scale + E.floor;
+  /* the largest offset a stable step can show: s^2 / (1 - s^2) of the energy, s = dt / dt_limit;
+   * at least the energy given (s <= 0.7), and that alone above the limit (no bound there) */
+  double sr = s->dt_limit > 0 ? s->dt / s->dt_limit : 2.0;
+  double hard = scale * (sr < 1.0 ? fmax(1.0, sr * sr / (1.0 - sr * sr)) : 1.0) + tol;
+  int higher = r > E.r_max + 0.1 * tol; /* a new high of the residual, by a tenth of tol */
   int finite = isfinite(r) && isfinite(ext);
   for (int i = 0; i < NT; i++) finite = finite && isfinite(t[i]);
   char what[640];
@@ -150,15 +156,15 @@ void energy_check(YfSim *s) {
   int grew = -1;
   if (!finite) {
     snprintf(what, sizeof what, "the energies are not finite (the motion blew up)");
-  } else if (r > tol && (r > scale + tol || E.streak + (r - E.r_prev > 0.1 * tol) >= GROWING)) {
+  } else if (r > tol && (r > hard || E.streak + higher >= GROWING)) {
     double best = -INFINITY;
     for (int i = 0; i < NT; i++)
       if (t[i] - E.last[i] > best) { best = t[i] - E.last[i]; grew = i; }
     snprintf(what, sizeof what, "energy balance not closed: %.6g J/m appeared from nowhere (kinetic %.6g + stored "
              "%.6g + dissipated %.6g - given %.6g J/m), %s; since step %ld the %s grew most (+%.6g J/m)", r,
              t[T_KIN], t[T_STRAIN] + t[T_JOINT] + t[T_CONTACT], diss, given,
-             r > scale + tol ? (diss > scale ? "more than the scene was given, and more was dissipated than given"
-                                             : "more than the scene was given") : "still growing at every check",
+             r > hard ? (diss > scale ? "more than a stable step can show, and more was dissipated than given"
+                                      : "more than a stable step can show") : "still growing at every check",
              E.last_step, term_name[grew], best);
   } else {
     for (int i = T_DAMP; i < NT && grew < 0; i++)
@@ -168,8 +174,8 @@ void energy_check(YfSim *s) {
                term_name[grew], t[grew], tol);
   }
   if (!what[0]) {
-    E.streak = r > tol && r - E.r_prev > 0.1 * tol ? E.streak + 1 : 0;
-    E.r_prev = r;
+    E.streak = r > tol && higher ? E.streak + 1 : 0;
+    if (r > E.r_max) E.r_max = r;
     if (E.streak == 0) { /* the reference of "grew most": the last check that was closed or steady */
       memcpy(E.last, t, sizeof t);
       E.last_step = s->step;
