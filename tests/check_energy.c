@@ -89,31 +89,6 @@ START_TEST(test_y2d_blowup_stops) {
 }
 END_TEST
 
-/* Run fn(arg) in a child (stdout silenced, stderr into msg); its exit code. */
-static int child_run(void (*fn)(void *), void *arg, char *msg, size_t n) {
-  char path[] = "/tmp/yfe_XXXXXX";
-  int fd = mkstemp(path);
-  ck_assert_int_ge(fd, 0);
-  fflush(stdout);
-  fflush(stderr);
-  pid_t pid = fork();
-  ck_assert_int_ge(pid, 0);
-  if (pid == 0) {
-    dup2(fd, 2);
-    (void)!freopen("/dev/null", "w", stdout);
-    fn(arg);
-    fflush(NULL);
-    _exit(0);
-  }
-  int st = 0;
-  waitpid(pid, &st, 0);
-  ssize_t k = pread(fd, msg, n - 1, 0);
-  msg[k > 0 ? k : 0] = 0;
-  close(fd);
-  unlink(path);
-  return WIFEXITED(st) ? WEXITSTATUS(st) : 128;
-}
-
 /* decks/beam.deck (nx 40, fracture, contact) prepared, not run: its run line made `run 0`. */
 static YfSim *beam40(void) {
   char *text = yft_slurp("decks/beam.deck", 0);
@@ -141,7 +116,7 @@ static void beam_at_old_dt(void *arg) {
 
 START_TEST(test_native_blowup_stops) {
   char msg[4096];
-  int code = child_run(beam_at_old_dt, NULL, msg, sizeof msg);
+  int code = yft_child_run(beam_at_old_dt, NULL, msg, sizeof msg);
   fprintf(stderr, "energy: beam nx 40 at dt 6.31e-7: exit %d: %s", code, msg);
   ck_assert_int_eq(code, 3);
   assert_blowup_message(msg);
@@ -210,7 +185,7 @@ static void negative_friction(void *arg) {
 
 START_TEST(test_negative_dissipation_stops) {
   char msg[4096];
-  int code = child_run(negative_friction, NULL, msg, sizeof msg);
+  int code = yft_child_run(negative_friction, NULL, msg, sizeof msg);
   fprintf(stderr, "energy: negative friction: exit %d: %s", code, msg);
   ck_assert_int_eq(code, 3);
   ck_assert_ptr_nonnull(strstr(msg, "negative friction dissipation (stage 'contact')"));

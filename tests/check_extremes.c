@@ -32,32 +32,6 @@
 
 static void quiet(void) { (void)!freopen("/dev/null", "w", stdout); }
 
-/* Run fn(arg) in a child process (its stdout silenced, its stderr captured into msg); returns
- * the child's exit code (0 when fn returns). */
-static int child_run(void (*fn)(void *), void *arg, char *msg, size_t n) {
-  char path[] = "/tmp/yfx_XXXXXX";
-  int fd = mkstemp(path);
-  ck_assert_int_ge(fd, 0);
-  fflush(stdout);
-  fflush(stderr);
-  pid_t pid = fork();
-  ck_assert_int_ge(pid, 0);
-  if (pid == 0) {
-    dup2(fd, 2);
-    quiet();
-    fn(arg);
-    fflush(NULL);
-    _exit(0);
-  }
-  int st = 0;
-  waitpid(pid, &st, 0);
-  ssize_t k = pread(fd, msg, n - 1, 0);
-  msg[k > 0 ? k : 0] = 0;
-  close(fd);
-  unlink(path);
-  return WIFEXITED(st) ? WEXITSTATUS(st) : 128;
-}
-
 static double momentum_x(const YfSim *s) {
   double p = 0;
   for (int i = 0; i < s->model.node.n; i++) p += s->model.node.m[i] * s->model.node.vx[i];
@@ -142,7 +116,7 @@ static void bounded(const char *deck, double f, long steps, double *first, doubl
 static void assert_stopped(const char *deck, double factor, const char *what, const char *cause, const char *cause2) {
   char msg[4096];
   DtCase c = {deck, factor, 20000};
-  int code = child_run(dt_case, &c, msg, sizeof msg);
+  int code = yft_child_run(dt_case, &c, msg, sizeof msg);
   fprintf(stderr, "dt %s %.2g: exit %d: %s", what, factor, code, msg);
   ck_assert_int_eq(code, 3);
   ck_assert_ptr_nonnull(strstr(msg, "numerical failure at step"));
