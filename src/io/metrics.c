@@ -13,6 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "metrics.h"
+#include "deck.h"
+#include "report.h"
 #include "joint.h"
 #include "region.h"
 #include "run.h"
@@ -91,6 +93,7 @@ void metrics_reset(void) {
 /* ---- the command ---- */
 
 void cmd_metrics(YfSim *s, const YfArgs *a) {
+  io_attach(s); /* its state observes the run loop (report.c) */
   static const char *const kw[] = {"body", "mirror", "region", "midspan", "peak_stress", "log", NULL};
   arg_count(a, 1, -1);
   int k = arg_choice(a, 0, "keyword", kw);

@@ -33,9 +33,7 @@
 #ifndef YF_METRICS_H
 #define YF_METRICS_H
 #include "sim.h"
-#include "deck.h"
 
-void cmd_metrics(struct YfSim *s, const YfArgs *a);
 /* After every completed step (run.c); a few compares when nothing is due. */
 void metrics_step(YfSim *s);
 /* Summary keys and the log file (run_summary_update); never exits. */

@@ -54,6 +54,8 @@
 #include <unistd.h>
 #include <hdf5.h>
 #include "output.h"
+#include "deck.h"
+#include "report.h"
 #include "contact.h"
 #include "joint.h"
 #include "err.h"
@@ -789,6 +791,7 @@ long output_index_writes(const YfSim *s, const char *id) {
 
 int output_add_dump(YfSim *s, const char *id, int style, long every, const char *path,
                     unsigned fields, int compress) {
+  io_attach(s); /* dumps observe the run loop (report.c) */
   if (!s->out) {
     s->out = yf_calloc(1, sizeof *s->out, "output");
     s->out->next_due = LONG_MAX;

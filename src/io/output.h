@@ -15,7 +15,6 @@
 #define YF_OUTPUT_H
 #include <stddef.h>
 #include "sim.h"
-#include "deck.h"
 
 #define YF_MAX_DUMPS 8
 
@@ -48,8 +47,6 @@ struct YfOutput {
  *   dump ID h5 N FILE.h5 [fields F1 F2 ...] [compress]
  *   dump ID csv N PREFIX
  *   undump ID                                                                     */
-void cmd_dump(struct YfSim *sim, const YfArgs *a);
-void cmd_undump(struct YfSim *sim, const YfArgs *a);
 
 /* Programmatic form of `dump` (used by cmd_dump and tests).  Returns the dump's slot; checks
  * nothing about the deck (the handler does), but refuses a full table or a duplicate id with -1. */

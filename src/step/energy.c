@@ -31,7 +31,6 @@
 #include <string.h>
 #include "energy.h"
 #include "run.h"
-#include "deck.h"
 
 enum { T_KIN, T_STRAIN, T_JOINT, T_CONTACT, T_DAMP, T_FRACT, T_FRIC, NT };
 static const char *const term_name[NT] = {
@@ -81,7 +80,7 @@ double energy_balance(const YfSim *s) {
   return e->kinetic + e->strain + e->contact + diss - energy_external(s) - E.budget;
 }
 
-int energy_dt_above_limit_ok(const YfSim *s) { return s->y2d || s->ebal_mode != YF_EBAL_STOP; }
+int energy_dt_above_limit_ok(const YfSim *s) { return s->dt_warn_only || s->ebal_mode != YF_EBAL_STOP; }
 
 static void terms(const YfSim *s, double *t) {
   const YfEnergy *e = &s->energy;
@@ -187,17 +186,4 @@ void energy_check(YfSim *s) {
   if (s->ebal_mode == YF_EBAL_STOP) yf_numeric_error(s->step, "%s; %s", what, adv);
   if (!E.warned) yf_warn(NULL, "step %ld: %s; the run goes on ('energy_check warn')", s->step, what);
   E.warned = 1;
-}
-
-/* energy_check stop|warn|off [tolerance F] */
-void cmd_energy_check(YfSim *s, const YfArgs *a) {
-  arg_count(a, 1, 3);
-  static const char *const modes[] = {"stop", "warn", "off", NULL};
-  s->ebal_mode = arg_choice(a, 0, "energy check mode", modes);
-  if (a->n > 1) {
-    static const char *const w[] = {"tolerance", NULL};
-    arg_choice(a, 1, "energy check option", w);
-    arg_count(a, 3, 3);
-    s->ebal_tol = arg_pos(a, 2, "tolerance");
-  }
 }

@@ -24,8 +24,6 @@ double run_model_bytes(const YfSim *s);
 /* Material constants of the prepared model, indexed by material (for tests and diagnostics). */
 /* Material constants of the prepared model, indexed by material (tests, diagnostics). */
 const YfTriMat *run_tri_mats(void);
-/* Fill the summary's counts and the loop's extra keys (also on the error path). */
-void run_summary_update(YfSim *s);
 /* Release the loop's work arrays (at exit). */
 void run_free(void);
 /* Loops of the step shorter than par_min run on one thread; block = triangles per block of the
