@@ -93,3 +93,27 @@ int yft_node_at(const YfSim *s, double x, double y) {
   return best;
 }
 
+
+int yft_child_run(void (*fn)(void *), void *arg, char *msg, size_t n) {
+  char path[] = "/tmp/yfx_XXXXXX";
+  int fd = mkstemp(path);
+  ck_assert_int_ge(fd, 0);
+  fflush(stdout);
+  fflush(stderr);
+  pid_t pid = fork();
+  ck_assert_int_ge(pid, 0);
+  if (pid == 0) {
+    dup2(fd, 2);
+    (void)!freopen("/dev/null", "w", stdout);
+    fn(arg);
+    fflush(NULL);
+    _exit(0);
+  }
+  int st = 0;
+  waitpid(pid, &st, 0);
+  ssize_t k = pread(fd, msg, n - 1, 0);
+  msg[k > 0 ? k : 0] = 0;
+  close(fd);
+  unlink(path);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+}

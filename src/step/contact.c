@@ -88,8 +88,6 @@ typedef struct YfContact {
   double *mpn, *mpt, *mmu; /* per material: pen_n, pen_t [Pa], friction         */
   int *jpart, *jidx;     /* joined skip: 3 per triangle, partner triangle and joint (-1 none) */
   const unsigned char *jstate;
-  double dt_limit;       /* contact_stable_dt, computed at prepare              */
-  char dt_what[192];
 
   /* couples */
   YfPairs pairs, fresh;
@@ -163,6 +161,12 @@ void contact_free(YfSim *s) {
   free(C);
   s->contact = NULL;
 }
+
+/* The contact share of a node's row sum, in units of one edge's flat-penetration stiffness: 2 for
+ * a node pressed against one equal node (the two-mass bound), x3 for the neighbours a node of a
+ * fracturing body or a body's corner is pressed into at once (docs/STABILITY.md: with 2 the
+ * jointed scenes in contact were unstable at 0.75-0.78 of the limit). */
+#define CONTACT_ROW 6.0
 
 static int active(const YfContact *C) { return C && C->nrule > 0; }
 
@@ -338,8 +342,10 @@ static int joined_keep(int i, int j, void *ctx) {
   return 1;
 }
 
-/* The contact penalty's stable time step (contact.h). */
-static void compute_stable_dt(YfSim *s, YfContact *C) {
+/* The contact penalty's share of the nodes' stiffness for the stable time step (contact.h). */
+int contact_node_stiffness(YfSim *s, double *K, int *tof, double *pof) {
+  const YfContact *C = s->contact;
+  if (!active(C) || !C->ma) return 0;
   const YfModel *m = &s->model;
   Side A[MAX_RULES], B[MAX_RULES];
   for (int r = 0; r < C->nrule; r++) A[r] = B[r] = (Side){0.0, -1, 0};
@@ -359,9 +365,8 @@ static void compute_stable_dt(YfSim *s, YfContact *C) {
   unsigned char *jointed = yf_calloc((size_t)m->tri.n + 1, 1, "contact jointed");
   const YfJoints *J = s->joints;
   for (int j = 0; J && j < J->n; j++) jointed[J->tri[2 * j]] = jointed[J->tri[2 * j + 1]] = 1;
-  double best = INFINITY;
-  int which = -1;
-  double pbest = 0;
+  int any = 0;
+  double *kmax = yf_calloc((size_t)m->node.n + 1, sizeof(double), "contact stiffness");
   for (int k = 0; k < C->nitem; k++) {
     int t = C->item[k], b = m->tri.body[t];
     int meets = jointed[t] || m->body[b].fracture;
@@ -380,25 +385,25 @@ static void compute_stable_dt(YfSim *s, YfContact *C) {
     if (pm < p) p = pm;
     if (!meets || !(p > 0)) continue;
     const int *v = m->tri.v + 3 * t;
-    double mass = INFINITY, L2 = 0;
+    double L2 = 0;
     for (int c = 0; c < 3; c++) {
-      if (m->node.m[v[c]] < mass) mass = m->node.m[v[c]];
       double dx = m->node.x0[v[(c + 1) % 3]] - m->node.x0[v[c]], dy = m->node.y0[v[(c + 1) % 3]] - m->node.y0[v[c]];
       if (dx * dx + dy * dy > L2) L2 = dx * dx + dy * dy;
     }
     double area = 0.5 * m->tri.d0[t];
-    if (!(mass > 0) || !(area > 0)) continue;
-    double kn = 0.75 * p * L2 / area; /* 1.5 p L / h with h = 2 A / L */
-    double d = sqrt(2.0 * mass / kn);
-    if (d < best) { best = d; which = t; pbest = p; }
+    if (!(area > 0)) continue;
+    /* 1.5 p L / h with h = 2 A / L, times CONTACT_ROW (contact.h) */
+    double kn = CONTACT_ROW * 0.75 * p * L2 / area;
+    for (int c = 0; c < 3; c++) {
+      int i = v[c];
+      if (kn > kmax[i]) { kmax[i] = kn; tof[i] = t; pof[i] = p; }
+      K[i] += kn;
+    }
+    any = 1;
   }
   free(jointed);
-  C->dt_limit = best;
-  if (which >= 0)
-    snprintf(C->dt_what, sizeof C->dt_what, "contact penalty %.3g Pa at triangle %d (material %s)", pbest,
-             m->tri.id[which], m->mat[m->tri.mat[which]].name);
-  else
-    C->dt_what[0] = 0;
+  free(kmax);
+  return any;
 }
 
 void contact_prepare(YfSim *s) {
@@ -406,10 +411,7 @@ void contact_prepare(YfSim *s) {
   if (!active(C)) return;
   YfModel *m = &s->model;
   int nt = m->tri.n, nn = m->node.n;
-  if (!C->dirty && C->prep_ntri == nt && C->prep_nn == nn && C->nmat == m->nmat) {
-    compute_stable_dt(s, C); /* masses may have changed (cheap, setup only) */
-    return;
-  }
+  if (!C->dirty && C->prep_ntri == nt && C->prep_nn == nn && C->nmat == m->nmat) return;
   free_prepared(C);
 
   /* rule sides per triangle */
@@ -517,7 +519,6 @@ void contact_prepare(YfSim *s) {
     C->cap_tg = nt;
   }
 
-  compute_stable_dt(s, C);
   /* the first step after a (re)setup searches; couples of the old list that still pass keep
    * their friction memory through the merge (triangle indices do not change) */
   contact_trigger_init(&C->trig, C->buffer, 1e15);
@@ -529,15 +530,6 @@ void contact_prepare(YfSim *s) {
              C->nrule > 1 ? "s" : "", C->nitem, nt, C->buffer, C->joined_skip ? ", joined couples skipped" : "");
 }
 
-double contact_stable_dt(YfSim *s, char *what, size_t n) {
-  YfContact *C = s->contact;
-  if (!active(C) || !isfinite(C->dt_limit)) {
-    if (what && n) what[0] = 0;
-    return INFINITY;
-  }
-  if (what && n) snprintf(what, n, "%s", C->dt_what);
-  return C->dt_limit;
-}
 
 /* ---------------------------------------------------------------- detection */
 
