@@ -16,6 +16,7 @@
  *
  * Units: SI, 2D per unit thickness (forces N/m, energies J/m, fracture energy J/m^2).
  */
+#include <errno.h>
 #include <math.h>
 #include <omp.h>
 #include <stdint.h>
@@ -89,26 +90,31 @@ static void read_table(const YfArgs *a, int i, YfJointProp *p) {
   if (!fp) yf_io_error(&a->loc, "jointprop: cannot open softening table '%s'", path);
   double w[YF_JOINT_TAB_MAX], sv[YF_JOINT_TAB_MAX];
   int n = 0, line = 0;
-  char buf[512];
-  while (fgets(buf, sizeof buf, fp)) {
+  char *buf = NULL; /* whole lines, however long: a long comment must not split a line in two */
+  size_t cap = 0;
+  while (getline(&buf, &cap, fp) >= 0) {
     line++;
+    if (line == 1) yf_skip_bom(buf);
     char *h = strchr(buf, '#');
     if (h) *h = 0;
     double u, v;
     char extra[8];
     int k = sscanf(buf, "%lf %lf %7s", &u, &v, extra);
-    if (k <= 0) continue;
+    if (k == EOF) continue; /* a blank (or comment) line; a line of words is an error below */
     if (k != 2) {
       fclose(fp);
+      free(buf);
       yf_deck_error(&a->loc, "%s:%d: expected two numbers 'opening stress' per line", path, line);
     }
     if (n == YF_JOINT_TAB_MAX) {
       fclose(fp);
+      free(buf);
       yf_deck_error(&a->loc, "%s: more than %d points in the softening table", path, YF_JOINT_TAB_MAX);
     }
     w[n] = u;
     sv[n++] = v;
   }
+  free(buf);
   fclose(fp);
   if (n < 2 || !(sv[0] > 0)) yf_deck_error(&a->loc, "%s: the softening table needs >= 2 points starting at a stress > 0", path);
   for (int k = n - 1; k >= 0; k--) sv[k] /= sv[0];
@@ -234,6 +240,8 @@ void cmd_fracture_log(YfSim *s, const YfArgs *a) {
     if (strlen(a->w[2]) >= sizeof J->open_log_path) arg_error(a, 2, "path too long");
     snprintf(J->open_log_path, sizeof J->open_log_path, "%s", a->w[2]);
   }
+  for (int i = 0; i < a->n; i += 2) /* a missing folder: now, not after the run */
+    if (!yf_can_create(a->w[i])) yf_io_error(&a->loc, "fracture_log: cannot write '%s': %s", a->w[i], strerror(errno));
 }
 
 /* ---------------- insertion ---------------- */
@@ -588,21 +596,19 @@ static inline void rows_to_lanes(const double *r0, const double *r1, const doubl
   memcpy(&b, r1, sizeof b);
   memcpy(&c, r2, sizeof c);
   memcpy(&d, r3, sizeof d);
-  const yf_v4l lo = {0, 4, 2, 6}, hi = {1, 5, 3, 7}, q0 = {0, 1, 4, 5}, q1 = {2, 3, 6, 7};
-  yf_v4 t0 = __builtin_shuffle(a, b, lo), t1 = __builtin_shuffle(a, b, hi);
-  yf_v4 t2 = __builtin_shuffle(c, d, lo), t3 = __builtin_shuffle(c, d, hi);
-  out[0] = __builtin_shuffle(t0, t2, q0);
-  out[1] = __builtin_shuffle(t1, t3, q0);
-  out[2] = __builtin_shuffle(t0, t2, q1);
-  out[3] = __builtin_shuffle(t1, t3, q1);
+  yf_v4 t0 = YF_SHUF4(a, b, 0, 4, 2, 6), t1 = YF_SHUF4(a, b, 1, 5, 3, 7);
+  yf_v4 t2 = YF_SHUF4(c, d, 0, 4, 2, 6), t3 = YF_SHUF4(c, d, 1, 5, 3, 7);
+  out[0] = YF_SHUF4(t0, t2, 0, 1, 4, 5);
+  out[1] = YF_SHUF4(t1, t3, 0, 1, 4, 5);
+  out[2] = YF_SHUF4(t0, t2, 2, 3, 6, 7);
+  out[3] = YF_SHUF4(t1, t3, 2, 3, 6, 7);
 }
 
 static inline void lanes_to_rows(const yf_v4 in[4], int mask, double *r0, double *r1, double *r2, double *r3) {
-  const yf_v4l lo = {0, 4, 2, 6}, hi = {1, 5, 3, 7}, q0 = {0, 1, 4, 5}, q1 = {2, 3, 6, 7};
-  yf_v4 t0 = __builtin_shuffle(in[0], in[1], lo), t1 = __builtin_shuffle(in[0], in[1], hi);
-  yf_v4 t2 = __builtin_shuffle(in[2], in[3], lo), t3 = __builtin_shuffle(in[2], in[3], hi);
-  yf_v4 a = __builtin_shuffle(t0, t2, q0), b = __builtin_shuffle(t1, t3, q0);
-  yf_v4 c = __builtin_shuffle(t0, t2, q1), d = __builtin_shuffle(t1, t3, q1);
+  yf_v4 t0 = YF_SHUF4(in[0], in[1], 0, 4, 2, 6), t1 = YF_SHUF4(in[0], in[1], 1, 5, 3, 7);
+  yf_v4 t2 = YF_SHUF4(in[2], in[3], 0, 4, 2, 6), t3 = YF_SHUF4(in[2], in[3], 1, 5, 3, 7);
+  yf_v4 a = YF_SHUF4(t0, t2, 0, 1, 4, 5), b = YF_SHUF4(t1, t3, 0, 1, 4, 5);
+  yf_v4 c = YF_SHUF4(t0, t2, 2, 3, 6, 7), d = YF_SHUF4(t1, t3, 2, 3, 6, 7);
   if (mask & 1) memcpy(r0, &a, sizeof a);
   if (mask & 2) memcpy(r1, &b, sizeof b);
   if (mask & 4) memcpy(r2, &c, sizeof c);
@@ -643,7 +649,7 @@ static void joint_general_n(YfJoints *J, const YfNodes *N, int j, double dtp, Yf
  * short loops whose square roots and divisions (the latency of a group) overlap from group to
  * group, where one long loop would leave them in sequence. */
 #define NGRP 8
-__attribute__((target_clones("avx2", "default")))
+YF_CLONES
 static void joints_block(YfJoints *J, const YfNodes *N, int jb0, int jb1, double dtp, int *nbreak_out,
                          int *nopen_out) {
   YfJointProp lp;
@@ -1027,8 +1033,8 @@ static void write_log(YfSim *s, const char *path, const YfBreak *rec, int nrec) 
   char tmp[1100];
   snprintf(tmp, sizeof tmp, "%s.tmp", path);
   FILE *f = fopen(tmp, "w");
-  if (!f) { /* runs from the exit path too: warn, never exit */
-    yf_warn(NULL, "fracture_log: cannot write '%s'", tmp);
+  if (!f) { /* runs from the exit path too: there the other outputs are still written */
+    yf_output_error("fracture_log: cannot write '%s': %s", tmp, strerror(errno));
     return;
   }
   fprintf(f, "step,time,x,y,mode,triA,triB,length,joint\n");
@@ -1037,7 +1043,11 @@ static void write_log(YfSim *s, const char *path, const YfBreak *rec, int nrec) 
     fprintf(f, "%ld,%.17g,%.17g,%.17g,%s,%d,%d,%.17g,%d\n", b->step, b->time, b->x, b->y, mode_name(b->mode),
             s->model.tri.id[b->triA], s->model.tri.id[b->triB], b->length, b->joint);
   }
-  if (fclose(f) != 0 || rename(tmp, path) != 0) yf_warn(NULL, "fracture_log: cannot write '%s'", path);
+  int bad = ferror(f);
+  if (fclose(f) != 0 || bad || rename(tmp, path) != 0) {
+    yf_output_error("fracture_log: cannot write '%s': %s", path, strerror(errno ? errno : EIO));
+    remove(tmp);
+  }
 }
 
 void joints_summary(YfSim *s) {
