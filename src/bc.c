@@ -202,6 +202,10 @@ void cmd_velocity(YfSim *s, const YfArgs *a) {
   int g = find_group(s, a, 0);
   arg_choice(a, 1, "style", styles);
   double vx = arg_num(a, 2, "vx"), vy = arg_num(a, 3, "vy");
+  for (int k = 2; k < 4; k++)
+    if (!(fabs(k == 2 ? vx : vy) <= YF_RANGE_MAX))
+      arg_error(a, k, "velocity %g is beyond +-%g m/s, the range the arithmetic holds (kinetic energy "
+                "is mass times velocity squared)", k == 2 ? vx : vy, YF_RANGE_MAX);
   YfNodes *n = &s->model.node;
   uint64_t bit = (uint64_t)1 << g;
   int cnt = 0;
