@@ -678,7 +678,7 @@ static DeckSource *source_from_stream(YfDeck *d, FILE *fp, const char *name, con
   char chunk[65536];
   size_t got;
   yf_interruptible(1); /* a deck on a terminal or a pipe may block here: let Ctrl-C end the read */
-  while ((got = fread(chunk, 1, sizeof chunk, fp)) > 0) buf_putn(&b, chunk, got);
+  while (!(d->sim && d->sim->interrupted) && (got = fread(chunk, 1, sizeof chunk, fp)) > 0) buf_putn(&b, chunk, got);
   int err = errno;
   yf_interruptible(0);
   if (d->sim && d->sim->interrupted) deck_interrupted(d, from);
