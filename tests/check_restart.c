@@ -474,20 +474,28 @@ static long read_all_items(const char *dir, const char *xmf) {
   return result;
 }
 
+/* Run deck NAME of tmpdir (2 threads) until its index tmpdir/XMF exists, then a while longer, then
+ * SIGINT: exit 130; returns its stderr (caller frees). */
+static char *interrupt_run(const char *name, const char *xmf_name, useconds_t delay) {
+  pid_t pid = spawn(name, 2);
+  char xmf[256];
+  snprintf(xmf, sizeof xmf, "%s/%s", tmpdir, xmf_name);
+  ck_assert(wait_for(xmf));
+  usleep(delay);
+  kill(pid, SIGINT);
+  int code = wait_code(pid);
+  char *e = err_of(name);
+  ck_assert_msg(code == YF_EXIT_INTERRUPT, "exit %d: %s", code, e);
+  return e;
+}
+
 START_TEST(test_sigint_restart) {
   mk_tmpdir();
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   /* a run far too long to finish: its dump shows it is under way, then SIGINT */
   write_deck("long.deck", NULL, "dump d h5 50 long.h5 fields u\nrun 1000000\n");
-  pid_t pid = spawn("long.deck", 2);
-  char xmf[256];
+  char *e = interrupt_run("long.deck", "long.xmf", 200000), xmf[256];
   snprintf(xmf, sizeof xmf, "%s/long.xmf", tmpdir);
-  ck_assert(wait_for(xmf));
-  usleep(200000);
-  kill(pid, SIGINT);
-  int code = wait_code(pid);
-  char *e = err_of("long.deck");
-  ck_assert_msg(code == YF_EXIT_INTERRUPT, "exit %d: %s", code, e);
   ck_assert_msg(strstr(e, "read_restart " YF_RESTART_DEFAULT) && strstr(e, "run 1000000 upto"), "%s", e);
   long step = -1;
   const char *p = strstr(e, "interrupted at step ");
@@ -563,15 +571,7 @@ START_TEST(test_interrupt_continue_every_file) {
   snprintf(tmpdir, sizeof tmpdir, "%s", a);
   snprintf(tail, sizeof tail, "%srun 1000000\n", OUT);
   write_deck("long.deck", NULL, tail);
-  pid_t pid = spawn("long.deck", 2);
-  char xmf[128];
-  snprintf(xmf, sizeof xmf, "%s/p.xmf", a);
-  ck_assert(wait_for(xmf));
-  usleep(300000);
-  kill(pid, SIGINT);
-  int code = wait_code(pid);
-  char *e = err_of("long.deck");
-  ck_assert_msg(code == YF_EXIT_INTERRUPT, "exit %d: %s", code, e);
+  char *e = interrupt_run("long.deck", "p.xmf", 300000);
   const char *p = strstr(e, "interrupted at step ");
   long k = p ? strtol(p + 20, NULL, 10) : -1;
   free(e);
