@@ -7,6 +7,7 @@
 #   make bench    element-steps per second, thread scaling, bytes per element
 #   make asan     the whole test suite under AddressSanitizer + UBSan (build-asan/; CI runs it)
 #   make fuzz     libFuzzer on the deck interpreter (clang; tools/fuzz/README.md), FUZZ_RUNS inputs
+#                 or FUZZ_TIME seconds
 #   make valgrind the example decks under valgrind: no definite leaks (tools/valgrind-decks)
 #
 # Required flags live in YF_CFLAGS so that `make CFLAGS=-O0` changes optimisation only.
@@ -113,10 +114,12 @@ asan: deps-test
 	ASAN_OPTIONS=detect_leaks=0:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	CK_TIMEOUT_MULTIPLIER=4 OMP_NUM_THREADS=2 YFDEM=build-asan/yfdem build-asan/check_yfdem
 
+# FUZZ_TIME=S: stop after S seconds (CI: .ci/run), whichever of the two limits comes first.
 FUZZ_RUNS ?= 1000000
+FUZZ_TIME ?= 0
 fuzz:
 	tools/install-deps --dev
-	tools/fuzz/run $(FUZZ_RUNS)
+	tools/fuzz/run $(FUZZ_RUNS) $(FUZZ_TIME)
 
 valgrind: yfdem
 	tools/valgrind-decks

@@ -331,6 +331,7 @@ int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
   H5Pclose(fapl);
   if (w.file < 0) {
     if (err) snprintf(err, nerr, "cannot create '%s' (%s)", tmp, errno ? strerror(errno) : "HDF5 error");
+    unlink(tmp); /* a full disk may leave it empty */
     free(tmp);
     return -1;
   }

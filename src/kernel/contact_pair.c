@@ -91,7 +91,7 @@ __attribute__((always_inline)) static inline int mask4_any(const v4l *m)
 __attribute__((always_inline)) static inline void corners(const double *p, v4d *v)
 {
   __builtin_memcpy(v, p, sizeof *v);
-  *v = __builtin_shuffle(*v, (v4l){0, 1, 2, 0});
+  *v = YF_SHUF4(*v, *v, 0, 1, 2, 0);
 }
 
 /* ---------------------------------------------------------------- the kernel */
@@ -299,7 +299,7 @@ __attribute__((always_inline)) static inline int pair_dir(const double *t, const
       const v4d FA = {fax, fay, fax, fay}, FB = {fbx, fby, fbx, fby};
       v4d f01;
       __builtin_memcpy(&f01, ft, sizeof f01);
-      f01 -= FA * __builtin_shuffle(AL, (v4l){1, 1, 2, 2}) + FB * __builtin_shuffle(GA, (v4l){1, 1, 2, 2});
+      f01 -= FA * YF_SHUF4(AL, AL, 1, 1, 2, 2) + FB * YF_SHUF4(GA, GA, 1, 1, 2, 2);
       __builtin_memcpy(ft, &f01, sizeof f01);
       ft[4] -= fax * al[0] + fbx * ga[0];
       ft[5] -= fay * al[0] + fby * ga[0];
@@ -408,7 +408,7 @@ __attribute__((always_inline)) static inline int screen_dir(const double *t, con
     v4d bk = ((t[k] - XC) * t[6 + k] + (t[3 + k] - YC) * t[9 + k]) * iD;
     b[k] = bk;
     v4l o = bk < EPS;                                    /* corner i outside edge k */
-    both |= o & __builtin_shuffle(o, (v4l){1, 2, 0, 1}); /* ... and corner i+1 too   */
+    both |= o & YF_SHUF4(o, o, 1, 2, 0, 1); /* ... and corner i+1 too   */
   }
   return mask(&both) == 15;
 }

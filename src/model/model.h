@@ -18,6 +18,11 @@
 #include <stdint.h>
 
 #define YF_NAME_MAX 48
+/* The largest |coordinate| [m] and |velocity| [m/s] accepted: areas, stiffnesses and energies
+ * multiply two of them (and a modulus or a density), which must stay far inside the range of a
+ * double (1.8e308); 1e100 leaves that room and is beyond any physical scene.  Beyond it the
+ * arithmetic overflows (areas of zero or inf, energies of inf), so it is refused by name. */
+#define YF_RANGE_MAX 1e100
 #define YF_MAX_GROUPS 64 /* group membership is a 64-bit mask per node and per triangle */
 
 enum { YF_PLANE_STRESS = 0, YF_PLANE_STRAIN = 1, YF_PLANE_LAME = 2 };

@@ -16,6 +16,7 @@
  *
  * Units: SI, 2D per unit thickness (forces N/m, energies J/m, fracture energy J/m^2).
  */
+#include <errno.h>
 #include <math.h>
 #include <omp.h>
 #include <stdint.h>
@@ -461,21 +462,19 @@ static inline void rows_to_lanes(const double *r0, const double *r1, const doubl
   memcpy(&b, r1, sizeof b);
   memcpy(&c, r2, sizeof c);
   memcpy(&d, r3, sizeof d);
-  const yf_v4l lo = {0, 4, 2, 6}, hi = {1, 5, 3, 7}, q0 = {0, 1, 4, 5}, q1 = {2, 3, 6, 7};
-  yf_v4 t0 = __builtin_shuffle(a, b, lo), t1 = __builtin_shuffle(a, b, hi);
-  yf_v4 t2 = __builtin_shuffle(c, d, lo), t3 = __builtin_shuffle(c, d, hi);
-  out[0] = __builtin_shuffle(t0, t2, q0);
-  out[1] = __builtin_shuffle(t1, t3, q0);
-  out[2] = __builtin_shuffle(t0, t2, q1);
-  out[3] = __builtin_shuffle(t1, t3, q1);
+  yf_v4 t0 = YF_SHUF4(a, b, 0, 4, 2, 6), t1 = YF_SHUF4(a, b, 1, 5, 3, 7);
+  yf_v4 t2 = YF_SHUF4(c, d, 0, 4, 2, 6), t3 = YF_SHUF4(c, d, 1, 5, 3, 7);
+  out[0] = YF_SHUF4(t0, t2, 0, 1, 4, 5);
+  out[1] = YF_SHUF4(t1, t3, 0, 1, 4, 5);
+  out[2] = YF_SHUF4(t0, t2, 2, 3, 6, 7);
+  out[3] = YF_SHUF4(t1, t3, 2, 3, 6, 7);
 }
 
 static inline void lanes_to_rows(const yf_v4 in[4], int mask, double *r0, double *r1, double *r2, double *r3) {
-  const yf_v4l lo = {0, 4, 2, 6}, hi = {1, 5, 3, 7}, q0 = {0, 1, 4, 5}, q1 = {2, 3, 6, 7};
-  yf_v4 t0 = __builtin_shuffle(in[0], in[1], lo), t1 = __builtin_shuffle(in[0], in[1], hi);
-  yf_v4 t2 = __builtin_shuffle(in[2], in[3], lo), t3 = __builtin_shuffle(in[2], in[3], hi);
-  yf_v4 a = __builtin_shuffle(t0, t2, q0), b = __builtin_shuffle(t1, t3, q0);
-  yf_v4 c = __builtin_shuffle(t0, t2, q1), d = __builtin_shuffle(t1, t3, q1);
+  yf_v4 t0 = YF_SHUF4(in[0], in[1], 0, 4, 2, 6), t1 = YF_SHUF4(in[0], in[1], 1, 5, 3, 7);
+  yf_v4 t2 = YF_SHUF4(in[2], in[3], 0, 4, 2, 6), t3 = YF_SHUF4(in[2], in[3], 1, 5, 3, 7);
+  yf_v4 a = YF_SHUF4(t0, t2, 0, 1, 4, 5), b = YF_SHUF4(t1, t3, 0, 1, 4, 5);
+  yf_v4 c = YF_SHUF4(t0, t2, 2, 3, 6, 7), d = YF_SHUF4(t1, t3, 2, 3, 6, 7);
   if (mask & 1) memcpy(r0, &a, sizeof a);
   if (mask & 2) memcpy(r1, &b, sizeof b);
   if (mask & 4) memcpy(r2, &c, sizeof c);
@@ -516,7 +515,7 @@ static void joint_general_n(YfJoints *J, const YfNodes *N, int j, double dtp, Yf
  * short loops whose square roots and divisions (the latency of a group) overlap from group to
  * group, where one long loop would leave them in sequence. */
 #define NGRP 8
-__attribute__((target_clones("avx2", "default")))
+YF_CLONES
 static void joints_block(YfJoints *J, const YfNodes *N, int jb0, int jb1, double dtp, int *nbreak_out,
                          int *nopen_out) {
   YfJointProp lp;

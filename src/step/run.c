@@ -7,6 +7,7 @@
  * balance check (energy.c) stops a run whose balance does not close.
  * Nothing in the step allocates, does I/O (except output at its own stage) or touches strings.
  */
+#include <float.h>
 #include <math.h>
 #include <omp.h>
 #include <sys/resource.h>
@@ -242,11 +243,58 @@ static void thermo_header(YfSim *s) {
              "Dissipated", "Balance", "Broken", "Pairs", "Wall");
 }
 
+/* The first node whose position or velocity is non-finite or beyond YF_RANGE_MAX, or -1. */
+static int node_out_of_range(const YfNodes *n) {
+  for (int i = 0; i < n->n; i++)
+    if (!(fabs(n->x[i]) <= YF_RANGE_MAX && fabs(n->y[i]) <= YF_RANGE_MAX && fabs(n->vx[i]) <= YF_RANGE_MAX &&
+          fabs(n->vy[i]) <= YF_RANGE_MAX))
+      return i;
+  return -1;
+}
+
+/* Before a run: every position and velocity within the range the arithmetic holds (the commands
+ * check what they set; this covers every other way in: .y decks, files, earlier runs). */
+static void check_range(YfSim *s) {
+  const YfNodes *n = &s->model.node;
+  int i = node_out_of_range(n);
+  if (i < 0) return;
+  char a[4][32];
+  const double v[4] = {n->x[i], n->y[i], n->vx[i], n->vy[i]};
+  for (int k = 0; k < 4; k++) yf_fmt_g(a[k], sizeof a[k], v[k]);
+  yf_deck_error(NULL, "run: node %d (body %s) at (%s, %s) m moving at (%s, %s) m/s: beyond +-%g, the range the "
+                "arithmetic holds (areas and energies multiply coordinates and velocities)", n->id[i],
+                s->model.body[n->body[i]].name, a[0], a[1], a[2], a[3], YF_RANGE_MAX);
+}
+
+/* A thermo value that is not finite: the run failed; say why instead of printing inf or nan. */
+static void thermo_nonfinite(YfSim *s, const double *v, const char *const *names, int nv) {
+  const YfNodes *n = &s->model.node;
+  int i = node_out_of_range(n);
+  if (i >= 0) {
+    char a[4][32];
+    const double w[4] = {n->x[i], n->y[i], n->vx[i], n->vy[i]};
+    for (int k = 0; k < 4; k++) yf_fmt_g(a[k], sizeof a[k], w[k]);
+    yf_numeric_error(s->step, "node %d (body %s) at (%s, %s) m moving at (%s, %s) m/s: beyond +-%g, the range "
+                     "the arithmetic holds (time step %.6g s, stable limit %.6g s set by %s)", n->id[i],
+                     s->model.body[n->body[i]].name, a[0], a[1], a[2], a[3], YF_RANGE_MAX, s->dt, s->dt_limit,
+                     s->dt_limiter);
+  }
+  for (int k = 0; k < nv; k++)
+    if (!isfinite(v[k]))
+      yf_numeric_error(s->step, "the %s overflows the range of a double (the masses, moduli or velocities "
+                       "are too large for the arithmetic)", names[k]);
+}
+
 static void thermo_line(YfSim *s) {
   run_energies(s);
   double ext = energy_external(s);
   double diss = s->energy.damping + s->energy.joint_dissipated + s->energy.friction;
   double bal = energy_balance(s); /* energy now + dissipated - energy given; ~0 when healthy */
+  static const char *const names[] = {"time", "kinetic energy", "strain energy", "external work",
+                                      "dissipated energy", "energy balance"};
+  const double v[6] = {s->time, s->energy.kinetic, s->energy.strain, ext, diss, bal};
+  for (int k = 0; k < 6; k++)
+    if (!isfinite(v[k])) thermo_nonfinite(s, v, names, 6);
   if (s->thermo_custom) {
     const double std[YF_TH_N] = {(double)s->step, s->time, s->energy.kinetic, s->energy.strain, ext, diss, bal,
                                  (double)joints_broken(s), (double)contact_pairs(s),
@@ -311,6 +359,23 @@ static void stage_elements(YfSim *s) {
   for (int b = 0; b < nblk; b++) {
     if (R.blk_bad[b] >= 0) {
       int e = R.blk_bad[b];
+      if (node_out_of_range(&m->node) >= 0) { /* not an inversion: the motion left the arithmetic */
+        static const char *const none[] = {""};
+        thermo_nonfinite(s, NULL, none, 0);
+      }
+      {
+        /* corners so far from the origin that doubles cannot tell them apart (a body moved
+         * 1e85 m by a huge velocity): the area is rounding, not an inversion */
+        const int *v = m->tri.v + 3 * e;
+        double far = 0;
+        for (int k = 0; k < 3; k++) far = fmax(far, fmax(fabs(m->node.x[v[k]]), fabs(m->node.y[v[k]])));
+        double size = sqrt(fabs(m->tri.d0[e]));
+        if (far * DBL_EPSILON > 1e-3 * size)
+          yf_numeric_error(s->step + 1, "triangle %d (material %s), %.3g m across, is %.3g m from the origin: beyond "
+                           "the range the arithmetic holds (doubles keep 16 digits, so its corners cannot be told "
+                           "apart); are the velocities (or coordinates) far too large?", m->tri.id[e],
+                           m->mat[m->tri.mat[e]].name, size, far);
+      }
       if (R.blk_badJ[b] <= 0)
         yf_numeric_error(s->step + 1, "triangle %d (material %s) inverted: J = %.6g (area ratio current/initial); "
                          "the time step (%.6g s, stable limit %.6g s set by %s) may be too large or the body is "
@@ -449,8 +514,12 @@ static void step_once(YfSim *s) {
 
 void run_steps(YfSim *s, long nsteps) {
   run_prepare(s);
+  check_range(s);
   char lim[96];
   double limit = run_stable_dt(s, lim, sizeof lim);
+  if (s->dt_auto && !isfinite(limit))
+    yf_deck_error(s->dt_loc.file ? &s->dt_loc : NULL, "timestep auto: nothing sets a stable limit (%s); give "
+                  "the time step with 'timestep DT'", lim);
   s->dt_limit = limit;
   snprintf(s->dt_limiter, sizeof s->dt_limiter, "%s", lim);
   if (s->dt_auto) {
