@@ -39,6 +39,8 @@ typedef struct {
   double beta;     /* if > 0: visc = 2 h beta sqrt(E rho), h = smallest edge of the material */
   /* contact (contact.c): penalties [Pa] and Coulomb friction coefficient      */
   double pen_n, pen_t, fric;
+  int fric_law;    /* YF_FRIC_* (contact_pair.h): 0 = Y2D's (read_y2d, zeroed default),
+                      native `material` commands set the Coulomb law unless told y2d */
   int rigid;       /* reserved for Y2D type 2 triangles                          */
   int jset;        /* joint property set for fracture (joint.c), -1 = unbreakable */
 } YfMaterial;
