@@ -299,39 +299,33 @@ __attribute__((always_inline)) static inline int pair_dir(const double *t, const
     /* 6.4: friction on the edge. */
     double tcx = xc[b] - xc[a], tcy = yc[b] - yc[a]; /* unnormalised tangent */
     double Ft = 0.0, w = 0.0, slip = 0.0;
-    {
-      double cap = mu * fabs(F);
-      if (law == YF_FRIC_Y2D) {
-        double sbar = 0.0;
-        for (int i = 0; i < nb; i++) sbar += bs[i];
-        sbar /= nb;
-        double vtx = 0.0, vty = 0.0;
+    if (law == YF_FRIC_Y2D) {
+      double sbar = 0.0;
+      for (int i = 0; i < nb; i++) sbar += bs[i];
+      sbar /= nb;
+      double vtx = 0.0, vty = 0.0;
 #pragma GCC unroll 3
-        for (int k = 0; k < 3; k++) {
-          double bk = al[k] + sbar * dl[k];
-          int v = (k + 2) % 3; /* beta_k belongs to target vertex k+2 */
-          vtx += bk * vxt[v];
-          vty += bk * vyt[v];
-        }
-        double vcx = (1.0 - sbar) * vxc[a] + sbar * vxc[b];
-        double vcy = (1.0 - sbar) * vyc[a] + sbar * vyc[b];
-        w = (vtx - vcx) * tcx + (vty - vcy) * tcy;
-        g[e] += w * dt;
-        Ft = pt * g[e];
-        if (fabs(Ft) > cap) {
-          double gtrial = g[e];
-          Ft = copysign(cap, Ft);
-          g[e] = Ft / pt;
-          slip = fabs(gtrial - g[e]);
-        }
-      } else {
-        Ft = coulomb_edge(al, dl, vxt, vyt, vxc[a], vyc[a], vxc[b], vyc[b], tcx, tcy, smin, smax, Q, D, pt,
-                          cap, dt, &g[e], &w, &slip, info);
+      for (int k = 0; k < 3; k++) {
+        double bk = al[k] + sbar * dl[k];
+        int v = (k + 2) % 3; /* beta_k belongs to target vertex k+2 */
+        vtx += bk * vxt[v];
+        vty += bk * vyt[v];
+      }
+      double vcx = (1.0 - sbar) * vxc[a] + sbar * vxc[b];
+      double vcy = (1.0 - sbar) * vyc[a] + sbar * vyc[b];
+      w = (vtx - vcx) * tcx + (vty - vcy) * tcy;
+      g[e] += w * dt;
+      Ft = pt * g[e];
+      double cap = mu * fabs(F);
+      if (fabs(Ft) > cap) {
+        double gtrial = g[e];
+        Ft = copysign(cap, Ft);
+        g[e] = Ft / pt;
+        slip = fabs(gtrial - g[e]);
       }
       if (F > 0.0) {
         double wa, wb; /* Fa / F and Fb / F in one packed division */
         yf_div2(Fa, F, Fb, F, &wa, &wb);
-        if (law != YF_FRIC_Y2D) { wb = 0.5 * (smin + smax); wa = 1.0 - wb; } /* at s_m (coulomb_edge) */
         fax += Ft * wa * tcx;
         fay += Ft * wa * tcy;
         fbx += Ft * wb * tcx;
@@ -339,6 +333,16 @@ __attribute__((always_inline)) static inline int pair_dir(const double *t, const
       } else {
         Ft = 0.0; /* no normal force, nothing to share the tangential force with */
       }
+    } else if (F > 0.0) { /* the Coulomb law; its spring acts at the interval's midpoint s_m */
+      Ft = coulomb_edge(al, dl, vxt, vyt, vxc[a], vyc[a], vxc[b], vyc[b], tcx, tcy, smin, smax, Q, D, pt,
+                        mu * F, dt, &g[e], &w, &slip, info);
+      double sm = 0.5 * (smin + smax);
+      fax += Ft * (1.0 - sm) * tcx;
+      fay += Ft * (1.0 - sm) * tcy;
+      fbx += Ft * sm * tcx;
+      fby += Ft * sm * tcy;
+    } else {
+      g[e] = 0.0; /* touching without force: the spring holds nothing */
     }
 
     fc[2 * a] += fax;
