@@ -1,0 +1,68 @@
+/* err.h: how yfdem fails.
+ *
+ * Every failure ends the run through one of the functions below, which print one clear message,
+ * record the status for the -summary JSON, run the registered cleanup (close output files, remove
+ * half-written ones, write the summary) and exit with a code that tells the kinds apart.
+ * Handlers validate user input themselves and call yf_deck_error(); YF_ASSERT is for programmer
+ * errors only, never for user input.
+ */
+#ifndef YF_ERR_H
+#define YF_ERR_H
+#include <stdarg.h>
+
+enum {
+  YF_EXIT_OK = 0,
+  YF_EXIT_DECK = 1,      /* bad deck: unknown command, bad argument, missing group...     */
+  YF_EXIT_IO = 2,        /* cannot read a mesh/include file, cannot write output          */
+  YF_EXIT_NUMERIC = 3,   /* NaN, inverted element, unstable time step, energy blow-up     */
+  YF_EXIT_INTERRUPT = 4, /* SIGINT / SIGTERM                                               */
+  YF_EXIT_INTERNAL = 70  /* failed internal assertion (a bug in yfdem)                     */
+};
+
+/* Status words used in the summary JSON ("status" key), indexed by the enum above (0..4). */
+const char *yf_status_word(int code);
+
+/* A place in a deck: file name and 1-based line. file may be "<stdin>". */
+typedef struct {
+  const char *file;
+  int line;
+} YfLoc;
+
+/* Cleanup hook run once before exit on any error (set by main). */
+typedef void (*YfCleanupFn)(int code, const char *message);
+void yf_set_cleanup(YfCleanupFn fn);
+/* Called instead of exit(code) after the cleanup when set (tools/fuzz: the harness longjmps back
+ * to the next input); it must not return.  NULL: exit. */
+void yf_set_exit_hook(void (*hook)(int code));
+
+/* "FILE:LINE: error: message" then exit(YF_EXIT_DECK). loc may be NULL (message has no place). */
+void yf_deck_error(const YfLoc *loc, const char *fmt, ...) __attribute__((noreturn, format(printf, 2, 3)));
+/* I/O failure (file cannot be opened, read, or written). loc may be NULL. */
+void yf_io_error(const YfLoc *loc, const char *fmt, ...) __attribute__((noreturn, format(printf, 2, 3)));
+/* Numerical failure during a run: "error: numerical failure at step N: ..." */
+void yf_numeric_error(long step, const char *fmt, ...) __attribute__((noreturn, format(printf, 2, 3)));
+/* Generic exit with a given code and message (used for interrupts). */
+void yf_exit_with(int code, const char *fmt, ...) __attribute__((noreturn, format(printf, 2, 3)));
+/* Warning on stderr (and the log), run continues. */
+void yf_warn(const YfLoc *loc, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* Last error message (for the summary's "reason"); "" when none. */
+const char *yf_last_message(void);
+
+void yf_assert_fail(const char *expr, const char *file, int line) __attribute__((noreturn));
+#define YF_ASSERT(c) ((c) ? (void)0 : yf_assert_fail(#c, __FILE__, __LINE__))
+
+/* Checked allocation: on failure a clear I/O-class error naming what was being allocated. */
+void *yf_malloc(size_t n, const char *what);
+void *yf_calloc(size_t n, size_t size, const char *what);
+void *yf_realloc(void *p, size_t n, const char *what);
+char *yf_strdup(const char *s);
+/* The whole of file path, NUL-terminated, its length (without the NUL) in *len; NULL with errno
+ * set if it cannot be opened or read.  what names it for an allocation failure. */
+char *yf_read_file(const char *path, size_t *len, const char *what);
+
+/* The name of names[0..n-1] nearest to word by edit distance, NULL when none is close
+ * (for "did you mean" in messages). */
+const char *yf_nearest(const char *word, const char *const *names, int n);
+
+#endif

@@ -1,0 +1,1109 @@
+/* deck.c: the deck interpreter (interface in deck.h, builtin handlers declared in deck_cmds.h).
+ *
+ * A deck file is read whole into memory and cut into logical lines once: '#' comments are
+ * stripped (outside quotes), lines ending in '&' are joined with the next, and """triple quotes"""
+ * may span lines.  Each logical line keeps the number of its first physical line, so messages
+ * point at the right place inside includes and continuations.  Keeping the text in memory is what
+ * makes `jump SELF label` work on stdin too.
+ *
+ * Executing a line: substitute ${name}, $x and $(expr) (not inside single quotes), split into
+ * words (quoted words keep spaces), look the command up in the table (commands.c) and call its
+ * handler with a YfArgs.  Files being read form a stack of frames (include pushes one; jump moves
+ * the position of the top one).  Loaded files stay in memory until deck_free; file names are
+ * interned for the life of the program because handlers may keep a YfLoc for later messages.
+ *
+ * Variables follow LAMMPS: equal-style keeps its expression and evaluates it at each reference;
+ * index/loop variables advance with `next`, and when exhausted are deleted and the next `jump` is
+ * skipped; a variable given on the command line (-var) cannot be redefined by the deck, so decks
+ * can state defaults.
+ *
+ * Error messages: "FILE:LINE: error: CMD: WHAT 'word': what is wrong", then the offending line
+ * and a caret under the bad word (LAMMPS style).  The context lines are part of the message given
+ * to yf_deck_error, so they follow the first line on stderr.
+ */
+#include <ctype.h>
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "deck.h"
+#include "query.h"
+#include "deck_cmds.h"
+#include "expr.h"
+#include "sim.h"
+
+#define DECK_INCLUDE_MAX 32  /* nesting depth of include (recursive includes end here) */
+#define DECK_EVAL_MAX 64     /* nesting depth of equal-style variables referring to each other */
+
+/* ------------------------------------------------------------------ storage */
+
+typedef struct {
+  char *text; /* logical line: comments stripped, continuations joined */
+  int line;   /* first physical line (1-based)                        */
+} DeckLine;
+
+typedef struct DeckSource {
+  const char *name; /* interned path as opened (used in messages)   */
+  char *dir;        /* directory for relative paths ("." for stdin) */
+  DeckLine *lines;
+  int n;
+  struct DeckSource *next;
+} DeckSource;
+
+typedef struct {
+  DeckSource *src;
+  int pos; /* index of the next line to run */
+} DeckFrame;
+
+enum { VAR_EQUAL, VAR_STRING, VAR_INDEX, VAR_LOOP };
+static const char *const var_styles[] = {"equal", "string", "index", "loop", "delete", NULL};
+
+typedef struct {
+  char *name;
+  int style;
+  int cmdline;  /* set with -var: the deck cannot redefine it              */
+  char *text;   /* equal: the expression; string: the text                 */
+  char **vals;  /* index: the values                                       */
+  int nvals, which;
+  long cur, hi; /* loop: current and last value                            */
+} DeckVar;
+
+struct YfDeck {
+  struct YfSim *sim;
+  DeckVar *vars;
+  int nvars, capvars;
+  DeckFrame stack[DECK_INCLUDE_MAX + 1];
+  int depth;
+  DeckSource *sources;
+  int echo, quit, jump_skip;
+  int eval_depth;
+};
+
+/* Interned file names: never freed (a YfLoc may outlive the deck). */
+static const char *intern(const char *s) {
+  static char **names;
+  static int n, cap;
+  for (int i = 0; i < n; i++)
+    if (!strcmp(names[i], s)) return names[i];
+  if (n == cap) {
+    cap = cap ? 2 * cap : 16;
+    names = yf_realloc(names, (size_t)cap * sizeof *names, "deck file names");
+  }
+  names[n] = yf_strdup(s);
+  return names[n++];
+}
+
+/* Growable string. */
+typedef struct {
+  char *s;
+  size_t n, cap;
+} Buf;
+static void buf_putn(Buf *b, const char *s, size_t n) {
+  if (b->n + n + 1 > b->cap) {
+    b->cap = (b->n + n + 1) * 2;
+    b->s = yf_realloc(b->s, b->cap, "deck text");
+  }
+  memcpy(b->s + b->n, s, n);
+  b->n += n;
+  b->s[b->n] = 0;
+}
+static void buf_put(Buf *b, const char *s) { buf_putn(b, s, strlen(s)); }
+static void buf_putc(Buf *b, char c) { buf_putn(b, &c, 1); }
+static char *buf_take(Buf *b) {
+  if (!b->s) return yf_strdup("");
+  return b->s;
+}
+
+/* ------------------------------------------------------------------ messages */
+
+/* Deck error with context: the message, then the line and a caret under column col (col < 0:
+ * no caret; line NULL: no context). */
+static void fail_ctx(const YfLoc *loc, const char *line, int col, const char *fmt, ...)
+    __attribute__((noreturn, format(printf, 4, 5)));
+static void fail_ctx(const YfLoc *loc, const char *line, int col, const char *fmt, ...) {
+  char msg[1200];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  if (!line) yf_deck_error(loc, "%s", msg);
+  /* Show at most ~160 characters of the line, around the caret; tabs and newlines become
+   * spaces so that the caret lines up. */
+  int len = (int)strlen(line), from = 0, width = 160;
+  if (col > len) col = len;
+  if (len > width && col > width / 2) from = col - width / 2;
+  if (from > 0 && len - from < width) from = len - width > 0 ? len - width : 0;
+  if (from > col && col >= 0) from = col;
+  char ctx[400];
+  int k = 0;
+  ctx[k++] = ' ';
+  ctx[k++] = ' ';
+  if (from > 0) { memcpy(ctx + k, "...", 3); k += 3; }
+  for (int i = from; i < len && i < from + width; i++) {
+    char c = line[i];
+    ctx[k++] = (c == '\t' || c == '\n' || c == '\r') ? ' ' : c;
+  }
+  if (from + width < len) { memcpy(ctx + k, "...", 3); k += 3; }
+  ctx[k] = 0;
+  if (col < 0) yf_deck_error(loc, "%s\n%s", msg, ctx);
+  char caret[400];
+  int c = 0, pad = 2 + (from > 0 ? 3 : 0) + (col - from);
+  for (int i = 0; i < pad && c < (int)sizeof caret - 2; i++) caret[c++] = ' ';
+  caret[c++] = '^';
+  caret[c] = 0;
+  yf_deck_error(loc, "%s\n%s\n%s", msg, ctx, caret);
+}
+
+/* ------------------------------------------------------------------ strict numbers */
+
+int yf_parse_double(const char *s, double *out) {
+  if (!s) return 0;
+  const char *p = s;
+  if (*p == '+' || *p == '-') p++;
+  int digits = 0;
+  while (isdigit((unsigned char)*p)) p++, digits++;
+  if (*p == '.') {
+    p++;
+    while (isdigit((unsigned char)*p)) p++, digits++;
+  }
+  if (!digits) return 0; /* "", ".", "nan", "inf", "e5" */
+  if (*p == 'e' || *p == 'E') {
+    p++;
+    if (*p == '+' || *p == '-') p++;
+    if (!isdigit((unsigned char)*p)) return 0;
+    while (isdigit((unsigned char)*p)) p++;
+  }
+  if (*p) return 0; /* trailing junk: "3.0x", "1 " */
+  errno = 0;
+  double v = strtod(s, NULL);
+  if (!isfinite(v)) return 0; /* overflow: "1e999" (underflow to 0 or a subnormal is accepted) */
+  if (out) *out = v;
+  return 1;
+}
+
+int yf_parse_long(const char *s, long *out) {
+  if (!s) return 0;
+  const char *p = s;
+  if (*p == '+' || *p == '-') p++;
+  if (!*p) return 0;
+  while (isdigit((unsigned char)*p)) p++;
+  if (!*p) { /* plain integer: full long range */
+    errno = 0;
+    long v = strtol(s, NULL, 10);
+    if (errno == ERANGE) return 0;
+    if (out) *out = v;
+    return 1;
+  }
+  /* "1e6", "2.0": a number whose value is an exact integer (within 2^53, where doubles are exact) */
+  double d;
+  if (!yf_parse_double(s, &d)) return 0;
+  if (d != floor(d) || fabs(d) > 9007199254740992.0) return 0;
+  if (out) *out = (long)d;
+  return 1;
+}
+
+/* ------------------------------------------------------------------ words */
+
+/* Split line into words.  A word starting with ", ' or """ runs to the matching quote (which is
+ * removed) and must be followed by white space.  Returns the number of words, or -1 with *errcol
+ * set and *why describing the problem.  words/cols are malloc'd (free each word and the arrays). */
+static int split_words(const char *line, char ***words, int **cols, int *errcol, const char **why) {
+  int n = 0, cap = 8;
+  char **w = yf_malloc((size_t)cap * sizeof *w, "deck words");
+  int *c = yf_malloc((size_t)cap * sizeof *c, "deck words");
+  const char *p = line;
+  for (;;) {
+    while (*p && isspace((unsigned char)*p)) p++;
+    if (!*p) break;
+    const char *start = p, *b, *e;
+    if (!strncmp(p, "\"\"\"", 3)) {
+      b = p + 3;
+      e = strstr(b, "\"\"\"");
+      if (!e) goto unmatched;
+      p = e + 3;
+    } else if (*p == '"' || *p == '\'') {
+      b = p + 1;
+      e = strchr(b, *p);
+      if (!e) goto unmatched;
+      p = e + 1;
+    } else {
+      b = p;
+      while (*p && !isspace((unsigned char)*p)) p++;
+      e = p;
+    }
+    if (*p && !isspace((unsigned char)*p)) {
+      *errcol = (int)(p - line);
+      *why = "a quoted word must be followed by a space";
+      goto fail;
+    }
+    if (n == cap) {
+      cap *= 2;
+      w = yf_realloc(w, (size_t)cap * sizeof *w, "deck words");
+      c = yf_realloc(c, (size_t)cap * sizeof *c, "deck words");
+    }
+    w[n] = yf_malloc((size_t)(e - b) + 1, "deck word");
+    memcpy(w[n], b, (size_t)(e - b));
+    w[n][e - b] = 0;
+    c[n++] = (int)(start - line);
+    continue;
+  unmatched:
+    *errcol = (int)(start - line);
+    *why = "unmatched quote";
+    goto fail;
+  }
+  *words = w;
+  *cols = c;
+  return n;
+fail:
+  for (int i = 0; i < n; i++) free(w[i]);
+  free(w);
+  free(c);
+  return -1;
+}
+
+static void free_words(char **w, int *c, int n) {
+  for (int i = 0; i < n; i++) free(w[i]);
+  free(w);
+  free(c);
+}
+
+/* ------------------------------------------------------------------ variables */
+
+static DeckVar *var_find(YfDeck *d, const char *name) {
+  for (int i = 0; i < d->nvars; i++)
+    if (!strcmp(d->vars[i].name, name)) return &d->vars[i];
+  return NULL;
+}
+
+static void var_clear(DeckVar *v) {
+  free(v->name);
+  free(v->text);
+  for (int i = 0; i < v->nvals; i++) free(v->vals[i]);
+  free(v->vals);
+  memset(v, 0, sizeof *v);
+}
+
+static void var_delete(YfDeck *d, const char *name) {
+  DeckVar *v = var_find(d, name);
+  if (!v) return;
+  int i = (int)(v - d->vars);
+  var_clear(v);
+  memmove(d->vars + i, d->vars + i + 1, (size_t)(d->nvars - i - 1) * sizeof *d->vars);
+  d->nvars--;
+}
+
+static DeckVar *var_new(YfDeck *d, const char *name, int style) {
+  var_delete(d, name);
+  if (d->nvars == d->capvars) {
+    d->capvars = d->capvars ? 2 * d->capvars : 16;
+    d->vars = yf_realloc(d->vars, (size_t)d->capvars * sizeof *d->vars, "deck variables");
+  }
+  DeckVar *v = &d->vars[d->nvars++];
+  memset(v, 0, sizeof *v);
+  v->name = yf_strdup(name);
+  v->style = style;
+  return v;
+}
+
+static int valid_name(const char *s) {
+  if (!isalpha((unsigned char)*s) && *s != '_') return 0;
+  for (s++; *s; s++)
+    if (!isalnum((unsigned char)*s) && *s != '_') return 0;
+  return 1;
+}
+
+static int lookup_cb(void *ctx, const char *name, double *val, char *err, size_t errlen);
+
+/* Evaluate expr; on failure write "expression 'expr': why" into err and return 0. */
+static int eval_quiet(YfDeck *d, const char *expr, double *out, ExprError *e) {
+  return expr_eval(expr, lookup_cb, d, out, e);
+}
+
+/* Numeric value of a variable: 1 ok, -1 error (err filled). */
+static int var_number(YfDeck *d, DeckVar *v, double *val, char *err, size_t errlen) {
+  if (v->style == VAR_EQUAL) {
+    if (d->eval_depth >= DECK_EVAL_MAX) {
+      snprintf(err, errlen, "variable '%s': equal-style variables nested deeper than %d "
+                            "(does it refer to itself?)", v->name, DECK_EVAL_MAX);
+      return -1;
+    }
+    ExprError e;
+    d->eval_depth++;
+    int ok = eval_quiet(d, v->text, val, &e);
+    d->eval_depth--;
+    if (!ok) {
+      /* report the innermost variable only: a chain of prefixes would be unreadable */
+      if (!strncmp(e.msg, "variable '", 10)) snprintf(err, errlen, "%s", e.msg);
+      else snprintf(err, errlen, "variable '%s' = '%s': %s", v->name, v->text, e.msg);
+      return -1;
+    }
+    return 1;
+  }
+  if (v->style == VAR_LOOP) {
+    *val = (double)v->cur;
+    return 1;
+  }
+  const char *s = v->style == VAR_STRING ? v->text : v->vals[v->which];
+  if (!yf_parse_double(s, val)) {
+    snprintf(err, errlen, "variable '%s' has the non-numeric value '%s'", v->name, s);
+    return -1;
+  }
+  return 1;
+}
+
+static int lookup_cb(void *ctx, const char *name, double *val, char *err, size_t errlen) {
+  YfDeck *d = ctx;
+  DeckVar *v = var_find(d, name);
+  if (v) return var_number(d, v, val, err, errlen);
+  if (d->sim) { /* simulation state */
+    if (!strcmp(name, "step")) { *val = (double)d->sim->step; return 1; }
+    if (!strcmp(name, "time")) { *val = d->sim->time; return 1; }
+    if (!strcmp(name, "dt")) { *val = d->sim->dt; return 1; }
+    int q = sim_query(d->sim, name, val, err, errlen); /* thermo keywords, group averages */
+    if (q) return q;
+  }
+  return 0;
+}
+
+/* Evaluate or fail with "expression 'e': why" and the expression with a caret. */
+static double eval_or_fail(YfDeck *d, const char *expr, const YfLoc *loc, const char *prefix) {
+  double v;
+  ExprError e;
+  if (!eval_quiet(d, expr, &v, &e))
+    fail_ctx(loc, expr, e.pos, "%sexpression '%s': %s", prefix ? prefix : "", expr, e.msg);
+  return v;
+}
+
+double deck_eval(YfDeck *d, const char *expr, const YfLoc *loc) { return eval_or_fail(d, expr, loc, NULL); }
+
+static void fmt_number(char *buf, size_t n, double v) { snprintf(buf, n, "%.15g", v == 0.0 ? 0.0 : v); }
+
+/* The text a ${name} reference stands for; NULL if the variable does not exist. */
+static char *var_text(YfDeck *d, const char *name, const YfLoc *loc, const char *line, int col) {
+  DeckVar *v = var_find(d, name);
+  if (!v) return NULL;
+  char buf[64];
+  switch (v->style) {
+  case VAR_EQUAL: {
+    char err[600];
+    double x;
+    if (var_number(d, v, &x, err, sizeof err) < 0) fail_ctx(loc, line, col, "%s", err);
+    fmt_number(buf, sizeof buf, x);
+    return yf_strdup(buf);
+  }
+  case VAR_STRING: return yf_strdup(v->text);
+  case VAR_INDEX: return yf_strdup(v->vals[v->which]);
+  default: snprintf(buf, sizeof buf, "%ld", v->cur); return yf_strdup(buf);
+  }
+}
+
+/* A printf format for $(expr:%fmt): one conversion, nothing else.  Returns 1 for a floating
+ * conversion (e f g), 2 for an integer one (d i: the value is rounded), 0 if invalid. */
+static int valid_format(const char *f) {
+  if (*f++ != '%') return 0;
+  while (*f && strchr("-+ #0", *f)) f++;
+  while (isdigit((unsigned char)*f)) f++;
+  if (*f == '.') {
+    f++;
+    while (isdigit((unsigned char)*f)) f++;
+  }
+  if (f[0] && f[1]) return 0;
+  if (*f && strchr("eEfFgG", *f)) return 1;
+  if (*f == 'd' || *f == 'i') return 2;
+  return 0;
+}
+
+/* Substitute ${name}, $x and $(expr[:%fmt]) outside single quotes.  Returns malloc'd text. */
+static char *substitute(YfDeck *d, const char *in, const YfLoc *loc) {
+  Buf b = {0};
+  int in_s = 0, in_d = 0;
+  for (const char *p = in; *p; p++) {
+    if (*p == '\'' && !in_d) in_s = !in_s;
+    else if (*p == '"' && !in_s) in_d = !in_d;
+    if (*p != '$' || in_s) {
+      buf_putc(&b, *p);
+      continue;
+    }
+    int col = (int)(p - in);
+    if (p[1] == '{') {
+      const char *e = strchr(p + 2, '}');
+      if (!e) fail_ctx(loc, in, col, "missing '}' after '${'");
+      char name[256];
+      size_t len = (size_t)(e - p - 2);
+      if (len == 0) fail_ctx(loc, in, col, "empty variable name in '${}'");
+      if (len >= sizeof name) fail_ctx(loc, in, col, "variable name too long");
+      memcpy(name, p + 2, len);
+      name[len] = 0;
+      char *t = var_text(d, name, loc, in, col);
+      if (!t) fail_ctx(loc, in, col, "unknown variable '%s'", name);
+      buf_put(&b, t);
+      free(t);
+      p = e;
+    } else if (p[1] == '(') {
+      int depth = 0;
+      const char *e = p + 1;
+      for (; *e; e++) {
+        if (*e == '(') depth++;
+        else if (*e == ')' && --depth == 0) break;
+      }
+      if (!*e) fail_ctx(loc, in, col, "missing ')' to close '$('");
+      size_t len = (size_t)(e - p - 2);
+      char *expr = yf_malloc(len + 1, "expression");
+      memcpy(expr, p + 2, len);
+      expr[len] = 0;
+      if (strchr(expr, '$')) { /* $(v_a*${b}): references inside are substituted first */
+        char *inner = substitute(d, expr, loc);
+        free(expr);
+        expr = inner;
+      }
+      /* optional ":%fmt" at parenthesis depth 0 */
+      const char *fmt = "%.15g";
+      int kind = 1;
+      char *colon = NULL;
+      int dd = 0;
+      for (char *q = expr; *q; q++) {
+        if (*q == '(') dd++;
+        else if (*q == ')') dd--;
+        else if (*q == ':' && dd == 0 && q[1] == '%') colon = q;
+      }
+      if (colon) {
+        *colon = 0;
+        fmt = colon + 1;
+        kind = valid_format(fmt);
+        if (!kind)
+          fail_ctx(loc, in, col + 2 + (int)(colon - expr) + 1,
+                   "bad format '%s' in $(...) (expected one conversion like %%.3f, %%g, %%10.4e or %%d)", fmt);
+      }
+      double v;
+      ExprError er;
+      if (!eval_quiet(d, expr, &v, &er))
+        fail_ctx(loc, in, col + 2 + er.pos, "expression '%s': %s", expr, er.msg);
+      char num[128];
+      if (v == 0.0) v = 0.0;
+      if (kind == 2) {
+        if (fabs(v) > 9.0e18) fail_ctx(loc, in, col, "value %g of $(...) is too large for an integer format", v);
+        /* the format was checked to be a single integer conversion; add the 'l' length */
+        char lf[32];
+        snprintf(lf, sizeof lf, "%.*sl%s", (int)strlen(fmt) - 1, fmt, fmt + strlen(fmt) - 1);
+        snprintf(num, sizeof num, lf, (long)llround(v));
+      } else
+        snprintf(num, sizeof num, fmt, v);
+      buf_put(&b, num);
+      free(expr);
+      p = e;
+    } else if (isalpha((unsigned char)p[1]) || p[1] == '_') {
+      char name[2] = {p[1], 0};
+      char *t = var_text(d, name, loc, in, col);
+      if (!t) fail_ctx(loc, in, col, "unknown variable '%s' (write ${name} for longer names)", name);
+      buf_put(&b, t);
+      free(t);
+      p++;
+    } else {
+      buf_putc(&b, '$'); /* a lone '$' stays */
+    }
+  }
+  return buf_take(&b);
+}
+
+/* ------------------------------------------------------------------ reading files */
+
+/* Cut a whole deck text into logical lines (see the top of the file). */
+static void parse_lines(DeckSource *s, const char *text, size_t len) {
+  Buf cur = {0};
+  int line = 1, start = 1, in_s = 0, in_d = 0, in_t = 0, cap = 0;
+  for (size_t i = 0; i <= len; i++) {
+    char c = i < len ? text[i] : '\n';
+    if (i == len && !cur.n && !in_t) break;
+    if (i < len && c == 0) { /* a NUL would silently cut the line short: say where it is */
+      YfLoc l = {s->name, line};
+      size_t col = 1;
+      for (size_t k = i; k > 0 && text[k - 1] != '\n'; k--) col++;
+      yf_deck_error(&l, "a NUL byte at column %zu: a deck is plain text (is this a binary file, or a UTF-16 "
+                        "text? save it as UTF-8 or ASCII)", col);
+    }
+    if (in_t) {
+      if (i == len) in_t = 0; /* unterminated: the word splitter reports it */
+      else if (!strncmp(text + i, "\"\"\"", 3) && i + 3 <= len) {
+        buf_putn(&cur, "\"\"\"", 3);
+        i += 2;
+        in_t = 0;
+        continue;
+      } else {
+        if (c == '\n') line++;
+        if (c != '\r') buf_putc(&cur, c);
+        continue;
+      }
+    }
+    if (c == '\r') continue;
+    if (c == '\n') {
+      while (cur.n && isspace((unsigned char)cur.s[cur.n - 1])) cur.s[--cur.n] = 0;
+      if (cur.n && cur.s[cur.n - 1] == '&' && i < len) { /* continuation */
+        cur.s[--cur.n] = 0;
+        buf_putc(&cur, ' ');
+        line++;
+        continue;
+      }
+      if (cur.n && cur.s[cur.n - 1] == '&') cur.s[--cur.n] = 0; /* '&' on the last line */
+      const char *q = cur.s;
+      while (q && *q && isspace((unsigned char)*q)) q++;
+      if (q && *q) {
+        if (s->n == cap) {
+          cap = cap ? 2 * cap : 64;
+          s->lines = yf_realloc(s->lines, (size_t)cap * sizeof *s->lines, "deck lines");
+        }
+        s->lines[s->n].text = yf_strdup(q);
+        s->lines[s->n].line = start;
+        s->n++;
+      }
+      cur.n = 0;
+      if (cur.s) cur.s[0] = 0;
+      in_s = in_d = 0;
+      line++;
+      start = line;
+      continue;
+    }
+    if (!in_s && !in_d && !strncmp(text + i, "\"\"\"", 3) && i + 3 <= len) {
+      buf_putn(&cur, "\"\"\"", 3);
+      i += 2;
+      in_t = 1;
+      continue;
+    }
+    if (c == '\'' && !in_d) in_s = !in_s;
+    else if (c == '"' && !in_s) in_d = !in_d;
+    if (c == '#' && !in_s && !in_d) { /* comment to the end of the line */
+      while (i + 1 < len && text[i + 1] != '\n') i++;
+      continue;
+    }
+    buf_putc(&cur, c);
+  }
+  free(cur.s);
+}
+
+static char *dir_of(const char *path) {
+  if (!path || path[0] == '<') return yf_strdup(".");
+  const char *slash = strrchr(path, '/');
+  if (!slash) return yf_strdup(".");
+  if (slash == path) return yf_strdup("/");
+  size_t n = (size_t)(slash - path);
+  char *dir = yf_malloc(n + 1, "path");
+  memcpy(dir, path, n);
+  dir[n] = 0;
+  return dir;
+}
+
+static char *join_path(const char *dir, const char *name) {
+  if (name[0] == '/' || !dir || !strcmp(dir, ".")) return yf_strdup(name);
+  size_t n = strlen(dir) + strlen(name) + 2;
+  char *p = yf_malloc(n, "path");
+  snprintf(p, n, "%s%s%s", dir, dir[strlen(dir) - 1] == '/' ? "" : "/", name);
+  return p;
+}
+
+static DeckSource *source_from_stream(YfDeck *d, FILE *fp, const char *name, const YfLoc *from) {
+  Buf b = {0};
+  char chunk[65536];
+  size_t got;
+  while ((got = fread(chunk, 1, sizeof chunk, fp)) > 0) buf_putn(&b, chunk, got);
+  if (ferror(fp)) yf_io_error(from, "cannot read deck '%s': %s", name, strerror(errno));
+  DeckSource *s = yf_calloc(1, sizeof *s, "deck source");
+  s->name = intern(name);
+  s->dir = dir_of(name);
+  parse_lines(s, b.s ? b.s : "", b.n);
+  free(b.s);
+  s->next = d->sources;
+  d->sources = s;
+  return s;
+}
+
+/* A deck file, loaded once and kept (jump and repeated includes reuse it). */
+static DeckSource *source_load(YfDeck *d, const char *path, const YfLoc *from, const char *cmd) {
+  for (DeckSource *s = d->sources; s; s = s->next)
+    if (!strcmp(s->name, path)) return s;
+  FILE *fp = fopen(path, "rb");
+  if (!fp) {
+    if (cmd) yf_io_error(from, "%s: cannot open '%s': %s", cmd, path, strerror(errno));
+    yf_io_error(from, "cannot open deck '%s': %s", path, strerror(errno));
+  }
+  DeckSource *s = source_from_stream(d, fp, path, from);
+  fclose(fp);
+  return s;
+}
+
+/* ------------------------------------------------------------------ running */
+
+static const char *const *command_names(int *n) {
+  static const char **names;
+  static int count = -1;
+  if (count < 0) {
+    int k = 0;
+    while (yf_commands[k].name) k++;
+    names = yf_malloc((size_t)(k + 1) * sizeof *names, "command names");
+    for (int i = 0; i < k; i++) names[i] = yf_commands[i].name;
+    count = k;
+  }
+  *n = count;
+  return names;
+}
+
+/* Substitute, split and dispatch one logical line. */
+static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
+  char *line = substitute(d, text, loc);
+  char **w;
+  int *cols, errcol;
+  const char *why;
+  int n = split_words(line, &w, &cols, &errcol, &why);
+  if (n < 0) fail_ctx(loc, line, errcol, "%s", why);
+  if (n == 0) {
+    free_words(w, cols, n);
+    free(line);
+    return;
+  }
+  if (d->echo) {
+    if (d->sim) sim_printf(d->sim, "%s\n", line);
+    else printf("%s\n", line);
+  }
+  const YfCommand *c = deck_find_command(w[0]);
+  if (!c) {
+    int nn;
+    const char *const *names = command_names(&nn);
+    const char *near = yf_nearest(w[0], names, nn);
+    if (near) fail_ctx(loc, line, cols[0], "unknown command '%s' (did you mean '%s'?)", w[0], near);
+    fail_ctx(loc, line, cols[0], "unknown command '%s'", w[0]);
+  }
+  YfArgs a;
+  a.cmd = c->name;
+  a.n = n - 1;
+  a.w = w + 1;
+  a.loc = *loc;
+  a.line = line;
+  c->fn(d->sim, &a);
+  free_words(w, cols, n);
+  free(line);
+}
+
+/* Run the source from position pos on a new frame until its end, a quit, or an error. */
+static void run_source(YfDeck *d, DeckSource *s, const YfLoc *from) {
+  if (d->depth == 0) d->quit = 0;
+  if (d->depth >= DECK_INCLUDE_MAX) {
+    int self = 0;
+    for (int i = 0; i < d->depth; i++) self |= d->stack[i].src == s;
+    yf_deck_error(from, "include: nesting deeper than %d levels%s%s%s", DECK_INCLUDE_MAX,
+                  self ? " ('" : "", self ? s->name : "", self ? "' includes itself, directly or through other files)" : "");
+  }
+  DeckFrame *f = &d->stack[d->depth++];
+  f->src = s;
+  f->pos = 0;
+  while (!d->quit && f->pos < f->src->n) {
+    DeckLine *l = &f->src->lines[f->pos++];
+    YfLoc loc = {f->src->name, l->line};
+    exec_line(d, l->text, &loc);
+  }
+  d->depth--;
+}
+
+YfDeck *deck_new(struct YfSim *sim) {
+  YfDeck *d = yf_calloc(1, sizeof *d, "deck");
+  d->sim = sim;
+  if (sim) sim->deck = d;
+  return d;
+}
+
+void deck_free(YfDeck *d) {
+  if (!d) return;
+  for (int i = 0; i < d->nvars; i++) var_clear(&d->vars[i]);
+  free(d->vars);
+  DeckSource *s = d->sources;
+  while (s) {
+    DeckSource *nx = s->next;
+    for (int i = 0; i < s->n; i++) free(s->lines[i].text);
+    free(s->lines);
+    free(s->dir);
+    free(s);
+    s = nx;
+  }
+  if (d->sim && d->sim->deck == d) d->sim->deck = NULL;
+  free(d);
+}
+
+void deck_set_var(YfDeck *d, const char *name, const char *value) {
+  if (!valid_name(name))
+    yf_deck_error(NULL, "-var: bad variable name '%s' (letters, digits and '_', not starting with a digit)", name);
+  DeckVar *v = var_new(d, name, VAR_INDEX);
+  v->cmdline = 1;
+  v->vals = yf_malloc(sizeof *v->vals, "variable values");
+  v->vals[0] = yf_strdup(value);
+  v->nvals = 1;
+}
+
+void deck_set_echo(YfDeck *d, int on) { d->echo = on != 0; }
+
+void deck_run_stream(YfDeck *d, FILE *fp, const char *fname) {
+  DeckSource *s = source_from_stream(d, fp, fname ? fname : "<stdin>", NULL);
+  run_source(d, s, NULL);
+}
+
+void deck_run_file(YfDeck *d, const char *path, const YfLoc *from) {
+  run_source(d, source_load(d, path, from, NULL), from);
+}
+
+char *deck_resolve_path(const YfArgs *a, const char *name) {
+  char *dir = dir_of(a->loc.file);
+  char *p = join_path(dir, name);
+  free(dir);
+  return p;
+}
+
+/* ------------------------------------------------------------------ argument helpers */
+
+/* Column of argument word i in a->line (-1 if it cannot be found); i == a->n: end of line. */
+static int arg_col(const YfArgs *a, int i) {
+  if (!a->line) return -1;
+  if (i >= a->n) return (int)strlen(a->line);
+  char **w;
+  int *cols, errcol, col = -1;
+  const char *why;
+  int n = split_words(a->line, &w, &cols, &errcol, &why);
+  if (n < 0) return -1;
+  if (i >= 0 && i + 1 < n && !strcmp(w[i + 1], a->w[i])) col = cols[i + 1];
+  free_words(w, cols, n);
+  if (col < 0 && i >= 0) {
+    const char *q = strstr(a->line, a->w[i]);
+    if (q) col = (int)(q - a->line);
+  }
+  return col;
+}
+
+/* Column of the first character inside word i (after an opening quote). */
+static int arg_inner_col(const YfArgs *a, int i) {
+  int col = arg_col(a, i);
+  if (col < 0) return col;
+  if (!strncmp(a->line + col, "\"\"\"", 3)) return col + 3;
+  if (a->line[col] == '"' || a->line[col] == '\'') return col + 1;
+  return col;
+}
+
+static void arg_fail(const YfArgs *a, int i, const char *what, const char *fmt, ...)
+    __attribute__((noreturn, format(printf, 4, 5)));
+static void arg_fail(const YfArgs *a, int i, const char *what, const char *fmt, ...) {
+  char msg[900];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  if (i >= 0 && i < a->n)
+    fail_ctx(&a->loc, a->line, arg_col(a, i), "%s: %s%s'%s': %s", a->cmd, what ? what : "", what ? " " : "",
+             a->w[i], msg);
+  fail_ctx(&a->loc, a->line, arg_col(a, i), "%s: %s", a->cmd, msg);
+}
+
+void arg_error(const YfArgs *a, int i, const char *fmt, ...) {
+  char msg[900];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  arg_fail(a, i, NULL, "%s", msg);
+}
+
+static const char *usage_of(const char *cmd) {
+  const YfCommand *c = deck_find_command(cmd);
+  return c && c->usage ? c->usage : NULL;
+}
+
+void arg_count(const YfArgs *a, int min, int max) {
+  if (a->n >= min && (max < 0 || a->n <= max)) return;
+  const char *u = usage_of(a->cmd);
+  char want[64];
+  if (max < 0) snprintf(want, sizeof want, "at least %d", min);
+  else if (min == max) snprintf(want, sizeof want, "%d", min);
+  else snprintf(want, sizeof want, "%d to %d", min, max);
+  int col = a->n > max && max >= 0 ? arg_col(a, max) : (int)strlen(a->line ? a->line : "");
+  fail_ctx(&a->loc, a->line, col, "%s: expected %s argument%s, got %d%s%s", a->cmd, want,
+           (min == 1 && max == 1) ? "" : "s", a->n, u ? "\n  usage: " : "", u ? u : "");
+}
+
+const char *arg_word(const YfArgs *a, int i, const char *what) {
+  if (i < a->n) return a->w[i];
+  const char *u = usage_of(a->cmd);
+  fail_ctx(&a->loc, a->line, a->line ? (int)strlen(a->line) : -1, "%s: missing %s%s%s", a->cmd, what,
+           u ? "\n  usage: " : "", u ? u : "");
+}
+
+/* A hint when someone writes an expression where a plain number is expected. */
+static const char *num_hint(const char *w) {
+  if (w[0] && strpbrk(w + 1, "+-*/^()") && !strpbrk(w, "eE")) return " (write an expression as $(...))"; /* w may be "" */
+  if (strpbrk(w, "*/^()")) return " (write an expression as $(...))";
+  return "";
+}
+
+double arg_num(const YfArgs *a, int i, const char *what) {
+  const char *w = arg_word(a, i, what);
+  double v;
+  if (!yf_parse_double(w, &v)) arg_fail(a, i, what, "not a finite number%s", num_hint(w));
+  return v;
+}
+
+double arg_pos(const YfArgs *a, int i, const char *what) {
+  double v = arg_num(a, i, what);
+  if (!(v > 0)) arg_fail(a, i, what, "must be > 0");
+  return v;
+}
+
+double arg_nonneg(const YfArgs *a, int i, const char *what) {
+  double v = arg_num(a, i, what);
+  if (!(v >= 0)) arg_fail(a, i, what, "must be >= 0");
+  return v;
+}
+
+long arg_int(const YfArgs *a, int i, const char *what, long lo, long hi) {
+  const char *w = arg_word(a, i, what);
+  long v;
+  if (!yf_parse_long(w, &v)) {
+    double x;
+    if (yf_parse_double(w, &x)) arg_fail(a, i, what, "not an integer");
+    arg_fail(a, i, what, "not an integer%s", num_hint(w));
+  }
+  if (v < lo || v > hi) {
+    if (hi == LONG_MAX) arg_fail(a, i, what, "must be >= %ld", lo);
+    if (lo == LONG_MIN) arg_fail(a, i, what, "must be <= %ld", hi);
+    arg_fail(a, i, what, "must be in [%ld, %ld]", lo, hi);
+  }
+  return v;
+}
+
+int arg_choice(const YfArgs *a, int i, const char *what, const char *const *choices) {
+  const char *w = arg_word(a, i, what);
+  int n = 0;
+  for (; choices[n]; n++)
+    if (!strcmp(choices[n], w)) return n;
+  char list[600];
+  size_t k = 0;
+  list[0] = 0;
+  for (int j = 0; j < n && k < sizeof list; j++)
+    k += (size_t)snprintf(list + k, sizeof list - k, "%s%s", j ? ", " : "", choices[j]);
+  const char *near = strlen(w) >= 3 ? yf_nearest(w, choices, n) : NULL; /* the list says enough for short words */
+  if (near) arg_fail(a, i, what, "expected one of %s (did you mean '%s'?)", list, near);
+  arg_fail(a, i, what, "expected one of %s", list);
+}
+
+/* ------------------------------------------------------------------ builtin commands */
+
+static YfDeck *deck_of(struct YfSim *sim, const YfArgs *a) {
+  if (!sim || !sim->deck) fail_ctx(&a->loc, NULL, -1, "%s: no deck interpreter attached to the simulation", a->cmd);
+  return sim->deck;
+}
+
+static char *join_words(const YfArgs *a, int from) {
+  Buf b = {0};
+  for (int i = from; i < a->n; i++) {
+    if (i > from) buf_putc(&b, ' ');
+    buf_put(&b, a->w[i]);
+  }
+  return buf_take(&b);
+}
+
+/* variable NAME equal EXPR | string TEXT | index V1 V2 ... | loop N | loop N1 N2 | delete */
+void deck_cmd_variable(struct YfSim *sim, const YfArgs *a) {
+  YfDeck *d = deck_of(sim, a);
+  arg_count(a, 2, -1);
+  const char *name = a->w[0];
+  if (!valid_name(name))
+    arg_fail(a, 0, "name", "letters, digits and '_' only, not starting with a digit");
+  int style = arg_choice(a, 1, "style", var_styles);
+  DeckVar *old = var_find(d, name);
+  if (style == 4) { /* delete */
+    arg_count(a, 2, 2);
+    var_delete(d, name);
+    return;
+  }
+  if (old && old->cmdline) return; /* -var wins: the deck gives defaults */
+  int looping = style == VAR_INDEX || style == VAR_LOOP;
+  if (old && looping && (old->style == VAR_INDEX || old->style == VAR_LOOP))
+    return; /* LAMMPS: redefining an index/loop variable is ignored (loops re-read definitions) */
+  if (old && old->style != style)
+    arg_fail(a, 0, "variable", "already defined as %s-style, cannot redefine as %s-style "
+             "(use 'variable %s delete' first)", var_styles[old->style], var_styles[style], name);
+  arg_count(a, 3, style == VAR_LOOP ? 4 : -1);
+  if (style == VAR_EQUAL) {
+    char *text = join_words(a, 2);
+    ExprError e;
+    if (!expr_check(text, &e)) /* caret inside the line when the expression is one word */
+      fail_ctx(&a->loc, a->line, a->n == 3 ? arg_inner_col(a, 2) + e.pos : arg_col(a, 2),
+               "variable: expression '%s': %s", text, e.msg);
+    DeckVar *v = var_new(d, name, VAR_EQUAL);
+    v->text = text;
+  } else if (style == VAR_STRING) {
+    char *text = join_words(a, 2);
+    DeckVar *v = var_new(d, name, VAR_STRING);
+    v->text = text;
+  } else if (style == VAR_INDEX) {
+    int nv = a->n - 2;
+    char **vals = yf_malloc((size_t)nv * sizeof *vals, "variable values");
+    for (int i = 0; i < nv; i++) vals[i] = yf_strdup(a->w[2 + i]);
+    DeckVar *v = var_new(d, name, VAR_INDEX);
+    v->vals = vals;
+    v->nvals = nv;
+  } else {
+    long lo = 1, hi;
+    if (a->n == 3) hi = arg_int(a, 2, "count", 1, LONG_MAX);
+    else {
+      lo = arg_int(a, 2, "first value", LONG_MIN / 2, LONG_MAX / 2);
+      hi = arg_int(a, 3, "last value", lo, LONG_MAX / 2);
+    }
+    DeckVar *v = var_new(d, name, VAR_LOOP);
+    v->cur = lo;
+    v->hi = hi;
+  }
+}
+
+/* next NAME [NAME ...] */
+void deck_cmd_next(struct YfSim *sim, const YfArgs *a) {
+  YfDeck *d = deck_of(sim, a);
+  arg_count(a, 1, -1);
+  int done = 0;
+  for (int i = 0; i < a->n; i++) {
+    DeckVar *v = var_find(d, a->w[i]);
+    if (!v) arg_fail(a, i, "variable", "no such variable");
+    if (v->style != VAR_INDEX && v->style != VAR_LOOP)
+      arg_fail(a, i, "variable", "is %s-style; next needs an index or loop variable", var_styles[v->style]);
+  }
+  for (int i = 0; i < a->n; i++) {
+    DeckVar *v = var_find(d, a->w[i]);
+    if (v->style == VAR_INDEX) done |= ++v->which >= v->nvals;
+    else done |= ++v->cur > v->hi;
+  }
+  if (done) { /* LAMMPS: all listed variables are deleted and the next jump is skipped */
+    for (int i = 0; i < a->n; i++) var_delete(d, a->w[i]);
+    d->jump_skip = 1;
+  }
+}
+
+/* Index of the line after `label NAME` in s, or -1. */
+static int find_label(DeckSource *s, const char *label) {
+  for (int i = 0; i < s->n; i++) {
+    const char *t = s->lines[i].text;
+    if (strncmp(t, "label", 5) || !isspace((unsigned char)t[5])) continue;
+    char **w;
+    int *cols, errcol;
+    const char *why;
+    int n = split_words(t, &w, &cols, &errcol, &why);
+    if (n < 0) continue;
+    int hit = n >= 2 && !strcmp(w[1], label);
+    free_words(w, cols, n);
+    if (hit) return i + 1;
+  }
+  return -1;
+}
+
+/* jump SELF|FILE [LABEL] */
+void deck_cmd_jump(struct YfSim *sim, const YfArgs *a) {
+  YfDeck *d = deck_of(sim, a);
+  arg_count(a, 1, 2);
+  if (d->jump_skip) { /* a `next` ran out of values: this jump ends the loop */
+    d->jump_skip = 0;
+    return;
+  }
+  if (d->depth == 0) arg_fail(a, 0, "file", "jump is only possible while reading a deck file");
+  DeckFrame *f = &d->stack[d->depth - 1];
+  DeckSource *s = f->src;
+  if (strcmp(a->w[0], "SELF")) {
+    char *path = deck_resolve_path(a, a->w[0]);
+    if (strcmp(path, s->name)) s = source_load(d, path, &a->loc, "jump");
+    free(path);
+  }
+  int pos = 0;
+  if (a->n == 2) {
+    pos = find_label(s, a->w[1]);
+    if (pos < 0) arg_fail(a, 1, "label", "no 'label %s' in %s", a->w[1], s->name);
+  }
+  f->src = s;
+  f->pos = pos;
+}
+
+/* label NAME */
+void deck_cmd_label(struct YfSim *sim, const YfArgs *a) { arg_count(a, 1, 1); }
+
+/* include FILE */
+void deck_cmd_include(struct YfSim *sim, const YfArgs *a) {
+  YfDeck *d = deck_of(sim, a);
+  arg_count(a, 1, 1);
+  char *path = deck_resolve_path(a, a->w[0]);
+  DeckSource *s = source_load(d, path, &a->loc, "include");
+  free(path);
+  run_source(d, s, &a->loc);
+}
+
+/* print TEXT ... */
+void deck_cmd_print(struct YfSim *sim, const YfArgs *a) {
+  arg_count(a, 1, -1);
+  char *text = join_words(a, 0);
+  if (sim) sim_printf(sim, "%s\n", text);
+  else printf("%s\n", text);
+  free(text);
+}
+
+/* Truth of an if condition.  Besides numeric expressions, "WORD == WORD" and "WORD != WORD"
+ * compare strings when an expression cannot be formed (LAMMPS allows "${mode} == fast"). */
+static int condition(YfDeck *d, const YfArgs *a, int i) {
+  const char *cond = a->w[i];
+  double v;
+  ExprError e;
+  if (eval_quiet(d, cond, &v, &e)) return v != 0.0;
+  char l[256], op[8], r[256], extra[2];
+  if (sscanf(cond, "%255s %7s %255s %1s", l, op, r, extra) == 3 && (!strcmp(op, "==") || !strcmp(op, "!="))) {
+    int eq = !strcmp(l, r);
+    return op[0] == '=' ? eq : !eq;
+  }
+  int col = arg_inner_col(a, i);
+  fail_ctx(&a->loc, a->line, col < 0 ? -1 : col + e.pos, "if: condition '%s': %s", cond, e.msg);
+}
+
+/* if COND then CMD ... [elif COND [then] CMD ...] [else CMD ...]
+ * Conditions are evaluated in order until one is true (later ones are not evaluated). */
+void deck_cmd_if(struct YfSim *sim, const YfArgs *a) {
+  YfDeck *d = deck_of(sim, a);
+  arg_count(a, 2, -1);
+  if (strcmp(a->w[1], "then"))
+    arg_fail(a, 1, NULL, "expected 'then' after the condition%s",
+             a->n > 2 && strchr("<>=!&|", a->w[1][0]) ? " (quote the condition: if \"a > b\" then ...)" : "");
+  int i = 2, from = -1, to = -1;
+  int start = i;
+  while (i < a->n && strcmp(a->w[i], "elif") && strcmp(a->w[i], "else")) i++;
+  if (condition(d, a, 0)) from = start, to = i;
+  while (i < a->n) {
+    if (!strcmp(a->w[i], "else")) {
+      for (int j = i + 1; j < a->n; j++)
+        if (!strcmp(a->w[j], "elif") || !strcmp(a->w[j], "else"))
+          arg_fail(a, j, NULL, "the 'else' branch must come last");
+      if (from < 0) from = i + 1, to = a->n;
+      break;
+    }
+    /* elif COND [then] CMD ... */
+    if (i + 1 >= a->n) arg_fail(a, a->n, NULL, "missing condition after 'elif'");
+    int ci = i + 1;
+    i += 2;
+    if (i < a->n && !strcmp(a->w[i], "then")) i++;
+    start = i;
+    while (i < a->n && strcmp(a->w[i], "elif") && strcmp(a->w[i], "else")) i++;
+    if (from < 0 && condition(d, a, ci)) from = start, to = i;
+  }
+  for (int k = from; k >= 0 && k < to && !d->quit; k++) exec_line(d, a->w[k], &a->loc);
+}
+
+/* echo on|off */
+void deck_cmd_echo(struct YfSim *sim, const YfArgs *a) {
+  static const char *const onoff[] = {"off", "on", NULL};
+  YfDeck *d = deck_of(sim, a);
+  arg_count(a, 1, 1);
+  d->echo = arg_choice(a, 0, "setting", onoff);
+}
+
+/* quit */
+void deck_cmd_quit(struct YfSim *sim, const YfArgs *a) {
+  YfDeck *d = deck_of(sim, a);
+  arg_count(a, 0, 0);
+  d->quit = 1;
+}

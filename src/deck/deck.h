@@ -1,0 +1,79 @@
+/* deck.h: the LAMMPS/YADE-style deck interpreter.
+ *
+ * deck.c owns reading deck text: lines, '#' comments, '&' continuation, quoted words, variables
+ * (${name}, $x, $(expr)), include, label/jump loops, if/then/else, print.  It splits each command
+ * into words, remembers where each came from (file and line) and dispatches through the command
+ * table of commands.def.  Handlers receive a YfArgs and use the arg_* helpers below, which refuse
+ * junk ("3.0x", missing words) with a FILE:LINE message naming the word at fault.
+ */
+#ifndef YF_DECK_H
+#define YF_DECK_H
+#include <stdio.h>
+#include "err.h"
+
+struct YfSim;
+
+typedef struct {
+  const char *cmd; /* command name (word 0)                                */
+  int n;           /* number of argument words after the command name      */
+  char **w;        /* the argument words, substituted, quotes removed      */
+  YfLoc loc;       /* file and line where the command starts               */
+  const char *line;/* the command's text after substitution (for messages) */
+} YfArgs;
+
+typedef void (*YfCmdFn)(struct YfSim *sim, const YfArgs *a);
+
+typedef struct {
+  const char *name;
+  YfCmdFn fn;
+  const char *usage;   /* "fix ID GROUP fixed x|y|xy"                   */
+  const char *help;    /* one sentence                                  */
+  const char *example; /* a complete example line                       */
+} YfCommand;
+
+/* The table generated from commands.def, terminated by a {NULL} row. */
+extern const YfCommand yf_commands[];
+const YfCommand *deck_find_command(const char *name);
+
+/* Interpreter. */
+typedef struct YfDeck YfDeck;
+YfDeck *deck_new(struct YfSim *sim);
+void deck_free(YfDeck *d);
+/* Define a variable before reading (the -var NAME VALUE option): a string value. */
+void deck_set_var(YfDeck *d, const char *name, const char *value);
+/* Run a whole deck from an open stream; fname is used in messages and for relative includes. */
+void deck_run_stream(YfDeck *d, FILE *fp, const char *fname);
+/* Run one deck file (path relative to cwd). I/O error if it cannot be opened. */
+void deck_run_file(YfDeck *d, const char *path, const YfLoc *from);
+/* Echo each command to stdout (the -echo option). */
+void deck_set_echo(YfDeck *d, int on);
+/* Directory of the deck currently being read ("." for stdin): handlers resolve relative
+ * file names (mesh files, tables) against it.  Returns a malloc'd path joined with name,
+ * or a copy of name when name is absolute. */
+char *deck_resolve_path(const YfArgs *a, const char *name);
+/* Evaluate an arithmetic expression with the current variables (used by 'variable' and $()). */
+double deck_eval(YfDeck *d, const char *expr, const YfLoc *loc);
+
+/* ---- argument helpers for command handlers (all exit with a deck error on bad input) ---- */
+/* Require min <= a->n <= max (max < 0: unbounded); message shows the usage line. */
+void arg_count(const YfArgs *a, int min, int max);
+/* Strict number: whole word must be a finite number ("3.0x", "nan", "inf", "" are errors). */
+double arg_num(const YfArgs *a, int i, const char *what);
+/* Number that must be > 0 / >= 0. */
+double arg_pos(const YfArgs *a, int i, const char *what);
+double arg_nonneg(const YfArgs *a, int i, const char *what);
+/* Strict integer (no fraction, no exponent overflow) in [lo, hi]. */
+long arg_int(const YfArgs *a, int i, const char *what, long lo, long hi);
+/* Word i must be one of choices (NULL-terminated); returns its index.  The message lists them. */
+int arg_choice(const YfArgs *a, int i, const char *what, const char *const *choices);
+/* Word i (exists, else usage error). */
+const char *arg_word(const YfArgs *a, int i, const char *what);
+/* Error naming word i: "FILE:LINE: error: CMD: WHAT 'word': message". */
+void arg_error(const YfArgs *a, int i, const char *fmt, ...) __attribute__((noreturn, format(printf, 3, 4)));
+
+/* Strict number parsing without a deck context: returns 1 and sets *out on success. */
+int yf_parse_double(const char *s, double *out);
+int yf_parse_long(const char *s, long *out);
+
+
+#endif

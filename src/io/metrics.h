@@ -1,0 +1,44 @@
+/* metrics.h: quantitative crack measurements of a run (the seed paper's questions, answered in
+ * numbers instead of pictures).
+ *
+ * metrics.c owns the `metrics` deck command, a cheap per-step hook that tracks what can only be
+ * seen during the run (peak tensile stress, the moment the body first falls apart, a time series
+ * of energies and crack growth), and the end-of-run keys it adds to the -summary JSON:
+ *   symmetry                 fraction of broken joints whose mirror image is broken too (null:
+ *                            no broken joint or no `metrics mirror`)
+ *   midspan_crack_time       first mode I break inside the `metrics midspan` region (or null)
+ *   midspan_crack            {step, time, x, y} of that break (or null)
+ *   crack_length_by_region   {NAME: {I, II, mixed, total, inclined, vertical, horizontal, count}}
+ *   crack_orientation        {vertical, horizontal, inclined} lengths over the whole body [m]
+ *   crack_orientation_at_first_fragment   the same, counting breaks up to first_fragment_time
+ *   first_fragment_time      when the measured body first became two pieces (or null)
+ *   body_fragments           {count, list: [{area, x0, y0, x, y, vx, vy}, ...] largest first}
+ *   peak_stress              {value, time, step, x, y, tri}: the largest max principal stress
+ *                            of the body's triangles over the run [Pa] (x, y: initial centroid)
+ *   stress_first_above       {threshold, value, time, step, x, y, tri}: the first triangle whose
+ *                            max principal stress reached the threshold (or null)
+ * Positions of cracks are the joints' midpoints in the initial configuration, so a crack is
+ * matched to its mirror image however far the pieces have moved.  Orientation: a joint within
+ * 20 degrees of the x axis is horizontal, within 20 degrees of the y axis vertical, else inclined.
+ *
+ * Deck command (one keyword per line, rows in commands.def):
+ *   metrics body BODY                   measure this body (default: every fracturing body)
+ *   metrics mirror x|y C                symmetry about the line x = C (or y = C) [m]
+ *   metrics region NAME R1 [R2 ...]     crack length inside the union of regions R1, R2, ...
+ *   metrics midspan R                   region of the midspan crack (midspan_crack_time)
+ *   metrics peak_stress on|off [threshold S]   track the max principal stress (each step)
+ *   metrics log FILE [every N]          CSV time series (step, time, energies, broken, crack
+ *                                       length by mode, fragments, sigma1_max), default N = 100
+ */
+#ifndef YF_METRICS_H
+#define YF_METRICS_H
+#include "sim.h"
+
+/* After every completed step (run.c); a few compares when nothing is due. */
+void metrics_step(YfSim *s);
+/* Summary keys and the log file (run_summary_update); never exits. */
+void metrics_summary(YfSim *s);
+/* Forget everything (sim_free). */
+void metrics_reset(void);
+
+#endif

@@ -1,0 +1,915 @@
+/* output.c: frames of the state for post-processing (see output.h for the contract).
+ *
+ * h5 dumps.  `dump ID h5 N FILE.h5` writes frame k to its own HDF5 file STEM_NNNNNN.h5 (STEM is
+ * FILE without its .h5/.hdf5/.hdf extension, NNNNNN the frame index k, zero-padded to 6 digits,
+ * the extension kept; .h5 when FILE has none) and an XDMF 3 index STEM.xmf that lists the frames
+ * (ParaView: File > Open STEM.xmf).  Each frame file is self-contained:
+ *
+ *   /mesh/{triangles (ntri x 3 int), material, body, tri_id (ntri int),
+ *          node_id (n int), x0 (n x 2)}                   the topology at this frame
+ *   /time, /step (scalars), /x, /u, /v, /f (n x 2), /stress (ntri x 3: sxx syy sxy),
+ *   /vonmises, /sigma1 (ntri),  /fc (n x 2): contact force per node, only while contact is on
+ *
+ * Why one file per frame: crash safety by construction.  A file is never modified once written.
+ * A frame goes to NAME.tmp, is closed (H5Fclose: every byte handed to the OS), renamed to NAME
+ * (atomic), and only then is the .xmf replaced atomically (STEM.xmf.tmp + rename) by an index
+ * that lists it (at once, or for a long series of frequent frames a little later: xmf_write).
+ * A run killed at any moment therefore leaves an .xmf that lists only complete,
+ * never-again-touched files; at worst a stale NAME.tmp of the frame in progress.  The earlier
+ * design (one file, a group per frame, H5Fflush) updated shared metadata (group header,
+ * superblock) in place with multi-page writes, which SIGKILL can tear, losing earlier frames.
+ * It also makes topology changes (fracture inserting nodes) free: each file has its own /mesh.
+ * The cost is one file create/close per frame and the mesh arrays once per frame (~30 % of a
+ * frame's bytes): for 1e5 triangles ~7 ms with 5e4 nodes, ~17-20 ms with the 3e5 nodes of a
+ * fully jointed mesh (31 MB), measured on a loaded 2-core machine (README, Output).
+ *
+ * Durability: nothing is fsync'ed.  rename after close is enough against a killed process (the
+ * kernel has the data); after a power cut or OS crash the most recent frames and the index may
+ * be lost or, on file systems that reorder metadata and data, the .xmf may name a frame whose
+ * data did not reach the disk.  Guarding against that would need an fsync of each frame file
+ * and of the directory before the index names it (tens of ms per frame on a loaded disk).
+ *
+ * A new run (a new process) with the same dump starts again at frame 0 and rewrites the index
+ * from scratch (a run continued by read_restart continues the series instead: dump_adopt);
+ * frame files of an earlier, longer run beyond the new count stay on disk but are not listed
+ * (delete STEM_*.h5 yourself if they are in the way).
+ *
+ * Datasets are contiguous and uncompressed by default: a frame is then one write per array.
+ * `compress` switches to gzip (level 1, with shuffle) in chunks: half the size, ~20x the time.
+ *
+ * csv dumps.  PREFIX_NNNNNN.csv (node id, x, y, ux, uy, vx, vy) per frame plus PREFIX_frames.csv
+ * (frame, step, time, file) for scripts.
+ *
+ * The XDMF <Grid> text of every frame is kept in memory and the whole index is rewritten per
+ * frame (about 2 kB per frame), so the index stays a plain, self-contained file.
+ */
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <hdf5.h>
+#include "output.h"
+#include "deck.h"
+#include "report.h"
+#include "contact.h"
+#include "joint.h"
+#include "err.h"
+#include "y2dref.h"
+#include "run.h"
+
+/* The y2dref style (y2dref.c: Y2D reference CSV files) is written every step; y2dref_frame decides
+ * what is due. */
+enum { YF_DUMP_Y2DREF = 2 };
+
+typedef struct YfDump {
+  char id[YF_NAME_MAX];
+  int style;          /* YF_DUMP_H5 | YF_DUMP_CSV                                       */
+  long every;         /* steps between frames                                          */
+  unsigned fields;    /* YF_FIELD_* (h5)                                               */
+  int compress;       /* gzip chunks (h5)                                              */
+  char *path;         /* h5 file as given (FILE.h5), or csv prefix                      */
+  char *stem, *ext;   /* h5: FILE without its extension, and the extension (".h5")      */
+  char *xmf, *xmf_tmp;/* STEM.xmf and STEM.xmf.tmp                                      */
+  char *cur, *cur_tmp;/* h5: the frame file being written (STEM_NNNNNN.h5) and its .tmp */
+  size_t curcap;      /* bytes allocated for cur and cur_tmp                           */
+  hid_t file;         /* the frame file while it is being written, else < 0            */
+  int created;        /* csv index created in this process (a later open appends)      */
+  long nframe;        /* frames written (including those of a continued series)        */
+  long first;         /* number of this process's first frame (> 0: a continued series) */
+  long last_step;     /* step of the last frame (LONG_MIN: none)                       */
+  char *grids;        /* XDMF <Grid> elements of the frames so far                     */
+  int xmf_pending;    /* frames listed in grids but not yet in the .xmf (see xmf_write)  */
+  double xmf_done, xmf_cost; /* when the last index rewrite ended, and what it took [s]  */
+  long xmf_writes;    /* index rewrites so far                                         */
+  size_t glen, gcap;
+  double *buf;        /* scratch for interleaved / derived arrays                      */
+  size_t bufcap;
+  FILE *csv_index;    /* PREFIX_frames.csv                                             */
+  struct YfY2dRef *y2d; /* y2dref style                                                */
+} YfDump;
+
+static const char *const field_names[] = {"u", "v", "f", "stress", "vonmises", "sigma1",
+                                          "material", "body", "fc", "x", NULL};
+
+/* ---------------------------------------------------------------- small helpers */
+
+static char *str_printf(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+static char *str_printf(const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  int n = vsnprintf(NULL, 0, fmt, ap);
+  va_end(ap);
+  char *p = yf_malloc((size_t)n + 1, "string");
+  va_start(ap, fmt);
+  vsnprintf(p, (size_t)n + 1, fmt, ap);
+  va_end(ap);
+  return p;
+}
+
+static void grids_printf(YfDump *d, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void grids_printf(YfDump *d, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  int n = vsnprintf(NULL, 0, fmt, ap);
+  va_end(ap);
+  if (d->glen + (size_t)n + 1 > d->gcap) {
+    size_t cap = d->gcap ? d->gcap : 4096;
+    while (cap < d->glen + (size_t)n + 1) cap *= 2;
+    d->grids = yf_realloc(d->grids, cap, "XDMF index text");
+    d->gcap = cap;
+  }
+  va_start(ap, fmt);
+  vsnprintf(d->grids + d->glen, (size_t)n + 1, fmt, ap);
+  va_end(ap);
+  d->glen += (size_t)n;
+}
+
+static double *scratch(YfDump *d, size_t n) {
+  if (n > d->bufcap) {
+    d->buf = yf_realloc(d->buf, n * sizeof *d->buf, "dump buffer");
+    d->bufcap = n;
+  }
+  return d->buf;
+}
+
+/* The most specific message on HDF5's error stack (it names errno for system failures). */
+static herr_t h5_walk_cb(unsigned n, const H5E_error2_t *e, void *data) {
+  if (n == 0 && e->desc) snprintf((char *)data, 512, "%s", e->desc);
+  return 0;
+}
+static const char *h5_message(void) {
+  static char msg[512];
+  msg[0] = 0;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, h5_walk_cb, msg);
+  return msg[0] ? msg : "HDF5 error";
+}
+
+static void h5_fail(const YfDump *d, const char *what) __attribute__((noreturn));
+static void h5_fail(const YfDump *d, const char *what) {
+  yf_io_error(NULL, "dump %s: cannot write '%s' (%s): %s", d->id, d->cur, what, h5_message());
+}
+
+/* HDF5 prints its error stack by default; yfdem reports errors itself (restart.c uses it too). */
+void yf_h5_quiet(void) {
+  static int done;
+  if (!done) {
+    H5open();
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    done = 1;
+  }
+}
+
+static YfDump *find_dump(const struct YfOutput *o, const char *id, int *slot) {
+  if (!o) return NULL;
+  for (int i = 0; i < o->ndump; i++)
+    if (strcmp(o->dump[i]->id, id) == 0) {
+      if (slot) *slot = i;
+      return o->dump[i];
+    }
+  return NULL;
+}
+
+/* next_due = the smallest multiple of some dump's period after the current step. */
+static void update_next_due(YfSim *s) {
+  struct YfOutput *o = s->out;
+  if (!o) return;
+  long next = LONG_MAX;
+  for (int i = 0; i < o->ndump; i++) {
+    long e = o->dump[i]->every;
+    long k = (s->step / e + 1) * e;
+    if (k < next) next = k;
+  }
+  o->next_due = next;
+}
+
+/* ---------------------------------------------------------------- HDF5 */
+
+/* Create dataset `name` under loc and write data (memory type = file type). */
+static void h5_put(YfDump *d, hid_t loc, const char *name, hid_t type, int rank,
+                   const hsize_t *dims, const void *data) {
+  hid_t space = rank ? H5Screate_simple(rank, dims, NULL) : H5Screate(H5S_SCALAR);
+  if (space < 0) h5_fail(d, name);
+  hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_fill_time(dcpl, H5D_FILL_TIME_NEVER); /* every byte is written right away */
+  if (d->compress && rank > 0 && dims[0] > 0) {
+    hsize_t chunk[2] = {dims[0] < 65536 ? dims[0] : 65536, rank > 1 ? dims[1] : 1};
+    H5Pset_chunk(dcpl, rank, chunk);
+    H5Pset_shuffle(dcpl);
+    H5Pset_deflate(dcpl, 1); /* level 1: ~2x smaller than raw, 1.5x faster than level 4 */
+  }
+  hid_t ds = H5Dcreate2(loc, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  if (ds < 0) h5_fail(d, name); /* before any other call: each API call clears the error stack */
+  H5Pclose(dcpl);
+  static const double none = 0.0; /* HDF5 wants a non-NULL buffer even for 0 elements */
+  if (H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data ? data : &none) < 0) h5_fail(d, name);
+  H5Dclose(ds);
+  H5Sclose(space);
+}
+
+/* Create the frame file (as NAME.tmp; h5_frame renames it when it is complete). */
+static void h5_open(YfDump *d) {
+  yf_h5_quiet();
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG); /* closing after an error also closes its objects */
+  /* Default (earliest) file format: the widest range of readers, ParaView's bundled HDF5 too. */
+  d->file = H5Fcreate(d->cur_tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  if (d->file < 0) h5_fail(d, "create file"); /* before any other call: it clears the error stack */
+  H5Pclose(fapl);
+}
+
+/* Error path (output_close_all): close a frame file left open by a failure and remove it; the
+ * frames already renamed and indexed are untouched. */
+static void h5_close(YfDump *d) {
+  if (d->file < 0) return;
+  H5Fclose(d->file);
+  d->file = -1;
+  if (d->cur_tmp) unlink(d->cur_tmp);
+}
+
+/* Write the current topology to /mesh of the frame file. */
+static void h5_mesh(YfSim *s, YfDump *d) {
+  const YfModel *m = &s->model;
+  int n = m->node.n, nt = m->tri.n;
+  hid_t g = H5Gcreate2(d->file, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  if (g < 0) h5_fail(d, "mesh");
+  hsize_t dt[2] = {(hsize_t)nt, 3}, d1[1] = {(hsize_t)nt}, dn[1] = {(hsize_t)n};
+  hsize_t dn2[2] = {(hsize_t)n, 2};
+  h5_put(d, g, "triangles", H5T_NATIVE_INT, 2, dt, m->tri.v);
+  h5_put(d, g, "material", H5T_NATIVE_INT, 1, d1, m->tri.mat);
+  h5_put(d, g, "body", H5T_NATIVE_INT, 1, d1, m->tri.body);
+  h5_put(d, g, "tri_id", H5T_NATIVE_INT, 1, d1, m->tri.id);
+  h5_put(d, g, "node_id", H5T_NATIVE_INT, 1, dn, m->node.id);
+  double *b = scratch(d, 2 * (size_t)n);
+  for (int i = 0; i < n; i++) {
+    b[2 * i] = m->node.x0[i];
+    b[2 * i + 1] = m->node.y0[i];
+  }
+  h5_put(d, g, "x0", H5T_NATIVE_DOUBLE, 2, dn2, b);
+  H5Gclose(g);
+}
+
+/* XML-safe copy of a file name (the .xmf refers to the .h5 by name). */
+static void xml_escape(char *out, size_t cap, const char *s) {
+  size_t k = 0;
+  for (; *s && k + 7 < cap; s++) {
+    const char *r = NULL;
+    switch (*s) {
+    case '&': r = "&amp;"; break;
+    case '<': r = "&lt;"; break;
+    case '>': r = "&gt;"; break;
+    case '"': r = "&quot;"; break;
+    case '\'': r = "&apos;"; break;
+    }
+    if (r) {
+      size_t l = strlen(r);
+      memcpy(out + k, r, l);
+      k += l;
+    } else {
+      out[k++] = *s;
+    }
+  }
+  out[k] = 0;
+}
+
+static void xmf_item(YfDump *d, const char *fname, const char *dims, int is_int, const char *path) {
+  grids_printf(d, "          <DataItem Dimensions=\"%s\" NumberType=\"%s\" Precision=\"%d\" "
+                  "Format=\"HDF\">%s:%s</DataItem>\n",
+               dims, is_int ? "Int" : "Float", is_int ? 4 : 8, fname, path);
+}
+
+static void xmf_attr(YfDump *d, const char *fname, const char *name, const char *type,
+                     const char *center, const char *dims, int is_int, const char *path) {
+  grids_printf(d, "        <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", name,
+               type, center);
+  xmf_item(d, fname, dims, is_int, path);
+  grids_printf(d, "        </Attribute>\n");
+}
+
+/* Append the <Grid> of the frame just written (file d->cur; the .xmf sits in the same
+ * directory and names it without the directory, so the pair can be moved together). */
+static void xmf_add_frame(YfDump *d, double time, long step, int n, int nt, int with_fc, int ncrack) {
+  char fname[1024], p[32], dn2[48], dt3[48], dt1[48];
+  const char *base = strrchr(d->cur, '/');
+  xml_escape(fname, sizeof fname, base ? base + 1 : d->cur);
+  snprintf(dn2, sizeof dn2, "%d 2", n);
+  snprintf(dt3, sizeof dt3, "%d 3", nt);
+  snprintf(dt1, sizeof dt1, "%d", nt);
+  if (ncrack > 0) {
+    /* a frame with cracks is a spatial collection: the triangles and the crack segments */
+    grids_printf(d, "      <Grid Name=\"frame_%06ld\" GridType=\"Collection\" CollectionType=\"Spatial\">\n",
+                 d->nframe);
+    grids_printf(d, "        <Time Value=\"%.17g\"/>\n", time);
+  }
+  grids_printf(d, "      <Grid Name=\"frame_%06ld\" GridType=\"Uniform\">\n", d->nframe);
+  grids_printf(d, "        <Time Value=\"%.17g\"/>\n", time);
+  grids_printf(d, "        <Information Name=\"step\" Value=\"%ld\"/>\n", step);
+  grids_printf(d, "        <Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\" "
+                  "NodesPerElement=\"3\">\n", nt);
+  xmf_item(d, fname, dt3, 1, "/mesh/triangles");
+  grids_printf(d, "        </Topology>\n        <Geometry GeometryType=\"XY\">\n");
+  xmf_item(d, fname, dn2, 0, "/x");
+  grids_printf(d, "        </Geometry>\n");
+  static const struct { unsigned bit; const char *name, *type, *center; int dims; } attrs[] = {
+      {YF_FIELD_U, "u", "Vector", "Node", 2},         {YF_FIELD_V, "v", "Vector", "Node", 2},
+      {YF_FIELD_F, "f", "Vector", "Node", 2},         {YF_FIELD_STRESS, "stress", "Vector", "Cell", 3},
+      {YF_FIELD_VONMISES, "vonmises", "Scalar", "Cell", 1},
+      {YF_FIELD_SIGMA1, "sigma1", "Scalar", "Cell", 1}};
+  for (size_t i = 0; i < sizeof attrs / sizeof attrs[0]; i++) {
+    if (!(d->fields & attrs[i].bit)) continue;
+    snprintf(p, sizeof p, "/%s", attrs[i].name);
+    xmf_attr(d, fname, attrs[i].name, attrs[i].type, attrs[i].center,
+             attrs[i].dims == 2 ? dn2 : attrs[i].dims == 3 ? dt3 : dt1, 0, p);
+  }
+  if (with_fc) xmf_attr(d, fname, "fc", "Vector", "Node", dn2, 0, "/fc");
+  if (d->fields & YF_FIELD_MATERIAL) xmf_attr(d, fname, "material", "Scalar", "Cell", dt1, 1, "/mesh/material");
+  if (d->fields & YF_FIELD_BODY) xmf_attr(d, fname, "body", "Scalar", "Cell", dt1, 1, "/mesh/body");
+  grids_printf(d, "      </Grid>\n");
+  if (ncrack > 0) {
+    char dc2[48], dc1[48], dp2[48];
+    snprintf(dc2, sizeof dc2, "%d 2", ncrack);
+    snprintf(dc1, sizeof dc1, "%d", ncrack);
+    snprintf(dp2, sizeof dp2, "%d 2", 2 * ncrack);
+    grids_printf(d, "      <Grid Name=\"cracks_%06ld\" GridType=\"Uniform\">\n", d->nframe);
+    grids_printf(d, "        <Topology TopologyType=\"Polyline\" NumberOfElements=\"%d\" NodesPerElement=\"2\">\n",
+                 ncrack);
+    xmf_item(d, fname, dc2, 1, "/cracks/segments");
+    grids_printf(d, "        </Topology>\n        <Geometry GeometryType=\"XY\">\n");
+    xmf_item(d, fname, dp2, 0, "/cracks/xy");
+    grids_printf(d, "        </Geometry>\n");
+    xmf_attr(d, fname, "crack_state", "Scalar", "Cell", dc1, 1, "/cracks/state");
+    xmf_attr(d, fname, "crack_mode", "Scalar", "Cell", dc1, 1, "/cracks/mode");
+    xmf_attr(d, fname, "damage", "Scalar", "Cell", dc1, 0, "/cracks/damage");
+    grids_printf(d, "      </Grid>\n    </Grid>\n");
+  }
+}
+
+/* Replace STEM.xmf atomically: a reader (or a killed run) sees the old or the new index.  Not
+ * fsync'ed: the frame files it names are not either (see the file comment, Durability).
+ *
+ * Why fallocate: ext4 (auto_da_alloc, on by default) starts writeback of a file's delayed-
+ * allocation blocks when a rename replaces another file, so that the replacement survives a
+ * crash; that made each index rename cost ~2 ms on this project's machines, more than the frame
+ * itself (1e4 triangles).  Blocks reserved with fallocate before the write are not delayed, so
+ * the rename finds nothing to flush (index: 9 ms -> 1.5 ms per 50 frames, measured).  Where
+ * fallocate is not supported it is simply skipped. */
+static int xmf_try(YfDump *d, char *msg, size_t nmsg) {
+  char name[YF_NAME_MAX * 6 + 1];
+  xml_escape(name, sizeof name, d->id);
+  char head[YF_NAME_MAX * 6 + 256];
+  static const char tail[] = "    </Grid>\n  </Domain>\n</Xdmf>\n";
+  int hl = snprintf(head, sizeof head,
+                    "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+                    "<Xdmf Version=\"3.0\">\n  <Domain>\n"
+                    "    <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n",
+                    name);
+  const char *part[3] = {head, d->grids ? d->grids : "", tail};
+  size_t plen[3] = {(size_t)hl, d->glen, sizeof tail - 1};
+  int fd = open(d->xmf_tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) {
+    snprintf(msg, nmsg, "dump %s: cannot create '%s': %s", d->id, d->xmf_tmp, strerror(errno));
+    return -1;
+  }
+#ifdef __linux__
+  (void)fallocate(fd, 0, 0, (off_t)(plen[0] + plen[1] + plen[2])); /* an optimisation only */
+#endif
+  int err = 0;
+  for (int i = 0; i < 3 && !err; i++)
+    for (size_t done = 0; done < plen[i] && !err;) {
+      ssize_t w = write(fd, part[i] + done, plen[i] - done);
+      if (w > 0) done += (size_t)w;
+      else if (w < 0 && errno == EINTR) continue;
+      else err = w < 0 ? errno : EIO;
+    }
+  if (close(fd) != 0 && !err) err = errno;
+  if (err) {
+    unlink(d->xmf_tmp);
+    snprintf(msg, nmsg, "dump %s: cannot write '%s': %s", d->id, d->xmf_tmp, strerror(err));
+    return -1;
+  }
+  if (rename(d->xmf_tmp, d->xmf) != 0) {
+    snprintf(msg, nmsg, "dump %s: cannot rename '%s' to '%s': %s", d->id, d->xmf_tmp, d->xmf, strerror(errno));
+    return -1;
+  }
+  d->xmf_pending = 0;
+  d->xmf_writes++;
+  return 0;
+}
+
+/* The index after a frame.  Rewriting it costs in proportion to the frames it lists (about
+ * 2.2 KB each), so with frequent frames and a long series that cost would grow without bound
+ * (4000 frames of a 2000-triangle bar: 10.8 s of index for 0.14 s of run).  An index of up to
+ * XMF_SMALL bytes (about 450 frames, under a millisecond to write) is rewritten at every frame;
+ * a larger one only when the time since its last rewrite is at least XMF_GAP times what that
+ * rewrite took, so at most about 1/XMF_GAP of the run goes to it and it lags the newest frames
+ * by a fraction of a second (20 rewrites' time: 0.3 s at 1e4 frames).  The end of a run, an
+ * interrupt, an error and the exit write it (xmf_flush): a run that ends in any of these ways
+ * lists every frame; SIGKILL may leave the newest frames of a long series unlisted. */
+static double xmf_gap = 20.0;              /* XMF_GAP */
+static size_t xmf_small = (size_t)1 << 20; /* XMF_SMALL [bytes] */
+void output_set_index_policy(size_t small_bytes, double gap) {
+  xmf_small = small_bytes;
+  xmf_gap = gap;
+}
+static void xmf_write(YfDump *d) {
+  double t0 = yf_now();
+  if (d->glen > xmf_small && d->xmf_cost > 0.0 && t0 - d->xmf_done < xmf_gap * d->xmf_cost) {
+    d->xmf_pending = 1;
+    return;
+  }
+  char msg[3 * PATH_MAX];
+  if (xmf_try(d, msg, sizeof msg)) yf_io_error(NULL, "%s", msg);
+  d->xmf_done = yf_now();
+  d->xmf_cost = d->xmf_done - t0;
+}
+
+/* Write the index if frames are waiting for it; fatal = 0 on the way out after another error
+ * (a warning then, so that error keeps its message and exit code). */
+static void xmf_flush(YfDump *d, int fatal) {
+  if (!d->xmf_pending) return;
+  char msg[3 * PATH_MAX];
+  if (!xmf_try(d, msg, sizeof msg)) return;
+  if (fatal) yf_io_error(NULL, "%s", msg);
+  yf_warn(NULL, "%s", msg);
+}
+
+/* Cracks of a fracturing scene: every joint past its peak (opened: softening, still cohesive) or
+ * broken, as a 2-point segment from the middle of its end a node pair to the middle of its end b
+ * pair (current positions), with state (1 opened, 2 broken), mode (1 I, 2 II, 3 mixed: YF_JMODE_*) and the
+ * largest damage z of the last evaluation; plus the damage of every joint (/joint_damage).
+ * Returns the number of crack segments (0: no /cracks group). */
+static int h5_cracks(YfSim *s, YfDump *d) {
+  const YfJoints *j = s->joints;
+  if (!j || j->n == 0) return 0;
+  const YfNodes *nd = &s->model.node;
+  hsize_t dj[1] = {(hsize_t)j->n};
+  h5_put(d, d->file, "joint_damage", H5T_NATIVE_DOUBLE, 1, dj, j->z);
+  int nc = 0;
+  for (int k = 0; k < j->n; k++) nc += j->state[k] == 2 || (j->opened && j->opened[k]);
+  if (!nc) return 0;
+  double *xy = yf_malloc((size_t)nc * 4 * sizeof(double), "crack output");
+  double *dmg = yf_malloc((size_t)nc * sizeof(double), "crack output");
+  int *iv = yf_malloc((size_t)nc * 4 * sizeof(int), "crack output"); /* segments (2), state, mode */
+  int *state = iv + 2 * nc, *mode = iv + 3 * nc, c = 0;
+  for (int k = 0; k < j->n; k++) {
+    int broken = j->state[k] == 2, opened = j->opened && j->opened[k];
+    if (!broken && !opened) continue;
+    const int *q = j->node + 4 * k;
+    xy[4 * c] = 0.5 * (nd->x[q[0]] + nd->x[q[3]]);
+    xy[4 * c + 1] = 0.5 * (nd->y[q[0]] + nd->y[q[3]]);
+    xy[4 * c + 2] = 0.5 * (nd->x[q[1]] + nd->x[q[2]]);
+    xy[4 * c + 3] = 0.5 * (nd->y[q[1]] + nd->y[q[2]]);
+    iv[2 * c] = 2 * c;
+    iv[2 * c + 1] = 2 * c + 1;
+    state[c] = broken ? 2 : 1;
+    mode[c] = broken ? j->mode[k] : (j->opened[k] & 0x7f);
+    dmg[c] = broken ? 1.0 : j->z[k];
+    c++;
+  }
+  hid_t g = H5Gcreate2(d->file, "cracks", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  if (g < 0) h5_fail(d, "cracks");
+  hsize_t d2[2] = {(hsize_t)nc, 2}, dp[2] = {(hsize_t)(2 * nc), 2}, d1[1] = {(hsize_t)nc};
+  h5_put(d, g, "segments", H5T_NATIVE_INT, 2, d2, iv);
+  h5_put(d, g, "xy", H5T_NATIVE_DOUBLE, 2, dp, xy);
+  h5_put(d, g, "state", H5T_NATIVE_INT, 1, d1, state);
+  h5_put(d, g, "mode", H5T_NATIVE_INT, 1, d1, mode);
+  h5_put(d, g, "damage", H5T_NATIVE_DOUBLE, 1, d1, dmg);
+  H5Gclose(g);
+  free(xy);
+  free(dmg);
+  free(iv);
+  return nc;
+}
+
+static void h5_frame(YfSim *s, YfDump *d) {
+  const YfModel *m = &s->model;
+  const YfNodes *nd = &m->node;
+  int n = nd->n, nt = m->tri.n;
+  snprintf(d->cur, d->curcap, "%s_%06ld%s", d->stem, d->nframe, d->ext);
+  snprintf(d->cur_tmp, d->curcap, "%s.tmp", d->cur);
+  h5_open(d);
+  h5_mesh(s, d);
+  hid_t g = d->file; /* the frame's arrays are at the root */
+  long long step = s->step;
+  h5_put(d, g, "time", H5T_NATIVE_DOUBLE, 0, NULL, &s->time);
+  h5_put(d, g, "step", H5T_NATIVE_LLONG, 0, NULL, &step);
+
+  hsize_t dn2[2] = {(hsize_t)n, 2}, dt3[2] = {(hsize_t)nt, 3}, dt1[1] = {(hsize_t)nt};
+  size_t need = 2 * (size_t)n > (size_t)nt ? 2 * (size_t)n : (size_t)nt;
+  double *b = scratch(d, need);
+  for (int i = 0; i < n; i++) {
+    b[2 * i] = nd->x[i];
+    b[2 * i + 1] = nd->y[i];
+  }
+  h5_put(d, g, "x", H5T_NATIVE_DOUBLE, 2, dn2, b);
+  if (d->fields & YF_FIELD_U) {
+    for (int i = 0; i < n; i++) {
+      b[2 * i] = nd->x[i] - nd->x0[i];
+      b[2 * i + 1] = nd->y[i] - nd->y0[i];
+    }
+    h5_put(d, g, "u", H5T_NATIVE_DOUBLE, 2, dn2, b);
+  }
+  if (d->fields & YF_FIELD_V) {
+    for (int i = 0; i < n; i++) {
+      b[2 * i] = nd->vx[i];
+      b[2 * i + 1] = nd->vy[i];
+    }
+    h5_put(d, g, "v", H5T_NATIVE_DOUBLE, 2, dn2, b);
+  }
+  if (d->fields & YF_FIELD_F) {
+    for (int i = 0; i < n; i++) {
+      b[2 * i] = nd->fx[i];
+      b[2 * i + 1] = nd->fy[i];
+    }
+    h5_put(d, g, "f", H5T_NATIVE_DOUBLE, 2, dn2, b);
+  }
+  const double *sg = m->tri.s; /* sxx, syy, sxy per triangle, already the file layout */
+  if (d->fields & YF_FIELD_STRESS) h5_put(d, g, "stress", H5T_NATIVE_DOUBLE, 2, dt3, sg);
+  if (d->fields & YF_FIELD_VONMISES) {
+    /* In-plane von Mises (szz taken as 0): sqrt(sxx^2 - sxx syy + syy^2 + 3 sxy^2). */
+    for (int e = 0; e < nt; e++) {
+      double a = sg[3 * e], c = sg[3 * e + 1], t = sg[3 * e + 2];
+      b[e] = sqrt(a * a - a * c + c * c + 3.0 * t * t);
+    }
+    h5_put(d, g, "vonmises", H5T_NATIVE_DOUBLE, 1, dt1, b);
+  }
+  if (d->fields & YF_FIELD_SIGMA1) {
+    for (int e = 0; e < nt; e++) {
+      double a = sg[3 * e], c = sg[3 * e + 1], t = sg[3 * e + 2];
+      double h = 0.5 * (a - c);
+      b[e] = 0.5 * (a + c) + sqrt(h * h + t * t);
+    }
+    h5_put(d, g, "sigma1", H5T_NATIVE_DOUBLE, 1, dt1, b);
+  }
+  /* contact force per node: only while contact is on (else the field would be all zeros) */
+  const double *fc = (d->fields & YF_FIELD_FC) ? contact_node_forces(s) : NULL;
+  if (fc) h5_put(d, g, "fc", H5T_NATIVE_DOUBLE, 2, dn2, fc);
+  int ncrack = h5_cracks(s, d);
+  /* Complete and closed, then renamed, then indexed: the .xmf never names a partial file. */
+  herr_t st = H5Fclose(d->file);
+  d->file = -1;
+  if (st < 0) {
+    unlink(d->cur_tmp);
+    h5_fail(d, "close");
+  }
+  /* A frame file of an earlier run with this name is listed by no index any more (this run's
+   * index was rewritten at its first frame), so it is removed first: ext4 flushes a file that
+   * replaces another by rename (see xmf_write), ~3 ms per frame when a deck is run again in the
+   * same directory.  The first frame of this process (0, or the first after the frames of a
+   * continued series) keeps the atomic replace: the earlier run's index still lists it. */
+  if (d->nframe > d->first) unlink(d->cur);
+  if (rename(d->cur_tmp, d->cur) != 0)
+    yf_io_error(NULL, "dump %s: cannot rename '%s' to '%s': %s", d->id, d->cur_tmp, d->cur,
+                strerror(errno));
+  xmf_add_frame(d, s->time, s->step, n, nt, fc != NULL, ncrack);
+  xmf_write(d);
+}
+
+/* ---------------------------------------------------------------- CSV */
+
+static void csv_frame(YfSim *s, YfDump *d) {
+  const YfNodes *nd = &s->model.node;
+  char *path = str_printf("%s_%06ld.csv", d->path, d->nframe);
+  if (!d->csv_index) {
+    char *ip = str_printf("%s_frames.csv", d->path);
+    d->csv_index = fopen(ip, d->created ? "a" : "w");
+    if (!d->csv_index) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, strerror(errno));
+    if (!d->created) fprintf(d->csv_index, "frame,step,time,file\n");
+    d->created = 1;
+    free(ip);
+  }
+  FILE *f = fopen(path, "w");
+  if (!f) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, path, strerror(errno));
+  fprintf(f, "id,x,y,ux,uy,vx,vy\n");
+  for (int i = 0; i < nd->n; i++)
+    fprintf(f, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", nd->id[i], nd->x[i], nd->y[i],
+            nd->x[i] - nd->x0[i], nd->y[i] - nd->y0[i], nd->vx[i], nd->vy[i]);
+  int bad = ferror(f);
+  if (fclose(f) != 0 || bad) yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, path, strerror(errno));
+  const char *base = strrchr(path, '/');
+  fprintf(d->csv_index, "%ld,%ld,%.17g,%s\n", d->nframe, s->step, s->time, base ? base + 1 : path);
+  if (fflush(d->csv_index) != 0)
+    yf_io_error(NULL, "dump %s: cannot write '%s_frames.csv': %s", d->id, d->path, strerror(errno));
+  free(path);
+}
+
+/* ---------------------------------------------------------------- continuing after a restart */
+
+/* A run continued from a restart (read_restart) continues each dump's series instead of starting
+ * it again at frame 0, which would overwrite the frames of the run it continues: at the dump's
+ * first frame, the index the earlier run left (STEM.xmf or PREFIX_frames.csv) keeps its frames of
+ * steps before the current one, numbered 0, 1, ... in order, and the new frames follow.  Frames of
+ * the earlier run at or after this step (written before it was stopped) leave the index; their
+ * files are overwritten as the new frames reach their numbers.  An index that is missing, or not
+ * one yfdem wrote, starts a new series. */
+
+/* STEM.xmf: the frames of the earlier run with step < s->step become this series' first frames. */
+static long h5_adopt(YfSim *s, YfDump *d) {
+  size_t len;
+  char *t = yf_read_file(d->xmf, &len, "index text");
+  if (!t) return 0;
+  static const char open_tag[] = "CollectionType=\"Temporal\">\n", close_tag[] = "    </Grid>\n  </Domain>",
+                    frame_tag[] = "<Grid Name=\"frame_", step_tag[] = "<Information Name=\"step\" Value=\"";
+  char *a = strstr(t, open_tag), *z = NULL;
+  for (char *q = a; q && (q = strstr(q, close_tag)); q++) z = q;
+  long kept = 0;
+  if (a && z && z > a) {
+    a += sizeof open_tag - 1;
+    /* a frame runs from the first line that names frame_K to the first line naming another K */
+    char *keep_end = a, *p = a;
+    long cur = -1;
+    while (p < z) {
+      char *g = strstr(p, frame_tag);
+      char *next = g && g < z ? g : z;
+      long k = next < z ? strtol(next + sizeof frame_tag - 1, NULL, 10) : -1;
+      if (next < z && k == cur) { /* the Uniform grid of a Collection frame: same frame */
+        p = next + 1;
+        continue;
+      }
+      if (cur >= 0) { /* frame cur runs from keep_end to the start of next's line */
+        char *end = next;
+        while (end > keep_end && end[-1] != '\n') end--;
+        char *st = strstr(keep_end, step_tag);
+        long step = st && st < end ? strtol(st + sizeof step_tag - 1, NULL, 10) : LONG_MAX;
+        if (cur != kept || step >= s->step) break;
+        kept++;
+        keep_end = end;
+      }
+      if (next >= z) break;
+      cur = k;
+      p = next + 1;
+    }
+    if (kept) grids_printf(d, "%.*s", (int)(keep_end - a), a);
+  }
+  free(t);
+  return kept;
+}
+
+/* PREFIX_frames.csv: its rows of frames with step < s->step stay, and the index is rewritten. */
+static long csv_adopt(YfSim *s, YfDump *d) {
+  char *ip = str_printf("%s_frames.csv", d->path);
+  size_t len;
+  char *t = yf_read_file(ip, &len, "index text");
+  long kept = 0;
+  char *keep_end = NULL;
+  static const char head[] = "frame,step,time,file\n";
+  if (t && !strncmp(t, head, sizeof head - 1)) {
+    char *p = t + sizeof head - 1;
+    for (char *nl; (nl = strchr(p, '\n')); p = nl + 1) {
+      char *e;
+      long k = strtol(p, &e, 10), step = *e == ',' ? strtol(e + 1, NULL, 10) : LONG_MAX;
+      if (k != kept || step >= s->step) break;
+      kept++;
+      keep_end = nl + 1;
+    }
+  }
+  if (kept) {
+    d->csv_index = fopen(ip, "w");
+    if (!d->csv_index) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, strerror(errno));
+    fwrite(t, 1, (size_t)(keep_end - t), d->csv_index);
+    d->created = 1;
+  }
+  free(t);
+  free(ip);
+  return kept;
+}
+
+static void dump_adopt(YfSim *s, YfDump *d) {
+  long kept = d->style == YF_DUMP_H5 ? h5_adopt(s, d) : d->style == YF_DUMP_CSV ? csv_adopt(s, d) : 0;
+  if (!kept) return;
+  d->nframe = d->first = kept;
+  sim_printf(s, "dump %s: continuing the series of the earlier run: its %ld frame%s before step %ld kept, "
+             "the next is frame %ld\n", d->id, kept, kept == 1 ? "" : "s", s->step, kept);
+}
+
+/* ---------------------------------------------------------------- frames */
+
+static void write_frame(YfSim *s, YfDump *d) {
+  if (s->restored && d->nframe == 0 && d->last_step == LONG_MIN) dump_adopt(s, d);
+  if (d->style == YF_DUMP_Y2DREF) y2dref_frame(s, d->y2d);
+  else if (d->style == YF_DUMP_H5) h5_frame(s, d);
+  else csv_frame(s, d);
+  d->nframe++;
+  d->last_step = s->step;
+}
+
+void output_run_begin(YfSim *s) {
+  struct YfOutput *o = s->out;
+  if (!o) return;
+  for (int i = 0; i < o->ndump; i++)
+    if (o->dump[i]->last_step != s->step) write_frame(s, o->dump[i]);
+  update_next_due(s);
+}
+
+void output_step(YfSim *s) {
+  struct YfOutput *o = s->out;
+  if (!o || s->step < o->next_due) return;
+  for (int i = 0; i < o->ndump; i++) {
+    YfDump *d = o->dump[i];
+    if (s->step % d->every == 0 && d->last_step != s->step) write_frame(s, d);
+  }
+  update_next_due(s);
+}
+
+void output_run_end(YfSim *s) {
+  /* Every frame is closed as it is written; an index whose rewrite was put off (xmf_write) is
+   * written now (csv indexes stay open for the next run; output_close_all closes them). */
+  struct YfOutput *o = s->out;
+  if (!o) return;
+  for (int i = 0; i < o->ndump; i++) xmf_flush(o->dump[i], 1);
+}
+
+void output_write_all(YfSim *s) {
+  struct YfOutput *o = s->out;
+  if (!o) return;
+  for (int i = 0; i < o->ndump; i++)
+    if (o->dump[i]->last_step != s->step) write_frame(s, o->dump[i]);
+  update_next_due(s);
+}
+
+void output_topology_changed(YfSim *s) {
+  /* Nothing to do: every frame file carries the topology of its own step. */
+  (void)s;
+}
+
+static void dump_close(YfDump *d) {
+  if (d->style == YF_DUMP_H5) {
+    h5_close(d);
+    xmf_flush(d, 0);
+  }
+  if (d->style == YF_DUMP_Y2DREF) y2dref_close(d->y2d);
+  if (d->csv_index) {
+    fclose(d->csv_index);
+    d->csv_index = NULL;
+  }
+}
+
+static void dump_free(YfDump *d) {
+  dump_close(d);
+  free(d->path);
+  free(d->xmf);
+  free(d->xmf_tmp);
+  free(d->stem);
+  free(d->ext);
+  free(d->cur);
+  free(d->cur_tmp);
+  free(d->grids);
+  free(d->buf);
+  y2dref_free(d->y2d);
+  free(d);
+}
+
+void output_close_all(YfSim *s) {
+  struct YfOutput *o = s->out;
+  if (!o) return;
+  for (int i = 0; i < o->ndump; i++) dump_close(o->dump[i]);
+}
+
+void output_free(YfSim *s) {
+  struct YfOutput *o = s->out;
+  if (!o) return;
+  for (int i = 0; i < o->ndump; i++) dump_free(o->dump[i]);
+  free(o);
+  s->out = NULL;
+}
+
+long output_frames(const YfSim *s, const char *id) {
+  const YfDump *d = find_dump(s->out, id, NULL);
+  return d ? d->nframe : -1;
+}
+
+long output_index_writes(const YfSim *s, const char *id) {
+  const YfDump *d = find_dump(s->out, id, NULL);
+  return d ? d->xmf_writes : -1;
+}
+
+/* ---------------------------------------------------------------- commands */
+
+int output_add_dump(YfSim *s, const char *id, int style, long every, const char *path,
+                    unsigned fields, int compress) {
+  io_attach(s); /* dumps observe the run loop (report.c) */
+  if (!s->out) {
+    s->out = yf_calloc(1, sizeof *s->out, "output");
+    s->out->next_due = LONG_MAX;
+  }
+  struct YfOutput *o = s->out;
+  if (o->ndump >= YF_MAX_DUMPS || find_dump(o, id, NULL) || every < 1) return -1;
+  YfDump *d = yf_calloc(1, sizeof *d, "dump");
+  snprintf(d->id, sizeof d->id, "%s", id);
+  d->style = style;
+  d->every = every;
+  d->fields = fields & YF_FIELD_ALL;
+  d->compress = compress;
+  d->path = yf_strdup(path);
+  d->file = -1;
+  d->last_step = LONG_MIN;
+  if (style == YF_DUMP_H5) {
+    const char *base = strrchr(path, '/');
+    size_t l = strlen(path);
+    const char *dot = strrchr(base ? base + 1 : path, '.');
+    if (dot && (strcmp(dot, ".h5") == 0 || strcmp(dot, ".hdf5") == 0 || strcmp(dot, ".hdf") == 0))
+      l -= strlen(dot);
+    else
+      dot = ".h5";
+    d->stem = str_printf("%.*s", (int)l, path);
+    d->ext = yf_strdup(dot);
+    d->xmf = str_printf("%s.xmf", d->stem);
+    d->xmf_tmp = str_printf("%s.tmp", d->xmf);
+    /* frame names are formatted in place per frame: room for a 20-digit index and ".tmp" */
+    d->curcap = l + strlen(d->ext) + 32;
+    d->cur = yf_malloc(d->curcap, "dump file name");
+    d->cur_tmp = yf_malloc(d->curcap, "dump file name");
+    d->cur[0] = d->cur_tmp[0] = 0;
+  }
+  o->dump[o->ndump++] = d;
+  update_next_due(s);
+  return o->ndump - 1;
+}
+
+int output_remove_dump(YfSim *s, const char *id) {
+  struct YfOutput *o = s->out;
+  int slot;
+  YfDump *d = find_dump(o, id, &slot);
+  if (!d) return -1;
+  dump_free(d);
+  for (int i = slot; i + 1 < o->ndump; i++) o->dump[i] = o->dump[i + 1];
+  o->ndump--;
+  update_next_due(s);
+  return 0;
+}
+
+/* dump ID h5 N FILE.h5 [fields F1 F2 ...] [compress]
+ * dump ID csv N PREFIX */
+void cmd_dump(YfSim *s, const YfArgs *a) {
+  static const char *const styles[] = {"h5", "csv", "y2dref", NULL};
+  arg_count(a, 2, -1);
+  const char *id = arg_word(a, 0, "dump id");
+  if (strlen(id) >= YF_NAME_MAX) arg_error(a, 0, "id too long (at most %d characters)", YF_NAME_MAX - 1);
+  int style = arg_choice(a, 1, "style", styles);
+  if (style == YF_DUMP_Y2DREF) { /* dump ID y2dref DIR [corners S,...] [summary K] [probes K E:C ...] */
+    if (find_dump(s->out, id, NULL)) arg_error(a, 0, "a dump with this id exists (undump it first)");
+    if (s->out && s->out->ndump >= YF_MAX_DUMPS) arg_error(a, 0, "at most %d dumps at a time", YF_MAX_DUMPS);
+    struct YfY2dRef *r = y2dref_parse(s, a);
+    int k = output_add_dump(s, id, style, 1, y2dref_dir(r), 0, 0);
+    s->out->dump[k]->y2d = r;
+    sim_printf(s, "dump %s: Y2D reference CSV files in %s\n", id, y2dref_dir(r));
+    return;
+  }
+  arg_count(a, 4, -1);
+  long every = arg_int(a, 2, "N (steps between frames)", 1, LONG_MAX / 4);
+  const char *path = arg_word(a, 3, style == YF_DUMP_H5 ? "file" : "file prefix");
+  unsigned fields = YF_FIELD_ALL;
+  int compress = 0;
+  for (int i = 4; i < a->n;) {
+    if (style == YF_DUMP_H5 && strcmp(a->w[i], "fields") == 0) {
+      int first = ++i;
+      fields = 0;
+      for (; i < a->n && strcmp(a->w[i], "compress") != 0; i++) {
+        int k = arg_choice(a, i, "field", field_names);
+        if (k < 9) fields |= 1u << k; /* "x" (geometry) is always written */
+      }
+      if (i == first) arg_error(a, first - 1, "expected field names after it (u v f stress vonmises sigma1 material body fc)");
+    } else if (style == YF_DUMP_H5 && strcmp(a->w[i], "compress") == 0) {
+      compress = 1;
+      i++;
+    } else if (style == YF_DUMP_H5) {
+      arg_error(a, i, "unknown keyword (expected fields or compress)");
+    } else {
+      arg_error(a, i, "unexpected word (a csv dump takes no keywords)");
+    }
+  }
+  if (!path[0]) arg_error(a, 3, "empty file name");
+  const char *base = strrchr(path, '/');
+  if (style == YF_DUMP_H5 && strchr(base ? base + 1 : path, ':'))
+    arg_error(a, 3, "the file name may not contain ':' (XDMF uses it to separate file and dataset)");
+  struct YfOutput *o = s->out;
+  if (find_dump(o, id, NULL)) arg_error(a, 0, "a dump with this id exists (undump it first)");
+  if (o && o->ndump >= YF_MAX_DUMPS) arg_error(a, 0, "at most %d dumps at a time", YF_MAX_DUMPS);
+  for (int i = 0; o && i < o->ndump; i++)
+    if (strcmp(o->dump[i]->path, path) == 0)
+      arg_error(a, 3, "already written by dump '%s'", o->dump[i]->id);
+  int k = output_add_dump(s, id, style, every, path, fields, compress); /* creates s->out */
+  const YfDump *d = s->out->dump[k];
+  if (style == YF_DUMP_H5)
+    sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN%s (index %s)\n", id, every, d->stem, d->ext, d->xmf);
+  else
+    sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN.csv\n", id, every, path);
+}
+
+/* undump ID */
+void cmd_undump(YfSim *s, const YfArgs *a) {
+  arg_count(a, 1, 1);
+  const char *id = arg_word(a, 0, "dump id");
+  if (output_remove_dump(s, id) == 0) return;
+  struct YfOutput *o = s->out;
+  char have[YF_MAX_DUMPS * (YF_NAME_MAX + 1) + 8] = "";
+  for (int i = 0; o && i < o->ndump; i++) {
+    strcat(have, i ? " " : "");
+    strcat(have, o->dump[i]->id);
+  }
+  arg_error(a, 0, "no such dump (defined: %s)", have[0] ? have : "none");
+}

@@ -1,0 +1,85 @@
+/* output.h: state dumps for post-processing (HDF5 + XDMF 3 for ParaView, CSV for scripts).
+ *
+ * output.c owns everything written per frame: up to YF_MAX_DUMPS dumps, each with its own files,
+ * period and field list.  The step loop only calls output_step() after every completed step;
+ * when no dump is due that costs one integer compare (YfOutput.next_due).
+ *
+ * Crash safety by construction: an h5 dump (FILE.h5) writes each frame k to its own file
+ * FILE_NNNNNN.h5 (via NAME.tmp, close, rename) and never modifies a written file; only then is
+ * the index FILE.xmf replaced atomically (FILE.xmf.tmp + rename) by one that lists the frame.  A
+ * run killed at any moment leaves an .xmf that lists only complete frames (not fsync'ed: a power
+ * cut is not covered; see output.c).  Files are created at the first frame (the start of the
+ * first run after the dump command), so a deck error before `run` leaves no file.
+ */
+#ifndef YF_OUTPUT_H
+#define YF_OUTPUT_H
+#include <stddef.h>
+#include "sim.h"
+
+#define YF_MAX_DUMPS 8
+
+enum { YF_DUMP_H5 = 0, YF_DUMP_CSV = 1 };
+
+/* Fields of an h5 dump (bit mask).  Geometry (current x, y) is always written. */
+enum {
+  YF_FIELD_U = 1 << 0,        /* displacement x - x0 (node, 2 comps) [m]          */
+  YF_FIELD_V = 1 << 1,        /* velocity (node, 2 comps) [m/s]                   */
+  YF_FIELD_F = 1 << 2,        /* total nodal force (node, 2 comps) [N/m]          */
+  YF_FIELD_STRESS = 1 << 3,   /* Cauchy stress sxx, syy, sxy (cell, 3 comps) [Pa] */
+  YF_FIELD_VONMISES = 1 << 4, /* von Mises of the in-plane stress (cell) [Pa]     */
+  YF_FIELD_SIGMA1 = 1 << 5,   /* max principal in-plane stress (cell) [Pa]        */
+  YF_FIELD_MATERIAL = 1 << 6, /* material index (cell)                            */
+  YF_FIELD_BODY = 1 << 7,     /* body index (cell)                                */
+  YF_FIELD_FC = 1 << 8,       /* contact force (node, 2 comps) [N/m]; written only
+                                 while contact is on (contact_node_forces)       */
+  YF_FIELD_ALL = (1 << 9) - 1
+};
+
+struct YfDump;
+
+struct YfOutput {
+  long next_due;   /* smallest step at which any dump is due (LONG_MAX: none) */
+  int ndump;
+  struct YfDump *dump[YF_MAX_DUMPS];
+};
+
+/* Deck commands.
+ *   dump ID h5 N FILE.h5 [fields F1 F2 ...] [compress]
+ *   dump ID csv N PREFIX
+ *   undump ID                                                                     */
+
+/* Programmatic form of `dump` (used by cmd_dump and tests).  Returns the dump's slot; checks
+ * nothing about the deck (the handler does), but refuses a full table or a duplicate id with -1. */
+int output_add_dump(YfSim *s, const char *id, int style, long every, const char *path,
+                    unsigned fields, int compress);
+/* Close and forget dump id; returns 0, or -1 when there is no such dump. */
+int output_remove_dump(YfSim *s, const char *id);
+
+/* Step-loop hooks (run.c). */
+void output_run_begin(YfSim *s); /* start of each run: a frame of the current state per dump  */
+void output_step(YfSim *s);      /* after each completed step: frames that are due            */
+void output_run_end(YfSim *s);   /* end of each run                                          */
+/* Write one frame of every dump now (whether due or not; skipped if this step is written). */
+void output_write_all(YfSim *s);
+/* Topology changed (triangles or node count).  Kept for callers; nothing to do, since every h5
+ * frame file carries the mesh of its own step. */
+void output_topology_changed(YfSim *s);
+/* Close what is open (csv indexes; a frame file a failure left half-written is removed).
+ * Frames written so far stay readable.  Safe from the error cleanup path and more than once;
+ * never exits. */
+void output_close_all(YfSim *s);
+/* output_close_all + free everything (sim_free). */
+void output_free(YfSim *s);
+/* Silence HDF5's own error printing (once); yfdem reports HDF5 errors itself. */
+void yf_h5_quiet(void);
+
+/* Frames written so far by dump id (-1 if no such dump); for tests and messages. */
+long output_frames(const YfSim *s, const char *id);
+/* Times the .xmf index of h5 dump id was rewritten (-1 if no such dump); for tests. */
+long output_index_writes(const YfSim *s, const char *id);
+/* The index rewrite policy (see output.c, xmf_write): indexes up to small_bytes are rewritten
+ * at every frame, larger ones when gap x their last rewrite time has passed.  Defaults 1 MiB
+ * and 20; for tests. */
+void output_set_index_policy(size_t small_bytes, double gap);
+
+#endif

@@ -1,0 +1,711 @@
+/* restart.c: exact restart files (HDF5) and the interrupt restart (see restart.h for the
+ * semantics).
+ *
+ * This module owns the restart file layout, the periodic restart schedule (YfRestart in
+ * YfSim.restart) and the check that a restart fits the scene the deck rebuilt.  It reads and
+ * writes the other modules' state through their public structs (model.h, joint.h) and the
+ * contact accessors (contact_state_save/load), so the step loop knows nothing about it except
+ * restart_step() (one compare per step) and restart_on_interrupt().
+ *
+ * Layout (HDF5 1.8 format, one dataset per array, no compression; a restart must be exact, not
+ * small):
+ *   /meta/{version, nnode, ntri, njoint, topo_hash, complete}
+ *   /sim/{step, time, dt, last_step, energy (7), elem_steps, wall_s, e_budget}
+ *   /nodes/{x, y, x0, y0, vx, vy, fx, fy, m}                      (nnode each, [m], [m/s], [N/m], [kg/m])
+ *   /joints/{k, fs, dmg(3), w, z, f(8), state, mode, pend, nbroken, diss_broken, dt_prev,
+ *            rec_step, rec_d(4: time x y length), rec_i(4: mode triA triB joint), rng_SET}
+ *   /contact/{ij(2), g(6), alive, nlive, ndead, travel, nsearch, broken_seen,
+ *             force_search, fcn(2 nnode), fcn_valid}                 (only when contact is on)
+ * /meta/complete is written last; a file without it is refused.
+ */
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <gsl/gsl_rng.h>
+#include <hdf5.h>
+#include "restart.h"
+#include "deck.h"
+#include "report.h"
+#include "output.h"
+#include "contact.h"
+#include "err.h"
+#include "joint.h"
+#include "run.h"
+
+#define RESTART_VERSION 1
+
+typedef struct YfRestart {
+  long every;      /* steps between periodic restarts (0: none)            */
+  char *base;      /* FILE of `restart every N FILE`                        */
+  int next;        /* 0: FILE.a is written next, 1: FILE.b                   */
+  char *last;      /* last restart file written (for messages)              */
+} YfRestart;
+
+static YfRestart *rget(YfSim *s) {
+  if (!s->restart) s->restart = yf_calloc(1, sizeof(YfRestart), "restart settings");
+  return s->restart;
+}
+
+void restart_free(YfSim *s) {
+  YfRestart *r = s->restart;
+  if (!r) return;
+  free(r->base);
+  free(r->last);
+  free(r);
+  s->restart = NULL;
+}
+
+/* ---------------------------------------------------------------- scene fingerprint */
+
+static void fnv(uint64_t *h, const void *p, size_t n) {
+  const unsigned char *b = p;
+  for (size_t k = 0; k < n; k++) {
+    *h ^= b[k];
+    *h *= 0x100000001b3ull;
+  }
+}
+
+/* What the deck must rebuild identically: counts, triangle corners and materials, initial
+ * positions, joint nodes and property sets. */
+static uint64_t topo_hash(const YfSim *s) {
+  const YfModel *m = &s->model;
+  uint64_t h = 0xcbf29ce484222325ull;
+  fnv(&h, &m->node.n, sizeof m->node.n);
+  fnv(&h, &m->tri.n, sizeof m->tri.n);
+  fnv(&h, m->tri.v, (size_t)m->tri.n * 3 * sizeof(int));
+  fnv(&h, m->tri.mat, (size_t)m->tri.n * sizeof(int));
+  fnv(&h, m->node.x0, (size_t)m->node.n * sizeof(double));
+  fnv(&h, m->node.y0, (size_t)m->node.n * sizeof(double));
+  const YfJoints *J = s->joints;
+  if (J && J->n) {
+    fnv(&h, J->node, (size_t)J->n * 4 * sizeof(int));
+    fnv(&h, J->prop, (size_t)J->n * sizeof(int));
+  }
+  return h;
+}
+
+/* ---------------------------------------------------------------- HDF5 helpers */
+
+
+typedef struct {
+  hid_t file;
+  int bad;          /* a write failed                          */
+  char what[128];   /* the first dataset that failed            */
+} W;
+
+static void put(W *w, hid_t g, const char *name, hid_t type, size_t n, const void *data) {
+  if (w->bad) return;
+  hsize_t dims[1] = {(hsize_t)n};
+  hid_t sp = H5Screate_simple(1, dims, NULL);
+  hid_t ds = sp >= 0 ? H5Dcreate2(g, name, type, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1;
+  static const double none[1] = {0};
+  if (ds < 0 || H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, n && data ? data : (const void *)none) < 0) {
+    w->bad = 1;
+    snprintf(w->what, sizeof w->what, "%s", name);
+  }
+  if (ds >= 0) H5Dclose(ds);
+  if (sp >= 0) H5Sclose(sp);
+}
+static void put_d(W *w, hid_t g, const char *name, double v) { put(w, g, name, H5T_NATIVE_DOUBLE, 1, &v); }
+static void put_l(W *w, hid_t g, const char *name, long v) { put(w, g, name, H5T_NATIVE_LONG, 1, &v); }
+
+static hid_t group(W *w, const char *name) {
+  hid_t g = w->bad ? -1 : H5Gcreate2(w->file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  if (g < 0 && !w->bad) {
+    w->bad = 1;
+    snprintf(w->what, sizeof w->what, "%s", name);
+  }
+  return g;
+}
+static void gclose(hid_t g) {
+  if (g >= 0) H5Gclose(g);
+}
+
+/* Reading: every failure is fatal (an I/O error naming the file and the dataset). */
+typedef struct {
+  hid_t file;
+  const char *path;
+  const YfLoc *loc;
+} R;
+
+static void rfail(const R *r, const char *what) __attribute__((noreturn));
+static void rfail(const R *r, const char *what) {
+  hid_t f = r->file;
+  if (f >= 0) H5Fclose(f);
+  yf_io_error(r->loc, "read_restart: '%s' is not a usable yfdem restart (%s)", r->path, what);
+}
+
+/* Length of a 1-D dataset, -1 when absent. */
+static long dlen(hid_t g, const char *name) {
+  if (H5Lexists(g, name, H5P_DEFAULT) <= 0) return -1;
+  hid_t ds = H5Dopen2(g, name, H5P_DEFAULT);
+  if (ds < 0) return -1;
+  hid_t sp = H5Dget_space(ds);
+  hsize_t dims[1] = {0};
+  long n = (sp >= 0 && H5Sget_simple_extent_ndims(sp) == 1 && H5Sget_simple_extent_dims(sp, dims, NULL) == 1) ? (long)dims[0] : -1;
+  if (sp >= 0) H5Sclose(sp);
+  H5Dclose(ds);
+  return n;
+}
+
+static void get(const R *r, hid_t g, const char *name, hid_t type, size_t n, void *data) {
+  char what[160];
+  long have = dlen(g, name);
+  if (have != (long)n) {
+    snprintf(what, sizeof what, "dataset %s: %ld values, expected %zu", name, have, n);
+    rfail(r, what);
+  }
+  if (!n) return;
+  hid_t ds = H5Dopen2(g, name, H5P_DEFAULT);
+  herr_t e = ds >= 0 ? H5Dread(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) : -1;
+  if (ds >= 0) H5Dclose(ds);
+  if (e < 0) {
+    snprintf(what, sizeof what, "cannot read dataset %s", name);
+    rfail(r, what);
+  }
+}
+static double get_d(const R *r, hid_t g, const char *name) {
+  double v;
+  get(r, g, name, H5T_NATIVE_DOUBLE, 1, &v);
+  return v;
+}
+static long get_l(const R *r, hid_t g, const char *name) {
+  long v;
+  get(r, g, name, H5T_NATIVE_LONG, 1, &v);
+  return v;
+}
+static hid_t ropen(const R *r, const char *name) {
+  hid_t g = H5Gopen2(r->file, name, H5P_DEFAULT);
+  if (g < 0) {
+    char what[96];
+    snprintf(what, sizeof what, "no group /%s", name);
+    rfail(r, what);
+  }
+  return g;
+}
+
+/* ---------------------------------------------------------------- write */
+
+/* The opened-crack record (joint.h): flags and events, datasets opened, orec_step, orec_d
+ * (time x y length), orec_i (mode triA triB joint). */
+static void put_opened(W *w, hid_t g, const YfJoints *J) {
+  size_t nr = (size_t)J->nopened;
+  put(w, g, "opened", H5T_NATIVE_UCHAR, (size_t)J->n, J->opened);
+  long *rs = yf_malloc((nr ? nr : 1) * sizeof(long), "restart buffer");
+  double *rd = yf_malloc((nr ? nr : 1) * 4 * sizeof(double), "restart buffer");
+  int *ri = yf_malloc((nr ? nr : 1) * 4 * sizeof(int), "restart buffer");
+  for (size_t k = 0; k < nr; k++) {
+    const YfBreak *b = &J->orec[k];
+    rs[k] = b->step;
+    rd[4 * k] = b->time; rd[4 * k + 1] = b->x; rd[4 * k + 2] = b->y; rd[4 * k + 3] = b->length;
+    ri[4 * k] = b->mode; ri[4 * k + 1] = b->triA; ri[4 * k + 2] = b->triB; ri[4 * k + 3] = b->joint;
+  }
+  put(w, g, "orec_step", H5T_NATIVE_LONG, nr, rs);
+  put(w, g, "orec_d", H5T_NATIVE_DOUBLE, 4 * nr, rd);
+  put(w, g, "orec_i", H5T_NATIVE_INT, 4 * nr, ri);
+  free(rs); free(rd); free(ri);
+}
+
+static void write_all(W *w, YfSim *s) {
+  YfModel *m = &s->model;
+  const YfNodes *N = &m->node;
+  size_t nn = (size_t)N->n;
+  hid_t g = group(w, "meta");
+  put_l(w, g, "version", RESTART_VERSION);
+  put_l(w, g, "nnode", N->n);
+  put_l(w, g, "ntri", m->tri.n);
+  put_l(w, g, "njoint", s->joints ? s->joints->n : 0);
+  uint64_t th = topo_hash(s);
+  put(w, g, "topo_hash", H5T_NATIVE_UINT64, 1, &th);
+  gclose(g);
+
+  g = group(w, "sim");
+  put_l(w, g, "step", s->step);
+  put_d(w, g, "time", s->time);
+  put_d(w, g, "dt", s->dt);
+  put_l(w, g, "last_step", s->last_step);
+  const YfEnergy *e = &s->energy;
+  double en[7] = {e->kinetic, e->strain, e->external_work, e->damping, e->joint_dissipated, e->contact, e->friction};
+  put(w, g, "energy", H5T_NATIVE_DOUBLE, 7, en);
+  put_d(w, g, "elem_steps", s->elem_steps);
+  put_d(w, g, "wall_s", s->wall_s);
+  put_d(w, g, "e_budget", run_get_energy_budget());
+  gclose(g);
+
+  g = group(w, "nodes");
+  put(w, g, "x", H5T_NATIVE_DOUBLE, nn, N->x);
+  put(w, g, "y", H5T_NATIVE_DOUBLE, nn, N->y);
+  put(w, g, "x0", H5T_NATIVE_DOUBLE, nn, N->x0);
+  put(w, g, "y0", H5T_NATIVE_DOUBLE, nn, N->y0);
+  put(w, g, "vx", H5T_NATIVE_DOUBLE, nn, N->vx);
+  put(w, g, "vy", H5T_NATIVE_DOUBLE, nn, N->vy);
+  put(w, g, "fx", H5T_NATIVE_DOUBLE, nn, N->fx);
+  put(w, g, "fy", H5T_NATIVE_DOUBLE, nn, N->fy);
+  put(w, g, "m", H5T_NATIVE_DOUBLE, nn, N->m);
+  gclose(g);
+
+  const YfJoints *J = s->joints;
+  if (J && J->n) {
+    size_t nj = (size_t)J->n;
+    g = group(w, "joints");
+    put(w, g, "k", H5T_NATIVE_DOUBLE, nj, J->k);
+    put(w, g, "fs", H5T_NATIVE_DOUBLE, nj, J->fs);
+    put(w, g, "dmg", H5T_NATIVE_DOUBLE, 3 * nj, J->dmg);
+    put(w, g, "w", H5T_NATIVE_DOUBLE, nj, J->w);
+    put(w, g, "z", H5T_NATIVE_DOUBLE, nj, J->z);
+    put(w, g, "f", H5T_NATIVE_DOUBLE, 8 * nj, J->f);
+    put(w, g, "state", H5T_NATIVE_UCHAR, nj, J->state);
+    put(w, g, "mode", H5T_NATIVE_UCHAR, nj, J->mode);
+    put(w, g, "pend", H5T_NATIVE_INT, (size_t)J->npend, J->pend);
+    put_l(w, g, "nbroken", J->nbroken);
+    put_d(w, g, "diss_broken", J->diss_broken);
+    put_d(w, g, "dt_prev", J->dt_prev);
+    size_t nr = (size_t)J->nrec;
+    long *rs = yf_malloc((nr ? nr : 1) * sizeof(long), "restart buffer");
+    double *rd = yf_malloc((nr ? nr : 1) * 4 * sizeof(double), "restart buffer");
+    int *ri = yf_malloc((nr ? nr : 1) * 4 * sizeof(int), "restart buffer");
+    for (size_t k = 0; k < nr; k++) {
+      const YfBreak *b = &J->rec[k];
+      rs[k] = b->step;
+      rd[4 * k] = b->time; rd[4 * k + 1] = b->x; rd[4 * k + 2] = b->y; rd[4 * k + 3] = b->length;
+      ri[4 * k] = b->mode; ri[4 * k + 1] = b->triA; ri[4 * k + 2] = b->triB; ri[4 * k + 3] = b->joint;
+    }
+    put(w, g, "rec_step", H5T_NATIVE_LONG, nr, rs);
+    put(w, g, "rec_d", H5T_NATIVE_DOUBLE, 4 * nr, rd);
+    put(w, g, "rec_i", H5T_NATIVE_INT, 4 * nr, ri);
+    free(rs); free(rd); free(ri);
+    put_opened(w, g, J);
+    /* generator state of each joint set (joints added later in the deck would draw from it) */
+    for (int i = 0; i < J->nset; i++) {
+      const gsl_rng *rng = J->set[i].rng;
+      if (!rng) continue;
+      char name[32];
+      snprintf(name, sizeof name, "rng_%d", i);
+      put(w, g, name, H5T_NATIVE_UCHAR, gsl_rng_size(rng), gsl_rng_state(rng));
+    }
+    gclose(g);
+  }
+
+  YfContactState cs;
+  if (contact_state_save(s, &cs)) {
+    size_t np = (size_t)cs.n;
+    g = group(w, "contact");
+    put(w, g, "ij", H5T_NATIVE_INT, 2 * np, cs.ij);
+    put(w, g, "g", H5T_NATIVE_DOUBLE, 6 * np, cs.g);
+    put(w, g, "alive", H5T_NATIVE_UCHAR, np, cs.alive);
+    put_l(w, g, "nlive", cs.nlive);
+    put_l(w, g, "ndead", cs.ndead);
+    put_d(w, g, "travel", cs.travel);
+    put_l(w, g, "nsearch", cs.nsearch);
+    put_l(w, g, "broken_seen", cs.broken_seen);
+    put_l(w, g, "force_search", cs.force_search);
+    put(w, g, "fcn", H5T_NATIVE_DOUBLE, cs.fcn ? 2 * (size_t)cs.nn : 0, cs.fcn);
+    put_l(w, g, "fcn_valid", cs.fcn_valid);
+    gclose(g);
+  }
+  g = w->bad ? -1 : H5Gopen2(w->file, "meta", H5P_DEFAULT);
+  put_l(w, g, "complete", 1); /* last: a file without it is refused */
+  gclose(g);
+}
+
+int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
+  if (err && nerr) err[0] = 0;
+  if (!s->model.prepared) {
+    if (err) snprintf(err, nerr, "the model is not prepared yet (write_restart needs a run or read_restart first)");
+    return -1;
+  }
+  yf_h5_quiet();
+  size_t L = strlen(path);
+  char *tmp = yf_malloc(L + 8, "restart path");
+  snprintf(tmp, L + 8, "%s.tmp", path);
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18);
+  W w = {H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl), 0, ""};
+  H5Pclose(fapl);
+  if (w.file < 0) {
+    if (err) snprintf(err, nerr, "cannot create '%s' (%s)", tmp, errno ? strerror(errno) : "HDF5 error");
+    free(tmp);
+    return -1;
+  }
+  write_all(&w, s);
+  if (H5Fclose(w.file) < 0 && !w.bad) {
+    w.bad = 1;
+    snprintf(w.what, sizeof w.what, "closing the file");
+  }
+  if (!w.bad) {
+    /* the data must be on disk before the name points at it */
+    int fd = open(tmp, O_RDONLY);
+    if (fd < 0 || fsync(fd) != 0) {
+      w.bad = 1;
+      snprintf(w.what, sizeof w.what, "fsync: %s", strerror(errno));
+    }
+    if (fd >= 0) close(fd);
+  }
+  if (!w.bad && rename(tmp, path) != 0) {
+    w.bad = 1;
+    snprintf(w.what, sizeof w.what, "rename to '%s': %s", path, strerror(errno));
+  }
+  if (w.bad) {
+    if (err) snprintf(err, nerr, "cannot write restart '%s' (%s)", path, w.what);
+    unlink(tmp);
+    free(tmp);
+    return -1;
+  }
+  free(tmp);
+  YfRestart *r = rget(s);
+  free(r->last);
+  r->last = yf_strdup(path);
+  return 0;
+}
+
+/* ---------------------------------------------------------------- read */
+
+static int exists(const char *p) {
+  struct stat st;
+  return stat(p, &st) == 0;
+}
+
+/* Step of a complete restart file, -1 when it is not one. */
+static long peek_step(const char *path) {
+  yf_h5_quiet();
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) return -1;
+  long step = -1, one = 0;
+  if (H5Lexists(f, "meta", H5P_DEFAULT) > 0 && H5Lexists(f, "sim", H5P_DEFAULT) > 0) {
+    hid_t m = H5Gopen2(f, "meta", H5P_DEFAULT), g = H5Gopen2(f, "sim", H5P_DEFAULT);
+    if (m >= 0 && g >= 0 && dlen(m, "complete") == 1 && dlen(g, "step") == 1) {
+      hid_t d1 = H5Dopen2(m, "complete", H5P_DEFAULT), d2 = H5Dopen2(g, "step", H5P_DEFAULT);
+      if (d1 >= 0 && d2 >= 0 && H5Dread(d1, H5T_NATIVE_LONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &one) >= 0 && one == 1 &&
+          H5Dread(d2, H5T_NATIVE_LONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &step) < 0)
+        step = -1;
+      if (d1 >= 0) H5Dclose(d1);
+      if (d2 >= 0) H5Dclose(d2);
+    }
+    if (m >= 0) H5Gclose(m);
+    if (g >= 0) H5Gclose(g);
+  }
+  H5Fclose(f);
+  return step;
+}
+
+/* FILE itself, or the newer complete one of FILE.a / FILE.b (malloc'd); NULL when none. */
+static char *pick_file(const char *path) {
+  if (exists(path)) return yf_strdup(path);
+  size_t L = strlen(path) + 3;
+  char *a = yf_malloc(L, "restart path"), *b = yf_malloc(L, "restart path");
+  snprintf(a, L, "%s.a", path);
+  snprintf(b, L, "%s.b", path);
+  long sa = exists(a) ? peek_step(a) : -1, sb = exists(b) ? peek_step(b) : -1;
+  if (sa < 0 && sb < 0) {
+    free(a); free(b);
+    return NULL;
+  }
+  if (sa >= sb) { free(b); return a; }
+  free(a);
+  return b;
+}
+
+static void mismatch(const YfLoc *loc, const char *path, const char *what, long file, long here) __attribute__((noreturn));
+static void mismatch(const YfLoc *loc, const char *path, const char *what, long file, long here) {
+  yf_deck_error(loc, "read_restart: '%s' was written for a different scene: %s %ld in the file, %ld here "
+                "(the deck must rebuild the same scene: the same mesh, fracture and contact commands, in the same order)",
+                path, what, file, here);
+}
+
+void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
+  YfModel *m = &s->model;
+  if (!m->tri.n)
+    yf_deck_error(loc, "read_restart: the scene has no triangles: the deck must rebuild the scene (mesh, fracture, "
+                  "contact commands) before read_restart");
+  char *path = pick_file(path_in);
+  if (!path)
+    yf_io_error(loc, "read_restart: no restart '%s' (nor %s.a / %s.b): %s", path_in, path_in, path_in, strerror(ENOENT));
+  yf_h5_quiet();
+  R r = {H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT), path, loc};
+  if (r.file < 0) rfail(&r, "not an HDF5 file, or unreadable");
+  hid_t g = ropen(&r, "meta");
+  if (dlen(g, "complete") != 1 || get_l(&r, g, "complete") != 1) rfail(&r, "incomplete file: the writer was stopped");
+  long ver = get_l(&r, g, "version");
+  if (ver != RESTART_VERSION) {
+    char what[96];
+    snprintf(what, sizeof what, "format version %ld, this yfdem reads %d", ver, RESTART_VERSION);
+    rfail(&r, what);
+  }
+  long f_nn = get_l(&r, g, "nnode"), f_nt = get_l(&r, g, "ntri"), f_nj = get_l(&r, g, "njoint");
+  uint64_t f_th;
+  get(&r, g, "topo_hash", H5T_NATIVE_UINT64, 1, &f_th);
+  H5Gclose(g);
+
+  /* the scene as `run` would prepare it (joints inserted, masses, contact setup) */
+  run_prepare(s);
+  long nj = s->joints ? s->joints->n : 0;
+  if (f_nt != m->tri.n) { H5Fclose(r.file); mismatch(loc, path, "triangles", f_nt, m->tri.n); }
+  if (f_nn != m->node.n) { H5Fclose(r.file); mismatch(loc, path, "nodes", f_nn, m->node.n); }
+  if (f_nj != nj) { H5Fclose(r.file); mismatch(loc, path, "joints", f_nj, nj); }
+  if (f_th != topo_hash(s)) {
+    H5Fclose(r.file);
+    yf_deck_error(loc, "read_restart: '%s' was written for a different scene: same counts, but the triangle corners, "
+                  "materials, initial positions or joints differ (the deck must rebuild the same scene)", path);
+  }
+  YfContactState cs;
+  int c_here = contact_state_save(s, &cs);
+  int c_file = H5Lexists(r.file, "contact", H5P_DEFAULT) > 0;
+  if (c_here != c_file) {
+    H5Fclose(r.file);
+    yf_deck_error(loc, "read_restart: '%s' %s contact state but contact is %s in this deck (give the same contact "
+                  "commands before read_restart)", path, c_file ? "holds" : "has no", c_here ? "on" : "off");
+  }
+
+  /* read everything into place; sizes are checked per dataset */
+  YfNodes *N = &m->node;
+  size_t nn = (size_t)N->n;
+  g = ropen(&r, "sim");
+  long step = get_l(&r, g, "step");
+  double time = get_d(&r, g, "time"), dt = get_d(&r, g, "dt");
+  long last_step = get_l(&r, g, "last_step");
+  double en[7];
+  get(&r, g, "energy", H5T_NATIVE_DOUBLE, 7, en);
+  double elem_steps = get_d(&r, g, "elem_steps"), wall_s = get_d(&r, g, "wall_s"), budget = get_d(&r, g, "e_budget");
+  H5Gclose(g);
+  if (step < 0 || !(dt > 0) || time != time) rfail(&r, "step, time or dt out of range");
+
+  g = ropen(&r, "nodes");
+  get(&r, g, "x", H5T_NATIVE_DOUBLE, nn, N->x);
+  get(&r, g, "y", H5T_NATIVE_DOUBLE, nn, N->y);
+  get(&r, g, "x0", H5T_NATIVE_DOUBLE, nn, N->x0);
+  get(&r, g, "y0", H5T_NATIVE_DOUBLE, nn, N->y0);
+  get(&r, g, "vx", H5T_NATIVE_DOUBLE, nn, N->vx);
+  get(&r, g, "vy", H5T_NATIVE_DOUBLE, nn, N->vy);
+  get(&r, g, "fx", H5T_NATIVE_DOUBLE, nn, N->fx);
+  get(&r, g, "fy", H5T_NATIVE_DOUBLE, nn, N->fy);
+  get(&r, g, "m", H5T_NATIVE_DOUBLE, nn, N->m);
+  H5Gclose(g);
+
+  YfJoints *J = s->joints;
+  if (J && J->n) {
+    size_t n = (size_t)J->n;
+    g = ropen(&r, "joints");
+    get(&r, g, "k", H5T_NATIVE_DOUBLE, n, J->k);
+    get(&r, g, "fs", H5T_NATIVE_DOUBLE, n, J->fs);
+    get(&r, g, "dmg", H5T_NATIVE_DOUBLE, 3 * n, J->dmg);
+    get(&r, g, "w", H5T_NATIVE_DOUBLE, n, J->w);
+    get(&r, g, "z", H5T_NATIVE_DOUBLE, n, J->z);
+    get(&r, g, "f", H5T_NATIVE_DOUBLE, 8 * n, J->f);
+    get(&r, g, "state", H5T_NATIVE_UCHAR, n, J->state);
+    get(&r, g, "mode", H5T_NATIVE_UCHAR, n, J->mode);
+    long np = dlen(g, "pend");
+    if (np < 0 || np > J->n) rfail(&r, "joints/pend out of range");
+    get(&r, g, "pend", H5T_NATIVE_INT, (size_t)np, J->pend);
+    J->npend = (int)np;
+    for (int q = 0; q < J->npend; q++)
+      if (J->pend[q] < 0 || J->pend[q] >= J->n) rfail(&r, "joints/pend: joint index out of range");
+    J->nbroken = (int)get_l(&r, g, "nbroken");
+    J->diss_broken = get_d(&r, g, "diss_broken");
+    J->dt_prev = get_d(&r, g, "dt_prev");
+    long nr = dlen(g, "rec_step");
+    if (nr < 0 || nr > INT_MAX / 2) rfail(&r, "joints/rec_step missing");
+    long *rs = yf_malloc((size_t)(nr ? nr : 1) * sizeof(long), "restart buffer");
+    double *rd = yf_malloc((size_t)(nr ? nr : 1) * 4 * sizeof(double), "restart buffer");
+    int *ri = yf_malloc((size_t)(nr ? nr : 1) * 4 * sizeof(int), "restart buffer");
+    get(&r, g, "rec_step", H5T_NATIVE_LONG, (size_t)nr, rs);
+    get(&r, g, "rec_d", H5T_NATIVE_DOUBLE, 4 * (size_t)nr, rd);
+    get(&r, g, "rec_i", H5T_NATIVE_INT, 4 * (size_t)nr, ri);
+    if (J->caprec < nr) {
+      J->caprec = (int)nr;
+      J->rec = yf_realloc(J->rec, (size_t)J->caprec * sizeof *J->rec, "break record");
+    }
+    J->nrec = (int)nr;
+    for (long k = 0; k < nr; k++)
+      J->rec[k] = (YfBreak){rs[k], rd[4 * k], rd[4 * k + 1], rd[4 * k + 2], rd[4 * k + 3],
+                            ri[4 * k], ri[4 * k + 1], ri[4 * k + 2], ri[4 * k + 3]};
+    free(rs); free(rd); free(ri);
+    /* opened cracks (absent in restarts written before they were recorded: none then) */
+    if (dlen(g, "opened") >= 0) {
+      get(&r, g, "opened", H5T_NATIVE_UCHAR, n, J->opened);
+      long no = dlen(g, "orec_step");
+      if (no < 0 || no > J->n) rfail(&r, "joints/orec_step out of range");
+      rs = yf_malloc((size_t)(no ? no : 1) * sizeof(long), "restart buffer");
+      rd = yf_malloc((size_t)(no ? no : 1) * 4 * sizeof(double), "restart buffer");
+      ri = yf_malloc((size_t)(no ? no : 1) * 4 * sizeof(int), "restart buffer");
+      get(&r, g, "orec_step", H5T_NATIVE_LONG, (size_t)no, rs);
+      get(&r, g, "orec_d", H5T_NATIVE_DOUBLE, 4 * (size_t)no, rd);
+      get(&r, g, "orec_i", H5T_NATIVE_INT, 4 * (size_t)no, ri);
+      if (J->caporec < no) {
+        J->caporec = (int)no;
+        J->orec = yf_realloc(J->orec, (size_t)J->caporec * sizeof *J->orec, "opened record");
+      }
+      J->nopened = (int)no;
+      for (long k = 0; k < no; k++)
+        J->orec[k] = (YfBreak){rs[k], rd[4 * k], rd[4 * k + 1], rd[4 * k + 2], rd[4 * k + 3],
+                               ri[4 * k], ri[4 * k + 1], ri[4 * k + 2], ri[4 * k + 3]};
+      free(rs); free(rd); free(ri);
+    }
+    for (int i = 0; i < J->nset; i++) {
+      char name[32];
+      snprintf(name, sizeof name, "rng_%d", i);
+      long nb = dlen(g, name);
+      if (nb < 0) continue;
+      if (!J->set[i].rng) {
+        J->set[i].rng = gsl_rng_alloc(gsl_rng_mt19937);
+        gsl_rng_set(J->set[i].rng, J->set[i].seed);
+      }
+      if ((size_t)nb != gsl_rng_size(J->set[i].rng)) rfail(&r, "joints: random generator state of another size");
+      get(&r, g, name, H5T_NATIVE_UCHAR, (size_t)nb, gsl_rng_state(J->set[i].rng));
+    }
+    H5Gclose(g);
+  }
+
+  if (c_file) {
+    g = ropen(&r, "contact");
+    YfContactState st;
+    memset(&st, 0, sizeof st);
+    long np = dlen(g, "alive");
+    if (np < 0 || np > INT_MAX / 12) rfail(&r, "contact/alive missing");
+    st.n = (int)np;
+    st.ij = yf_malloc((size_t)(np ? np : 1) * 2 * sizeof(int), "restart buffer");
+    st.g = yf_malloc((size_t)(np ? np : 1) * 6 * sizeof(double), "restart buffer");
+    st.alive = yf_malloc((size_t)(np ? np : 1), "restart buffer");
+    st.fcn = yf_malloc((nn ? nn : 1) * 2 * sizeof(double), "restart buffer");
+    get(&r, g, "ij", H5T_NATIVE_INT, 2 * (size_t)np, st.ij);
+    get(&r, g, "g", H5T_NATIVE_DOUBLE, 6 * (size_t)np, st.g);
+    get(&r, g, "alive", H5T_NATIVE_UCHAR, (size_t)np, st.alive);
+    for (long k = 0; k < 2 * np; k++)
+      if (st.ij[k] < 0 || st.ij[k] >= m->tri.n) rfail(&r, "contact/ij: triangle index out of range");
+    st.nlive = (int)get_l(&r, g, "nlive");
+    st.ndead = (int)get_l(&r, g, "ndead");
+    st.travel = get_d(&r, g, "travel");
+    st.nsearch = get_l(&r, g, "nsearch");
+    st.broken_seen = get_l(&r, g, "broken_seen");
+    st.force_search = (int)get_l(&r, g, "force_search");
+    long nf = dlen(g, "fcn");
+    if (nf == 2 * (long)nn) {
+      get(&r, g, "fcn", H5T_NATIVE_DOUBLE, 2 * nn, st.fcn);
+      st.nn = (int)nn;
+    } else {
+      free(st.fcn);
+      st.fcn = NULL;
+    }
+    st.fcn_valid = st.fcn ? (int)get_l(&r, g, "fcn_valid") : 0;
+    H5Gclose(g);
+    contact_state_load(s, &st);
+    free(st.ij); free(st.g); free(st.alive); free(st.fcn);
+  }
+  H5Fclose(r.file);
+
+  s->step = step;
+  s->time = time;
+  s->dt = dt;
+  s->restored = 1;
+  s->dt_auto = 0; /* the uninterrupted run kept the dt of its start; a later `timestep` overrides */
+  s->dt_loc.file = NULL;
+  s->last_step = last_step;
+  YfEnergy *e = &s->energy;
+  e->kinetic = en[0]; e->strain = en[1]; e->external_work = en[2]; e->damping = en[3];
+  e->joint_dissipated = en[4]; e->contact = en[5]; e->friction = en[6];
+  s->elem_steps = elem_steps;
+  s->wall_s = wall_s;
+  run_set_energy_budget(budget);
+  sim_printf(s, "read_restart: %s: step %ld, time %.6g s, dt %.6g s, %d nodes, %d triangles, %ld joints (%ld broken)%s\n",
+             path, step, time, dt, m->node.n, m->tri.n, nj, s->joints ? (long)s->joints->nbroken : 0L,
+             c_file ? ", contact couples restored" : "");
+  free(path);
+}
+
+/* ---------------------------------------------------------------- schedule, interrupt, commands */
+
+/* Next file of `restart every` (alternating), malloc'd. */
+static char *next_periodic(YfRestart *r) {
+  size_t L = strlen(r->base) + 3;
+  char *p = yf_malloc(L, "restart path");
+  snprintf(p, L, "%s.%c", r->base, r->next ? 'b' : 'a');
+  r->next = !r->next;
+  return p;
+}
+
+void restart_step(YfSim *s) {
+  YfRestart *r = s->restart;
+  if (!r || r->every <= 0 || s->step % r->every) return;
+  char *p = next_periodic(r);
+  char err[1024];
+  if (restart_write(s, p, err, sizeof err)) yf_io_error(NULL, "restart every %ld: %s", r->every, err);
+  free(p);
+}
+
+const char *restart_on_interrupt(YfSim *s, char *err, size_t nerr) {
+  static char name[1024];
+  YfRestart *r = rget(s);
+  name[0] = 0;
+  if (r->base) {
+    char *p = next_periodic(r);
+    if (!restart_write(s, p, err, nerr)) snprintf(name, sizeof name, "%s", r->base);
+    free(p);
+  } else if (!restart_write(s, YF_RESTART_DEFAULT, err, nerr)) {
+    snprintf(name, sizeof name, "%s", YF_RESTART_DEFAULT);
+  }
+  return name;
+}
+
+/* write_restart FILE */
+void cmd_write_restart(YfSim *s, const YfArgs *a) {
+  arg_count(a, 1, 1);
+  if (!s->model.tri.n) arg_error(a, 0, "the scene has no triangles: nothing to write");
+  run_prepare(s); /* a restart before the first run holds the prepared initial state */
+  const char *p = arg_word(a, 0, "FILE"); /* an output: relative to the working directory */
+  char err[1024];
+  if (restart_write(s, p, err, sizeof err)) yf_io_error(&a->loc, "write_restart: %s", err);
+  sim_printf(s, "write_restart: %s at step %ld\n", p, s->step);
+}
+
+/* read_restart FILE */
+void cmd_read_restart(YfSim *s, const YfArgs *a) {
+  io_attach(s); /* its state observes the run loop (report.c) */
+  arg_count(a, 1, 1);
+  /* Restarts are written relative to the working directory (write_restart, restart every, an
+   * interrupt), so that is where FILE is looked for first; a deck run from elsewhere may keep
+   * its restart beside itself, so the deck's directory is the second place. */
+  const char *w = arg_word(a, 0, "FILE");
+  char *here = pick_file(w), *p = NULL, *there = NULL;
+  if (!here) {
+    p = deck_resolve_path(a, w);
+    there = pick_file(p);
+  }
+  if (!here && !there) {
+    YfLoc l = a->loc;
+    char msg[2200];
+    snprintf(msg, sizeof msg, "no restart '%s' (nor %s.a / %s.b) in the working directory, nor '%s' beside the deck",
+             w, w, w, p);
+    free(p);
+    yf_io_error(&l, "read_restart: %s: %s", msg, strerror(ENOENT));
+  }
+  restart_read(s, here ? w : p, &a->loc);
+  free(here);
+  free(there);
+  free(p);
+}
+
+/* restart every N FILE | restart off */
+void cmd_restart(YfSim *s, const YfArgs *a) {
+  io_attach(s); /* its state observes the run loop (report.c) */
+  arg_count(a, 1, 3);
+  static const char *const w[] = {"every", "off", NULL};
+  int k = arg_choice(a, 0, "restart keyword", w);
+  YfRestart *r = rget(s);
+  if (k == 1) {
+    arg_count(a, 1, 1);
+    r->every = 0;
+    free(r->base);
+    r->base = NULL;
+    return;
+  }
+  arg_count(a, 3, 3);
+  r->every = arg_int(a, 1, "N (steps)", 1, LONG_MAX);
+  free(r->base);
+  r->base = yf_strdup(arg_word(a, 2, "FILE")); /* an output: relative to the working directory */
+  r->next = 0;
+}

@@ -1,0 +1,50 @@
+/* restart.h: exact restarts (HDF5) and what happens on SIGINT/SIGTERM.
+ *
+ * Semantics (LAMMPS-like, adapted to a deck that builds its scene from commands):
+ *   The deck that continues a run rebuilds the same scene (the same material, mesh, fracture,
+ *   contact, fix, load and history commands, in the same order), then `read_restart FILE`
+ *   (before `run`) prepares the model exactly as `run` would (joint insertion, masses, contact
+ *   setup) and overwrites the whole dynamic state with the file's: positions, initial
+ *   positions, half-step velocities, forces, masses, step, time, dt, energy accumulators, joint
+ *   state (broken flags, pending breaks, damage per sampling point, shear strength memory,
+ *   heterogeneity factors, random generator state, work, joint forces, break records), contact
+ *   state (couple list, friction memory, live flags, couple forces, travel counter, search
+ *   count) and the energy-check budget.  Histories are functions of time and need nothing.
+ *   A scene that does not match (node, triangle, joint counts or the topology hash over the
+ *   triangle corners, initial positions and joint nodes) is refused with a deck error.
+ *   The time step is restored and `timestep auto` is switched off (the uninterrupted run used
+ *   the dt computed at the start of its `run`); a `timestep` command after read_restart
+ *   overrides it.  Output files are not part of a restart: dumps given by the deck write new
+ *   files (name them differently if the old ones must be kept).  `run N upto` runs to step N.
+ *   Continuing gives bitwise the same state (state_hash) as the uninterrupted run.
+ *
+ * Files are written to FILE.tmp, flushed, fsync'ed and renamed, so FILE is always either the
+ * previous complete restart or the new complete one.  `restart every N FILE` alternates
+ * FILE.a and FILE.b, so even a storage that loses the rename leaves the other one;
+ * `read_restart FILE` reads FILE if it exists, else the newer valid of FILE.a / FILE.b.
+ *
+ * SIGINT/SIGTERM (main.c sets s->interrupted): the step in progress is finished, a restart is
+ * written (to the next `restart every` file, or yfdem_interrupt.restart), every dump writes a
+ * frame of that step, files are closed, and yfdem exits with code 4 saying how to continue.
+ */
+#ifndef YF_RESTART_H
+#define YF_RESTART_H
+#include <stddef.h>
+#include "sim.h"
+
+#define YF_RESTART_DEFAULT "yfdem_interrupt.restart"
+
+
+/* Write a restart of the current state to path (atomically).  Returns 0, or -1 with a message
+ * in err. Needs a prepared model (after a run or read_restart). */
+int restart_write(YfSim *s, const char *path, char *err, size_t nerr);
+/* Read a restart into a scene built by the deck (see above); errors exit (deck / I/O). */
+void restart_read(YfSim *s, const char *path, const YfLoc *loc);
+/* Step loop hook: writes the periodic restart when due (cheap when not). */
+void restart_step(YfSim *s);
+/* Interrupt: write the restart; returns the name to give to read_restart ("" on failure, with
+ * the reason in err). */
+const char *restart_on_interrupt(YfSim *s, char *err, size_t nerr);
+void restart_free(YfSim *s);
+
+#endif

@@ -1,0 +1,320 @@
+/* bc.c: what holds and drives the scene from outside: fixed supports, prescribed velocities and
+ * displacements, point and edge loads, initial velocities, each with an optional time history.
+ *
+ * Every item is a row of one table (YfBcItem) whose kind says how it acts; adding a kind means
+ * one parse branch in deck/cmd_fix.c or cmd_load.c and one case in the apply functions.  Items are resolved
+ * to node lists (and boundary edges for distributed loads) at the start of each run, through the
+ * group masks, so nodes created by joint insertion (copies of a shared node) are included.
+ *
+ * Order inside a step (run.c): loads are added to the nodal forces before the update; fixed and
+ * prescribed-velocity components override the velocity after the free update; prescribed
+ * displacements set the position after it moves.  Later items override earlier ones on the same
+ * node component.  The work of loads and of constraint reactions is accumulated so that the
+ * energy balance (kinetic + strain = external work - dissipation) can be checked.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "bc.h"
+#include "err.h"
+#include "mesh.h"
+
+typedef struct {
+  char id[YF_NAME_MAX];
+  int kind;
+  int group;          /* group index (fixes, edge loads)                          */
+  int has[2];         /* component given (x, y); NULL in the deck leaves it free   */
+  double a[2];        /* amplitude: velocity [m/s], displacement [m], force [N/m], traction [Pa], pressure [Pa] */
+  int hist;           /* history index or -1 (factor 1)                           */
+  int node_id;        /* point load: user node id, or -1 when given by position   */
+  double px, py;      /* point load: position for 'at'                            */
+  YfLoc loc;
+  /* resolved at bc_prepare: */
+  int nn, *nodes;     /* nodes acted on                                           */
+  int ne, *edges;     /* boundary edges (2 node indices each), CCW                */
+  double *lf;         /* loads: force applied to each node this step (2 per node)  */
+} YfBcItem;
+
+typedef struct YfBc {
+  int n;
+  YfBcItem *item;
+  unsigned char *flags; /* per node: bit 0 x prescribed, bit 1 y prescribed */
+  int flags_n;
+} YfBc;
+
+static YfBc *bc_get(YfSim *s) {
+  if (!s->bc) s->bc = yf_calloc(1, sizeof(YfBc), "bc");
+  return s->bc;
+}
+
+int bc_count(const YfSim *s) { return s->bc ? s->bc->n : 0; }
+
+int bc_exists(const YfSim *s, const char *id) {
+  for (int i = 0; i < bc_count(s); i++)
+    if (!strcmp(s->bc->item[i].id, id)) return 1;
+  return 0;
+}
+
+void bc_add(YfSim *s, const char *id, const YfBcSpec *spec) {
+  YfBc *b = bc_get(s);
+  b->item = yf_realloc(b->item, (size_t)(b->n + 1) * sizeof *b->item, "bc items");
+  YfBcItem *it = &b->item[b->n++];
+  memset(it, 0, sizeof *it);
+  snprintf(it->id, sizeof it->id, "%s", id);
+  it->kind = spec->kind;
+  it->group = spec->group;
+  for (int c = 0; c < 2; c++) {
+    it->has[c] = spec->has[c];
+    it->a[c] = spec->a[c];
+  }
+  it->hist = spec->hist;
+  it->node_id = spec->node_id;
+  it->px = spec->px;
+  it->py = spec->py;
+  it->loc = spec->loc;
+}
+
+int bc_remove(YfSim *s, const char *id, int load) {
+  YfBc *b = bc_get(s);
+  for (int i = 0; i < b->n; i++) {
+    YfBcItem *it = &b->item[i];
+    int isload = it->kind >= BC_POINT;
+    if (!strcmp(it->id, id) && isload == load) {
+      free(it->nodes); free(it->edges); free(it->lf);
+      memmove(it, it + 1, (size_t)(b->n - i - 1) * sizeof *it);
+      b->n--;
+      return 1;
+    }
+  }
+  return 0;
+}
+
+int bc_set_velocity(YfSim *s, int group, double vx, double vy) {
+  YfNodes *n = &s->model.node;
+  uint64_t bit = (uint64_t)1 << group;
+  int cnt = 0;
+  for (int i = 0; i < n->n; i++)
+    if (n->gmask[i] & bit) { n->vx[i] = vx; n->vy[i] = vy; cnt++; }
+  return cnt;
+}
+
+/* ---------------- resolution and application ---------------- */
+
+static void resolve_nodes(YfSim *s, YfBcItem *it) {
+  YfNodes *n = &s->model.node;
+  free(it->nodes);
+  it->nodes = NULL;
+  it->nn = 0;
+  if (it->kind == BC_POINT) {
+    /* The target node and all its copies (joint insertion) share the load equally. */
+    int target = -1;
+    if (it->node_id >= 0) {
+      for (int i = 0; i < n->n && target < 0; i++)
+        if (n->id[i] == it->node_id) target = i;
+    } else {
+      double best = INFINITY;
+      for (int i = 0; i < n->n; i++) {
+        if (n->m[i] <= 0) continue;
+        double d = (n->x0[i] - it->px) * (n->x0[i] - it->px) + (n->y0[i] - it->py) * (n->y0[i] - it->py);
+        if (d < best) { best = d; target = i; }
+      }
+    }
+    if (target < 0) yf_deck_error(&it->loc, "load '%s': no node to apply it to", it->id);
+    int p = n->parent[target];
+    for (int i = 0; i < n->n; i++)
+      if (n->parent[i] == p && n->m[i] > 0) it->nn++;
+    if (!it->nn) { it->nn = 1; }
+    it->nodes = yf_malloc((size_t)it->nn * sizeof(int), "load nodes");
+    int k = 0;
+    for (int i = 0; i < n->n && k < it->nn; i++)
+      if (n->parent[i] == p && n->m[i] > 0) it->nodes[k++] = i;
+    if (!k) it->nodes[0] = target;
+  } else if (it->kind == BC_TRACTION || it->kind == BC_PRESSURE) {
+    free(it->edges);
+    it->edges = NULL;
+    it->ne = mesh_boundary_edges(&s->model, (uint64_t)1 << it->group, &it->edges);
+    if (!it->ne)
+      yf_warn(&it->loc, "load '%s': group '%s' has no boundary edge (both end nodes must be in the group)",
+              it->id, s->model.group[it->group].name);
+    /* nodes touched: the edge ends, each edge contributing to its own two nodes */
+    it->nn = 2 * it->ne;
+    it->nodes = yf_malloc((size_t)(it->nn ? it->nn : 1) * sizeof(int), "load nodes");
+    memcpy(it->nodes, it->edges, (size_t)it->nn * sizeof(int));
+  } else {
+    uint64_t bit = (uint64_t)1 << it->group;
+    for (int i = 0; i < n->n; i++) it->nn += (n->gmask[i] & bit) != 0;
+    it->nodes = yf_malloc((size_t)(it->nn ? it->nn : 1) * sizeof(int), "fix nodes");
+    int k = 0;
+    for (int i = 0; i < n->n; i++)
+      if (n->gmask[i] & bit) it->nodes[k++] = i;
+    if (!it->nn) yf_warn(&it->loc, "fix '%s': group '%s' has no nodes", it->id, s->model.group[it->group].name);
+  }
+  free(it->lf);
+  it->lf = yf_calloc((size_t)(it->nn ? it->nn : 1) * 2, sizeof(double), "load forces");
+}
+
+void bc_prepare(YfSim *s) {
+  YfBc *b = bc_get(s);
+  int nn = s->model.node.n;
+  free(b->flags);
+  b->flags = yf_calloc((size_t)(nn ? nn : 1), 1, "bc flags");
+  b->flags_n = nn;
+  for (int i = 0; i < b->n; i++) {
+    YfBcItem *it = &b->item[i];
+    resolve_nodes(s, it);
+    if (it->kind <= BC_DISPLACEMENT)
+      for (int k = 0; k < it->nn; k++) b->flags[it->nodes[k]] |= (unsigned char)(it->has[0] | (it->has[1] << 1));
+  }
+}
+
+const unsigned char *bc_node_flags(const YfSim *s) { return s->bc ? s->bc->flags : NULL; }
+
+static double factor(const YfSim *s, int hist, double t) {
+  return hist < 0 ? 1.0 : history_value(&s->hist[hist], t);
+}
+
+void bc_apply_loads(YfSim *s) {
+  if (!s->bc) return;
+  YfNodes *n = &s->model.node;
+  for (int i = 0; i < s->bc->n; i++) {
+    YfBcItem *it = &s->bc->item[i];
+    if (it->kind < BC_POINT) continue;
+    double ph = factor(s, it->hist, s->time);
+    if (it->kind == BC_POINT) {
+      double fx = it->a[0] * ph / it->nn, fy = it->a[1] * ph / it->nn;
+      for (int k = 0; k < it->nn; k++) {
+        it->lf[2 * k] = fx;
+        it->lf[2 * k + 1] = fy;
+      }
+    } else {
+      for (int e = 0; e < it->ne; e++) {
+        int j = it->edges[2 * e], k = it->edges[2 * e + 1];
+        double dx = n->x[k] - n->x[j], dy = n->y[k] - n->y[j];
+        double fx, fy;
+        if (it->kind == BC_TRACTION) {
+          double L = sqrt(dx * dx + dy * dy);
+          fx = 0.5 * it->a[0] * ph * L;
+          fy = 0.5 * it->a[1] * ph * L;
+        } else {
+          /* outward normal (dy, -dx) has the edge length; pressure pushes inwards */
+          fx = -0.5 * it->a[0] * ph * dy;
+          fy = 0.5 * it->a[0] * ph * dx;
+        }
+        it->lf[4 * e] = fx; it->lf[4 * e + 1] = fy;
+        it->lf[4 * e + 2] = fx; it->lf[4 * e + 3] = fy;
+      }
+    }
+    for (int k = 0; k < it->nn; k++) {
+      n->fx[it->nodes[k]] += it->lf[2 * k];
+      n->fy[it->nodes[k]] += it->lf[2 * k + 1];
+    }
+  }
+}
+
+void bc_save_old(YfSim *s, double *x_old, double *y_old, double *vx_old, double *vy_old) {
+  if (!s->bc) return;
+  const YfNodes *n = &s->model.node;
+  for (int i = 0; i < s->bc->n; i++) {
+    const YfBcItem *it = &s->bc->item[i];
+    for (int k = 0; k < it->nn; k++) {
+      int j = it->nodes[k];
+      x_old[j] = n->x[j];
+      y_old[j] = n->y[j];
+      vx_old[j] = n->vx[j];
+      vy_old[j] = n->vy[j];
+    }
+  }
+}
+
+void bc_redo_positions(YfSim *s, const double *x_old, const double *y_old) {
+  if (!s->bc) return;
+  YfNodes *n = &s->model.node;
+  const double dt = s->dt;
+  for (int i = 0; i < s->bc->n; i++) {
+    const YfBcItem *it = &s->bc->item[i];
+    if (it->kind != BC_FIXED && it->kind != BC_VELOCITY) continue;
+    for (int k = 0; k < it->nn; k++) {
+      int j = it->nodes[k];
+      n->x[j] = x_old[j] + dt * n->vx[j];
+      n->y[j] = y_old[j] + dt * n->vy[j];
+    }
+  }
+}
+
+void bc_constrain_velocities(YfSim *s, const double *vx_old, const double *vy_old) {
+  if (!s->bc) return;
+  YfNodes *n = &s->model.node;
+  for (int i = 0; i < s->bc->n; i++) {
+    YfBcItem *it = &s->bc->item[i];
+    if (it->kind != BC_FIXED && it->kind != BC_VELOCITY) continue;
+    double ph = it->kind == BC_VELOCITY ? factor(s, it->hist, s->time) : 0.0;
+    for (int k = 0; k < it->nn; k++) {
+      int j = it->nodes[k];
+      if (n->m[j] <= 0) continue;
+      double *v[2] = {&n->vx[j], &n->vy[j]};
+      for (int c = 0; c < 2; c++) {
+        if (!it->has[c]) continue;
+        double target = it->kind == BC_VELOCITY ? it->a[c] * ph : 0.0;
+        /* reaction R = m (v_target - v_free)/dt acting over the step at the mean velocity of the
+         * two half steps (the central-difference energy measure) */
+        double R = n->m[j] * (target - *v[c]) / s->dt;
+        double vo = c ? vy_old[j] : vx_old[j];
+        s->energy.external_work += R * 0.5 * (target + vo) * s->dt;
+        *v[c] = target;
+      }
+    }
+  }
+}
+
+void bc_constrain_positions(YfSim *s, const double *x_old, const double *y_old, const double *vx_old,
+                            const double *vy_old) {
+  YfNodes *n = &s->model.node;
+  double t1 = s->time + s->dt;
+  if (s->bc) {
+    for (int i = 0; i < s->bc->n; i++) {
+      YfBcItem *it = &s->bc->item[i];
+      if (it->kind != BC_DISPLACEMENT) continue;
+      double ph = factor(s, it->hist, t1);
+      for (int k = 0; k < it->nn; k++) {
+        int j = it->nodes[k];
+        if (n->m[j] <= 0) continue;
+        double *x[2] = {&n->x[j], &n->y[j]}, *v[2] = {&n->vx[j], &n->vy[j]};
+        const double x0[2] = {n->x0[j], n->y0[j]}, xo[2] = {x_old[j], y_old[j]};
+        for (int c = 0; c < 2; c++) {
+          if (!it->has[c]) continue;
+          double target = x0[c] + it->a[c] * ph;
+          double vnew = (target - xo[c]) / s->dt;
+          double R = n->m[j] * (vnew - *v[c]) / s->dt;
+          double vo = c ? vy_old[j] : vx_old[j];
+          s->energy.external_work += R * 0.5 * (vnew + vo) * s->dt;
+          *v[c] = vnew;
+          *x[c] = target;
+        }
+      }
+    }
+    /* work of the loads of this step at the mean velocity of the two half steps */
+    for (int i = 0; i < s->bc->n; i++) {
+      YfBcItem *it = &s->bc->item[i];
+      if (it->kind < BC_POINT) continue;
+      for (int k = 0; k < it->nn; k++) {
+        int j = it->nodes[k];
+        s->energy.external_work += 0.5 * s->dt * (it->lf[2 * k] * (n->vx[j] + vx_old[j]) + it->lf[2 * k + 1] * (n->vy[j] + vy_old[j]));
+      }
+    }
+  }
+}
+
+void bc_free(YfSim *s) {
+  if (!s->bc) return;
+  for (int i = 0; i < s->bc->n; i++) {
+    free(s->bc->item[i].nodes);
+    free(s->bc->item[i].edges);
+    free(s->bc->item[i].lf);
+  }
+  free(s->bc->item);
+  free(s->bc->flags);
+  free(s->bc);
+  s->bc = NULL;
+}
+
+const YfBcKind bc_kind_native = {.name = "fix/load", .loads = bc_apply_loads, .free = bc_free};

@@ -1,0 +1,886 @@
+/* contact.c: contact in the scene (see contact.h for the commands, the Y2D rules it follows and
+ * the API read_y2d uses).
+ *
+ * This module owns the contact state of a simulation (YfContact): the rules of the deck, which
+ * triangles take part and in which rule sides (two 64-bit masks per triangle), the couple list
+ * with its (sparse) friction memory, the per-step triangle records of the screen and the forces
+ * of the couples that touch.  The kernels are contact_search.c (broad phase) and contact_pair.c
+ * (Y2D's potential contact and the screen).
+ *
+ * One step (contact_step):
+ *   detection   travel += 2 dt max|v| over participating nodes; when due (or at the first step,
+ *               or when the setup changed, or a joint broke in `joined skip` mode) a search over
+ *               the participating triangles' discs gives a fresh sorted couple list; friction
+ *               memory of persisting couples is merged in.
+ *   records     each participating triangle's corners, edge normals and twice-area, once.
+ *   screen      every live couple (A = larger index, as Y2D sums it): when every contactor edge
+ *               of both directions has both ends outside one target edge line (98 % of the
+ *               couples of a fracturing body), the couple gives no force and only its distance
+ *               decides whether it stays; the others are marked (parallel over fixed blocks).
+ *   kernel      the marked couples run the full kernel and write their 12 forces into a compact
+ *               list in couple order (offsets from per-block counts: no atomics); a couple that
+ *               touched in neither direction and is farther than 2 buffer is dropped (Y2D).
+ *   scatter     each node's contact force is the sum of its couples' forces in couple order,
+ *               added to node.fx/fy, so 1 or N threads give the same bits (one thread adds
+ *               them during the kernel pass instead, in the same order: no list).  Energy: penalty
+ *               energy (kernel estimate) of this step and accumulated frictional dissipation,
+ *               summed per block in order.
+ * Dropped couples stay in the list as dead entries until a search, or until a quarter of the
+ * list is dead, when the list is compacted.  Memory per couple: 8 B indices, 4 B friction slot,
+ * 1 B state; 48 B of friction memory only for couples that have touched.
+ *
+ * Units: SI, 2D per unit thickness: forces N/m, penalties Pa, energies J/m.
+ */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "contact.h"
+#include "contact_pair.h"
+#include "contact_search.h"
+#include "err.h"
+#include "joint.h"
+#include "run.h"
+
+#define MAX_RULES YF_CONTACT_MAX_RULES
+#define PAIR_BLK 1024      /* couples per block of the force loop: fixed, so sums do not depend on threads */
+#define PAR_MIN_DEF 2048   /* fewer couples than this: one thread (a parallel region costs microseconds) */
+#define BUFFER_FRAC 0.3    /* auto buffer = 0.3 x smallest edge (Y2D reference decks' DIEZON)  */
+
+typedef struct {
+  int ga, gb;   /* group indices of the two sides (-1: every triangle)  */
+  int native;   /* 1: from a deck command (pen_n required), 0: Y2D API    */
+  YfLoc loc;    /* where it was given (file name owned)                   */
+} Rule;
+
+typedef struct {
+  double pmax;  /* largest pen_n among the side's participating triangles [Pa] */
+  int body0;    /* body of the first triangle seen (-1: none)                 */
+  int multi;    /* more than one body on this side                            */
+} Side;
+
+typedef struct YfContact {
+  /* settings from the deck / API */
+  int nrule;
+  Rule rule[MAX_RULES];
+  int buffer_auto;
+  double buffer_set;     /* [m] when not auto                                   */
+  int joined_skip, surface_all, search_every, keep_shared;
+  unsigned char *uflag;  /* participation flags of the API (NULL: none given)   */
+  int nuflag;
+  int par_min;
+  int dirty;             /* settings changed since the last prepare             */
+
+  /* prepared for the current topology */
+  int prep_ntri, prep_nn;
+  double buffer;         /* [m]                                                 */
+  int nitem, *item;      /* participating triangles, increasing                 */
+  uint64_t *ma, *mb;     /* rule sides per triangle                             */
+  int npn, *pnode;       /* nodes of participating triangles, increasing        */
+  double *cx, *cy, *cr;  /* per item: centroid and radius [m]                   */
+  int nmat;
+  double *mpn, *mpt, *mmu; /* per material: pen_n, pen_t [Pa], friction         */
+  int *mlaw;               /* per material: friction law YF_FRIC_* (contact_pair.h) */
+  int *jpart, *jidx;     /* joined skip: 3 per triangle, partner triangle and joint (-1 none) */
+  const unsigned char *jstate;
+  double dt_limit;       /* contact_stable_dt, computed at prepare              */
+  char dt_what[192];
+
+  /* couples */
+  YfPairs pairs, fresh;
+  unsigned char *alive;  /* per couple: 0 dropped, 1 live (the screen marks 2: needs the kernel) */
+  int cap_alive;
+  int nlive, ndead;
+  double *tg;            /* per triangle: the screen's record of this step (YF_TRI_GEOM) */
+  int cap_tg;
+  double *blk_e, *blk_d;
+  int *blk_rm, *blk_busy, *blk_off, *blk_need, *blk_goff, cap_blk;
+  /* forces of the couples that touched this step, in couple order: couple hk[h], 12 numbers
+   * hf[12 h ..] (A's corners, then B's) [N/m]; room for cap_hit */
+  int *hk, cap_hit, max_busy;
+  /* nodes that received contact force at the last step (fcn nonzero only there) */
+  unsigned char *tmark;  /* per node: 1 when fcn holds a contact force of the last step */
+  double *hf;
+  double *fcn;           /* per node: contact force of the last step [N/m]      */
+  double *gdense;        /* restart: the friction memory, 6 per couple (copy)   */
+  int cap_nodes;
+  int fcn_valid;
+
+  YfSearchWork work;
+  YfSearchTrigger trig;
+  long nsearch;
+  long broken_seen;
+  int force_search;
+} YfContact;
+
+
+/* ---------------------------------------------------------------- state */
+
+static YfContact *get(YfSim *s) {
+  if (!s->contact) {
+    YfContact *C = yf_calloc(1, sizeof *C, "contact state");
+    C->buffer_auto = 1;
+    C->par_min = PAR_MIN_DEF;
+    contact_pairs_init(&C->pairs);
+    contact_pairs_init(&C->fresh);
+    contact_search_work_init(&C->work);
+    s->contact = C;
+  }
+  return s->contact;
+}
+
+static void free_prepared(YfContact *C) {
+  free(C->item); free(C->ma); free(C->mb); free(C->pnode);
+  free(C->cx); free(C->cy); free(C->cr);
+  free(C->mpn); free(C->mpt); free(C->mmu); free(C->mlaw);
+  free(C->jpart); free(C->jidx);
+  C->item = C->pnode = C->jpart = C->jidx = NULL;
+  C->ma = C->mb = NULL;
+  C->cx = C->cy = C->cr = C->mpn = C->mpt = C->mmu = NULL;
+  C->mlaw = NULL;
+  C->nitem = C->npn = C->nmat = 0;
+  C->prep_ntri = C->prep_nn = -1;
+}
+
+void contact_free(YfSim *s) {
+  YfContact *C = s->contact;
+  if (!C) return;
+  free_prepared(C);
+  for (int r = 0; r < C->nrule; r++) free((char *)C->rule[r].loc.file);
+  free(C->uflag);
+  contact_pairs_free(&C->pairs);
+  contact_pairs_free(&C->fresh);
+  free(C->alive); free(C->tg);
+  free(C->blk_e); free(C->blk_d); free(C->blk_rm); free(C->blk_busy); free(C->blk_off);
+  free(C->blk_need); free(C->blk_goff); free(C->gdense);
+  free(C->hk); free(C->hf);
+  free(C->tmark); free(C->fcn);
+  contact_search_work_free(&C->work);
+  free(C);
+  s->contact = NULL;
+}
+
+static int active(const YfContact *C) { return C && C->nrule > 0; }
+
+static Rule *add_rule(YfContact *C, int ga, int gb, int native, const YfLoc *loc) {
+  for (int r = 0; r < C->nrule; r++) {
+    Rule *q = &C->rule[r];
+    if ((q->ga == ga && q->gb == gb) || (q->ga == gb && q->gb == ga)) return q; /* same rule again */
+  }
+  if (C->nrule >= MAX_RULES) {
+    yf_deck_error(loc, "contact: at most %d contact rules", MAX_RULES);
+  }
+  Rule *q = &C->rule[C->nrule++];
+  q->ga = ga;
+  q->gb = gb;
+  q->native = native;
+  q->loc.file = loc && loc->file ? yf_strdup(loc->file) : NULL;
+  q->loc.line = loc ? loc->line : 0;
+  C->dirty = 1;
+  return q;
+}
+
+/* ---------------------------------------------------------------- API */
+
+void contact_enable_all(YfSim *s, double buffer) {
+  YfContact *C = get(s);
+  YF_ASSERT(buffer >= 0.0);
+  add_rule(C, -1, -1, 0, NULL);
+  C->buffer_auto = 0;
+  C->buffer_set = buffer;
+  C->keep_shared = 1;
+  C->joined_skip = 0;
+  C->search_every = 0;
+  C->dirty = 1;
+}
+
+void contact_set_participation(YfSim *s, const unsigned char *tri_flag, int n) {
+  YfContact *C = get(s);
+  free(C->uflag);
+  C->uflag = NULL;
+  C->nuflag = 0;
+  C->surface_all = 1;
+  if (tri_flag) {
+    C->uflag = yf_malloc((size_t)(n > 0 ? n : 1), "contact participation");
+    memcpy(C->uflag, tri_flag, (size_t)n);
+    C->nuflag = n;
+  }
+  C->dirty = 1;
+}
+
+void contact_set_keep_shared(YfSim *s, int keep) {
+  YfContact *C = get(s);
+  C->keep_shared = keep != 0;
+  C->dirty = 1;
+}
+
+void contact_set_par_min(YfSim *s, int n) {
+  YfContact *C = get(s);
+  C->par_min = n < 0 ? 0 : n;
+  if (C->work.par_min > C->par_min) C->work.par_min = C->par_min;
+}
+
+void contact_renumber_tris(YfSim *s, const int *tnew, int n) {
+  YfContact *C = s->contact;
+  if (!C) return;
+  if (C->uflag) {
+    unsigned char *u = yf_calloc((size_t)(n > C->nuflag ? n : C->nuflag) + 1, 1, "contact participation");
+    for (int t = 0; t < n && t < C->nuflag; t++) u[tnew[t]] = C->uflag[t];
+    for (int t = n; t < C->nuflag; t++) u[t] = C->uflag[t];
+    free(C->uflag);
+    C->uflag = u;
+  }
+  YF_ASSERT(C->pairs.n == 0); /* before the first search: no couple holds an index yet */
+  C->dirty = 1;
+}
+
+const double *contact_node_forces(const YfSim *s) {
+  const YfContact *C = s->contact;
+  return active(C) && C->fcn_valid ? C->fcn : NULL;
+}
+
+long contact_searches(const YfSim *s) { return s->contact ? s->contact->nsearch : 0; }
+int contact_participants(const YfSim *s) { return active(s->contact) ? s->contact->nitem : 0; }
+double contact_buffer(const YfSim *s) { return active(s->contact) ? s->contact->buffer : 0.0; }
+long contact_pairs(const YfSim *s) { return active(s->contact) ? s->contact->nlive : 0; }
+
+/* ---------------------------------------------------------------- what the deck sets */
+
+int contact_add_rule(YfSim *s, int g1, int g2, const YfLoc *loc) {
+  YfContact *C = get(s);
+  for (int r = 0; r < C->nrule; r++) {
+    const Rule *q = &C->rule[r];
+    if ((q->ga == g1 && q->gb == g2) || (q->ga == g2 && q->gb == g1)) return 0; /* same rule again */
+  }
+  if (C->nrule >= MAX_RULES) return -1;
+  add_rule(C, g1, g2, 1, loc);
+  return 0;
+}
+
+void contact_off(YfSim *s) {
+  contact_free(s);
+  s->energy.contact = 0.0;
+}
+
+void contact_set_option(YfSim *s, int key, double value) {
+  YfContact *C = get(s);
+  switch (key) {
+  case YF_CONTACT_BUFFER:
+    C->buffer_auto = value < 0;
+    if (value >= 0) C->buffer_set = value;
+    break;
+  case YF_CONTACT_JOINED: C->joined_skip = (int)value; break;
+  case YF_CONTACT_SURFACE: C->surface_all = (int)value; break;
+  case YF_CONTACT_SEARCH: C->search_every = (int)value; break;
+  }
+  C->dirty = 1;
+}
+
+/* ---------------------------------------------------------------- setup */
+
+/* Nodes on a free boundary of the node topology: an edge used by one triangle only. */
+static unsigned char *boundary_nodes(const YfModel *m) {
+  int nn = m->node.n, nt = m->tri.n;
+  const int *v = m->tri.v;
+  int *off = yf_calloc((size_t)nn + 1, sizeof(int), "contact topology");
+  int *lst = yf_malloc((size_t)(3 * nt > 0 ? 3 * nt : 1) * sizeof(int), "contact topology");
+  for (int k = 0; k < 3 * nt; k++) off[v[k] + 1]++;
+  for (int i = 0; i < nn; i++) off[i + 1] += off[i];
+  int *fill = yf_calloc((size_t)nn + 1, sizeof(int), "contact topology");
+  for (int k = 0; k < 3 * nt; k++) lst[off[v[k]] + fill[v[k]]++] = k / 3;
+  free(fill);
+  unsigned char *bn = yf_calloc((size_t)nn + 1, 1, "contact boundary nodes");
+  for (int t = 0; t < nt; t++)
+    for (int c = 0; c < 3; c++) {
+      int p = v[3 * t + c], q = v[3 * t + (c + 1) % 3], shared = 0;
+      for (int u = off[p]; u < off[p + 1] && !shared; u++) {
+        int o = lst[u];
+        if (o == t) continue;
+        shared = v[3 * o] == q || v[3 * o + 1] == q || v[3 * o + 2] == q;
+      }
+      if (!shared) bn[p] = bn[q] = 1;
+    }
+  free(off);
+  free(lst);
+  return bn;
+}
+
+static int joined_keep(int i, int j, void *ctx) {
+  const YfContact *C = ctx;
+  for (int k = 0; k < 3; k++)
+    if (C->jpart[3 * i + k] == j && C->jstate[C->jidx[3 * i + k]] == 0) return 0;
+  return 1;
+}
+
+/* The contact penalty's stable time step (contact.h). */
+static void compute_stable_dt(YfSim *s, YfContact *C) {
+  const YfModel *m = &s->model;
+  Side A[MAX_RULES], B[MAX_RULES];
+  for (int r = 0; r < C->nrule; r++) A[r] = B[r] = (Side){0.0, -1, 0};
+  for (int k = 0; k < C->nitem; k++) {
+    int t = C->item[k], b = m->tri.body[t];
+    double p = C->mpn[m->tri.mat[t]];
+    for (int r = 0; r < C->nrule; r++)
+      for (int side = 0; side < 2; side++) {
+        uint64_t mk = side ? C->mb[t] : C->ma[t];
+        if (!(mk >> r & 1)) continue;
+        Side *q = side ? &B[r] : &A[r];
+        if (p > q->pmax) q->pmax = p;
+        if (q->body0 < 0) q->body0 = b;
+        else if (q->body0 != b) q->multi = 1;
+      }
+  }
+  unsigned char *jointed = yf_calloc((size_t)m->tri.n + 1, 1, "contact jointed");
+  const YfJoints *J = s->joints;
+  for (int j = 0; J && j < J->n; j++) jointed[J->tri[2 * j]] = jointed[J->tri[2 * j + 1]] = 1;
+  double best = INFINITY;
+  int which = -1;
+  double pbest = 0;
+  for (int k = 0; k < C->nitem; k++) {
+    int t = C->item[k], b = m->tri.body[t];
+    int meets = jointed[t] || m->body[b].fracture;
+    double pm = 0.0;
+    for (int r = 0; r < C->nrule; r++) {
+      if (C->ma[t] >> r & 1) {
+        if (B[r].pmax > pm) pm = B[r].pmax;
+        if (B[r].multi || (B[r].body0 >= 0 && B[r].body0 != b)) meets = 1;
+      }
+      if (C->mb[t] >> r & 1) {
+        if (A[r].pmax > pm) pm = A[r].pmax;
+        if (A[r].multi || (A[r].body0 >= 0 && A[r].body0 != b)) meets = 1;
+      }
+    }
+    double p = C->mpn[m->tri.mat[t]];
+    if (pm < p) p = pm;
+    if (!meets || !(p > 0)) continue;
+    const int *v = m->tri.v + 3 * t;
+    double mass = INFINITY, L2 = 0;
+    for (int c = 0; c < 3; c++) {
+      if (m->node.m[v[c]] < mass) mass = m->node.m[v[c]];
+      double dx = m->node.x0[v[(c + 1) % 3]] - m->node.x0[v[c]], dy = m->node.y0[v[(c + 1) % 3]] - m->node.y0[v[c]];
+      if (dx * dx + dy * dy > L2) L2 = dx * dx + dy * dy;
+    }
+    double area = 0.5 * m->tri.d0[t];
+    if (!(mass > 0) || !(area > 0)) continue;
+    double kn = 0.75 * p * L2 / area; /* 1.5 p L / h with h = 2 A / L */
+    double d = sqrt(2.0 * mass / kn);
+    if (d < best) { best = d; which = t; pbest = p; }
+  }
+  free(jointed);
+  C->dt_limit = best;
+  if (which >= 0)
+    snprintf(C->dt_what, sizeof C->dt_what, "contact penalty %.3g Pa at triangle %d (material %s)", pbest,
+             m->tri.id[which], m->mat[m->tri.mat[which]].name);
+  else
+    C->dt_what[0] = 0;
+}
+
+void contact_prepare(YfSim *s) {
+  YfContact *C = s->contact;
+  if (!active(C)) return;
+  YfModel *m = &s->model;
+  int nt = m->tri.n, nn = m->node.n;
+  if (!C->dirty && C->prep_ntri == nt && C->prep_nn == nn && C->nmat == m->nmat) {
+    compute_stable_dt(s, C); /* masses may have changed (cheap, setup only) */
+    return;
+  }
+  free_prepared(C);
+
+  /* rule sides per triangle */
+  C->ma = yf_calloc((size_t)nt + 1, sizeof(uint64_t), "contact masks");
+  C->mb = yf_calloc((size_t)nt + 1, sizeof(uint64_t), "contact masks");
+  for (int r = 0; r < C->nrule; r++) {
+    const Rule *q = &C->rule[r];
+    uint64_t bit = (uint64_t)1 << r;
+    for (int t = 0; t < nt; t++) {
+      uint64_t g = m->tri.gmask[t];
+      if (q->ga < 0 || (g >> q->ga & 1)) C->ma[t] |= bit;
+      if (q->gb < 0 || (g >> q->gb & 1)) C->mb[t] |= bit;
+    }
+  }
+
+  /* participation */
+  unsigned char *bn = (!C->surface_all && !C->uflag) ? boundary_nodes(m) : NULL;
+  C->item = yf_malloc((size_t)(nt > 0 ? nt : 1) * sizeof(int), "contact items");
+  C->nitem = 0;
+  for (int t = 0; t < nt; t++) {
+    if (!(C->ma[t] | C->mb[t])) continue;
+    int in;
+    if (C->uflag) in = t < C->nuflag && C->uflag[t];
+    else if (bn) in = bn[m->tri.v[3 * t]] || bn[m->tri.v[3 * t + 1]] || bn[m->tri.v[3 * t + 2]];
+    else in = 1;
+    if (in) C->item[C->nitem++] = t;
+    else C->ma[t] = C->mb[t] = 0; /* not a candidate of any couple */
+  }
+  free(bn);
+
+  /* materials: penalties and friction; a deck rule needs pen_n */
+  C->nmat = m->nmat;
+  C->mpn = yf_malloc((size_t)(m->nmat + 1) * sizeof(double), "contact materials");
+  C->mpt = yf_malloc((size_t)(m->nmat + 1) * sizeof(double), "contact materials");
+  C->mmu = yf_malloc((size_t)(m->nmat + 1) * sizeof(double), "contact materials");
+  C->mlaw = yf_malloc((size_t)(m->nmat + 1) * sizeof(int), "contact materials");
+  for (int i = 0; i < m->nmat; i++) {
+    C->mpn[i] = m->mat[i].pen_n;
+    C->mpt[i] = m->mat[i].pen_t;
+    C->mmu[i] = m->mat[i].fric;
+    C->mlaw[i] = m->mat[i].fric_law;
+  }
+  for (int k = 0; k < C->nitem; k++) {
+    int t = C->item[k];
+    const YfMaterial *mt = &m->mat[m->tri.mat[t]];
+    if (mt->pen_n > 0) continue;
+    for (int r = 0; r < C->nrule; r++)
+      if (C->rule[r].native && ((C->ma[t] | C->mb[t]) >> r & 1))
+        yf_deck_error(C->rule[r].loc.file ? &C->rule[r].loc : NULL,
+                      "contact: material '%s' (triangle %d) has no normal contact penalty: add 'pen_n P' [Pa] "
+                      "(typically 1-10 x E) to its material command", mt->name, m->tri.id[t]);
+  }
+
+  /* participating nodes (increasing) and the auto buffer */
+  unsigned char *mark = yf_calloc((size_t)nn + 1, 1, "contact nodes");
+  double hmin = INFINITY;
+  for (int k = 0; k < C->nitem; k++) {
+    const int *v = m->tri.v + 3 * C->item[k];
+    for (int c = 0; c < 3; c++) {
+      mark[v[c]] = 1;
+      int p = v[c], q = v[(c + 1) % 3];
+      double L = hypot(m->node.x0[q] - m->node.x0[p], m->node.y0[q] - m->node.y0[p]);
+      if (L < hmin) hmin = L;
+    }
+  }
+  C->pnode = yf_malloc((size_t)(nn > 0 ? nn : 1) * sizeof(int), "contact nodes");
+  C->npn = 0;
+  for (int i = 0; i < nn; i++)
+    if (mark[i]) C->pnode[C->npn++] = i;
+  free(mark);
+  C->buffer = C->buffer_auto ? (isfinite(hmin) ? BUFFER_FRAC * hmin : 0.0) : C->buffer_set;
+
+  /* joined couples (skip mode) */
+  if (C->joined_skip && s->joints && s->joints->n) {
+    const YfJoints *J = s->joints;
+    C->jpart = yf_malloc((size_t)3 * (nt > 0 ? nt : 1) * sizeof(int), "contact joined");
+    C->jidx = yf_malloc((size_t)3 * (nt > 0 ? nt : 1) * sizeof(int), "contact joined");
+    for (int k = 0; k < 3 * nt; k++) C->jpart[k] = C->jidx[k] = -1;
+    for (int j = 0; j < J->n; j++)
+      for (int side = 0; side < 2; side++) {
+        int t = J->tri[2 * j + side], o = J->tri[2 * j + 1 - side];
+        for (int k = 0; k < 3; k++)
+          if (C->jpart[3 * t + k] < 0) {
+            C->jpart[3 * t + k] = o;
+            C->jidx[3 * t + k] = j;
+            break;
+          }
+      }
+    C->jstate = J->state;
+    C->broken_seen = joints_broken(s);
+  }
+
+  C->cx = yf_malloc((size_t)(C->nitem + 1) * sizeof(double), "contact bounds");
+  C->cy = yf_malloc((size_t)(C->nitem + 1) * sizeof(double), "contact bounds");
+  C->cr = yf_malloc((size_t)(C->nitem + 1) * sizeof(double), "contact bounds");
+  if (C->cap_nodes < nn) {
+    C->tmark = yf_realloc(C->tmark, (size_t)nn, "contact gather");
+    C->fcn = yf_realloc(C->fcn, (size_t)2 * nn * sizeof(double), "contact node forces");
+    C->cap_nodes = nn;
+  }
+  memset(C->tmark, 0, (size_t)nn);
+  memset(C->fcn, 0, (size_t)2 * nn * sizeof(double));
+  C->fcn_valid = 0;
+  if (C->cap_tg < nt) {
+    free(C->tg);
+    C->tg = yf_malloc((size_t)(nt > 0 ? nt : 1) * YF_TRI_GEOM * sizeof(double), "contact triangle records");
+    C->cap_tg = nt;
+  }
+
+  compute_stable_dt(s, C);
+  /* the first step after a (re)setup searches; couples of the old list that still pass keep
+   * their friction memory through the merge (triangle indices do not change) */
+  contact_trigger_init(&C->trig, C->buffer, 1e15);
+  C->force_search = 1;
+  C->prep_ntri = nt;
+  C->prep_nn = nn;
+  C->dirty = 0;
+  sim_printf(s, "contact: %d rule%s, %d of %d triangles take part, buffer %.4g m%s\n", C->nrule,
+             C->nrule > 1 ? "s" : "", C->nitem, nt, C->buffer, C->joined_skip ? ", joined couples skipped" : "");
+}
+
+double contact_stable_dt(YfSim *s, char *what, size_t n) {
+  YfContact *C = s->contact;
+  if (!active(C) || !isfinite(C->dt_limit)) {
+    if (what && n) what[0] = 0;
+    return INFINITY;
+  }
+  if (what && n) snprintf(what, n, "%s", C->dt_what);
+  return C->dt_limit;
+}
+
+/* ---------------------------------------------------------------- detection */
+
+/* Room for the per-couple arrays of n couples. */
+static void couple_arrays(YfContact *C, int n) {
+  if (C->cap_alive < n) {
+    C->cap_alive = n + n / 4 + 64;
+    C->alive = yf_realloc(C->alive, (size_t)C->cap_alive, "contact couples");
+  }
+  int nblk = (n + PAIR_BLK - 1) / PAIR_BLK;
+  if (C->cap_blk < nblk + 1) {
+    C->cap_blk = nblk + nblk / 4 + 16;
+    C->blk_e = yf_realloc(C->blk_e, (size_t)C->cap_blk * sizeof(double), "contact blocks");
+    C->blk_d = yf_realloc(C->blk_d, (size_t)C->cap_blk * sizeof(double), "contact blocks");
+    C->blk_rm = yf_realloc(C->blk_rm, (size_t)C->cap_blk * sizeof(int), "contact blocks");
+    C->blk_busy = yf_realloc(C->blk_busy, (size_t)C->cap_blk * sizeof(int), "contact blocks");
+    C->blk_off = yf_realloc(C->blk_off, (size_t)(C->cap_blk + 1) * sizeof(int), "contact blocks");
+    C->blk_need = yf_realloc(C->blk_need, (size_t)C->cap_blk * sizeof(int), "contact blocks");
+    C->blk_goff = yf_realloc(C->blk_goff, (size_t)(C->cap_blk + 1) * sizeof(int), "contact blocks");
+  }
+}
+
+/* Room for the forces of n touching couples.  Made at each search for twice the most couples
+ * that have needed the kernel in one step so far (at least 1/16 of the list), so a step grows
+ * it only when contact spreads past that (rarely, geometrically). */
+static void hit_room(YfContact *C, int n) {
+  if (C->cap_hit >= n) return;
+  C->cap_hit = n + n / 2 + 64;
+  free(C->hk);
+  free(C->hf);
+  C->hk = yf_malloc((size_t)C->cap_hit * sizeof(int), "contact hits");
+  C->hf = yf_malloc((size_t)C->cap_hit * 12 * sizeof(double), "contact hits");
+}
+
+static void search(YfSim *s, YfContact *C) {
+  const YfModel *m = &s->model;
+  contact_search_bounds(C->nitem, C->item, m->tri.v, m->node.x, m->node.y, C->cx, C->cy, C->cr);
+  /* couples dropped since the last search are forgotten (their friction memory too) */
+  if (C->ndead) contact_pairs_compact(&C->pairs, C->alive);
+  YfSearchFilter f = {0};
+  f.mask = C->ma;
+  f.mask2 = C->mb;
+  f.tri_v = C->keep_shared ? NULL : m->tri.v;
+  if (C->jpart) {
+    f.keep = joined_keep;
+    f.ctx = C;
+  }
+  contact_search(&C->work, C->nitem, C->item, C->cx, C->cy, C->cr, C->buffer, &f, &C->fresh);
+  contact_search_merge(&C->pairs, &C->fresh);
+  YfPairs tmp = C->pairs;
+  C->pairs = C->fresh;
+  C->fresh = tmp;
+  int n = C->pairs.n;
+  couple_arrays(C, n);
+  memset(C->alive, 1, (size_t)n);
+  C->nlive = n;
+  C->ndead = 0;
+  int want = 2 * C->max_busy, floor16 = n / 16;
+  hit_room(C, want > floor16 ? want : floor16);
+  /* friction memory slots: room for the couples that have touched and as many again */
+  contact_pairs_greserve(&C->pairs, 2 * C->pairs.ng + n / 64 + 256);
+  C->nsearch++;
+}
+
+/* ---------------------------------------------------------------- the step */
+
+/* What pass 2 of contact_step reads and where it puts the forces: the hit list (hf, hk: several
+ * threads) or the node sums directly (fcn, tmark: one thread, blocks in order). */
+typedef struct {
+  const int *ij, *tv, *tmat;
+  int *gi;
+  unsigned char *alive;
+  const double *vx, *vy, *tg;
+  double *gmem;
+  const double *mpn, *mpt, *mmu;
+  const int *mlaw;
+  double dt, rem2;
+  int np;
+  double *hf;
+  int *hk;
+  double *fcn;
+  unsigned char *tmark;
+} KernelPass;
+
+/* The kernel on the marked couples of block b, in couple order: friction slots numbered from the
+ * block's offset, energy and dissipation summed per block, couples dropped as Y2D drops them. */
+static void kernel_block(YfContact *C, const KernelPass *P, int b) {
+  double e = 0.0, d = 0.0;
+  int rm = 0, h = C->blk_off[b], slot = C->blk_goff[b];
+  if (h == C->blk_off[b + 1]) { C->blk_e[b] = C->blk_d[b] = 0.0; return; }
+  const int *ij = P->ij, *tv = P->tv, *tmat = P->tmat;
+  int *gi = P->gi;
+  unsigned char *alive = P->alive;
+  const double *vx = P->vx, *vy = P->vy, *tg = P->tg;
+  double *gmem = P->gmem;
+  int k1 = (b + 1) * PAIR_BLK < P->np ? (b + 1) * PAIR_BLK : P->np;
+  for (int k = b * PAIR_BLK; k < k1; k++) {
+    if (alive[k] != 2) continue;
+    alive[k] = 1;
+    int ti = ij[2 * k], tj = ij[2 * k + 1];
+    const int *va = tv + 3 * tj, *vb = tv + 3 * ti;
+    double vxa[3], vya[3], vxb[3], vyb[3];
+    for (int c = 0; c < 3; c++) {
+      vxa[c] = vx[va[c]]; vya[c] = vy[va[c]];
+      vxb[c] = vx[vb[c]]; vyb[c] = vy[vb[c]];
+    }
+    int ma = tmat[tj], mb = tmat[ti];
+    double pn = P->mpn[ma] < P->mpn[mb] ? P->mpn[ma] : P->mpn[mb];
+    double pt = P->mpt[ma] < P->mpt[mb] ? P->mpt[ma] : P->mpt[mb];
+    double mu = P->mmu[ma] < P->mmu[mb] ? P->mmu[ma] : P->mmu[mb];
+    int law = P->mlaw[ma] < P->mlaw[mb] ? P->mlaw[ma] : P->mlaw[mb]; /* Y2D's if either is a Y2D material */
+    double loc[12];
+    double *fa = P->hf ? P->hf + 12 * (size_t)h : loc, *fb = fa + 6;
+    for (int c = 0; c < 12; c++) fa[c] = 0.0;
+    YfContactInfo info = {0, 0, 0, 0, 0, 0};
+    double d2;
+    if (gi[k] < 0) { /* first contact of the couple: a zeroed slot, numbered in couple order */
+      gi[k] = slot++;
+      memset(gmem + 6 * (size_t)gi[k], 0, 6 * sizeof *gmem);
+    }
+    int hit = contact_pair_force_rec(tg + (size_t)YF_TRI_GEOM * tj, vxa, vya, tg + (size_t)YF_TRI_GEOM * ti, vxb,
+                                     vyb, pn, pt, mu, law, P->dt, gmem + 6 * (size_t)gi[k], fa, fb, &d2, &info);
+    e += info.energy;
+    d += info.dissip;
+    if (P->hf) {
+      P->hk[h] = k;
+    } else { /* one thread: the scatter's additions, here (A's corners, then B's) */
+      for (int c = 0; c < 6; c++) {
+        int i = c < 3 ? va[c] : vb[c - 3];
+        P->tmark[i] = 1;
+        P->fcn[2 * i] += fa[2 * c];
+        P->fcn[2 * i + 1] += fa[2 * c + 1];
+      }
+    }
+    h++;
+    if (!hit && d2 > P->rem2) { alive[k] = 0; rm++; }
+  }
+  C->blk_e[b] = e;
+  C->blk_d[b] = d;
+  C->blk_rm[b] += rm;
+}
+
+void contact_step(YfSim *s) {
+  YfContact *C = s->contact;
+  if (!active(C)) return;
+  double t0 = yf_now();
+  YfModel *m = &s->model;
+  YfNodes *nd = &m->node;
+  const double dt = s->dt;
+
+  /* detection (ALGORITHMS 5): travel of the previous half step's velocities */
+  double vmax2 = contact_vmax2(C->npn, C->pnode, nd->vx, nd->vy);
+  int due = contact_trigger_step(&C->trig, dt, vmax2);
+  if (C->jpart) {
+    long nb = joints_broken(s);
+    if (nb != C->broken_seen) { due = 1; C->broken_seen = nb; } /* newly free faces must see each other now */
+  }
+  if (due || C->force_search || C->search_every) {
+    if (!due) C->trig.travel = 0.0;
+    search(s, C);
+    C->force_search = 0;
+  }
+  double t1 = yf_now();
+  yf_stage_time[YF_ST_DETECT] += t1 - t0;
+
+  /* the screen's triangle records of this step (participating triangles only) */
+  const int *tv = m->tri.v, *tmat = m->tri.mat, *item = C->item, nitem = C->nitem;
+  const double *x = nd->x, *y = nd->y, *vx = nd->vx, *vy = nd->vy;
+  double *tg = C->tg;
+  #pragma omp parallel for schedule(static) if (nitem >= C->par_min)
+  for (int q = 0; q < nitem; q++) {
+    const int t = item[q], *v = tv + 3 * t;
+    double xs[3] = {x[v[0]], x[v[1]], x[v[2]]}, ys[3] = {y[v[0]], y[v[1]], y[v[2]]};
+    contact_pair_geom(xs, ys, tg + (size_t)YF_TRI_GEOM * t);
+  }
+
+  /* pass 1, the screen: couples whose edges all miss give no force (only their distance decides
+   * whether they stay); the others are marked 2 and counted per fixed block */
+  const int np = C->pairs.n, nblk = (np + PAIR_BLK - 1) / PAIR_BLK;
+  const int *ij = C->pairs.ij;
+  int *gi = C->pairs.gi;
+  unsigned char *alive = C->alive;
+  const double rem2 = 4.0 * C->buffer * C->buffer;
+  const int *mlaw = C->mlaw;
+  double *gmem = C->pairs.g;
+  #pragma omp parallel for schedule(static) if (np >= C->par_min && nblk > 1)
+  for (int b = 0; b < nblk; b++) {
+    int k1 = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np, rm = 0, busy = 0, need = 0;
+    for (int k = b * PAIR_BLK; k < k1; k++) {
+      if (!alive[k]) continue;
+      const double *ra = tg + (size_t)YF_TRI_GEOM * ij[2 * k + 1], *rb = tg + (size_t)YF_TRI_GEOM * ij[2 * k];
+      int q = contact_pair_quiet(ra, rb, rem2);
+      if (q == 0) { alive[k] = 2; busy++; need += gi[k] < 0; }
+      else if (q == 2) { alive[k] = 0; rm++; }
+      else if (gi[k] >= 0 && mlaw[tmat[ij[2 * k]]] != YF_FRIC_Y2D && mlaw[tmat[ij[2 * k + 1]]] != YF_FRIC_Y2D)
+        memset(gmem + 6 * (size_t)gi[k], 0, 6 * sizeof *gmem); /* apart: the Coulomb springs let go */
+    }
+    C->blk_rm[b] = rm;
+    C->blk_busy[b] = busy;
+    C->blk_need[b] = need;
+  }
+  int nbusy = 0, ng = C->pairs.ng;
+  for (int b = 0; b < nblk; b++) {
+    C->blk_off[b] = nbusy;
+    nbusy += C->blk_busy[b];
+    C->blk_goff[b] = ng;
+    ng += C->blk_need[b];
+  }
+  C->blk_off[nblk] = nbusy;
+  if (nbusy > C->max_busy) C->max_busy = nbusy;
+  contact_pairs_greserve(&C->pairs, ng); /* rarely grows: reserved at each search */
+
+  /* pass 2: the kernel on the marked couples (A = the larger index, Y2D's order).  On several
+   * threads each couple writes its 12 forces into its place of the hit list, in couple order
+   * (no atomics), and the scatter below sums them per node in couple order.  On one thread the
+   * blocks run in order anyway, so each couple's forces go straight into the node sums, in the
+   * scatter's order: the same additions in the same order, the same bits, without the list
+   * (100 B per touching couple written and read back; PERF.md at 1e4: 43 000 of them). */
+  int nthr = 1;
+#ifdef _OPENMP
+  nthr = omp_get_max_threads();
+#endif
+  const int serial = !(nbusy >= C->par_min / 32 && nblk > 1) || nthr == 1;
+  KernelPass P = {ij, tv, tmat, gi, alive, vx, vy, tg, C->pairs.g, C->mpn, C->mpt, C->mmu, C->mlaw, dt, rem2, np,
+                  NULL, NULL, NULL, NULL};
+  double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
+  unsigned char *tmark = C->tmark;
+  const int nn = nd->n;
+  if (serial) {
+    for (int i = 0; i < nn; i++)
+      if (tmark[i]) { fcn[2 * i] = fcn[2 * i + 1] = 0.0; tmark[i] = 0; }
+    P.fcn = fcn;
+    P.tmark = tmark;
+    for (int b = 0; b < nblk; b++) kernel_block(C, &P, b);
+    for (int i = 0; i < nn; i++)
+      if (tmark[i]) { fx[i] += fcn[2 * i]; fy[i] += fcn[2 * i + 1]; }
+  } else {
+    hit_room(C, nbusy); /* rarely grows: see hit_room */
+    P.hf = C->hf;
+    P.hk = C->hk;
+    #pragma omp parallel for schedule(dynamic, 1)
+    for (int b = 0; b < nblk; b++) kernel_block(C, &P, b);
+  }
+  double esum = 0.0, dsum = 0.0;
+  int removed = 0;
+  for (int b = 0; b < nblk; b++) {
+    esum += C->blk_e[b];
+    dsum += C->blk_d[b];
+    removed += C->blk_rm[b];
+  }
+  s->energy.contact = esum;
+  s->energy.friction += dsum;
+  C->pairs.ng = ng;
+
+  /* scatter in couple order: each node's contact force is the sum of its couples'
+   * contributions in couple order (A's corners before B's), then added to node.fx.  Thread t
+   * owns the nodes of one contiguous range and reads every record, so each node's sum has the
+   * same order (and bits) on any thread count. */
+  const int *hk = C->hk;
+  const double *hf = C->hf;
+  if (!serial)
+  #pragma omp parallel if (nbusy >= C->par_min / 8 && nn >= C->par_min)
+  {
+    int nth = 1, me = 0;
+#ifdef _OPENMP
+    nth = omp_get_num_threads();
+    me = omp_get_thread_num();
+#endif
+    const int n0 = (int)((long)nn * me / nth), n1 = (int)((long)nn * (me + 1) / nth);
+    for (int i = n0; i < n1; i++)
+      if (tmark[i]) { fcn[2 * i] = fcn[2 * i + 1] = 0.0; tmark[i] = 0; }
+    for (int h = 0; h < nbusy; h++) {
+      int k = hk[h];
+      const int *vv[2] = {tv + 3 * ij[2 * k + 1], tv + 3 * ij[2 * k]};
+      const double *f = hf + 12 * (size_t)h;
+      for (int c = 0; c < 6; c++) {
+        int i = vv[c / 3][c % 3];
+        if (i < n0 || i >= n1) continue;
+        tmark[i] = 1;
+        fcn[2 * i] += f[2 * c];
+        fcn[2 * i + 1] += f[2 * c + 1];
+      }
+    }
+    for (int i = n0; i < n1; i++)
+      if (tmark[i]) { fx[i] += fcn[2 * i]; fy[i] += fcn[2 * i + 1]; }
+  }
+  C->fcn_valid = 1;
+
+  /* dropped couples: compact once a quarter of the list is dead */
+  C->nlive -= removed;
+  C->ndead += removed;
+  if (C->ndead > 0 && 4 * C->ndead > C->pairs.n) {
+    contact_pairs_compact(&C->pairs, C->alive);
+    memset(C->alive, 1, (size_t)C->pairs.n);
+    C->ndead = 0;
+  }
+  yf_stage_time[YF_ST_CONTACT] += yf_now() - t1;
+}
+
+/* ---------------------------------------------------------------- restart accessors (restart.c) */
+
+int contact_state_save(const YfSim *s, YfContactState *st) {
+  YfContact *C = s->contact; /* keeps the dense copy of the friction memory */
+  memset(st, 0, sizeof *st);
+  if (!active(C) || !C->cx) return 0; /* not prepared */
+  st->n = C->pairs.n;
+  st->ij = C->pairs.ij;
+  /* the friction memory as 6 values per couple (the file format; zeros where a couple has no slot) */
+  free(C->gdense);
+  C->gdense = yf_calloc((size_t)(st->n > 0 ? st->n : 1) * 6, sizeof(double), "restart friction memory");
+  for (int k = 0; k < st->n; k++)
+    if (C->pairs.gi[k] >= 0) memcpy(C->gdense + 6 * (size_t)k, C->pairs.g + 6 * (size_t)C->pairs.gi[k], 6 * sizeof(double));
+  st->g = C->gdense;
+  st->alive = C->alive;
+  st->nlive = C->nlive;
+  st->ndead = C->ndead;
+  st->travel = C->trig.travel;
+  st->nsearch = C->nsearch;
+  st->broken_seen = C->broken_seen;
+  st->force_search = C->force_search;
+  st->nn = C->prep_nn;
+  st->fcn = C->fcn;
+  st->fcn_valid = C->fcn_valid;
+  return 1;
+}
+
+int contact_state_load(YfSim *s, const YfContactState *st) {
+  YfContact *C = s->contact;
+  if (!active(C) || !C->cx) return -1;
+  int n = st->n;
+  contact_pairs_reserve(&C->pairs, n);
+  C->pairs.n = n;
+  C->pairs.ng = 0;
+  if (n) {
+    memcpy(C->pairs.ij, st->ij, (size_t)n * 2 * sizeof(int));
+    int used = 0;
+    for (int k = 0; k < n; k++) {
+      const double *g = st->g + 6 * (size_t)k;
+      C->pairs.gi[k] = -(g[0] != 0.0 || g[1] != 0.0 || g[2] != 0.0 || g[3] != 0.0 || g[4] != 0.0 || g[5] != 0.0);
+      used -= C->pairs.gi[k];
+    }
+    contact_pairs_greserve(&C->pairs, 2 * used + n / 64 + 256);
+    for (int k = 0; k < n; k++) { /* gi -1 marks the couples with memory, 0 the others */
+      int has = C->pairs.gi[k] < 0;
+      C->pairs.gi[k] = -1;
+      if (has) memcpy(contact_pairs_gslot(&C->pairs, k), st->g + 6 * (size_t)k, 6 * sizeof(double));
+    }
+  }
+  couple_arrays(C, n);
+  if (n) memcpy(C->alive, st->alive, (size_t)n);
+  C->nlive = st->nlive;
+  C->ndead = st->ndead;
+  C->trig.travel = st->travel;
+  C->nsearch = st->nsearch;
+  C->broken_seen = st->broken_seen;
+  C->force_search = st->force_search;
+  /* the nodes that carry contact force of the last step (zeroed before the next scatter) */
+  if (st->fcn && st->nn == C->prep_nn) {
+    memcpy(C->fcn, st->fcn, (size_t)2 * st->nn * sizeof(double));
+    for (int i = 0; i < st->nn; i++) C->tmark[i] = C->fcn[2 * i] != 0.0 || C->fcn[2 * i + 1] != 0.0;
+  }
+  C->fcn_valid = st->fcn_valid;
+  return 0;
+}

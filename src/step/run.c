@@ -1,0 +1,502 @@
+/* run.c: the explicit central-difference time loop and its stages.
+ *
+ * One step (ALGORITHMS.md 1, 7): forces at x_n and v_{n-1/2} (triangles write per-corner slots
+ * in parallel; a node gather sums them in a fixed order, so 1 or N threads give the same bits),
+ * external loads, then v_{n+1/2} = v_{n-1/2} + dt (f/m + g) with supports and prescribed motions,
+ * x_{n+1} = x_n + dt v_{n+1/2}, t += dt.  Energies are evaluated at thermo lines; the energy
+ * check catches an unstable run (kinetic + strain energy growing far beyond what was put in).
+ * Nothing in the step allocates, does I/O (except output at its own stage) or touches strings.
+ */
+#include <math.h>
+#include <omp.h>
+#include <sys/resource.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+#include "run.h"
+#include "bc.h"
+#include "contact.h"
+#include "elem_tri.h"
+#include "err.h"
+#include "joint.h"
+#include "partition.h"
+
+const char *const yf_stage_names[YF_NSTAGE] = {"elements", "joints", "detection", "contact", "gather", "update", "output"};
+double yf_stage_time[YF_NSTAGE];
+
+static int BLOCK = 2048; /* triangles per block of the force loop: fixed, so sums do not depend on threads */
+/* Loops shorter than this run on one thread: a parallel region costs microseconds (much more on
+ * a loaded machine) and results are the same bits either way. */
+static int PAR_MIN = 16384;
+/* Tests make small scenes run threaded (the bits must not change: check_parallel.c). */
+void run_set_par_min(int par_min, int block) {
+  PAR_MIN = par_min < 0 ? 0 : par_min;
+  if (block > 0) BLOCK = block;
+}
+
+/* Run-time state derived from the model (rebuilt by run_prepare). */
+static struct {
+  YfTriMat *tm;
+  int ntm;
+  int nblk;
+  double *blk;        /* per-block partial sums */
+  int *blk_bad;
+  double *blk_badJ;
+  double *xo, *yo, *vxo, *vyo; /* positions and velocities before the update */
+  int cap_nodes;
+  double e_budget;    /* kinetic + strain energy at the start (step 0 or the first run) [J/m]:
+                       * the growth check's budget and the thermo balance's reference */
+  int e_budget_set;
+  double e_floor;     /* energy of a 1e-8 strain everywhere: below it, growth is round-off [J/m] */
+  double t_wall0;
+} R;
+
+double yf_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Build the node -> slot gather lists (CSR): triangle corners (slots 0..3 ntri-1) then the extra
+ * slots (joints).  Each node's slots are in increasing slot order, fixed for the whole run. */
+static void build_gather(YfModel *m) {
+  int nn = m->node.n, nt3 = 3 * m->tri.n, ns = nt3 + m->nxslot;
+  free(m->gather_off);
+  free(m->gather_slot);
+  m->gather_off = yf_calloc((size_t)nn + 1, sizeof(int), "gather offsets");
+  m->gather_slot = yf_malloc((size_t)(ns > 0 ? ns : 1) * sizeof(int), "gather slots");
+  for (int k = 0; k < ns; k++) m->gather_off[(k < nt3 ? m->tri.v[k] : m->xslot_node[k - nt3]) + 1]++;
+  for (int i = 0; i < nn; i++) m->gather_off[i + 1] += m->gather_off[i];
+  int *fill = yf_calloc((size_t)nn + 1, sizeof(int), "gather fill");
+  for (int k = 0; k < ns; k++) {
+    int i = k < nt3 ? m->tri.v[k] : m->xslot_node[k - nt3];
+    m->gather_slot[m->gather_off[i] + fill[i]++] = k;
+  }
+  free(fill);
+}
+
+static void material_consts(YfSim *s) {
+  YfModel *m = &s->model;
+  free(R.tm);
+  R.tm = yf_calloc((size_t)(m->nmat ? m->nmat : 1), sizeof(YfTriMat), "material constants");
+  R.ntm = m->nmat;
+  for (int i = 0; i < m->nmat; i++) {
+    YfMaterial *mt = &m->mat[i];
+    double k = mt->visc;
+    if (mt->beta > 0) {
+      /* Y practice: k = 2 h beta sqrt(E rho), h the smallest edge of this material's triangles */
+      double h = INFINITY;
+      for (int e = 0; e < m->tri.n; e++) {
+        if (m->tri.mat[e] != i) continue;
+        const int *v = m->tri.v + 3 * e;
+        for (int c = 0; c < 3; c++) {
+          int p = v[c], q = v[(c + 1) % 3];
+          double L = hypot(m->node.x0[q] - m->node.x0[p], m->node.y0[q] - m->node.y0[p]);
+          if (L < h) h = L;
+        }
+      }
+      if (isfinite(h)) k = 2.0 * h * mt->beta * sqrt(mt->E * mt->rho);
+    }
+    R.tm[i].mu2 = 2.0 * mt->mu;
+    R.tm[i].lamv = mt->volfac * mt->lambda;
+    R.tm[i].k = k;
+    R.tm[i].rho = mt->rho;
+  }
+}
+
+double run_model_bytes(const YfSim *s) {
+  const YfModel *m = &s->model;
+  double nodes = (double)m->node.n * (9 * sizeof(double) + 4 * sizeof(int) + sizeof(uint64_t) + 1);
+  double tris = (double)m->tri.n * (3 * sizeof(int) + 3 * sizeof(int) + sizeof(uint64_t) +
+                                    (4 + 1 + 3 + 6) * sizeof(double) + 3 * sizeof(int));
+  return nodes + tris + (double)(m->node.n + 1) * sizeof(int);
+}
+
+double run_stable_dt(YfSim *s, char *limiter, size_t n) {
+  YfModel *m = &s->model;
+  double best = INFINITY;
+  int which = -1;
+  /* every triangle's omega_max on all threads (a power iteration each: 1 s per 1e6 triangles at
+   * setup), then the smallest limit, first of equals, in order: the serial loop's answer */
+  const int nt = m->tri.n;
+  double *w = yf_malloc((size_t)(nt > 0 ? nt : 1) * sizeof *w, "stable time step");
+  #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
+  for (int e = 0; e < nt; e++) w[e] = tri_omega_max(m, R.tm, e);
+  for (int e = 0; e < nt; e++) {
+    double d = tri_dt_of_omega(w[e], R.tm + m->tri.mat[e]);
+    if (d < best) { best = d; which = e; }
+  }
+  if (limiter) {
+    if (which >= 0)
+      snprintf(limiter, n, "triangle %d (material %s)", m->tri.id[which], m->mat[m->tri.mat[which]].name);
+    else
+      snprintf(limiter, n, "nothing (no triangles)");
+  }
+  char what[96];
+  double dj = joints_stable_dt(s, w, what, sizeof what); /* the same omegas, without viscosity */
+  free(w);
+  if (dj < best) {
+    best = dj;
+    if (limiter) snprintf(limiter, n, "%s", what);
+  }
+  double dc = contact_stable_dt(s, what, sizeof what);
+  if (dc < best) {
+    best = dc;
+    if (limiter) snprintf(limiter, n, "%s", what);
+  }
+  return best;
+}
+
+void run_prepare(YfSim *s) {
+  YfModel *m = &s->model;
+  if (!m->tri.n) yf_deck_error(NULL, "run: the scene has no triangles (use mesh, triangle or read_y2d first)");
+  if (!m->prepared) {
+    joints_insert(s); /* fracturing bodies get their own nodes per triangle and joints */
+    partition_apply(s); /* first run: METIS parts, nodes/triangles/joints renumbered part by part */
+    material_consts(s);
+    for (int i = 0; i < m->node.n; i++) m->node.m[i] = 0.0;
+    int bad = tri_prepare(m, R.tm);
+    if (bad >= 0)
+      yf_deck_error(NULL, "triangle %d has non-positive area (%g m^2): its corners must be counter-clockwise and distinct",
+                    m->tri.id[bad], 0.5 * m->tri.d0[bad]);
+    build_gather(m);
+    R.nblk = (m->tri.n + BLOCK - 1) / BLOCK;
+    free(R.blk); free(R.blk_bad); free(R.blk_badJ);
+    R.blk = yf_calloc((size_t)R.nblk, sizeof(double), "block sums");
+    R.blk_bad = yf_calloc((size_t)R.nblk, sizeof(int), "block flags");
+    R.blk_badJ = yf_calloc((size_t)R.nblk, sizeof(double), "block J");
+    R.e_floor = 0;
+    for (int e = 0; e < m->tri.n; e++) R.e_floor += 1e-16 * m->mat[m->tri.mat[e]].E * 0.5 * m->tri.d0[e];
+    m->prepared = 1;
+  }
+  bc_prepare(s);
+  contact_prepare(s);
+  /* positions and velocities before the update: read only by bc.c's supports and loads and by
+   * the mass damping, so kept only when one of them is active (fix/load commands and damping may
+   * come between runs: checked at every run) */
+  if ((bc_count(s) > 0 || s->mass_damping > 0) && R.cap_nodes < m->node.n) {
+    R.cap_nodes = m->node.n;
+    R.xo = yf_realloc(R.xo, (size_t)R.cap_nodes * sizeof(double), "old positions");
+    R.yo = yf_realloc(R.yo, (size_t)R.cap_nodes * sizeof(double), "old positions");
+    R.vxo = yf_realloc(R.vxo, (size_t)R.cap_nodes * sizeof(double), "old velocities");
+    R.vyo = yf_realloc(R.vyo, (size_t)R.cap_nodes * sizeof(double), "old velocities");
+  }
+  for (int k = 0; k < s->nbc_kind; k++) /* the scene is built: input copies may go */
+    if (s->bc_kind[k]->scene_built) s->bc_kind[k]->scene_built(s);
+}
+
+void run_energies(YfSim *s) {
+  YfModel *m = &s->model;
+  const YfNodes *n = &m->node;
+  double ke = 0;
+  for (int i = 0; i < n->n; i++) {
+    ke += 0.5 * n->m[i] * (n->vx[i] * n->vx[i] + n->vy[i] * n->vy[i]);
+  }
+  s->energy.kinetic = ke;
+  s->energy.strain = R.tm ? tri_strain_energy(m, R.tm, 0, m->tri.n) : 0.0;
+  s->energy.strain += joints_energy(s); /* intact joints' stored energy; sets energy.joint_dissipated */
+}
+
+/* Gravity's work is a function of the state: sum m g . (x - x0). */
+static double gravity_work(const YfSim *s) {
+  if (s->gx == 0 && s->gy == 0) return 0.0;
+  const YfNodes *n = &s->model.node;
+  double w = 0;
+  for (int i = 0; i < n->n; i++) w += n->m[i] * (s->gx * (n->x[i] - n->x0[i]) + s->gy * (n->y[i] - n->y0[i]));
+  return w;
+}
+
+static double total_external(const YfSim *s) { return s->energy.external_work + gravity_work(s); }
+
+static void thermo_header(YfSim *s) {
+  sim_printf(s, "%10s %12s %13s %13s %13s %13s %13s %8s %9s %9s\n", "Step", "Time", "KinEng", "StrainEng", "ExtWork",
+             "Dissipated", "Balance", "Broken", "Pairs", "Wall");
+}
+
+static void thermo_line(YfSim *s) {
+  run_energies(s);
+  double ext = total_external(s);
+  double diss = s->energy.damping + s->energy.joint_dissipated + s->energy.friction;
+  /* balance: energy now + dissipated - (energy at the start + external work); ~0 when healthy */
+  double bal = s->energy.kinetic + s->energy.strain + s->energy.contact + diss - ext - R.e_budget;
+  sim_printf(s, "%10ld %12.6e %13.6e %13.6e %13.6e %13.6e %13.6e %8ld %9ld %9.2f\n", s->step, s->time,
+             s->energy.kinetic, s->energy.strain, ext, diss, bal, joints_broken(s), contact_pairs(s),
+             s->wall_s + (yf_now() - R.t_wall0));
+}
+
+/* Unstable runs show as energy growing without a source: stop them with a clear cause. */
+static void energy_check(YfSim *s) {
+  run_energies(s);
+  double e = s->energy.kinetic + s->energy.strain;
+  double budget = R.e_budget + fabs(total_external(s));
+  if (isfinite(e) && e <= 10.0 * budget + R.e_floor) return;
+  yf_numeric_error(s->step, "energy growing without a source: kinetic + strain = %.6g J/m, but only %.6g J/m was put in "
+                   "(time step %.6g s, stable limit %.6g s set by %s); reduce the time step",
+                   e, budget, s->dt, s->dt_limit, s->dt_limiter);
+}
+
+static void progress(YfSim *s, long done, long total, double t0) {
+  static double last;
+  double t = yf_now();
+  if (t - last < 0.5 && done < total) return;
+  last = t;
+  double frac = total ? (double)done / (double)total : 1.0;
+  double eta = frac > 0 ? (t - t0) * (1.0 - frac) / frac : 0;
+  char bar[31];
+  int k = (int)(frac * 30);
+  for (int i = 0; i < 30; i++) bar[i] = i < k ? '#' : ' ';
+  bar[30] = 0;
+  fprintf(stderr, "\r[%s] %3.0f%% step %ld ETA %.0fs ", bar, 100 * frac, s->step, eta);
+  if (done >= total) fprintf(stderr, "\r%60s\r", "");
+  fflush(stderr);
+}
+
+/* The stages of one step, in order (the run loop below is this list).  Every loop over
+ * elements or nodes is a static OpenMP loop whose iterations write only their own slots; sums
+ * over blocks are added serially in block order. */
+
+/* elements: constant-strain triangle forces into per-corner slots, viscous power per block */
+static void stage_elements(YfSim *s) {
+  YfModel *m = &s->model;
+  const int nblk = R.nblk, nt = m->tri.n;
+  #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
+  for (int b = 0; b < nblk; b++) {
+    YfTriPass p;
+    int e1 = (b + 1) * BLOCK < nt ? (b + 1) * BLOCK : nt;
+    tri_forces(m, R.tm, b * BLOCK, e1, &p);
+    R.blk[b] = p.visc_power;
+    R.blk_bad[b] = p.bad;
+    R.blk_badJ[b] = p.badJ;
+  }
+  double power = 0;
+  for (int b = 0; b < nblk; b++) {
+    if (R.blk_bad[b] >= 0) {
+      int e = R.blk_bad[b];
+      if (R.blk_badJ[b] <= 0)
+        yf_numeric_error(s->step + 1, "triangle %d (material %s) inverted: J = %.6g (area ratio current/initial); "
+                         "the time step (%.6g s, stable limit %.6g s set by %s) may be too large or the body is "
+                         "crushed beyond what the law allows",
+                         m->tri.id[e], m->mat[m->tri.mat[e]].name, R.blk_badJ[b], s->dt, s->dt_limit, s->dt_limiter);
+      /* a non-finite stress is an overflow of a growing instability: say what limits the step */
+      yf_numeric_error(s->step + 1, "triangle %d (material %s): stress is not finite (NaN or inf): the motion "
+                       "blew up (time step %.6g s, stable limit %.6g s set by %s)", m->tri.id[e],
+                       m->mat[m->tri.mat[e]].name, s->dt, s->dt_limit, s->dt_limiter);
+    }
+    power += R.blk[b];
+  }
+  s->energy.damping += power * s->dt;
+}
+
+/* joints: cohesive joint forces into their extra slots (only with joints) */
+static void stage_joints(YfSim *s) {
+  if (s->model.nxslot) joints_forces(s);
+}
+
+/* gather: corner (and joint) forces into nodes in fixed slot order, then every boundary-condition
+ * kind's external loads */
+static void stage_gather(YfSim *s) {
+  YfModel *m = &s->model;
+  YfNodes *n = &m->node;
+  const int nn = n->n, nt3 = 3 * m->tri.n;
+  const int *off = m->gather_off, *slot = m->gather_slot;
+  const double *cf = m->tri.cf, *xf = m->xslot_f;
+  #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
+  for (int i = 0; i < nn; i++) {
+    double fx = 0, fy = 0;
+    for (int k = off[i]; k < off[i + 1]; k++) {
+      int q = slot[k];
+      const double *f = q < nt3 ? cf + 2 * q : xf + 2 * (q - nt3);
+      fx += f[0];
+      fy += f[1];
+    }
+    n->fx[i] = fx;
+    n->fy[i] = fy;
+  }
+  for (int k = 0; k < s->nbc_kind; k++)
+    if (s->bc_kind[k]->loads) s->bc_kind[k]->loads(s);
+}
+
+/* contact: detection when due, then pair forces added in pair order (timed inside) */
+static void stage_contact(YfSim *s) { contact_step(s); }
+
+/* update: v_{n+1/2}, then supports, then x_{n+1}.  With damping every node's old velocity is
+ * read, and the old state is copied inside the update loops; without, only the supported and
+ * loaded nodes' old state is (bc_save_old), one pass moves every node with its free velocity,
+ * and the supported nodes are moved again after their velocities are imposed: the same
+ * operations on every value as velocity update, supports, then position update. */
+static void stage_update(YfSim *s) {
+  YfNodes *n = &s->model.node;
+  const int nn = n->n;
+  const double dt = s->dt, gx = s->gx, gy = s->gy, alpha = s->mass_damping;
+  double *x = n->x, *y = n->y, *vx = n->vx, *vy = n->vy;
+  const double *fx = n->fx, *fy = n->fy, *ms = n->m;
+  const int keep = alpha > 0, nbc = bc_count(s);
+  double *xo = keep || nbc ? R.xo : NULL, *yo = keep || nbc ? R.yo : NULL;
+  double *vxo = keep || nbc ? R.vxo : NULL, *vyo = keep || nbc ? R.vyo : NULL;
+  if (nbc && !keep) bc_save_old(s, xo, yo, vxo, vyo);
+  const YfBcKind *integ = NULL; /* a boundary-condition kind that owns the velocity update */
+  for (int k = 0; k < s->nbc_kind; k++)
+    if (s->bc_kind[k]->integrate) integ = s->bc_kind[k];
+  if (integ) {
+    integ->integrate(s, nn >= PAR_MIN, keep ? vxo : NULL, keep ? vyo : NULL, !keep);
+  } else if (alpha > 0) {
+    /* central-difference mass damping: v+ = ((1 - a dt/2) v- + dt f/m) / (1 + a dt/2) */
+    const double c1 = 1.0 - 0.5 * alpha * dt, c2 = 1.0 / (1.0 + 0.5 * alpha * dt);
+    #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
+    for (int i = 0; i < nn; i++) {
+      vxo[i] = vx[i];
+      vyo[i] = vy[i];
+      if (!(ms[i] > 1e-300)) continue;
+      vx[i] = (c1 * vx[i] + dt * (fx[i] / ms[i] + gx)) * c2;
+      vy[i] = (c1 * vy[i] + dt * (fy[i] / ms[i] + gy)) * c2;
+    }
+  } else {
+    #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
+    for (int i = 0; i < nn; i++) {
+      if (ms[i] > 1e-300) {
+        vx[i] += dt * (fx[i] / ms[i] + gx);
+        vy[i] += dt * (fy[i] / ms[i] + gy);
+      }
+      x[i] += dt * vx[i];
+      y[i] += dt * vy[i];
+    }
+  }
+  bc_constrain_velocities(s, vxo, vyo);
+  if (alpha > 0) {
+    /* dissipated: alpha m |v_n|^2 dt with v_n the mean of the two half-step velocities, after
+     * the supports (a held node dissipates nothing); summed serially: same bits on any threads */
+    double diss = 0;
+    for (int i = 0; i < nn; i++) {
+      double ax = 0.5 * (vx[i] + vxo[i]), ay = 0.5 * (vy[i] + vyo[i]);
+      diss += ms[i] * (ax * ax + ay * ay);
+    }
+    s->energy.damping += alpha * diss * dt;
+    #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
+    for (int i = 0; i < nn; i++) {
+      xo[i] = x[i];
+      yo[i] = y[i];
+      x[i] += dt * vx[i];
+      y[i] += dt * vy[i];
+    }
+  } else if (nbc) {
+    bc_redo_positions(s, xo, yo);
+  }
+  bc_constrain_positions(s, xo, yo, vxo, vyo);
+  s->step++;
+  s->time += dt;
+}
+
+/* One step = these stages in this order (as Box2D v3's solver stages or SWIFT's engine_step);
+ * each adds its wall time to its timer (contact times detection and pair forces itself). */
+typedef struct {
+  void (*fn)(YfSim *s);
+  int timer; /* YF_ST_*, -1: timed inside */
+} YfStage;
+static const YfStage STAGES[] = {
+  {stage_elements, YF_ST_ELEMENTS},
+  {stage_joints, YF_ST_JOINTS},
+  {stage_gather, YF_ST_GATHER},
+  {stage_contact, -1},
+  {stage_update, YF_ST_UPDATE},
+};
+
+static void step_once(YfSim *s) {
+  for (size_t k = 0; k < sizeof STAGES / sizeof STAGES[0]; k++) {
+    double t0 = yf_now();
+    STAGES[k].fn(s);
+    if (STAGES[k].timer >= 0) yf_stage_time[STAGES[k].timer] += yf_now() - t0;
+  }
+}
+
+void run_steps(YfSim *s, long nsteps) {
+  run_prepare(s);
+  char lim[96];
+  double limit = run_stable_dt(s, lim, sizeof lim);
+  s->dt_limit = limit;
+  snprintf(s->dt_limiter, sizeof s->dt_limiter, "%s", lim);
+  if (s->dt_auto) {
+    s->dt = s->dt_safety * limit;
+    sim_printf(s, "timestep auto: dt = %.6g s = %.3g x stable limit %.6g s (set by %s)\n", s->dt, s->dt_safety, limit, lim);
+  } else if (!(s->dt > 0)) {
+    yf_deck_error(NULL, "run: no time step set (use 'timestep DT' or 'timestep auto')");
+  } else if (s->dt > limit && s->dt_warn_only) {
+    /* Y2D never checks dt and its decks choose it by experience (ALGORITHMS.md 10): warn only */
+    yf_warn(s->dt_loc.file ? &s->dt_loc : NULL,
+            "the Y2D deck's time step %.6g s is above yfdem's conservative stable limit %.6g s (set by %s); "
+            "running it as Y2D would", s->dt, limit, lim);
+  } else if (s->dt > limit) {
+    yf_deck_error(s->dt_loc.file ? &s->dt_loc : NULL,
+                  "timestep %.6g s is above the stable limit %.6g s (set by %s); use at most %.6g s or 'timestep auto'",
+                  s->dt, limit, lim, limit);
+  }
+  s->threads = omp_get_max_threads();
+  run_energies(s);
+  if (s->step == 0 || !R.e_budget_set) {
+    R.e_budget = s->energy.kinetic + s->energy.strain;
+    R.e_budget_set = 1;
+  }
+  s->run_end_step = s->step + nsteps;
+  {
+    /* stresses of the current state, so the run's first frame shows them */
+    YfTriPass p;
+    tri_forces(&s->model, R.tm, 0, s->model.tri.n, &p);
+  }
+  YfEvent ev = {.kind = YF_EV_RUN_BEGIN};
+  sim_notify(s, &ev);
+  R.t_wall0 = yf_now();
+  double t_start = R.t_wall0;
+  thermo_header(s);
+  thermo_line(s);
+  int tty = s->progress && isatty(2);
+  long check_every = 100;
+  for (long k = 0; k < nsteps; k++) {
+    step_once(s);
+    double t0 = yf_now();
+    ev.kind = YF_EV_STEP; /* frames, metrics samples and periodic restarts when due */
+    sim_notify(s, &ev);
+    yf_stage_time[YF_ST_OUTPUT] += yf_now() - t0;
+    if (s->thermo_every > 0 && s->step % s->thermo_every == 0 && k + 1 < nsteps) thermo_line(s);
+    if ((k + 1) % check_every == 0) energy_check(s);
+    if (tty) progress(s, k + 1, nsteps, t_start);
+    if (s->interrupted) {
+      /* finish cleanly: a restart of this step, its frame in every dump, files closed */
+      YfEvent iev = {.kind = YF_EV_INTERRUPT, .restart_path = ""};
+      sim_notify(s, &iev);
+      const char *rp = iev.restart_path, *why = iev.why;
+      s->wall_s += yf_now() - R.t_wall0;
+      if (rp[0])
+        yf_exit_with(YF_EXIT_INTERRUPT, "interrupted at step %ld (time %.6g s): restart written to '%s', frames so far "
+                     "kept; to continue, put 'read_restart %s' before the run command of the deck and make it "
+                     "'run %ld upto'", s->step, s->time, rp, rp, s->run_end_step);
+      yf_exit_with(YF_EXIT_INTERRUPT, "interrupted at step %ld (time %.6g s): frames written so far are kept, but no "
+                   "restart could be written (%s)", s->step, s->time, why);
+    }
+  }
+  energy_check(s);
+  thermo_line(s);
+  double wall = yf_now() - R.t_wall0;
+  s->wall_s += wall;
+  s->elem_steps += (double)s->model.tri.n * (double)nsteps;
+  ev.kind = YF_EV_RUN_END;
+  sim_notify(s, &ev);
+  sim_printf(s, "run: %ld steps of %d triangles in %.3f s wall (%.3g element-steps/s on %d thread%s)\n", nsteps,
+             s->model.tri.n, wall, wall > 0 ? (double)s->model.tri.n * (double)nsteps / wall : 0.0, s->threads,
+             s->threads > 1 ? "s" : "");
+}
+
+const YfTriMat *run_tri_mats(void) { return R.tm; }
+
+void run_free(void) {
+  free(R.tm); free(R.blk); free(R.blk_bad); free(R.blk_badJ);
+  free(R.xo); free(R.yo); free(R.vxo); free(R.vyo);
+  memset(&R, 0, sizeof R);
+}
+
+/* Energy-check budget (energy put in so far): part of a restart, so a continued run checks
+ * against the same budget as the uninterrupted one. */
+double run_get_energy_budget(void) { return R.e_budget; }
+void run_set_energy_budget(double e) {
+  R.e_budget = e;
+  R.e_budget_set = 1;
+}

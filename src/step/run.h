@@ -1,0 +1,36 @@
+/* run.h: the explicit time loop. */
+#ifndef YF_RUN_H
+#define YF_RUN_H
+#include "sim.h"
+#include "elem_tri.h"
+
+/* Stages of a step, timed separately for the benchmark's breakdown. */
+enum { YF_ST_ELEMENTS, YF_ST_JOINTS, YF_ST_DETECT, YF_ST_CONTACT, YF_ST_GATHER, YF_ST_UPDATE, YF_ST_OUTPUT, YF_NSTAGE };
+extern const char *const yf_stage_names[YF_NSTAGE];
+extern double yf_stage_time[YF_NSTAGE]; /* seconds accumulated over all runs */
+
+/* Monotonic wall clock [s] (stage timers). */
+double yf_now(void);
+/* Prepare the model (masses, reference inverses, gather lists, bc) for stepping.  Idempotent. */
+void run_prepare(YfSim *s);
+/* Advance n steps. */
+void run_steps(YfSim *s, long n);
+/* Current energies into s->energy (kinetic, strain; accumulated terms are kept). */
+void run_energies(YfSim *s);
+/* Stable time step of the prepared model and what limits it. */
+double run_stable_dt(YfSim *s, char *limiter, size_t n);
+/* Bytes held by the model's arrays (for the benchmark's bytes per element). */
+double run_model_bytes(const YfSim *s);
+/* Material constants of the prepared model, indexed by material (for tests and diagnostics). */
+/* Material constants of the prepared model, indexed by material (tests, diagnostics). */
+const YfTriMat *run_tri_mats(void);
+/* Energy budget of the energy check [J/m] (restart.c saves and restores it). */
+double run_get_energy_budget(void);
+void run_set_energy_budget(double e);
+/* Release the loop's work arrays (at exit). */
+void run_free(void);
+/* Loops of the step shorter than par_min run on one thread; block = triangles per block of the
+ * force loop (default 16384 and 2048; tests lower them to run small scenes threaded). */
+void run_set_par_min(int par_min, int block);
+
+#endif

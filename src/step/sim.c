@@ -1,0 +1,70 @@
+/* sim.c: the simulation object, time histories, and the two registration lists of the run
+ * loop: boundary-condition kinds and observers (sim.h).  The commands that set its fields
+ * (history, gravity, damping, thermo, timestep) are in deck/cmd_*.c.
+ */
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include "sim.h"
+#include "err.h"
+
+
+void sim_add_bc_kind(YfSim *s, const YfBcKind *k) {
+  for (int i = 0; i < s->nbc_kind; i++)
+    if (s->bc_kind[i] == k) return;
+  YF_ASSERT(s->nbc_kind < YF_MAX_BC_KINDS);
+  s->bc_kind[s->nbc_kind++] = k;
+}
+
+void sim_observe(YfSim *s, YfObserverFn fn) {
+  for (int i = 0; i < s->nobserver; i++)
+    if (s->observer[i] == fn) return;
+  YF_ASSERT(s->nobserver < YF_MAX_OBSERVERS);
+  s->observer[s->nobserver++] = fn;
+}
+
+void sim_notify(YfSim *s, YfEvent *ev) {
+  for (int i = 0; i < s->nobserver; i++) s->observer[i](s, ev);
+}
+
+void sim_printf(YfSim *s, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  vfprintf(stdout, fmt, ap);
+  va_end(ap);
+  if (s && s->log) {
+    va_start(ap, fmt);
+    vfprintf(s->log, fmt, ap);
+    va_end(ap);
+  }
+}
+
+int sim_find_history(const YfSim *s, const char *name) {
+  for (int i = 0; i < s->nhist; i++)
+    if (!strcmp(s->hist[i].name, name)) return i;
+  return -1;
+}
+
+double history_value(const YfHistory *h, double t) {
+  switch (h->kind) {
+  case YF_HIST_RAMP:
+    if (t <= h->t0) return 0.0;
+    if (t >= h->t1) return 1.0;
+    return (t - h->t0) / (h->t1 - h->t0);
+  case YF_HIST_SINE: return sin(2.0 * M_PI * t / h->t0);
+  case YF_HIST_TABLE: {
+    /* piecewise linear, end values held outside the table (unlike Y2D's factor 1: say so in docs) */
+    if (t <= h->t[0]) return h->v[0];
+    if (t >= h->t[h->npts - 1]) return h->v[h->npts - 1];
+    int lo = 0, hi = h->npts - 1;
+    while (hi - lo > 1) {
+      int mid = (lo + hi) / 2;
+      if (h->t[mid] <= t) lo = mid; else hi = mid;
+    }
+    double w = (t - h->t[lo]) / (h->t[hi] - h->t[lo]);
+    return h->v[lo] + w * (h->v[hi] - h->v[lo]);
+  }
+  default: return 1.0;
+  }
+}

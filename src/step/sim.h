@@ -1,0 +1,142 @@
+/* sim.h: a whole simulation = the model + what acts on it + how it is run and written.
+ *
+ * YfSim is what every command handler receives.  The step loop (run.c) reads it; the modules
+ * that add physics (bc.c for supports and loads, joint.c for fracture, contact.c for contact)
+ * keep their own state structs inside it and are called at fixed stages of the step.
+ */
+#ifndef YF_SIM_H
+#define YF_SIM_H
+#include <stdio.h>
+#include "model.h"
+#include "err.h"
+
+/* Energies [J/m], accumulated or evaluated as stated. */
+typedef struct {
+  double kinetic;        /* sum m |v|^2 / 2 with half-step velocities (Y2D's definition) */
+  double strain;         /* sum A_c/2 T:E without the viscous part                       */
+  double external_work;  /* work of loads, gravity and prescribed motions, accumulated  */
+  double damping;        /* dissipated by viscous and mass damping, accumulated         */
+  double joint_dissipated;/* fracture (joint.c)                                           */
+  double contact;        /* contact potential energy (contact.c)                         */
+  double friction;       /* dissipated by friction (contact.c)                           */
+} YfEnergy;
+
+/* Time history: a factor phi(t) multiplying an amplitude. */
+enum { YF_HIST_CONSTANT = 0, YF_HIST_RAMP, YF_HIST_TABLE, YF_HIST_SINE };
+typedef struct {
+  char name[YF_NAME_MAX];
+  int kind;
+  double t0, t1;        /* ramp: 0 before t0, linear to 1 at t1, 1 after; sine: period t0 */
+  int npts;             /* table: points, interpolated linearly, end values held outside  */
+  double *t, *v;
+} YfHistory;
+
+struct YfBc;      /* bc.c      */
+struct YfOutput;  /* output.c  */
+struct YfJoints;  /* joint.c   */
+struct YfContact; /* contact.c */
+struct YfY2dRun;  /* y2d_model.c: Y2D boundary-condition sets of a read_y2d scene */
+struct YfRestart; /* restart.c: periodic restart files and the interrupt restart */
+struct YfDeck;
+struct YfSim;
+
+/* Boundary-condition kinds: what adds external nodal forces at the gather stage or replaces the
+ * free velocity update.  Native fixes and loads (bc.c) are one kind, registered by sim_init;
+ * Y2D's BC sets (y2d_model.c) another, registered by the layer that reads a .y deck.  The run
+ * loop calls every registered kind in registration order and knows none of them by name.
+ * Any member may be NULL. */
+typedef struct YfBcKind {
+  const char *name;
+  void (*loads)(struct YfSim *s);          /* gather stage: add external forces to node.f [N/m] */
+  /* update stage: v_{n+1/2} of every node instead of the free update (at most one kind); par:
+   * threaded; vxo, vyo: old velocities to keep (mass damping) or NULL; move: also x_{n+1} */
+  void (*integrate)(struct YfSim *s, int par, double *vxo, double *vyo, int move);
+  void (*renumbered)(struct YfSim *s);     /* nodes and triangles renumbered (partition.c) */
+  void (*scene_built)(struct YfSim *s);    /* end of run_prepare: input copies may go */
+  void (*free)(struct YfSim *s);
+} YfBcKind;
+#define YF_MAX_BC_KINDS 4
+
+/* Observers: what the step tells the layers above it (dumps, metrics, restarts) at fixed points
+ * of the run loop, as event records.  The step never calls output; the front end registers the
+ * observers (io_attach), and they are called in registration order. */
+enum {
+  YF_EV_RUN_BEGIN,  /* a run starts: the current state is a frame                            */
+  YF_EV_STEP,       /* a step is done: frames, metrics samples and restarts that are due      */
+  YF_EV_TOPOLOGY,   /* joints were inserted: nodes, triangles or slots changed                */
+  YF_EV_INTERRUPT,  /* SIGINT/SIGTERM: write what is needed to continue, the run then stops   */
+  YF_EV_RUN_END,    /* a run ended                                                             */
+  YF_EV_FREE        /* the simulation is freed                                                 */
+};
+typedef struct YfEvent {
+  int kind;                 /* YF_EV_*                                                        */
+  const char *restart_path; /* INTERRUPT: the restart written ("" none), set by the observer  */
+  char why[512];            /* INTERRUPT: why no restart could be written                     */
+} YfEvent;
+typedef void (*YfObserverFn)(struct YfSim *s, YfEvent *ev);
+#define YF_MAX_OBSERVERS 4
+
+typedef struct YfSim {
+  YfModel model;
+  struct YfDeck *deck;
+
+  /* time stepping */
+  long step;            /* completed steps                                                  */
+  double time;          /* [s]                                                              */
+  double dt;            /* [s]; 0 until set                                                 */
+  int dt_auto;          /* 1: dt = safety * stable limit, recomputed at each run            */
+  double dt_safety;     /* safety factor of auto (default 0.5)                              */
+  double dt_limit;      /* last computed stable limit [s] and what limits it                */
+  char dt_limiter[96];
+  YfLoc dt_loc;         /* where the time step was set (for the 'above the limit' error)    */
+  double gx, gy;        /* gravity [m/s^2]                                                  */
+  double mass_damping;  /* alpha [1/s]: force -alpha m v (dynamic relaxation), 0 = off      */
+
+  int nhist;
+  YfHistory *hist;
+
+  struct YfBc *bc;
+  struct YfOutput *out;
+  struct YfJoints *joints;
+  struct YfContact *contact;
+  struct YfY2dRun *y2d;   /* non-NULL after read_y2d (owned by y2d_model.c; the step never
+                             reads it: Y2D's BC sets are a boundary-condition kind)          */
+  int dt_warn_only;       /* 1: a time step above the stable limit is a warning (Y2D decks
+                             choose it by experience, ALGORITHMS.md 10), 0: an error          */
+  const YfBcKind *bc_kind[YF_MAX_BC_KINDS];
+  int nbc_kind;
+  YfObserverFn observer[YF_MAX_OBSERVERS];
+  int nobserver;
+  long last_step;         /* `run` without N runs to this step (Y2D's MCSTEP), 0 = none   */
+  struct YfRestart *restart; /* restart.c (NULL until a restart command)                  */
+  int restored;           /* 1 after read_restart: a dump's first frame continues its series */
+
+  YfEnergy energy;
+  long thermo_every;    /* thermo line every N steps (0: only at start and end of a run)    */
+  double wall_s;        /* wall time spent in runs [s]                                      */
+  double elem_steps;    /* triangles x steps done (for element_steps_per_s)                 */
+  int threads;
+
+  volatile int interrupted; /* set by SIGINT/SIGTERM; the run stops after the current step */
+  long run_end_step;    /* last step of the current run command                            */
+
+  /* options */
+  char summary_path[1024];
+  FILE *log;            /* -log FILE (also gets every message), NULL if none                */
+  int progress;         /* progress bar on stderr when it is a terminal                     */
+} YfSim;
+
+void sim_init(YfSim *s);
+/* Register a boundary-condition kind / an observer (a second registration is ignored). */
+void sim_add_bc_kind(YfSim *s, const YfBcKind *k);
+void sim_observe(YfSim *s, YfObserverFn fn);
+/* Hand an event record to every observer. */
+void sim_notify(YfSim *s, YfEvent *ev);
+void sim_free(YfSim *s);
+int sim_find_history(const YfSim *s, const char *name);
+double history_value(const YfHistory *h, double t);
+
+/* Print to stdout and the log. */
+void sim_printf(YfSim *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+#endif
