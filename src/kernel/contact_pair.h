@@ -13,24 +13,26 @@
  * These are pure functions on plain numbers: no model, no allocation, no I/O.  Units: SI, 2D per
  * unit thickness.  Forces [N/m]; penalties [Pa]; the sliding memory g is Y2D's (m^2: a relative
  * tangential velocity dotted with the unnormalised edge vector, times dt) or, with the Coulomb
- * law, the elastic tangential displacement [m] (see the laws below).
+ * law, the edge's tangential force F_t [Pa: times the edge vector, N/m] (see the laws below).
  */
 #ifndef YF_CONTACT_PAIR_H
 #define YF_CONTACT_PAIR_H
+#include "model.h" /* YF_FRIC_*: the friction law is a material property */
 
 #define YF_CONTACT_EPS 1e-10 /* barycentric tolerance of Y2D (dimensionless) */
-/* Friction laws of a couple (the `law` argument of the kernels):
+/* Friction laws of a couple (the `law` argument of the kernels): YF_FRIC_Y2D or YF_FRIC_COULOMB,
+ * a material's property (model.h):
  *   YF_FRIC_Y2D      Y2D's (ALGORITHMS 6.4): g += w dt with w the relative velocity dotted with
  *                    the unnormalised edge vector (g in m^2), F_t = p_t g capped at mu |F|; the
  *                    tangential force is p_t L^2 times the slip, so it depends on the unit of
  *                    length; g is kept while the edge is apart.  read_y2d decks.
- *   YF_FRIC_COULOMB  elastic-slip Coulomb: g is the elastic tangential displacement u [m] along
- *                    the edge's unit tangent, g += (w / L) dt; F_t = k_t u with
- *                    k_t = 3 p_t (s_max - s_min) / h, the normal law's stiffness with p_t for p_n
- *                    (h = the target's height over its edge nearest at s_bar, as P = delta / h),
- *                    return-mapped onto |F_t| <= mu |F|; an edge that is apart releases its
- *                    spring (g = 0).  Unit-independent: k_t / k_n = p_t / p_n.  Native decks. */
-enum { YF_FRIC_Y2D = 0, YF_FRIC_COULOMB = 1 };
+ *   YF_FRIC_COULOMB  elastic-slip Coulomb: a tangential spring spread over the edge's contact
+ *                    interval, stiffness k_t = 3 p_t (s_max - s_min) / h per metre of slip (the
+ *                    normal law's with p_t for p_n; h = the target's height over its edge nearest
+ *                    the interval's midpoint s_m), acting at s_m and fed by the slip rate there;
+ *                    g is the stored F_t (F's units), updated F_t += k_t (w / L) dt and
+ *                    return-mapped onto |F_t| <= mu |F|; an edge that is apart releases it
+ *                    (g = 0).  Unit-independent: k_t / k_n = p_t / p_n.  Native decks. */
 
 #define YF_TRI_GEOM 16 /* doubles per triangle record: x[3] y[3] mx[3] my[3] D 1/D H2 (1 spare) */
 

@@ -9,7 +9,6 @@
  */
 #include <math.h>
 #include <string.h>
-#include "contact_pair.h"
 #include "deck.h"
 #include "model.h"
 #include "sim.h"

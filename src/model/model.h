@@ -21,6 +21,9 @@
 #define YF_MAX_GROUPS 64 /* group membership is a 64-bit mask per node and per triangle */
 
 enum { YF_PLANE_STRESS = 0, YF_PLANE_STRAIN = 1, YF_PLANE_LAME = 2 };
+/* Contact friction laws (kernel/contact_pair.h has their equations): Y2D's, and the elastic-slip
+ * Coulomb law of native decks. */
+enum { YF_FRIC_Y2D = 0, YF_FRIC_COULOMB = 1 };
 
 /* A material: the triangle law T = (2 mu / J) E + k D + volfac lambda (J - 1/J) I
  * (Munjiza / Y2D, ALGORITHMS.md 2.2).  Native decks give E, nu and plane_stress|plane_strain;
