@@ -30,6 +30,23 @@ YfSim *yft_run(const char *deck_text) {
   return &t_sim;
 }
 
+YfSim *yft_run_deck(const char *path, const char *const *vars) {
+  sim_init(&t_sim);
+  t_sim.progress = 0;
+  YfDeck *d = deck_new(&t_sim);
+  for (int i = 0; vars && vars[i]; i += 2) deck_set_var(d, vars[i], vars[i + 1]);
+  fflush(stdout);
+  int saved = dup(1);
+  FILE *devnull = fopen("/dev/null", "w");
+  dup2(fileno(devnull), 1);
+  deck_run_file(d, path, NULL);
+  fflush(stdout);
+  dup2(saved, 1);
+  close(saved);
+  fclose(devnull);
+  return &t_sim;
+}
+
 char *yft_slurp(const char *path, int empty_if_missing) {
   FILE *f = fopen(path, "rb");
   if (!f) return empty_if_missing ? calloc(1, 1) : NULL;

@@ -9,6 +9,10 @@
 
 /* Run deck text in a fresh simulation (stdout silenced); returns the simulation (static). */
 YfSim *yft_run(const char *deck_text);
+/* Run a deck file (path relative to the repository root, where the tests run) in a fresh
+ * simulation (stdout silenced), with the variables vars = {NAME, VALUE, ..., NULL} set as by
+ * -var; returns the simulation (static). */
+YfSim *yft_run_deck(const char *path, const char *const *vars);
 /* Run the yfdem binary (path from $YFDEM, default ./yfdem) with the given deck text written to
  * a temporary file named NAME in a fresh temporary directory; returns the exit code, and the
  * captured stderr in err (caller frees).  *dir receives the temporary directory (caller frees). */

@@ -86,6 +86,7 @@ typedef struct YfContact {
   double *cx, *cy, *cr;  /* per item: centroid and radius [m]                   */
   int nmat;
   double *mpn, *mpt, *mmu; /* per material: pen_n, pen_t [Pa], friction         */
+  int *mlaw;               /* per material: friction law YF_FRIC_* (contact_pair.h) */
   int *jpart, *jidx;     /* joined skip: 3 per triangle, partner triangle and joint (-1 none) */
   const unsigned char *jstate;
 
@@ -135,11 +136,12 @@ static YfContact *get(YfSim *s) {
 static void free_prepared(YfContact *C) {
   free(C->item); free(C->ma); free(C->mb); free(C->pnode);
   free(C->cx); free(C->cy); free(C->cr);
-  free(C->mpn); free(C->mpt); free(C->mmu);
+  free(C->mpn); free(C->mpt); free(C->mmu); free(C->mlaw);
   free(C->jpart); free(C->jidx);
   C->item = C->pnode = C->jpart = C->jidx = NULL;
   C->ma = C->mb = NULL;
   C->cx = C->cy = C->cr = C->mpn = C->mpt = C->mmu = NULL;
+  C->mlaw = NULL;
   C->nitem = C->npn = C->nmat = 0;
   C->prep_ntri = C->prep_nn = -1;
 }
@@ -447,10 +449,12 @@ void contact_prepare(YfSim *s) {
   C->mpn = yf_malloc((size_t)(m->nmat + 1) * sizeof(double), "contact materials");
   C->mpt = yf_malloc((size_t)(m->nmat + 1) * sizeof(double), "contact materials");
   C->mmu = yf_malloc((size_t)(m->nmat + 1) * sizeof(double), "contact materials");
+  C->mlaw = yf_malloc((size_t)(m->nmat + 1) * sizeof(int), "contact materials");
   for (int i = 0; i < m->nmat; i++) {
     C->mpn[i] = m->mat[i].pen_n;
     C->mpt[i] = m->mat[i].pen_t;
     C->mmu[i] = m->mat[i].fric;
+    C->mlaw[i] = m->mat[i].fric_law;
   }
   for (int k = 0; k < C->nitem; k++) {
     int t = C->item[k];
@@ -605,6 +609,7 @@ typedef struct {
   const double *vx, *vy, *tg;
   double *gmem;
   const double *mpn, *mpt, *mmu;
+  const int *mlaw;
   double dt, rem2;
   int np;
   double *hf;
@@ -639,6 +644,7 @@ static void kernel_block(YfContact *C, const KernelPass *P, int b) {
     double pn = P->mpn[ma] < P->mpn[mb] ? P->mpn[ma] : P->mpn[mb];
     double pt = P->mpt[ma] < P->mpt[mb] ? P->mpt[ma] : P->mpt[mb];
     double mu = P->mmu[ma] < P->mmu[mb] ? P->mmu[ma] : P->mmu[mb];
+    int law = P->mlaw[ma] < P->mlaw[mb] ? P->mlaw[ma] : P->mlaw[mb]; /* Y2D's if either is a Y2D material */
     double loc[12];
     double *fa = P->hf ? P->hf + 12 * (size_t)h : loc, *fb = fa + 6;
     for (int c = 0; c < 12; c++) fa[c] = 0.0;
@@ -649,7 +655,7 @@ static void kernel_block(YfContact *C, const KernelPass *P, int b) {
       memset(gmem + 6 * (size_t)gi[k], 0, 6 * sizeof *gmem);
     }
     int hit = contact_pair_force_rec(tg + (size_t)YF_TRI_GEOM * tj, vxa, vya, tg + (size_t)YF_TRI_GEOM * ti, vxb,
-                                     vyb, pn, pt, mu, P->dt, gmem + 6 * (size_t)gi[k], fa, fb, &d2, &info);
+                                     vyb, pn, pt, mu, law, P->dt, gmem + 6 * (size_t)gi[k], fa, fb, &d2, &info);
     e += info.energy;
     d += info.dissip;
     if (P->hf) {
@@ -711,6 +717,8 @@ void contact_step(YfSim *s) {
   int *gi = C->pairs.gi;
   unsigned char *alive = C->alive;
   const double rem2 = 4.0 * C->buffer * C->buffer;
+  const int *mlaw = C->mlaw;
+  double *gmem = C->pairs.g;
   #pragma omp parallel for schedule(static) if (np >= C->par_min && nblk > 1)
   for (int b = 0; b < nblk; b++) {
     int k1 = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np, rm = 0, busy = 0, need = 0;
@@ -720,6 +728,8 @@ void contact_step(YfSim *s) {
       int q = contact_pair_quiet(ra, rb, rem2);
       if (q == 0) { alive[k] = 2; busy++; need += gi[k] < 0; }
       else if (q == 2) { alive[k] = 0; rm++; }
+      else if (gi[k] >= 0 && mlaw[tmat[ij[2 * k]]] != YF_FRIC_Y2D && mlaw[tmat[ij[2 * k + 1]]] != YF_FRIC_Y2D)
+        memset(gmem + 6 * (size_t)gi[k], 0, 6 * sizeof *gmem); /* apart: the Coulomb springs let go */
     }
     C->blk_rm[b] = rm;
     C->blk_busy[b] = busy;
@@ -747,7 +757,7 @@ void contact_step(YfSim *s) {
   nthr = omp_get_max_threads();
 #endif
   const int serial = !(nbusy >= C->par_min / 32 && nblk > 1) || nthr == 1;
-  KernelPass P = {ij, tv, tmat, gi, alive, vx, vy, tg, C->pairs.g, C->mpn, C->mpt, C->mmu, dt, rem2, np,
+  KernelPass P = {ij, tv, tmat, gi, alive, vx, vy, tg, C->pairs.g, C->mpn, C->mpt, C->mmu, C->mlaw, dt, rem2, np,
                   NULL, NULL, NULL, NULL};
   double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
   unsigned char *tmark = C->tmark;
