@@ -27,14 +27,12 @@ static void read_table(const YfArgs *a, int i, YfJointProp *p) {
     int k = sscanf(buf, "%lf %lf %7s", &u, &v, extra);
     if (k == EOF) continue; /* a blank (or comment) line; a line of words is an error below */
     if (k != 2) {
-      free(buf);
-  fclose(fp);
+      fclose(fp);
       free(buf);
       yf_deck_error(&a->loc, "%s:%d: expected two numbers 'opening stress' per line", path, line);
     }
     if (n == YF_JOINT_TAB_MAX) {
-      free(buf);
-  fclose(fp);
+      fclose(fp);
       free(buf);
       yf_deck_error(&a->loc, "%s: more than %d points in the softening table", path, YF_JOINT_TAB_MAX);
     }

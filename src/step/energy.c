@@ -30,7 +30,6 @@
 #include <stdio.h>
 #include <string.h>
 #include "energy.h"
-#include "run.h"
 
 enum { T_KIN, T_STRAIN, T_JOINT, T_CONTACT, T_DAMP, T_FRACT, T_FRIC, NT };
 static const char *const term_name[NT] = {
@@ -135,7 +134,6 @@ static void advice(const YfSim *s, char *buf, size_t n) {
 
 void energy_check(YfSim *s) {
   if (s->ebal_mode == YF_EBAL_OFF) return;
-  run_energies(s);
   double t[NT];
   terms(s, t);
   double ext = energy_external(s);

@@ -19,6 +19,7 @@ enum { YF_EBAL_STOP = 0, YF_EBAL_WARN, YF_EBAL_OFF };
 
 void energy_run_begin(YfSim *s, double e_floor);
 void energy_first_step(YfSim *s);
+/* Reads s->energy as run_energies (run.h) left it at this step. */
 void energy_check(YfSim *s);
 /* Work of loads, supports, prescribed motion and gravity so far [J/m]. */
 double energy_external(const YfSim *s);

@@ -566,7 +566,10 @@ void run_steps(YfSim *s, long nsteps) {
     sim_notify(s, &ev);
     yf_stage_time[YF_ST_OUTPUT] += yf_now() - t0;
     if (s->thermo_every > 0 && s->step % s->thermo_every == 0 && k + 1 < nsteps) thermo_line(s);
-    if ((k + 1) % check_every == 0) energy_check(s);
+    if ((k + 1) % check_every == 0) {
+      run_energies(s); /* the check reads the energies of this step */
+      energy_check(s);
+    }
     if (tty) progress(s, k + 1, nsteps, t_start);
     if (s->interrupted) {
       /* finish cleanly: a restart of this step, its frame in every dump, files closed */
@@ -582,6 +585,7 @@ void run_steps(YfSim *s, long nsteps) {
                    "restart could be written (%s)", s->step, s->time, why);
     }
   }
+  run_energies(s);
   energy_check(s);
   thermo_line(s);
   double wall = yf_now() - R.t_wall0;
