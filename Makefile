@@ -1,6 +1,7 @@
 # yfdem: build, demo, tests, benchmarks.
 #
 #   make          build ./yfdem
+#   make mpi      build ./yfdem_mpi (MPI ranks, src/par; OpenMPI: tools/install-deps --mpi)
 #   make demo     install what is missing (tools/install-deps), build, run the main example deck
 #   make check    install what tests need, build, run every Check suite through one runner
 #   make bench    element-steps per second, thread scaling, bytes per element
@@ -35,17 +36,24 @@ CHECKLIB := $(shell pkg-config --libs check 2>/dev/null)
 
 BUILD   := build
 SRC     := $(filter-out src/main.c,$(wildcard src/*.c))
+# `make mpi`: the same sources with -DYF_MPI (src/par/par.h hooks become MPI calls) plus src/par,
+# compiled by mpicc into build-mpi/; ./yfdem never links MPI.
+ifeq ($(YF_MPI),1)
+YF_CFLAGS += -DYF_MPI
+SRC     += $(wildcard src/par/*.c)
+endif
 OBJ     := $(SRC:src/%.c=$(BUILD)/%.o)
 TSRC    := $(wildcard tests/check_*.c)
 TOBJ    := $(TSRC:tests/%.c=$(BUILD)/tests/%.o)
 
-.PHONY: all demo check test deps deps-test bench clean asan fuzz valgrind
+.PHONY: all demo check test deps deps-test bench clean asan fuzz valgrind mpi
 
 BIN     ?= yfdem
 
 all: $(BIN)
 
-$(BUILD)/%.o: src/%.c $(wildcard src/*.h src/*.def) | $(BUILD)
+$(BUILD)/%.o: src/%.c $(wildcard src/*.h src/*.def src/par/*.h) | $(BUILD)
+	@mkdir -p $(dir $@)
 	$(CC) $(YF_CFLAGS) $(CFLAGS) -MMD -c $< -o $@
 
 $(BUILD)/libyf.a: $(OBJ)
@@ -71,6 +79,10 @@ $(BUILD)/check_yfdem: $(TOBJ) $(BUILD)/libyf.a
 deps:
 	tools/install-deps
 
+MPICC ?= mpicc
+mpi:
+	$(MAKE) BUILD=build-mpi BIN=yfdem_mpi CC=$(MPICC) YF_MPI=1 yfdem_mpi
+
 deps-test:
 	tools/install-deps --test
 
@@ -86,7 +98,8 @@ demo: deps
 # Tests run at most 2 threads (the machines have 2 cores).
 check: deps-test
 	$(MAKE) yfdem $(BUILD)/check_yfdem
-	CK_TIMEOUT_MULTIPLIER=$${CK_TIMEOUT_MULTIPLIER:-3} OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem
+	if command -v $(MPICC) >/dev/null; then $(MAKE) mpi; fi
+	CK_TIMEOUT_MULTIPLIER=$${CK_TIMEOUT_MULTIPLIER:-3} OMP_NUM_THREADS=2 YFDEM=./yfdem YFDEM_MPI=./yfdem_mpi $(BUILD)/check_yfdem
 
 test: yfdem $(BUILD)/check_yfdem
 	OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem
@@ -112,6 +125,6 @@ valgrind: yfdem
 	tools/valgrind-decks
 
 clean:
-	rm -rf $(BUILD) build-asan build-fuzz yfdem
+	rm -rf $(BUILD) build-asan build-fuzz build-mpi yfdem yfdem_mpi
 
--include $(wildcard $(BUILD)/*.d)
+-include $(wildcard $(BUILD)/*.d $(BUILD)/par/*.d)

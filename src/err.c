@@ -14,6 +14,7 @@ static char last_msg[2048];
 static YfCleanupFn cleanup_fn;
 static int in_cleanup;
 static void (*exit_hook)(int code);
+static int writer = 1;
 
 const char *yf_status_word(int code) {
   switch (code) {
@@ -29,11 +30,15 @@ const char *yf_status_word(int code) {
 void yf_set_cleanup(YfCleanupFn fn) { cleanup_fn = fn; }
 void yf_set_exit_hook(void (*hook)(int code)) { exit_hook = hook; }
 const char *yf_last_message(void) { return last_msg; }
+int yf_writer(void) { return writer; }
+void yf_set_writer(int on) { writer = on; }
 
 static void finish(int code) __attribute__((noreturn));
 static void finish(int code) {
-  fprintf(stderr, "%s\n", last_msg);
-  fflush(stderr);
+  if (writer) {
+    fprintf(stderr, "%s\n", last_msg);
+    fflush(stderr);
+  }
   if (cleanup_fn && !in_cleanup) {
     in_cleanup = 1;
     cleanup_fn(code, last_msg);
@@ -96,7 +101,7 @@ void yf_warn(const YfLoc *loc, const char *fmt, ...) {
   va_start(ap, fmt);
   if (k > 0 && (size_t)k < sizeof buf) vsnprintf(buf + k, sizeof buf - (size_t)k, fmt, ap);
   va_end(ap);
-  fprintf(stderr, "%s\n", buf);
+  if (writer) fprintf(stderr, "%s\n", buf);
 }
 
 void yf_assert_fail(const char *expr, const char *file, int line) {

@@ -17,6 +17,7 @@
 #include "sim.h"
 #include "summary.h"
 #include "y2d_model.h"
+#include "par/par.h"
 
 #ifndef YF_VERSION
 #define YF_VERSION "0.1.0"
@@ -62,6 +63,7 @@ static void on_signal(int sig) {
 }
 
 int main(int argc, char **argv) {
+  par_init(&argc, &argv); /* ./yfdem_mpi: MPI ranks (a no-op in ./yfdem) */
   sim_init(&g_sim);
   g_sim.progress = 1;
   yf_set_cleanup(finish);
@@ -91,7 +93,9 @@ int main(int argc, char **argv) {
       deck_set_var(g_deck, argv[i + 1], argv[i + 2]);
       i += 2;
     } else if (!strcmp(o, "-log") && i + 1 < argc) {
-      g_sim.log = fopen(argv[++i], "w");
+      ++i;
+      if (!yf_writer()) continue; /* MPI: rank 0 writes the log */
+      g_sim.log = fopen(argv[i], "w");
       if (!g_sim.log) yf_io_error(NULL, "cannot open log file '%s'", argv[i]);
     } else if (!strcmp(o, "-echo")) {
       echo = 1;
@@ -116,7 +120,7 @@ int main(int argc, char **argv) {
       deck_run_file(g_deck, in, NULL);
     }
   } else {
-    deck_run_stream(g_deck, stdin, "<stdin>");
+    deck_run_stream(g_deck, par_stdin(stdin), "<stdin>");
   }
   finish(YF_EXIT_OK, "");
   deck_free(g_deck);

@@ -272,6 +272,8 @@ static void sample(YfSim *s) {
   q->s1max = M.s1_step;
 }
 
+int metrics_due(const YfSim *s) { return M.on && (M.peak || (M.log_path[0] && s->step % M.every == 0)); }
+
 void metrics_step(YfSim *s) {
   if (!M.on) return;
   const YfModel *m = &s->model;
@@ -537,6 +539,7 @@ static void region_lengths(const YfSim *s, const YfBreak *rec, int n, const char
 }
 
 static void write_log(YfSim *s) {
+  if (!yf_writer()) return;
   char tmp[1100];
   snprintf(tmp, sizeof tmp, "%s.tmp", M.log_path);
   FILE *f = fopen(tmp, "w");

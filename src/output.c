@@ -687,6 +687,11 @@ static void dump_adopt(YfSim *s, YfDump *d) {
 /* ---------------------------------------------------------------- frames */
 
 static void write_frame(YfSim *s, YfDump *d) {
+  if (!yf_writer()) { /* an MPI rank other than 0: the same bookkeeping, no file */
+    d->nframe++;
+    d->last_step = s->step;
+    return;
+  }
   if (s->restored && d->nframe == 0 && d->last_step == LONG_MIN) dump_adopt(s, d);
   if (d->style == YF_DUMP_Y2DREF) y2dref_frame(s, d->y2d);
   else if (d->style == YF_DUMP_H5) h5_frame(s, d);
@@ -702,6 +707,8 @@ void output_run_begin(YfSim *s) {
     if (o->dump[i]->last_step != s->step) write_frame(s, o->dump[i]);
   update_next_due(s);
 }
+
+int output_frame_due(const YfSim *s) { return s->out && s->step >= s->out->next_due; }
 
 void output_step(YfSim *s) {
   struct YfOutput *o = s->out;

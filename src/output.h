@@ -61,6 +61,7 @@ int output_remove_dump(YfSim *s, const char *id);
 /* Step-loop hooks (run.c). */
 void output_run_begin(YfSim *s); /* start of each run: a frame of the current state per dump  */
 void output_step(YfSim *s);      /* after each completed step: frames that are due            */
+int output_frame_due(const YfSim *s); /* output_step would write a frame now                    */
 void output_run_end(YfSim *s);   /* end of each run                                          */
 /* Write one frame of every dump now (whether due or not; skipped if this step is written). */
 void output_write_all(YfSim *s);

@@ -27,6 +27,7 @@
 #include "metrics.h"
 #include "partition.h"
 #include "restart.h"
+#include "par/par.h"
 
 const char *const yf_stage_names[YF_NSTAGE] = {"elements", "joints", "detection", "contact", "gather", "update", "output"};
 double yf_stage_time[YF_NSTAGE];
@@ -176,6 +177,7 @@ void run_prepare(YfSim *s) {
     for (int e = 0; e < m->tri.n; e++) R.e_floor += 1e-16 * m->mat[m->tri.mat[e]].E * 0.5 * m->tri.d0[e];
     m->prepared = 1;
   }
+  par_prepare(m, R.nblk, BLOCK); /* MPI: which blocks of the element stage this rank computes */
   bc_prepare(s);
   contact_prepare(s);
   /* positions and velocities before the update: read only by bc.c's supports and loads and by
@@ -266,8 +268,10 @@ static void step_once(YfSim *s) {
   const double dt = s->dt, gx = s->gx, gy = s->gy, alpha = s->mass_damping;
   double t0 = yf_now(), t1;
 
+  int b0 = 0, b1 = nblk;
+  par_blocks(&b0, &b1); /* MPI: the blocks inside this rank's parts; then every rank gets all results */
   #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
-  for (int b = 0; b < nblk; b++) {
+  for (int b = b0; b < b1; b++) {
     YfTriPass p;
     int e1 = (b + 1) * BLOCK < nt ? (b + 1) * BLOCK : nt;
     tri_forces(m, R.tm, b * BLOCK, e1, &p);
@@ -275,6 +279,7 @@ static void step_once(YfSim *s) {
     R.blk_bad[b] = p.bad;
     R.blk_badJ[b] = p.badJ;
   }
+  par_share_elements(m, R.tm, R.blk, R.blk_bad, R.blk_badJ, yf_now() - t0);
   double power = 0;
   for (int b = 0; b < nblk; b++) {
     if (R.blk_bad[b] >= 0) {
@@ -429,11 +434,12 @@ void run_steps(YfSim *s, long nsteps) {
   double t_start = R.t_wall0;
   thermo_header(s);
   thermo_line(s);
-  int tty = s->progress && isatty(2);
+  int tty = s->progress && isatty(2) && yf_writer();
   long check_every = 100;
   for (long k = 0; k < nsteps; k++) {
     step_once(s);
     double t0 = yf_now();
+    if (par_size() > 1 && (output_frame_due(s) || metrics_due(s))) par_share_stresses(&s->model);
     output_step(s);
     metrics_step(s);
     restart_step(s); /* periodic restart file when due */
@@ -441,7 +447,9 @@ void run_steps(YfSim *s, long nsteps) {
     if (s->thermo_every > 0 && s->step % s->thermo_every == 0 && k + 1 < nsteps) thermo_line(s);
     if ((k + 1) % check_every == 0) energy_check(s);
     if (tty) progress(s, k + 1, nsteps, t_start);
-    if (s->interrupted) {
+    if (par_any(s->interrupted)) { /* MPI: every rank stops at the same step */
+      s->interrupted = 1;
+      par_share_stresses(&s->model);
       /* finish cleanly: a restart of this step, its frame in every dump, files closed */
       char why[512];
       const char *rp = restart_on_interrupt(s, why, sizeof why);
@@ -458,6 +466,7 @@ void run_steps(YfSim *s, long nsteps) {
   }
   energy_check(s);
   thermo_line(s);
+  par_share_stresses(&s->model); /* MPI: the last state is whole on every rank for what follows */
   double wall = yf_now() - R.t_wall0;
   s->wall_s += wall;
   s->elem_steps += (double)s->model.tri.n * (double)nsteps;
@@ -465,6 +474,7 @@ void run_steps(YfSim *s, long nsteps) {
   sim_printf(s, "run: %ld steps of %d triangles in %.3f s wall (%.3g element-steps/s on %d thread%s)\n", nsteps,
              s->model.tri.n, wall, wall > 0 ? (double)s->model.tri.n * (double)nsteps / wall : 0.0, s->threads,
              s->threads > 1 ? "s" : "");
+  par_run_report(s, nsteps, wall);
 }
 
 /* run N [upto] | run (to the last step of a Y2D deck read by read_y2d) */

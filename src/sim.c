@@ -27,6 +27,7 @@ void sim_init(YfSim *s) {
 }
 
 void sim_printf(YfSim *s, const char *fmt, ...) {
+  if (!yf_writer()) return;
   va_list ap;
   va_start(ap, fmt);
   vfprintf(stdout, fmt, ap);
