@@ -34,6 +34,8 @@ static struct {
   int *cnt, *dsp;           /* scratch counts and displacements of an allgatherv              */
   double bytes;             /* bytes this rank sent in collectives of the current run          */
   double t_comm, t_elem;    /* seconds in exchanges / in the element stage (this rank)         */
+  int fail_rank;            /* tests: this rank fails alone at its 5th element stage (-1: none) */
+  long nelem;               /* element stages done by this process                             */
 } P;
 
 static void on_exit_code(int code) {
@@ -64,6 +66,9 @@ void par_init(int *argc, char ***argv) {
   MPI_Comm_rank(MPI_COMM_WORLD, &P.rank);
   MPI_Comm_size(MPI_COMM_WORLD, &P.size);
   yf_set_writer(P.rank == 0);
+  /* fault injection for tests/check_mpi.c: a failure met by one rank only */
+  const char *f = getenv("YFDEM_MPI_FAIL_RANK");
+  P.fail_rank = f && *f ? atoi(f) : -1;
   yf_set_exit_hook(on_exit_code);
   atexit(finalize_at_exit);
 }
@@ -180,6 +185,9 @@ void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_ba
   }
   double t1 = yf_now();
   P.t_elem += t_elem + (t1 - t0);
+  if (++P.nelem == 5 && P.rank == P.fail_rank)
+    yf_exit_with(YF_EXIT_NUMERIC, "error: injected failure on rank %d (YFDEM_MPI_FAIL_RANK) at its element stage %ld",
+                 P.rank, P.nelem);
   if (P.size <= 1) return;
   share_tris(m->tri.cf, 6);
   share_blocks(blk, MPI_DOUBLE, sizeof(double));
