@@ -5,6 +5,7 @@
 #   make demo     install what is missing (tools/install-deps), build, run the main example deck
 #   make check    install what tests need, build, run every Check suite through one runner
 #   make bench    element-steps per second, thread scaling, bytes per element
+#   make bench-mpi the same on 1 and 2 MPI ranks x 1 and 2 threads at 1e5 and 1e6 (./yfdem_mpi)
 #   make asan     the whole test suite under AddressSanitizer + UBSan (build-asan/; CI runs it)
 #   make fuzz     libFuzzer on the deck interpreter (clang; tools/fuzz/README.md), FUZZ_RUNS inputs
 #   make valgrind the example decks under valgrind: no definite leaks (tools/valgrind-decks)
@@ -46,7 +47,7 @@ OBJ     := $(SRC:src/%.c=$(BUILD)/%.o)
 TSRC    := $(wildcard tests/check_*.c)
 TOBJ    := $(TSRC:tests/%.c=$(BUILD)/tests/%.o)
 
-.PHONY: all demo check test deps deps-test bench clean asan fuzz valgrind mpi
+.PHONY: all demo check test deps deps-test bench bench-mpi clean asan fuzz valgrind mpi
 
 BIN     ?= yfdem
 
@@ -106,6 +107,9 @@ test: yfdem $(BUILD)/check_yfdem
 
 bench: yfdem
 	tools/bench
+
+bench-mpi: yfdem mpi
+	tools/bench --cases elastic,y2d_perf --sizes 1e5,1e6 --ranks 1,2 --threads 1,2
 
 # Sanitizers: a separate build (build-asan/yfdem + runner), the same suite.  Leaks are left to
 # `make valgrind` (test children and error exits leave memory to the OS by design); a longer

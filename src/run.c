@@ -177,7 +177,7 @@ void run_prepare(YfSim *s) {
     for (int e = 0; e < m->tri.n; e++) R.e_floor += 1e-16 * m->mat[m->tri.mat[e]].E * 0.5 * m->tri.d0[e];
     m->prepared = 1;
   }
-  par_prepare(m, R.nblk, BLOCK); /* MPI: which blocks of the element stage this rank computes */
+  par_prepare(s, R.nblk, BLOCK); /* MPI: which blocks of the element stage this rank computes */
   bc_prepare(s);
   contact_prepare(s);
   /* positions and velocities before the update: read only by bc.c's supports and loads and by

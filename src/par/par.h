@@ -25,8 +25,8 @@ struct YfSim;
 void par_init(int *argc, char ***argv); /* MPI_Init, the writer rank, the error exit          */
 FILE *par_stdin(FILE *in);              /* a deck on stdin: rank 0 reads it, every rank runs it */
 int par_size(void);
-/* Ownership of the element stage for a scene of nt triangles in nblk blocks of `block`. */
-void par_prepare(const YfModel *m, int nblk, int block);
+/* Ownership of the element stage for the scene's triangles in nblk blocks of `block`. */
+void par_prepare(const struct YfSim *s, int nblk, int block);
 void par_blocks(int *b0, int *b1);      /* the blocks this rank sums whole: [b0, b1)           */
 /* After the element stage: this rank's triangles of blocks it shares with others, then every
  * rank gets every corner force (6 per triangle) and every block's (viscous power, first bad
@@ -40,7 +40,8 @@ void par_run_report(struct YfSim *s, long nsteps, double wall); /* ranks, imbala
 static inline void par_init(int *argc, char ***argv) { (void)argc; (void)argv; }
 static inline FILE *par_stdin(FILE *in) { return in; }
 static inline int par_size(void) { return 1; }
-static inline void par_prepare(const YfModel *m, int nblk, int block) { (void)m; (void)nblk; (void)block; }
+struct YfSim;
+static inline void par_prepare(const struct YfSim *s, int nblk, int block) { (void)s; (void)nblk; (void)block; }
 static inline void par_blocks(int *b0, int *b1) { (void)b0; (void)b1; }
 static inline void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_bad,
                                       double *blk_badJ, double t_elem) {

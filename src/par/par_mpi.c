@@ -20,6 +20,7 @@
 #include "par/par.h"
 #include "err.h"
 #include "elem_tri.h"
+#include "joint.h"
 #include "run.h"
 #include "sim.h"
 
@@ -34,12 +35,15 @@ static struct {
   int *cnt, *dsp;           /* scratch counts and displacements of an allgatherv              */
   double bytes;             /* bytes this rank sent in collectives of the current run          */
   double t_comm, t_elem;    /* seconds in exchanges / in the element stage (this rank)         */
+  int ghost_min, ghost_max; /* ghost nodes a rank would read in a halo design (measured)       */
   int fail_rank;            /* tests: this rank fails alone at its 5th element stage (-1: none) */
   long nelem;               /* element stages done by this process                             */
 } P;
 
 static void on_exit_code(int code) {
-  if (P.size <= 1) exit(code); /* atexit finalizes */
+  /* an interrupt is agreed by every rank at the same step (par_any in the run loop): a
+   * collective, clean end (atexit finalizes) */
+  if (P.size <= 1 || code == YF_EXIT_INTERRUPT) exit(code);
   if (P.rank != 0) {
     /* if rank 0 met the same error it ends the job first, with one message: mpirun's SIGTERM
      * must then end this rank at once (not set the run's interrupt flag) */
@@ -95,7 +99,50 @@ FILE *par_stdin(FILE *in) {
   return f;
 }
 
-void par_prepare(const YfModel *m, int nblk, int block) {
+/* What a halo design would exchange (docs/SCALING.md): the nodes rank r reads but does not own.
+ * A node belongs to the rank of the first triangle that meets it (nodes are numbered in that
+ * order); rank r reads the nodes of its triangles and of the joints whose first triangle it owns. */
+static void count_ghosts(const YfSim *s) {
+  const YfModel *m = &s->model;
+  int nn = m->node.n, nt = m->tri.n;
+  int *owner = yf_malloc((size_t)(nn > 0 ? nn : 1) * sizeof(int), "ghost count");
+  int *seen = yf_malloc((size_t)(nn > 0 ? nn : 1) * sizeof(int), "ghost count");
+  int *trank = yf_malloc((size_t)(nt > 0 ? nt : 1) * sizeof(int), "ghost count");
+  for (int i = 0; i < nn; i++) owner[i] = seen[i] = -1;
+  for (int r = 0; r < P.size; r++)
+    for (int e = P.tlo[r]; e < P.tlo[r + 1]; e++) {
+      trank[e] = r;
+      for (int c = 0; c < 3; c++)
+        if (owner[m->tri.v[3 * e + c]] < 0) owner[m->tri.v[3 * e + c]] = r;
+    }
+  int *ghosts = yf_calloc((size_t)P.size, sizeof(int), "ghost count");
+  const YfJoints *J = s->joints;
+  for (int r = 0; r < P.size; r++) { /* seen[q] == r: q already counted for rank r */
+    for (int e = P.tlo[r]; e < P.tlo[r + 1]; e++)
+      for (int c = 0; c < 3; c++) {
+        int q = m->tri.v[3 * e + c];
+        if (owner[q] != r && seen[q] != r) seen[q] = r, ghosts[r]++;
+      }
+    for (int j = 0; J && j < J->n; j++) {
+      int ta = J->tri[2 * j], tb = J->tri[2 * j + 1];
+      if (trank[ta < tb ? ta : tb] != r) continue;
+      for (int c = 0; c < 4; c++) {
+        int q = J->node[4 * j + c];
+        if (owner[q] != r && seen[q] != r) seen[q] = r, ghosts[r]++;
+      }
+    }
+  }
+  P.ghost_min = nn;
+  P.ghost_max = 0;
+  for (int r = 0; r < P.size; r++) {
+    P.ghost_min = ghosts[r] < P.ghost_min ? ghosts[r] : P.ghost_min;
+    P.ghost_max = ghosts[r] > P.ghost_max ? ghosts[r] : P.ghost_max;
+  }
+  free(owner); free(seen); free(trank); free(ghosts);
+}
+
+void par_prepare(const YfSim *s, int nblk, int block) {
+  const YfModel *m = &s->model;
   int nt = m->tri.n, S = P.size;
   if (P.tlo && P.nt == nt && P.nblk == nblk && P.block == block) return; /* the same scene */
   free(P.tlo); free(P.fb0); free(P.fb1); free(P.pcnt); free(P.pdsp); free(P.cnt); free(P.dsp); free(P.piece);
@@ -111,10 +158,13 @@ void par_prepare(const YfModel *m, int nblk, int block) {
   P.nblk = nblk;
   P.block = block;
   /* rank r owns the triangles of METIS parts r*np/S .. (r+1)*np/S - 1 (contiguous after the
-   * renumbering), or triangles r*nt/S .. when there are fewer parts than ranks: it depends on
-   * the mesh and the rank count only, and the bits on neither */
+   * renumbering) when the part count is a multiple of the rank count; otherwise (a part is
+   * 4096 triangles: 3 parts at 1e4) triangles r*nt/S .. of the partition order, a compact
+   * piece of the mesh all the same, and balanced.  It depends on the mesh and the rank count
+   * only, and the bits on neither. */
+  int by_part = m->part_tri && m->npart >= S && m->npart % S == 0;
   for (int r = 0; r <= S; r++)
-    P.tlo[r] = m->npart >= S && m->part_tri ? m->part_tri[(long)r * m->npart / S] : (int)((long)r * nt / S);
+    P.tlo[r] = by_part ? m->part_tri[(long)r * m->npart / S] : (int)((long)r * nt / S);
   P.tlo[0] = 0;
   P.tlo[S] = nt;
   /* A block inside one rank's triangles is summed there, as on one rank.  The triangles of a
@@ -133,6 +183,7 @@ void par_prepare(const YfModel *m, int nblk, int block) {
     P.npiece += P.pcnt[r];
   }
   P.piece = yf_malloc(3 * (size_t)(P.npiece > 0 ? P.npiece : 1) * sizeof(double), "split blocks");
+  count_ghosts(s);
 }
 
 void par_blocks(int *b0, int *b1) {
@@ -257,9 +308,10 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
     }
     double emean = esum / P.size;
     sim_printf(s, "mpi: %d ranks x %d threads; triangles per rank %d..%d; element stage imbalance %.3f "
-               "(slowest / mean rank); %.4g bytes sent per step; communication %.1f %% of wall (slowest rank)\n",
+               "(slowest / mean rank); %.4g bytes sent per step; communication %.1f %% of wall (slowest rank); "
+               "ghost nodes per rank %d..%d (what a halo exchange would carry)\n",
                P.size, s->threads, tmin, tmax, emean > 0 ? emax / emean : 1.0, bsum / (double)nsteps,
-               wall > 0 ? 100.0 * cmax / wall : 0.0);
+               wall > 0 ? 100.0 * cmax / wall : 0.0, P.ghost_min, P.ghost_max);
   }
   free(all);
   P.t_elem = P.t_comm = P.bytes = 0;
