@@ -6,6 +6,7 @@
  *     straddle ranks), broken joints, contact couples, stress peak and the beam's last frame
  *     of stresses (shared among ranks for metrics and frames) equal ./yfdem's to the last bit;
  *   - a restart written on 2 ranks and read on 3 continues bitwise (the uninterrupted run's hash);
+ *   - SIGINT to mpirun stops every rank at the same step with one restart, which continues bitwise;
  *   - a deck error ends every rank with exit 1 and one message; a failure injected on rank 1
  *     only (YFDEM_MPI_FAIL_RANK) ends every rank with exit 3 within seconds, never a hang.
  *
@@ -272,6 +273,46 @@ START_TEST(error_one_rank) {
 }
 END_TEST
 
+/* SIGINT to mpirun: every rank stops at the same step (the flag is OR-reduced every step), rank 0
+ * writes the restart and says so once; the restart continued on 3 ranks gives the bits of an
+ * uninterrupted ./yfdem run to the same step. */
+START_TEST(interrupt_all_ranks) {
+  if (!mpi_ready()) return;
+  char *d = perf_dir(100000), cmd[4 * PATH_MAX], path[PATH_MAX + 32];
+  write_file(d, "long.deck", "read_y2d perf.y\nrun 100000\n");
+  snprintf(cmd, sizeof cmd, "cd %s && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_WAIT_POLICY=passive "
+           "OMP_NUM_THREADS=1 timeout 300 mpirun -q --oversubscribe --mca mpi_yield_when_idle 1 -np 2 %s -in long.deck "
+           ">out.txt 2>err.txt & pid=$!; sleep 6; kill -INT $pid; wait $pid", d, MPIBIN);
+  ck_assert_int_ne(system(cmd), 0);
+  snprintf(path, sizeof path, "%s/err.txt", d);
+  char *err = yft_slurp(path, 1);
+  long k = -1;
+  const char *at = strstr(err, "interrupted at step ");
+  ck_assert_msg(at && sscanf(at, "interrupted at step %ld", &k) == 1 && k > 0, "no interrupt message: %s", err);
+  ck_assert_int_eq(count_in(d, "err.txt", "interrupted at step"), 1);
+  free(err);
+  char deck[256];
+  snprintf(deck, sizeof deck, "read_y2d perf.y\nread_restart yfdem_interrupt.restart\nrun %ld upto\n", k + 10);
+  write_file(d, "cont.deck", deck);
+  snprintf(deck, sizeof deck, "read_y2d perf.y\nrun %ld\n", k + 10);
+  write_file(d, "full.deck", deck);
+  ck_assert_int_eq(run_in(d, 3, 1, "-in cont.deck -summary cont.json", NULL), 0);
+  ck_assert_int_eq(run_in(d, 0, 1, "-in full.deck -summary full.json", NULL), 0);
+  snprintf(path, sizeof path, "%s/full.json", d);
+  char *a = key_lines(path);
+  snprintf(path, sizeof path, "%s/cont.json", d);
+  char *b = key_lines(path);
+  char *ha = strstr(a, "\"state_hash\""), *hb = strstr(b, "\"state_hash\"");
+  ck_assert_msg(ha && hb && !strncmp(ha, hb, 32), "interrupt at %ld, continued on 3 ranks, differs:\n%s--- ./yfdem:\n%s",
+                k, b, a);
+  fprintf(stderr, "check_mpi: SIGINT stopped 2 ranks at step %ld; continued on 3 ranks to step %ld: %.32s as ./yfdem\n",
+          k, k + 10, hb);
+  free(a);
+  free(b);
+  free(d);
+}
+END_TEST
+
 Suite *mpi_suite(void) {
   Suite *s = suite_create("mpi");
   TCase *t = tcase_create("mpi");
@@ -283,6 +324,7 @@ Suite *mpi_suite(void) {
   tcase_add_test(t, restart_2_to_3);
   tcase_add_test(t, error_all_ranks);
   tcase_add_test(t, error_one_rank);
+  tcase_add_test(t, interrupt_all_ranks);
   suite_add_tcase(s, t);
   return s;
 }
