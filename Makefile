@@ -30,20 +30,25 @@ else
 PKGLIB  := $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 endif
 CFLAGS  ?= -O3 -g
+# src/ is split into layer folders (README, Source layout); every folder is on the include path so
+# that a file names a header by its bare name.
+LAYERS  := $(sort $(dir $(wildcard src/*/*.c src/*/*.h)))
+YF_INC  := $(patsubst %/,-I%,$(LAYERS))
 YF_CFLAGS := -std=c11 -D_GNU_SOURCE -fopenmp -ffp-contract=off -Wall -Wextra -Wshadow \
-             -Wno-unused-parameter -Isrc $(PKGCF)
+             -Wno-unused-parameter $(YF_INC) $(PKGCF)
 LDLIBS  := $(PKGLIB) -lmetis -lm
 CHECKLIB := $(shell pkg-config --libs check 2>/dev/null)
 
 BUILD   := build
-SRC     := $(filter-out src/main.c,$(wildcard src/*.c))
-# `make mpi`: the same sources with -DYF_MPI (src/par/par.h hooks become MPI calls) plus src/par,
-# compiled by mpicc into build-mpi/; ./yfdem never links MPI.
+SRC     := $(filter-out src/par/%,$(wildcard src/*/*.c))
+# `make mpi`: the same sources with -DYF_MPI (the hooks of src/par/par.h become MPI calls) plus
+# src/par, compiled by mpicc into build-mpi/; ./yfdem never links MPI.
 ifeq ($(YF_MPI),1)
 YF_CFLAGS += -DYF_MPI
 SRC     += $(wildcard src/par/*.c)
 endif
 OBJ     := $(SRC:src/%.c=$(BUILD)/%.o)
+HDR     := $(wildcard src/*/*.h src/*/*.def)
 TSRC    := $(wildcard tests/check_*.c)
 TOBJ    := $(TSRC:tests/%.c=$(BUILD)/tests/%.o)
 
@@ -53,9 +58,9 @@ BIN     ?= yfdem
 
 all: $(BIN)
 
-$(BUILD)/%.o: src/%.c $(wildcard src/*.h src/*.def src/par/*.h) | $(BUILD)
+$(BUILD)/%.o: src/%.c $(HDR) | $(BUILD)
 	@mkdir -p $(dir $@)
-	$(CC) $(YF_CFLAGS) $(CFLAGS) -MMD -c $< -o $@
+	$(CC) $(YF_CFLAGS) $(CFLAGS) -MMD -MP -MF $(@:.o=.dep) -c $< -o $@
 
 $(BUILD)/libyf.a: $(OBJ)
 	$(AR) rcs $@ $^
@@ -71,7 +76,7 @@ $(BUILD)/tests/suites.h: $(TSRC) | $(BUILD)
 	grep -ho '^Suite \*[a-z0-9_]*_suite(void)' $(TSRC) | sed 's/^Suite \*\([a-z0-9_]*\)_suite(void)/YF_SUITE(\1)/' > $@.tmp
 	mv $@.tmp $@
 
-$(BUILD)/tests/%.o: tests/%.c $(BUILD)/tests/suites.h $(wildcard src/*.h tests/*.h)
+$(BUILD)/tests/%.o: tests/%.c $(BUILD)/tests/suites.h $(HDR) $(wildcard tests/*.h)
 	$(CC) $(YF_CFLAGS) $(CFLAGS) -I$(BUILD)/tests -Itests -c $< -o $@
 
 $(BUILD)/check_yfdem: $(TOBJ) $(BUILD)/libyf.a
@@ -131,4 +136,6 @@ valgrind: yfdem
 clean:
 	rm -rf $(BUILD) build-asan build-fuzz build-mpi yfdem yfdem_mpi
 
--include $(wildcard $(BUILD)/*.d $(BUILD)/par/*.d)
+# Header dependencies (.dep, with -MP: a header that moves or goes away is no error; the .d files
+# of the flat src/ layout are ignored).
+-include $(wildcard $(BUILD)/*.dep $(BUILD)/*/*.dep)

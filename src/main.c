@@ -17,7 +17,7 @@
 #include "sim.h"
 #include "summary.h"
 #include "y2d_model.h"
-#include "par/par.h"
+#include "par.h"
 
 #ifndef YF_VERSION
 #define YF_VERSION "0.1.0"

@@ -1,4 +1,4 @@
-/* check_joint.c: fracture in the scene (src/joint.c): joint insertion, the joint force stage,
+/* check_joint.c: fracture in the scene (src/step/joint.c): joint insertion, the joint force stage,
  * breakage, energy bookkeeping, heterogeneity and determinism.  The per-joint law has its own
  * suite (check_joint_law.c); here every test runs decks or drives the scene's arrays.
  *

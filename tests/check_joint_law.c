@@ -1,4 +1,4 @@
-/* check_joint_law.c: the cohesive joint kernel (src/joint_law.c, ALGORITHMS.md 3).
+/* check_joint_law.c: the cohesive joint kernel (src/kernel/joint_law.c, ALGORITHMS.md 3).
  *
  * Each test drives one joint through prescribed node positions and checks a physical or exact
  * fact: dissipated energy of quasi-static mode I and mode II failure against joint_law_area, peak

@@ -9,8 +9,9 @@
  * candidate couples, with the thread count of OMP_NUM_THREADS for the search (the narrow-phase
  * loop here is serial: it measures the kernel, timed in process CPU time).
  *
- *   gcc -std=c11 -D_GNU_SOURCE -fopenmp -ffp-contract=off -O2 -Isrc tools/bench_contact.c \
- *       src/contact_search.c src/contact_pair.c src/err.c -lm -o bench_contact
+ *   gcc -std=c11 -D_GNU_SOURCE -fopenmp -ffp-contract=off -O2 -Isrc/base -Isrc/kernel \
+ *       tools/bench_contact.c src/kernel/contact_search.c src/kernel/contact_pair.c src/base/err.c \
+ *       -lm -o bench_contact
  *   OMP_NUM_THREADS=1 ./bench_contact [max_triangles [jitter]]
  */
 #include <float.h>

@@ -37,7 +37,7 @@ with non-zero D1PNAP.
 
 The .y file is parsed here with the Y2D token rules (comments, $YINCL relative to the working
 directory or the deck's directory, 1D/2D/3D array codes); run `yfdem` on the .y file itself (the
-C reader, src/y2d_read.c) for full validation with FILE:LINE messages.
+C reader, src/y2d/y2d_read.c) for full validation with FILE:LINE messages.
 """
 import argparse
 import os

@@ -17,7 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-#include "par/par.h"
+#include "par.h"
 #include "err.h"
 #include "elem_tri.h"
 #include "joint.h"

@@ -27,7 +27,7 @@
 #include "metrics.h"
 #include "partition.h"
 #include "restart.h"
-#include "par/par.h"
+#include "par.h"
 
 const char *const yf_stage_names[YF_NSTAGE] = {"elements", "joints", "detection", "contact", "gather", "update", "output"};
 double yf_stage_time[YF_NSTAGE];
