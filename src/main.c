@@ -13,6 +13,7 @@
 #include "deck.h"
 #include "err.h"
 #include "output.h"
+#include "report.h"
 #include "run.h"
 #include "sim.h"
 #include "summary.h"
@@ -68,6 +69,7 @@ int main(int argc, char **argv) {
   g_sim.progress = 1;
   yf_set_cleanup(finish);
   g_deck = deck_new(&g_sim);
+  io_attach(&g_sim); /* dumps, metrics and restarts (and the interrupt restart) observe the run loop */
   const char *in = NULL;
   int echo = 0;
   for (int i = 1; i < argc; i++) {

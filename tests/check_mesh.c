@@ -23,6 +23,7 @@
 
 #include "deck.h"
 #include "edgesort.h"
+#include "commands.h"
 #include "mesh.h"
 #include "model.h"
 #include "region.h"

@@ -5,6 +5,7 @@
  * cleanup cannot loop.
  */
 #include <errno.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -157,4 +158,39 @@ char *yf_read_file(const char *path, size_t *len, const char *what) {
   t[n] = 0;
   *len = n;
   return t;
+}
+
+/* Edit distance, for "did you mean" in messages (the deck and the .y reader). */
+
+static int levenshtein(const char *a, const char *b) {
+  int la = (int)strlen(a), lb = (int)strlen(b);
+  if (la > 255 || lb > 255) return INT_MAX;
+  int row[256];
+  for (int j = 0; j <= lb; j++) row[j] = j;
+  for (int i = 1; i <= la; i++) {
+    int diag = row[0];
+    row[0] = i;
+    for (int j = 1; j <= lb; j++) {
+      int up = row[j];
+      int best = diag + (a[i - 1] != b[j - 1]);
+      if (up + 1 < best) best = up + 1;
+      if (row[j - 1] + 1 < best) best = row[j - 1] + 1;
+      row[j] = best;
+      diag = up;
+    }
+  }
+  return row[lb];
+}
+
+const char *yf_nearest(const char *word, const char *const *names, int n) {
+  int len = (int)strlen(word);
+  int limit = len / 3 > 2 ? len / 3 : 2;
+  const char *best = NULL;
+  int bestd = INT_MAX;
+  for (int i = 0; i < n; i++) {
+    if (!names[i]) continue;
+    int d = levenshtein(word, names[i]);
+    if (d < bestd) bestd = d, best = names[i];
+  }
+  return bestd <= limit ? best : NULL;
 }

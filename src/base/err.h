@@ -65,4 +65,8 @@ char *yf_strdup(const char *s);
  * set if it cannot be opened or read.  what names it for an allocation failure. */
 char *yf_read_file(const char *path, size_t *len, const char *what);
 
+/* The name of names[0..n-1] nearest to word by edit distance, NULL when none is close
+ * (for "did you mean" in messages). */
+const char *yf_nearest(const char *word, const char *const *names, int n);
+
 #endif

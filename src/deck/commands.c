@@ -5,11 +5,6 @@
 #include "deck.h"
 #include "commands.h"
 
-#define YF_CMD(name, fn, usage, help, example) void fn(struct YfSim *, const YfArgs *);
-#include "commands_deck.def"
-#include "commands.def"
-#undef YF_CMD
-
 const YfCommand yf_commands[] = {
 #define YF_CMD(name, fn, usage, help, example) {#name, fn, usage, help, example},
 #include "commands_deck.def"

@@ -2,6 +2,14 @@
 #ifndef YF_COMMANDS_H
 #define YF_COMMANDS_H
 #include <stdio.h>
+#include "deck.h"
+
+/* The handler of every command of the table: deck/cmd_WORD.c for the scene and physics commands,
+ * deck.c for the interpreter's own (tests call some directly). */
+#define YF_CMD(name, fn, usage, help, example) void fn(struct YfSim *, const YfArgs *);
+#include "commands_deck.def"
+#include "commands.def"
+#undef YF_CMD
 /* Markdown table of every command (the README's deck reference is checked against it). */
 void commands_print_reference(FILE *fp);
 #endif

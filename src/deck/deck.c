@@ -205,41 +205,6 @@ int yf_parse_long(const char *s, long *out) {
   return 1;
 }
 
-/* ------------------------------------------------------------------ edit distance */
-
-static int levenshtein(const char *a, const char *b) {
-  int la = (int)strlen(a), lb = (int)strlen(b);
-  if (la > 255 || lb > 255) return INT_MAX;
-  int row[256];
-  for (int j = 0; j <= lb; j++) row[j] = j;
-  for (int i = 1; i <= la; i++) {
-    int diag = row[0];
-    row[0] = i;
-    for (int j = 1; j <= lb; j++) {
-      int up = row[j];
-      int best = diag + (a[i - 1] != b[j - 1]);
-      if (up + 1 < best) best = up + 1;
-      if (row[j - 1] + 1 < best) best = row[j - 1] + 1;
-      row[j] = best;
-      diag = up;
-    }
-  }
-  return row[lb];
-}
-
-const char *yf_nearest(const char *word, const char *const *names, int n) {
-  int len = (int)strlen(word);
-  int limit = len / 3 > 2 ? len / 3 : 2;
-  const char *best = NULL;
-  int bestd = INT_MAX;
-  for (int i = 0; i < n; i++) {
-    if (!names[i]) continue;
-    int d = levenshtein(word, names[i]);
-    if (d < bestd) bestd = d, best = names[i];
-  }
-  return bestd <= limit ? best : NULL;
-}
-
 /* ------------------------------------------------------------------ words */
 
 /* Split line into words.  A word starting with ", ' or """ runs to the matching quote (which is

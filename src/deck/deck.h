@@ -75,7 +75,5 @@ void arg_error(const YfArgs *a, int i, const char *fmt, ...) __attribute__((nore
 int yf_parse_double(const char *s, double *out);
 int yf_parse_long(const char *s, long *out);
 
-/* Edit distance helper (for "did you mean"). */
-const char *yf_nearest(const char *word, const char *const *names, int n);
 
 #endif

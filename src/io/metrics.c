@@ -13,6 +13,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include "metrics.h"
+#include "par.h"
+#include "deck.h"
+#include "report.h"
 #include "joint.h"
 #include "region.h"
 #include "run.h"
@@ -91,6 +94,7 @@ void metrics_reset(void) {
 /* ---- the command ---- */
 
 void cmd_metrics(YfSim *s, const YfArgs *a) {
+  io_attach(s); /* its state observes the run loop (report.c) */
   static const char *const kw[] = {"body", "mirror", "region", "midspan", "peak_stress", "log", NULL};
   arg_count(a, 1, -1);
   int k = arg_choice(a, 0, "keyword", kw);
@@ -272,8 +276,6 @@ static void sample(YfSim *s) {
   q->s1max = M.s1_step;
 }
 
-int metrics_due(const YfSim *s) { return M.on && (M.peak || (M.log_path[0] && s->step % M.every == 0)); }
-
 void metrics_step(YfSim *s) {
   if (!M.on) return;
   const YfModel *m = &s->model;
@@ -304,6 +306,7 @@ void metrics_step(YfSim *s) {
     }
   }
   if (M.peak || M.log_path[0]) {
+    par_need_stresses(&s->model); /* MPI: every rank's triangles' stresses (every rank is here) */
     /* the largest sigma1 (first triangle of equals) and the first triangle at the threshold, per
      * fixed block on all threads, the blocks combined in order: the serial scan's answer */
     const int nt = m->tri.n, nb = (nt + MBLK - 1) / MBLK;

@@ -33,13 +33,9 @@
 #ifndef YF_METRICS_H
 #define YF_METRICS_H
 #include "sim.h"
-#include "deck.h"
 
-void cmd_metrics(struct YfSim *s, const YfArgs *a);
 /* After every completed step (run.c); a few compares when nothing is due. */
 void metrics_step(YfSim *s);
-/* metrics_step reads the triangles' stresses now (a peak is tracked or a sample is due) */
-int metrics_due(const YfSim *s);
 /* Summary keys and the log file (run_summary_update); never exits. */
 void metrics_summary(YfSim *s);
 /* Forget everything (sim_free). */

@@ -54,6 +54,9 @@
 #include <unistd.h>
 #include <hdf5.h>
 #include "output.h"
+#include "par.h"
+#include "deck.h"
+#include "report.h"
 #include "contact.h"
 #include "joint.h"
 #include "err.h"
@@ -687,6 +690,7 @@ static void dump_adopt(YfSim *s, YfDump *d) {
 /* ---------------------------------------------------------------- frames */
 
 static void write_frame(YfSim *s, YfDump *d) {
+  par_need_stresses(&s->model); /* MPI: every rank is here, in the same order (a collective) */
   if (!yf_writer()) { /* an MPI rank other than 0: the same bookkeeping, no file */
     d->nframe++;
     d->last_step = s->step;
@@ -707,8 +711,6 @@ void output_run_begin(YfSim *s) {
     if (o->dump[i]->last_step != s->step) write_frame(s, o->dump[i]);
   update_next_due(s);
 }
-
-int output_frame_due(const YfSim *s) { return s->out && s->step >= s->out->next_due; }
 
 void output_step(YfSim *s) {
   struct YfOutput *o = s->out;
@@ -796,6 +798,7 @@ long output_index_writes(const YfSim *s, const char *id) {
 
 int output_add_dump(YfSim *s, const char *id, int style, long every, const char *path,
                     unsigned fields, int compress) {
+  io_attach(s); /* dumps observe the run loop (report.c) */
   if (!s->out) {
     s->out = yf_calloc(1, sizeof *s->out, "output");
     s->out->next_due = LONG_MAX;

@@ -15,7 +15,6 @@
 #define YF_OUTPUT_H
 #include <stddef.h>
 #include "sim.h"
-#include "deck.h"
 
 #define YF_MAX_DUMPS 8
 
@@ -48,8 +47,6 @@ struct YfOutput {
  *   dump ID h5 N FILE.h5 [fields F1 F2 ...] [compress]
  *   dump ID csv N PREFIX
  *   undump ID                                                                     */
-void cmd_dump(struct YfSim *sim, const YfArgs *a);
-void cmd_undump(struct YfSim *sim, const YfArgs *a);
 
 /* Programmatic form of `dump` (used by cmd_dump and tests).  Returns the dump's slot; checks
  * nothing about the deck (the handler does), but refuses a full table or a duplicate id with -1. */
@@ -61,7 +58,6 @@ int output_remove_dump(YfSim *s, const char *id);
 /* Step-loop hooks (run.c). */
 void output_run_begin(YfSim *s); /* start of each run: a frame of the current state per dump  */
 void output_step(YfSim *s);      /* after each completed step: frames that are due            */
-int output_frame_due(const YfSim *s); /* output_step would write a frame now                    */
 void output_run_end(YfSim *s);   /* end of each run                                          */
 /* Write one frame of every dump now (whether due or not; skipped if this step is written). */
 void output_write_all(YfSim *s);

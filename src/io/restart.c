@@ -30,6 +30,8 @@
 #include <gsl/gsl_rng.h>
 #include <hdf5.h>
 #include "restart.h"
+#include "deck.h"
+#include "report.h"
 #include "output.h"
 #include "contact.h"
 #include "err.h"
@@ -663,6 +665,7 @@ void cmd_write_restart(YfSim *s, const YfArgs *a) {
 
 /* read_restart FILE */
 void cmd_read_restart(YfSim *s, const YfArgs *a) {
+  io_attach(s); /* its state observes the run loop (report.c) */
   arg_count(a, 1, 1);
   /* Restarts are written relative to the working directory (write_restart, restart every, an
    * interrupt), so that is where FILE is looked for first; a deck run from elsewhere may keep
@@ -689,6 +692,7 @@ void cmd_read_restart(YfSim *s, const YfArgs *a) {
 
 /* restart every N FILE | restart off */
 void cmd_restart(YfSim *s, const YfArgs *a) {
+  io_attach(s); /* its state observes the run loop (report.c) */
   arg_count(a, 1, 3);
   static const char *const w[] = {"every", "off", NULL};
   int k = arg_choice(a, 0, "restart keyword", w);

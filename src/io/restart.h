@@ -31,13 +31,9 @@
 #define YF_RESTART_H
 #include <stddef.h>
 #include "sim.h"
-#include "deck.h"
 
 #define YF_RESTART_DEFAULT "yfdem_interrupt.restart"
 
-void cmd_write_restart(YfSim *s, const YfArgs *a);
-void cmd_read_restart(YfSim *s, const YfArgs *a);
-void cmd_restart(YfSim *s, const YfArgs *a);
 
 /* Write a restart of the current state to path (atomically).  Returns 0, or -1 with a message
  * in err. Needs a prepared model (after a run or read_restart). */

@@ -21,6 +21,7 @@
 #include "edgesort.h"
 #include "memcap.h"
 #include "mesh.h"
+#include "deck.h"
 #include "sim.h"
 
 /* ------------------------------------------------------------------------------------------ */

@@ -11,17 +11,12 @@
 #define YF_MESH_H
 #include <stddef.h>
 #include <stdint.h>
-#include "deck.h"
+#include "err.h"
 #include "model.h"
 
 struct YfSim;
 
 /* ---- commands (rows for commands.def) ---- */
-void cmd_mesh(struct YfSim *sim, const YfArgs *a);      /* mesh rect ... | mesh gmsh ...      */
-void cmd_node(struct YfSim *sim, const YfArgs *a);      /* node ID X Y [BODY]                 */
-void cmd_triangle(struct YfSim *sim, const YfArgs *a);  /* triangle ID N1 N2 N3 MAT [BODY]    */
-void cmd_nodes(struct YfSim *sim, const YfArgs *a);     /* nodes FILE [BODY]                  */
-void cmd_triangles(struct YfSim *sim, const YfArgs *a); /* triangles FILE [BODY]              */
 
 /* ---- topology queries (setup time) ---- */
 /* Boundary edges: edges that belong to exactly one triangle when copies of a node (node.parent)

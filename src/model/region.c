@@ -17,6 +17,7 @@
 #include <string.h>
 #include "mesh.h"
 #include "region.h"
+#include "deck.h"
 #include "sim.h"
 
 enum { REG_BOX, REG_CIRCLE, REG_POLYGON };

@@ -7,13 +7,10 @@
  */
 #ifndef YF_REGION_H
 #define YF_REGION_H
-#include "deck.h"
 
 struct YfSim;
 
 /* Commands (rows for commands.def). */
-void cmd_region(struct YfSim *sim, const YfArgs *a); /* region NAME box|circle|polygon ... [side in|out] */
-void cmd_group(struct YfSim *sim, const YfArgs *a);  /* group NAME node|tri|both region|id|nearest|body ... */
 
 /* Index of region `name`, or -1. */
 int region_find(const char *name);

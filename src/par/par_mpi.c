@@ -38,6 +38,7 @@ static struct {
   int ghost_min, ghost_max; /* ghost nodes a rank would read in a halo design (measured)       */
   int fail_rank;            /* tests: this rank fails alone at its 5th element stage (-1: none) */
   long nelem;               /* element stages done by this process                             */
+  int stress_fresh;         /* every rank's stresses shared since the last element stage        */
 } P;
 
 static void on_exit_code(int code) {
@@ -225,6 +226,7 @@ static void share_blocks(void *a, MPI_Datatype type, int size) {
 void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_bad, double *blk_badJ, double t_elem) {
   double t0 = yf_now();
   int r = P.rank, B = P.block, nt = P.nt;
+  P.stress_fresh = 0;
   /* this rank's head and tail pieces (triangles of blocks it shares with other ranks) */
   double *out = P.piece + 3 * (size_t)P.pdsp[r];
   int e0 = P.tlo[r], e1 = P.tlo[r + 1];
@@ -273,10 +275,11 @@ void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_ba
   P.t_comm += yf_now() - t1;
 }
 
-void par_share_stresses(YfModel *m) {
-  if (P.size <= 1) return;
+void par_need_stresses(YfModel *m) {
+  if (P.size <= 1 || P.stress_fresh) return;
   double t0 = yf_now();
   share_tris(m->tri.s, 3);
+  P.stress_fresh = 1;
   P.t_comm += yf_now() - t0;
 }
 

@@ -2,7 +2,7 @@
  * displacements, point and edge loads, initial velocities, each with an optional time history.
  *
  * Every item is a row of one table (YfBcItem) whose kind says how it acts; adding a kind means
- * one parse branch in cmd_fix/cmd_load and one case in the apply functions.  Items are resolved
+ * one parse branch in deck/cmd_fix.c or cmd_load.c and one case in the apply functions.  Items are resolved
  * to node lists (and boundary edges for distributed loads) at the start of each run, through the
  * group masks, so nodes created by joint insertion (copies of a shared node) are included.
  *
@@ -16,11 +16,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "bc.h"
-#include "deck.h"
 #include "err.h"
 #include "mesh.h"
-
-enum { BC_FIXED, BC_VELOCITY, BC_DISPLACEMENT, BC_POINT, BC_TRACTION, BC_PRESSURE };
 
 typedef struct {
   char id[YF_NAME_MAX];
@@ -52,162 +49,53 @@ static YfBc *bc_get(YfSim *s) {
 
 int bc_count(const YfSim *s) { return s->bc ? s->bc->n : 0; }
 
-static YfBcItem *bc_new(YfSim *s, const YfArgs *a, const char *id) {
+int bc_exists(const YfSim *s, const char *id) {
+  for (int i = 0; i < bc_count(s); i++)
+    if (!strcmp(s->bc->item[i].id, id)) return 1;
+  return 0;
+}
+
+void bc_add(YfSim *s, const char *id, const YfBcSpec *spec) {
   YfBc *b = bc_get(s);
-  for (int i = 0; i < b->n; i++)
-    if (!strcmp(b->item[i].id, id)) arg_error(a, 0, "ID '%s' is already used (by another fix or load); use unfix/unload first", id);
   b->item = yf_realloc(b->item, (size_t)(b->n + 1) * sizeof *b->item, "bc items");
   YfBcItem *it = &b->item[b->n++];
   memset(it, 0, sizeof *it);
   snprintf(it->id, sizeof it->id, "%s", id);
-  it->hist = -1;
-  it->node_id = -1;
-  it->loc = a->loc;
-  return it;
-}
-
-static int find_group(YfSim *s, const YfArgs *a, int i) {
-  const char *g = arg_word(a, i, "group");
-  int k = model_group(&s->model, g, 0);
-  if (k < 0) {
-    char list[1024] = "";
-    for (int j = 0; j < s->model.ngroup; j++) {
-      strncat(list, j ? ", " : "", sizeof list - strlen(list) - 1);
-      strncat(list, s->model.group[j].name, sizeof list - strlen(list) - 1);
-    }
-    arg_error(a, i, "unknown group (defined groups: %s)", s->model.ngroup ? list : "none yet");
+  it->kind = spec->kind;
+  it->group = spec->group;
+  for (int c = 0; c < 2; c++) {
+    it->has[c] = spec->has[c];
+    it->a[c] = spec->a[c];
   }
-  return k;
+  it->hist = spec->hist;
+  it->node_id = spec->node_id;
+  it->px = spec->px;
+  it->py = spec->py;
+  it->loc = spec->loc;
 }
 
-/* Optional trailing "history NAME". */
-static int parse_history(YfSim *s, const YfArgs *a, int i) {
-  if (i >= a->n) return -1;
-  if (strcmp(a->w[i], "history")) arg_error(a, i, "unexpected word (expected 'history NAME' or nothing)");
-  const char *h = arg_word(a, i + 1, "history name");
-  int k = sim_find_history(s, h);
-  if (k < 0) arg_error(a, i + 1, "unknown history (define it first with: history NAME constant|ramp|table|sine ...)");
-  if (i + 2 < a->n) arg_error(a, i + 2, "unexpected word after the history name");
-  return k;
-}
-
-/* A component that may be NULL (left free). */
-static void parse_component(const YfArgs *a, int i, const char *what, YfBcItem *it, int c) {
-  if (!strcmp(arg_word(a, i, what), "NULL")) { it->has[c] = 0; return; }
-  it->has[c] = 1;
-  it->a[c] = arg_num(a, i, what);
-}
-
-/* fix ID GROUP fixed x|y|xy
- * fix ID GROUP velocity VX|NULL VY|NULL [history H]
- * fix ID GROUP displacement UX|NULL UY|NULL [history H] */
-void cmd_fix(YfSim *s, const YfArgs *a) {
-  arg_count(a, 3, 7);
-  static const char *const styles[] = {"fixed", "velocity", "displacement", NULL};
-  int st = arg_choice(a, 2, "style", styles);
-  int g = find_group(s, a, 1);
-  YfBcItem *it = bc_new(s, a, arg_word(a, 0, "ID"));
-  it->group = g;
-  if (st == 0) {
-    static const char *const dirs[] = {"x", "y", "xy", NULL};
-    arg_count(a, 4, 4);
-    int d = arg_choice(a, 3, "direction", dirs);
-    it->kind = BC_FIXED;
-    it->has[0] = d != 1;
-    it->has[1] = d != 0;
-  } else {
-    arg_count(a, 5, 7);
-    it->kind = st == 1 ? BC_VELOCITY : BC_DISPLACEMENT;
-    parse_component(a, 3, st == 1 ? "vx" : "ux", it, 0);
-    parse_component(a, 4, st == 1 ? "vy" : "uy", it, 1);
-    if (!it->has[0] && !it->has[1]) arg_error(a, 3, "both components are NULL: nothing to prescribe");
-    it->hist = parse_history(s, a, 5);
-  }
-}
-
-static void remove_item(YfSim *s, const YfArgs *a, int pointload) {
-  arg_count(a, 1, 1);
+int bc_remove(YfSim *s, const char *id, int load) {
   YfBc *b = bc_get(s);
   for (int i = 0; i < b->n; i++) {
     YfBcItem *it = &b->item[i];
     int isload = it->kind >= BC_POINT;
-    if (!strcmp(it->id, a->w[0]) && isload == pointload) {
+    if (!strcmp(it->id, id) && isload == load) {
       free(it->nodes); free(it->edges); free(it->lf);
       memmove(it, it + 1, (size_t)(b->n - i - 1) * sizeof *it);
       b->n--;
-      return;
+      return 1;
     }
   }
-  arg_error(a, 0, "no %s with this ID", pointload ? "load" : "fix");
+  return 0;
 }
 
-/* unfix ID */
-void cmd_unfix(YfSim *s, const YfArgs *a) { remove_item(s, a, 0); }
-/* unload ID */
-void cmd_unload(YfSim *s, const YfArgs *a) { remove_item(s, a, 1); }
-
-/* load ID point node NODEID FX FY [history H]
- * load ID point at X Y FX FY [history H]
- * load ID GROUP traction TX TY [history H]     (on the group's boundary edges, [Pa] = N/m per m)
- * load ID GROUP pressure P [history H]          (positive pushes into the body [Pa]) */
-void cmd_load(YfSim *s, const YfArgs *a) {
-  arg_count(a, 3, 9);
-  const char *id = arg_word(a, 0, "ID");
-  if (!strcmp(a->w[1], "point")) {
-    static const char *const how[] = {"node", "at", NULL};
-    int h = arg_choice(a, 2, "point location", how);
-    YfBcItem *it = bc_new(s, a, id);
-    it->kind = BC_POINT;
-    int i = 3;
-    if (h == 0) {
-      it->node_id = (int)arg_int(a, 3, "node id", 0, 2147483647L);
-      i = 4;
-    } else {
-      it->px = arg_num(a, 3, "x");
-      it->py = arg_num(a, 4, "y");
-      i = 5;
-    }
-    it->has[0] = it->has[1] = 1;
-    it->a[0] = arg_num(a, i, "fx");
-    it->a[1] = arg_num(a, i + 1, "fy");
-    it->hist = parse_history(s, a, i + 2);
-    if (h == 0) {
-      int found = 0;
-      for (int k = 0; k < s->model.node.n && !found; k++) found = s->model.node.id[k] == it->node_id;
-      if (!found) arg_error(a, 3, "no node has this id");
-    }
-    return;
-  }
-  static const char *const styles[] = {"traction", "pressure", NULL};
-  int g = find_group(s, a, 1);
-  int st = arg_choice(a, 2, "load style", styles);
-  YfBcItem *it = bc_new(s, a, id);
-  it->group = g;
-  if (st == 0) {
-    it->kind = BC_TRACTION;
-    it->a[0] = arg_num(a, 3, "tx");
-    it->a[1] = arg_num(a, 4, "ty");
-    it->hist = parse_history(s, a, 5);
-  } else {
-    it->kind = BC_PRESSURE;
-    it->a[0] = arg_num(a, 3, "p");
-    it->hist = parse_history(s, a, 4);
-  }
-}
-
-/* velocity GROUP set VX VY    (initial velocity of the group's nodes, now) */
-void cmd_velocity(YfSim *s, const YfArgs *a) {
-  arg_count(a, 4, 4);
-  static const char *const styles[] = {"set", NULL};
-  int g = find_group(s, a, 0);
-  arg_choice(a, 1, "style", styles);
-  double vx = arg_num(a, 2, "vx"), vy = arg_num(a, 3, "vy");
+int bc_set_velocity(YfSim *s, int group, double vx, double vy) {
   YfNodes *n = &s->model.node;
-  uint64_t bit = (uint64_t)1 << g;
+  uint64_t bit = (uint64_t)1 << group;
   int cnt = 0;
   for (int i = 0; i < n->n; i++)
     if (n->gmask[i] & bit) { n->vx[i] = vx; n->vy[i] = vy; cnt++; }
-  if (!cnt) yf_warn(&a->loc, "velocity: group '%s' has no nodes", a->w[0]);
+  return cnt;
 }
 
 /* ---------------- resolution and application ---------------- */
@@ -428,3 +316,5 @@ void bc_free(YfSim *s) {
   free(s->bc);
   s->bc = NULL;
 }
+
+const YfBcKind bc_kind_native = {.name = "fix/load", .loads = bc_apply_loads, .free = bc_free};

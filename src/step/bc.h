@@ -3,6 +3,30 @@
 #define YF_BC_H
 #include "sim.h"
 
+/* Native fixes and loads as a boundary-condition kind (sim.h): loads, free. */
+extern const YfBcKind bc_kind_native;
+
+/* One fix or load as a deck command describes it (deck/cmd_fix.c, cmd_load.c). */
+enum { BC_FIXED, BC_VELOCITY, BC_DISPLACEMENT, BC_POINT, BC_TRACTION, BC_PRESSURE };
+typedef struct {
+  int kind;           /* BC_*                                                       */
+  int group;          /* group index (fixes, edge loads)                            */
+  int has[2];         /* component given (x, y); NULL in the deck leaves it free     */
+  double a[2];        /* amplitude: velocity [m/s], displacement [m], force [N/m], traction [Pa], pressure [Pa] */
+  int hist;           /* history index or -1 (factor 1)                             */
+  int node_id;        /* point load: user node id, or -1 when given by position     */
+  double px, py;      /* point load: position for 'at'                              */
+  YfLoc loc;          /* where it was defined (messages at resolution)              */
+} YfBcSpec;
+/* 1 when a fix or load has this ID. */
+int bc_exists(const YfSim *s, const char *id);
+/* Add a fix or load (the ID must be new). */
+void bc_add(YfSim *s, const char *id, const YfBcSpec *spec);
+/* Remove the fix (load = 0) or load (load = 1) with this ID; 0 when there is none. */
+int bc_remove(YfSim *s, const char *id, int load);
+/* Set the velocity [m/s] of a group's nodes now; returns how many nodes it set. */
+int bc_set_velocity(YfSim *s, int group, double vx, double vy);
+
 /* Resolve groups to node lists and edges (at the start of each run, after any re-meshing). */
 void bc_prepare(YfSim *s);
 /* Add external loads of the current step (time s->time) into node.fx/fy; remembers them for

@@ -48,7 +48,7 @@
 #include "joint.h"
 #include "run.h"
 
-#define MAX_RULES 64
+#define MAX_RULES YF_CONTACT_MAX_RULES
 #define PAIR_BLK 1024      /* couples per block of the force loop: fixed, so sums do not depend on threads */
 #define PAR_MIN_DEF 2048   /* fewer couples than this: one thread (a parallel region costs microseconds) */
 #define BUFFER_FRAC 0.3    /* auto buffer = 0.3 x smallest edge (Y2D reference decks' DIEZON)  */
@@ -166,13 +166,12 @@ void contact_free(YfSim *s) {
 
 static int active(const YfContact *C) { return C && C->nrule > 0; }
 
-static Rule *add_rule(YfContact *C, int ga, int gb, int native, const YfLoc *loc, const YfArgs *a) {
+static Rule *add_rule(YfContact *C, int ga, int gb, int native, const YfLoc *loc) {
   for (int r = 0; r < C->nrule; r++) {
     Rule *q = &C->rule[r];
     if ((q->ga == ga && q->gb == gb) || (q->ga == gb && q->gb == ga)) return q; /* same rule again */
   }
   if (C->nrule >= MAX_RULES) {
-    if (a) arg_error(a, 0, "at most %d contact rules (pair/self lines)", MAX_RULES);
     yf_deck_error(loc, "contact: at most %d contact rules", MAX_RULES);
   }
   Rule *q = &C->rule[C->nrule++];
@@ -190,7 +189,7 @@ static Rule *add_rule(YfContact *C, int ga, int gb, int native, const YfLoc *loc
 void contact_enable_all(YfSim *s, double buffer) {
   YfContact *C = get(s);
   YF_ASSERT(buffer >= 0.0);
-  add_rule(C, -1, -1, 0, NULL, NULL);
+  add_rule(C, -1, -1, 0, NULL);
   C->buffer_auto = 0;
   C->buffer_set = buffer;
   C->keep_shared = 1;
@@ -249,89 +248,34 @@ int contact_participants(const YfSim *s) { return active(s->contact) ? s->contac
 double contact_buffer(const YfSim *s) { return active(s->contact) ? s->contact->buffer : 0.0; }
 long contact_pairs(const YfSim *s) { return active(s->contact) ? s->contact->nlive : 0; }
 
-/* ---------------------------------------------------------------- deck command */
+/* ---------------------------------------------------------------- what the deck sets */
 
-static void group_names(const YfModel *m, char *buf, size_t cap) {
-  size_t k = 0;
-  buf[0] = 0;
-  for (int g = 0; g < m->ngroup && k + 2 < cap; g++) {
-    int w = snprintf(buf + k, cap - k, "%s%s", g ? " " : "", m->group[g].name);
-    if (w < 0) break;
-    k += (size_t)w;
-  }
-  if (!buf[0]) snprintf(buf, cap, "none");
-}
-
-/* Group word i of a contact command: must exist and hold triangles whose materials have pen_n. */
-static int rule_group(YfSim *s, const YfArgs *a, int i) {
-  YfModel *m = &s->model;
-  const char *name = arg_word(a, i, "group");
-  int g = model_group(m, name, 0);
-  if (g < 0) {
-    char have[1024];
-    group_names(m, have, sizeof have);
-    arg_error(a, i, "no such group or body (defined: %s)", have);
-  }
-  uint64_t bit = (uint64_t)1 << g;
-  int ntri = 0;
-  for (int t = 0; t < m->tri.n; t++) {
-    if (!(m->tri.gmask[t] & bit)) continue;
-    ntri++;
-    const YfMaterial *mt = &m->mat[m->tri.mat[t]];
-    if (!(mt->pen_n > 0))
-      arg_error(a, i, "material '%s' of its triangles has no normal contact penalty: add 'pen_n P' [Pa] "
-                "(typically 1-10 x E) to its material command", mt->name);
-  }
-  if (!ntri) arg_error(a, i, "group has no triangles (contact acts between triangles)");
-  return g;
-}
-
-/* contact pair G1 G2 | contact self G | contact off |
- * contact KEY VALUE [KEY VALUE ...] with KEY buffer D|auto, joined keep|skip,
- *                                         surface boundary|all, search travel|every */
-void cmd_contact(YfSim *s, const YfArgs *a) {
-  arg_count(a, 1, -1);
-  static const char *const words[] = {"pair", "self", "off", "buffer", "joined", "surface", "search", NULL};
-  int k = arg_choice(a, 0, "contact keyword", words);
-  if (k == 0) {
-    arg_count(a, 3, 3);
-    int g1 = rule_group(s, a, 1), g2 = rule_group(s, a, 2);
-    add_rule(get(s), g1, g2, 1, &a->loc, a);
-    return;
-  }
-  if (k == 1) {
-    arg_count(a, 2, 2);
-    int g = rule_group(s, a, 1);
-    add_rule(get(s), g, g, 1, &a->loc, a);
-    return;
-  }
-  if (k == 2) {
-    arg_count(a, 1, 1);
-    contact_free(s);
-    s->energy.contact = 0.0;
-    return;
-  }
+int contact_add_rule(YfSim *s, int g1, int g2, const YfLoc *loc) {
   YfContact *C = get(s);
-  for (int i = 0; i < a->n; i += 2) {
-    int key = arg_choice(a, i, "contact option", words + 3) + 3;
-    if (i + 1 >= a->n) arg_error(a, i, "option needs a value");
-    if (key == 3) {
-      if (!strcmp(a->w[i + 1], "auto")) {
-        C->buffer_auto = 1;
-      } else {
-        C->buffer_auto = 0;
-        C->buffer_set = arg_nonneg(a, i + 1, "buffer [m] (or auto)");
-      }
-    } else if (key == 4) {
-      static const char *const v[] = {"keep", "skip", NULL};
-      C->joined_skip = arg_choice(a, i + 1, "joined", v);
-    } else if (key == 5) {
-      static const char *const v[] = {"boundary", "all", NULL};
-      C->surface_all = arg_choice(a, i + 1, "surface", v);
-    } else {
-      static const char *const v[] = {"travel", "every", NULL};
-      C->search_every = arg_choice(a, i + 1, "search", v);
-    }
+  for (int r = 0; r < C->nrule; r++) {
+    const Rule *q = &C->rule[r];
+    if ((q->ga == g1 && q->gb == g2) || (q->ga == g2 && q->gb == g1)) return 0; /* same rule again */
+  }
+  if (C->nrule >= MAX_RULES) return -1;
+  add_rule(C, g1, g2, 1, loc);
+  return 0;
+}
+
+void contact_off(YfSim *s) {
+  contact_free(s);
+  s->energy.contact = 0.0;
+}
+
+void contact_set_option(YfSim *s, int key, double value) {
+  YfContact *C = get(s);
+  switch (key) {
+  case YF_CONTACT_BUFFER:
+    C->buffer_auto = value < 0;
+    if (value >= 0) C->buffer_set = value;
+    break;
+  case YF_CONTACT_JOINED: C->joined_skip = (int)value; break;
+  case YF_CONTACT_SURFACE: C->surface_all = (int)value; break;
+  case YF_CONTACT_SEARCH: C->search_every = (int)value; break;
   }
   C->dirty = 1;
 }

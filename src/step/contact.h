@@ -49,7 +49,6 @@
 #define YF_CONTACT_H
 #include <stddef.h>
 #include "sim.h"
-#include "deck.h"
 
 void contact_prepare(YfSim *s);
 void contact_step(YfSim *s);
@@ -68,8 +67,17 @@ double contact_stable_dt(YfSim *s, char *what, size_t n);
 long contact_pairs(const YfSim *s);
 void contact_free(YfSim *s);
 
-/* ---- deck command ---- */
-void cmd_contact(YfSim *s, const YfArgs *a);
+/* ---- what the deck's contact command sets (deck/cmd_contact.c) ---- */
+#define YF_CONTACT_MAX_RULES 64
+/* A rule between groups g1 and g2 (g1 == g2: self); the same pair again is no new rule;
+ * -1 when there are already YF_CONTACT_MAX_RULES rules. */
+int contact_add_rule(YfSim *s, int g1, int g2, const YfLoc *loc);
+/* contact off: no contact from now on (contact energy 0). */
+void contact_off(YfSim *s);
+/* Options: buffer [m] (value < 0: auto = 0.3 x smallest edge), joined (0 keep, 1 skip),
+ * surface (0 boundary, 1 all), search (0 travel, 1 every step). */
+enum { YF_CONTACT_BUFFER, YF_CONTACT_JOINED, YF_CONTACT_SURFACE, YF_CONTACT_SEARCH };
+void contact_set_option(YfSim *s, int key, double value);
 
 /* ---- API for read_y2d (y2d_model.c) and tests ---- */
 /* Y2D contact (MICOUP > 0): every participating triangle against every other (one rule over the

@@ -1,8 +1,8 @@
-/* joint.c: fracture in the scene (see joint.h): the jointprop / fracture / fracture_log commands,
- * the splitting of fracturing triangles into their own nodes with a 4-node joint on each internal
+/* joint.c: fracture in the scene (see joint.h): joint sets and fracture zones (set by the deck's
+ * jointprop / fracture / fracture_log commands, deck/cmd_*.c), the splitting of fracturing triangles into their own nodes with a 4-node joint on each internal
  * edge (Y2D meshing code 3, ALGORITHMS.md 4.1), the per-step joint force stage with breakage
- * (3.7), the energy bookkeeping of the joints, the joints' stable time step, and the crack and
- * fragment statistics of the summary.
+ * (3.7), the energy bookkeeping of the joints, the joints' stable time step, and the break records
+ * and fragments that the summary (io/report.c) reports.
  *
  * Determinism: the force loop writes only per-joint data; breaks are collected per fixed block of
  * joints and recorded serially in joint order; every sum over joints is serial.  So 1 or N
@@ -27,15 +27,12 @@
 #include <gsl/gsl_sf_gamma.h>
 #include "joint.h"
 #include "contact.h"
-#include "deck.h"
 #include "edgesort.h"
 #include "elem_tri.h"
 #include "err.h"
 #include "mesh.h"
-#include "output.h"
 #include "region.h"
 #include "run.h"
-#include "summary.h"
 
 #define JBLOCK 256 /* joints per block of the force loop (break collection granularity) */
 #define PF_GROUPS 4
@@ -81,159 +78,21 @@ int joints_add_set(YfSim *s, const char *name, const YfJointProp *p, int het, do
   return J->nset++;
 }
 
-/* Two-column table file (opening, stress; '#' comments) for law table: stresses are divided by
- * the first one, so the file may hold Pa or already normalised values; openings in any unit. */
-static void read_table(const YfArgs *a, int i, YfJointProp *p) {
-  char *path = deck_resolve_path(a, a->w[i]);
-  FILE *fp = fopen(path, "r");
-  if (!fp) yf_io_error(&a->loc, "jointprop: cannot open softening table '%s'", path);
-  double w[YF_JOINT_TAB_MAX], sv[YF_JOINT_TAB_MAX];
-  int n = 0, line = 0;
-  char buf[512];
-  while (fgets(buf, sizeof buf, fp)) {
-    line++;
-    char *h = strchr(buf, '#');
-    if (h) *h = 0;
-    double u, v;
-    char extra[8];
-    int k = sscanf(buf, "%lf %lf %7s", &u, &v, extra);
-    if (k <= 0) continue;
-    if (k != 2) {
-      fclose(fp);
-      yf_deck_error(&a->loc, "%s:%d: expected two numbers 'opening stress' per line", path, line);
-    }
-    if (n == YF_JOINT_TAB_MAX) {
-      fclose(fp);
-      yf_deck_error(&a->loc, "%s: more than %d points in the softening table", path, YF_JOINT_TAB_MAX);
-    }
-    w[n] = u;
-    sv[n++] = v;
-  }
-  fclose(fp);
-  if (n < 2 || !(sv[0] > 0)) yf_deck_error(&a->loc, "%s: the softening table needs >= 2 points starting at a stress > 0", path);
-  for (int k = n - 1; k >= 0; k--) sv[k] /= sv[0];
-  char why[256];
-  if (!joint_prop_set_table(p, n, w, sv, why, sizeof why)) yf_deck_error(&a->loc, "%s: %s", path, why);
-  free(path);
-}
-
-/* jointprop NAME ft FT fs FS gf GF pen P [law ...] [cohesion C friction MU] [damage ...]
- *           [floor y2d|none] [weibull M | normal CV] [seed S] */
-void cmd_jointprop(YfSim *s, const YfArgs *a) {
-  arg_count(a, 1, -1);
-  const char *name = arg_word(a, 0, "name");
-  if (joints_find_set(s, name) >= 0) arg_error(a, 0, "jointprop already defined (each name once)");
-  YfJointProp p;
-  joint_prop_default(&p);
-  p.irreversible = 1; /* native decks: damage never decreases (read_y2d keeps Y2D's reversible law) */
-  p.hreg = 0.0;       /* native decks: no absolute length in the law (units must not matter) */
-  int given[4] = {0, 0, 0, 0}, het = YF_HET_NONE;
-  double het_par = 0;
-  unsigned long seed = 1;
-  static const char *const keys[] = {"ft", "fs", "gf", "pen", "law", "cohesion", "friction", "damage", "floor",
-                                     "weibull", "normal", "seed", NULL};
-  static const char *const laws[] = {"munjiza", "munjiza_gf", "linear", "bilinear", "table", NULL};
-  static const char *const dmg[] = {"reversible", "irreversible", NULL};
-  static const char *const floors[] = {"y2d", "none", NULL};
-  p.coh = 0;
-  for (int i = 1; i < a->n;) {
-    int k = arg_choice(a, i, "keyword", keys);
-    if (i + 1 >= a->n) arg_error(a, i, "keyword needs a value");
-    switch (k) {
-    case 0: p.ft = arg_pos(a, i + 1, "ft"); given[0] = 1; break;
-    case 1: p.fs = arg_pos(a, i + 1, "fs"); given[1] = 1; break;
-    case 2: p.gf = arg_pos(a, i + 1, "gf"); given[2] = 1; break;
-    case 3: p.pen = arg_pos(a, i + 1, "pen"); given[3] = 1; break;
-    case 4: {
-      int l = arg_choice(a, i + 1, "law", laws);
-      p.law = l;
-      if (l == YF_SOFT_TABLE) {
-        if (i + 2 >= a->n) arg_error(a, i + 1, "law table needs a FILE (two columns: opening, stress)");
-        read_table(a, i + 2, &p);
-        i += 3;
-        continue;
-      }
-      if (l == YF_SOFT_BILINEAR && i + 2 < a->n && !strcmp(a->w[i + 2], "kink")) {
-        p.bl_z = arg_num(a, i + 3, "kink opening fraction");
-        p.bl_s = arg_num(a, i + 4, "kink stress fraction");
-        i += 5;
-        continue;
-      }
-      break;
-    }
-    case 5: p.coh = arg_pos(a, i + 1, "cohesion"); break;
-    case 6: p.phi = arg_nonneg(a, i + 1, "friction"); break;
-    case 7: p.irreversible = arg_choice(a, i + 1, "damage", dmg); break;
-    case 8: p.y2d_floor = arg_choice(a, i + 1, "floor", floors) == 0; break;
-    case 9:
-    case 10:
-      if (het != YF_HET_NONE) arg_error(a, i, "give one of weibull M or normal CV");
-      het = k == 9 ? YF_HET_WEIBULL : YF_HET_NORMAL;
-      het_par = arg_pos(a, i + 1, k == 9 ? "Weibull modulus" : "coefficient of variation");
-      break;
-    case 11: seed = (unsigned long)arg_int(a, i + 1, "seed", 0, 4294967295L); break;
-    }
-    i += 2;
-  }
-  if (!given[0]) arg_error(a, 0, "missing 'ft FT' (tensile strength, Pa)");
-  if (!given[2]) arg_error(a, 0, "missing 'gf GF' (fracture energy, J/m^2)");
-  if (!given[3]) arg_error(a, 0, "missing 'pen P' (joint penalty, Pa; about 10-100 x E)");
-  if (!given[1] && !(p.coh > 0)) arg_error(a, 0, "missing 'fs FS' (shear strength, Pa) or 'cohesion C'");
-  if (!given[1]) p.fs = 0;
-  joints_add_set(s, name, &p, het, het_par, seed, &a->loc);
-}
-
-/* fracture BODY JOINTPROP [region R | group G] */
-void cmd_fracture(YfSim *s, const YfArgs *a) {
-  arg_count(a, 2, 4);
-  YfModel *m = &s->model;
-  if (s->step > 0 || m->prepared)
-    arg_error(a, 0, "fracture must come before the first run (the mesh is split once, when the run starts)");
-  int b = model_find_body(m, a->w[0]);
-  if (b < 0) {
-    char list[1024];
-    arg_error(a, 0, "unknown body (bodies: %s)", mesh_body_names(m, list, sizeof list));
-  }
-  int js = joints_find_set(s, arg_word(a, 1, "jointprop"));
-  if (js < 0) arg_error(a, 1, "unknown jointprop (define it first with: jointprop NAME ft FT fs FS gf GF pen P ...)");
-  YfFracSpec sp = {.body = b, .set = js, .region = -1, .group = -1, .loc = a->loc};
-  if (a->n > 2) {
-    static const char *const how[] = {"region", "group", NULL};
-    int h = arg_choice(a, 2, "selection", how);
-    const char *nm = arg_word(a, 3, h ? "group" : "region");
-    if (h == 0) {
-      sp.region = region_find(nm);
-      if (sp.region < 0) arg_error(a, 3, "unknown region (define it with: region NAME box|circle|polygon ...)");
-    } else {
-      sp.group = model_group(m, nm, 0);
-      if (sp.group < 0) {
-        char list[1024];
-        arg_error(a, 3, "unknown group (groups: %s)", mesh_group_names(m, list, sizeof list));
-      }
-    }
-  }
+/* A fracture zone (deck/cmd_fracture.c): the triangles of body (or of those in region or group,
+ * -1 none) get joints of set at the first run. */
+void joints_add_fracture(YfSim *s, int body, int set, int region, int group, const YfLoc *loc) {
+  YfFracSpec sp = {.body = body, .set = set, .region = region, .group = group, .loc = *loc};
   YfJoints *J = jget(s);
   J->spec = yf_realloc(J->spec, (size_t)(J->nspec + 1) * sizeof *J->spec, "fracture specs");
   J->spec[J->nspec++] = sp;
-  m->body[b].fracture = 1;
+  s->model.body[body].fracture = 1;
 }
 
-/* fracture_log FILE [opened FILE2]: the break record as CSV, and optionally the opened-crack
- * record (joints first past their peak) in the same columns, rewritten at the end of every run. */
-void cmd_fracture_log(YfSim *s, const YfArgs *a) {
-  arg_count(a, 1, 3);
-  if (a->n == 2) arg_error(a, 1, "expected 'opened FILE2' after FILE");
+void joints_set_logs(YfSim *s, const char *breaks, const char *opened) {
   YfJoints *J = jget(s);
-  /* outputs, like dumps: relative to the working directory */
-  if (strlen(a->w[0]) >= sizeof J->log_path) arg_error(a, 0, "path too long");
-  snprintf(J->log_path, sizeof J->log_path, "%s", a->w[0]);
+  snprintf(J->log_path, sizeof J->log_path, "%s", breaks);
   J->open_log_path[0] = 0;
-  if (a->n == 3) {
-    static const char *const kw[] = {"opened", NULL};
-    arg_choice(a, 1, "option", kw);
-    if (strlen(a->w[2]) >= sizeof J->open_log_path) arg_error(a, 2, "path too long");
-    snprintf(J->open_log_path, sizeof J->open_log_path, "%s", a->w[2]);
-  }
+  if (opened) snprintf(J->open_log_path, sizeof J->open_log_path, "%s", opened);
 }
 
 /* ---------------- insertion ---------------- */
@@ -450,7 +309,8 @@ int joints_insert_zone(YfSim *s, const unsigned char *tri_in_zone,
   J->blk_nopen = yf_realloc(J->blk_nopen, (size_t)(J->nblk > 0 ? J->nblk : 1) * sizeof(int), "joint blocks");
   register_slots(s);
   m->prepared = 0;
-  if (s->out) output_topology_changed(s);
+  YfEvent ev = {.kind = YF_EV_TOPOLOGY};
+  sim_notify(s, &ev);
   return J->n - j0;
 }
 
@@ -1014,76 +874,6 @@ int joints_fragments(const YfSim *s, int *frag) {
   free(par);
   free(first);
   return nf;
-}
-
-static int dbl_desc(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return x < y ? 1 : x > y ? -1 : 0;
-}
-
-static const char *mode_name(int md) { return md == YF_JMODE_I ? "I" : md == YF_JMODE_II ? "II" : "mixed"; }
-
-static void write_log(YfSim *s, const char *path, const YfBreak *rec, int nrec) {
-  if (!yf_writer()) return;
-  char tmp[1100];
-  snprintf(tmp, sizeof tmp, "%s.tmp", path);
-  FILE *f = fopen(tmp, "w");
-  if (!f) { /* runs from the exit path too: warn, never exit */
-    yf_warn(NULL, "fracture_log: cannot write '%s'", tmp);
-    return;
-  }
-  fprintf(f, "step,time,x,y,mode,triA,triB,length,joint\n");
-  for (int i = 0; i < nrec; i++) {
-    const YfBreak *b = &rec[i];
-    fprintf(f, "%ld,%.17g,%.17g,%.17g,%s,%d,%d,%.17g,%d\n", b->step, b->time, b->x, b->y, mode_name(b->mode),
-            s->model.tri.id[b->triA], s->model.tri.id[b->triB], b->length, b->joint);
-  }
-  if (fclose(f) != 0 || rename(tmp, path) != 0) yf_warn(NULL, "fracture_log: cannot write '%s'", path);
-}
-
-void joints_summary(YfSim *s) {
-  YfJoints *J = s->joints;
-  summary_set_counts(joints_count(s), joints_broken(s), contact_pairs(s));
-  if (!J || !J->n) return;
-  char buf[1024];
-  if (J->nrec) {
-    const YfBreak *b = &J->rec[0];
-    snprintf(buf, sizeof buf, "{\"step\": %ld, \"time\": %.17g, \"x\": %.17g, \"y\": %.17g, \"mode\": \"%s\"}", b->step,
-             b->time, b->x, b->y, mode_name(b->mode));
-    summary_add_raw("first_break", buf);
-  } else {
-    summary_add_raw("first_break", "null");
-  }
-  if (J->nopened) { /* the first joint past its peak (an opened, still cohesive crack) */
-    const YfBreak *b = &J->orec[0];
-    snprintf(buf, sizeof buf, "{\"step\": %ld, \"time\": %.17g, \"x\": %.17g, \"y\": %.17g, \"mode\": \"%s\"}", b->step,
-             b->time, b->x, b->y, mode_name(b->mode));
-    summary_add_raw("first_crack", buf);
-  } else {
-    summary_add_raw("first_crack", "null");
-  }
-  summary_add_number("joints_opened", J->nopened);
-  double len[4] = {0, 0, 0, 0};
-  for (int i = 0; i < J->nrec; i++) len[J->rec[i].mode == YF_JMODE_I ? 0 : J->rec[i].mode == YF_JMODE_II ? 1 : 2] += J->rec[i].length;
-  len[3] = len[0] + len[1] + len[2];
-  snprintf(buf, sizeof buf, "{\"I\": %.17g, \"II\": %.17g, \"mixed\": %.17g, \"total\": %.17g}", len[0], len[1], len[2], len[3]);
-  summary_add_raw("crack_length", buf);
-  const YfModel *m = &s->model;
-  int *fr = yf_malloc((size_t)m->tri.n * sizeof(int), "fragments");
-  int nf = joints_fragments(s, fr);
-  summary_add_number("fragments", nf);
-  double *area = yf_calloc((size_t)(nf > 0 ? nf : 1), sizeof(double), "fragments");
-  for (int t = 0; t < m->tri.n; t++) area[fr[t]] += 0.5 * fabs(model_tri_d(m, t, 0));
-  qsort(area, (size_t)nf, sizeof(double), dbl_desc);
-  int k = 0;
-  k += snprintf(buf + k, sizeof buf - (size_t)k, "[");
-  for (int i = 0; i < nf && i < 10; i++) k += snprintf(buf + k, sizeof buf - (size_t)k, "%s%.17g", i ? ", " : "", area[i]);
-  snprintf(buf + k, sizeof buf - (size_t)k, "]");
-  summary_add_raw("fragment_sizes", buf);
-  free(fr);
-  free(area);
-  if (J->log_path[0]) write_log(s, J->log_path, J->rec, J->nrec);
-  if (J->open_log_path[0]) write_log(s, J->open_log_path, J->orec, J->nopened);
 }
 
 void joints_free(YfSim *s) {

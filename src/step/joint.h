@@ -15,7 +15,8 @@
  *                      current positions.
  *                      Joints first past their peak (damage > 0) are recorded the same way
  *                      (opened cracks: joints_opened), at one compare per joint per step.
- *   joints_summary(s)  at the end of each run: summary keys and the fracture_log CSV(s).
+ *   The summary keys of fracture and the fracture_log CSV(s) are written by the io layer
+ *   (report.c: joints_summary) from the records below.
  *   The gather adds jf into nodes through the model's extra slots (model.xslot_*), so joint
  *   forces enter the node sums in a fixed order.
  *
@@ -113,9 +114,14 @@ long joints_count(const YfSim *s);
 long joints_broken(const YfSim *s);
 /* Stored elastic energy of intact joints [J/m]; sets s->energy.joint_dissipated (see above). */
 double joints_energy(YfSim *s);
-/* At the end of a run: summary keys (crack_length, fragments, first_break...), fracture_log. */
-void joints_summary(YfSim *s);
 void joints_free(YfSim *s);
+
+/* ---- what the deck's commands call (deck/cmd_jointprop.c, cmd_fracture.c, cmd_fracture_log.c) ---- */
+/* A fracture zone: the triangles of body (or of those in region or group; -1 none) get joints
+ * of set at the first run; a later zone overrides the set of its triangles. */
+void joints_add_fracture(YfSim *s, int body, int set, int region, int group, const YfLoc *loc);
+/* CSV files of the break record and (opened != NULL) of the opened-crack record. */
+void joints_set_logs(YfSim *s, const char *breaks, const char *opened);
 
 /* ---- reusable pieces (Y2D reader, tests) ---- */
 /* Add a joint property set; returns its index (deck error at loc when the name is taken or the

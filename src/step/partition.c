@@ -1,4 +1,4 @@
-/* partition.c: the `partition` command, the METIS partition of the triangles' dual graph and the
+/* partition.c: the METIS partition of the triangles' dual graph and the
  * renumbering of nodes, triangles and joints that makes each part contiguous (see partition.h).
  *
  * Why: the step's loops run over triangles, joints and nodes in index order, split into
@@ -20,28 +20,7 @@
 #include "contact.h"
 #include "err.h"
 #include "joint.h"
-#include "y2d_model.h"
 
-enum { PART_AUTO = 0, PART_METIS = 1, PART_NONE = 2 };
-
-/* partition metis|none [parts N] */
-void cmd_partition(YfSim *s, const YfArgs *a) {
-  arg_count(a, 1, 3);
-  static const char *const methods[] = {"metis", "none", NULL};
-  int k = arg_choice(a, 0, "partition method", methods);
-  YfModel *m = &s->model;
-  m->part_method = k == 0 ? PART_METIS : PART_NONE;
-  m->part_req = 0;
-  if (a->n > 1) {
-    static const char *const kw[] = {"parts", NULL};
-    arg_choice(a, 1, "partition option", kw);
-    if (a->n < 3) arg_error(a, 1, "parts needs a number");
-    if (k == 1) arg_error(a, 1, "'partition none' takes no parts");
-    m->part_req = (int)arg_int(a, 2, "number of parts", 1, 1000000);
-  }
-  if (m->part_done)
-    yf_warn(&a->loc, "partition: the mesh was already renumbered at the first run; this setting has no effect");
-}
 
 /* Permute an array of n records of `size` bytes: new record i = old record perm[i]. */
 static void permute(void *arr, size_t size, int n, const int *perm, void *tmp) {
@@ -270,7 +249,8 @@ void partition_apply(YfSim *s) {
 
   renumber_joints(s, tnew, nnew);
   contact_renumber_tris(s, tnew, nt);
-  if (s->y2d) s->y2d->nn = -1; /* node sets and loaded edges are resolved again */
+  for (int i = 0; i < s->nbc_kind; i++) /* node sets and loaded edges are resolved again */
+    if (s->bc_kind[i]->renumbered) s->bc_kind[i]->renumbered(s);
 
   free(m->tri_new);
   m->tri_new = tnew;

@@ -1,6 +1,6 @@
 /* partition.h: METIS partition of the mesh and the renumbering that makes each part contiguous.
  *
- * Deck command (row in commands.def):
+ * Deck command (row in commands.def; deck/cmd_partition.c sets model.part_method, part_req):
  *   partition metis|none [parts N]
  * Default (no command, or `partition metis` without parts): METIS with one part per
  * YF_PART_TRIS triangles when the scene has at least 2 x YF_PART_TRIS triangles, none below.
@@ -19,11 +19,12 @@
 #ifndef YF_PARTITION_H
 #define YF_PARTITION_H
 #include "sim.h"
-#include "deck.h"
+
+/* model.part_method */
+enum { PART_AUTO = 0, PART_METIS = 1, PART_NONE = 2 };
 
 #define YF_PART_TRIS 4096 /* default: triangles per part (a part's data fits in L2) */
 
-void cmd_partition(YfSim *s, const YfArgs *a);
 void partition_apply(YfSim *s);
 /* Current index of a triangle given its index before the renumbering (identity when none). */
 static inline int partition_tri(const YfModel *m, int t) {

@@ -16,17 +16,11 @@
 #include <unistd.h>
 #include "run.h"
 #include "bc.h"
-#include "deck.h"
 #include "contact.h"
 #include "elem_tri.h"
 #include "err.h"
 #include "joint.h"
-#include "output.h"
-#include "y2d_model.h"
-#include "summary.h"
-#include "metrics.h"
 #include "partition.h"
-#include "restart.h"
 #include "par.h"
 
 const char *const yf_stage_names[YF_NSTAGE] = {"elements", "joints", "detection", "contact", "gather", "update", "output"};
@@ -177,7 +171,7 @@ void run_prepare(YfSim *s) {
     for (int e = 0; e < m->tri.n; e++) R.e_floor += 1e-16 * m->mat[m->tri.mat[e]].E * 0.5 * m->tri.d0[e];
     m->prepared = 1;
   }
-  par_prepare(s, R.nblk, BLOCK); /* MPI: which blocks of the element stage this rank computes */
+  par_prepare(s, R.nblk, BLOCK); /* MPI: which triangles of the element stage this rank computes */
   bc_prepare(s);
   contact_prepare(s);
   /* positions and velocities before the update: read only by bc.c's supports and loads and by
@@ -190,7 +184,8 @@ void run_prepare(YfSim *s) {
     R.vxo = yf_realloc(R.vxo, (size_t)R.cap_nodes * sizeof(double), "old velocities");
     R.vyo = yf_realloc(R.vyo, (size_t)R.cap_nodes * sizeof(double), "old velocities");
   }
-  y2d_release_deck(s); /* the scene is built: the .y deck's arrays are no longer needed */
+  for (int k = 0; k < s->nbc_kind; k++) /* the scene is built: input copies may go */
+    if (s->bc_kind[k]->scene_built) s->bc_kind[k]->scene_built(s);
 }
 
 void run_energies(YfSim *s) {
@@ -259,17 +254,17 @@ static void progress(YfSim *s, long done, long total, double t0) {
   fflush(stderr);
 }
 
-/* The step.  Every loop over elements or nodes is a static OpenMP loop whose iterations write
- * only their own slots; sums over blocks are added serially in block order. */
-static void step_once(YfSim *s) {
-  YfModel *m = &s->model;
-  YfNodes *n = &m->node;
-  const int nn = n->n, nblk = R.nblk, nt = m->tri.n;
-  const double dt = s->dt, gx = s->gx, gy = s->gy, alpha = s->mass_damping;
-  double t0 = yf_now(), t1;
+/* The stages of one step, in order (the run loop below is this list).  Every loop over
+ * elements or nodes is a static OpenMP loop whose iterations write only their own slots; sums
+ * over blocks are added serially in block order. */
 
+/* elements: constant-strain triangle forces into per-corner slots, viscous power per block */
+static void stage_elements(YfSim *s) {
+  YfModel *m = &s->model;
+  const int nblk = R.nblk, nt = m->tri.n;
+  const double t0 = yf_now();
   int b0 = 0, b1 = nblk;
-  par_blocks(&b0, &b1); /* MPI: the blocks inside this rank's parts; then every rank gets all results */
+  par_blocks(&b0, &b1); /* MPI: the blocks inside this rank's triangles; then every rank gets all results */
   #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
   for (int b = b0; b < b1; b++) {
     YfTriPass p;
@@ -296,22 +291,22 @@ static void step_once(YfSim *s) {
     }
     power += R.blk[b];
   }
-  s->energy.damping += power * dt;
-  t1 = yf_now();
-  yf_stage_time[YF_ST_ELEMENTS] += t1 - t0;
-  t0 = t1;
+  s->energy.damping += power * s->dt;
+}
 
-  if (m->nxslot) {
-    joints_forces(s);
-    t1 = yf_now();
-    yf_stage_time[YF_ST_JOINTS] += t1 - t0;
-    t0 = t1;
-  }
+/* joints: cohesive joint forces into their extra slots (only with joints) */
+static void stage_joints(YfSim *s) {
+  if (s->model.nxslot) joints_forces(s);
+}
 
-  /* gather corner (and joint) forces into nodes in fixed slot order */
+/* gather: corner (and joint) forces into nodes in fixed slot order, then every boundary-condition
+ * kind's external loads */
+static void stage_gather(YfSim *s) {
+  YfModel *m = &s->model;
+  YfNodes *n = &m->node;
+  const int nn = n->n, nt3 = 3 * m->tri.n;
   const int *off = m->gather_off, *slot = m->gather_slot;
   const double *cf = m->tri.cf, *xf = m->xslot_f;
-  const int nt3 = 3 * nt;
   #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
   for (int i = 0; i < nn; i++) {
     double fx = 0, fy = 0;
@@ -324,29 +319,33 @@ static void step_once(YfSim *s) {
     n->fx[i] = fx;
     n->fy[i] = fy;
   }
-  bc_apply_loads(s);
-  if (s->y2d) y2d_apply_loads(s); /* Y2D BC sets: edge pressure and shear traction */
-  t1 = yf_now();
-  yf_stage_time[YF_ST_GATHER] += t1 - t0;
-  t0 = t1;
-  contact_step(s); /* detection when due, then pair forces added in pair order (timed inside) */
-  t0 = yf_now();
+  for (int k = 0; k < s->nbc_kind; k++)
+    if (s->bc_kind[k]->loads) s->bc_kind[k]->loads(s);
+}
 
-  /* update: v_{n+1/2}, then supports, then x_{n+1}.  With damping every node's old velocity is
-   * read, and the old state is copied inside the update loops; without, only the supported and
-   * loaded nodes' old state is (bc_save_old), one pass moves every node with its free velocity,
-   * and the supported nodes are moved again after their velocities are imposed: the same
-   * operations on every value as velocity update, supports, then position update. */
+/* contact: detection when due, then pair forces added in pair order (timed inside) */
+static void stage_contact(YfSim *s) { contact_step(s); }
+
+/* update: v_{n+1/2}, then supports, then x_{n+1}.  With damping every node's old velocity is
+ * read, and the old state is copied inside the update loops; without, only the supported and
+ * loaded nodes' old state is (bc_save_old), one pass moves every node with its free velocity,
+ * and the supported nodes are moved again after their velocities are imposed: the same
+ * operations on every value as velocity update, supports, then position update. */
+static void stage_update(YfSim *s) {
+  YfNodes *n = &s->model.node;
+  const int nn = n->n;
+  const double dt = s->dt, gx = s->gx, gy = s->gy, alpha = s->mass_damping;
   double *x = n->x, *y = n->y, *vx = n->vx, *vy = n->vy;
   const double *fx = n->fx, *fy = n->fy, *ms = n->m;
   const int keep = alpha > 0, nbc = bc_count(s);
   double *xo = keep || nbc ? R.xo : NULL, *yo = keep || nbc ? R.yo : NULL;
   double *vxo = keep || nbc ? R.vxo : NULL, *vyo = keep || nbc ? R.vyo : NULL;
   if (nbc && !keep) bc_save_old(s, xo, yo, vxo, vyo);
-  if (s->y2d) {
-    /* Y2D's BC-set update (kinds, local frames, time factors); without damping it moves the
-     * nodes too, block by block while they are in cache */
-    y2d_update_velocities(s, nn >= PAR_MIN, keep ? vxo : NULL, keep ? vyo : NULL, !keep);
+  const YfBcKind *integ = NULL; /* a boundary-condition kind that owns the velocity update */
+  for (int k = 0; k < s->nbc_kind; k++)
+    if (s->bc_kind[k]->integrate) integ = s->bc_kind[k];
+  if (integ) {
+    integ->integrate(s, nn >= PAR_MIN, keep ? vxo : NULL, keep ? vyo : NULL, !keep);
   } else if (alpha > 0) {
     /* central-difference mass damping: v+ = ((1 - a dt/2) v- + dt f/m) / (1 + a dt/2) */
     const double c1 = 1.0 - 0.5 * alpha * dt, c2 = 1.0 / (1.0 + 0.5 * alpha * dt);
@@ -392,8 +391,28 @@ static void step_once(YfSim *s) {
   bc_constrain_positions(s, xo, yo, vxo, vyo);
   s->step++;
   s->time += dt;
-  t1 = yf_now();
-  yf_stage_time[YF_ST_UPDATE] += t1 - t0;
+}
+
+/* One step = these stages in this order (as Box2D v3's solver stages or SWIFT's engine_step);
+ * each adds its wall time to its timer (contact times detection and pair forces itself). */
+typedef struct {
+  void (*fn)(YfSim *s);
+  int timer; /* YF_ST_*, -1: timed inside */
+} YfStage;
+static const YfStage STAGES[] = {
+  {stage_elements, YF_ST_ELEMENTS},
+  {stage_joints, YF_ST_JOINTS},
+  {stage_gather, YF_ST_GATHER},
+  {stage_contact, -1},
+  {stage_update, YF_ST_UPDATE},
+};
+
+static void step_once(YfSim *s) {
+  for (size_t k = 0; k < sizeof STAGES / sizeof STAGES[0]; k++) {
+    double t0 = yf_now();
+    STAGES[k].fn(s);
+    if (STAGES[k].timer >= 0) yf_stage_time[STAGES[k].timer] += yf_now() - t0;
+  }
 }
 
 void run_steps(YfSim *s, long nsteps) {
@@ -407,7 +426,7 @@ void run_steps(YfSim *s, long nsteps) {
     sim_printf(s, "timestep auto: dt = %.6g s = %.3g x stable limit %.6g s (set by %s)\n", s->dt, s->dt_safety, limit, lim);
   } else if (!(s->dt > 0)) {
     yf_deck_error(NULL, "run: no time step set (use 'timestep DT' or 'timestep auto')");
-  } else if (s->dt > limit && s->y2d) {
+  } else if (s->dt > limit && s->dt_warn_only) {
     /* Y2D never checks dt and its decks choose it by experience (ALGORITHMS.md 10): warn only */
     yf_warn(s->dt_loc.file ? &s->dt_loc : NULL,
             "the Y2D deck's time step %.6g s is above yfdem's conservative stable limit %.6g s (set by %s); "
@@ -429,7 +448,8 @@ void run_steps(YfSim *s, long nsteps) {
     YfTriPass p;
     tri_forces(&s->model, R.tm, 0, s->model.tri.n, &p);
   }
-  output_run_begin(s);
+  YfEvent ev = {.kind = YF_EV_RUN_BEGIN};
+  sim_notify(s, &ev);
   R.t_wall0 = yf_now();
   double t_start = R.t_wall0;
   thermo_header(s);
@@ -439,22 +459,18 @@ void run_steps(YfSim *s, long nsteps) {
   for (long k = 0; k < nsteps; k++) {
     step_once(s);
     double t0 = yf_now();
-    if (par_size() > 1 && (output_frame_due(s) || metrics_due(s))) par_share_stresses(&s->model);
-    output_step(s);
-    metrics_step(s);
-    restart_step(s); /* periodic restart file when due */
+    ev.kind = YF_EV_STEP; /* frames, metrics samples and periodic restarts when due */
+    sim_notify(s, &ev);
     yf_stage_time[YF_ST_OUTPUT] += yf_now() - t0;
     if (s->thermo_every > 0 && s->step % s->thermo_every == 0 && k + 1 < nsteps) thermo_line(s);
     if ((k + 1) % check_every == 0) energy_check(s);
     if (tty) progress(s, k + 1, nsteps, t_start);
     if (par_any(s->interrupted)) { /* MPI: every rank stops at the same step */
       s->interrupted = 1;
-      par_share_stresses(&s->model);
       /* finish cleanly: a restart of this step, its frame in every dump, files closed */
-      char why[512];
-      const char *rp = restart_on_interrupt(s, why, sizeof why);
-      output_write_all(s);
-      output_run_end(s);
+      YfEvent iev = {.kind = YF_EV_INTERRUPT, .restart_path = ""};
+      sim_notify(s, &iev);
+      const char *rp = iev.restart_path, *why = iev.why;
       s->wall_s += yf_now() - R.t_wall0;
       if (rp[0])
         yf_exit_with(YF_EXIT_INTERRUPT, "interrupted at step %ld (time %.6g s): restart written to '%s', frames so far "
@@ -466,61 +482,19 @@ void run_steps(YfSim *s, long nsteps) {
   }
   energy_check(s);
   thermo_line(s);
-  par_share_stresses(&s->model); /* MPI: the last state is whole on every rank for what follows */
+  par_need_stresses(&s->model); /* MPI: the last state whole on every rank, for what follows */
   double wall = yf_now() - R.t_wall0;
   s->wall_s += wall;
   s->elem_steps += (double)s->model.tri.n * (double)nsteps;
-  output_run_end(s);
+  ev.kind = YF_EV_RUN_END;
+  sim_notify(s, &ev);
   sim_printf(s, "run: %ld steps of %d triangles in %.3f s wall (%.3g element-steps/s on %d thread%s)\n", nsteps,
              s->model.tri.n, wall, wall > 0 ? (double)s->model.tri.n * (double)nsteps / wall : 0.0, s->threads,
              s->threads > 1 ? "s" : "");
   par_run_report(s, nsteps, wall);
 }
 
-/* run N [upto] | run (to the last step of a Y2D deck read by read_y2d) */
-void cmd_run(YfSim *s, const YfArgs *a) {
-  arg_count(a, 0, 2);
-  long n;
-  if (a->n == 0) {
-    if (s->last_step <= 0) arg_error(a, 0, "give the number of steps (run without N needs a read_y2d deck)");
-    n = s->last_step - s->step;
-    if (n < 0) n = 0;
-  } else {
-    n = arg_int(a, 0, "N", 0, 2000000000L);
-    if (a->n == 2) { /* upto: N is the step to reach (a deck continued from a restart) */
-      static const char *const w[] = {"upto", NULL};
-      arg_choice(a, 1, "run option", w);
-      n = n > s->step ? n - s->step : 0;
-    }
-  }
-  /* the common deck mistakes, reported at the run line (run_steps has no deck place) */
-  if (!s->model.tri.n) arg_error(a, -1, "the scene has no triangles (use mesh, triangle or read_y2d first)");
-  if (!s->dt_auto && !(s->dt > 0)) arg_error(a, -1, "no time step set (use 'timestep DT' or 'timestep auto' before run)");
-  run_steps(s, n);
-}
-
 const YfTriMat *run_tri_mats(void) { return R.tm; }
-
-/* Summary keys owned by the loop: counts, cost of the model, where the time went.  Runs from
- * the exit path too, so it must not fail. */
-void run_summary_update(YfSim *s) {
-  summary_set_counts(joints_count(s), joints_broken(s), contact_pairs(s));
-  if (s->model.tri.n > 0) summary_add_number("model_bytes_per_element", run_model_bytes(s) / s->model.tri.n);
-  struct rusage ru;
-  if (!getrusage(RUSAGE_SELF, &ru)) summary_add_number("peak_rss_mb", ru.ru_maxrss / 1024.0);
-  char buf[512];
-  int k = snprintf(buf, sizeof buf, "{");
-  for (int i = 0; i < YF_NSTAGE && k > 0 && (size_t)k < sizeof buf; i++)
-    k += snprintf(buf + k, sizeof buf - (size_t)k, "%s\"%s\": %.6g", i ? ", " : "", yf_stage_names[i], yf_stage_time[i]);
-  if (k > 0 && (size_t)k < sizeof buf - 2) {
-    snprintf(buf + k, sizeof buf - (size_t)k, "}");
-    summary_add_raw("stage_seconds", buf);
-  }
-  summary_add_number("dt", s->dt);
-  if (isfinite(s->dt_limit) && s->dt_limit > 0) summary_add_number("dt_limit", s->dt_limit);
-  joints_summary(s);
-  metrics_summary(s);
-}
 
 void run_free(void) {
   free(R.tm); free(R.blk); free(R.blk_bad); free(R.blk_badJ);

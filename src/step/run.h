@@ -24,8 +24,6 @@ double run_model_bytes(const YfSim *s);
 /* Material constants of the prepared model, indexed by material (for tests and diagnostics). */
 /* Material constants of the prepared model, indexed by material (tests, diagnostics). */
 const YfTriMat *run_tri_mats(void);
-/* Fill the summary's counts and the loop's extra keys (also on the error path). */
-void run_summary_update(YfSim *s);
 /* Energy budget of the energy check [J/m] (restart.c saves and restores it). */
 double run_get_energy_budget(void);
 void run_set_energy_budget(double e);

@@ -38,6 +38,43 @@ struct YfContact; /* contact.c */
 struct YfY2dRun;  /* y2d_model.c: Y2D boundary-condition sets of a read_y2d scene */
 struct YfRestart; /* restart.c: periodic restart files and the interrupt restart */
 struct YfDeck;
+struct YfSim;
+
+/* Boundary-condition kinds: what adds external nodal forces at the gather stage or replaces the
+ * free velocity update.  Native fixes and loads (bc.c) are one kind, registered by sim_init;
+ * Y2D's BC sets (y2d_model.c) another, registered by the layer that reads a .y deck.  The run
+ * loop calls every registered kind in registration order and knows none of them by name.
+ * Any member may be NULL. */
+typedef struct YfBcKind {
+  const char *name;
+  void (*loads)(struct YfSim *s);          /* gather stage: add external forces to node.f [N/m] */
+  /* update stage: v_{n+1/2} of every node instead of the free update (at most one kind); par:
+   * threaded; vxo, vyo: old velocities to keep (mass damping) or NULL; move: also x_{n+1} */
+  void (*integrate)(struct YfSim *s, int par, double *vxo, double *vyo, int move);
+  void (*renumbered)(struct YfSim *s);     /* nodes and triangles renumbered (partition.c) */
+  void (*scene_built)(struct YfSim *s);    /* end of run_prepare: input copies may go */
+  void (*free)(struct YfSim *s);
+} YfBcKind;
+#define YF_MAX_BC_KINDS 4
+
+/* Observers: what the step tells the layers above it (dumps, metrics, restarts) at fixed points
+ * of the run loop, as event records.  The step never calls output; the front end registers the
+ * observers (io_attach), and they are called in registration order. */
+enum {
+  YF_EV_RUN_BEGIN,  /* a run starts: the current state is a frame                            */
+  YF_EV_STEP,       /* a step is done: frames, metrics samples and restarts that are due      */
+  YF_EV_TOPOLOGY,   /* joints were inserted: nodes, triangles or slots changed                */
+  YF_EV_INTERRUPT,  /* SIGINT/SIGTERM: write what is needed to continue, the run then stops   */
+  YF_EV_RUN_END,    /* a run ended                                                             */
+  YF_EV_FREE        /* the simulation is freed                                                 */
+};
+typedef struct YfEvent {
+  int kind;                 /* YF_EV_*                                                        */
+  const char *restart_path; /* INTERRUPT: the restart written ("" none), set by the observer  */
+  char why[512];            /* INTERRUPT: why no restart could be written                     */
+} YfEvent;
+typedef void (*YfObserverFn)(struct YfSim *s, YfEvent *ev);
+#define YF_MAX_OBSERVERS 4
 
 typedef struct YfSim {
   YfModel model;
@@ -62,7 +99,14 @@ typedef struct YfSim {
   struct YfOutput *out;
   struct YfJoints *joints;
   struct YfContact *contact;
-  struct YfY2dRun *y2d;   /* non-NULL after read_y2d: nodes follow Y2D's BC-set update   */
+  struct YfY2dRun *y2d;   /* non-NULL after read_y2d (owned by y2d_model.c; the step never
+                             reads it: Y2D's BC sets are a boundary-condition kind)          */
+  int dt_warn_only;       /* 1: a time step above the stable limit is a warning (Y2D decks
+                             choose it by experience, ALGORITHMS.md 10), 0: an error          */
+  const YfBcKind *bc_kind[YF_MAX_BC_KINDS];
+  int nbc_kind;
+  YfObserverFn observer[YF_MAX_OBSERVERS];
+  int nobserver;
   long last_step;         /* `run` without N runs to this step (Y2D's MCSTEP), 0 = none   */
   struct YfRestart *restart; /* restart.c (NULL until a restart command)                  */
   int restored;           /* 1 after read_restart: a dump's first frame continues its series */
@@ -83,6 +127,11 @@ typedef struct YfSim {
 } YfSim;
 
 void sim_init(YfSim *s);
+/* Register a boundary-condition kind / an observer (a second registration is ignored). */
+void sim_add_bc_kind(YfSim *s, const YfBcKind *k);
+void sim_observe(YfSim *s, YfObserverFn fn);
+/* Hand an event record to every observer. */
+void sim_notify(YfSim *s, YfEvent *ev);
 void sim_free(YfSim *s);
 int sim_find_history(const YfSim *s, const char *name);
 double history_value(const YfHistory *h, double t);

@@ -575,6 +575,8 @@ void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from) {
       }
   }
   s->y2d = r;
+  sim_add_bc_kind(s, &y2d_bc_kind); /* the run loop applies the BC sets through it */
+  s->dt_warn_only = 1;              /* Y2D decks choose dt by experience: warn only */
 
   /* joints (meshing code 3) and contact */
   unsigned char *meshed = yf_calloc((size_t)ne + 1, 1, "y2d meshed elements");
@@ -610,27 +612,22 @@ void y2d_model_free(YfSim *s) {
   s->y2d = NULL;
 }
 
-/* read_y2d FILE [volfac 0.5|1] */
-void cmd_read_y2d(YfSim *s, const YfArgs *a) {
-  arg_count(a, 1, 3);
-  const char *f = arg_word(a, 0, "file");
-  double vf = 0.5;
-  if (a->n > 1) {
-    if (strcmp(a->w[1], "volfac")) arg_error(a, 1, "unknown keyword (expected 'volfac 0.5|1')");
-    if (a->n < 3) arg_error(a, 1, "expected a value after it: 0.5 (book Y2D) or 1 (Y-Geo family decks)");
-    vf = arg_num(a, 2, "volfac");
-    if (vf != 0.5 && vf != 1.0)
-      arg_error(a, 2, "must be 0.5 (book Y2D: (lambda/2)(J - 1/J)) or 1 (Y-Geo and other Y2D copies: lambda (J - 1/J))");
-  }
-  if (s->y2d) arg_error(a, 0, "a Y2D deck (%s) was already read; one read_y2d per simulation", s->y2d->path);
-  char *path = deck_resolve_path(a, f);
-  y2d_load(s, path, vf, &a->loc);
-  YfY2dRun *r = s->y2d;
-  sim_printf(s, "read_y2d: %s: %d nodes, %d triangles, %d properties, %d BC sets, dt %.6g s, last step %ld%s%s\n",
-             path, r->nnode, r->ntri, (int)deck_of(r)->nprop, r->nset, s->dt, s->last_step,
-             joints_count(s) ? ", joints" : "", r->contact_on ? ", contact" : "");
-  free(path);
+static void y2d_renumbered(YfSim *s) {
+  if (s->y2d) s->y2d->nn = -1; /* node sets and loaded edges are resolved again */
 }
+
+static void y2d_loads(YfSim *s) {
+  if (s->y2d) y2d_apply_loads(s); /* edge pressure and shear traction */
+}
+
+/* Y2D's BC sets as a boundary-condition kind (sim.h): edge loads at the gather stage, and the
+ * BC-set velocity update (kinds, local frames, time factors), which without damping moves the
+ * nodes too, block by block while they are in cache. */
+const YfBcKind y2d_bc_kind = {.name = "y2d", .loads = y2d_loads, .integrate = y2d_update_velocities,
+                              .renumbered = y2d_renumbered, .scene_built = y2d_release_deck,
+                              .free = y2d_model_free};
+
+int y2d_nprop(const YfSim *s) { return s->y2d && s->y2d->deck ? (int)deck_of(s->y2d)->nprop : 0; }
 
 void y2d_run_file(YfSim *s, const char *path) {
   y2d_load(s, path, 0.5, NULL);

@@ -17,7 +17,6 @@
 #ifndef YF_Y2D_MODEL_H
 #define YF_Y2D_MODEL_H
 #include "sim.h"
-#include "deck.h"
 
 /* Y2D BC kinds of a local direction (FORMAT.md 3.8); anything else freezes the velocity. */
 enum { Y2D_KIND_FORCE = 1, Y2D_KIND_ACCEL = 2, Y2D_KIND_VELOCITY = 3 };
@@ -57,6 +56,7 @@ typedef struct YfY2dRun {
   int contact_on;      /* MICOUP > 0                                                           */
 } YfY2dRun;
 
+extern const YfBcKind y2d_bc_kind;
 void y2d_apply_loads(YfSim *s);
 /* Nodes per block of the velocity update: fixed, so the work sum does not depend on threads. */
 #define Y2D_UBLOCK 4096
@@ -76,7 +76,8 @@ void y2d_model_free(YfSim *s);
  * The deck's scalars and file names stay (messages point at them). */
 void y2d_release_deck(YfSim *s);
 /* Deck command: read_y2d FILE [volfac 0.5|1] */
-void cmd_read_y2d(YfSim *s, const YfArgs *a);
+/* Properties (materials) of the deck read. */
+int y2d_nprop(const YfSim *s);
 
 /* Index maps of a read_y2d scene: triangle index of input element e (-1 if none), input node
  * number of node i (its id: copies made by joint insertion keep the original's id). */

@@ -26,7 +26,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "deck.h"
 #include "edgesort.h"
 #include "err.h"
 #include "memcap.h"

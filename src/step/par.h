@@ -1,5 +1,5 @@
 /* par.h: the hooks by which a run is shared among MPI ranks (./yfdem_mpi, built by `make mpi`
- * with -DYF_MPI; src/par/par_mpi.c).  In ./yfdem every hook is an inline no-op and MPI is not
+ * with -DYF_MPI; the implementation is src/par/par_mpi.c, a layer above the step).  In ./yfdem every hook is an inline no-op and MPI is not
  * linked.
  *
  * This first version distributes the element force stage, the step's largest cost, and
@@ -11,7 +11,8 @@
  *   - the corner forces and the per-block results are shared (allgather), so every rank gathers
  *     every node's force from the same slots in the same order, and joints, contact, supports,
  *     loads and the update run on every rank on identical data: the same bits as one rank;
- *   - stresses are shared only when a frame or a metrics sample reads them;
+ *   - stresses are shared only when a frame or a metrics sample reads them (io calls
+ *     par_need_stresses), and at the end of a run;
  *   - only rank 0 prints and writes files (yf_writer); an error stops every rank (par_mpi.c).
  */
 #ifndef YF_PAR_H
@@ -33,7 +34,9 @@ void par_blocks(int *b0, int *b1);      /* the blocks this rank sums whole: [b0,
  * triangle, its J). */
 void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_bad, double *blk_badJ,
                         double t_elem);
-void par_share_stresses(YfModel *m);    /* every triangle's stress on every rank              */
+/* Every triangle's stress on every rank (a collective: every rank calls it at the same point;
+ * a no-op when they are already shared since the last element stage). */
+void par_need_stresses(YfModel *m);
 int par_any(int flag);                  /* flag set on any rank (the same answer on all)       */
 void par_run_report(struct YfSim *s, long nsteps, double wall); /* ranks, imbalance, traffic */
 #else
@@ -47,7 +50,7 @@ static inline void par_share_elements(YfModel *m, const YfTriMat *tm, double *bl
                                       double *blk_badJ, double t_elem) {
   (void)m; (void)tm; (void)blk; (void)blk_bad; (void)blk_badJ; (void)t_elem;
 }
-static inline void par_share_stresses(YfModel *m) { (void)m; }
+static inline void par_need_stresses(YfModel *m) { (void)m; }
 static inline int par_any(int flag) { return flag; }
 #define par_run_report(s, nsteps, wall) ((void)0)
 #endif

@@ -1,0 +1,110 @@
+/* cmd_jointprop.c: the `jointprop` deck command (a row of commands.def): reads the words (and a
+ * softening table file) into a YfJointProp and adds a joint set (joints_add_set, joint.h).
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "deck.h"
+#include "joint.h"
+
+/* Two-column table file (opening, stress; '#' comments) for law table: stresses are divided by
+ * the first one, so the file may hold Pa or already normalised values; openings in any unit. */
+static void read_table(const YfArgs *a, int i, YfJointProp *p) {
+  char *path = deck_resolve_path(a, a->w[i]);
+  FILE *fp = fopen(path, "r");
+  if (!fp) yf_io_error(&a->loc, "jointprop: cannot open softening table '%s'", path);
+  double w[YF_JOINT_TAB_MAX], sv[YF_JOINT_TAB_MAX];
+  int n = 0, line = 0;
+  char buf[512];
+  while (fgets(buf, sizeof buf, fp)) {
+    line++;
+    char *h = strchr(buf, '#');
+    if (h) *h = 0;
+    double u, v;
+    char extra[8];
+    int k = sscanf(buf, "%lf %lf %7s", &u, &v, extra);
+    if (k <= 0) continue;
+    if (k != 2) {
+      fclose(fp);
+      yf_deck_error(&a->loc, "%s:%d: expected two numbers 'opening stress' per line", path, line);
+    }
+    if (n == YF_JOINT_TAB_MAX) {
+      fclose(fp);
+      yf_deck_error(&a->loc, "%s: more than %d points in the softening table", path, YF_JOINT_TAB_MAX);
+    }
+    w[n] = u;
+    sv[n++] = v;
+  }
+  fclose(fp);
+  if (n < 2 || !(sv[0] > 0)) yf_deck_error(&a->loc, "%s: the softening table needs >= 2 points starting at a stress > 0", path);
+  for (int k = n - 1; k >= 0; k--) sv[k] /= sv[0];
+  char why[256];
+  if (!joint_prop_set_table(p, n, w, sv, why, sizeof why)) yf_deck_error(&a->loc, "%s: %s", path, why);
+  free(path);
+}
+
+/* jointprop NAME ft FT fs FS gf GF pen P [law ...] [cohesion C friction MU] [damage ...]
+ *           [floor y2d|none] [weibull M | normal CV] [seed S] */
+void cmd_jointprop(YfSim *s, const YfArgs *a) {
+  arg_count(a, 1, -1);
+  const char *name = arg_word(a, 0, "name");
+  if (joints_find_set(s, name) >= 0) arg_error(a, 0, "jointprop already defined (each name once)");
+  YfJointProp p;
+  joint_prop_default(&p);
+  p.irreversible = 1; /* native decks: damage never decreases (read_y2d keeps Y2D's reversible law) */
+  p.hreg = 0.0;       /* native decks: no absolute length in the law (units must not matter) */
+  int given[4] = {0, 0, 0, 0}, het = YF_HET_NONE;
+  double het_par = 0;
+  unsigned long seed = 1;
+  static const char *const keys[] = {"ft", "fs", "gf", "pen", "law", "cohesion", "friction", "damage", "floor",
+                                     "weibull", "normal", "seed", NULL};
+  static const char *const laws[] = {"munjiza", "munjiza_gf", "linear", "bilinear", "table", NULL};
+  static const char *const dmg[] = {"reversible", "irreversible", NULL};
+  static const char *const floors[] = {"y2d", "none", NULL};
+  p.coh = 0;
+  for (int i = 1; i < a->n;) {
+    int k = arg_choice(a, i, "keyword", keys);
+    if (i + 1 >= a->n) arg_error(a, i, "keyword needs a value");
+    switch (k) {
+    case 0: p.ft = arg_pos(a, i + 1, "ft"); given[0] = 1; break;
+    case 1: p.fs = arg_pos(a, i + 1, "fs"); given[1] = 1; break;
+    case 2: p.gf = arg_pos(a, i + 1, "gf"); given[2] = 1; break;
+    case 3: p.pen = arg_pos(a, i + 1, "pen"); given[3] = 1; break;
+    case 4: {
+      int l = arg_choice(a, i + 1, "law", laws);
+      p.law = l;
+      if (l == YF_SOFT_TABLE) {
+        if (i + 2 >= a->n) arg_error(a, i + 1, "law table needs a FILE (two columns: opening, stress)");
+        read_table(a, i + 2, &p);
+        i += 3;
+        continue;
+      }
+      if (l == YF_SOFT_BILINEAR && i + 2 < a->n && !strcmp(a->w[i + 2], "kink")) {
+        p.bl_z = arg_num(a, i + 3, "kink opening fraction");
+        p.bl_s = arg_num(a, i + 4, "kink stress fraction");
+        i += 5;
+        continue;
+      }
+      break;
+    }
+    case 5: p.coh = arg_pos(a, i + 1, "cohesion"); break;
+    case 6: p.phi = arg_nonneg(a, i + 1, "friction"); break;
+    case 7: p.irreversible = arg_choice(a, i + 1, "damage", dmg); break;
+    case 8: p.y2d_floor = arg_choice(a, i + 1, "floor", floors) == 0; break;
+    case 9:
+    case 10:
+      if (het != YF_HET_NONE) arg_error(a, i, "give one of weibull M or normal CV");
+      het = k == 9 ? YF_HET_WEIBULL : YF_HET_NORMAL;
+      het_par = arg_pos(a, i + 1, k == 9 ? "Weibull modulus" : "coefficient of variation");
+      break;
+    case 11: seed = (unsigned long)arg_int(a, i + 1, "seed", 0, 4294967295L); break;
+    }
+    i += 2;
+  }
+  if (!given[0]) arg_error(a, 0, "missing 'ft FT' (tensile strength, Pa)");
+  if (!given[2]) arg_error(a, 0, "missing 'gf GF' (fracture energy, J/m^2)");
+  if (!given[3]) arg_error(a, 0, "missing 'pen P' (joint penalty, Pa; about 10-100 x E)");
+  if (!given[1] && !(p.coh > 0)) arg_error(a, 0, "missing 'fs FS' (shear strength, Pa) or 'cohesion C'");
+  if (!given[1]) p.fs = 0;
+  joints_add_set(s, name, &p, het, het_par, seed, &a->loc);
+}
