@@ -41,7 +41,7 @@ CHECKLIB := $(shell pkg-config --libs check 2>/dev/null)
 
 BUILD   := build
 SRC     := $(filter-out src/par/%,$(wildcard src/*/*.c))
-# `make mpi`: the same sources with -DYF_MPI (the hooks of src/par/par.h become MPI calls) plus
+# `make mpi`: the same sources with -DYF_MPI (the hooks of src/step/par.h become MPI calls) plus
 # src/par, compiled by mpicc into build-mpi/; ./yfdem never links MPI.
 ifeq ($(YF_MPI),1)
 YF_CFLAGS += -DYF_MPI

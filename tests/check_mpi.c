@@ -207,26 +207,38 @@ START_TEST(matrix_perf_1e4) {
 }
 END_TEST
 
+/* The state_hash line of dir/cont.json, checked equal to dir/full.json's (the uninterrupted
+ * run); what names the case in a failure.  Returns the line (static). */
+static const char *same_hash_as_full(const char *dir, const char *what) {
+  static char line[64];
+  char path[PATH_MAX + 32];
+  snprintf(path, sizeof path, "%s/full.json", dir);
+  char *a = key_lines(path);
+  snprintf(path, sizeof path, "%s/cont.json", dir);
+  char *b = key_lines(path);
+  const char *ha = strstr(a, "\"state_hash\""), *hb = strstr(b, "\"state_hash\"");
+  ck_assert_msg(ha && hb && !strncmp(ha, hb, 32), "%s differs:\n%s--- uninterrupted:\n%s", what, b, a);
+  const char *sa = strstr(a, "\"steps\""), *sb = strstr(b, "\"steps\"");
+  ck_assert_msg(sa && sb && !strncmp(sa, sb, strcspn(sa, "\n")), "%s: not the same step:\n%s--- uninterrupted:\n%s",
+                what, b, a);
+  snprintf(line, sizeof line, "%.32s", hb);
+  free(a);
+  free(b);
+  return line;
+}
+
 /* Written on 2 ranks at step 40, read on 3, continued to 80: the uninterrupted run's bits. */
 START_TEST(restart_2_to_3) {
   if (!mpi_ready()) return;
-  char *d = perf_dir(80), path[PATH_MAX + 32];
+  char *d = perf_dir(80);
   write_file(d, "full.deck", "read_y2d perf.y\nrun 80\n");
   write_file(d, "first.deck", "read_y2d perf.y\nrun 40\nwrite_restart half.restart\n");
   write_file(d, "second.deck", "read_y2d perf.y\nread_restart half.restart\nrun 80 upto\n");
   ck_assert_int_eq(run_in(d, 0, 1, "-in full.deck -summary full.json", NULL), 0);
   ck_assert_int_eq(run_in(d, 2, 1, "-in first.deck", NULL), 0);
   ck_assert_int_eq(run_in(d, 3, 1, "-in second.deck -summary cont.json", NULL), 0);
-  snprintf(path, sizeof path, "%s/full.json", d);
-  char *a = key_lines(path);
-  snprintf(path, sizeof path, "%s/cont.json", d);
-  char *b = key_lines(path);
-  ck_assert_msg(strstr(a, "\"steps\": 80") && strstr(b, "\"steps\": 80"), "not 80 steps:\n%s\n%s", a, b);
-  char *ha = strstr(a, "\"state_hash\""), *hb = strstr(b, "\"state_hash\"");
-  ck_assert_msg(ha && hb && !strncmp(ha, hb, 32), "restart 2 -> 3 ranks differs:\n%s--- uninterrupted:\n%s", b, a);
-  fprintf(stderr, "check_mpi: restart written on 2 ranks, read on 3: %.32s as the uninterrupted run\n", hb);
-  free(a);
-  free(b);
+  fprintf(stderr, "check_mpi: restart written on 2 ranks, read on 3: %s as the uninterrupted run\n",
+          same_hash_as_full(d, "restart 2 -> 3 ranks"));
   free(d);
 }
 END_TEST
@@ -302,17 +314,10 @@ START_TEST(interrupt_all_ranks) {
   write_file(d, "full.deck", deck);
   ck_assert_int_eq(run_in(d, 3, 1, "-in cont.deck -summary cont.json", NULL), 0);
   ck_assert_int_eq(run_in(d, 0, 1, "-in full.deck -summary full.json", NULL), 0);
-  snprintf(path, sizeof path, "%s/full.json", d);
-  char *a = key_lines(path);
-  snprintf(path, sizeof path, "%s/cont.json", d);
-  char *b = key_lines(path);
-  char *ha = strstr(a, "\"state_hash\""), *hb = strstr(b, "\"state_hash\"");
-  ck_assert_msg(ha && hb && !strncmp(ha, hb, 32), "interrupt at %ld, continued on 3 ranks, differs:\n%s--- ./yfdem:\n%s",
-                k, b, a);
-  fprintf(stderr, "check_mpi: SIGTERM to one rank stopped both at step %ld; continued on 3 ranks to step %ld: %.32s as ./yfdem\n",
-          k, k + 10, hb);
-  free(a);
-  free(b);
+  char what[96];
+  snprintf(what, sizeof what, "interrupt at step %ld, continued on 3 ranks", k);
+  fprintf(stderr, "check_mpi: SIGTERM to one rank stopped both at step %ld; continued on 3 ranks to step %ld: %s as ./yfdem\n",
+          k, k + 10, same_hash_as_full(d, what));
   free(d);
 }
 END_TEST
