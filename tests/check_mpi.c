@@ -49,6 +49,14 @@ static char *workdir(void) {
   return d;
 }
 
+/* The end of a test: its working directory goes (only after a pass: a failure keeps it). */
+static void drop_dir(char *d) {
+  char cmd[64];
+  snprintf(cmd, sizeof cmd, "rm -rf %s", d);
+  ck_assert_int_eq(system(cmd), 0);
+  free(d);
+}
+
 /* Run in dir: ./yfdem (ranks 0) or mpirun -np ranks ./yfdem_mpi, threads OpenMP threads, with
  * args; stderr to dir/err.txt.  Returns the exit code; *secs the wall time. */
 static int run_in(const char *dir, int ranks, int threads, const char *args, double *secs) {
@@ -164,7 +172,7 @@ START_TEST(matrix_column) {
   char *d = workdir(), a[2 * PATH_MAX];
   snprintf(a, sizeof a, "-in %s/decks/column.deck -var steps 120", ROOT);
   matrix("column", d, a, NULL);
-  free(d);
+  drop_dir(d);
 }
 END_TEST
 
@@ -173,7 +181,7 @@ START_TEST(matrix_beam) {
   char *d = workdir(), a[2 * PATH_MAX];
   snprintf(a, sizeof a, "-in %s/decks/beam.deck -var steps 300 -var every 100", ROOT);
   matrix("beam", d, a, "beam_000003.h5"); /* frames at steps 0, 100, 200, 300 */
-  free(d);
+  drop_dir(d);
 }
 END_TEST
 
@@ -185,7 +193,7 @@ START_TEST(matrix_y2d) {
   snprintf(deck, sizeof deck, "read_y2d %s/tests/y2d/decks/%s.y\nrun 150\n", ROOT, Y2D[_i]);
   write_file(d, "y.deck", deck);
   matrix(Y2D[_i], d, "-in y.deck", NULL);
-  free(d);
+  drop_dir(d);
 }
 END_TEST
 
@@ -203,7 +211,7 @@ START_TEST(matrix_perf_1e4) {
   char *d = perf_dir(40);
   write_file(d, "p.deck", "read_y2d perf.y\nrun 40\n");
   matrix("y2d_perf 1e4", d, "-in p.deck", NULL);
-  free(d);
+  drop_dir(d);
 }
 END_TEST
 
@@ -239,7 +247,7 @@ START_TEST(restart_2_to_3) {
   ck_assert_int_eq(run_in(d, 3, 1, "-in second.deck -summary cont.json", NULL), 0);
   fprintf(stderr, "check_mpi: restart written on 2 ranks, read on 3: %s as the uninterrupted run\n",
           same_hash_as_full(d, "restart 2 -> 3 ranks"));
-  free(d);
+  drop_dir(d);
 }
 END_TEST
 
@@ -264,7 +272,7 @@ START_TEST(error_all_ranks) {
   ck_assert_int_eq(rc, 1);
   ck_assert_int_eq(count_in(d, "err.txt", "bad.deck:2:"), 1); /* one message, not one per rank */
   ck_assert_msg(secs < 60, "took %.1f s", secs);
-  free(d);
+  drop_dir(d);
 }
 END_TEST
 
@@ -282,7 +290,7 @@ START_TEST(error_one_rank) {
   ck_assert_int_eq(count_in(d, "err.txt", "injected failure"), 1);
   ck_assert_msg(secs < 60, "took %.1f s", secs);
   fprintf(stderr, "check_mpi: a failure on rank 1 of 3 ended every rank with exit 3 in %.1f s\n", secs);
-  free(d);
+  drop_dir(d);
 }
 END_TEST
 
@@ -318,7 +326,7 @@ START_TEST(interrupt_all_ranks) {
   snprintf(what, sizeof what, "interrupt at step %ld, continued on 3 ranks", k);
   fprintf(stderr, "check_mpi: SIGTERM to one rank stopped both at step %ld; continued on 3 ranks to step %ld: %s as ./yfdem\n",
           k, k + 10, same_hash_as_full(d, what));
-  free(d);
+  drop_dir(d);
 }
 END_TEST
 
