@@ -3,7 +3,8 @@
 #   make          build ./yfdem
 #   make mpi      build ./yfdem_mpi (MPI ranks, src/par; OpenMPI: tools/install-deps --mpi)
 #   make demo     install what is missing (tools/install-deps), build, run the main example deck
-#   make check    install what tests need, build, run every Check suite through one runner
+#   make check    install what tests need, build, run every Check suite through one runner, then
+#                 the dumps in a real ParaView (tests/paraview/run)
 #   make bench    element-steps per second, thread scaling, bytes per element
 #   make bench-mpi the same on 1 and 2 MPI ranks x 1 and 2 threads at 1e5 and 1e6 (./yfdem_mpi)
 #   make asan     the whole test suite under AddressSanitizer + UBSan (build-asan/; CI runs it)
@@ -106,6 +107,9 @@ check: deps-test
 	$(MAKE) yfdem $(BUILD)/check_yfdem
 	if command -v $(MPICC) >/dev/null; then $(MAKE) mpi; fi
 	CK_TIMEOUT_MULTIPLIER=$${CK_TIMEOUT_MULTIPLIER:-3} OMP_NUM_THREADS=2 YFDEM=./yfdem YFDEM_MPI=./yfdem_mpi $(BUILD)/check_yfdem
+	YFDEM=./yfdem tests/paraview/run
+	YFDEM=./yfdem tests/convert/run
+	YFDEM=./yfdem tests/readme/run
 
 test: yfdem $(BUILD)/check_yfdem
 	OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem

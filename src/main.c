@@ -4,6 +4,7 @@
  *   yfdem -in beam.deck -var n 40 -log run.log -summary run.json
  *   yfdem old_model.y            (a Y2D input deck, run to its own last step)
  */
+#include <errno.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -35,11 +36,11 @@ static void usage(FILE *fp) {
           "options:\n"
           "  -in FILE          read the deck from FILE (default: standard input)\n"
           "  -var NAME VALUE   define variable NAME (repeatable; the deck's own definition is then ignored)\n"
-          "  -log FILE         copy everything printed to FILE\n"
+          "  -log FILE|none    copy the input lines, thermo lines and messages to FILE (default log.yfdem)\n"
           "  -echo             print each command before running it\n"
           "  -summary FILE     write a JSON summary at the end (also after an error)\n"
           "  -h [COMMAND]      this help, or the usage of one deck command\n"
-          "  -reference        print the deck reference (markdown) and exit\n"
+          "  -reference [sections]  print the deck reference (markdown table, or a section per command)\n"
           "  -version          print the version\n"
           "exit codes: 0 ok, 1 deck error, 2 I/O error, 3 numerical failure, 4 interrupted, 70 internal error\n\n"
           "deck commands:\n",
@@ -53,6 +54,7 @@ static void finish(int code, const char *message) {
   if (g_sim.summary_path[0]) summary_write(&g_sim, g_sim.summary_path, code, message);
   if (g_sim.log) {
     if (message && *message) fprintf(g_sim.log, "%s\n", message);
+    yf_set_log(NULL);
     fclose(g_sim.log);
     g_sim.log = NULL;
   }
@@ -70,21 +72,27 @@ int main(int argc, char **argv) {
   yf_set_cleanup(finish);
   g_deck = deck_new(&g_sim);
   io_attach(&g_sim); /* dumps, metrics and restarts (and the interrupt restart) observe the run loop */
-  const char *in = NULL;
+  const char *in = NULL, *log_path = "log.yfdem"; /* as LAMMPS writes log.lammps */
   int echo = 0;
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     if (!strcmp(o, "-h") || !strcmp(o, "-help") || !strcmp(o, "--help")) {
       if (i + 1 < argc) {
         const YfCommand *c = deck_find_command(argv[i + 1]);
-        if (!c) { fprintf(stderr, "yfdem: no deck command '%s'\n", argv[i + 1]); return YF_EXIT_DECK; }
+        if (!c) {
+          const char *near = deck_nearest_command(argv[i + 1]);
+          if (near) fprintf(stderr, "yfdem: no deck command '%s' (did you mean '%s'?)\n", argv[i + 1], near);
+          else fprintf(stderr, "yfdem: no deck command '%s' (yfdem -h lists them)\n", argv[i + 1]);
+          return YF_EXIT_DECK;
+        }
         printf("%s\n  %s\n  example: %s\n", c->usage, c->help, c->example);
         return 0;
       }
       usage(stdout);
       return 0;
     } else if (!strcmp(o, "-reference")) {
-      commands_print_reference(stdout);
+      if (i + 1 < argc && !strcmp(argv[i + 1], "sections")) commands_print_sections(stdout);
+      else commands_print_reference(stdout);
       return 0;
     } else if (!strcmp(o, "-version") || !strcmp(o, "--version")) {
       printf("yfdem %s\n", YF_VERSION);
@@ -95,10 +103,7 @@ int main(int argc, char **argv) {
       deck_set_var(g_deck, argv[i + 1], argv[i + 2]);
       i += 2;
     } else if (!strcmp(o, "-log") && i + 1 < argc) {
-      ++i;
-      if (!yf_writer()) continue; /* MPI: rank 0 writes the log */
-      g_sim.log = fopen(argv[i], "w");
-      if (!g_sim.log) yf_io_error(NULL, "cannot open log file '%s'", argv[i]);
+      log_path = argv[++i];
     } else if (!strcmp(o, "-echo")) {
       echo = 1;
     } else if (!strcmp(o, "-summary") && i + 1 < argc) {
@@ -109,6 +114,13 @@ int main(int argc, char **argv) {
       fprintf(stderr, "yfdem: unknown or incomplete option '%s' (try yfdem -h)\n", o);
       return YF_EXIT_DECK;
     }
+  }
+  if (strcmp(log_path, "none") != 0 && yf_writer()) { /* MPI: rank 0 writes the log */
+    g_sim.log = fopen(log_path, "w");
+    if (!g_sim.log)
+      yf_io_error(NULL, "cannot open log file '%s': %s (give another with -log FILE, or -log none)", log_path,
+                  strerror(errno));
+    yf_set_log(g_sim.log);
   }
   deck_set_echo(g_deck, echo);
   signal(SIGINT, on_signal);

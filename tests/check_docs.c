@@ -6,6 +6,7 @@
 #include <string.h>
 #include "commands.h"
 #include "deck.h"
+#include "yftest.h"
 
 START_TEST(test_readme_reference_matches_table) {
   FILE *f = fopen("README.md", "r");
@@ -35,10 +36,34 @@ START_TEST(test_readme_reference_matches_table) {
 }
 END_TEST
 
+/* docs/reference.md, a section per command, is the command table too. */
+START_TEST(test_reference_sections_match_table) {
+  char *doc = yft_slurp("docs/reference.md", 0);
+  ck_assert_msg(doc != NULL, "docs/reference.md not found (run the tests from the repository root)");
+  char *gen = NULL;
+  size_t glen = 0;
+  FILE *m = open_memstream(&gen, &glen);
+  commands_print_sections(m);
+  fclose(m);
+  ck_assert_msg(strlen(doc) == glen && !memcmp(doc, gen, glen),
+                "docs/reference.md differs from the command table: run tools/update-reference");
+  for (const YfCommand *c = yf_commands; c->name; c++) {
+    char key[80];
+    snprintf(key, sizeof key, "\n## %s\n", c->name);
+    ck_assert_msg(strstr(doc, key) != NULL, "command %s has no section", c->name);
+  }
+  ck_assert_msg(strstr(doc, "Related: [`fix`](#fix)") != NULL || strstr(doc, "[`fix`](#fix)") != NULL,
+                "no related-command links");
+  free(gen);
+  free(doc);
+}
+END_TEST
+
 Suite *docs_suite(void) {
   Suite *s = suite_create("docs");
   TCase *t = tcase_create("readme");
   tcase_add_test(t, test_readme_reference_matches_table);
+  tcase_add_test(t, test_reference_sections_match_table);
   suite_add_tcase(s, t);
   return s;
 }

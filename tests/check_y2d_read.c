@@ -259,6 +259,9 @@ static const struct {
   {"clockwise.y", 1, 11, "not counter-clockwise, first element 1"},
   {"negative_size.y", 1, 4, "/YD/YDE/MELEM: negative value -2"},
   {"no_bc_set.y", 1, 30, "/YD/YDPN/NPNSET = 0 must be >= 1"},
+  {"other_derivative.y", 1, 4, "/YD/YDC/ICSAVF: not a Y2D key (restart save frequency"},
+  {"ygeo_ydp_group.y", 1, 21, "/YD/YDP/MPROP: Y-Geo group /YD/YDP/"},
+  {"nnodim3.y", 1, 13, "/YD/YDN/NNODIM = 3: yfdem reads 2D decks only"},
 };
 
 START_TEST(test_bad_decks) {

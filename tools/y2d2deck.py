@@ -1,22 +1,30 @@
 #!/usr/bin/env python3
 """Convert a Y2D input deck (.y) into an equivalent, readable yfdem deck.
 
-usage: y2d2deck.py DECK.y OUT [--body-per-component]
-  writes OUT.deck plus, per body B, OUT_B.nodes (rows "id x y") and OUT_B.tris (rows
-  "id n1 n2 n3 material"); ids are the Y2D node and element indices (0-based), so results can be
-  compared with Y2D outputs by id.  A node shared by two bodies is written once per body; the
-  second copy gets a new id (NNOPO + k), listed in a comment.
+usage: y2d2deck.py DECK.y OUT
+  writes OUT.deck plus OUT.nodes (rows "id x y") and OUT.tris (rows "id n1 n2 n3 material"): the
+  Y2D nodes and elements in input order, ids = the Y2D indices (0-based), one body 'y2d', so the
+  converted deck sums forces in the order `yfdem DECK.y` does and results compare by id.
 
-What is translated (assumed native syntax = the SYNTAX dict below, one place to adapt):
+The converted deck runs the physics of `yfdem DECK.y` (tests/convert/run compares the final
+energies, broken joints and contact pairs of the four shared decks: within 1e-9 of the energy
+scale, not bitwise, since the native velocity update is not Y2D's BC-set update).
+
+What is translated (native syntax = the SYNTAX dict below, one place to adapt):
   DCSTEC                     -> timestep DT
   MCSTEP - NCSTEP            -> run N
   ICSHTF / ICOUTF            -> thermo N / dump ID h5 N FILE
   DCGRAY                     -> gravity 0 G  (note: Y2D applies gravity to BC kinds 1 and 2 only)
   /YD/YDPE/ property p       -> material p<p> elastic rho R lambda L mu M visc K volfac 0.5
                                 pen_n PE pen_t PT friction FR  (Y2D's law uses lambda/2: volfac 0.5)
-  bodies                     -> one body per /YD/YDPM/ meshing row (its properties, jointed) and one
-                                body "solid" for the triangles of properties not meshed
-                                (--body-per-component: one body per connected piece instead)
+  joint set j (/YD/YDPJ/)    -> jointprop j<j> ft fs gf pen law munjiza [cohesion C friction MU]
+                                damage reversible floor y2d  (Y2D's law: no damage memory, 2 o_p floor)
+  meshing row r of code 3    -> group row<r> tri id ... (the triangles of its properties) and
+                                fracture y2d j<s> group row<r>, s = the I2PMIJ set of its properties
+  MICOUP > 0                 -> group contact_tris tri id ... (every triangle, or with IWFAST > 0
+                                those with a corner flagged in I1NOBF and those of jointed rows),
+                                contact self contact_tris, contact buffer DIEZON joined keep
+                                surface all search travel shared keep
   D2NVC                      -> velocity GROUP set VX VY, one group per distinct initial velocity
   BC sets (/YD/YDPN/, global frame only):
     kind 3 (velocity) amp 0 in x and y        -> fix ID GROUP fixed xy   (x or y alone likewise)
@@ -25,15 +33,13 @@ What is translated (assumed native syntax = the SYNTAX dict below, one place to 
     D1PNAP (edge pressure) != 0               -> load ID GROUP pressure P [history H]
     kind 1 amp 0                              -> nothing (free)
   D3PNFAC time table of set s  -> history bc<s> table T1 V1 T2 V2 ...
-  joints (meshing code 3)      -> fracture ... (see SYNTAX['fracture']; written as a comment while
-                                  the native command is not final)
 Not translated (listed as comments in OUT.deck): BC sets with a rotated local frame, kind 2
 (acceleration) conditions, frozen directions (kind not 1/2/3) with non-zero initial velocity,
-D1PNAT edge shear, refinement codes 1/2/4, rigid (type 2) and softening (type 4) triangles,
-history output /YD/YDO/, IWFAST boundary flags, DCSIZ scales.  Differences of semantics the
-converted deck keeps as notes: Y2D time factors are 1.0 outside a table's time range (native
-histories hold their end values); Y2D's edge pressure acts on edges whose two nodes are in sets
-with non-zero D1PNAP.
+D1PNAT edge shear, refinement codes 1/2/4, a meshing row whose property pairs use different joint
+sets, rigid (type 2) and softening (type 4) triangles, history output /YD/YDO/, DCSIZ scales.
+Differences of semantics the converted deck keeps as notes: Y2D time factors are 1.0 outside a
+table's time range (native histories hold their end values); Y2D's edge pressure acts on edges
+whose two nodes are in sets with non-zero D1PNAP.
 
 The .y file is parsed here with the Y2D token rules (comments, $YINCL relative to the working
 directory or the deck's directory, 1D/2D/3D array codes); run `yfdem` on the .y file itself (the
@@ -62,9 +68,13 @@ SYNTAX = {
     'load_pressure': 'load {id} {group} pressure {p!r}{hist}',
     'history':   'history {name} table {pairs}',
     'hist_opt':  ' history {name}',
-    'fracture':  '# fracture {body} {mat_i} {mat_j} ft {ft!r} fs {fs!r} gf {gf!r} pen {pen!r} '
-                 'cohesion {co!r} friction {fr!r}',
-    'contact':   '# contact buffer {buffer!r}',
+    'jointprop': 'jointprop {name} ft {ft!r} fs {fs!r} gf {gf!r} pen {pen!r} law munjiza{mc} '
+                 'damage reversible floor y2d',
+    'mohr_coulomb': ' cohesion {co!r} friction {fr!r}',   # written when D1PJCO > 0
+    'group_tris': 'group {name} tri id {ids}',
+    'fracture':  'fracture {body} {jp} group {group}',
+    'contact_self': 'contact self {group}',
+    'contact':   'contact buffer {buffer!r} joined keep surface all search travel shared keep',
     'thermo':    'thermo {n}',
     'dump':      'dump d1 h5 {n} {file}',
     'run':       'run {n}',
@@ -189,7 +199,7 @@ def wrap(head, items):
     return '\n'.join(lines)
 
 
-def convert(src, out, per_component=False):
+def convert(src, out):
     K = parse(src)
     g = lambda k, d=0: K.get(k, d)
     ne, nn, nprop = g('YDE/NELEM'), g('YDN/NNOPO'), g('YDPE/NPROP')
@@ -214,92 +224,80 @@ def convert(src, out, per_component=False):
                                            pen_t=float(pen_t[p]), fric=float(fric[p])))
     L.append('')
 
-    # ---- bodies
-    body_of_prop = {}
+    # ---- mesh: one body, nodes and triangles in input order (the order of `yfdem FILE.y`, so
+    # sums over nodes and triangles run in the same order and the results are the same bits)
     rows = get2(K, 'YDPM/I2PMSET') if 'YDPM/I2PMSET' in K else []
-    codes = {}
-    for r, row in enumerate(rows):
-        k, code = row[0], row[1]
-        for p in row[2:2 + k]:
-            body_of_prop[p] = 'b%d' % r
-        codes['b%d' % r] = code
-        if any(c in str(code) for c in '124'):
-            notes.append('meshing row %d: code %d has refinement/detach digits (1, 2, 4) that are '
-                         'not translated' % (r, code))
-    tri_body = [body_of_prop.get(elpr[e], 'solid') for e in range(ne)]
-    if per_component:   # split 'solid' into connected pieces (shared nodes)
-        parent = list(range(nn))
-
-        def find(a):
-            while parent[a] != a:
-                parent[a] = parent[parent[a]]
-                a = parent[a]
-            return a
-        for e in range(ne):
-            if tri_body[e] == 'solid':
-                for k in (1, 2):
-                    parent[find(elto[e][0])] = find(elto[e][k])
-        comp = {}
-        for e in range(ne):
-            if tri_body[e] == 'solid':
-                tri_body[e] = comp.setdefault(find(elto[e][0]), 'solid%d' % len(comp))
-    bodies = sorted(set(tri_body), key=lambda b: min(e for e in range(ne) if tri_body[e] == b))
-    owner, dup, next_id = {}, {}, nn
+    used = sorted({n for e in range(ne) for n in elto[e][:3]})
     ids_of_node = {n: [] for n in range(nn)}
+    for n in used:
+        ids_of_node[n].append(n)
     base = os.path.basename(out)
-    L.append('# mesh: one body per Y2D meshing row (jointed) or unjointed piece; ids = Y2D indices')
-    for b in bodies:
-        tris = [e for e in range(ne) if tri_body[e] == b]
-        nodes = sorted({n for e in tris for n in elto[e][:3]})
-        idmap = {}
-        for n in nodes:
-            if n not in owner:
-                owner[n] = b
-                idmap[n] = n
-            else:
-                idmap[n] = next_id
-                dup[next_id] = n
-                next_id += 1
-            ids_of_node[n].append(idmap[n])
-        with open('%s_%s.nodes' % (out, b), 'w') as f:
-            for n in nodes:
-                f.write('%d %r %r\n' % (idmap[n], float(xy[n][0]), float(xy[n][1])))
-        with open('%s_%s.tris' % (out, b), 'w') as f:
-            for e in tris:
-                v = elto[e]
-                f.write('%d %d %d %d p%d\n' % (e, idmap[v[0]], idmap[v[1]], idmap[v[2]], elpr[e]))
-        L.append(SYNTAX['nodes'].format(file='%s_%s.nodes' % (base, b), body=b))
-        L.append(SYNTAX['triangles'].format(file='%s_%s.tris' % (base, b), body=b))
-    if dup:
-        L.append('# nodes shared by two bodies, written again with a new id: ' +
-                 ' '.join('%d=%d' % (i, n) for i, n in sorted(dup.items())))
+    body = 'y2d'
+    with open('%s.nodes' % out, 'w') as f:
+        for n in used:
+            f.write('%d %r %r\n' % (n, float(xy[n][0]), float(xy[n][1])))
+    with open('%s.tris' % out, 'w') as f:
+        for e in range(ne):
+            v = elto[e]
+            f.write('%d %d %d %d p%d\n' % (e, v[0], v[1], v[2], elpr[e]))
+    L.append('# mesh: the Y2D nodes and elements in input order, ids = Y2D indices (0-based)')
+    L.append(SYNTAX['nodes'].format(file='%s.nodes' % base, body=body))
+    L.append(SYNTAX['triangles'].format(file='%s.tris' % base, body=body))
     unused = [n for n in range(nn) if not ids_of_node[n]]
     if unused:
         notes.append('%d node(s) used by no triangle were dropped (first: %d)' % (len(unused), unused[0]))
     L.append('')
 
-    # ---- joints
+    # ---- joints: each meshing row of code 3 gets joints on the edges of its triangles, with the
+    # joint set I2PMIJ gives its property pair
+    meshed = [False] * ne
     if 'YDPJ/NPJSET' in K and rows:
         npj = g('YDPJ/NPJSET')
         pj = lambda name: arr1(K, 'YDPJ/' + name, npj, 0.0)
         ft, fs, gf, pen, co, fr = (pj(n) for n in ('D1PJFT', 'D1PJFS', 'D1PJGF', 'D1PJPE', 'D1PJCO', 'D1PJFR'))
-        L.append('# joints (Y2D meshing code 3): cohesive joints on every edge between triangles of a body')
-        for m in get2(K, 'YDPM/I2PMIJ'):
-            pi, pjj, s = m
-            b = body_of_prop.get(pi)
-            if b is None or '3' not in str(codes.get(b, '')):
+        pair_set = {}
+        for m in get2(K, 'YDPM/I2PMIJ') if 'YDPM/I2PMIJ' in K else []:
+            pair_set[(m[0], m[1])] = m[2]
+            pair_set[(m[1], m[0])] = m[2]
+        L.append('# joints (Y2D meshing code 3): Munjiza\'s law with Y2D\'s floor, no damage memory')
+        for j in range(npj):
+            mc = SYNTAX['mohr_coulomb'].format(co=float(co[j]), fr=float(fr[j])) if float(co[j]) > 0 else ''
+            if float(co[j]) <= 0 and float(fr[j]) != 0:
+                notes.append('joint set %d: friction %g without cohesion (D1PJCO = 0) not translated' % (j, fr[j]))
+            L.append(SYNTAX['jointprop'].format(name='j%d' % j, ft=float(ft[j]), fs=float(fs[j]), gf=float(gf[j]),
+                                                pen=float(pen[j]), mc=mc))
+        for r, row in enumerate(rows):
+            k, code = row[0], row[1]
+            props = list(row[2:2 + k])
+            if k <= 0 or '3' not in str(code):
                 continue
-            L.append(SYNTAX['fracture'].format(body=b, mat_i='p%d' % pi, mat_j='p%d' % pjj,
-                                               ft=float(ft[s]), fs=float(fs[s]), gf=float(gf[s]),
-                                               pen=float(pen[s]), co=float(co[s]), fr=float(fr[s])))
+            if any(c in str(code) for c in '124'):
+                notes.append('meshing row %d: code %d has refinement/detach digits (1, 2, 4) that are '
+                             'not translated' % (r, code))
+            sets = {pair_set.get((a, b)) for a in props for b in props}
+            if len(sets) != 1 or None in sets:
+                notes.append('meshing row %d: its property pairs use joint sets %s; written with the set of '
+                             'its first property' % (r, sorted(x for x in sets if x is not None)))
+            jset = pair_set.get((props[0], props[0]), 0)
+            tris = [e for e in range(ne) if elpr[e] in props]
+            for e in tris:
+                meshed[e] = True
+            L.append(wrap(SYNTAX['group_tris'].format(name='row%d' % r, ids='').rstrip(), [str(e) for e in tris]))
+            L.append(SYNTAX['fracture'].format(body=body, jp='j%d' % jset, group='row%d' % r))
         L.append('')
 
-    # ---- contact
+    # ---- contact: every participating triangle against every other, couples sharing a node kept
+    # (Y2D's MICOUP); with IWFAST > 0 only triangles with a corner flagged in I1NOBF take part, and
+    # the triangles of jointed rows (their new nodes are flagged)
     if g('YDI/MICOUP') > 0:
+        nobf = arr1(K, 'YDN/I1NOBF', nn, 0)
+        iwfast = g('YDC/IWFAST', 1)
+        part = [e for e in range(ne) if iwfast == 0 or meshed[e] or any(nobf[v] == 1 for v in elto[e][:3])]
+        L.append('# contact (Y2D MICOUP %d, buffer DIEZON, IWFAST %d: %d of %d triangles take part)'
+                 % (g('YDI/MICOUP'), iwfast, len(part), ne))
+        L.append(wrap(SYNTAX['group_tris'].format(name='contact_tris', ids='').rstrip(), [str(e) for e in part]))
+        L.append(SYNTAX['contact_self'].format(group='contact_tris'))
         L.append(SYNTAX['contact'].format(buffer=float(g('YDI/DIEZON', 0.0))))
-        if g('YDC/IWFAST', 1) > 0:
-            notes.append('IWFAST > 0: Y2D lets only triangles with a flagged node (I1NOBF) take part '
-                         'in contact; not translated')
         L.append('')
 
     # ---- initial velocities
@@ -397,22 +395,21 @@ def convert(src, out, per_component=False):
     head = ['# NOTES (not translated or different semantics):'] + ['#   ' + n for n in notes]
     with open(out + '.deck', 'w') as f:
         f.write('\n'.join(L[:1] + head + L[1:]) + '\n')
-    return out + '.deck', len(bodies), notes
+    return out + '.deck', 1, notes
 
 
 def main():
     ap = argparse.ArgumentParser(description='Y2D .y deck -> yfdem deck (see the docstring)')
     ap.add_argument('deck')
-    ap.add_argument('out', help='output base name: OUT.deck, OUT_<body>.nodes/.tris')
-    ap.add_argument('--body-per-component', action='store_true')
+    ap.add_argument('out', help='output base name: OUT.deck, OUT.nodes, OUT.tris')
     a = ap.parse_args()
     try:
-        path, nb, notes = convert(a.deck, a.out, a.body_per_component)
+        path, _, notes = convert(a.deck, a.out)
     except (DeckError, OSError, KeyError, IndexError, ValueError) as e:
         sys.stderr.write('error: %s: %s\n' % (a.deck, e if not isinstance(e, KeyError) else
                                               'required key %s missing' % e))
         sys.exit(1)
-    print('wrote %s (%d bodies, %d notes)' % (path, nb, len(notes)))
+    print('wrote %s (%d notes)' % (path, len(notes)))
 
 
 if __name__ == '__main__':

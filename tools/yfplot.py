@@ -10,8 +10,11 @@ frame's current positions, so no crack data is needed in the frames themselves. 
 pieces connected through shared nodes and joints not yet broken at the frame's time.
 
   yfplot.py cracks STEM --breaks breaks.csv [--opened opened.csv] --times 2e-4,1e-3 -o out.png
+             [--min-damage Z] [--layout column|row]
       deformed mesh at the frames nearest to the given times [s], fragments coloured, cracks by
-      mode (I red, II blue, mixed green): opened thin, broken bold  -- the paper's figures 6 and 9
+      mode (I red, II blue, mixed green): opened thin, broken bold  -- the paper's figures 6 and 9;
+      --min-damage draws only opened cracks of damage >= Z (the frame's /joint_damage), --layout
+      puts the panels side by side (row) instead of stacked
   yfplot.py stress STEM --time T [--body N] -o out.png
       max principal stress contours [MPa] at the frame nearest to T (elastic variant, figure 7)
   yfplot.py history LOG.csv -o out.png
@@ -57,19 +60,26 @@ def read_frame(path):
         d["body"] = f["mesh/body"][()] if "mesh/body" in f else np.zeros(len(d["tri"]), int)
         if "mesh/tri_id" in f:
             d["tri_id"] = f["mesh/tri_id"][()]
-        for k in ("sigma1", "stress", "u"):
+        for k in ("sigma1", "stress", "u", "joint_damage"):
             if k in f:
                 d[k] = f[k][()]
     return d
 
 
 def nearest_frame(stem, t):
+    """The frame nearest to t [s]; an error when no frame is within half a frame interval of t."""
     fs = frames(stem)
     times = []
     for p in fs:
         with h5py.File(p, "r") as f:
             times.append(float(f["time"][()]))
-    i = int(np.argmin(np.abs(np.array(times) - t)))
+    times = np.array(times)
+    i = int(np.argmin(np.abs(times - t)))
+    gap = np.max(np.diff(times)) if len(times) > 1 else 0.0
+    if abs(times[i] - t) > 0.5 * gap * (1 + 1e-9) or (len(times) == 1 and times[0] != t):
+        sys.exit("yfplot: no frame at t = %g s: the %d frames of %s cover %g to %g s (every %g s); "
+                 "choose --times within that range, or dump more often" % (t, len(times), stem, times[0], times[-1],
+                                                                          gap))
     return read_frame(fs[i])
 
 
@@ -153,15 +163,31 @@ def draw_cracks(ax, fr, breaks, t, lw=1.6, what="broken", skip=()):
                                              label="%s, mode %s" % (what, m)))
 
 
+def panels(n, a):
+    """n panels stacked (--layout column) or side by side (row), as a flat list."""
+    if a.layout == "row":
+        fig, axs = plt.subplots(1, n, figsize=(a.width * n, a.height), squeeze=False)
+        return fig, list(axs[0, :])
+    fig, axs = plt.subplots(n, 1, figsize=(a.width, a.height * n), squeeze=False)
+    return fig, list(axs[:, 0])
+
+
 def cmd_cracks(a):
     breaks = read_breaks(a.breaks)
     opened = read_breaks(a.opened)
     times = [float(v) for v in a.times.split(",")]
     n = len(times)
-    fig, axs = plt.subplots(n, 1, figsize=(a.width, a.height * n), squeeze=False)
+    fig, axl = panels(n, a)
     cmap = plt.get_cmap("tab20")
-    for ax, t in zip(axs[:, 0], times):
+    for ax, t in zip(axl, times):
         fr = nearest_frame(a.stem, t)
+        shown = opened
+        if a.min_damage is not None:  # opened cracks whose damage at this frame reaches Z
+            if "joint_damage" not in fr:
+                sys.exit("yfplot: --min-damage needs /joint_damage in the frames (a fracturing scene's h5 dump)")
+            z = fr["joint_damage"]
+            shown = [b for b in opened
+                     if 0 <= int(b.get("joint", -1)) < len(z) and z[int(b["joint"])] >= a.min_damage]
         tf = float(fr["time"])
         ix = tri_index(fr)
         pairs = {(min(ix(b["triA"]), ix(b["triB"])), max(ix(b["triA"]), ix(b["triB"]))) for b in breaks
@@ -180,10 +206,10 @@ def cmd_cracks(a):
         polys = fr["x"][fr["tri"]]
         ax.add_collection(PolyCollection(polys, facecolors=colors, edgecolors="#9a9a9a", linewidths=0.15))
         done = {(b["triA"], b["triB"]) for b in breaks if b["time"] <= tf}
-        draw_cracks(ax, fr, opened, tf, lw=0.7, what="opened", skip=done)
+        draw_cracks(ax, fr, shown, tf, lw=0.7, what="opened", skip=done)
         draw_cracks(ax, fr, breaks, tf)
         nb = len(done)
-        no = sum(1 for b in opened if b["time"] <= tf)
+        no = sum(1 for b in shown if b["time"] <= tf)
         nfr = len(np.unique(lab[fr["body"] == a.body]))
         ax.set_title("t = %.3g ms: %s%d broken joints, %d pieces of the body" %
                      (tf * 1e3, "%d opened, " % no if a.opened else "", nb, nfr), fontsize=10)
@@ -195,8 +221,8 @@ def cmd_cracks(a):
             ax.set_ylim(*[float(v) for v in a.ylim.split(",")])
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
-    h, l = axs[0, 0].get_legend_handles_labels()
-    for ax in axs[1:, 0]:
+    h, l = axl[0].get_legend_handles_labels()
+    for ax in axl[1:]:
         hh, ll = ax.get_legend_handles_labels()
         for x, y in zip(hh, ll):
             if y not in l:
@@ -281,36 +307,40 @@ def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     sub = p.add_subparsers(dest="cmd", required=True)
     c = sub.add_parser("cracks", help="crack pattern and fragments at chosen times")
-    c.add_argument("stem")
-    c.add_argument("--breaks", required=True)
+    c.add_argument("stem", help="dump stem: the FILE of `dump ID h5 N FILE.h5` (frames STEM_NNNNNN.h5)")
+    c.add_argument("--breaks", required=True, help="broken-joint CSV (fracture_log FILE)")
     c.add_argument("--opened", help="opened-crack CSV (fracture_log ... opened FILE2)")
-    c.add_argument("--times", required=True)
+    c.add_argument("--times", required=True, help="comma-separated times [s], one panel each (nearest frame)")
+    c.add_argument("--min-damage", type=float, metavar="Z",
+                   help="draw only the opened cracks whose damage at the frame is at least Z (0..1; default: all)")
+    c.add_argument("--layout", choices=("column", "row"), default="column",
+                   help="panels stacked (column, default) or side by side (row)")
     c.add_argument("--body", type=int, default=0, help="index of the cracking body (default 0)")
-    c.add_argument("--xlim")
-    c.add_argument("--ylim")
-    c.add_argument("--title")
-    c.add_argument("--width", type=float, default=9)
-    c.add_argument("--height", type=float, default=2.2)
+    c.add_argument("--xlim", help="XMIN,XMAX [m]")
+    c.add_argument("--ylim", help="YMIN,YMAX [m]")
+    c.add_argument("--title", help="title over the figure")
+    c.add_argument("--width", type=float, default=9, help="panel width [inch] (default 9)")
+    c.add_argument("--height", type=float, default=2.2, help="panel height [inch] (default 2.2)")
     c.set_defaults(fn=cmd_cracks)
     s = sub.add_parser("stress", help="max principal stress contours")
-    s.add_argument("stem")
-    s.add_argument("--time", type=float, required=True)
-    s.add_argument("--body", type=int, default=0)
-    s.add_argument("--vmax", type=float)
-    s.add_argument("--mark", help="X,Y of a point to mark (first crack)")
-    s.add_argument("--title")
-    s.add_argument("--width", type=float, default=9)
-    s.add_argument("--height", type=float, default=2.6)
+    s.add_argument("stem", help="dump stem (frames STEM_NNNNNN.h5 with the sigma1 field)")
+    s.add_argument("--time", type=float, required=True, help="time [s] (nearest frame)")
+    s.add_argument("--body", type=int, default=0, help="index of the body drawn (default 0)")
+    s.add_argument("--vmax", type=float, help="colour range -VMAX..VMAX [MPa] (default: the data's)")
+    s.add_argument("--mark", help="X,Y [m] of a point to mark (first crack)")
+    s.add_argument("--title", help="title over the figure")
+    s.add_argument("--width", type=float, default=9, help="figure width [inch] (default 9)")
+    s.add_argument("--height", type=float, default=2.6, help="figure height [inch] (default 2.6)")
     s.set_defaults(fn=cmd_stress)
     h = sub.add_parser("history", help="energies and crack growth in time (metrics log CSV)")
-    h.add_argument("log")
-    h.add_argument("--title")
-    h.add_argument("--width", type=float, default=7)
-    h.add_argument("--height", type=float, default=2.6)
+    h.add_argument("log", help="the CSV of `metrics log FILE`")
+    h.add_argument("--title", help="title over the figure")
+    h.add_argument("--width", type=float, default=7, help="panel width [inch] (default 7)")
+    h.add_argument("--height", type=float, default=2.6, help="panel height [inch] (default 2.6)")
     h.set_defaults(fn=cmd_history)
     for q in (c, s, h):
-        q.add_argument("-o", required=True, help="output PNG")
-        q.add_argument("--dpi", type=int, default=110)
+        q.add_argument("-o", required=True, help="output PNG file")
+        q.add_argument("--dpi", type=int, default=110, help="resolution [dots per inch] (default 110)")
     a = p.parse_args(argv)
     a.fn(a)
 

@@ -16,6 +16,9 @@ static YfCleanupFn cleanup_fn;
 static int in_cleanup;
 static void (*exit_hook)(int code);
 static int writer = 1;
+static FILE *log_fp; /* the run's log (main: log.yfdem or -log FILE): warnings are copied to it */
+
+void yf_set_log(FILE *fp) { log_fp = fp; }
 
 const char *yf_status_word(int code) {
   switch (code) {
@@ -102,7 +105,14 @@ void yf_warn(const YfLoc *loc, const char *fmt, ...) {
   va_start(ap, fmt);
   if (k > 0 && (size_t)k < sizeof buf) vsnprintf(buf + k, sizeof buf - (size_t)k, fmt, ap);
   va_end(ap);
-  if (writer) fprintf(stderr, "%s\n", buf);
+  if (writer) {
+    fprintf(stderr, "%s\n", buf);
+    fflush(stderr);
+  }
+  if (log_fp) {
+    fprintf(log_fp, "%s\n", buf);
+    fflush(log_fp);
+  }
 }
 
 void yf_assert_fail(const char *expr, const char *file, int line) {

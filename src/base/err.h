@@ -9,6 +9,7 @@
 #ifndef YF_ERR_H
 #define YF_ERR_H
 #include <stdarg.h>
+#include <stdio.h>
 
 enum {
   YF_EXIT_OK = 0,
@@ -30,6 +31,8 @@ typedef struct {
 
 /* Cleanup hook run once before exit on any error (set by main). */
 typedef void (*YfCleanupFn)(int code, const char *message);
+/* The log file that warnings are copied to (NULL: none). */
+void yf_set_log(FILE *fp);
 void yf_set_cleanup(YfCleanupFn fn);
 /* Called instead of exit(code) after the cleanup when set (tools/fuzz: the harness longjmps back
  * to the next input); it must not return.  NULL: exit. */

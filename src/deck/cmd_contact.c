@@ -50,10 +50,10 @@ static int rule_group(YfSim *s, const YfArgs *a, int i) {
 
 /* contact pair G1 G2 | contact self G | contact off |
  * contact KEY VALUE [KEY VALUE ...] with KEY buffer D|auto, joined keep|skip,
- *                                         surface boundary|all, search travel|every */
+ *                                         surface boundary|all, search travel|every, shared skip|keep */
 void cmd_contact(YfSim *s, const YfArgs *a) {
   arg_count(a, 1, -1);
-  static const char *const words[] = {"pair", "self", "off", "buffer", "joined", "surface", "search", NULL};
+  static const char *const words[] = {"pair", "self", "off", "buffer", "joined", "surface", "search", "shared", NULL};
   int k = arg_choice(a, 0, "contact keyword", words);
   if (k == 0) {
     arg_count(a, 3, 3);
@@ -84,9 +84,12 @@ void cmd_contact(YfSim *s, const YfArgs *a) {
     } else if (key == 5) {
       static const char *const v[] = {"boundary", "all", NULL};
       contact_set_option(s, YF_CONTACT_SURFACE, arg_choice(a, i + 1, "surface", v));
-    } else {
+    } else if (key == 6) {
       static const char *const v[] = {"travel", "every", NULL};
       contact_set_option(s, YF_CONTACT_SEARCH, arg_choice(a, i + 1, "search", v));
+    } else { /* couples of triangles that share a node: skipped (default), or kept as Y2D keeps them */
+      static const char *const v[] = {"skip", "keep", NULL};
+      contact_set_keep_shared(s, arg_choice(a, i + 1, "shared", v));
     }
   }
 }

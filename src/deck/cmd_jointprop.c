@@ -44,7 +44,7 @@ static void read_table(const YfArgs *a, int i, YfJointProp *p) {
 }
 
 /* jointprop NAME ft FT fs FS gf GF pen P [law ...] [cohesion C friction MU] [damage ...]
- *           [floor y2d|none] [weibull M | normal CV] [seed S] */
+ *           [floor y2d|none] [weibull M | normal CV] [seed S] [tangent exact|y2d] */
 void cmd_jointprop(YfSim *s, const YfArgs *a) {
   arg_count(a, 1, -1);
   const char *name = arg_word(a, 0, "name");
@@ -57,7 +57,7 @@ void cmd_jointprop(YfSim *s, const YfArgs *a) {
   double het_par = 0;
   unsigned long seed = 1;
   static const char *const keys[] = {"ft", "fs", "gf", "pen", "law", "cohesion", "friction", "damage", "floor",
-                                     "weibull", "normal", "seed", NULL};
+                                     "weibull", "normal", "seed", "tangent", NULL};
   static const char *const laws[] = {"munjiza", "munjiza_gf", "linear", "bilinear", "table", NULL};
   static const char *const dmg[] = {"reversible", "irreversible", NULL};
   static const char *const floors[] = {"y2d", "none", NULL};
@@ -98,6 +98,12 @@ void cmd_jointprop(YfSim *s, const YfArgs *a) {
       het_par = arg_pos(a, i + 1, k == 9 ? "Weibull modulus" : "coefficient of variation");
       break;
     case 11: seed = (unsigned long)arg_int(a, i + 1, "seed", 0, 4294967295L); break;
+    case 12: {
+      /* y2d: Y2D's unit tangent e/(h + 1e-10 m) (an absolute length: the scene must be in m) */
+      static const char *const tang[] = {"exact", "y2d", NULL};
+      p.hreg = arg_choice(a, i + 1, "tangent", tang) ? 1e-10 : 0.0;
+      break;
+    }
     }
     i += 2;
   }

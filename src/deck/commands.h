@@ -12,4 +12,6 @@
 #undef YF_CMD
 /* Markdown table of every command (the README's deck reference is checked against it). */
 void commands_print_reference(FILE *fp);
+/* The full reference, a markdown section per command (docs/reference.md). */
+void commands_print_sections(FILE *fp);
 #endif

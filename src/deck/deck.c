@@ -65,6 +65,7 @@ typedef struct {
   char *name;
   int style;
   int cmdline;  /* set with -var: the deck cannot redefine it              */
+  int used;     /* looked up or (re)defined by the deck                    */
   char *text;   /* equal: the expression; string: the text                 */
   char **vals;  /* index: the values                                       */
   int nvals, which;
@@ -79,6 +80,8 @@ struct YfDeck {
   int depth;
   DeckSource *sources;
   int echo, quit, jump_skip;
+  char **defnames; /* names the deck's variable commands define, in order  */
+  int ndef, capdef, vars_checked;
   int eval_depth;
 };
 
@@ -274,8 +277,36 @@ static void free_words(char **w, int *c, int n) {
 
 static DeckVar *var_find(YfDeck *d, const char *name) {
   for (int i = 0; i < d->nvars; i++)
-    if (!strcmp(d->vars[i].name, name)) return &d->vars[i];
+    if (!strcmp(d->vars[i].name, name)) {
+      d->vars[i].used = 1;
+      return &d->vars[i];
+    }
   return NULL;
+}
+
+/* A -var NAME that the deck neither defines nor uses is most likely a typo (-var nz for nx): warn
+ * once, before the first run, naming the deck's own variables. */
+static void check_cmdline_vars(YfDeck *d) {
+  if (d->vars_checked) return;
+  d->vars_checked = 1;
+  size_t cap = 16;
+  for (int i = 0; i < d->ndef; i++) cap += strlen(d->defnames[i]) + 2;
+  char *list = yf_malloc(cap, "variable names");
+  list[0] = 0;
+  for (int i = 0; i < d->ndef; i++) {
+    if (i) strcat(list, ", ");
+    strcat(list, d->defnames[i]);
+  }
+  for (int i = 0; i < d->nvars; i++) {
+    const DeckVar *v = &d->vars[i];
+    if (!v->cmdline || v->used) continue;
+    const char *near = d->ndef ? yf_nearest(v->name, (const char *const *)d->defnames, d->ndef) : NULL;
+    char hint[YF_NAME_MAX + 32] = "";
+    if (near) snprintf(hint, sizeof hint, "; did you mean '%s'?", near);
+    yf_warn(NULL, "-var %s: the deck defines and uses no variable '%s' (its variables: %s)%s", v->name, v->name,
+            list[0] ? list : "none", hint);
+  }
+  free(list);
 }
 
 static void var_clear(DeckVar *v) {
@@ -648,6 +679,12 @@ static const char *const *command_names(int *n) {
   return names;
 }
 
+const char *deck_nearest_command(const char *word) {
+  int nn;
+  const char *const *names = command_names(&nn);
+  return yf_nearest(word, names, nn);
+}
+
 /* Substitute, split and dispatch one logical line. */
 static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
   char *line = substitute(d, text, loc);
@@ -665,7 +702,12 @@ static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
     if (d->sim) sim_printf(d->sim, "%s\n", line);
     else printf("%s\n", line);
   }
+  if (d->sim && d->sim->log) { /* the log holds the input as read, as log.lammps does */
+    fprintf(d->sim->log, "%s\n", line);
+    fflush(d->sim->log);
+  }
   const YfCommand *c = deck_find_command(w[0]);
+  if (c && !strcmp(c->name, "run")) check_cmdline_vars(d);
   if (!c) {
     int nn;
     const char *const *names = command_names(&nn);
@@ -715,6 +757,8 @@ void deck_free(YfDeck *d) {
   if (!d) return;
   for (int i = 0; i < d->nvars; i++) var_clear(&d->vars[i]);
   free(d->vars);
+  for (int i = 0; i < d->ndef; i++) free(d->defnames[i]);
+  free(d->defnames);
   DeckSource *s = d->sources;
   while (s) {
     DeckSource *nx = s->next;
@@ -914,6 +958,15 @@ void deck_cmd_variable(struct YfSim *sim, const YfArgs *a) {
     arg_fail(a, 0, "name", "letters, digits and '_' only, not starting with a digit");
   int style = arg_choice(a, 1, "style", var_styles);
   DeckVar *old = var_find(d, name);
+  int known = 0;
+  for (int i = 0; i < d->ndef && !known; i++) known = !strcmp(d->defnames[i], name);
+  if (!known) {
+    if (d->ndef == d->capdef) {
+      d->capdef = d->capdef ? 2 * d->capdef : 16;
+      d->defnames = yf_realloc(d->defnames, (size_t)d->capdef * sizeof *d->defnames, "variable names");
+    }
+    d->defnames[d->ndef++] = yf_strdup(name);
+  }
   if (style == 4) { /* delete */
     arg_count(a, 2, 2);
     var_delete(d, name);

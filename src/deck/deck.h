@@ -34,6 +34,8 @@ typedef struct {
 /* The table generated from commands.def, terminated by a {NULL} row. */
 extern const YfCommand yf_commands[];
 const YfCommand *deck_find_command(const char *name);
+/* The command name nearest to a misspelt word (NULL: none close enough), for "did you mean". */
+const char *deck_nearest_command(const char *word);
 
 /* Interpreter. */
 typedef struct YfDeck YfDeck;

@@ -681,5 +681,5 @@ void metrics_summary(YfSim *s) {
       }
     }
   }
-  if (M.log_path[0]) write_log(s);
+  if (M.log_path[0] && s->model.prepared) write_log(s); /* none for a deck that failed before its first run */
 }

@@ -3,12 +3,14 @@
  * h5 dumps.  `dump ID h5 N FILE.h5` writes frame k to its own HDF5 file STEM_NNNNNN.h5 (STEM is
  * FILE without its .h5/.hdf5/.hdf extension, NNNNNN the frame index k, zero-padded to 6 digits,
  * the extension kept; .h5 when FILE has none) and an XDMF 3 index STEM.xmf that lists the frames
- * (ParaView: File > Open STEM.xmf).  Each frame file is self-contained:
+ * (ParaView: File > Open STEM.xmf), plus STEM_cracks.xmf for the cracks of a scene with joints.  Each frame file is self-contained:
  *
  *   /mesh/{triangles (ntri x 3 int), material, body, tri_id (ntri int),
  *          node_id (n int), x0 (n x 2)}                   the topology at this frame
- *   /time, /step (scalars), /x, /u, /v, /f (n x 2), /stress (ntri x 3: sxx syy sxy),
- *   /vonmises, /sigma1 (ntri),  /fc (n x 2): contact force per node, only while contact is on
+ *   /time, /step (scalars), /x, /u, /v, /f (n x 2), /stress (ntri x 3: sxx syy sxy) and its
+ *   parts /stress_xx, /stress_yy, /stress_xy, /vonmises, /sigma1 (ntri),
+ *   /fc (n x 2): contact force per node, only while contact is on
+ *   /cracks/{segments, xy, state, mode, damage}: the crack series (see xmf_add_frame)
  *
  * Why one file per frame: crash safety by construction.  A file is never modified once written.
  * A frame goes to NAME.tmp, is closed (H5Fclose: every byte handed to the OS), renamed to NAME
@@ -67,6 +69,12 @@
  * what is due. */
 enum { YF_DUMP_Y2DREF = 2 };
 
+/* A growing text: the <Grid> elements of an index. */
+typedef struct {
+  char *s;
+  size_t len, cap;
+} YfText;
+
 typedef struct YfDump {
   char id[YF_NAME_MAX];
   int style;          /* YF_DUMP_H5 | YF_DUMP_CSV                                       */
@@ -83,11 +91,12 @@ typedef struct YfDump {
   long nframe;        /* frames written (including those of a continued series)        */
   long first;         /* number of this process's first frame (> 0: a continued series) */
   long last_step;     /* step of the last frame (LONG_MIN: none)                       */
-  char *grids;        /* XDMF <Grid> elements of the frames so far                     */
+  YfText grids;       /* XDMF <Grid> elements of the frames so far (STEM.xmf)          */
+  YfText cgrids;      /* the crack series' <Grid> elements (STEM_cracks.xmf)           */
+  char *cxmf, *cxmf_tmp; /* STEM_cracks.xmf and its .tmp                               */
   int xmf_pending;    /* frames listed in grids but not yet in the .xmf (see xmf_write)  */
   double xmf_done, xmf_cost; /* when the last index rewrite ended, and what it took [s]  */
   long xmf_writes;    /* index rewrites so far                                         */
-  size_t glen, gcap;
   double *buf;        /* scratch for interleaved / derived arrays                      */
   size_t bufcap;
   FILE *csv_index;    /* PREFIX_frames.csv                                             */
@@ -112,22 +121,22 @@ static char *str_printf(const char *fmt, ...) {
   return p;
 }
 
-static void grids_printf(YfDump *d, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void grids_printf(YfDump *d, const char *fmt, ...) {
+static void grids_printf(YfText *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void grids_printf(YfText *t, const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
   int n = vsnprintf(NULL, 0, fmt, ap);
   va_end(ap);
-  if (d->glen + (size_t)n + 1 > d->gcap) {
-    size_t cap = d->gcap ? d->gcap : 4096;
-    while (cap < d->glen + (size_t)n + 1) cap *= 2;
-    d->grids = yf_realloc(d->grids, cap, "XDMF index text");
-    d->gcap = cap;
+  if (t->len + (size_t)n + 1 > t->cap) {
+    size_t cap = t->cap ? t->cap : 4096;
+    while (cap < t->len + (size_t)n + 1) cap *= 2;
+    t->s = yf_realloc(t->s, cap, "XDMF index text");
+    t->cap = cap;
   }
   va_start(ap, fmt);
-  vsnprintf(d->grids + d->glen, (size_t)n + 1, fmt, ap);
+  vsnprintf(t->s + t->len, (size_t)n + 1, fmt, ap);
   va_end(ap);
-  d->glen += (size_t)n;
+  t->len += (size_t)n;
 }
 
 static double *scratch(YfDump *d, size_t n) {
@@ -277,76 +286,105 @@ static void xml_escape(char *out, size_t cap, const char *s) {
   out[k] = 0;
 }
 
-static void xmf_item(YfDump *d, const char *fname, const char *dims, int is_int, const char *path) {
-  grids_printf(d, "          <DataItem Dimensions=\"%s\" NumberType=\"%s\" Precision=\"%d\" "
+static const char *const stress_parts[3] = {"stress_xx", "stress_yy", "stress_xy"};
+
+static void xmf_item(YfText *t, const char *fname, const char *dims, int is_int, const char *path) {
+  grids_printf(t, "          <DataItem Dimensions=\"%s\" NumberType=\"%s\" Precision=\"%d\" "
                   "Format=\"HDF\">%s:%s</DataItem>\n",
                dims, is_int ? "Int" : "Float", is_int ? 4 : 8, fname, path);
 }
 
-static void xmf_attr(YfDump *d, const char *fname, const char *name, const char *type,
+static void xmf_attr(YfText *t, const char *fname, const char *name, const char *type,
                      const char *center, const char *dims, int is_int, const char *path) {
-  grids_printf(d, "        <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", name,
+  grids_printf(t, "        <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", name,
                type, center);
-  xmf_item(d, fname, dims, is_int, path);
-  grids_printf(d, "        </Attribute>\n");
+  xmf_item(t, fname, dims, is_int, path);
+  grids_printf(t, "        </Attribute>\n");
 }
 
 /* Append the <Grid> of the frame just written (file d->cur; the .xmf sits in the same
- * directory and names it without the directory, so the pair can be moved together). */
-static void xmf_add_frame(YfDump *d, double time, long step, int n, int nt, int with_fc, int ncrack) {
+ * directory and names it without the directory, so the pair can be moved together).
+ *
+ * Why two indexes: ParaView's default XDMF reader (Xdmf3ReaderS, 5.11) merges the grids of a
+ * spatial collection into one dataset and keeps only the arrays that every grid has, so frames
+ * that held the triangles and the crack segments together drew every field flat grey (and the
+ * legacy reader showed frame 0 only).  The triangles are therefore one temporal series of
+ * uniform grids (STEM.xmf) and the cracks another (STEM_cracks.xmf, every frame of a scene with
+ * joints), each of which colours in any reader.  A frame before the first crack opens lists one
+ * zero-length segment with state, mode and damage 0 at the first node (`at`), written inline: the
+ * reader crashes (SIGFPE) on a grid without cells, and the frame file's /cracks stays empty.
+ * The stress tensor is listed as three named scalars (/stress_xx, /stress_yy, /stress_xy): XDMF's
+ * vector would name the parts of /stress X, Y, Z and give a meaningless magnitude, its symmetric
+ * tensor is the 3-D Tensor6, and the same parts read as hyperslabs of /stress are skipped by
+ * Xdmf3ReaderS ("unrecognized array type"). */
+static void xmf_add_frame(YfDump *d, double time, long step, int n, int nt, int with_fc, int ncrack,
+                          const double *at) {
   char fname[1024], p[32], dn2[48], dt3[48], dt1[48];
   const char *base = strrchr(d->cur, '/');
   xml_escape(fname, sizeof fname, base ? base + 1 : d->cur);
   snprintf(dn2, sizeof dn2, "%d 2", n);
   snprintf(dt3, sizeof dt3, "%d 3", nt);
   snprintf(dt1, sizeof dt1, "%d", nt);
-  if (ncrack > 0) {
-    /* a frame with cracks is a spatial collection: the triangles and the crack segments */
-    grids_printf(d, "      <Grid Name=\"frame_%06ld\" GridType=\"Collection\" CollectionType=\"Spatial\">\n",
-                 d->nframe);
-    grids_printf(d, "        <Time Value=\"%.17g\"/>\n", time);
-  }
-  grids_printf(d, "      <Grid Name=\"frame_%06ld\" GridType=\"Uniform\">\n", d->nframe);
-  grids_printf(d, "        <Time Value=\"%.17g\"/>\n", time);
-  grids_printf(d, "        <Information Name=\"step\" Value=\"%ld\"/>\n", step);
-  grids_printf(d, "        <Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\" "
+  YfText *t = &d->grids;
+  grids_printf(t, "      <Grid Name=\"frame_%06ld\" GridType=\"Uniform\">\n", d->nframe);
+  grids_printf(t, "        <Time Value=\"%.17g\"/>\n", time);
+  grids_printf(t, "        <Information Name=\"step\" Value=\"%ld\"/>\n", step);
+  grids_printf(t, "        <Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\" "
                   "NodesPerElement=\"3\">\n", nt);
-  xmf_item(d, fname, dt3, 1, "/mesh/triangles");
-  grids_printf(d, "        </Topology>\n        <Geometry GeometryType=\"XY\">\n");
-  xmf_item(d, fname, dn2, 0, "/x");
-  grids_printf(d, "        </Geometry>\n");
+  xmf_item(t, fname, dt3, 1, "/mesh/triangles");
+  grids_printf(t, "        </Topology>\n        <Geometry GeometryType=\"XY\">\n");
+  xmf_item(t, fname, dn2, 0, "/x");
+  grids_printf(t, "        </Geometry>\n");
   static const struct { unsigned bit; const char *name, *type, *center; int dims; } attrs[] = {
       {YF_FIELD_U, "u", "Vector", "Node", 2},         {YF_FIELD_V, "v", "Vector", "Node", 2},
-      {YF_FIELD_F, "f", "Vector", "Node", 2},         {YF_FIELD_STRESS, "stress", "Vector", "Cell", 3},
-      {YF_FIELD_VONMISES, "vonmises", "Scalar", "Cell", 1},
+      {YF_FIELD_F, "f", "Vector", "Node", 2},         {YF_FIELD_VONMISES, "vonmises", "Scalar", "Cell", 1},
       {YF_FIELD_SIGMA1, "sigma1", "Scalar", "Cell", 1}};
   for (size_t i = 0; i < sizeof attrs / sizeof attrs[0]; i++) {
     if (!(d->fields & attrs[i].bit)) continue;
     snprintf(p, sizeof p, "/%s", attrs[i].name);
-    xmf_attr(d, fname, attrs[i].name, attrs[i].type, attrs[i].center,
-             attrs[i].dims == 2 ? dn2 : attrs[i].dims == 3 ? dt3 : dt1, 0, p);
+    xmf_attr(t, fname, attrs[i].name, attrs[i].type, attrs[i].center, attrs[i].dims == 2 ? dn2 : dt1, 0, p);
   }
-  if (with_fc) xmf_attr(d, fname, "fc", "Vector", "Node", dn2, 0, "/fc");
-  if (d->fields & YF_FIELD_MATERIAL) xmf_attr(d, fname, "material", "Scalar", "Cell", dt1, 1, "/mesh/material");
-  if (d->fields & YF_FIELD_BODY) xmf_attr(d, fname, "body", "Scalar", "Cell", dt1, 1, "/mesh/body");
-  grids_printf(d, "      </Grid>\n");
-  if (ncrack > 0) {
-    char dc2[48], dc1[48], dp2[48];
-    snprintf(dc2, sizeof dc2, "%d 2", ncrack);
-    snprintf(dc1, sizeof dc1, "%d", ncrack);
-    snprintf(dp2, sizeof dp2, "%d 2", 2 * ncrack);
-    grids_printf(d, "      <Grid Name=\"cracks_%06ld\" GridType=\"Uniform\">\n", d->nframe);
-    grids_printf(d, "        <Topology TopologyType=\"Polyline\" NumberOfElements=\"%d\" NodesPerElement=\"2\">\n",
-                 ncrack);
-    xmf_item(d, fname, dc2, 1, "/cracks/segments");
-    grids_printf(d, "        </Topology>\n        <Geometry GeometryType=\"XY\">\n");
-    xmf_item(d, fname, dp2, 0, "/cracks/xy");
-    grids_printf(d, "        </Geometry>\n");
-    xmf_attr(d, fname, "crack_state", "Scalar", "Cell", dc1, 1, "/cracks/state");
-    xmf_attr(d, fname, "crack_mode", "Scalar", "Cell", dc1, 1, "/cracks/mode");
-    xmf_attr(d, fname, "damage", "Scalar", "Cell", dc1, 0, "/cracks/damage");
-    grids_printf(d, "      </Grid>\n    </Grid>\n");
+  for (int c = 0; c < 3 && (d->fields & YF_FIELD_STRESS); c++) {
+    snprintf(p, sizeof p, "/%s", stress_parts[c]);
+    xmf_attr(t, fname, stress_parts[c], "Scalar", "Cell", dt1, 0, p);
   }
+  if (with_fc) xmf_attr(t, fname, "fc", "Vector", "Node", dn2, 0, "/fc");
+  if (d->fields & YF_FIELD_MATERIAL) xmf_attr(t, fname, "material", "Scalar", "Cell", dt1, 1, "/mesh/material");
+  if (d->fields & YF_FIELD_BODY) xmf_attr(t, fname, "body", "Scalar", "Cell", dt1, 1, "/mesh/body");
+  grids_printf(t, "      </Grid>\n");
+  if (ncrack < 0) return;
+  char dc2[48], dc1[48], dp2[48];
+  snprintf(dc2, sizeof dc2, "%d 2", ncrack);
+  snprintf(dc1, sizeof dc1, "%d", ncrack);
+  snprintf(dp2, sizeof dp2, "%d 2", 2 * ncrack);
+  t = &d->cgrids;
+  grids_printf(t, "      <Grid Name=\"cracks_%06ld\" GridType=\"Uniform\">\n", d->nframe);
+  grids_printf(t, "        <Time Value=\"%.17g\"/>\n", time);
+  grids_printf(t, "        <Information Name=\"step\" Value=\"%ld\"/>\n", step);
+  if (ncrack == 0) {
+    grids_printf(t, "        <Topology TopologyType=\"Polyline\" NumberOfElements=\"1\" NodesPerElement=\"2\">\n"
+                    "          <DataItem Dimensions=\"1 2\" NumberType=\"Int\" Format=\"XML\">0 1</DataItem>\n"
+                    "        </Topology>\n        <Geometry GeometryType=\"XY\">\n"
+                    "          <DataItem Dimensions=\"2 2\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">"
+                    "%.17g %.17g %.17g %.17g</DataItem>\n        </Geometry>\n", at[0], at[1], at[0], at[1]);
+    static const char *const cn[3] = {"crack_state", "crack_mode", "damage"};
+    for (int c = 0; c < 3; c++)
+      grids_printf(t, "        <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Cell\">\n"
+                      "          <DataItem Dimensions=\"1\" NumberType=\"%s\" Format=\"XML\">0</DataItem>\n"
+                      "        </Attribute>\n", cn[c], c < 2 ? "Int" : "Float");
+    grids_printf(t, "      </Grid>\n");
+    return;
+  }
+  grids_printf(t, "        <Topology TopologyType=\"Polyline\" NumberOfElements=\"%d\" NodesPerElement=\"2\">\n",
+               ncrack);
+  xmf_item(t, fname, dc2, 1, "/cracks/segments");
+  grids_printf(t, "        </Topology>\n        <Geometry GeometryType=\"XY\">\n");
+  xmf_item(t, fname, dp2, 0, "/cracks/xy");
+  grids_printf(t, "        </Geometry>\n");
+  xmf_attr(t, fname, "crack_state", "Scalar", "Cell", dc1, 1, "/cracks/state");
+  xmf_attr(t, fname, "crack_mode", "Scalar", "Cell", dc1, 1, "/cracks/mode");
+  xmf_attr(t, fname, "damage", "Scalar", "Cell", dc1, 0, "/cracks/damage");
+  grids_printf(t, "      </Grid>\n");
 }
 
 /* Replace STEM.xmf atomically: a reader (or a killed run) sees the old or the new index.  Not
@@ -358,7 +396,8 @@ static void xmf_add_frame(YfDump *d, double time, long step, int n, int nt, int 
  * itself (1e4 triangles).  Blocks reserved with fallocate before the write are not delayed, so
  * the rename finds nothing to flush (index: 9 ms -> 1.5 ms per 50 frames, measured).  Where
  * fallocate is not supported it is simply skipped. */
-static int xmf_try(YfDump *d, char *msg, size_t nmsg) {
+static int index_try(YfDump *d, const char *path, const char *tmp, const char *suffix, const YfText *t,
+                     char *msg, size_t nmsg) {
   char name[YF_NAME_MAX * 6 + 1];
   xml_escape(name, sizeof name, d->id);
   char head[YF_NAME_MAX * 6 + 256];
@@ -366,13 +405,13 @@ static int xmf_try(YfDump *d, char *msg, size_t nmsg) {
   int hl = snprintf(head, sizeof head,
                     "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
                     "<Xdmf Version=\"3.0\">\n  <Domain>\n"
-                    "    <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n",
-                    name);
-  const char *part[3] = {head, d->grids ? d->grids : "", tail};
-  size_t plen[3] = {(size_t)hl, d->glen, sizeof tail - 1};
-  int fd = open(d->xmf_tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+                    "    <Grid Name=\"%s%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n",
+                    name, suffix);
+  const char *part[3] = {head, t->s ? t->s : "", tail};
+  size_t plen[3] = {(size_t)hl, t->len, sizeof tail - 1};
+  int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) {
-    snprintf(msg, nmsg, "dump %s: cannot create '%s': %s", d->id, d->xmf_tmp, strerror(errno));
+    snprintf(msg, nmsg, "dump %s: cannot create '%s': %s", d->id, tmp, strerror(errno));
     return -1;
   }
 #ifdef __linux__
@@ -388,14 +427,22 @@ static int xmf_try(YfDump *d, char *msg, size_t nmsg) {
     }
   if (close(fd) != 0 && !err) err = errno;
   if (err) {
-    unlink(d->xmf_tmp);
-    snprintf(msg, nmsg, "dump %s: cannot write '%s': %s", d->id, d->xmf_tmp, strerror(err));
+    unlink(tmp);
+    snprintf(msg, nmsg, "dump %s: cannot write '%s': %s", d->id, tmp, strerror(err));
     return -1;
   }
-  if (rename(d->xmf_tmp, d->xmf) != 0) {
-    snprintf(msg, nmsg, "dump %s: cannot rename '%s' to '%s': %s", d->id, d->xmf_tmp, d->xmf, strerror(errno));
+  if (rename(tmp, path) != 0) {
+    snprintf(msg, nmsg, "dump %s: cannot rename '%s' to '%s': %s", d->id, tmp, path, strerror(errno));
     return -1;
   }
+  return 0;
+}
+
+/* Both indexes of a dump: the crack series first, so that a run killed in between leaves a mesh
+ * index that lists no frame the crack index lacks. */
+static int xmf_try(YfDump *d, char *msg, size_t nmsg) {
+  if (d->cgrids.len && index_try(d, d->cxmf, d->cxmf_tmp, " cracks", &d->cgrids, msg, nmsg)) return -1;
+  if (index_try(d, d->xmf, d->xmf_tmp, "", &d->grids, msg, nmsg)) return -1;
   d->xmf_pending = 0;
   d->xmf_writes++;
   return 0;
@@ -418,7 +465,7 @@ void output_set_index_policy(size_t small_bytes, double gap) {
 }
 static void xmf_write(YfDump *d) {
   double t0 = yf_now();
-  if (d->glen > xmf_small && d->xmf_cost > 0.0 && t0 - d->xmf_done < xmf_gap * d->xmf_cost) {
+  if (d->grids.len + d->cgrids.len > xmf_small && d->xmf_cost > 0.0 && t0 - d->xmf_done < xmf_gap * d->xmf_cost) {
     d->xmf_pending = 1;
     return;
   }
@@ -442,16 +489,16 @@ static void xmf_flush(YfDump *d, int fatal) {
  * broken, as a 2-point segment from the middle of its end a node pair to the middle of its end b
  * pair (current positions), with state (1 opened, 2 broken), mode (1 I, 2 II, 3 mixed: YF_JMODE_*) and the
  * largest damage z of the last evaluation; plus the damage of every joint (/joint_damage).
- * Returns the number of crack segments (0: no /cracks group). */
+ * Returns the number of crack segments: 0 (empty datasets) before the first crack opens, -1 in a
+ * scene without joints (no /cracks group). */
 static int h5_cracks(YfSim *s, YfDump *d) {
   const YfJoints *j = s->joints;
-  if (!j || j->n == 0) return 0;
+  if (!j || j->n == 0) return -1;
   const YfNodes *nd = &s->model.node;
   hsize_t dj[1] = {(hsize_t)j->n};
   h5_put(d, d->file, "joint_damage", H5T_NATIVE_DOUBLE, 1, dj, j->z);
   int nc = 0;
   for (int k = 0; k < j->n; k++) nc += j->state[k] == 2 || (j->opened && j->opened[k]);
-  if (!nc) return 0;
   double *xy = yf_malloc((size_t)nc * 4 * sizeof(double), "crack output");
   double *dmg = yf_malloc((size_t)nc * sizeof(double), "crack output");
   int *iv = yf_malloc((size_t)nc * 4 * sizeof(int), "crack output"); /* segments (2), state, mode */
@@ -529,7 +576,13 @@ static void h5_frame(YfSim *s, YfDump *d) {
     h5_put(d, g, "f", H5T_NATIVE_DOUBLE, 2, dn2, b);
   }
   const double *sg = m->tri.s; /* sxx, syy, sxy per triangle, already the file layout */
-  if (d->fields & YF_FIELD_STRESS) h5_put(d, g, "stress", H5T_NATIVE_DOUBLE, 2, dt3, sg);
+  if (d->fields & YF_FIELD_STRESS) {
+    h5_put(d, g, "stress", H5T_NATIVE_DOUBLE, 2, dt3, sg);
+    for (int c = 0; c < 3; c++) { /* the parts by name, for ParaView (see xmf_add_frame) */
+      for (int e = 0; e < nt; e++) b[e] = sg[3 * e + c];
+      h5_put(d, g, stress_parts[c], H5T_NATIVE_DOUBLE, 1, dt1, b);
+    }
+  }
   if (d->fields & YF_FIELD_VONMISES) {
     /* In-plane von Mises (szz taken as 0): sqrt(sxx^2 - sxx syy + syy^2 + 3 sxy^2). */
     for (int e = 0; e < nt; e++) {
@@ -566,7 +619,8 @@ static void h5_frame(YfSim *s, YfDump *d) {
   if (rename(d->cur_tmp, d->cur) != 0)
     yf_io_error(NULL, "dump %s: cannot rename '%s' to '%s': %s", d->id, d->cur_tmp, d->cur,
                 strerror(errno));
-  xmf_add_frame(d, s->time, s->step, n, nt, fc != NULL, ncrack);
+  const double at[2] = {n ? nd->x[0] : 0.0, n ? nd->y[0] : 0.0};
+  xmf_add_frame(d, s->time, s->step, n, nt, fc != NULL, ncrack, at);
   xmf_write(d);
 }
 
@@ -608,13 +662,15 @@ static void csv_frame(YfSim *s, YfDump *d) {
  * files are overwritten as the new frames reach their numbers.  An index that is missing, or not
  * one yfdem wrote, starts a new series. */
 
-/* STEM.xmf: the frames of the earlier run with step < s->step become this series' first frames. */
-static long h5_adopt(YfSim *s, YfDump *d) {
+/* An index (STEM.xmf, grids named frame_K, or STEM_cracks.xmf, cracks_K): the frames of the earlier
+ * run with step < s->step become this series' first frames, copied to out. */
+static long index_adopt(YfSim *s, const char *path, const char *frame_tag, YfText *out) {
   size_t len;
-  char *t = yf_read_file(d->xmf, &len, "index text");
+  char *t = yf_read_file(path, &len, "index text");
   if (!t) return 0;
   static const char open_tag[] = "CollectionType=\"Temporal\">\n", close_tag[] = "    </Grid>\n  </Domain>",
-                    frame_tag[] = "<Grid Name=\"frame_", step_tag[] = "<Information Name=\"step\" Value=\"";
+                    step_tag[] = "<Information Name=\"step\" Value=\"";
+  const size_t ftl = strlen(frame_tag);
   char *a = strstr(t, open_tag), *z = NULL;
   for (char *q = a; q && (q = strstr(q, close_tag)); q++) z = q;
   long kept = 0;
@@ -626,7 +682,7 @@ static long h5_adopt(YfSim *s, YfDump *d) {
     while (p < z) {
       char *g = strstr(p, frame_tag);
       char *next = g && g < z ? g : z;
-      long k = next < z ? strtol(next + sizeof frame_tag - 1, NULL, 10) : -1;
+      long k = next < z ? strtol(next + ftl, NULL, 10) : -1;
       if (next < z && k == cur) { /* the Uniform grid of a Collection frame: same frame */
         p = next + 1;
         continue;
@@ -644,9 +700,17 @@ static long h5_adopt(YfSim *s, YfDump *d) {
       cur = k;
       p = next + 1;
     }
-    if (kept) grids_printf(d, "%.*s", (int)(keep_end - a), a);
+    if (kept) grids_printf(out, "%.*s", (int)(keep_end - a), a);
   }
   free(t);
+  return kept;
+}
+
+/* The mesh index and, when the earlier run wrote one, the crack index: a crack index that does
+ * not match the mesh index frame for frame is started again. */
+static long h5_adopt(YfSim *s, YfDump *d) {
+  long kept = index_adopt(s, d->xmf, "<Grid Name=\"frame_", &d->grids);
+  if (kept && index_adopt(s, d->cxmf, "<Grid Name=\"cracks_", &d->cgrids) != kept) d->cgrids.len = 0;
   return kept;
 }
 
@@ -764,7 +828,10 @@ static void dump_free(YfDump *d) {
   free(d->ext);
   free(d->cur);
   free(d->cur_tmp);
-  free(d->grids);
+  free(d->grids.s);
+  free(d->cgrids.s);
+  free(d->cxmf);
+  free(d->cxmf_tmp);
   free(d->buf);
   y2dref_free(d->y2d);
   free(d);
@@ -826,6 +893,8 @@ int output_add_dump(YfSim *s, const char *id, int style, long every, const char 
     d->ext = yf_strdup(dot);
     d->xmf = str_printf("%s.xmf", d->stem);
     d->xmf_tmp = str_printf("%s.tmp", d->xmf);
+    d->cxmf = str_printf("%s_cracks.xmf", d->stem);
+    d->cxmf_tmp = str_printf("%s.tmp", d->cxmf);
     /* frame names are formatted in place per frame: room for a 20-digit index and ".tmp" */
     d->curcap = l + strlen(d->ext) + 32;
     d->cur = yf_malloc(d->curcap, "dump file name");

@@ -65,6 +65,11 @@ int sim_query(YfSim *s, const char *name, double *val, char *err, size_t errlen)
   else if (!strcmp(name, "ntri")) *val = s->model.tri.n;
   else if (!strcmp(name, "nnodes")) *val = s->model.node.n;
   else if (!strcmp(name, "dt_limit")) *val = s->dt_limit;
+  else if (!strcmp(name, "crack_length")) { /* broken joints' length so far [m] */
+    double L = 0.0;
+    for (int i = 0; s->joints && i < s->joints->nrec; i++) L += s->joints->rec[i].length;
+    *val = L;
+  }
   else return 0;
   return 1;
 }

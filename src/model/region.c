@@ -335,6 +335,11 @@ void cmd_group(struct YfSim *sim, const YfArgs *a) {
   for (int t = 0; t < nt; t++)
     if (ts[t]) m->tri.gmask[t] |= bit, ct++;
   if (cn == 0 && ct == 0) yf_warn(&a->loc, "group %s: the selection is empty", name);
+  /* the group as it now stands (groups only grow), as LAMMPS reports its atoms */
+  long gn = 0, gt = 0;
+  for (int i = 0; i < nn; i++) gn += (m->node.gmask[i] & bit) != 0;
+  for (int t = 0; t < nt; t++) gt += (m->tri.gmask[t] & bit) != 0;
+  sim_printf(sim, "group %s: %ld node%s, %ld triangle%s\n", name, gn, gn == 1 ? "" : "s", gt, gt == 1 ? "" : "s");
   free(ns);
   free(ts);
 }

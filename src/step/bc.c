@@ -21,14 +21,7 @@
 
 typedef struct {
   char id[YF_NAME_MAX];
-  int kind;
-  int group;          /* group index (fixes, edge loads)                          */
-  int has[2];         /* component given (x, y); NULL in the deck leaves it free   */
-  double a[2];        /* amplitude: velocity [m/s], displacement [m], force [N/m], traction [Pa], pressure [Pa] */
-  int hist;           /* history index or -1 (factor 1)                           */
-  int node_id;        /* point load: user node id, or -1 when given by position   */
-  double px, py;      /* point load: position for 'at'                            */
-  YfLoc loc;
+  YfBcSpec sp;        /* as the deck command gave it                              */
   /* resolved at bc_prepare: */
   int nn, *nodes;     /* nodes acted on                                           */
   int ne, *edges;     /* boundary edges (2 node indices each), CCW                */
@@ -61,24 +54,14 @@ void bc_add(YfSim *s, const char *id, const YfBcSpec *spec) {
   YfBcItem *it = &b->item[b->n++];
   memset(it, 0, sizeof *it);
   snprintf(it->id, sizeof it->id, "%s", id);
-  it->kind = spec->kind;
-  it->group = spec->group;
-  for (int c = 0; c < 2; c++) {
-    it->has[c] = spec->has[c];
-    it->a[c] = spec->a[c];
-  }
-  it->hist = spec->hist;
-  it->node_id = spec->node_id;
-  it->px = spec->px;
-  it->py = spec->py;
-  it->loc = spec->loc;
+  it->sp = *spec;
 }
 
 int bc_remove(YfSim *s, const char *id, int load) {
   YfBc *b = bc_get(s);
   for (int i = 0; i < b->n; i++) {
     YfBcItem *it = &b->item[i];
-    int isload = it->kind >= BC_POINT;
+    int isload = it->sp.kind >= BC_POINT;
     if (!strcmp(it->id, id) && isload == load) {
       free(it->nodes); free(it->edges); free(it->lf);
       memmove(it, it + 1, (size_t)(b->n - i - 1) * sizeof *it);
@@ -105,21 +88,21 @@ static void resolve_nodes(YfSim *s, YfBcItem *it) {
   free(it->nodes);
   it->nodes = NULL;
   it->nn = 0;
-  if (it->kind == BC_POINT) {
+  if (it->sp.kind == BC_POINT) {
     /* The target node and all its copies (joint insertion) share the load equally. */
     int target = -1;
-    if (it->node_id >= 0) {
+    if (it->sp.node_id >= 0) {
       for (int i = 0; i < n->n && target < 0; i++)
-        if (n->id[i] == it->node_id) target = i;
+        if (n->id[i] == it->sp.node_id) target = i;
     } else {
       double best = INFINITY;
       for (int i = 0; i < n->n; i++) {
         if (n->m[i] <= 0) continue;
-        double d = (n->x0[i] - it->px) * (n->x0[i] - it->px) + (n->y0[i] - it->py) * (n->y0[i] - it->py);
+        double d = (n->x0[i] - it->sp.px) * (n->x0[i] - it->sp.px) + (n->y0[i] - it->sp.py) * (n->y0[i] - it->sp.py);
         if (d < best) { best = d; target = i; }
       }
     }
-    if (target < 0) yf_deck_error(&it->loc, "load '%s': no node to apply it to", it->id);
+    if (target < 0) yf_deck_error(&it->sp.loc, "load '%s': no node to apply it to", it->id);
     int p = n->parent[target];
     for (int i = 0; i < n->n; i++)
       if (n->parent[i] == p && n->m[i] > 0) it->nn++;
@@ -129,25 +112,25 @@ static void resolve_nodes(YfSim *s, YfBcItem *it) {
     for (int i = 0; i < n->n && k < it->nn; i++)
       if (n->parent[i] == p && n->m[i] > 0) it->nodes[k++] = i;
     if (!k) it->nodes[0] = target;
-  } else if (it->kind == BC_TRACTION || it->kind == BC_PRESSURE) {
+  } else if (it->sp.kind == BC_TRACTION || it->sp.kind == BC_PRESSURE) {
     free(it->edges);
     it->edges = NULL;
-    it->ne = mesh_boundary_edges(&s->model, (uint64_t)1 << it->group, &it->edges);
+    it->ne = mesh_boundary_edges(&s->model, (uint64_t)1 << it->sp.group, &it->edges);
     if (!it->ne)
-      yf_warn(&it->loc, "load '%s': group '%s' has no boundary edge (both end nodes must be in the group)",
-              it->id, s->model.group[it->group].name);
+      yf_warn(&it->sp.loc, "load '%s': group '%s' has no boundary edge (both end nodes must be in the group)",
+              it->id, s->model.group[it->sp.group].name);
     /* nodes touched: the edge ends, each edge contributing to its own two nodes */
     it->nn = 2 * it->ne;
     it->nodes = yf_malloc((size_t)(it->nn ? it->nn : 1) * sizeof(int), "load nodes");
     memcpy(it->nodes, it->edges, (size_t)it->nn * sizeof(int));
   } else {
-    uint64_t bit = (uint64_t)1 << it->group;
+    uint64_t bit = (uint64_t)1 << it->sp.group;
     for (int i = 0; i < n->n; i++) it->nn += (n->gmask[i] & bit) != 0;
     it->nodes = yf_malloc((size_t)(it->nn ? it->nn : 1) * sizeof(int), "fix nodes");
     int k = 0;
     for (int i = 0; i < n->n; i++)
       if (n->gmask[i] & bit) it->nodes[k++] = i;
-    if (!it->nn) yf_warn(&it->loc, "fix '%s': group '%s' has no nodes", it->id, s->model.group[it->group].name);
+    if (!it->nn) yf_warn(&it->sp.loc, "fix '%s': group '%s' has no nodes", it->id, s->model.group[it->sp.group].name);
   }
   free(it->lf);
   it->lf = yf_calloc((size_t)(it->nn ? it->nn : 1) * 2, sizeof(double), "load forces");
@@ -162,9 +145,15 @@ void bc_prepare(YfSim *s) {
   for (int i = 0; i < b->n; i++) {
     YfBcItem *it = &b->item[i];
     resolve_nodes(s, it);
-    if (it->kind <= BC_DISPLACEMENT)
-      for (int k = 0; k < it->nn; k++) b->flags[it->nodes[k]] |= (unsigned char)(it->has[0] | (it->has[1] << 1));
+    if (it->sp.kind <= BC_DISPLACEMENT)
+      for (int k = 0; k < it->nn; k++) b->flags[it->nodes[k]] |= (unsigned char)(it->sp.has[0] | (it->sp.has[1] << 1));
   }
+}
+
+const YfBcSpec *bc_spec(const YfSim *s, int i, const char **id) {
+  const YfBcItem *it = &s->bc->item[i];
+  *id = it->id;
+  return &it->sp;
 }
 
 const unsigned char *bc_node_flags(const YfSim *s) { return s->bc ? s->bc->flags : NULL; }
@@ -178,10 +167,10 @@ void bc_apply_loads(YfSim *s) {
   YfNodes *n = &s->model.node;
   for (int i = 0; i < s->bc->n; i++) {
     YfBcItem *it = &s->bc->item[i];
-    if (it->kind < BC_POINT) continue;
-    double ph = factor(s, it->hist, s->time);
-    if (it->kind == BC_POINT) {
-      double fx = it->a[0] * ph / it->nn, fy = it->a[1] * ph / it->nn;
+    if (it->sp.kind < BC_POINT) continue;
+    double ph = factor(s, it->sp.hist, s->time);
+    if (it->sp.kind == BC_POINT) {
+      double fx = it->sp.a[0] * ph / it->nn, fy = it->sp.a[1] * ph / it->nn;
       for (int k = 0; k < it->nn; k++) {
         it->lf[2 * k] = fx;
         it->lf[2 * k + 1] = fy;
@@ -191,14 +180,14 @@ void bc_apply_loads(YfSim *s) {
         int j = it->edges[2 * e], k = it->edges[2 * e + 1];
         double dx = n->x[k] - n->x[j], dy = n->y[k] - n->y[j];
         double fx, fy;
-        if (it->kind == BC_TRACTION) {
+        if (it->sp.kind == BC_TRACTION) {
           double L = sqrt(dx * dx + dy * dy);
-          fx = 0.5 * it->a[0] * ph * L;
-          fy = 0.5 * it->a[1] * ph * L;
+          fx = 0.5 * it->sp.a[0] * ph * L;
+          fy = 0.5 * it->sp.a[1] * ph * L;
         } else {
           /* outward normal (dy, -dx) has the edge length; pressure pushes inwards */
-          fx = -0.5 * it->a[0] * ph * dy;
-          fy = 0.5 * it->a[0] * ph * dx;
+          fx = -0.5 * it->sp.a[0] * ph * dy;
+          fy = 0.5 * it->sp.a[0] * ph * dx;
         }
         it->lf[4 * e] = fx; it->lf[4 * e + 1] = fy;
         it->lf[4 * e + 2] = fx; it->lf[4 * e + 3] = fy;
@@ -232,7 +221,7 @@ void bc_redo_positions(YfSim *s, const double *x_old, const double *y_old) {
   const double dt = s->dt;
   for (int i = 0; i < s->bc->n; i++) {
     const YfBcItem *it = &s->bc->item[i];
-    if (it->kind != BC_FIXED && it->kind != BC_VELOCITY) continue;
+    if (it->sp.kind != BC_FIXED && it->sp.kind != BC_VELOCITY) continue;
     for (int k = 0; k < it->nn; k++) {
       int j = it->nodes[k];
       n->x[j] = x_old[j] + dt * n->vx[j];
@@ -246,15 +235,15 @@ void bc_constrain_velocities(YfSim *s, const double *vx_old, const double *vy_ol
   YfNodes *n = &s->model.node;
   for (int i = 0; i < s->bc->n; i++) {
     YfBcItem *it = &s->bc->item[i];
-    if (it->kind != BC_FIXED && it->kind != BC_VELOCITY) continue;
-    double ph = it->kind == BC_VELOCITY ? factor(s, it->hist, s->time) : 0.0;
+    if (it->sp.kind != BC_FIXED && it->sp.kind != BC_VELOCITY) continue;
+    double ph = it->sp.kind == BC_VELOCITY ? factor(s, it->sp.hist, s->time) : 0.0;
     for (int k = 0; k < it->nn; k++) {
       int j = it->nodes[k];
       if (n->m[j] <= 0) continue;
       double *v[2] = {&n->vx[j], &n->vy[j]};
       for (int c = 0; c < 2; c++) {
-        if (!it->has[c]) continue;
-        double target = it->kind == BC_VELOCITY ? it->a[c] * ph : 0.0;
+        if (!it->sp.has[c]) continue;
+        double target = it->sp.kind == BC_VELOCITY ? it->sp.a[c] * ph : 0.0;
         /* reaction R = m (v_target - v_free)/dt acting over the step at the mean velocity of the
          * two half steps (the central-difference energy measure) */
         double R = n->m[j] * (target - *v[c]) / s->dt;
@@ -273,16 +262,16 @@ void bc_constrain_positions(YfSim *s, const double *x_old, const double *y_old, 
   if (s->bc) {
     for (int i = 0; i < s->bc->n; i++) {
       YfBcItem *it = &s->bc->item[i];
-      if (it->kind != BC_DISPLACEMENT) continue;
-      double ph = factor(s, it->hist, t1);
+      if (it->sp.kind != BC_DISPLACEMENT) continue;
+      double ph = factor(s, it->sp.hist, t1);
       for (int k = 0; k < it->nn; k++) {
         int j = it->nodes[k];
         if (n->m[j] <= 0) continue;
         double *x[2] = {&n->x[j], &n->y[j]}, *v[2] = {&n->vx[j], &n->vy[j]};
         const double x0[2] = {n->x0[j], n->y0[j]}, xo[2] = {x_old[j], y_old[j]};
         for (int c = 0; c < 2; c++) {
-          if (!it->has[c]) continue;
-          double target = x0[c] + it->a[c] * ph;
+          if (!it->sp.has[c]) continue;
+          double target = x0[c] + it->sp.a[c] * ph;
           double vnew = (target - xo[c]) / s->dt;
           double R = n->m[j] * (vnew - *v[c]) / s->dt;
           double vo = c ? vy_old[j] : vx_old[j];
@@ -295,7 +284,7 @@ void bc_constrain_positions(YfSim *s, const double *x_old, const double *y_old, 
     /* work of the loads of this step at the mean velocity of the two half steps */
     for (int i = 0; i < s->bc->n; i++) {
       YfBcItem *it = &s->bc->item[i];
-      if (it->kind < BC_POINT) continue;
+      if (it->sp.kind < BC_POINT) continue;
       for (int k = 0; k < it->nn; k++) {
         int j = it->nodes[k];
         s->energy.external_work += 0.5 * s->dt * (it->lf[2 * k] * (n->vx[j] + vx_old[j]) + it->lf[2 * k + 1] * (n->vy[j] + vy_old[j]));

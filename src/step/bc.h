@@ -49,6 +49,9 @@ void bc_redo_positions(YfSim *s, const double *x_old, const double *y_old);
 const unsigned char *bc_node_flags(const YfSim *s);
 /* Time-step limit implied by anything in bc (none today): INFINITY. */
 void bc_free(YfSim *s);
+/* One fix or load as the deck gave it (write_y2d, y2d_write.c); i = 0..bc_count-1, in deck
+ * order (later items override earlier ones on a node component); *id receives its ID. */
+const YfBcSpec *bc_spec(const YfSim *s, int i, const char **id);
 int bc_count(const YfSim *s);
 
 #endif

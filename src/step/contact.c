@@ -248,6 +248,28 @@ int contact_participants(const YfSim *s) { return active(s->contact) ? s->contac
 double contact_buffer(const YfSim *s) { return active(s->contact) ? s->contact->buffer : 0.0; }
 long contact_pairs(const YfSim *s) { return active(s->contact) ? s->contact->nlive : 0; }
 
+int contact_export(const YfSim *s, YfContactExport *e) {
+  const YfContact *C = s->contact;
+  memset(e, 0, sizeof *e);
+  if (!active(C)) return 0;
+  const YfModel *m = &s->model;
+  e->nrule = C->nrule;
+  e->surface_all = C->surface_all;
+  e->joined_skip = C->joined_skip;
+  e->search_every = C->search_every;
+  e->buffer = C->buffer;
+  /* all pairs: a rule whose two sides hold every triangle (Y2D's only contact rule) */
+  for (int r = 0; r < C->nrule && !e->all_pairs; r++) {
+    int ok = 1;
+    for (int t = 0; t < m->tri.n && ok; t++) {
+      uint64_t g = m->tri.gmask[t];
+      ok = (C->rule[r].ga < 0 || (g >> C->rule[r].ga & 1)) && (C->rule[r].gb < 0 || (g >> C->rule[r].gb & 1));
+    }
+    e->all_pairs = ok;
+  }
+  return 1;
+}
+
 /* ---------------------------------------------------------------- what the deck sets */
 
 int contact_add_rule(YfSim *s, int g1, int g2, const YfLoc *loc) {

@@ -101,6 +101,16 @@ void contact_set_par_min(YfSim *s, int n);
  * (couples hold triangle indices: the renumbering happens before the first search only). */
 void contact_renumber_tris(YfSim *s, const int *tnew, int n);
 
+/* ---- export (write_y2d, y2d_write.c) ---- */
+typedef struct {
+  int nrule;         /* contact rules (0: contact off)                                   */
+  int all_pairs;     /* 1: one rule already takes every pair of triangles (Y2D's contact)  */
+  int surface_all, joined_skip, search_every; /* the deck's contact options               */
+  double buffer;     /* buffer in use [m] (after contact_prepare)                          */
+} YfContactExport;
+/* The contact settings of the scene; returns 0 when contact is off. */
+int contact_export(const YfSim *s, YfContactExport *e);
+
 /* ---- diagnostics (output, tests) ---- */
 /* Contact force of the last evaluated step per node (2 per node, fx fy) [N/m], NULL when
  * contact is off or no step has been evaluated since contact_prepare.  h5 dumps write it as the

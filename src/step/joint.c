@@ -88,6 +88,19 @@ void joints_add_fracture(YfSim *s, int body, int set, int region, int group, con
   s->model.body[body].fracture = 1;
 }
 
+int joints_body_set(const YfSim *s, int body, const YfLoc **partial) {
+  const YfJoints *J = s->joints;
+  int set = -1;
+  *partial = NULL;
+  for (int q = 0; J && q < J->nspec; q++) {
+    const YfFracSpec *sp = &J->spec[q];
+    if (sp->body != body) continue;
+    if (sp->region >= 0 || sp->group >= 0) *partial = &sp->loc;
+    else set = sp->set;
+  }
+  return set;
+}
+
 void joints_set_logs(YfSim *s, const char *breaks, const char *opened) {
   YfJoints *J = jget(s);
   snprintf(J->log_path, sizeof J->log_path, "%s", breaks);

@@ -23,7 +23,7 @@
  * Deck commands (rows in commands.def):
  *   jointprop NAME ft FT fs FS gf GF pen P [law munjiza|munjiza_gf|linear|bilinear [kink Z S]|
  *             table FILE] [cohesion C friction MU] [damage reversible|irreversible]
- *             [floor y2d|none] [weibull M | normal CV] [seed S]
+ *             [floor y2d|none] [weibull M | normal CV] [seed S] [tangent exact|y2d]
  *   fracture BODY JOINTPROP [region R | group G]
  *   fracture_log FILE [opened FILE2]
  * Native defaults: law munjiza (Y2D's curve and constants), damage irreversible, floor y2d,
@@ -129,6 +129,9 @@ void joints_set_logs(YfSim *s, const char *breaks, const char *opened);
 int joints_add_set(YfSim *s, const char *name, const YfJointProp *p, int het, double het_par,
                    unsigned long seed, const YfLoc *loc);
 int joints_find_set(const YfSim *s, const char *name);
+/* write_y2d: the joint set of body b when a fracture command takes the whole body (-1: none);
+ * *partial is the place of a fracture command of b limited to a region or group (NULL: none). */
+int joints_body_set(const YfSim *s, int body, const YfLoc **partial);
 /* Split the triangles with tri_in_zone[t] != 0 and insert joints (ALGORITHMS.md 4.1 order):
  * triangles are scanned in element order and their edges in local order 0->1, 1->2, 2->0; an
  * edge shared by two triangles (the same two node indices in opposite order) with at least one

@@ -212,6 +212,10 @@ static double gravity_work(const YfSim *s) {
 static double total_external(const YfSim *s) { return s->energy.external_work + gravity_work(s); }
 
 static void thermo_header(YfSim *s) {
+  if (s->thermo_custom) {
+    s->thermo_custom(s, NULL);
+    return;
+  }
   sim_printf(s, "%10s %12s %13s %13s %13s %13s %13s %8s %9s %9s\n", "Step", "Time", "KinEng", "StrainEng", "ExtWork",
              "Dissipated", "Balance", "Broken", "Pairs", "Wall");
 }
@@ -222,9 +226,31 @@ static void thermo_line(YfSim *s) {
   double diss = s->energy.damping + s->energy.joint_dissipated + s->energy.friction;
   /* balance: energy now + dissipated - (energy at the start + external work); ~0 when healthy */
   double bal = s->energy.kinetic + s->energy.strain + s->energy.contact + diss - ext - R.e_budget;
+  if (s->thermo_custom) {
+    const double std[YF_TH_N] = {(double)s->step, s->time, s->energy.kinetic, s->energy.strain, ext, diss, bal,
+                                 (double)joints_broken(s), (double)contact_pairs(s),
+                                 s->wall_s + (yf_now() - R.t_wall0)};
+    s->thermo_custom(s, std);
+    return;
+  }
   sim_printf(s, "%10ld %12.6e %13.6e %13.6e %13.6e %13.6e %13.6e %8ld %9ld %9.2f\n", s->step, s->time,
              s->energy.kinetic, s->energy.strain, ext, diss, bal, joints_broken(s), contact_pairs(s),
              s->wall_s + (yf_now() - R.t_wall0));
+}
+
+/* Where this run's wall time went, by stage, as LAMMPS prints its breakdown after a run (the
+ * -summary JSON has the totals over all runs in stage_seconds).  "other" is the rest: thermo
+ * lines, energy checks, the progress bar. */
+static void timing_table(YfSim *s, const double *stage0, double wall) {
+  sim_printf(s, "%-10s %10s %7s\n", "stage", "seconds", "%run");
+  double sum = 0.0;
+  for (int i = 0; i < YF_NSTAGE; i++) {
+    double t = yf_stage_time[i] - stage0[i];
+    sum += t;
+    sim_printf(s, "%-10s %10.3f %7.1f\n", yf_stage_names[i], t, wall > 0 ? 100.0 * t / wall : 0.0);
+  }
+  double other = wall - sum > 0 ? wall - sum : 0.0;
+  sim_printf(s, "%-10s %10.3f %7.1f\n", "other", other, wall > 0 ? 100.0 * other / wall : 0.0);
 }
 
 /* Unstable runs show as energy growing without a source: stop them with a clear cause. */
@@ -450,6 +476,8 @@ void run_steps(YfSim *s, long nsteps) {
   }
   YfEvent ev = {.kind = YF_EV_RUN_BEGIN};
   sim_notify(s, &ev);
+  double stage0[YF_NSTAGE];
+  memcpy(stage0, yf_stage_time, sizeof stage0);
   R.t_wall0 = yf_now();
   double t_start = R.t_wall0;
   thermo_header(s);
@@ -491,6 +519,7 @@ void run_steps(YfSim *s, long nsteps) {
   sim_printf(s, "run: %ld steps of %d triangles in %.3f s wall (%.3g element-steps/s on %d thread%s)\n", nsteps,
              s->model.tri.n, wall, wall > 0 ? (double)s->model.tri.n * (double)nsteps / wall : 0.0, s->threads,
              s->threads > 1 ? "s" : "");
+  timing_table(s, stage0, wall);
   par_run_report(s, nsteps, wall);
 }
 

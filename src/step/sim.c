@@ -34,10 +34,14 @@ void sim_printf(YfSim *s, const char *fmt, ...) {
   va_start(ap, fmt);
   vfprintf(stdout, fmt, ap);
   va_end(ap);
+  /* thermo lines and messages reach the screen and the log at once, also when stdout is a file or
+   * a pipe (nohup, a batch queue), where the C library would hold them in a 4 KB buffer */
+  fflush(stdout);
   if (s && s->log) {
     va_start(ap, fmt);
     vfprintf(s->log, fmt, ap);
     va_end(ap);
+    fflush(s->log);
   }
 }
 

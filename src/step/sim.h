@@ -74,6 +74,12 @@ typedef struct YfEvent {
   char why[512];            /* INTERRUPT: why no restart could be written                     */
 } YfEvent;
 typedef void (*YfObserverFn)(struct YfSim *s, YfEvent *ev);
+
+/* The default thermo columns, in the order the step prints them; a custom thermo line (the deck's
+ * thermo_style custom) is printed by s->thermo_custom from their values (std NULL: the header). */
+enum { YF_TH_STEP, YF_TH_TIME, YF_TH_KE, YF_TH_STRAIN, YF_TH_EXT, YF_TH_DISS, YF_TH_BALANCE, YF_TH_BROKEN,
+       YF_TH_PAIRS, YF_TH_WALL, YF_TH_N };
+typedef void (*YfThermoFn)(struct YfSim *s, const double *std);
 #define YF_MAX_OBSERVERS 4
 
 typedef struct YfSim {
@@ -113,6 +119,7 @@ typedef struct YfSim {
 
   YfEnergy energy;
   long thermo_every;    /* thermo line every N steps (0: only at start and end of a run)    */
+  YfThermoFn thermo_custom; /* NULL: the default thermo line                               */
   double wall_s;        /* wall time spent in runs [s]                                      */
   double elem_steps;    /* triangles x steps done (for element_steps_per_s)                 */
   int threads;

@@ -269,9 +269,26 @@ static const YgeoKey ygeo_keys[] = {
   {"YDPJ", "D1PJTR", "anisotropic joint strength"}, {"YDPJ", "D1PJGR", "anisotropic joint strength"},
   {"YDPJ", "D1PJSR", "anisotropic joint strength"},
 };
+/* Keys that public pre-processors of other Y derivatives write (a C++ writer and GiD templates
+ * for Y-Geo-family programs with restart, hydraulic and rough-joint options): the anchor stops on
+ * them ("unknown name"), so yfdem names them instead of suggesting a near Y2D key. */
+static const YgeoKey other_keys[] = {
+  {"YDC", "ISAVE", "restart saving"},
+  {"YDC", "ICSAVF", "restart save frequency"},
+  {"YDC", "DCSIZD", "displacement output scale"},
+  {"YDC", "DCSIZA", "joint aperture output scale"},
+  {"YDC", "DCRMPT", "load ramping stage"},
+  {"YDC", "DCGRST", "gravity settling stage"},
+  {"YDC", "ICFMTY", "joint friction model (Coulomb, Barton-Bandis)"},
+  {"YDC", "ICIATY", "joint roughness input type"},
+  {"YDE", "I1ELTY", "element types"},
+  {"YDE", "I2ELJP", "joint properties per element"},
+};
 static const struct {
   const char *group, *note;
 } ygeo_groups[] = {
+  {"YDP", "the single property group of Y-Geo-family decks; Y2D splits it into /YD/YDPE/, "
+          "/YD/YDPN/ and /YD/YDPJ/"},
   {"YDFN", "discrete fracture network"}, {"YDIS", "initial in-situ stress"},
   {"YDHF", "hydraulic fracturing"},      {"YDSM", "seismic monitoring"},
   {"YDR", "reinforcement"},              {"YDSB", "reinforcement"},
@@ -515,16 +532,25 @@ static void read_array(Rd *r, int k, const YfLoc *kloc) {
       cnt[d] = read_int(r, k, kloc, w, -1, d);
     }
   }
+  int empty = cnt[0] == 0 || cnt[1] == 0 || cnt[2] == 0;
   for (int d = 0; d < nd; d++) {
     if (cnt[d] < 0) yf_deck_error(&r->loc, "%s: negative size %ld", kd->full, cnt[d]);
     long c = dim_cap(y, k, d);
-    if (c >= 0 && cnt[d] > c)
-      yf_deck_error(kloc, "%s: %s%ld entries exceed the capacity %ld given by %s%s", kd->full,
-                    nd > 1 ? (d == 0 ? "n1 = " : d == 1 ? "n2 = " : "n3 = ") : "n = ", cnt[d], c,
-                    dimname(k, d), c == 0 ? " (set it before this key)" : "");
+    if (c >= 0 && cnt[d] > c) {
+      const char *nm = nd > 1 ? (d == 0 ? "n1 = " : d == 1 ? "n2 = " : "n3 = ") : "n = ";
+      /* "D2ELST 21 529 0" (a C++ generator): no value is read, so the anchor writes nothing
+       * past the capacity and accepts it; only a list that holds values can overflow */
+      if (empty)
+        yf_warn(kloc, "%s: %s%ld exceeds the capacity %ld given by %s, but the array holds no "
+                "values (another size is 0): read as an empty array, as Y2D does", kd->full, nm,
+                cnt[d], c, dimname(k, d));
+      else
+        yf_deck_error(kloc, "%s: %s%ld entries exceed the capacity %ld given by %s%s", kd->full,
+                      nm, cnt[d], c, dimname(k, d), c == 0 ? " (set it before this key)" : "");
+    }
   }
   alloc_array(y, k);
-  long total = cnt[0] * cnt[1] * cnt[2];
+  long total = empty ? 0 : cnt[0] * cnt[1] * cnt[2]; /* each <= its capacity: no overflow */
   long cap1 = nd >= 2 ? dim_cap(y, k, 0) : 0, cap2 = nd == 3 ? dim_cap(y, k, 1) : 0;
   long cap3 = nd == 3 ? dim_cap(y, k, 2) : 0;
   void *base = kd->off == NOFF ? NULL : *(void **)((char *)y + kd->off);
@@ -597,7 +623,7 @@ static void read_key(Rd *r, int k, const YfLoc *kloc) {
   } else {
     read_array(r, k, kloc);
   }
-  if ((kd->flags & F_RESTART) && !y->given[k])
+  if ((kd->flags & F_RESTART) && !y->given[k] && r->last_n > 0) /* "D1NMCT 0": nothing given */
     yf_warn(kloc, "%s: restart/scratch data, ignored (yfdem computes it)", kd->full);
   if ((kd->flags & F_3D) && !y->given[k])
     yf_warn(kloc, "%s: 3D-only key, ignored in 2D", kd->full);
@@ -657,6 +683,10 @@ static void do_key(Rd *r, const char *tok) {
   for (size_t i = 0; i < sizeof ygeo_keys / sizeof ygeo_keys[0]; i++)
     if (!strcmp(ygeo_keys[i].group, groups[gi]) && !strcmp(ygeo_keys[i].name, name))
       yf_deck_error(&kloc, "%s: Y-Geo key, not in Y2D (%s)", t, ygeo_keys[i].note);
+  for (size_t i = 0; i < sizeof other_keys / sizeof other_keys[0]; i++)
+    if (!strcmp(other_keys[i].group, groups[gi]) && !strcmp(other_keys[i].name, name))
+      yf_deck_error(&kloc, "%s: not a Y2D key (%s: written for other Y derivatives; Y2D stops on "
+                    "it too)", t, other_keys[i].note);
   const char *names[64];
   int nn = 0;
   for (int k = 0; k < Y2D_NKEYS && nn < 64; k++)
@@ -958,6 +988,30 @@ static void check_meshing(const YfY2d *y) {
   }
 }
 
+/* Meshing code 0: Y2D reads it as "no meshing for this property" (a MATLAB generator writes
+ * every row as `1 0 p`).  The row is dropped (its count set to 0) after a warning, so that its
+ * properties stay unmeshed bodies everywhere downstream. */
+static void drop_code0_rows(YfY2d *y) {
+  char rows[160] = "";
+  size_t n = 0;
+  long nrow = 0;
+  for (long row = 0; row < y->mpmcom; row++) {
+    int *s = &y->i2pmset[row * y->mpmcol];
+    if (s[0] <= 0 || s[1] != 0) continue;
+    if (n + 24 < sizeof rows)
+      n += (size_t)snprintf(rows + n, sizeof rows - n, "%s%ld", nrow ? " " : "", row);
+    else if (!strstr(rows, "..."))
+      n += (size_t)snprintf(rows + n, sizeof rows - n, " ...");
+    nrow++;
+    s[0] = 0;
+  }
+  if (!nrow) return;
+  YfLoc ml = loc_of(y, Y2D_PM_I2PMSET);
+  yf_warn(&ml, "%s: meshing code 0 in %ld row(s) (%s): read as \"no meshing for these "
+          "properties\", as Y2D does: no joints are inserted, their triangles stay unjointed",
+          keydefs[Y2D_PM_I2PMSET].full, nrow, rows);
+}
+
 static void check_nonneg(const YfY2d *y, int k, const double *a, long n, const char *what) {
   for (long i = 0; i < n; i++)
     if (a[i] < 0) {
@@ -971,9 +1025,10 @@ static void check_deck(YfY2d *y) {
   /* ---- sizes (Yck) ---- */
   require(y, Y2D_N_MNODIM, "space dimension, 2");
   if (y->mnodim != 2 || (y->given[Y2D_N_NNODIM] && y->nnodim != 2)) {
-    YfLoc l = loc_of(y, y->mnodim != 2 ? Y2D_N_MNODIM : Y2D_N_NNODIM);
-    yf_deck_error(&l, "%s = %ld, %s = %ld: yfdem reads 2D decks only (both must be 2)",
-                  keydefs[Y2D_N_MNODIM].full, y->mnodim, keydefs[Y2D_N_NNODIM].full, y->nnodim);
+    YfLoc l = loc_of(y, y->given[Y2D_N_NNODIM] && y->nnodim != 2 ? Y2D_N_NNODIM : Y2D_N_MNODIM);
+    yf_deck_error(&l, "%s = %ld, %s = %ld: yfdem reads 2D decks only (NNODIM must be 2, and "
+                  "MNODIM, a capacity, at least 2)", keydefs[Y2D_N_MNODIM].full, y->mnodim,
+                  keydefs[Y2D_N_NNODIM].full, y->nnodim);
   }
   static const struct {
     int m, n;
@@ -1122,6 +1177,7 @@ static void check_deck(YfY2d *y) {
   check_nonneg(y, Y2D_PJ_D1PJFR, y->d1pjfr, y->npjset, "joint set");
   int meshed_any = 0;
   if (y->given[Y2D_PM_I2PMSET]) {
+    drop_code0_rows(y);
     check_meshing(y);
     meshed_any = 1;
   }
@@ -1224,11 +1280,41 @@ static void check_deck(YfY2d *y) {
   }
 
   /* ---- misc ---- */
+  if (y->nohys > 0) {
+    YfLoc l = loc_of(y, Y2D_O_NOHYS);
+    yf_warn(&l, "%s = %ld history variables: read, but yfdem does not write Y2D's history files "
+            "(<deck>h<i>); sample with a dump instead (dump ID y2dref DIR ... probes K E:C, or "
+            "csv)", keydefs[Y2D_O_NOHYS].full, y->nohys);
+  }
   if (y->dcgrax != 0 || y->dcgraz != 0) {
     YfLoc l = loc_of(y, y->dcgrax != 0 ? Y2D_C_DCGRAX : Y2D_C_DCGRAZ);
     yf_warn(&l, "DCGRAX/DCGRAZ are used only in 3D: ignored (2D gravity is DCGRAY)");
   }
   if (y->icoutf <= 0) y->icoutf = 10; /* the anchor's rule */
+}
+
+/* MNODIM is a capacity (rows of the node arrays), NNODIM the dimension in use: generators (a GiD
+ * template, a C++ writer) write MNODIM 3 with NNODIM 2 and Y2D runs such a deck in 2D.  yfdem
+ * keeps x, y only: the node arrays are repacked from MNODIM rows to 2 (the layout of
+ * y2d_read.h) and MNODIM becomes 2, after a warning that names what was dropped. */
+static void narrow_node_dim(YfY2d *y) {
+  long md = y->mnodim;
+  if (md <= 2 || !y->given[Y2D_N_NNODIM] || y->nnodim != 2) return; /* check_deck refuses */
+  static const int keys[] = {Y2D_N_D2NCI, Y2D_N_D2NCC, Y2D_N_D2NVC};
+  long nz = 0;
+  for (size_t q = 0; q < sizeof keys / sizeof keys[0]; q++) {
+    double *a = *(double **)((char *)y + keydefs[keys[q]].off);
+    for (long i = 0; i < y->mnopo; i++) {
+      for (long d = 2; d < md; d++) nz += a[i * md + d] != 0;
+      a[2 * i] = a[i * md];
+      a[2 * i + 1] = a[i * md + 1];
+    }
+  }
+  YfLoc l = loc_of(y, Y2D_N_MNODIM);
+  yf_warn(&l, "%s = %ld with %s = 2: MNODIM is a capacity, the deck is 2D; only x and y of the "
+          "node arrays are kept%s", keydefs[Y2D_N_MNODIM].full, md, keydefs[Y2D_N_NNODIM].full,
+          nz ? " (non-zero third components were given and are ignored, as in 2D Y2D)" : "");
+  y->mnodim = 2;
 }
 
 /* ------------------------------------------------------------------ public */
@@ -1264,6 +1350,7 @@ int y2d_read(const char *path, YfY2d *out, const YfLoc *from) {
     if (kd->off == NOFF || !ndims(kd->type)) continue;
     if (!*(void **)((char *)out + kd->off)) alloc_array(out, k);
   }
+  narrow_node_dim(out);
   if (!out->given[Y2D_N_D2NCC])
     memcpy(out->d2ncc, out->d2nci, (size_t)(out->mnopo * (out->mnodim > 0 ? out->mnodim : 0)) *
                                        sizeof(double));

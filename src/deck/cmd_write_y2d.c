@@ -1,0 +1,15 @@
+/* cmd_write_y2d.c: the `write_y2d` deck command (a row of commands.def): reads its words and calls
+ * y2d_write (y2d_write.h).
+ */
+#include "deck.h"
+#include "y2d_write.h"
+
+/* write_y2d FILE steps N */
+void cmd_write_y2d(YfSim *s, const YfArgs *a) {
+  arg_count(a, 3, 3);
+  const char *path = arg_word(a, 0, "file");
+  static const char *const kw[] = {"steps", NULL};
+  arg_choice(a, 1, "keyword", kw);
+  long steps = arg_int(a, 2, "steps", 1, 2000000000L);
+  y2d_write(s, path, steps, &a->loc);
+}

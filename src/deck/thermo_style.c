@@ -1,0 +1,242 @@
+/* thermo_style.c: custom thermo output and record files (thermo_style.h), the deck's side: the
+ * step prints the thermo line through s->thermo_custom when it is set, and record rows are written
+ * by an observer of the run loop's events (run start, steps), so the step calls no deck code.
+ *
+ * thermo_style custom K1 K2 ... replaces the columns of the thermo line (the default line is
+ * unchanged for decks that do not ask).  A keyword is one of the default columns (step, time, ke,
+ * strain, ext, diss, balance, broken, pairs, wall; also by their header names KinEng, ...) or any
+ * deck expression: a thermo or group quantity (vy_impactor, uy_tip, broken, pairs, damping, ...),
+ * a variable v_NAME, or arithmetic on them ("ke+strain").  Expressions are evaluated by the deck
+ * (deck_eval) when the line is printed, so a mistake is reported at the first thermo line with the
+ * thermo_style line's place.
+ *
+ * record ID N FILE K1 K2 ... writes "step,time,K1,K2,..." rows to FILE every N steps of a run and
+ * at its start, flushed per row, so a plot can follow a long run; the file is created at its first
+ * row (a deck that fails before run leaves none).  Keywords as for thermo_style (the default
+ * columns other than step and time need a thermo line's energies: use ke, strain, ... which the
+ * queries compute).  Nothing here runs inside the step loop's numerics: rows are due at most once
+ * per step, and the step checks a single integer when none is.
+ */
+#include <errno.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include "thermo_style.h"
+#include "deck.h"
+#include "err.h"
+
+#define REPORT_MAX_WORDS 32
+#define REPORT_MAX_RECORDS 8
+
+typedef struct {
+  int n;
+  char *w[REPORT_MAX_WORDS];
+  YfLoc loc; /* the command's place, for errors in its expressions */
+  char file[YF_NAME_MAX * 8];
+} Words;
+
+typedef struct {
+  char id[YF_NAME_MAX];
+  long every;
+  Words q;
+  char *path; /* the CSV file, in the working directory as dumps are */
+  FILE *fp;
+  long last_step;
+} Record;
+
+static struct {
+  int custom;
+  Words th;
+  Record rec[REPORT_MAX_RECORDS];
+  int nrec;
+  long next_due; /* smallest step at which a record is due (LONG_MAX: none) */
+} P = {.next_due = LONG_MAX};
+
+static const char *const std_names[YF_TH_N] = {"step", "time", "ke", "strain", "ext", "diss", "balance",
+                                               "broken", "pairs", "wall"};
+static const char *const std_heads[YF_TH_N] = {"Step", "Time", "KinEng", "StrainEng", "ExtWork",
+                                               "Dissipated", "Balance", "Broken", "Pairs", "Wall"};
+
+static int std_index(const char *w) {
+  for (int i = 0; i < YF_TH_N; i++)
+    if (!strcasecmp(w, std_names[i]) || !strcasecmp(w, std_heads[i])) return i;
+  return -1;
+}
+
+static void words_free(Words *q) {
+  for (int i = 0; i < q->n; i++) free(q->w[i]);
+  q->n = 0;
+}
+
+static void words_take(Words *q, const YfArgs *a, int from) {
+  words_free(q);
+  if (a->n - from > REPORT_MAX_WORDS) arg_error(a, from + REPORT_MAX_WORDS, "at most %d quantities", REPORT_MAX_WORDS);
+  for (int i = from; i < a->n; i++) q->w[q->n++] = yf_strdup(a->w[i]);
+  q->loc = a->loc;
+  snprintf(q->file, sizeof q->file, "%s", a->loc.file ? a->loc.file : "");
+  q->loc.file = q->file;
+}
+
+static double value(YfSim *s, const Words *q, int i, const double *std) {
+  int k = std_index(q->w[i]);
+  if (k >= 0 && std) return std[k];
+  if (k == YF_TH_STEP) return (double)s->step;
+  if (k == YF_TH_TIME) return s->time;
+  if (!s->deck) yf_deck_error(&q->loc, "quantity '%s': no deck to evaluate it", q->w[i]);
+  return deck_eval(s->deck, q->w[i], &q->loc);
+}
+
+/* thermo_style default | thermo_style custom K1 K2 ... */
+static void custom_thermo(YfSim *s, const double *std);
+static void record_observer(YfSim *s, YfEvent *ev);
+
+void cmd_thermo_style(YfSim *s, const YfArgs *a) {
+  static const char *const styles[] = {"default", "custom", NULL};
+  arg_count(a, 1, -1);
+  int st = arg_choice(a, 0, "thermo style", styles);
+  if (st == 0) {
+    arg_count(a, 1, 1);
+    P.custom = 0;
+    words_free(&P.th);
+    s->thermo_custom = NULL;
+    return;
+  }
+  if (a->n < 2) arg_error(a, 0, "give the quantities, e.g. 'thermo_style custom step time ke broken vy_impactor'");
+  words_take(&P.th, a, 1);
+  P.custom = 1;
+  s->thermo_custom = custom_thermo;
+  sim_observe(s, record_observer); /* its FREE event clears this module's state */
+}
+
+static void thermo_header(YfSim *s) {
+  char line[REPORT_MAX_WORDS * 40] = "";
+  size_t k = 0;
+  for (int i = 0; i < P.th.n && k < sizeof line; i++) {
+    int j = std_index(P.th.w[i]);
+    k += (size_t)snprintf(line + k, sizeof line - k, i ? " %13.13s" : "%10.10s", j >= 0 ? std_heads[j] : P.th.w[i]);
+  }
+  sim_printf(s, "%s\n", line);
+}
+
+static void thermo_line(YfSim *s, const double *std) {
+  char line[REPORT_MAX_WORDS * 40] = "";
+  size_t k = 0;
+  for (int i = 0; i < P.th.n && k < sizeof line; i++) {
+    double v = value(s, &P.th, i, std);
+    int j = std_index(P.th.w[i]);
+    if (j == YF_TH_STEP || j == YF_TH_BROKEN || j == YF_TH_PAIRS)
+      k += (size_t)snprintf(line + k, sizeof line - k, i ? " %13ld" : "%10ld", (long)v);
+    else
+      k += (size_t)snprintf(line + k, sizeof line - k, i ? " %13.6e" : "%10.4e", v == 0.0 ? 0.0 : v);
+  }
+  sim_printf(s, "%s\n", line);
+}
+
+/* The step's hook (sim.h): std NULL for the header, else the default columns' values. */
+static void custom_thermo(YfSim *s, const double *std) {
+  if (std) thermo_line(s, std);
+  else thermo_header(s);
+}
+
+static void update_due(const YfSim *s) {
+  P.next_due = LONG_MAX;
+  for (int i = 0; i < P.nrec; i++) {
+    long k = (s->step / P.rec[i].every + 1) * P.rec[i].every;
+    if (k < P.next_due) P.next_due = k;
+  }
+}
+
+/* record ID N FILE K1 K2 ... | record ID off */
+void cmd_record(YfSim *s, const YfArgs *a) {
+  arg_count(a, 2, -1);
+  const char *id = arg_word(a, 0, "record id");
+  if (strlen(id) >= YF_NAME_MAX) arg_error(a, 0, "id too long (at most %d characters)", YF_NAME_MAX - 1);
+  int slot = -1;
+  for (int i = 0; i < P.nrec; i++)
+    if (!strcmp(P.rec[i].id, id)) slot = i;
+  if (a->n == 2 && !strcmp(a->w[1], "off")) {
+    if (slot < 0) arg_error(a, 0, "no such record");
+    Record *r = &P.rec[slot];
+    if (r->fp) fclose(r->fp);
+    words_free(&r->q);
+    free(r->path);
+    P.rec[slot] = P.rec[--P.nrec];
+    update_due(s);
+    return;
+  }
+  arg_count(a, 4, -1);
+  if (slot >= 0) arg_error(a, 0, "a record with this id exists ('record %s off' first)", id);
+  if (P.nrec >= REPORT_MAX_RECORDS) arg_error(a, 0, "at most %d records at a time", REPORT_MAX_RECORDS);
+  long every = arg_int(a, 1, "N (steps between rows)", 1, LONG_MAX / 4);
+  const char *file = arg_word(a, 2, "file");
+  Record *r = &P.rec[P.nrec];
+  memset(r, 0, sizeof *r);
+  snprintf(r->id, sizeof r->id, "%s", id);
+  r->every = every;
+  r->last_step = LONG_MIN;
+  words_take(&r->q, a, 3);
+  r->path = yf_strdup(file);
+  P.nrec++;
+  sim_observe(s, record_observer);
+  sim_printf(s, "record %s: every %ld steps to %s (step, time, %d quantit%s)\n", id, every, file, r->q.n,
+             r->q.n == 1 ? "y" : "ies");
+  update_due(s);
+}
+
+static void record_row(YfSim *s, Record *r) {
+  if (!r->fp) {
+    r->fp = fopen(r->path, "w");
+    if (!r->fp) yf_io_error(&r->q.loc, "record %s: cannot create '%s': %s", r->id, r->path, strerror(errno));
+    fprintf(r->fp, "step,time");
+    for (int i = 0; i < r->q.n; i++) fprintf(r->fp, ",%s", r->q.w[i]);
+    fputc('\n', r->fp);
+  }
+  fprintf(r->fp, "%ld,%.17g", s->step, s->time);
+  for (int i = 0; i < r->q.n; i++) {
+    double v = value(s, &r->q, i, NULL);
+    fprintf(r->fp, ",%.17g", v == 0.0 ? 0.0 : v);
+  }
+  fputc('\n', r->fp);
+  if (fflush(r->fp) != 0 || ferror(r->fp))
+    yf_io_error(&r->q.loc, "record %s: cannot write '%s': %s", r->id, r->path, strerror(errno));
+  r->last_step = s->step;
+}
+
+static void record_step(YfSim *s, int force) {
+  if (!force && s->step < P.next_due) return;
+  for (int i = 0; i < P.nrec; i++) {
+    Record *r = &P.rec[i];
+    if (r->last_step != s->step && (force || s->step % r->every == 0)) record_row(s, r);
+  }
+  update_due(s);
+}
+
+static void record_close(void) {
+  for (int i = 0; i < P.nrec; i++)
+    if (P.rec[i].fp) {
+      fclose(P.rec[i].fp);
+      P.rec[i].fp = NULL;
+    }
+}
+
+static void reset(void) {
+  record_close();
+  for (int i = 0; i < P.nrec; i++) {
+    free(P.rec[i].path);
+    words_free(&P.rec[i].q);
+  }
+  P.nrec = 0;
+  P.custom = 0;
+  words_free(&P.th);
+  P.next_due = LONG_MAX;
+}
+
+/* The run loop's events: rows at the start of a run and at the steps due; all state goes when the
+ * simulation is freed. */
+static void record_observer(YfSim *s, YfEvent *ev) {
+  if (ev->kind == YF_EV_RUN_BEGIN) record_step(s, 1);
+  else if (ev->kind == YF_EV_STEP) record_step(s, 0);
+  else if (ev->kind == YF_EV_FREE) reset();
+}

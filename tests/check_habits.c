@@ -1,0 +1,144 @@
+/* check_habits.c: what a LAMMPS user expects of the program around the physics: a log file by
+ * default (input lines, thermo, messages), a line per group, custom thermo columns and record
+ * files, a timing table per run, a warning for a -var the deck never uses, "did you mean" in -h,
+ * and no output file from a deck that fails before its first run.  The real binary ($YFDEM) runs
+ * small decks in a temporary directory (yft_run_binary); its stdout is read back from the log. */
+#include <check.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include "yftest.h"
+
+#define BAR "variable nx index 10\n" \
+            "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n" \
+            "mesh rect bar m 0 0 1 0.1 ${nx} 2\n" \
+            "region l box -1 -1 1e-9 1\n" \
+            "group left node region l\n" \
+            "fix hold left fixed xy\n" \
+            "velocity bar set 0 -0.1\n" \
+            "timestep auto\n"
+
+static char *file_in(const char *dir, const char *name) {
+  char p[600];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  return yft_slurp(p, 0);
+}
+
+static int count_lines(const char *s) {
+  int n = 0;
+  for (; s && *s; s++) n += *s == '\n';
+  return n;
+}
+
+/* log.yfdem holds the input as read (after substitution), the group line, the custom thermo
+ * header and lines, the timing table; record writes its rows at the run start and every N steps. */
+START_TEST(test_log_thermo_record) {
+  char *err, *dir;
+  int rc = yft_run_binary("a.deck", BAR "thermo 10\nthermo_style custom step time ke broken uy_left \"ke+strain\"\n"
+                          "record r 5 rec.csv ke vy_bar\nrun 20\n", "", &err, &dir);
+  ck_assert_msg(rc == 0, "exit %d:\n%s", rc, err);
+  char *log = file_in(dir, "log.yfdem");
+  ck_assert_msg(log != NULL, "no log.yfdem");
+  ck_assert_msg(strstr(log, "mesh rect bar m 0 0 1 0.1 10 2\n") != NULL, "input line (substituted) not in the log:\n%s", log);
+  ck_assert_msg(strstr(log, "group left: 3 nodes, 0 triangles\n") != NULL, "no group line:\n%s", log);
+  ck_assert_msg(strstr(log, "      Step          Time        KinEng        Broken       uy_left     ke+strain\n") != NULL,
+                "custom thermo header:\n%s", log);
+  ck_assert_msg(strstr(log, "\n        20 ") != NULL, "thermo line of step 20:\n%s", log);
+  ck_assert_msg(strstr(log, "stage         seconds    %run\nelements ") != NULL, "timing table:\n%s", log);
+  ck_assert_msg(strstr(log, "\nother ") != NULL, "timing table's other row:\n%s", log);
+  char *rec = file_in(dir, "rec.csv");
+  ck_assert_msg(rec != NULL, "no rec.csv");
+  ck_assert_msg(!strncmp(rec, "step,time,ke,vy_bar\n0,0,", 24), "rec.csv:\n%s", rec);
+  ck_assert_int_eq(count_lines(rec), 1 + 5); /* header, steps 0 5 10 15 20 */
+  /* the start: every node at -0.1 m/s, ke = 1/2 (rho L H) v^2 = 1/2 100 kg/m 0.01 = 0.5 J/m */
+  long st;
+  double t, ke, vy;
+  ck_assert_int_eq(sscanf(strchr(rec, '\n') + 1, "%ld,%lf,%lf,%lf", &st, &t, &ke, &vy), 4);
+  ck_assert_msg(st == 0 && t == 0 && fabs(ke - 0.5) < 1e-12 && fabs(vy + 0.1) < 1e-12, "row 0: %ld %g %.17g %.17g", st,
+                t, ke, vy);
+  free(rec);
+  free(log);
+  free(err);
+  free(dir);
+}
+END_TEST
+
+/* -log none: no log file; -log FILE: that file. */
+START_TEST(test_log_none_and_named) {
+  char *err, *dir;
+  int rc = yft_run_binary("a.deck", BAR "run 2\n", "-log none", &err, &dir);
+  ck_assert_int_eq(rc, 0);
+  char p[600];
+  snprintf(p, sizeof p, "%s/log.yfdem", dir);
+  ck_assert(!yft_exists(p));
+  free(err);
+  free(dir);
+  rc = yft_run_binary("a.deck", BAR "run 2\n", "-log my.log", &err, &dir);
+  ck_assert_int_eq(rc, 0);
+  char *log = file_in(dir, "my.log");
+  ck_assert_msg(log && strstr(log, "run 2\n"), "my.log:\n%s", log ? log : "(none)");
+  free(log);
+  free(err);
+  free(dir);
+}
+END_TEST
+
+/* -var for a name the deck never defines nor uses: a warning that names the deck's variables. */
+START_TEST(test_var_unused_warns) {
+  char *err, *dir;
+  int rc = yft_run_binary("a.deck", BAR "run 1\n", "-var nz 20 -var nx 4", &err, &dir);
+  ck_assert_int_eq(rc, 0);
+  ck_assert_msg(strstr(err, "warning: -var nz: the deck defines and uses no variable 'nz' (its variables: nx); "
+                            "did you mean 'nx'?") != NULL, "stderr:\n%s", err);
+  ck_assert_msg(strstr(err, "-var nx") == NULL, "a used -var warned:\n%s", err);
+  char *log = file_in(dir, "log.yfdem");
+  ck_assert_msg(log && strstr(log, "-var nz"), "the warning is not in the log");
+  ck_assert_msg(strstr(log, "mesh rect bar m 0 0 1 0.1 4 2\n") != NULL, "-var nx not applied:\n%s", log);
+  free(log);
+  free(err);
+  free(dir);
+}
+END_TEST
+
+/* yfdem -h with a misspelt command suggests the nearest one, as the deck does. */
+START_TEST(test_help_suggests) {
+  const char *bin = getenv("YFDEM") ? getenv("YFDEM") : "./yfdem";
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "%s -h contcat 2>&1 >/dev/null | grep -q \"no deck command 'contcat' (did you mean 'contact'?)\"", bin);
+  int st = system(cmd);
+  ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) == 0, "yfdem -h contcat did not suggest contact");
+}
+END_TEST
+
+/* A deck that fails before its first run leaves no CSV behind (fracture_log, metrics log, record). */
+START_TEST(test_no_files_before_run) {
+  char *err, *dir;
+  int rc = yft_run_binary("a.deck", BAR "jointprop j ft 1e6 fs 1e6 gf 10 pen 1e11\nfracture bar j\n"
+                          "fracture_log b.csv opened o.csv\nmetrics body bar\nmetrics log m.csv every 5\n"
+                          "record r 5 rec.csv ke\nbogus 1\nrun 10\n", "", &err, &dir);
+  ck_assert_int_eq(rc, 1);
+  static const char *const f[] = {"b.csv", "o.csv", "m.csv", "rec.csv"};
+  for (int i = 0; i < 4; i++) {
+    char p[600];
+    snprintf(p, sizeof p, "%s/%s", dir, f[i]);
+    ck_assert_msg(!yft_exists(p), "%s left behind by a deck that failed before run", f[i]);
+  }
+  free(err);
+  free(dir);
+}
+END_TEST
+
+Suite *habits_suite(void) {
+  Suite *s = suite_create("habits");
+  TCase *t = tcase_create("lammps");
+  tcase_set_timeout(t, 60);
+  tcase_add_test(t, test_log_thermo_record);
+  tcase_add_test(t, test_log_none_and_named);
+  tcase_add_test(t, test_var_unused_warns);
+  tcase_add_test(t, test_help_suggests);
+  tcase_add_test(t, test_no_files_before_run);
+  suite_add_tcase(s, t);
+  return s;
+}

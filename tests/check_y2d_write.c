@@ -1,0 +1,194 @@
+/* check_y2d_write.c: write_y2d, a native scene as a Y2D deck, read back by read_y2d.
+ *
+ * Round trip: the native run of a scene that uses only what Y2D expresses and the read_y2d run
+ * of the deck write_y2d made of it are the same computation up to round-off (the operation order
+ * of Y2D's BC-set update differs from the native update), so they break the same joints at the
+ * same steps and end with the same energies to 1e-9 of the run's largest energy.  The runs are
+ * short enough that the chaos of crushing has not yet amplified the round-off (docs/y2d_decks.md
+ * gives the growth with the run length).  The seed decks' `-var y2d 1` variants are the scenes.
+ * A scene with every kind of BC set (support, prescribed velocity with a ramp, point load with a
+ * table, pressure, gravity) checks the BC sets and time tables the same way, and the features Y2D
+ * lacks are refused with a message that names them.
+ */
+#include <check.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include "yftest.h"
+
+static double json_num(const char *js, const char *key) {
+  char k[64];
+  snprintf(k, sizeof k, "\"%s\": ", key);
+  const char *p = strstr(js, k);
+  ck_assert_msg(p != NULL, "no %s in the summary", key);
+  return strtod(p + strlen(k), NULL);
+}
+
+static const char *const ekeys[] = {"kinetic", "strain", "external_work", "damping", "joint_dissipated",
+                                    "contact", "friction"};
+#define NEK ((int)(sizeof ekeys / sizeof ekeys[0]))
+
+/* Run NATIVE (deck text, extra args) in a temporary directory, then read_y2d of the deck it wrote
+ * (EXPORTED, relative to that directory) in another; compare energies and (if BREAKS names the
+ * native fracture log) the broken joints.  Returns the largest energy difference over the
+ * largest energy. */
+static double round_trip(const char *native, const char *extra, const char *exported, const char *breaks,
+                         int *nbroken) {
+  char *err = NULL, *d1 = NULL, *d2 = NULL;
+  char args[1024];
+  setenv("OMP_NUM_THREADS", "1", 1); /* same bits on any threads; one is fastest on a busy machine */
+  snprintf(args, sizeof args, "%s -summary native.json", extra);
+  int code = yft_run_binary("native.deck", native, args, &err, &d1);
+  ck_assert_msg(code == 0, "native run: exit %d: %s", code, err);
+  free(err);
+  char deck[1024];
+  snprintf(deck, sizeof deck, "read_y2d %s/%s\nfracture_log y2d_breaks.csv\nrun\n", d1, exported);
+  code = yft_run_binary("y2d.deck", deck, "-summary y2d.json", &err, &d2);
+  ck_assert_msg(code == 0, "read_y2d run: exit %d: %s", code, err);
+  free(err);
+  char p1[1200], p2[1200];
+  snprintf(p1, sizeof p1, "%s/native.json", d1);
+  snprintf(p2, sizeof p2, "%s/y2d.json", d2);
+  char *j1 = yft_slurp(p1, 0), *j2 = yft_slurp(p2, 0);
+  ck_assert(j1 && j2);
+  ck_assert_int_eq((long)json_num(j1, "steps"), (long)json_num(j2, "steps"));
+  double emax = 0, worst = 0;
+  for (int k = 0; k < NEK; k++) emax = fmax(emax, fabs(json_num(j1, ekeys[k])));
+  for (int k = 0; k < NEK; k++) {
+    double d = fabs(json_num(j1, ekeys[k]) - json_num(j2, ekeys[k])) / emax;
+    printf("write_y2d round trip: %-16s native %.12e y2d %.12e (difference %.1e of the largest)\n", ekeys[k],
+           json_num(j1, ekeys[k]), json_num(j2, ekeys[k]), d);
+    worst = fmax(worst, d);
+  }
+  *nbroken = (int)json_num(j1, "joints_broken");
+  ck_assert_int_eq(*nbroken, (int)json_num(j2, "joints_broken"));
+  if (breaks) {
+    /* the same joints (index) broken at the same steps, in the same order */
+    snprintf(p1, sizeof p1, "%s/%s", d1, breaks);
+    snprintf(p2, sizeof p2, "%s/y2d_breaks.csv", d2);
+    FILE *a = fopen(p1, "r"), *b = fopen(p2, "r");
+    ck_assert(a && b);
+    char la[512], lb[512];
+    int rows = 0;
+    while (fgets(la, sizeof la, a)) {
+      ck_assert_msg(fgets(lb, sizeof lb, b) != NULL, "the read_y2d run broke fewer joints");
+      if (!rows++) continue; /* header */
+      long sa = strtol(la, NULL, 10), sb = strtol(lb, NULL, 10);
+      const char *ja = strrchr(la, ','), *jb = strrchr(lb, ',');
+      ck_assert_msg(sa == sb && atoi(ja + 1) == atoi(jb + 1), "break %d: native step %ld joint %d, y2d step %ld joint %d",
+                    rows - 1, sa, atoi(ja + 1), sb, atoi(jb + 1));
+    }
+    ck_assert_msg(fgets(lb, sizeof lb, b) == NULL, "the read_y2d run broke more joints");
+    ck_assert_int_eq(rows - 1, *nbroken);
+    fclose(a);
+    fclose(b);
+  }
+  free(j1); free(j2); free(d1); free(d2);
+  return worst;
+}
+
+static void seed_round_trip(const char *name, const char *vars, int min_broken) {
+  char native[1200], cwd[512], extra[512], exported[64], breaks[64];
+  ck_assert(getcwd(cwd, sizeof cwd));
+  snprintf(native, sizeof native, "include %s/decks/%s.deck\n", cwd, name);
+  snprintf(extra, sizeof extra, "-var y2d 1 -var every 1000000 %s", vars);
+  snprintf(exported, sizeof exported, "%s.y", name);
+  snprintf(breaks, sizeof breaks, "%s_breaks.csv", name);
+  int nb = 0;
+  double worst = round_trip(native, extra, exported, breaks, &nb);
+  printf("write_y2d round trip %s (%s): %d joints broken in both, energies agree to %.1e\n", name, vars, nb, worst);
+  ck_assert_msg(nb >= min_broken, "%s: only %d joints broke (the round trip must cover fracture)", name, nb);
+  ck_assert_msg(worst <= 1e-9, "%s: energies differ by %.2e of the largest", name, worst);
+}
+
+START_TEST(test_beam_round_trip) { seed_round_trip("beam", "-var nx 20 -var steps 1500", 4); }
+END_TEST
+
+START_TEST(test_column_round_trip) { seed_round_trip("column", "-var nx 8 -var steps 500", 40); }
+END_TEST
+
+/* Every kind of BC set: held base, prescribed velocity ramped in, point load with a table history,
+ * pressure on the top face, gravity; two bodies in contact, one fractured. */
+static const char *bc_scene =
+  "material rock elastic rho 2500 E 20e9 nu 0.2 plane_strain damping 0.2 pen_n 2e11 pen_t 2e10 friction 0.4\n"
+  "material pad elastic rho 7800 E 200e9 nu 0.3 plane_stress pen_n 2e11\n"
+  "mesh rect rock rock 0 0 0.2 0.1 8 4 pattern alt\n"
+  "mesh rect pad pad 0.05 0.1 0.15 0.13 4 1\n"
+  "jointprop j ft 2e6 fs 4e6 gf 50 pen 2e12 cohesion 1e6 friction 0.6 damage reversible tangent y2d\n"
+  "fracture rock j\n"
+  "region base box -1 -1 1 1e-9\n"
+  "region left box -1 0.001 1e-9 1\n" /* not the base corner: yfdem counts the work of two fixes on one node twice */
+  "region top box 0.049 0.129 0.151 1\n"
+  "group base node region base\n"
+  "group left node region left body rock\n"
+  "group top node region top\n"
+  "fix hold base fixed xy\n"
+  "history rise ramp 0 2e-5\n"
+  "fix push left velocity 0.5 NULL history rise\n"
+  "history pulse table 0 0 1e-5 1 3e-5 0.2\n"
+  "load tip point at 0.2 0.1 -2e4 -5e4 history pulse\n"
+  "load press top pressure 3e6\n"
+  "gravity 0 -9.81\n"
+  "contact pair pad rock\n"
+  "contact self rock\n"
+  "timestep auto safety 0.4\n"
+  "thermo 100\n"
+  "write_y2d scene.y steps 600\n"
+  "fracture_log native_breaks.csv\n"
+  "run 600\n";
+
+START_TEST(test_bc_sets_round_trip) {
+  int nb = 0;
+  double worst = round_trip(bc_scene, "", "scene.y", "native_breaks.csv", &nb);
+  printf("write_y2d round trip of the BC-set scene: %d joints broken in both, energies agree to %.1e\n", nb, worst);
+  ck_assert_msg(worst <= 1e-9, "energies differ by %.2e of the largest", worst);
+}
+END_TEST
+
+/* Features Y2D cannot express: an error that names them, at the right line. */
+static const struct {
+  const char *change, *with, *text;
+} refusals[] = {
+  {"damage reversible tangent y2d", "", "damage irreversible (Y2D's joints have no damage memory"},
+  {"fracture rock j\n", "fracture rock j group rock\n", "limits fracture to a region or group of body 'rock'"},
+  {"fix push left velocity 0.5 NULL history rise", "fix push left displacement 1e-4 NULL",
+   "fix 'push' prescribes a displacement: Y2D has no displacement condition"},
+  {"history pulse table 0 0 1e-5 1 3e-5 0.2", "history pulse sine 1e-4", "history 'pulse' is a sine"},
+  {"gravity 0 -9.81", "gravity 0 -9.81\ndamping mass 10", "mass damping (damping mass 10)"},
+  {"gravity 0 -9.81", "gravity 1 -9.81", "gravity has an x component"},
+};
+
+START_TEST(test_refusals) {
+  const char *p = strstr(bc_scene, refusals[_i].change);
+  ck_assert(p != NULL);
+  char deck[4096];
+  snprintf(deck, sizeof deck, "%.*s%s%s", (int)(p - bc_scene), bc_scene, refusals[_i].with,
+           p + strlen(refusals[_i].change));
+  char *err = NULL, *dir = NULL;
+  int code = yft_run_binary("bad.deck", deck, "", &err, &dir);
+  ck_assert_msg(code == 1, "exit %d: %s", code, err);
+  ck_assert_msg(strstr(err, "bad.deck:") && strstr(err, refusals[_i].text), "no '%s' in: %s", refusals[_i].text, err);
+  /* and no deck is left behind */
+  char path[1200];
+  snprintf(path, sizeof path, "%s/scene.y", dir);
+  ck_assert(!yft_exists(path));
+  free(err);
+  free(dir);
+}
+END_TEST
+
+Suite *y2d_write_suite(void) {
+  Suite *s = suite_create("y2d_write");
+  TCase *tc = tcase_create("round_trip");
+  tcase_set_timeout(tc, 120);
+  tcase_add_test(tc, test_beam_round_trip);
+  tcase_add_test(tc, test_column_round_trip);
+  tcase_add_test(tc, test_bc_sets_round_trip);
+  suite_add_tcase(s, tc);
+  tc = tcase_create("refusals");
+  tcase_add_loop_test(tc, test_refusals, 0, (int)(sizeof refusals / sizeof refusals[0]));
+  suite_add_tcase(s, tc);
+  return s;
+}
