@@ -21,6 +21,7 @@
 #include "sim.h"
 #include "summary.h"
 #include "y2d_model.h"
+#include "par.h"
 
 #ifndef YF_VERSION
 #define YF_VERSION "0.1.0"
@@ -84,6 +85,7 @@ static void on_signal(int sig) {
 }
 
 int main(int argc, char **argv) {
+  par_init(&argc, &argv); /* ./yfdem_mpi: MPI ranks (a no-op in ./yfdem) */
   /* HDF5's own exit handler closes every file still open, also one whose H5Fclose failed (a full
    * disk), and crashes there; yfdem closes its files itself (output_close_all, restart.c). */
   H5dont_atexit();
@@ -139,7 +141,7 @@ int main(int argc, char **argv) {
       return YF_EXIT_DECK;
     }
   }
-  if (strcmp(log_path, "none") != 0) {
+  if (strcmp(log_path, "none") != 0 && yf_writer()) { /* MPI: rank 0 writes the log */
     g_log_path = log_path;
     g_sim.log = fopen(log_path, "w");
     if (!g_sim.log)
@@ -158,7 +160,7 @@ int main(int argc, char **argv) {
       deck_run_file(g_deck, in, NULL);
     }
   } else {
-    deck_run_stream(g_deck, stdin, "<stdin>");
+    deck_run_stream(g_deck, par_stdin(stdin), "<stdin>");
   }
   int code = yf_finish(YF_EXIT_OK);
   deck_free(g_deck);

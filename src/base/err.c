@@ -19,6 +19,7 @@ static int in_cleanup;
 static int cleanup_code;  /* the code the cleanup runs for                            */
 static int pending_io;    /* an output failed during the cleanup: the exit code is 2   */
 static void (*exit_hook)(int code);
+static int writer = 1;
 static FILE *log_fp; /* the run's log (main: log.yfdem or -log FILE): warnings are copied to it */
 
 void yf_set_log(FILE *fp) { log_fp = fp; }
@@ -55,6 +56,8 @@ void yf_interruptible(int on) { install(!on); }
 void yf_set_cleanup(YfCleanupFn fn) { cleanup_fn = fn; }
 void yf_set_exit_hook(void (*hook)(int code)) { exit_hook = hook; }
 const char *yf_last_message(void) { return last_msg; }
+int yf_writer(void) { return writer; }
+void yf_set_writer(int on) { writer = on; }
 
 /* Run the cleanup once (output files closed, logs and the summary written); an output that fails
  * there (yf_output_error) turns a successful exit into YF_EXIT_IO.  Returns the exit code. */
@@ -80,8 +83,10 @@ int yf_finish(int code) {
 
 static void finish(int code) __attribute__((noreturn));
 static void finish(int code) {
-  fprintf(stderr, "%s\n", last_msg);
-  fflush(stderr);
+  if (writer) {
+    fprintf(stderr, "%s\n", last_msg);
+    fflush(stderr);
+  }
   code = cleanup(code);
   if (exit_hook) exit_hook(code); /* the fuzz harness longjmps out instead of exiting */
   exit(code);
@@ -159,8 +164,10 @@ void yf_warn(const YfLoc *loc, const char *fmt, ...) {
   va_start(ap, fmt);
   if (k > 0 && (size_t)k < sizeof buf) vsnprintf(buf + k, sizeof buf - (size_t)k, fmt, ap);
   va_end(ap);
-  fprintf(stderr, "%s\n", buf);
-  fflush(stderr);
+  if (writer) {
+    fprintf(stderr, "%s\n", buf);
+    fflush(stderr);
+  }
   if (log_fp) {
     fprintf(log_fp, "%s\n", buf);
     fflush(log_fp);

@@ -38,6 +38,10 @@ void yf_set_cleanup(YfCleanupFn fn);
 /* Called instead of exit(code) after the cleanup when set (tools/fuzz: the harness longjmps back
  * to the next input); it must not return.  NULL: exit. */
 void yf_set_exit_hook(void (*hook)(int code));
+/* Whether this process prints messages and writes output files: 1 always in ./yfdem; under MPI
+ * (src/par) only rank 0 is the writer, the other ranks run the same deck silently. */
+int yf_writer(void);
+void yf_set_writer(int on);
 
 /* "FILE:LINE: error: message" then exit(YF_EXIT_DECK). loc may be NULL (message has no place). */
 void yf_deck_error(const YfLoc *loc, const char *fmt, ...) __attribute__((noreturn, format(printf, 2, 3)));

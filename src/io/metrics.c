@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "metrics.h"
+#include "par.h"
 #include "deck.h"
 #include "report.h"
 #include "joint.h"
@@ -344,6 +345,7 @@ void metrics_step(YfSim *s) {
     }
   }
   if (M.peak || M.log_path[0]) {
+    par_need_stresses(&s->model); /* MPI: every rank's triangles' stresses (every rank is here) */
     /* the largest sigma1 (first triangle of equals) and the first triangle at the threshold, per
      * fixed block on all threads, the blocks combined in order: the serial scan's answer */
     const int nt = m->tri.n, nb = (nt + MBLK - 1) / MBLK;
@@ -584,6 +586,7 @@ static void csv_num(char *buf, size_t n, double v) {
 }
 
 static void write_log(YfSim *s) {
+  if (!yf_writer()) return;
   char tmp[1100];
   snprintf(tmp, sizeof tmp, "%s.tmp", M.log_path);
   FILE *f = fopen(tmp, "w");

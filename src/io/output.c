@@ -56,6 +56,7 @@
 #include <unistd.h>
 #include <hdf5.h>
 #include "output.h"
+#include "par.h"
 #include "deck.h"
 #include "report.h"
 #include "contact.h"
@@ -779,6 +780,12 @@ static int continuing(const YfSim *s, const YfDump *d) {
 }
 
 static void write_frame(YfSim *s, YfDump *d) {
+  par_need_stresses(&s->model); /* MPI: every rank is here, in the same order (a collective) */
+  if (!yf_writer()) { /* an MPI rank other than 0: the same bookkeeping, no file */
+    d->nframe++;
+    d->last_step = s->step;
+    return;
+  }
   if (continuing(s, d)) {
     d->adopted = 1;
     dump_adopt(s, d);

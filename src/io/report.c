@@ -77,6 +77,7 @@ static int dbl_desc(const void *a, const void *b) {
 static const char *mode_name(int md) { return md == YF_JMODE_I ? "I" : md == YF_JMODE_II ? "II" : "mixed"; }
 
 static void write_log(YfSim *s, const char *path, const YfBreak *rec, int nrec) {
+  if (!yf_writer()) return;
   char tmp[1100];
   snprintf(tmp, sizeof tmp, "%s.tmp", path);
   FILE *f = fopen(tmp, "w");

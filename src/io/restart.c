@@ -321,6 +321,7 @@ int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
     if (err) snprintf(err, nerr, "the model is not prepared yet (write_restart needs a run or read_restart first)");
     return -1;
   }
+  if (!yf_writer()) return 0; /* under MPI rank 0 writes the (replicated) state */
   yf_h5_quiet();
   size_t L = strlen(path);
   char *tmp = yf_malloc(L + 8, "restart path");

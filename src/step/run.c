@@ -23,6 +23,7 @@
 #include "joint.h"
 #include "partition.h"
 #include "energy.h"
+#include "par.h"
 
 const char *const yf_stage_names[YF_NSTAGE] = {"elements", "joints", "detection", "contact", "gather", "update", "output"};
 double yf_stage_time[YF_NSTAGE];
@@ -205,6 +206,7 @@ void run_prepare(YfSim *s) {
     for (int e = 0; e < m->tri.n; e++) R.e_floor += 1e-16 * m->mat[m->tri.mat[e]].E * 0.5 * m->tri.d0[e];
     m->prepared = 1;
   }
+  par_prepare(s, R.nblk, BLOCK); /* MPI: which triangles of the element stage this rank computes */
   bc_prepare(s);
   contact_prepare(s);
   /* positions and velocities before the update: read only by bc.c's supports and loads and by
@@ -346,8 +348,11 @@ static void progress(YfSim *s, long done, long total, double t0) {
 static void stage_elements(YfSim *s) {
   YfModel *m = &s->model;
   const int nblk = R.nblk, nt = m->tri.n;
+  const double t0 = yf_now();
+  int b0 = 0, b1 = nblk;
+  par_blocks(&b0, &b1); /* MPI: the blocks inside this rank's triangles; then every rank gets all results */
   #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
-  for (int b = 0; b < nblk; b++) {
+  for (int b = b0; b < b1; b++) {
     YfTriPass p;
     int e1 = (b + 1) * BLOCK < nt ? (b + 1) * BLOCK : nt;
     tri_forces(m, R.tm, b * BLOCK, e1, &p);
@@ -355,6 +360,7 @@ static void stage_elements(YfSim *s) {
     R.blk_bad[b] = p.bad;
     R.blk_badJ[b] = p.badJ;
   }
+  par_share_elements(m, R.tm, R.blk, R.blk_bad, R.blk_badJ, yf_now() - t0);
   double power = 0;
   for (int b = 0; b < nblk; b++) {
     if (R.blk_bad[b] >= 0) {
@@ -556,7 +562,7 @@ void run_steps(YfSim *s, long nsteps) {
   double t_start = R.t_wall0;
   thermo_header(s);
   thermo_line(s);
-  int tty = s->progress && isatty(2);
+  int tty = s->progress && isatty(2) && yf_writer();
   long check_every = 100;
   for (long k = 0; k < nsteps; k++) {
     step_once(s);
@@ -571,7 +577,8 @@ void run_steps(YfSim *s, long nsteps) {
       energy_check(s);
     }
     if (tty) progress(s, k + 1, nsteps, t_start);
-    if (s->interrupted) {
+    if (par_any(s->interrupted)) { /* MPI: every rank stops at the same step */
+      s->interrupted = 1;
       /* finish cleanly: a restart of this step, its frame in every dump, files closed */
       YfEvent iev = {.kind = YF_EV_INTERRUPT, .restart_path = ""};
       sim_notify(s, &iev);
@@ -588,6 +595,7 @@ void run_steps(YfSim *s, long nsteps) {
   run_energies(s);
   energy_check(s);
   thermo_line(s);
+  par_need_stresses(&s->model); /* MPI: the last state whole on every rank, for what follows */
   double wall = yf_now() - R.t_wall0;
   s->wall_s += wall;
   s->elem_steps += (double)s->model.tri.n * (double)nsteps;
@@ -597,6 +605,7 @@ void run_steps(YfSim *s, long nsteps) {
              s->model.tri.n, wall, wall > 0 ? (double)s->model.tri.n * (double)nsteps / wall : 0.0, s->threads,
              s->threads > 1 ? "s" : "");
   timing_table(s, stage0, wall);
+  par_run_report(s, nsteps, wall);
 }
 
 const YfTriMat *run_tri_mats(void) { return R.tm; }
