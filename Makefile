@@ -94,7 +94,7 @@ mpi:
 deps-test:
 	tools/install-deps --test
 
-# The seed paper's beam on the default coarse mesh (nx 60, 6000 steps = 1.8 ms, more than one
+# The seed paper's beam on the default coarse mesh (nx 60, 12000 steps = 1.85 ms, more than one
 # bending period): about 30-40 s on 2 loaded cores.  Outputs land beside the deck (decks/).
 demo: deps
 	$(MAKE) yfdem
