@@ -1,12 +1,15 @@
 # yfdem: build, demo, tests, benchmarks.
 #
 #   make          build ./yfdem
+#   make mpi      build ./yfdem_mpi (MPI ranks, src/par; OpenMPI: tools/install-deps --mpi)
 #   make demo     install what is missing (tools/install-deps), build, run the main example deck
 #   make check    install what tests need, build, run every Check suite through one runner, then
 #                 the dumps in a real ParaView (tests/paraview/run)
 #   make bench    element-steps per second, thread scaling, bytes per element
+#   make bench-mpi the same on 1 and 2 MPI ranks x 1 and 2 threads at 1e5 and 1e6 (./yfdem_mpi)
 #   make asan     the whole test suite under AddressSanitizer + UBSan (build-asan/; CI runs it)
 #   make fuzz     libFuzzer on the deck interpreter (clang; tools/fuzz/README.md), FUZZ_RUNS inputs
+#                 or FUZZ_TIME seconds
 #   make valgrind the example decks under valgrind: no definite leaks (tools/valgrind-decks)
 #
 # Required flags live in YF_CFLAGS so that `make CFLAGS=-O0` changes optimisation only.
@@ -39,13 +42,19 @@ LDLIBS  := $(PKGLIB) -lmetis -lm
 CHECKLIB := $(shell pkg-config --libs check 2>/dev/null)
 
 BUILD   := build
-SRC     := $(wildcard src/*/*.c)
+SRC     := $(filter-out src/par/%,$(wildcard src/*/*.c))
+# `make mpi`: the same sources with -DYF_MPI (the hooks of src/step/par.h become MPI calls) plus
+# src/par, compiled by mpicc into build-mpi/; ./yfdem never links MPI.
+ifeq ($(YF_MPI),1)
+YF_CFLAGS += -DYF_MPI
+SRC     += $(wildcard src/par/*.c)
+endif
 OBJ     := $(SRC:src/%.c=$(BUILD)/%.o)
 HDR     := $(wildcard src/*/*.h src/*/*.def)
 TSRC    := $(wildcard tests/check_*.c)
 TOBJ    := $(TSRC:tests/%.c=$(BUILD)/tests/%.o)
 
-.PHONY: all demo check test deps deps-test bench clean asan fuzz valgrind
+.PHONY: all demo check test deps deps-test bench bench-mpi clean asan fuzz valgrind mpi
 
 BIN     ?= yfdem
 
@@ -78,10 +87,14 @@ $(BUILD)/check_yfdem: $(TOBJ) $(BUILD)/libyf.a
 deps:
 	tools/install-deps
 
+MPICC ?= mpicc
+mpi:
+	$(MAKE) BUILD=build-mpi BIN=yfdem_mpi CC=$(MPICC) YF_MPI=1 yfdem_mpi
+
 deps-test:
 	tools/install-deps --test
 
-# The seed paper's beam on the default coarse mesh (nx 60, 6000 steps = 1.8 ms, more than one
+# The seed paper's beam on the default coarse mesh (nx 60, 12000 steps = 1.85 ms, more than one
 # bending period): about 30-40 s on 2 loaded cores.  Outputs land beside the deck (decks/).
 demo: deps
 	$(MAKE) yfdem
@@ -93,7 +106,8 @@ demo: deps
 # Tests run at most 2 threads (the machines have 2 cores).
 check: deps-test
 	$(MAKE) yfdem $(BUILD)/check_yfdem
-	CK_TIMEOUT_MULTIPLIER=$${CK_TIMEOUT_MULTIPLIER:-3} OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem
+	if command -v $(MPICC) >/dev/null; then $(MAKE) mpi; fi
+	CK_TIMEOUT_MULTIPLIER=$${CK_TIMEOUT_MULTIPLIER:-3} OMP_NUM_THREADS=2 YFDEM=./yfdem YFDEM_MPI=./yfdem_mpi $(BUILD)/check_yfdem
 	YFDEM=./yfdem tests/paraview/run
 	YFDEM=./yfdem tests/convert/run
 	YFDEM=./yfdem tests/readme/run
@@ -104,6 +118,9 @@ test: yfdem $(BUILD)/check_yfdem
 bench: yfdem
 	tools/bench
 
+bench-mpi: yfdem mpi
+	tools/bench --cases elastic,y2d_perf --sizes 1e5,1e6 --ranks 1,2 --threads 1,2
+
 # Sanitizers: a separate build (build-asan/yfdem + runner), the same suite.  Leaks are left to
 # `make valgrind` (test children and error exits leave memory to the OS by design); a longer
 # timeout covers the 2-3x slowdown.
@@ -113,16 +130,18 @@ asan: deps-test
 	ASAN_OPTIONS=detect_leaks=0:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	CK_TIMEOUT_MULTIPLIER=4 OMP_NUM_THREADS=2 YFDEM=build-asan/yfdem build-asan/check_yfdem
 
+# FUZZ_TIME=S: stop after S seconds (CI: .ci/run), whichever of the two limits comes first.
 FUZZ_RUNS ?= 1000000
+FUZZ_TIME ?= 0
 fuzz:
 	tools/install-deps --dev
-	tools/fuzz/run $(FUZZ_RUNS)
+	tools/fuzz/run $(FUZZ_RUNS) $(FUZZ_TIME)
 
 valgrind: yfdem
 	tools/valgrind-decks
 
 clean:
-	rm -rf $(BUILD) build-asan build-fuzz yfdem
+	rm -rf $(BUILD) build-asan build-fuzz build-mpi yfdem yfdem_mpi
 
 # Header dependencies (.dep, with -MP: a header that moves or goes away is no error; the .d files
 # of the flat src/ layout are ignored).

@@ -5,10 +5,12 @@
  *   yfdem old_model.y            (a Y2D input deck, run to its own last step)
  */
 #include <errno.h>
+#include <hdf5.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "bc.h"
 #include "commands.h"
 #include "deck.h"
@@ -20,6 +22,7 @@
 #include "summary.h"
 #include "threads.h"
 #include "y2d_model.h"
+#include "par.h"
 
 #ifndef YF_VERSION
 #define YF_VERSION "0.1.0"
@@ -27,6 +30,7 @@
 
 static YfSim g_sim;
 static YfDeck *g_deck;
+static const char *g_log_path;
 
 static void usage(FILE *fp) {
   fprintf(fp,
@@ -44,30 +48,50 @@ static void usage(FILE *fp) {
           "  -h [COMMAND]      this help, or the usage of one deck command\n"
           "  -reference [sections]  print the deck reference (markdown table, or a section per command)\n"
           "  -version          print the version\n"
-          "exit codes: 0 ok, 1 deck error, 2 I/O error, 3 numerical failure, 4 interrupted, 70 internal error\n\n"
+          "exit codes: 0 ok, 1 deck error, 2 I/O error, 3 numerical failure, 130 interrupted (Ctrl-C,\n"
+          "SIGTERM), 70 internal error\n\n"
           "deck commands:\n",
           YF_VERSION);
   for (const YfCommand *c = yf_commands; c->name; c++) fprintf(fp, "  %-10s %s\n", c->name, c->help);
 }
 
+/* The cleanup of every exit (err.c runs it once): files closed, logs and the summary written.
+ * An output that fails here (yf_output_error) makes a successful run exit 2 with that message. */
 static void finish(int code, const char *message) {
   output_close_all(&g_sim);
   run_summary_update(&g_sim);
-  if (g_sim.summary_path[0]) summary_write(&g_sim, g_sim.summary_path, code, message);
+  code = yf_exit_code(code);
+  message = yf_last_message();
+  if (g_sim.summary_path[0] && summary_write(&g_sim, g_sim.summary_path, code, message) < 0)
+    yf_output_error("-summary: cannot write '%s': %s", g_sim.summary_path, strerror(errno));
   if (g_sim.log) {
+    message = yf_last_message();
     if (message && *message) fprintf(g_sim.log, "%s\n", message);
     yf_set_log(NULL);
-    fclose(g_sim.log);
+    int bad = ferror(g_sim.log);
+    if (fclose(g_sim.log) != 0) bad = 1;
     g_sim.log = NULL;
+    if (bad) yf_output_error("-log: cannot write '%s': %s", g_log_path, strerror(errno ? errno : EIO));
   }
 }
 
+/* SIGINT/SIGTERM: the deck interpreter (before each command) and the run (after each step) see
+ * the flag and stop cleanly: files closed, a restart in a run, the summary says "interrupted".
+ * A second signal before that is done stops at once (only async-signal-safe calls here). */
 static void on_signal(int sig) {
-  (void)sig;
-  g_sim.interrupted = 1;
+  if (g_sim.interrupted) {
+    static const char m[] = "yfdem: interrupted again: stopping at once (the summary is not written)\n";
+    if (write(2, m, sizeof m - 1) < 0) {}
+    _exit(YF_EXIT_INTERRUPT);
+  }
+  g_sim.interrupted = sig;
 }
 
 int main(int argc, char **argv) {
+  par_init(&argc, &argv); /* ./yfdem_mpi: MPI ranks (a no-op in ./yfdem) */
+  /* HDF5's own exit handler closes every file still open, also one whose H5Fclose failed (a full
+   * disk), and crashes there; yfdem closes its files itself (output_close_all, restart.c). */
+  H5dont_atexit();
   sim_init(&g_sim);
   g_sim.progress = 1;
   yf_set_cleanup(finish);
@@ -109,6 +133,10 @@ int main(int argc, char **argv) {
       echo = 1;
     } else if (!strcmp(o, "-summary") && i + 1 < argc) {
       snprintf(g_sim.summary_path, sizeof g_sim.summary_path, "%s", argv[++i]);
+      if (!yf_can_create(g_sim.summary_path)) { /* now, not after the run */
+        g_sim.summary_path[0] = 0;
+        yf_io_error(NULL, "-summary: cannot write '%s': %s", argv[i], strerror(errno));
+      }
     } else if (!strcmp(o, "-threads") && i + 1 < argc) {
       const char *v = argv[++i];
       char *end;
@@ -128,7 +156,8 @@ int main(int argc, char **argv) {
       return YF_EXIT_DECK;
     }
   }
-  if (strcmp(log_path, "none") != 0) {
+  if (strcmp(log_path, "none") != 0 && yf_writer()) { /* MPI: rank 0 writes the log */
+    g_log_path = log_path;
     g_sim.log = fopen(log_path, "w");
     if (!g_sim.log)
       yf_io_error(NULL, "cannot open log file '%s': %s (give another with -log FILE, or -log none)", log_path,
@@ -136,8 +165,7 @@ int main(int argc, char **argv) {
     yf_set_log(g_sim.log);
   }
   deck_set_echo(g_deck, echo);
-  signal(SIGINT, on_signal);
-  signal(SIGTERM, on_signal);
+  yf_catch_signals(on_signal);
   if (in) {
     size_t L = strlen(in);
     if (L > 2 && !strcmp(in + L - 2, ".y")) {
@@ -147,11 +175,12 @@ int main(int argc, char **argv) {
       deck_run_file(g_deck, in, NULL);
     }
   } else {
-    deck_run_stream(g_deck, stdin, "<stdin>");
+    deck_run_stream(g_deck, par_stdin(stdin), "<stdin>");
   }
-  finish(YF_EXIT_OK, "");
+  int code = yf_finish(YF_EXIT_OK);
   deck_free(g_deck);
   run_free();
   sim_free(&g_sim);
-  return 0;
+  if (code == YF_EXIT_OK) H5close(); /* not after a failed H5Fclose: it would close that file again */
+  return code;
 }

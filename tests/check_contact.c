@@ -62,12 +62,12 @@ typedef struct {
   char limiter[96];
 } Impact;
 
-static Impact impact(const char *pen) {
+static Impact impact(const char *pen, double mu) {
   char deck[1024];
   snprintf(deck, sizeof deck,
-           "material m elastic rho 1000 E 1e8 nu 0.25 plane_strain pen_n %s friction 0.3\n"
+           "material m elastic rho 1000 E 1e8 nu 0.25 plane_strain pen_n %s friction %g\n"
            "mesh rect a m 0 0 0.1 0.05 8 4\nmesh rect b m 0.101 0 0.201 0.05 8 4\n"
-           "velocity a set 3 0\nvelocity b set -1 0\ncontact pair a b\ntimestep auto\nrun 0\n", pen);
+           "velocity a set 3 0\nvelocity b set -1 0\ncontact pair a b\ntimestep auto\nrun 0\n", pen, mu);
   YfSim *s = yft_run(deck);
   Impact r = {0, INFINITY, 0, 0, -1, ""};
   snprintf(r.limiter, sizeof r.limiter, "%s", s->dt_limiter);
@@ -109,7 +109,7 @@ static Impact impact(const char *pen) {
  * exact for the flat penetration of one edge, not at the blocks' corners).  The contact penalty sets the time step. */
 START_TEST(test_headon_stiff) {
   quiet();
-  Impact r = impact("1e9");
+  Impact r = impact("1e9", 0.3);
   fprintf(stderr, "headon stiff: dP %.3g, (K+S)/K0 after %.5f, rigid K/K0 %.4f, balance %.4f, separated at %ld, dt by %s\n",
           r.dP, r.emech, r.krigid, r.bal, r.sep, r.limiter);
   ck_assert_double_le(r.dP, 1e-10);
@@ -123,10 +123,14 @@ END_TEST
 /* Penalty 3e5 Pa: contact stiffness 6 p / h x 0.05 m = 7.2e6 N/m^2 per metre of thickness, so
  * the contact lasts pi sqrt(m_red / k) = 1.9 ms, 6 x the blocks' wave transit (0.29 ms): the
  * blocks bounce as rigid bodies and the rigid-body kinetic energy after separation is >= 98% of
- * the initial (elastic restitution through the penalty). */
+ * the initial (elastic restitution through the penalty).  Frictionless: at a penalty E / 333 the
+ * blocks overlap by millimetres, and the top and bottom edges that enter the other block rub
+ * along the approach; with friction 0.3 the Coulomb law (whose tangential stiffness is the
+ * normal one's) takes 3.5 % of the energy there (rigid K / K0 0.965), where Y2D's law, with its
+ * p_t L^2 spring 1e-4 of that, hardly engaged. */
 START_TEST(test_headon_kinetic_restitution) {
   quiet();
-  Impact r = impact("3e5");
+  Impact r = impact("3e5", 0.0);
   fprintf(stderr, "headon soft: dP %.3g, (K+S)/K0 after %.5f, rigid K/K0 %.4f, balance %.4f\n", r.dP, r.emech,
           r.krigid, r.bal);
   ck_assert_double_le(r.dP, 1e-10);
@@ -156,10 +160,12 @@ static YfSim *incline_scene(double slope_deg, double mu) {
 }
 
 /* tan(phi) = 0.5 > tan(20 deg) = 0.364: Coulomb says the block stays.  It can only move by the
- * elastic compliance of the tangential penalty and of the block, i.e. ring around a fixed offset:
- * over 40 ms (frictionless it would slide 2.7 mm) the displacement stays below 2% of the
- * frictionless slide, and its largest value in the second 20 ms is not larger than in the first
- * (no creep; 5% allowance for the ringing's phase). */
+ * elastic compliance of the tangential springs and of the block: over 40 ms (frictionless it
+ * would slide 2.7 mm) the displacement stays below a micrometre (the issue's "to the
+ * micrometre"; Y2D's law rings at 2.6e-5 m).  Not asserted: it is not quite still.  The sudden
+ * tangential load overshoots the cone (T/N up to 0.73 > 0.5) and the undamped ringing then
+ * ratchets the block on by about 4e-8 m per 20 ms, accelerating (3.6e-7, 4.1e-7, ... 8.2e-7 m
+ * over eight 20 ms windows): docs/VERIFICATION.md, sliding block near the cone. */
 START_TEST(test_incline_sticks) {
   quiet();
   YfSim *s = incline_scene(20.0, 0.5);
@@ -174,8 +180,9 @@ START_TEST(test_incline_sticks) {
   }
   double free_d = 0.5 * 9.81 * sin(20 * M_PI / 180) * (s->time - t0) * (s->time - t0);
   fprintf(stderr, "incline stick: max offset %.3g m then %.3g m (frictionless slide %.3g m)\n", max1, max2, free_d);
+  ck_assert_double_le(max1, 1e-6);
+  ck_assert_double_le(max2, 1e-6);
   ck_assert_double_le(max2, 0.02 * free_d);
-  ck_assert_double_le(max2, 1.05 * max1);
 }
 END_TEST
 
@@ -452,12 +459,13 @@ START_TEST(test_dump_contact_force_field) {
   quiet();
   char deck[2048], path[] = "/tmp/yfct_XXXXXX";
   ck_assert_ptr_nonnull(mkdtemp(path));
-  snprintf(deck, sizeof deck, "%svelocity a set 2 0\ncontact pair a b\ntimestep auto\ndump d h5 100 %s/c.h5 fields u fc\nrun 800\n",
+  snprintf(deck, sizeof deck, "%svelocity a set 2 0\ncontact pair a b\ntimestep auto\ndump d h5 200 %s/c.h5 fields u fc\nrun 1600\n",
            TWO, path);
   YfSim *s = yft_run(deck);
   sim_free(s);
   double fmax = 0;
-  for (int fr = 1; fr <= 8; fr++) { /* frame 0 precedes the first contact evaluation: no fc */
+  /* the blocks meet at 1 ms (step about 840); frame 0 precedes the first contact evaluation: no fc */
+  for (int fr = 1; fr <= 8; fr++) {
     char file[256];
     snprintf(file, sizeof file, "%s/c_%06d.h5", path, fr); /* one file per frame */
     hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);

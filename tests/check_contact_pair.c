@@ -47,7 +47,7 @@ START_TEST(test_flat_exact_integral)
   double xc[3], yc[3], g[3] = {0, 0, 0}, ft[6] = {0}, fc[6] = {0}, dmin2 = DBL_MAX;
   flat_contactor(d, xc, yc);
   YfContactInfo info = {0};
-  int n = contact_pair_dir(TX, TY, Z3, Z3, xc, yc, Z3, Z3, pn, 0.0, 0.0, 1e-6, g, ft, fc, &dmin2, &info);
+  int n = contact_pair_dir(TX, TY, Z3, Z3, xc, yc, Z3, Z3, pn, 0.0, 0.0, YF_FRIC_Y2D, 1e-6, g, ft, fc, &dmin2, &info);
   ck_assert_int_eq(n, 1);
   double F = pn * (d - 2 * d * d), Fa = F * (3 - d) / 6, Fb = F * (3 + d) / 6;
   double tol = 1e-14 * 3 * F;
@@ -83,7 +83,7 @@ START_TEST(test_flat_depth_sweep)
   for (int i = 1; i <= 24; i++) {
     double d = 0.01 * i, xc[3], yc[3], g[3] = {0}, ft[6] = {0}, fc[6] = {0}, dmin2 = DBL_MAX;
     flat_contactor(d, xc, yc);
-    contact_pair_dir(TX, TY, Z3, Z3, xc, yc, Z3, Z3, pn, 0.0, 0.0, 1e-6, g, ft, fc, &dmin2, NULL);
+    contact_pair_dir(TX, TY, Z3, Z3, xc, yc, Z3, Z3, pn, 0.0, 0.0, YF_FRIC_Y2D, 1e-6, g, ft, fc, &dmin2, NULL);
     double fy = fc[1] + fc[3] + fc[5], expect = -3 * pn * (d - 2 * d * d);
     ck_assert_double_eq_tol(fy, expect, 1e-13 * fabs(expect));
     ck_assert(-fy > prev);
@@ -100,7 +100,7 @@ START_TEST(test_separated)
    * record 1 and 25. */
   double xc[3], yc[3], g[6] = {1, 2, 3, 4, 5, 6}, fa[6] = {0}, fb[6] = {0}, dmin2 = 0;
   flat_contactor(-0.1, xc, yc);
-  int r = contact_pair_force(TX, TY, Z3, Z3, xc, yc, Z3, Z3, 1e9, 1e9, 0.5, 1e-3, g, fa, fb, &dmin2, NULL);
+  int r = contact_pair_force(TX, TY, Z3, Z3, xc, yc, Z3, Z3, 1e9, 1e9, 0.5, YF_FRIC_Y2D, 1e-3, g, fa, fb, &dmin2, NULL);
   ck_assert_int_eq(r, 0);
   ck_assert(sum_abs(fa, 6) == 0.0 && sum_abs(fb, 6) == 0.0);
   for (int k = 0; k < 6; k++) ck_assert(g[k] == k + 1);
@@ -108,7 +108,7 @@ START_TEST(test_separated)
    * C's top edge line. */
   ck_assert_double_eq_tol(dmin2, 0.01, 1e-15);
   dmin2 = DBL_MAX;
-  ck_assert_int_eq(contact_pair_dir(TX, TY, Z3, Z3, xc, yc, Z3, Z3, 1e9, 1e9, 0.5, 1e-3, g, fa, fb, &dmin2, NULL), 0);
+  ck_assert_int_eq(contact_pair_dir(TX, TY, Z3, Z3, xc, yc, Z3, Z3, 1e9, 1e9, 0.5, YF_FRIC_Y2D, 1e-3, g, fa, fb, &dmin2, NULL), 0);
   ck_assert_double_eq_tol(dmin2, 0.405, 1e-14);
 }
 END_TEST
@@ -143,7 +143,7 @@ START_TEST(test_conservation)
   for (int step = 0; step < 20; step++) {
     double fa[6] = {0}, fb[6] = {0}, dmin2;
     YfContactInfo info = {0};
-    int r = contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, 1e10, 3e9, 0.4, 1e-4, g, fa, fb,
+    int r = contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, 1e10, 3e9, 0.4, YF_FRIC_Y2D, 1e-4, g, fa, fb,
                                &dmin2, &info);
     ck_assert_int_eq(r, 1);
     ck_assert(info.ft > 0.0 && info.fn > 0.0);
@@ -168,7 +168,7 @@ START_TEST(test_monotonic_symmetric)
   for (int i = 1; i <= 30; i++) {
     double delta = 0.01 * i, xa[3], ya[3], xb[3], yb[3], g[6] = {0}, fa[6] = {0}, fb[6] = {0}, dmin2;
     apex_pair(delta, xa, ya, xb, yb);
-    int r = contact_pair_force(xa, ya, Z3, Z3, xb, yb, Z3, Z3, 1e9, 0, 0, 1e-6, g, fa, fb, &dmin2, NULL);
+    int r = contact_pair_force(xa, ya, Z3, Z3, xb, yb, Z3, Z3, 1e9, 0, 0, YF_FRIC_Y2D, 1e-6, g, fa, fb, &dmin2, NULL);
     ck_assert_int_eq(r, 1);
     double fyb = fb[1] + fb[3] + fb[5];
     ck_assert(fyb > prev); /* B is pushed up, harder the deeper it goes */
@@ -185,7 +185,7 @@ START_TEST(test_monotonic_symmetric)
   /* Apart by 0.01: nothing. */
   double xa[3], ya[3], xb[3], yb[3], g[6] = {0}, fa[6] = {0}, fb[6] = {0}, dmin2;
   apex_pair(-0.01, xa, ya, xb, yb);
-  ck_assert_int_eq(contact_pair_force(xa, ya, Z3, Z3, xb, yb, Z3, Z3, 1e9, 1e9, 0.5, 1e-6, g, fa, fb,
+  ck_assert_int_eq(contact_pair_force(xa, ya, Z3, Z3, xb, yb, Z3, Z3, 1e9, 1e9, 0.5, YF_FRIC_Y2D, 1e-6, g, fa, fb,
                                       &dmin2, NULL), 0);
   ck_assert(sum_abs(fa, 6) == 0.0 && sum_abs(fb, 6) == 0.0);
 }
@@ -207,7 +207,7 @@ START_TEST(test_friction_stick_then_slide)
   for (int n = 1; n <= 25; n++) {
     double ft[6] = {0}, fc[6] = {0}, dmin2 = DBL_MAX;
     YfContactInfo info = {0};
-    contact_pair_dir(TX, TY, Z3, Z3, xc, yc, vx, Z3, pn, pt, mu, dt, g, ft, fc, &dmin2, &info);
+    contact_pair_dir(TX, TY, Z3, Z3, xc, yc, vx, Z3, pn, pt, mu, YF_FRIC_Y2D, dt, g, ft, fc, &dmin2, &info);
     double fx = fc[0] + fc[2] + fc[4];
     double Ft = pt * 1.5 * n * dt;
     if (Ft <= cap * (1 - 1e-12)) {
@@ -228,7 +228,7 @@ START_TEST(test_friction_stick_then_slide)
   /* Leaving contact: the edge is skipped and g keeps its value bit for bit. */
   double gkeep = g[0], ft[6] = {0}, fc[6] = {0}, dmin2 = DBL_MAX;
   flat_contactor(-0.1, xc, yc);
-  ck_assert_int_eq(contact_pair_dir(TX, TY, Z3, Z3, xc, yc, vx, Z3, pn, pt, mu, dt, g, ft, fc, &dmin2, NULL), 0);
+  ck_assert_int_eq(contact_pair_dir(TX, TY, Z3, Z3, xc, yc, vx, Z3, pn, pt, mu, YF_FRIC_Y2D, dt, g, ft, fc, &dmin2, NULL), 0);
   ck_assert(g[0] == gkeep);
   ck_assert(sum_abs(fc, 6) == 0.0);
 }
@@ -241,7 +241,7 @@ START_TEST(test_friction_mu_zero)
   flat_contactor(d, xc, yc);
   for (int n = 0; n < 3; n++) {
     double ft[6] = {0}, fc[6] = {0}, dmin2 = DBL_MAX;
-    contact_pair_dir(TX, TY, Z3, Z3, xc, yc, vx, Z3, 1e3, 1e3, 0.0, 1e-3, g, ft, fc, &dmin2, NULL);
+    contact_pair_dir(TX, TY, Z3, Z3, xc, yc, vx, Z3, 1e3, 1e3, 0.0, YF_FRIC_Y2D, 1e-3, g, ft, fc, &dmin2, NULL);
     ck_assert(fc[0] + fc[2] + fc[4] == 0.0); /* normal force is along y only */
     ck_assert(ft[0] + ft[2] + ft[4] == 0.0);
   }
@@ -257,7 +257,7 @@ START_TEST(test_friction_sbar_is_breakpoint_mean)
   const double d = 0.1, u = 2.0, dt = 1e-3;
   double xc[3] = {0.5, -1.0, -0.25}, yc[3] = {d, d, -5.0};
   double vxt[3] = {0.0, u, 0.0}, g[3] = {0}, ft[6] = {0}, fc[6] = {0}, dmin2 = DBL_MAX;
-  contact_pair_dir(TX, TY, vxt, Z3, xc, yc, Z3, Z3, 1e3, 1e3, 0.5, dt, g, ft, fc, &dmin2, NULL);
+  contact_pair_dir(TX, TY, vxt, Z3, xc, yc, Z3, Z3, 1e3, 1e3, 0.5, YF_FRIC_Y2D, dt, g, ft, fc, &dmin2, NULL);
   double sbar = (0.0 + (0.5 - d) / 1.5 + 1.0 / 3.0) / 3.0, xs = 0.5 - 1.5 * sbar;
   ck_assert_double_eq_tol(g[0], xs * u * (-1.5) * dt, 1e-14);
   ck_assert(fabs(xs - 0.2) < 1e-14); /* (a centroid rule would give about 0.27) */
@@ -695,7 +695,7 @@ START_TEST(test_random_pairs_conserve)
     int r = 0;
     for (int step = 0; step < 3; step++) {
       for (int q = 0; q < 6; q++) fa[q] = fb[q] = 0.0;
-      r = contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, 1e10, 1e9, 0.3, 1e-4, g, fa, fb, &d2, NULL);
+      r = contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, 1e10, 1e9, 0.3, YF_FRIC_Y2D, 1e-4, g, fa, fb, &d2, NULL);
     }
     touching += r;
     double px, py, tq, sc;
@@ -751,7 +751,7 @@ START_TEST(test_screen_matches_kernel)
     for (int i = 0; i < NT; i++)
       for (int j = i + 1; j < NT; j++) {
         double g[6] = {0}, fa[6] = {0}, fb[6] = {0}, d2;
-        int r = contact_pair_force(X[j], Y[j], V[j], V[j], X[i], Y[i], V[i], V[i], 1e10, 1e9, 0.3, 1e-4, g, fa, fb,
+        int r = contact_pair_force(X[j], Y[j], V[j], V[j], X[i], Y[i], V[i], V[i], 1e10, 1e9, 0.3, YF_FRIC_Y2D, 1e-4, g, fa, fb,
                                    &d2, NULL);
         double rems[4] = {0.3, d2 < DBL_MAX ? d2 : 1.0, d2 < DBL_MAX ? nextafter(d2, 0.0) : 2.0,
                           d2 < DBL_MAX ? 4.0 * d2 : 3.0};
@@ -819,7 +819,7 @@ START_TEST(test_screen_shapes_and_degenerate)
     contact_pair_geom(X[0], Y[0], rec[0]);
     contact_pair_geom(X[1], Y[1], rec[1]);
     double g[6] = {0}, fa[6] = {0}, fb[6] = {0}, d2;
-    int r = contact_pair_force(X[a], Y[a], V, V, X[b], Y[b], V, V, 1e10, 1e9, 0.3, 1e-4, g, fa, fb, &d2, NULL);
+    int r = contact_pair_force(X[a], Y[a], V, V, X[b], Y[b], V, V, 1e10, 1e9, 0.3, YF_FRIC_Y2D, 1e-4, g, fa, fb, &d2, NULL);
     double base = d2 < DBL_MAX ? d2 : 1.0;
     double rems[8] = {0.1 * base, 0.3 * base, 0.6 * base, nextafter(base, 0.0), base, 1.7 * base, 3.5 * base,
                       4.5 * base};
@@ -1099,11 +1099,11 @@ START_TEST(test_kernel_matches_reference)
       YfContactInfo ir = {0, 0, 0, 0, 0, 0}, i1 = ir, i2 = ir;
       int nr = ref_dir(xa, ya, vxa, vya, xb, yb, vxb, vyb, pn, pt, mu, dt, gr, far, fbr, &dr, &ir);
       nr += ref_dir(xb, yb, vxb, vyb, xa, ya, vxa, vya, pn, pt, mu, dt, gr + 3, fbr, far, &dr, &ir);
-      int r1 = contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, pn, pt, mu, dt, g1, fa1, fb1, &d1, &i1);
+      int r1 = contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, pn, pt, mu, YF_FRIC_Y2D, dt, g1, fa1, fb1, &d1, &i1);
       double ra[YF_TRI_GEOM], rb[YF_TRI_GEOM];
       contact_pair_geom(xa, ya, ra);
       contact_pair_geom(xb, yb, rb);
-      int r2 = (it & 1 ? contact_pair_force_rec : contact_pair_force_rec_any)(ra, vxa, vya, rb, vxb, vyb, pn, pt, mu,
+      int r2 = (it & 1 ? contact_pair_force_rec : contact_pair_force_rec_any)(ra, vxa, vya, rb, vxb, vyb, pn, pt, mu, YF_FRIC_Y2D,
                                                                              dt, g2, fa2, fb2, &d2, step ? &i2 : NULL);
       if (!step) i2 = ir;
       if (r1 != (nr > 0) || r2 != (nr > 0) || !same_bits(d1, dr) || !same_bits(d2, dr)) bad++;

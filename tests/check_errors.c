@@ -150,6 +150,77 @@ START_TEST(test_inverted_element_numerical_failure) {
 }
 END_TEST
 
+/* issue 20: nothing printed or written holds inf or nan.  A metrics log with no fracturing body
+ * has no sigma1_max to give (it was -inf on every row): the field is empty.  A velocity so large
+ * that the body leaves what doubles can resolve is named as such (it printed inf and -nan thermo
+ * lines and blamed an inverted triangle). */
+static int has_inf_nan(const char *t) {
+  return strstr(t, "inf") || strstr(t, "nan") || strstr(t, "INF") || strstr(t, "NAN");
+}
+START_TEST(test_never_inf_nan) {
+  char *err, *dir, p[600];
+  int rc = yft_run_binary("m.deck", BAR "velocity bar set 1 0\ntimestep auto\nthermo 10\nmetrics log m.csv every 10\n"
+                          "run 50\n", "-log run.log", &err, &dir);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  snprintf(p, sizeof p, "%s/m.csv", dir);
+  char *csv = slurp(p);
+  ck_assert_ptr_nonnull(csv);
+  ck_assert_msg(!has_inf_nan(csv), "metrics log holds inf or nan:\n%s", csv);
+  /* row of step 10: sigma1_max (column 15) is empty, the energies are numbers */
+  const char *row = strstr(csv, "\n10,");
+  ck_assert_ptr_nonnull(row);
+  int comma = 0;
+  const char *q = row + 1;
+  while (*q && comma < 14) comma += *q++ == ',';
+  ck_assert_msg(*q == ',', "sigma1_max of a log with no fracturing body is not empty: %.200s", row + 1);
+  free(csv);
+  free(err);
+  free(dir);
+  rc = yft_run_binary("v.deck", BAR "velocity bar set 1e90 0\ntimestep auto\nthermo 1\nrun 50\n", "-log run.log", &err,
+                      &dir);
+  ck_assert_msg(rc == 3 && (strstr(err, "the range the arithmetic holds") || strstr(err, "overflows the range of a double")),
+                "exit %d: %s", rc, err);
+  ck_assert_msg(!has_inf_nan(err), "stderr holds inf or nan: %s", err);
+  snprintf(p, sizeof p, "%s/run.log", dir);
+  char *log = slurp(p);
+  ck_assert_ptr_nonnull(log);
+  ck_assert_msg(!has_inf_nan(log), "the -log holds inf or nan:\n%s", log);
+  free(log);
+  free(err);
+  free(dir);
+}
+END_TEST
+
+/* A Gmsh mesh with duplicated, coincident nodes (two surfaces meshed without coherence) would run
+ * as pieces that are not connected: warned, with the count and the first pair. */
+START_TEST(test_gmsh_coincident_nodes_warned) {
+  static const char msh[] =
+      "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n2 1 \"soft\"\n2 2 \"hard\"\n$EndPhysicalNames\n"
+      "$Entities\n0 0 2 0\n1 0 0 0 1 1 0 1 1 0\n2 0 0 0 1 1 0 1 2 0\n$EndEntities\n"
+      "$Nodes\n2 6 1 6\n2 1 0 2\n1\n2\n0 0 0\n1 0 0\n2 2 0 4\n3\n4\n5\n6\n1 1 0\n0 1 0\n0.5 0.5 0\n0.5 0.5 0\n$EndNodes\n"
+      "$Elements\n2 4 1 4\n2 1 2 2\n1 1 2 5\n2 3 5 4\n2 2 2 2\n3 2 3 6\n4 4 1 6\n$EndElements\n";
+  char tmpl[] = "/tmp/yf_dup_XXXXXX";
+  char *d = mkdtemp(tmpl);
+  ck_assert_ptr_nonnull(d);
+  char path[256];
+  snprintf(path, sizeof path, "%s/dup.msh", d);
+  FILE *f = fopen(path, "w");
+  ck_assert_ptr_nonnull(f);
+  fputs(msh, f);
+  fclose(f);
+  char deck[512], *err, *dir;
+  snprintf(deck, sizeof deck, "material soft elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+           "material hard elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh gmsh b %s\n", path);
+  int rc = yft_run_binary("g.deck", deck, NULL, &err, &dir);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  ck_assert_msg(strstr(err, "warning: mesh gmsh: 1 node of") && strstr(err, "nodes 5 and 6 at (0.5, 0.5)"), "%s", err);
+  free(err);
+  free(dir);
+  unlink(path);
+  rmdir(d);
+}
+END_TEST
+
 Suite *errors_suite(void) {
   Suite *s = suite_create("errors");
   TCase *t = tcase_create("deck");
@@ -164,6 +235,8 @@ Suite *errors_suite(void) {
   tcase_add_test(t, test_bad_mesh_file);
   tcase_add_test(t, test_timestep_above_limit_refused);
   tcase_add_test(t, test_inverted_element_numerical_failure);
+  tcase_add_test(t, test_never_inf_nan);
+  tcase_add_test(t, test_gmsh_coincident_nodes_warned);
   suite_add_tcase(s, t);
   return s;
 }

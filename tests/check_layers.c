@@ -26,6 +26,7 @@ static const char *const ALLOWED[][2] = {
     {"model", "base model"},
     {"kernel", "base model kernel"},
     {"step", "base model kernel step"},
+    {"par", "base model kernel step par"}, /* MPI ranks (make mpi): the implementation of step/par.h */
     {"y2d", "base model kernel step y2d"},
     {"io", "base model kernel step y2d io"},
     {"deck", "base model kernel step y2d io deck"},

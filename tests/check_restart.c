@@ -10,11 +10,16 @@
  *     then beside the deck;
  *   - a restart read by a deck that builds another scene is refused (deck error, exit 1), a
  *     missing or garbage restart is an I/O error (exit 2);
- *   - SIGINT to a running yfdem: exit 4, a message naming the restart, a last frame, and the
+ *   - SIGINT to a running yfdem: exit 130, a message naming the restart, a last frame, and the
  *     continued run lands on the uninterrupted run's state_hash;
- *   - SIGKILL to a running yfdem writing h5 frames: every frame its .xmf lists reads back.
+ *   - SIGKILL to a running yfdem writing h5 frames: every frame its .xmf lists reads back;
+ *   - interrupted off an output step and continued: every file equals the uninterrupted run's;
+ *   - SIGINT/SIGTERM outside run (a deck loop, a deck on a pipe): exit 130, "interrupted";
+ *   - a full disk (tmpfs, else RLIMIT_FSIZE): exit 2, no signal, listed frames read back;
+ *   - every output that cannot be created: exit 2.
  */
 #include <check.h>
+#include <dirent.h>
 #include <fcntl.h>
 #include <hdf5.h>
 #include <math.h>
@@ -469,20 +474,28 @@ static long read_all_items(const char *dir, const char *xmf) {
   return result;
 }
 
+/* Run deck NAME of tmpdir (2 threads) until its index tmpdir/XMF exists, then a while longer, then
+ * SIGINT: exit 130; returns its stderr (caller frees). */
+static char *interrupt_run(const char *name, const char *xmf_name, useconds_t delay) {
+  pid_t pid = spawn(name, 2);
+  char xmf[256];
+  snprintf(xmf, sizeof xmf, "%s/%s", tmpdir, xmf_name);
+  ck_assert(wait_for(xmf));
+  usleep(delay);
+  kill(pid, SIGINT);
+  int code = wait_code(pid);
+  char *e = err_of(name);
+  ck_assert_msg(code == YF_EXIT_INTERRUPT, "exit %d: %s", code, e);
+  return e;
+}
+
 START_TEST(test_sigint_restart) {
   mk_tmpdir();
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   /* a run far too long to finish: its dump shows it is under way, then SIGINT */
   write_deck("long.deck", NULL, "dump d h5 50 long.h5 fields u\nrun 1000000\n");
-  pid_t pid = spawn("long.deck", 2);
-  char xmf[256];
+  char *e = interrupt_run("long.deck", "long.xmf", 200000), xmf[256];
   snprintf(xmf, sizeof xmf, "%s/long.xmf", tmpdir);
-  ck_assert(wait_for(xmf));
-  usleep(200000);
-  kill(pid, SIGINT);
-  int code = wait_code(pid);
-  char *e = err_of("long.deck");
-  ck_assert_msg(code == YF_EXIT_INTERRUPT, "exit %d: %s", code, e);
   ck_assert_msg(strstr(e, "read_restart " YF_RESTART_DEFAULT) && strstr(e, "run 1000000 upto"), "%s", e);
   long step = -1;
   const char *p = strstr(e, "interrupted at step ");
@@ -529,6 +542,261 @@ START_TEST(test_sigkill_frames_readable) {
 }
 END_TEST
 
+/* ---------------------------------------------------------------- issue 20: interrupts, full disks */
+
+/* Whether tmpdir/a/NAME and tmpdir/b/NAME hold the same bytes. */
+static int same_file(const char *a, const char *b) {
+  char cmd[1024];
+  snprintf(cmd, sizeof cmd, "cmp -s '%s' '%s'", a, b);
+  return system(cmd) == 0;
+}
+
+/* Interrupted at a step no output is due on, then continued: every file the run writes (frames,
+ * their indexes, CSV frames, the metrics log, the break and opened-crack logs) is byte for byte
+ * the uninterrupted run's, and there is no other (no frame of the interrupt's step left over).
+ * Before issue 20 the index listed the interrupt's frame, later frames were numbered one off
+ * and the metrics log lost its rows before the restart. */
+START_TEST(test_interrupt_continue_every_file) {
+  mk_tmpdir();
+  char base[24], a[40], b[40];
+  ck_assert(strlen(tmpdir) < sizeof base);
+  snprintf(base, sizeof base, "%s", tmpdir);
+  snprintf(a, sizeof a, "%s/a", base);
+  snprintf(b, sizeof b, "%s/b", base);
+  ck_assert_int_eq(mkdir(a, 0755), 0);
+  ck_assert_int_eq(mkdir(b, 0755), 0);
+  static const char OUT[] = "dump d h5 300 p.h5 fields u v stress\ndump c csv 300 p\nmetrics log p_metrics.csv every 20\n"
+                            "fracture_log p_breaks.csv opened p_opened.csv\n";
+  char tail[512];
+  snprintf(tmpdir, sizeof tmpdir, "%s", a);
+  snprintf(tail, sizeof tail, "%srun 1000000\n", OUT);
+  write_deck("long.deck", NULL, tail);
+  char *e = interrupt_run("long.deck", "p.xmf", 300000);
+  const char *p = strstr(e, "interrupted at step ");
+  long k = p ? strtol(p + 20, NULL, 10) : -1;
+  free(e);
+  ck_assert_int_gt(k, 0);
+  long n = (k / 300 + 2) * 300 + 50; /* two more frames, and a last step no frame is due on */
+  if (k % 300 == 0 || k % 20 == 0)
+    fprintf(stderr, "test_interrupt_continue_every_file: the interrupt fell on an output step (%ld)\n", k);
+  snprintf(tail, sizeof tail, "%sread_restart " YF_RESTART_DEFAULT "\nrun %ld upto\n", OUT, n);
+  write_deck("cont.deck", NULL, tail);
+  char h[17];
+  expect_ok("cont.deck", 2, h);
+  snprintf(tmpdir, sizeof tmpdir, "%s", b);
+  snprintf(tail, sizeof tail, "%srun %ld\n", OUT, n);
+  write_deck("full.deck", NULL, tail);
+  expect_ok("full.deck", 2, h);
+  snprintf(tmpdir, sizeof tmpdir, "%s", base);
+  /* every file of the uninterrupted run, and no other but the decks, logs and the restart */
+  const char *dirs[2] = {a, b};
+  int compared = 0;
+  for (int side = 0; side < 2; side++) {
+    DIR *dd = opendir(dirs[side]);
+    ck_assert_ptr_nonnull(dd);
+    for (struct dirent *de; (de = readdir(dd));) {
+      const char *nm = de->d_name;
+      size_t L = strlen(nm);
+      if (nm[0] == '.' || strstr(nm, ".deck") || (L > 4 && (!strcmp(nm + L - 4, ".err") || !strcmp(nm + L - 5, ".json"))) ||
+          !strcmp(nm, YF_RESTART_DEFAULT) || !strcmp(nm, "log.yfdem"))
+        continue; /* log.yfdem echoes each run's own deck and timings, as log.lammps does */
+      char pa[300], pb[300];
+      snprintf(pa, sizeof pa, "%s/%s", a, nm);
+      snprintf(pb, sizeof pb, "%s/%s", b, nm);
+      ck_assert_msg(yft_exists(side ? pa : pb), "%s is written by only one of the two runs", nm);
+      if (side == 1) {
+        ck_assert_msg(same_file(pa, pb), "%s of the continued run differs from the uninterrupted run's", nm);
+        compared++;
+      }
+    }
+    closedir(dd);
+  }
+  ck_assert_int_ge(compared, 10); /* frames, indexes and logs */
+  rm_tmpdir();
+}
+END_TEST
+
+/* A deck is a plain text file the test writes (no scene). */
+static void write_text(const char *name, const char *text) {
+  char path[256];
+  snprintf(path, sizeof path, "%s/%s", tmpdir, name);
+  FILE *f = fopen(path, "w");
+  ck_assert_ptr_nonnull(f);
+  fputs(text, f);
+  fclose(f);
+}
+
+static int summary_says(const char *name, const char *status) {
+  char path[256], want[64];
+  snprintf(path, sizeof path, "%s/%s.json", tmpdir, name);
+  snprintf(want, sizeof want, "\"status\": \"%s\"", status);
+  char *j = slurp(path);
+  int ok = strstr(j, want) != NULL;
+  free(j);
+  return ok;
+}
+
+/* Wait (bounded: 60 s) until process pid catches SIGINT (its handler is installed), then a
+ * little more: a signal sent before would end it by the default action. */
+static void wait_caught(pid_t pid) {
+  char path[64];
+  snprintf(path, sizeof path, "/proc/%d/status", (int)pid);
+  for (int i = 0; i < 6000; i++) {
+    char *t = slurp(path), *c = strstr(t, "SigCgt:");
+    unsigned long long mask = c ? strtoull(c + 7, NULL, 16) : 0;
+    free(t);
+    if (mask & (1ull << (SIGINT - 1))) break;
+    usleep(10000);
+  }
+  usleep(200000);
+}
+
+/* SIGINT and SIGTERM stop the interpreter outside `run` too: a deck loop with no end (LAMMPS has
+ * no loop limit, and before issue 20 neither signal stopped it) and a deck read from a pipe that
+ * never closes end with exit 130 and an "interrupted" summary. */
+START_TEST(test_interrupt_outside_run) {
+  mk_tmpdir();
+  write_text("loop.deck", "variable i loop 3\nlabel top\nprint \"i = ${i}\"\njump SELF top\n");
+  const int sig[2] = {SIGINT, SIGTERM};
+  for (int t = 0; t < 2; t++) {
+    pid_t pid = spawn("loop.deck", 1);
+    wait_caught(pid);
+    kill(pid, sig[t]);
+    int code = wait_code(pid);
+    char *e = err_of("loop.deck");
+    ck_assert_msg(code == YF_EXIT_INTERRUPT, "signal %d: exit %d: %s", sig[t], code, e);
+    ck_assert_msg(strstr(e, "loop.deck:") && strstr(e, t ? "interrupted (SIGTERM)" : "interrupted (SIGINT)"), "%s", e);
+    free(e);
+    ck_assert(summary_says("loop.deck", "interrupted"));
+  }
+  /* a deck on a pipe whose writer never closes it: the read itself is interrupted */
+  int fd[2];
+  ck_assert_int_eq(pipe(fd), 0);
+  const char *bin = binary(); /* before the chdir */
+  signal(SIGPIPE, SIG_IGN);
+  pid_t pid = fork();
+  ck_assert_int_ge(pid, 0);
+  if (pid == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (chdir(tmpdir)) _exit(127);
+    dup2(fd[0], 0);
+    close(fd[1]);
+    int fe = open("pipe.err", O_WRONLY | O_CREAT | O_TRUNC, 0644), fo = open("/dev/null", O_WRONLY);
+    dup2(fe, 2);
+    dup2(fo, 1);
+    execl(bin, bin, "-summary", "pipe.json", (char *)NULL);
+    _exit(127);
+  }
+  close(fd[0]);
+  if (write(fd[1], "print hello\n", 12) != 12) {}
+  wait_caught(pid);
+  kill(pid, SIGINT);
+  int st = 0, done = 0;
+  for (int i = 0; i < 1000 && !(done = waitpid(pid, &st, WNOHANG) == pid); i++) usleep(10000);
+  if (!done) { /* the interrupt did not end the read */
+    kill(pid, SIGKILL);
+    waitpid(pid, &st, 0);
+  }
+  ck_assert_msg(done, "a deck being read from a pipe is not stopped by SIGINT within 10 s");
+  int code = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
+  close(fd[1]);
+  char *e = err_of("pipe");
+  ck_assert_msg(code == YF_EXIT_INTERRUPT, "deck on a pipe: exit %d: %s", code, e);
+  free(e);
+  ck_assert(summary_says("pipe", "interrupted"));
+  rm_tmpdir();
+}
+END_TEST
+
+/* A full disk: a tmpfs of a few sizes (in a mount namespace of its own: `unshare -rm`, as root
+ * and, where user namespaces are allowed, without), else a file size limit (RLIMIT_FSIZE with
+ * SIGXFSZ ignored, so writes fail with EFBIG).  Every size ends in exit 2 with the cause, no
+ * signal (before issue 20, HDF5's exit handler closed the failed frame file again: SIGSEGV at 10
+ * of 12 sizes), an io_error summary (written beside the disk), no NAME.tmp left, and every frame
+ * the index lists reads back. */
+START_TEST(test_full_disk) {
+  mk_tmpdir();
+  write_text("d.deck", "material rock elastic rho 2700 E 30e9 nu 0.25 plane_stress damping 0.1\n"
+                       "mesh rect bar rock 0 0 1 0.1 60 6\nvelocity bar set 1 0\ntimestep auto\nthermo 500\n"
+                       "dump d h5 10 k.h5\ndump c csv 50 k\nmetrics log m.csv every 10\nrun 3000\n");
+  char cmd[2048];
+  snprintf(cmd, sizeof cmd, "unshare -rm sh -c 'mkdir -p %s/t && mount -t tmpfs -o size=64k tmpfs %s/t' 2>/dev/null",
+           tmpdir, tmpdir);
+  int tmpfs = system(cmd) == 0;
+  fprintf(stderr, "test_full_disk: %s\n", tmpfs ? "tmpfs in a mount namespace" : "RLIMIT_FSIZE (no mount namespace)");
+  static const int kb[] = {120, 300, 700, 1300, 1900};
+  for (int i = 0; i < 5; i++) {
+    char out[128];
+    snprintf(out, sizeof out, "%s/o%d", tmpdir, kb[i]);
+    ck_assert_int_eq(mkdir(out, 0755), 0);
+    if (tmpfs)
+      snprintf(cmd, sizeof cmd,
+               "cd %s && unshare -rm sh -c 'mkdir -p t && mount -t tmpfs -o size=%dk tmpfs t && cd t && "
+               "OMP_NUM_THREADS=1 %s -in ../d.deck -summary ../o%d/s.json >/dev/null 2>../o%d/err.txt; "
+               "echo $? > ../o%d/code; cp -a . ../o%d/'",
+               tmpdir, kb[i], binary(), kb[i], kb[i], kb[i], kb[i]);
+    else
+      snprintf(cmd, sizeof cmd,
+               "cd %s && sh -c 'ulimit -f %d; trap \"\" XFSZ; OMP_NUM_THREADS=1 exec %s -in ../d.deck -summary s.json "
+               ">/dev/null 2>err.txt'; echo $? > code",
+               out, kb[i] / 8, binary());
+    ck_assert_int_eq(system(cmd), 0);
+    char path[256];
+    snprintf(path, sizeof path, "%s/code", out);
+    char *c = slurp(path);
+    int code = atoi(c);
+    free(c);
+    snprintf(path, sizeof path, "%s/err.txt", out);
+    char *e = slurp(path);
+    ck_assert_msg(code == YF_EXIT_IO, "%d KB: exit %d: %s", kb[i], code, e);
+    ck_assert_msg(strstr(e, "No space left on device") || strstr(e, "File too large"), "%d KB: %s", kb[i], e);
+    free(e);
+    snprintf(path, sizeof path, "%s/s.json", out);
+    char *j = slurp(path);
+    ck_assert_msg(strstr(j, "\"status\": \"io_error\""), "%d KB: summary: %s", kb[i], j);
+    free(j);
+    snprintf(cmd, sizeof cmd, "ls %s | grep -q '\\.tmp$'", out);
+    ck_assert_msg(system(cmd) != 0, "%d KB: a NAME.tmp is left in %s", kb[i], out);
+    snprintf(path, sizeof path, "%s/k.xmf", out);
+    if (yft_exists(path)) {
+      long r = read_all_items(out, path);
+      ck_assert_msg(r >= 0, "%d KB: dataset reference %ld of k.xmf does not read back", kb[i], -1 - r);
+    }
+  }
+  rm_tmpdir();
+}
+END_TEST
+
+/* Every output that cannot be created is an I/O error (exit 2) naming it, before anything runs:
+ * before issue 20, fracture_log, metrics log and -summary only warned (or said nothing) and
+ * the run ended with exit 0. */
+START_TEST(test_outputs_unwritable) {
+  static const char *const cases[][3] = {
+      {"fracture_log no_dir/b.csv\n", "", "fracture_log: cannot write 'no_dir/b.csv'"},
+      {"fracture_log b.csv opened no_dir/o.csv\n", "", "fracture_log: cannot write 'no_dir/o.csv'"},
+      {"metrics log no_dir/m.csv every 10\n", "", "metrics log: cannot write 'no_dir/m.csv'"},
+      {"", "-summary no_dir/s.json", "-summary: cannot write 'no_dir/s.json'"},
+      {"", "-log no_dir/run.log", "cannot open log file 'no_dir/run.log'"},
+      {"dump d h5 10 no_dir/k.h5\n", "", "no_dir/k"},
+      {"dump c csv 10 no_dir/k\n", "", "no_dir/k"},
+      {"write_restart no_dir/r.restart\n", "", "no_dir/r.restart"},
+      {"restart every 5 no_dir/r\n", "", "no_dir/r"},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+    char deck[1024], *err, *dir;
+    snprintf(deck, sizeof deck, "material m elastic rho 2700 E 30e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 1 2 2\n"
+             "timestep auto\n%srun 20\n", cases[i][0]);
+    int code = yft_run_binary("o.deck", deck, cases[i][1], &err, &dir);
+    ck_assert_msg(code == YF_EXIT_IO && strstr(err, cases[i][2]), "case %zu: exit %d: %s", i, code, err);
+    free(err);
+    char cmd[256];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    if (system(cmd)) {}
+    free(dir);
+  }
+}
+END_TEST
+
 Suite *restart_suite(void) {
   Suite *s = suite_create("restart");
   TCase *tc = tcase_create("restart");
@@ -541,6 +809,10 @@ Suite *restart_suite(void) {
   tcase_add_test(tc, test_restart_refusals);
   tcase_add_test(tc, test_sigint_restart);
   tcase_add_test(tc, test_sigkill_frames_readable);
+  tcase_add_test(tc, test_interrupt_continue_every_file);
+  tcase_add_test(tc, test_interrupt_outside_run);
+  tcase_add_test(tc, test_full_disk);
+  tcase_add_test(tc, test_outputs_unwritable);
   suite_add_tcase(s, tc);
   return s;
 }

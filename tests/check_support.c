@@ -30,6 +30,23 @@ YfSim *yft_run(const char *deck_text) {
   return &t_sim;
 }
 
+YfSim *yft_run_deck(const char *path, const char *const *vars) {
+  sim_init(&t_sim);
+  t_sim.progress = 0;
+  YfDeck *d = deck_new(&t_sim);
+  for (int i = 0; vars && vars[i]; i += 2) deck_set_var(d, vars[i], vars[i + 1]);
+  fflush(stdout);
+  int saved = dup(1);
+  FILE *devnull = fopen("/dev/null", "w");
+  dup2(fileno(devnull), 1);
+  deck_run_file(d, path, NULL);
+  fflush(stdout);
+  dup2(saved, 1);
+  close(saved);
+  fclose(devnull);
+  return &t_sim;
+}
+
 char *yft_slurp(const char *path, int empty_if_missing) {
   FILE *f = fopen(path, "rb");
   if (!f) return empty_if_missing ? calloc(1, 1) : NULL;
@@ -93,3 +110,27 @@ int yft_node_at(const YfSim *s, double x, double y) {
   return best;
 }
 
+
+int yft_child_run(void (*fn)(void *), void *arg, char *msg, size_t n) {
+  char path[] = "/tmp/yfx_XXXXXX";
+  int fd = mkstemp(path);
+  ck_assert_int_ge(fd, 0);
+  fflush(stdout);
+  fflush(stderr);
+  pid_t pid = fork();
+  ck_assert_int_ge(pid, 0);
+  if (pid == 0) {
+    dup2(fd, 2);
+    (void)!freopen("/dev/null", "w", stdout);
+    fn(arg);
+    fflush(NULL);
+    _exit(0);
+  }
+  int st = 0;
+  waitpid(pid, &st, 0);
+  ssize_t k = pread(fd, msg, n - 1, 0);
+  msg[k > 0 ? k : 0] = 0;
+  close(fd);
+  unlink(path);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+}

@@ -245,7 +245,7 @@ static const struct {
   {"short_array.y", 1, 10, "/YD/YDE/I1ELPR: expected 2 values, found 1 before '/YD/YDE/I2ELTO'"},
   {"real_for_int.y", 1, 2, "/YD/YDC/MCSTEP: '4e3' is not an integer"},
   {"array_before_cap.y", 1, 4, "/YD/YDE/I1ELPR: read before its capacity /YD/YDE/MELEM"},
-  {"bad_set_index.y", 1, 17, "/YD/YDN/I1NOPR: node 2 has BC set 5, outside 0..NPNSET-1"},
+  {"bad_set_index.y", 1, 18, "/YD/YDN/I1NOPR: node 2 has BC set 5, outside 0..NPNSET-1"},
   {"missing_required.y", 1, 34, "/YD/YDN/D2NCI is required"},
   {"unterminated_comment.y", 1, 35, "unterminated comment"},
   {"comment_too_long.y", 1, 1, "longer than 100 tokens"},

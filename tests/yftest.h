@@ -9,10 +9,17 @@
 
 /* Run deck text in a fresh simulation (stdout silenced); returns the simulation (static). */
 YfSim *yft_run(const char *deck_text);
+/* Run a deck file (path relative to the repository root, where the tests run) in a fresh
+ * simulation (stdout silenced), with the variables vars = {NAME, VALUE, ..., NULL} set as by
+ * -var; returns the simulation (static). */
+YfSim *yft_run_deck(const char *path, const char *const *vars);
 /* Run the yfdem binary (path from $YFDEM, default ./yfdem) with the given deck text written to
  * a temporary file named NAME in a fresh temporary directory; returns the exit code, and the
  * captured stderr in err (caller frees).  *dir receives the temporary directory (caller frees). */
 int yft_run_binary(const char *name, const char *deck_text, const char *extra_args, char **err, char **dir);
+/* Run fn(arg) in a child process (its stdout silenced, its stderr captured into msg); returns
+ * the child's exit code (0 when fn returns). */
+int yft_child_run(void (*fn)(void *), void *arg, char *msg, size_t n);
 /* Node nearest to (x, y) in the initial configuration. */
 int yft_node_at(const YfSim *s, double x, double y);
 /* Whole file as a string (caller frees); NULL when it cannot be opened, or "" when

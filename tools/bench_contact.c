@@ -114,7 +114,7 @@ static void run(int ntri_target, double jitter)
         xa[q] = x[va[q]]; ya[q] = y[va[q]]; vxa[q] = vx[va[q]]; vya[q] = vy[va[q]];
         xb[q] = x[vb[q]]; yb[q] = y[vb[q]]; vxb[q] = vx[vb[q]]; vyb[q] = vy[vb[q]];
       }
-      touching += contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, 1e10, 1e10, 0.5, 1e-7,
+      touching += contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, 1e10, 1e10, 0.5, YF_FRIC_Y2D, 1e-7,
                                      gm + 6 * (size_t)c, fa, fb, &d2, k == 0 ? &info : NULL);
       for (int q = 0; q < 3; q++) {
         fx[va[q]] += fa[2 * q]; fy[va[q]] += fa[2 * q + 1];

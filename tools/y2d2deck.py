@@ -7,7 +7,7 @@ usage: y2d2deck.py DECK.y OUT
   converted deck sums forces in the order `yfdem DECK.y` does and results compare by id.
 
 The converted deck runs the physics of `yfdem DECK.y` (tests/convert/run compares the final
-energies, broken joints and contact pairs of the four shared decks: within 1e-9 of the energy
+energies, broken joints and contact pairs of the four shared decks: within 1e-11 of the energy
 scale, not bitwise, since the native velocity update is not Y2D's BC-set update).
 
 What is translated (native syntax = the SYNTAX dict below, one place to adapt):
@@ -16,9 +16,11 @@ What is translated (native syntax = the SYNTAX dict below, one place to adapt):
   ICSHTF / ICOUTF            -> thermo N / dump ID h5 N FILE
   DCGRAY                     -> gravity 0 G  (note: Y2D applies gravity to BC kinds 1 and 2 only)
   /YD/YDPE/ property p       -> material p<p> elastic rho R lambda L mu M visc K volfac 0.5
-                                pen_n PE pen_t PT friction FR  (Y2D's law uses lambda/2: volfac 0.5)
+                                pen_n PE pen_t PT friction FR friction_law y2d  (Y2D's law uses
+                                lambda/2: volfac 0.5; Y2D's contact friction, not the native Coulomb)
   joint set j (/YD/YDPJ/)    -> jointprop j<j> ft fs gf pen law munjiza [cohesion C friction MU]
-                                damage reversible floor y2d  (Y2D's law: no damage memory, 2 o_p floor)
+                                damage reversible floor y2d tangent y2d  (Y2D's law: no damage
+                                memory, 2 o_p floor, unit tangent e/(h + 1e-10 m))
   meshing row r of code 3    -> group row<r> tri id ... (the triangles of its properties) and
                                 fracture y2d j<s> group row<r>, s = the I2PMIJ set of its properties
   MICOUP > 0                 -> group contact_tris tri id ... (every triangle, or with IWFAST > 0
@@ -57,7 +59,7 @@ SYNTAX = {
     'nodes':     'nodes {file} {body}',
     'triangles': 'triangles {file} {body}',
     'material':  'material {name} elastic rho {rho!r} lambda {lam!r} mu {mu!r} visc {visc!r} '
-                 'volfac 0.5 pen_n {pen_n!r} pen_t {pen_t!r} friction {fric!r}',
+                 'volfac 0.5 pen_n {pen_n!r} pen_t {pen_t!r} friction {fric!r} friction_law y2d',
     'timestep':  'timestep {dt!r}',
     'gravity':   'gravity 0 {gy!r}',
     'group_ids': 'group {name} node id {ids}',
@@ -69,7 +71,7 @@ SYNTAX = {
     'history':   'history {name} table {pairs}',
     'hist_opt':  ' history {name}',
     'jointprop': 'jointprop {name} ft {ft!r} fs {fs!r} gf {gf!r} pen {pen!r} law munjiza{mc} '
-                 'damage reversible floor y2d',
+                 'damage reversible floor y2d tangent y2d',
     'mohr_coulomb': ' cohesion {co!r} friction {fr!r}',   # written when D1PJCO > 0
     'group_tris': 'group {name} tri id {ids}',
     'fracture':  'fracture {body} {jp} group {group}',

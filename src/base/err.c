@@ -6,6 +6,8 @@
  */
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,7 +16,10 @@
 static char last_msg[2048];
 static YfCleanupFn cleanup_fn;
 static int in_cleanup;
+static int cleanup_code;  /* the code the cleanup runs for                            */
+static int pending_io;    /* an output failed during the cleanup: the exit code is 2   */
 static void (*exit_hook)(int code);
+static int writer = 1;
 static FILE *log_fp; /* the run's log (main: log.yfdem or -log FILE): warnings are copied to it */
 
 void yf_set_log(FILE *fp) { log_fp = fp; }
@@ -30,21 +35,80 @@ const char *yf_status_word(int code) {
   }
 }
 
+static void (*sig_handler)(int);
+
+static void install(int restart) {
+  if (!sig_handler) return;
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = sig_handler;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = restart ? SA_RESTART : 0;
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
+}
+void yf_catch_signals(void (*handler)(int sig)) {
+  sig_handler = handler;
+  install(1);
+}
+void yf_interruptible(int on) { install(!on); }
+
 void yf_set_cleanup(YfCleanupFn fn) { cleanup_fn = fn; }
 void yf_set_exit_hook(void (*hook)(int code)) { exit_hook = hook; }
 const char *yf_last_message(void) { return last_msg; }
+int yf_writer(void) { return writer; }
+void yf_set_writer(int on) { writer = on; }
 
-static void finish(int code) __attribute__((noreturn));
-static void finish(int code) {
-  fprintf(stderr, "%s\n", last_msg);
-  fflush(stderr);
+/* Run the cleanup once (output files closed, logs and the summary written); an output that fails
+ * there (yf_output_error) turns a successful exit into YF_EXIT_IO.  Returns the exit code. */
+static int cleanup(int code) {
   if (cleanup_fn && !in_cleanup) {
     in_cleanup = 1;
+    cleanup_code = code;
     cleanup_fn(code, last_msg);
   }
   in_cleanup = 0;
+  return yf_exit_code(code);
+}
+
+int yf_exit_code(int code) { return code == YF_EXIT_OK && pending_io ? YF_EXIT_IO : code; }
+
+int yf_finish(int code) {
+  if (code != YF_EXIT_OK) {
+    fprintf(stderr, "%s\n", last_msg);
+    fflush(stderr);
+  }
+  return cleanup(code);
+}
+
+static void finish(int code) __attribute__((noreturn));
+static void finish(int code) {
+  if (writer) {
+    fprintf(stderr, "%s\n", last_msg);
+    fflush(stderr);
+  }
+  code = cleanup(code);
   if (exit_hook) exit_hook(code); /* the fuzz harness longjmps out instead of exiting */
   exit(code);
+}
+
+void yf_output_error(const char *fmt, ...) {
+  char msg[2048];
+  int k = snprintf(msg, sizeof msg, "error: ");
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg + k, sizeof msg - (size_t)k, fmt, ap);
+  va_end(ap);
+  if (!in_cleanup) {
+    snprintf(last_msg, sizeof last_msg, "%s", msg);
+    finish(YF_EXIT_IO);
+  }
+  /* on the way out: say it, keep going (the other files and the summary), exit 2 at the end;
+   * after another error that error keeps its message and its code */
+  fprintf(stderr, "%s\n", msg);
+  fflush(stderr);
+  if (cleanup_code == YF_EXIT_OK && !pending_io) snprintf(last_msg, sizeof last_msg, "%s", msg);
+  pending_io = 1;
 }
 
 /* Compose "FILE:LINE: error: " + message into last_msg. */
@@ -100,8 +164,10 @@ void yf_warn(const YfLoc *loc, const char *fmt, ...) {
   va_start(ap, fmt);
   if (k > 0 && (size_t)k < sizeof buf) vsnprintf(buf + k, sizeof buf - (size_t)k, fmt, ap);
   va_end(ap);
-  fprintf(stderr, "%s\n", buf);
-  fflush(stderr);
+  if (writer) {
+    fprintf(stderr, "%s\n", buf);
+    fflush(stderr);
+  }
   if (log_fp) {
     fprintf(log_fp, "%s\n", buf);
     fflush(log_fp);
@@ -159,6 +225,10 @@ char *yf_read_file(const char *path, size_t *len, const char *what) {
     return NULL;
   }
   t[n] = 0;
+  if (n >= 3 && !memcmp(t, "\xef\xbb\xbf", 3)) { /* a UTF-8 byte-order mark (the rest may hold NULs) */
+    memmove(t, t + 3, n - 2);
+    n -= 3;
+  }
   *len = n;
   return t;
 }
@@ -196,4 +266,32 @@ const char *yf_nearest(const char *word, const char *const *names, int n) {
     if (d < bestd) bestd = d, best = names[i];
   }
   return bestd <= limit ? best : NULL;
+}
+
+size_t yf_skip_bom(char *s) {
+  if ((unsigned char)s[0] != 0xef || (unsigned char)s[1] != 0xbb || (unsigned char)s[2] != 0xbf) return 0;
+  memmove(s, s + 3, strlen(s + 3) + 1);
+  return 3;
+}
+
+int yf_can_create(const char *path) {
+  size_t n = strlen(path) + 5;
+  char *tmp = yf_malloc(n, "path");
+  snprintf(tmp, n, "%s.tmp", path);
+  FILE *f = fopen(tmp, "w");
+  int ok = f != NULL, err = errno;
+  if (f) {
+    fclose(f);
+    remove(tmp);
+  }
+  free(tmp);
+  errno = err;
+  return ok;
+}
+
+const char *yf_fmt_g(char *buf, size_t n, double v) {
+  if (isnan(v)) snprintf(buf, n, "not a number");
+  else if (isinf(v)) snprintf(buf, n, "%sbeyond the range of a double", v < 0 ? "-" : "");
+  else snprintf(buf, n, "%.6g", v);
+  return buf;
 }

@@ -1,6 +1,7 @@
 /* cmd_fracture_log.c: the `fracture_log` deck command (a row of commands.def): the CSV files of
  * the break and opened-crack records (joints_set_logs, joint.h; written by io/report.c).
  */
+#include <errno.h>
 #include <string.h>
 #include "deck.h"
 #include "joint.h"
@@ -20,5 +21,7 @@ void cmd_fracture_log(YfSim *s, const YfArgs *a) {
     if (strlen(a->w[2]) >= sizeof J->open_log_path) arg_error(a, 2, "path too long");
     opened = a->w[2];
   }
+  for (int i = 0; i < a->n; i += 2) /* a missing folder: now, not after the run */
+    if (!yf_can_create(a->w[i])) yf_io_error(&a->loc, "fracture_log: cannot write '%s': %s", a->w[i], strerror(errno));
   joints_set_logs(s, a->w[0], opened);
 }

@@ -48,10 +48,12 @@ void cmd_history(YfSim *s, const YfArgs *a) {
     FILE *fp = fopen(path, "r");
     if (!fp) { YfLoc l = a->loc; free(path); yf_io_error(&l, "history: cannot open '%s'", a->w[2]); }
     h.kind = YF_HIST_TABLE;
-    char line[512];
+    char *line = NULL; /* whole lines, however long: a long comment must not split a line in two */
+    size_t lcap = 0;
     int cap = 0, ln = 0;
-    while (fgets(line, sizeof line, fp)) {
+    while (getline(&line, &lcap, fp) >= 0) {
       ln++;
+      if (ln == 1) yf_skip_bom(line);
       char *c = strchr(line, '#');
       if (c) *c = 0;
       char *t1 = strtok(line, " \t\r\n,"), *t2 = t1 ? strtok(NULL, " \t\r\n,") : NULL;
@@ -60,6 +62,7 @@ void cmd_history(YfSim *s, const YfArgs *a) {
       if (!t2 || !yf_parse_double(t1, &tv) || !yf_parse_double(t2, &vv)) {
         YfLoc l = {path, ln};
         fclose(fp);
+        free(line);
         yf_deck_error(&l, "history file: expected two numbers 't v'");
       }
       if (h.npts == cap) {
@@ -72,6 +75,7 @@ void cmd_history(YfSim *s, const YfArgs *a) {
       h.v[h.npts++] = vv;
     }
     fclose(fp);
+    free(line);
     if (h.npts < 2) { YfLoc l = {path, ln}; yf_deck_error(&l, "history file: at least two points needed"); }
     free(path);
   }

@@ -15,26 +15,31 @@ static void read_table(const YfArgs *a, int i, YfJointProp *p) {
   if (!fp) yf_io_error(&a->loc, "jointprop: cannot open softening table '%s'", path);
   double w[YF_JOINT_TAB_MAX], sv[YF_JOINT_TAB_MAX];
   int n = 0, line = 0;
-  char buf[512];
-  while (fgets(buf, sizeof buf, fp)) {
+  char *buf = NULL; /* whole lines, however long: a long comment must not split a line in two */
+  size_t cap = 0;
+  while (getline(&buf, &cap, fp) >= 0) {
     line++;
+    if (line == 1) yf_skip_bom(buf);
     char *h = strchr(buf, '#');
     if (h) *h = 0;
     double u, v;
     char extra[8];
     int k = sscanf(buf, "%lf %lf %7s", &u, &v, extra);
-    if (k <= 0) continue;
+    if (k == EOF) continue; /* a blank (or comment) line; a line of words is an error below */
     if (k != 2) {
       fclose(fp);
+      free(buf);
       yf_deck_error(&a->loc, "%s:%d: expected two numbers 'opening stress' per line", path, line);
     }
     if (n == YF_JOINT_TAB_MAX) {
       fclose(fp);
+      free(buf);
       yf_deck_error(&a->loc, "%s: more than %d points in the softening table", path, YF_JOINT_TAB_MAX);
     }
     w[n] = u;
     sv[n++] = v;
   }
+  free(buf);
   fclose(fp);
   if (n < 2 || !(sv[0] > 0)) yf_deck_error(&a->loc, "%s: the softening table needs >= 2 points starting at a stress > 0", path);
   for (int k = n - 1; k >= 0; k--) sv[k] /= sv[0];

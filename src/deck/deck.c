@@ -25,6 +25,7 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -37,6 +38,9 @@
 
 #define DECK_INCLUDE_MAX 32  /* nesting depth of include (recursive includes end here) */
 #define DECK_EVAL_MAX 64     /* nesting depth of equal-style variables referring to each other */
+#define DECK_NEST_MAX 64     /* nesting depth of commands run by `if` and of $(...) inside $(...):
+                              * each level is a few stack frames, so a deck (or a variable that
+                              * runs itself) cannot overflow the stack */
 
 /* ------------------------------------------------------------------ storage */
 
@@ -83,6 +87,8 @@ struct YfDeck {
   char **defnames; /* names the deck's variable commands define, in order  */
   int ndef, capdef, vars_checked;
   int eval_depth;
+  int exec_depth;  /* commands running inside other commands (if), see DECK_NEST_MAX */
+  int subst_depth; /* $(...) being substituted inside $(...)                    */
 };
 
 /* Interned file names: never freed (a YfLoc may outlive the deck). */
@@ -121,6 +127,14 @@ static char *buf_take(Buf *b) {
 }
 
 /* ------------------------------------------------------------------ messages */
+
+/* s for a message: whole up to 80 characters, else its first 60 and "..." (a 40 KB expression
+ * would push what is wrong with it out of the message). */
+static const char *abbrev(const char *s, char *buf, size_t n) {
+  if (strlen(s) <= 80) return s;
+  snprintf(buf, n, "%.60s...", s);
+  return buf;
+}
 
 /* Deck error with context: the message, then the line and a caret under column col (col < 0:
  * no caret; line NULL: no context). */
@@ -404,7 +418,10 @@ static double eval_or_fail(YfDeck *d, const char *expr, const YfLoc *loc, const 
   double v;
   ExprError e;
   if (!eval_quiet(d, expr, &v, &e))
-    fail_ctx(loc, expr, e.pos, "%sexpression '%s': %s", prefix ? prefix : "", expr, e.msg);
+  {
+    char ab[80];
+    fail_ctx(loc, expr, e.pos, "%sexpression '%s': %s", prefix ? prefix : "", abbrev(expr, ab, sizeof ab), e.msg);
+  }
   return v;
 }
 
@@ -486,7 +503,11 @@ static char *substitute(YfDeck *d, const char *in, const YfLoc *loc) {
       memcpy(expr, p + 2, len);
       expr[len] = 0;
       if (strchr(expr, '$')) { /* $(v_a*${b}): references inside are substituted first */
+        if (d->subst_depth >= DECK_NEST_MAX)
+          fail_ctx(loc, in, col, "$(...) nested inside $(...) deeper than %d levels", DECK_NEST_MAX);
+        d->subst_depth++;
         char *inner = substitute(d, expr, loc);
+        d->subst_depth--;
         free(expr);
         expr = inner;
       }
@@ -511,7 +532,10 @@ static char *substitute(YfDeck *d, const char *in, const YfLoc *loc) {
       double v;
       ExprError er;
       if (!eval_quiet(d, expr, &v, &er))
-        fail_ctx(loc, in, col + 2 + er.pos, "expression '%s': %s", expr, er.msg);
+      {
+        char ab[80];
+        fail_ctx(loc, in, col + 2 + er.pos, "expression '%s': %s", abbrev(expr, ab, sizeof ab), er.msg);
+      }
       char num[128];
       if (v == 0.0) v = 0.0;
       if (kind == 2) {
@@ -633,16 +657,33 @@ static char *join_path(const char *dir, const char *name) {
   return p;
 }
 
+/* Ctrl-C or SIGTERM (main sets sim->interrupted) while the deck is read or run outside `run`
+ * (a `run` stops after its current step itself): stop with the files written so far closed. */
+static void deck_interrupted(YfDeck *d, const YfLoc *loc) __attribute__((noreturn));
+static void deck_interrupted(YfDeck *d, const YfLoc *loc) {
+  int sig = d->sim ? d->sim->interrupted : 0;
+  const char *name = sig == SIGTERM ? "SIGTERM" : "SIGINT";
+  if (loc && loc->file)
+    yf_exit_with(YF_EXIT_INTERRUPT, "%s:%d: interrupted (%s) before this line ran, at step %ld: files written so far "
+                 "are closed", loc->file, loc->line, name, d->sim ? d->sim->step : 0L);
+  yf_exit_with(YF_EXIT_INTERRUPT, "interrupted (%s) while reading the deck: nothing was run", name);
+}
+
 static DeckSource *source_from_stream(YfDeck *d, FILE *fp, const char *name, const YfLoc *from) {
   Buf b = {0};
   char chunk[65536];
   size_t got;
-  while ((got = fread(chunk, 1, sizeof chunk, fp)) > 0) buf_putn(&b, chunk, got);
-  if (ferror(fp)) yf_io_error(from, "cannot read deck '%s': %s", name, strerror(errno));
+  yf_interruptible(1); /* a deck on a terminal or a pipe may block here: let Ctrl-C end the read */
+  while (!(d->sim && d->sim->interrupted) && (got = fread(chunk, 1, sizeof chunk, fp)) > 0) buf_putn(&b, chunk, got);
+  int err = errno;
+  yf_interruptible(0);
+  if (d->sim && d->sim->interrupted) deck_interrupted(d, from);
+  if (ferror(fp)) yf_io_error(from, "cannot read deck '%s': %s", name, strerror(err));
   DeckSource *s = yf_calloc(1, sizeof *s, "deck source");
   s->name = intern(name);
   s->dir = dir_of(name);
-  parse_lines(s, b.s ? b.s : "", b.n);
+  size_t bom = b.s && b.n >= 3 ? yf_skip_bom(b.s) : 0; /* (b.s ends in a NUL: buf_putn) */
+  parse_lines(s, b.s ? b.s : "", b.n - bom);
   free(b.s);
   s->next = d->sources;
   d->sources = s;
@@ -687,6 +728,10 @@ const char *deck_nearest_command(const char *word) {
 
 /* Substitute, split and dispatch one logical line. */
 static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
+  if (d->exec_depth >= DECK_NEST_MAX)
+    fail_ctx(loc, text, -1, "commands nested deeper than %d levels (an 'if' runs an 'if' that runs an "
+             "'if' ...; does a variable run itself?)", DECK_NEST_MAX);
+  if (d->sim && d->sim->interrupted) deck_interrupted(d, loc);
   char *line = substitute(d, text, loc);
   char **w;
   int *cols, errcol;
@@ -721,7 +766,9 @@ static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
   a.w = w + 1;
   a.loc = *loc;
   a.line = line;
+  d->exec_depth++;
   c->fn(d->sim, &a);
+  d->exec_depth--;
   free_words(w, cols, n);
   free(line);
 }
@@ -983,9 +1030,10 @@ void deck_cmd_variable(struct YfSim *sim, const YfArgs *a) {
   if (style == VAR_EQUAL) {
     char *text = join_words(a, 2);
     ExprError e;
+    char ab[80];
     if (!expr_check(text, &e)) /* caret inside the line when the expression is one word */
       fail_ctx(&a->loc, a->line, a->n == 3 ? arg_inner_col(a, 2) + e.pos : arg_col(a, 2),
-               "variable: expression '%s': %s", text, e.msg);
+               "variable: expression '%s': %s", abbrev(text, ab, sizeof ab), e.msg);
     DeckVar *v = var_new(d, name, VAR_EQUAL);
     v->text = text;
   } else if (style == VAR_STRING) {
@@ -1142,6 +1190,14 @@ void deck_cmd_if(struct YfSim *sim, const YfArgs *a) {
     start = i;
     while (i < a->n && strcmp(a->w[i], "elif") && strcmp(a->w[i], "else")) i++;
     if (from < 0 && condition(d, a, ci)) from = start, to = i;
+  }
+  /* each command is one (quoted) word: `if c then print big` would run `print` and `big` */
+  for (int k = from; k >= 0 && k + 1 < to; k++) {
+    char first[64];
+    if (strpbrk(a->w[k], " \t") || !deck_find_command(a->w[k])) continue;
+    if (sscanf(a->w[k + 1], "%63s", first) == 1 && deck_find_command(first)) continue;
+    arg_fail(a, k, NULL, "each command of an if branch is one quoted word: write if COND then \"%s %s ...\" "
+             "('%s' is not a command)", a->w[k], a->w[k + 1], a->w[k + 1]);
   }
   for (int k = from; k >= 0 && k < to && !d->quit; k++) exec_line(d, a->w[k], &a->loc);
 }

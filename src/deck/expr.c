@@ -17,12 +17,19 @@
 
 #define EXPR_NAME_MAX 128
 #define EXPR_MAX_ARGS 16
+/* Nesting of parentheses, function calls, unary signs and '^' exponents: each level is a few
+ * stack frames of this recursive parser, so an absurd nesting (a 40 KB line of '(' or '-') would
+ * overflow the stack.  The count is shared by expressions evaluated inside others (equal-style
+ * variables referring to each other), so the total stays bounded too. */
+#define EXPR_DEPTH_MAX 256
+static int expr_depth; /* levels open across every expression being evaluated now */
 
 typedef struct {
   const char *s;  /* whole expression        */
   const char *p;  /* read position           */
   int skip;       /* > 0: evaluate nothing that can fail (short-circuit, syntax check) */
   int open;       /* parentheses opened and not yet closed (for "missing ')'") */
+  int depth0;     /* expr_depth when this expression started (restored on an error) */
   ExprLookupFn lookup;
   void *ctx;
   ExprError *e;
@@ -217,13 +224,23 @@ static double parse_power(Parser *P) {
   return a;
 }
 
-/* unary -> ('-'|'+'|'!') unary | power */
-static double parse_unary(Parser *P) {
+/* unary -> ('-'|'+'|'!') unary | power.  Every recursion of the grammar passes here, so this is
+ * where the nesting is counted. */
+static double parse_unary_in(Parser *P) {
   skip_ws(P);
   if (*P->p == '-') { P->p++; return -parse_unary(P); }
   if (*P->p == '+') { P->p++; return parse_unary(P); }
   if (*P->p == '!' && P->p[1] != '=') { P->p++; return parse_unary(P) == 0.0 ? 1.0 : 0.0; }
   return parse_power(P);
+}
+static double parse_unary(Parser *P) {
+  if (expr_depth >= EXPR_DEPTH_MAX)
+    fail_at(P, P->p, "nested deeper than %d levels (parentheses, function calls, signs, '^'; "
+                     "variables evaluated inside count too)", EXPR_DEPTH_MAX);
+  expr_depth++;
+  double v = parse_unary_in(P);
+  expr_depth--;
+  return v;
 }
 
 /* mul -> unary (('*'|'/'|'%') unary)* */
@@ -334,7 +351,11 @@ static int run(const char *s, ExprLookupFn lookup, void *ctx, int skip, double *
   P.e = e;
   e->msg[0] = 0;
   e->pos = 0;
-  if (setjmp(P.jb)) return 0;
+  P.depth0 = expr_depth;
+  if (setjmp(P.jb)) {
+    expr_depth = P.depth0; /* the levels the longjmp skipped */
+    return 0;
+  }
   skip_ws(&P);
   if (!*P.p) fail_at(&P, P.p, "empty expression");
   double v = parse_or(&P);

@@ -7,12 +7,14 @@
  * arrays once, at the first step after the topology is final (joint insertion happens in
  * run_prepare), and grows the time-series buffer once per run, never inside a step.
  */
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "metrics.h"
+#include "par.h"
 #include "deck.h"
 #include "report.h"
 #include "joint.h"
@@ -78,16 +80,49 @@ static struct {
   double s1_step;           /* max sigma1 of the last step (for the log) */
   Sample *smp;
   long nsmp, capsmp;
+  int adopted;              /* a continued run looked for the earlier run's log (adopt_log) */
+  char *earlier;            /* rows of the earlier run's log this run continues (or NULL) */
 } M = {.body = -1, .midspan = -1, .every = 100, .first_frag_time = -1, .until = INFINITY};
 
 void metrics_reset(void) {
-  free(M.par); free(M.first); free(M.intri); free(M.smp); free(M.blk);
+  free(M.par); free(M.first); free(M.intri); free(M.smp); free(M.blk); free(M.earlier);
   memset(&M, 0, sizeof M);
   M.body = -1;
   M.midspan = -1;
   M.every = 100;
   M.first_frag_time = -1;
   M.until = INFINITY;
+}
+
+static const char log_head[] = "step,time,kinetic,strain,external_work,damping,joint_dissipated,contact,friction,"
+                               "broken,crack_I,crack_II,crack_mixed,fragments,sigma1_max,opened,opened_I,opened_II,"
+                               "opened_mixed\n";
+
+/* A run continued by read_restart continues the log of the run it continues, as the dumps do
+ * their series: the earlier log's rows of steps before the first one this run samples stay
+ * (rows of later steps, written before an interrupt, are this run's to write again).  A log that
+ * is missing or not one yfdem wrote starts afresh. */
+static void adopt_log(const YfSim *s) {
+  size_t len;
+  char *t = yf_read_file(M.log_path, &len, "metrics log");
+  if (!t) return;
+  char *keep_end = NULL;
+  if (!strncmp(t, log_head, sizeof log_head - 1)) {
+    keep_end = t + sizeof log_head - 1;
+    for (char *p = keep_end, *nl; (nl = strchr(p, '\n')); p = nl + 1) {
+      char *e;
+      long step = strtol(p, &e, 10);
+      if (e == p || *e != ',' || step >= s->step) break;
+      keep_end = nl + 1;
+    }
+  }
+  if (keep_end) {
+    size_t n = (size_t)(keep_end - t) - (sizeof log_head - 1);
+    M.earlier = yf_malloc(n + 1, "metrics log");
+    memcpy(M.earlier, t + sizeof log_head - 1, n);
+    M.earlier[n] = 0;
+  }
+  free(t);
 }
 
 /* ---- the command ---- */
@@ -157,6 +192,7 @@ void cmd_metrics(YfSim *s, const YfArgs *a) {
   case 5: {
     arg_count(a, 2, 4);
     if (strlen(a->w[1]) >= sizeof M.log_path) arg_error(a, 1, "path too long");
+    if (!yf_can_create(a->w[1])) yf_io_error(&a->loc, "metrics log: cannot write '%s': %s", a->w[1], strerror(errno));
     snprintf(M.log_path, sizeof M.log_path, "%s", a->w[1]);
     if (a->n > 2) {
       static const char *const ev[] = {"every", NULL};
@@ -290,6 +326,10 @@ void metrics_step(YfSim *s) {
       M.capsmp = cap;
     }
   }
+  if (s->restored && !M.adopted && M.log_path[0]) { /* the first step this run makes */
+    M.adopted = 1;
+    adopt_log(s);
+  }
   /* crack length by mode so far (new records only) */
   const YfJoints *J = s->joints;
   if (J) {
@@ -305,6 +345,7 @@ void metrics_step(YfSim *s) {
     }
   }
   if (M.peak || M.log_path[0]) {
+    par_need_stresses(&s->model); /* MPI: every rank's triangles' stresses (every rank is here) */
     /* the largest sigma1 (first triangle of equals) and the first triangle at the threshold, per
      * fixed block on all threads, the blocks combined in order: the serial scan's answer.  A
      * parallel region only from 4 blocks (16384 triangles): below, waking the team every step
@@ -542,24 +583,41 @@ static void region_lengths(const YfSim *s, const YfBreak *rec, int n, const char
   }
 }
 
+static void csv_num(char *buf, size_t n, double v) {
+  if (isfinite(v)) snprintf(buf, n, "%.10g", v);
+  else buf[0] = 0;
+}
+
 static void write_log(YfSim *s) {
+  if (!yf_writer()) return;
   char tmp[1100];
   snprintf(tmp, sizeof tmp, "%s.tmp", M.log_path);
   FILE *f = fopen(tmp, "w");
-  if (!f) {
-    yf_warn(NULL, "metrics log: cannot write '%s'", M.log_path);
+  if (!f) { /* runs from the exit path too: there the other outputs are still written */
+    yf_output_error("metrics log: cannot write '%s': %s", tmp, strerror(errno));
     return;
   }
-  fprintf(f, "step,time,kinetic,strain,external_work,damping,joint_dissipated,contact,friction,broken,"
-             "crack_I,crack_II,crack_mixed,fragments,sigma1_max,opened,opened_I,opened_II,opened_mixed\n");
+  fputs(log_head, f);
+  if (M.earlier) fputs(M.earlier, f);
   for (long i = 0; i < M.nsmp; i++) {
     const Sample *q = &M.smp[i];
-    fprintf(f, "%ld,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%ld,%.10g,%.10g,%.10g,%d,%.10g,%ld,%.10g,%.10g,%.10g\n",
-            q->step, q->time, q->e.kinetic, q->e.strain, q->e.external_work, q->e.damping, q->e.joint_dissipated,
-            q->e.contact, q->e.friction, q->broken, q->len[0], q->len[1], q->len[2], q->frags, q->s1max, q->opened,
-            q->olen[0], q->olen[1], q->olen[2]);
+    /* a value that is not a number (sigma1_max with no fracturing body measured; an energy of
+     * the step a run blew up at) is an empty field, never inf or nan */
+    char v[11][32];
+    const double d[11] = {q->time, q->e.kinetic, q->e.strain, q->e.external_work, q->e.damping, q->e.joint_dissipated,
+                          q->e.contact, q->e.friction, q->len[0], q->len[1], q->len[2]};
+    for (int k = 0; k < 11; k++) csv_num(v[k], sizeof v[k], d[k]);
+    char s1[32], ol[3][32];
+    csv_num(s1, sizeof s1, q->s1max);
+    for (int k = 0; k < 3; k++) csv_num(ol[k], sizeof ol[k], q->olen[k]);
+    fprintf(f, "%ld,%s,%s,%s,%s,%s,%s,%s,%s,%ld,%s,%s,%s,%d,%s,%ld,%s,%s,%s\n", q->step, v[0], v[1], v[2], v[3], v[4],
+            v[5], v[6], v[7], q->broken, v[8], v[9], v[10], q->frags, s1, q->opened, ol[0], ol[1], ol[2]);
   }
-  if (fclose(f) != 0 || rename(tmp, M.log_path) != 0) yf_warn(NULL, "metrics log: cannot write '%s'", M.log_path);
+  int bad = ferror(f);
+  if (fclose(f) != 0 || bad || rename(tmp, M.log_path) != 0) {
+    yf_output_error("metrics log: cannot write '%s': %s", M.log_path, strerror(errno ? errno : EIO));
+    remove(tmp);
+  }
 }
 
 void metrics_summary(YfSim *s) {

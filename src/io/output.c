@@ -56,6 +56,7 @@
 #include <unistd.h>
 #include <hdf5.h>
 #include "output.h"
+#include "par.h"
 #include "deck.h"
 #include "report.h"
 #include "contact.h"
@@ -88,6 +89,7 @@ typedef struct YfDump {
   hid_t file;         /* the frame file while it is being written, else < 0            */
   int created;        /* csv index created in this process (a later open appends)      */
   long nframe;        /* frames written (including those of a continued series)        */
+  int adopted;        /* a continued run looked for the earlier run's series (dump_adopt) */
   long first;         /* number of this process's first frame (> 0: a continued series) */
   long last_step;     /* step of the last frame (LONG_MIN: none)                       */
   YfText grids;       /* XDMF <Grid> elements of the frames so far (STEM.xmf)          */
@@ -152,15 +154,30 @@ static herr_t h5_walk_cb(unsigned n, const H5E_error2_t *e, void *data) {
   return 0;
 }
 static const char *h5_message(void) {
-  static char msg[512];
+  static char msg[512], out[512];
   msg[0] = 0;
   H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, h5_walk_cb, msg);
+  /* a system failure: "... errno = 28, error message = 'No space left on device', buf = 0x..."
+   * (addresses and sizes of HDF5's internals): keep the system's words and the errno */
+  const char *en = strstr(msg, "errno = "), *em = strstr(msg, "error message = '");
+  if (en && em) {
+    em += 17;
+    const char *q = strchr(em, '\'');
+    snprintf(out, sizeof out, "%.*s (errno %d)", q ? (int)(q - em) : 200, em, atoi(en + 8));
+    return out;
+  }
   return msg[0] ? msg : "HDF5 error";
 }
 
-static void h5_fail(const YfDump *d, const char *what) __attribute__((noreturn));
-static void h5_fail(const YfDump *d, const char *what) {
-  yf_io_error(NULL, "dump %s: cannot write '%s' (%s): %s", d->id, d->cur, what, h5_message());
+/* A frame that cannot be written: its unfinished NAME.tmp is removed (the frames before it,
+ * renamed and indexed, stay), then the I/O error. */
+static void h5_fail(YfDump *d, const char *what) __attribute__((noreturn));
+static void h5_fail(YfDump *d, const char *what) {
+  const char *why = h5_message();
+  if (d->file >= 0) H5Fclose(d->file);
+  d->file = -1;
+  if (d->cur_tmp) unlink(d->cur_tmp);
+  yf_io_error(NULL, "dump %s: cannot write '%s' (%s): %s", d->id, d->cur, what, why);
 }
 
 /* HDF5 prints its error stack by default; yfdem reports errors itself (restart.c uses it too). */
@@ -204,6 +221,9 @@ static void h5_put(YfDump *d, hid_t loc, const char *name, hid_t type, int rank,
   hid_t space = rank ? H5Screate_simple(rank, dims, NULL) : H5Screate(H5S_SCALAR);
   if (space < 0) h5_fail(d, name);
   hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  /* no modification times in the file: the same run writes the same bytes (a continued run's
+   * frames are byte for byte the uninterrupted run's, and can be compared with cmp) */
+  H5Pset_obj_track_times(dcpl, 0);
   H5Pset_fill_time(dcpl, H5D_FILL_TIME_NEVER); /* every byte is written right away */
   if (d->compress && rank > 0 && dims[0] > 0) {
     hsize_t chunk[2] = {dims[0] < 65536 ? dims[0] : 65536, rank > 1 ? dims[1] : 1};
@@ -474,14 +494,15 @@ static void xmf_write(YfDump *d) {
   d->xmf_cost = d->xmf_done - t0;
 }
 
-/* Write the index if frames are waiting for it; fatal = 0 on the way out after another error
- * (a warning then, so that error keeps its message and exit code). */
-static void xmf_flush(YfDump *d, int fatal) {
+/* Write the index if frames are waiting for it.  On the way out (output_close_all) a failure is
+ * reported and the exit code made 2, after another error that error keeps its message and
+ * code (yf_output_error). */
+static void xmf_flush(YfDump *d) {
   if (!d->xmf_pending) return;
   char msg[3 * PATH_MAX];
   if (!xmf_try(d, msg, sizeof msg)) return;
-  if (fatal) yf_io_error(NULL, "%s", msg);
-  yf_warn(NULL, "%s", msg);
+  d->xmf_pending = 0; /* reported once */
+  yf_output_error("%s", msg);
 }
 
 /* Cracks of a fracturing scene: every joint past its peak (opened: softening, still cohesive) or
@@ -752,8 +773,23 @@ static void dump_adopt(YfSim *s, YfDump *d) {
 
 /* ---------------------------------------------------------------- frames */
 
+/* The first frame of a dump in a run continued by read_restart: the series of the earlier run
+ * it continues is adopted (once, at the step the run continues from). */
+static int continuing(const YfSim *s, const YfDump *d) {
+  return s->restored && !d->adopted && d->nframe == 0 && d->last_step == LONG_MIN;
+}
+
 static void write_frame(YfSim *s, YfDump *d) {
-  if (s->restored && d->nframe == 0 && d->last_step == LONG_MIN) dump_adopt(s, d);
+  par_need_stresses(&s->model); /* MPI: every rank is here, in the same order (a collective) */
+  if (!yf_writer()) { /* an MPI rank other than 0: the same bookkeeping, no file */
+    d->nframe++;
+    d->last_step = s->step;
+    return;
+  }
+  if (continuing(s, d)) {
+    d->adopted = 1;
+    dump_adopt(s, d);
+  }
   if (d->style == YF_DUMP_Y2DREF) y2dref_frame(s, d->y2d);
   else if (d->style == YF_DUMP_H5) h5_frame(s, d);
   else csv_frame(s, d);
@@ -764,8 +800,20 @@ static void write_frame(YfSim *s, YfDump *d) {
 void output_run_begin(YfSim *s) {
   struct YfOutput *o = s->out;
   if (!o) return;
-  for (int i = 0; i < o->ndump; i++)
-    if (o->dump[i]->last_step != s->step) write_frame(s, o->dump[i]);
+  for (int i = 0; i < o->ndump; i++) {
+    YfDump *d = o->dump[i];
+    if (d->last_step == s->step) continue;
+    /* A run continued from a restart writes the frames the uninterrupted run wrote: none at a
+     * step no dump is due on (an interrupt at step 997 with frames every 500), but its series
+     * is adopted now, at the step it continues from (frames of the earlier run from this step
+     * on, such as the interrupt's own, leave the index). */
+    if (continuing(s, d) && s->step % d->every != 0) {
+      d->adopted = 1;
+      dump_adopt(s, d);
+      continue;
+    }
+    write_frame(s, d);
+  }
   update_next_due(s);
 }
 
@@ -784,7 +832,7 @@ void output_run_end(YfSim *s) {
    * written now (csv indexes stay open for the next run; output_close_all closes them). */
   struct YfOutput *o = s->out;
   if (!o) return;
-  for (int i = 0; i < o->ndump; i++) xmf_flush(o->dump[i], 1);
+  for (int i = 0; i < o->ndump; i++) xmf_flush(o->dump[i]);
 }
 
 void output_write_all(YfSim *s) {
@@ -803,12 +851,14 @@ void output_topology_changed(YfSim *s) {
 static void dump_close(YfDump *d) {
   if (d->style == YF_DUMP_H5) {
     h5_close(d);
-    xmf_flush(d, 0);
+    xmf_flush(d);
   }
   if (d->style == YF_DUMP_Y2DREF) y2dref_close(d->y2d);
   if (d->csv_index) {
-    fclose(d->csv_index);
+    int bad = ferror(d->csv_index);
+    if (fclose(d->csv_index) != 0) bad = 1;
     d->csv_index = NULL;
+    if (bad) yf_output_error("dump %s: cannot write '%s_frames.csv': %s", d->id, d->path, strerror(errno ? errno : EIO));
   }
 }
 

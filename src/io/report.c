@@ -4,6 +4,7 @@
  * fracture_log CSVs.  The step calls none of this: it hands events on (sim_notify), and the
  * exit path calls run_summary_update.
  */
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -76,11 +77,12 @@ static int dbl_desc(const void *a, const void *b) {
 static const char *mode_name(int md) { return md == YF_JMODE_I ? "I" : md == YF_JMODE_II ? "II" : "mixed"; }
 
 static void write_log(YfSim *s, const char *path, const YfBreak *rec, int nrec) {
+  if (!yf_writer()) return;
   char tmp[1100];
   snprintf(tmp, sizeof tmp, "%s.tmp", path);
   FILE *f = fopen(tmp, "w");
-  if (!f) { /* runs from the exit path too: warn, never exit */
-    yf_warn(NULL, "fracture_log: cannot write '%s'", tmp);
+  if (!f) { /* runs from the exit path too: there the other outputs are still written */
+    yf_output_error("fracture_log: cannot write '%s': %s", tmp, strerror(errno));
     return;
   }
   fprintf(f, "step,time,x,y,mode,triA,triB,length,joint\n");
@@ -89,7 +91,11 @@ static void write_log(YfSim *s, const char *path, const YfBreak *rec, int nrec) 
     fprintf(f, "%ld,%.17g,%.17g,%.17g,%s,%d,%d,%.17g,%d\n", b->step, b->time, b->x, b->y, mode_name(b->mode),
             s->model.tri.id[b->triA], s->model.tri.id[b->triB], b->length, b->joint);
   }
-  if (fclose(f) != 0 || rename(tmp, path) != 0) yf_warn(NULL, "fracture_log: cannot write '%s'", path);
+  int bad = ferror(f);
+  if (fclose(f) != 0 || bad || rename(tmp, path) != 0) {
+    yf_output_error("fracture_log: cannot write '%s': %s", path, strerror(errno ? errno : EIO));
+    remove(tmp);
+  }
 }
 
 void joints_summary(YfSim *s) {

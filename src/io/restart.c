@@ -37,6 +37,7 @@
 #include "err.h"
 #include "joint.h"
 #include "run.h"
+#include "energy.h"
 
 #define RESTART_VERSION 1
 
@@ -235,7 +236,7 @@ static void write_all(W *w, YfSim *s) {
   put(w, g, "energy", H5T_NATIVE_DOUBLE, 7, en);
   put_d(w, g, "elem_steps", s->elem_steps);
   put_d(w, g, "wall_s", s->wall_s);
-  put_d(w, g, "e_budget", run_get_energy_budget());
+  put_d(w, g, "e_budget", energy_get_budget());
   gclose(g);
 
   g = group(w, "nodes");
@@ -320,6 +321,7 @@ int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
     if (err) snprintf(err, nerr, "the model is not prepared yet (write_restart needs a run or read_restart first)");
     return -1;
   }
+  if (!yf_writer()) return 0; /* under MPI rank 0 writes the (replicated) state */
   yf_h5_quiet();
   size_t L = strlen(path);
   char *tmp = yf_malloc(L + 8, "restart path");
@@ -330,6 +332,7 @@ int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
   H5Pclose(fapl);
   if (w.file < 0) {
     if (err) snprintf(err, nerr, "cannot create '%s' (%s)", tmp, errno ? strerror(errno) : "HDF5 error");
+    unlink(tmp); /* a full disk may leave it empty */
     free(tmp);
     return -1;
   }
@@ -610,7 +613,7 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   e->joint_dissipated = en[4]; e->contact = en[5]; e->friction = en[6];
   s->elem_steps = elem_steps;
   s->wall_s = wall_s;
-  run_set_energy_budget(budget);
+  energy_set_budget(budget);
   sim_printf(s, "read_restart: %s: step %ld, time %.6g s, dt %.6g s, %d nodes, %d triangles, %ld joints (%ld broken)%s\n",
              path, step, time, dt, m->node.n, m->tri.n, nj, s->joints ? (long)s->joints->nbroken : 0L,
              c_file ? ", contact couples restored" : "");

@@ -167,6 +167,7 @@ static void fmt_num(char *buf, size_t cap, double v, int *bad) {
 }
 
 int summary_write(const YfSim *s, const char *path, int status_code, const char *reason) {
+  if (!yf_writer()) return 0;
   if (!reason) reason = yf_last_message();
   const YfEnergy *en = &s->energy;
   double eps = s->wall_s > 0 ? s->elem_steps / s->wall_s : 0.0;

@@ -91,7 +91,7 @@ __attribute__((always_inline)) static inline int mask4_any(const v4l *m)
 __attribute__((always_inline)) static inline void corners(const double *p, v4d *v)
 {
   __builtin_memcpy(v, p, sizeof *v);
-  *v = __builtin_shuffle(*v, (v4l){0, 1, 2, 0});
+  *v = YF_SHUF4(*v, *v, 0, 1, 2, 0);
 }
 
 /* ---------------------------------------------------------------- the kernel */
@@ -106,6 +106,48 @@ static inline double pmin3(const double al[3], const double dl[3], double s)
   return p;
 }
 
+/* The elastic-slip Coulomb law on one contactor edge (YF_FRIC_COULOMB, contact_pair.h).
+ * Returns F_t, in F's units (times the edge vector it is the force on the contactor [N/m]);
+ * *g is the edge's stored F_t.  The tangential spring spreads evenly over the contact interval
+ * [s_min, s_max] (stiffness 3 p_t / h per unit contact length: the normal law's 3 p_n / h with
+ * p_t for p_n, h the target's height over its edge nearest to the interval's midpoint s_m), so
+ * its force acts at s_m, on the contactor with the weights (1 - s_m, s_m) (the caller) and on
+ * the target with the barycentric coordinates of that point, and the slip rate w is taken at the
+ * same point: F_t w dt is then exactly the work of the forces the spring applies.  (At the normal
+ * force's centroid F_b / F instead, which moves as the pressure shifts, the spring does work on
+ * a rocking block: a block held by mu = 1e4 rocked itself loose.)  The force is updated
+ * incrementally, F_t += k_t w dt / L, so a change of k_t (the interval grows or shrinks) never
+ * makes F_t jump, and a trial force above mu |F| is returned onto the cone; the excess is slip
+ * (*slip = the slip distance times L [m^2], for the dissipation |F_t| slip). */
+static inline double coulomb_edge(const double al[3], const double dl[3], const double vxt[3], const double vyt[3],
+                                  double vxa, double vya, double vxb, double vyb, double tcx, double tcy,
+                                  double smin, double smax, const v4d Q, double D, double pt, double cap,
+                                  double dt, double *g, double *w, double *slip, YfContactInfo *info)
+{
+  const double sm = 0.5 * (smin + smax);
+  double vtx = 0.0, vty = 0.0, bmin = INFINITY;
+  int kmin = 0;
+  for (int k = 0; k < 3; k++) {
+    double bk = al[k] + sm * dl[k];
+    int v = (k + 2) % 3; /* beta_k belongs to target vertex k+2 */
+    vtx += bk * vxt[v];
+    vty += bk * vyt[v];
+    if (bk < bmin) { bmin = bk; kmin = k; }
+  }
+  double vcx = (1.0 - sm) * vxa + sm * vxb, vcy = (1.0 - sm) * vya + sm * vyb;
+  double L = sqrt(tcx * tcx + tcy * tcy);
+  *w = (vtx - vcx) * tcx + (vty - vcy) * tcy;              /* relative velocity times L [m^2/s] */
+  double kt = 3.0 * pt * (smax - smin) * sqrt(Q[kmin]) / D; /* F_t per metre of slip [Pa/m]   */
+  double Ft = *g + kt * (*w * dt / L);
+  if (fabs(Ft) > cap) {
+    *slip = (fabs(Ft) - cap) / kt * L;
+    Ft = copysign(cap, Ft);
+  }
+  *g = Ft;
+  if (info && kt > 0.0) info->energy += 0.5 * Ft * Ft / kt * L; /* the spring's energy [J/m] */
+  return Ft;
+}
+
 /* One direction on the triangle records (contact_pair_geom): contactor c on target t.  The
  * record holds the target's normals, D and 1/D and the contactor's D (the separation test's
  * scale), so only the betas are computed here.  Vectors hold the three target edges (or
@@ -114,7 +156,7 @@ static inline double pmin3(const double al[3], const double dl[3], double s)
  * plain scalar code. */
 __attribute__((always_inline)) static inline int pair_dir(const double *t, const double *c, const double vxt[3],
                                                          const double vyt[3], const double vxc[3], const double vyc[3],
-                                                         double pn, double pt, double mu, double dt, double g[3],
+                                                         double pn, double pt, double mu, int law, double dt, double g[3],
                                                          double ft[6], double fc[6], double *dmin2,
                                                          YfContactInfo *info, Mask4 mask)
 {
@@ -175,6 +217,7 @@ __attribute__((always_inline)) static inline int pair_dir(const double *t, const
       if (al[2] < amin) { amin = al[2]; m2 = Q[2]; }
       double num = amin * amin * (D * D);
       if (num < dmin * m2) dmin = num / m2;
+      if (law != YF_FRIC_Y2D) g[e] = 0.0; /* apart: the tangential spring lets go */
       continue;
     }
 
@@ -193,7 +236,10 @@ __attribute__((always_inline)) static inline int pair_dir(const double *t, const
         if (s < smax) smax = s;
       }
     }
-    if (smax <= smin) continue;
+    if (smax <= smin) {
+      if (law != YF_FRIC_Y2D) g[e] = 0.0;
+      continue;
+    }
 
     /* Breakpoints, sorted: s_min, the kinks of min_k beta_k strictly inside (two lines cross
      * and the third is larger there), s_max.  Only the kinks need sorting. */
@@ -253,7 +299,7 @@ __attribute__((always_inline)) static inline int pair_dir(const double *t, const
     /* 6.4: friction on the edge. */
     double tcx = xc[b] - xc[a], tcy = yc[b] - yc[a]; /* unnormalised tangent */
     double Ft = 0.0, w = 0.0, slip = 0.0;
-    {
+    if (law == YF_FRIC_Y2D) {
       double sbar = 0.0;
       for (int i = 0; i < nb; i++) sbar += bs[i];
       sbar /= nb;
@@ -287,6 +333,16 @@ __attribute__((always_inline)) static inline int pair_dir(const double *t, const
       } else {
         Ft = 0.0; /* no normal force, nothing to share the tangential force with */
       }
+    } else if (F > 0.0) { /* the Coulomb law; its spring acts at the interval's midpoint s_m */
+      Ft = coulomb_edge(al, dl, vxt, vyt, vxc[a], vyc[a], vxc[b], vyc[b], tcx, tcy, smin, smax, Q, D, pt,
+                        mu * F, dt, &g[e], &w, &slip, info);
+      double sm = 0.5 * (smin + smax);
+      fax += Ft * (1.0 - sm) * tcx;
+      fay += Ft * (1.0 - sm) * tcy;
+      fbx += Ft * sm * tcx;
+      fby += Ft * sm * tcy;
+    } else {
+      g[e] = 0.0; /* touching without force: the spring holds nothing */
     }
 
     fc[2 * a] += fax;
@@ -299,7 +355,7 @@ __attribute__((always_inline)) static inline int pair_dir(const double *t, const
       const v4d FA = {fax, fay, fax, fay}, FB = {fbx, fby, fbx, fby};
       v4d f01;
       __builtin_memcpy(&f01, ft, sizeof f01);
-      f01 -= FA * __builtin_shuffle(AL, (v4l){1, 1, 2, 2}) + FB * __builtin_shuffle(GA, (v4l){1, 1, 2, 2});
+      f01 -= FA * YF_SHUF4(AL, AL, 1, 1, 2, 2) + FB * YF_SHUF4(GA, GA, 1, 1, 2, 2);
       __builtin_memcpy(ft, &f01, sizeof f01);
       ft[4] -= fax * al[0] + fbx * ga[0];
       ft[5] -= fay * al[0] + fby * ga[0];
@@ -322,49 +378,49 @@ __attribute__((always_inline)) static inline int pair_dir(const double *t, const
 
 int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3], const double vyt[3],
                      const double xc[3], const double yc[3], const double vxc[3], const double vyc[3],
-                     double pn, double pt, double mu, double dt, double g[3],
+                     double pn, double pt, double mu, int law, double dt, double g[3],
                      double ft[6], double fc[6], double *dmin2, YfContactInfo *info)
 {
   double rt[YF_TRI_GEOM], rc[YF_TRI_GEOM];
   contact_pair_geom(xt, yt, rt);
   contact_pair_geom(xc, yc, rc);
-  return pair_dir(rt, rc, vxt, vyt, vxc, vyc, pn, pt, mu, dt, g, ft, fc, dmin2, info, mask4_any);
+  return pair_dir(rt, rc, vxt, vyt, vxc, vyc, pn, pt, mu, law, dt, g, ft, fc, dmin2, info, mask4_any);
 }
 
 /* both directions of a couple (contact_pair_force_rec) with the given lane-mask function */
 __attribute__((always_inline)) static inline int pair_force(const double *ra, const double *vxa, const double *vya,
                                                            const double *rb, const double *vxb, const double *vyb,
-                                                           double pn, double pt, double mu, double dt, double g[6],
+                                                           double pn, double pt, double mu, int law, double dt, double g[6],
                                                            double fa[6], double fb[6], double *dmin2,
                                                            YfContactInfo *info, Mask4 mask)
 {
   double d2 = DBL_MAX;
-  int n = pair_dir(ra, rb, vxa, vya, vxb, vyb, pn, pt, mu, dt, g, fa, fb, &d2, info, mask);
-  n += pair_dir(rb, ra, vxb, vyb, vxa, vya, pn, pt, mu, dt, g + 3, fb, fa, &d2, info, mask);
+  int n = pair_dir(ra, rb, vxa, vya, vxb, vyb, pn, pt, mu, law, dt, g, fa, fb, &d2, info, mask);
+  n += pair_dir(rb, ra, vxb, vyb, vxa, vya, pn, pt, mu, law, dt, g + 3, fb, fa, &d2, info, mask);
   if (dmin2) *dmin2 = d2;
   return n > 0;
 }
 
 __attribute__((target("avx2"))) static int force_rec_avx2(const double *ra, const double *vxa, const double *vya,
                                                           const double *rb, const double *vxb, const double *vyb,
-                                                          double pn, double pt, double mu, double dt, double g[6],
+                                                          double pn, double pt, double mu, int law, double dt, double g[6],
                                                           double fa[6], double fb[6], double *dmin2,
                                                           YfContactInfo *info)
 {
-  return pair_force(ra, vxa, vya, rb, vxb, vyb, pn, pt, mu, dt, g, fa, fb, dmin2, info, mask4_avx2);
+  return pair_force(ra, vxa, vya, rb, vxb, vyb, pn, pt, mu, law, dt, g, fa, fb, dmin2, info, mask4_avx2);
 }
 
 int contact_pair_force_rec_any(const double ra[YF_TRI_GEOM], const double vxa[3], const double vya[3],
                                const double rb[YF_TRI_GEOM], const double vxb[3], const double vyb[3],
-                               double pn, double pt, double mu, double dt, double g[6],
+                               double pn, double pt, double mu, int law, double dt, double g[6],
                                double fa[6], double fb[6], double *dmin2, YfContactInfo *info)
 {
-  return pair_force(ra, vxa, vya, rb, vxb, vyb, pn, pt, mu, dt, g, fa, fb, dmin2, info, mask4_any);
+  return pair_force(ra, vxa, vya, rb, vxb, vyb, pn, pt, mu, law, dt, g, fa, fb, dmin2, info, mask4_any);
 }
 
 /* contact_pair_force_rec resolves to the AVX2 version once, where the CPU has it */
 typedef int (*ForceRecFn)(const double *, const double *, const double *, const double *, const double *,
-                          const double *, double, double, double, double, double *, double *, double *, double *,
+                          const double *, double, double, double, int, double, double *, double *, double *, double *,
                           YfContactInfo *);
 /* Resolvers run while the dynamic linker relocates the program, before sanitizer runtimes are
  * set up: they must not be instrumented (an ASan build would fault on its first shadow check). */
@@ -376,19 +432,19 @@ YF_RESOLVER static ForceRecFn resolve_force_rec(void)
 }
 int contact_pair_force_rec(const double ra[YF_TRI_GEOM], const double vxa[3], const double vya[3],
                            const double rb[YF_TRI_GEOM], const double vxb[3], const double vyb[3],
-                           double pn, double pt, double mu, double dt, double g[6],
+                           double pn, double pt, double mu, int law, double dt, double g[6],
                            double fa[6], double fb[6], double *dmin2, YfContactInfo *info)
   __attribute__((ifunc("resolve_force_rec")));
 
 int contact_pair_force(const double xa[3], const double ya[3], const double vxa[3], const double vya[3],
                        const double xb[3], const double yb[3], const double vxb[3], const double vyb[3],
-                       double pn, double pt, double mu, double dt, double g[6],
+                       double pn, double pt, double mu, int law, double dt, double g[6],
                        double fa[6], double fb[6], double *dmin2, YfContactInfo *info)
 {
   double ra[YF_TRI_GEOM], rb[YF_TRI_GEOM];
   contact_pair_geom(xa, ya, ra);
   contact_pair_geom(xb, yb, rb);
-  return contact_pair_force_rec(ra, vxa, vya, rb, vxb, vyb, pn, pt, mu, dt, g, fa, fb, dmin2, info);
+  return contact_pair_force_rec(ra, vxa, vya, rb, vxb, vyb, pn, pt, mu, law, dt, g, fa, fb, dmin2, info);
 }
 
 /* ---------------------------------------------------------------- the screen */
@@ -408,7 +464,7 @@ __attribute__((always_inline)) static inline int screen_dir(const double *t, con
     v4d bk = ((t[k] - XC) * t[6 + k] + (t[3 + k] - YC) * t[9 + k]) * iD;
     b[k] = bk;
     v4l o = bk < EPS;                                    /* corner i outside edge k */
-    both |= o & __builtin_shuffle(o, (v4l){1, 2, 0, 1}); /* ... and corner i+1 too   */
+    both |= o & YF_SHUF4(o, o, 1, 2, 0, 1); /* ... and corner i+1 too   */
   }
   return mask(&both) == 15;
 }

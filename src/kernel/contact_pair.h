@@ -12,12 +12,28 @@
  *
  * These are pure functions on plain numbers: no model, no allocation, no I/O.  Units: SI, 2D per
  * unit thickness.  Forces [N/m]; penalties [Pa]; the sliding memory g is Y2D's (m^2: a relative
- * tangential velocity dotted with the unnormalised edge vector, times dt).
+ * tangential velocity dotted with the unnormalised edge vector, times dt) or, with the Coulomb
+ * law, the edge's tangential force F_t [Pa: times the edge vector, N/m] (see the laws below).
  */
 #ifndef YF_CONTACT_PAIR_H
 #define YF_CONTACT_PAIR_H
+#include "model.h" /* YF_FRIC_*: the friction law is a material property */
 
 #define YF_CONTACT_EPS 1e-10 /* barycentric tolerance of Y2D (dimensionless) */
+/* Friction laws of a couple (the `law` argument of the kernels): YF_FRIC_Y2D or YF_FRIC_COULOMB,
+ * a material's property (model.h):
+ *   YF_FRIC_Y2D      Y2D's (ALGORITHMS 6.4): g += w dt with w the relative velocity dotted with
+ *                    the unnormalised edge vector (g in m^2), F_t = p_t g capped at mu |F|; the
+ *                    tangential force is p_t L^2 times the slip, so it depends on the unit of
+ *                    length; g is kept while the edge is apart.  read_y2d decks.
+ *   YF_FRIC_COULOMB  elastic-slip Coulomb: a tangential spring spread over the edge's contact
+ *                    interval, stiffness k_t = 3 p_t (s_max - s_min) / h per metre of slip (the
+ *                    normal law's with p_t for p_n; h = the target's height over its edge nearest
+ *                    the interval's midpoint s_m), acting at s_m and fed by the slip rate there;
+ *                    g is the stored F_t (F's units), updated F_t += k_t (w / L) dt and
+ *                    return-mapped onto |F_t| <= mu |F|; an edge that is apart releases it
+ *                    (g = 0).  Unit-independent: k_t / k_n = p_t / p_n.  Native decks. */
+
 #define YF_TRI_GEOM 16 /* doubles per triangle record: x[3] y[3] mx[3] my[3] D 1/D H2 (1 spare) */
 
 /* Optional diagnostics of a kernel call, ADDED to (the caller zeroes them). */
@@ -36,10 +52,11 @@ typedef struct {
 
 /* One direction: contactor triangle C acting on target triangle T (ALGORITHMS 6.1-6.5).
  *   xt,yt,vxt,vyt: target corners (CCW) and velocities; xc,yc,vxc,vyc: the contactor's.
- *   pn, pt [Pa], mu: normal and tangential penalties and friction coefficient of the pair.
+ *   pn, pt [Pa], mu: normal and tangential penalties and friction coefficient of the pair;
+ *   law: YF_FRIC_Y2D or YF_FRIC_COULOMB (above).
  *   dt [s]: time step (friction memory increment).
  *   g[3]: in/out sliding memory of the contactor's edges (edge e from corner e to e+1); an edge
- *         not in contact keeps its value.
+ *         not in contact keeps its value (Y2D law) or is zeroed (Coulomb law).
  *   ft[6], fc[6]: forces ADDED to the target's / contactor's corners (fx0, fy0, fx1, ...) [N/m].
  *   dmin2: in/out, lowered to the squared distance [m^2] recorded by each skipped edge (its
  *          start node to the target edge line with the smallest barycentric value).
@@ -48,7 +65,7 @@ typedef struct {
  * non-positive area are ignored (return 0) instead of producing NaN. */
 int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3], const double vyt[3],
                      const double xc[3], const double yc[3], const double vxc[3], const double vyc[3],
-                     double pn, double pt, double mu, double dt, double g[3],
+                     double pn, double pt, double mu, int law, double dt, double g[3],
                      double ft[6], double fc[6], double *dmin2, YfContactInfo *info);
 
 /* One couple (A, B): B as contactor on target A (g[0..2]), then A on B (g[3..5]).
@@ -61,19 +78,19 @@ int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3]
  * skip tests but whose contact interval is empty counts as neither (it records no distance). */
 int contact_pair_force(const double xa[3], const double ya[3], const double vxa[3], const double vya[3],
                        const double xb[3], const double yb[3], const double vxb[3], const double vyb[3],
-                       double pn, double pt, double mu, double dt, double g[6],
+                       double pn, double pt, double mu, int law, double dt, double g[6],
                        double fa[6], double fb[6], double *dmin2, YfContactInfo *info);
 
 /* contact_pair_force on the couple's triangle records (contact_pair_geom of this step's corner
  * positions) instead of the corners: the same numbers, without recomputing the geometry. */
 int contact_pair_force_rec(const double ra[YF_TRI_GEOM], const double vxa[3], const double vya[3],
                            const double rb[YF_TRI_GEOM], const double vxb[3], const double vyb[3],
-                           double pn, double pt, double mu, double dt, double g[6],
+                           double pn, double pt, double mu, int law, double dt, double g[6],
                            double fa[6], double fb[6], double *dmin2, YfContactInfo *info);
 /* The portable version (what contact_pair_force_rec runs without AVX2), for the tests. */
 int contact_pair_force_rec_any(const double ra[YF_TRI_GEOM], const double vxa[3], const double vya[3],
                                const double rb[YF_TRI_GEOM], const double vxb[3], const double vyb[3],
-                               double pn, double pt, double mu, double dt, double g[6],
+                               double pn, double pt, double mu, int law, double dt, double g[6],
                                double fa[6], double fb[6], double *dmin2, YfContactInfo *info);
 
 /* ---- the screen: a couple whose edges all miss (the common case) without the full kernel ----

@@ -10,6 +10,7 @@
 #include <math.h>
 #include <stddef.h>
 #include "elem_tri.h"
+#include "yfvec.h"
 
 int tri_prepare(YfModel *m, const YfTriMat *tm) {
   YfTris *t = &m->tri;
@@ -170,7 +171,7 @@ static inline __attribute__((always_inline)) void tri_four(const double *x, cons
   }
 }
 
-__attribute__((target_clones("avx2", "default")))
+YF_CLONES
 void tri_forces(YfModel *m, const YfTriMat *tm, int e0, int e1, YfTriPass *out) {
   const double *x = m->node.x, *y = m->node.y, *vx = m->node.vx, *vy = m->node.vy;
   YfTris *t = &m->tri;

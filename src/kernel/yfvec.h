@@ -15,6 +15,24 @@ typedef double yf_v2 __attribute__((vector_size(16)));
 typedef double yf_v4 __attribute__((vector_size(32)));
 typedef long long yf_v4l __attribute__((vector_size(32))); /* lane masks: 0 or -1 (all bits) */
 
+/* Lanes of 4-wide vectors picked by constant indices (0-3: lanes of a, 4-7: lanes of b): moves
+ * only, exact.  __builtin_shufflevector is clang's and GCC's (12 and later); GCC 11 and older
+ * have only __builtin_shuffle. */
+#if defined(__clang__) || (defined(__GNUC__) && __GNUC__ >= 12)
+#define YF_SHUF4(a, b, i, j, k, l) __builtin_shufflevector((a), (b), i, j, k, l)
+#else
+#define YF_SHUF4(a, b, i, j, k, l) __builtin_shuffle((a), (b), (yf_v4l){i, j, k, l})
+#endif
+
+/* One copy of a hot function per instruction set, chosen once at start-up (GCC's target_clones).
+ * Clang (the fuzzing build, tools/fuzz) gets the portable copy only: clang 14 does not link the
+ * clones of a function defined in one file and called from another. */
+#if defined(__clang__)
+#define YF_CLONES
+#else
+#define YF_CLONES __attribute__((target_clones("avx2", "default")))
+#endif
+
 /* a / b and c / d as one packed division: half the divider work of two scalar divisions. */
 static inline void yf_div2(double a, double b, double c, double d, double *ab, double *cd)
 {

@@ -191,6 +191,38 @@ static char *slurp(const char *path, const YfLoc *from, size_t *len) {
   return buf;
 }
 
+/* Coincident nodes: order by (x, y). */
+static int by_xy(const void *a, const void *b, void *ctx) {
+  const double *const *c = ctx;
+  long i = *(const long *)a, j = *(const long *)b;
+  if (c[0][i] != c[0][j]) return c[0][i] < c[0][j] ? -1 : 1;
+  if (c[1][i] != c[1][j]) return c[1][i] < c[1][j] ? -1 : 1;
+  return i < j ? -1 : i > j;
+}
+
+/* Triangle corners that share a position with another one (a mesh written without "Coherence",
+ * or two surfaces meshed apart): they are not connected, so the body would fall apart along
+ * them in silence.  Warn with the count and the first pair (Gmsh tags). */
+static void warn_coincident(const char *path, const YfLoc *from, const double *nx, const double *ny,
+                            const long *ntag, const int *used, long nn) {
+  long *ix = yf_malloc((size_t)(nn ? nn : 1) * sizeof *ix, "mesh nodes"), k = 0;
+  for (long i = 0; i < nn; i++)
+    if (used[i]) ix[k++] = i;
+  const double *c[2] = {nx, ny};
+  qsort_r(ix, (size_t)k, sizeof *ix, by_xy, c);
+  long dup = 0, a = -1, b = -1;
+  for (long i = 1; i < k; i++)
+    if (nx[ix[i]] == nx[ix[i - 1]] && ny[ix[i]] == ny[ix[i - 1]]) {
+      if (!dup++) a = ix[i - 1], b = ix[i];
+    }
+  if (dup)
+    yf_warn(from, "mesh gmsh: %ld node%s of '%s' coincide%s with another node (first: nodes %ld and %ld at "
+            "(%g, %g)): the triangles on either side are not connected there (duplicated nodes: use "
+            "Coherence Mesh in Gmsh, or Geometry.AutoCoherence, if they should be one)", dup, dup == 1 ? "" : "s",
+            path, dup == 1 ? "s" : "", ntag[a], ntag[b], nx[a], ny[a]);
+  free(ix);
+}
+
 static int ent_find(const YfIdMap *emap, int dim, long tag) {
   return idmap_get(emap, (long long)tag * 4 + dim);
 }
@@ -383,6 +415,9 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
           for (int k = 0; k < extra; k++) msh_double(r, "a parametric coordinate");
           nx[nn + i] = x * o->scale;
           ny[nn + i] = y * o->scale;
+          if (!(fabs(nx[nn + i]) <= YF_RANGE_MAX && fabs(ny[nn + i]) <= YF_RANGE_MAX))
+            msh_fail(r, cline, "node %ld at (%g, %g) m is beyond +-%g m, the range the arithmetic holds "
+                     "(areas and energies multiply coordinates)", ntag[nn + i], nx[nn + i], ny[nn + i], YF_RANGE_MAX);
           ext = fmax(ext, fmax(fabs(x), fabs(y)));
           if (fabs(z) > zmax) {
             zmax = fabs(z);
@@ -644,6 +679,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
         if (ph[j].dim == ent[e].dim && ph[j].tag == pool[ent[e].off + k])
           ent[e].bits |= (uint64_t)1 << ph[j].group;
 
+  warn_coincident(path, &o->from, nx, ny, ntag, used, nn);
   int *l2m = yf_malloc((size_t)(nn ? nn : 1) * sizeof *l2m, "mesh nodes");
   for (long i = 0; i < nn; i++) {
     l2m[i] = -1;

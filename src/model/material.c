@@ -14,7 +14,11 @@
 #include "sim.h"
 
 /* material NAME elastic rho R (E E nu NU [plane_stress|plane_strain] | lambda L mu M)
- *          [visc K | damping BETA] [volfac 0.5|1] [pen_n P] [pen_t P] [friction MU] */
+ *          [visc K | damping BETA] [volfac 0.5|1] [pen_n P] [pen_t P] [friction MU]
+ *          [friction_law coulomb|y2d]
+ * friction_law: coulomb (default) is the elastic-slip Coulomb law whose tangential stiffness is
+ * the normal law's with pen_t for pen_n; y2d is Y2D's law (p_t L^2 times the slip, unit-dependent),
+ * for comparison with Y2D runs (contact_pair.h). */
 void cmd_material(YfSim *s, const YfArgs *a) {
   arg_count(a, 4, -1);
   const char *name = arg_word(a, 0, "name");
@@ -24,9 +28,10 @@ void cmd_material(YfSim *s, const YfArgs *a) {
   if (idx >= 0) arg_error(a, 0, "material already defined (each name once)");
   double rho = -1, E = -1, nu = -2, lam = -1, mu = -1, visc = 0, beta = 0, volfac = 0.5;
   double pn = 0, pt = -1, fr = 0;
-  int plane = -1, given_lame = 0, given_e = 0;
+  int plane = -1, given_lame = 0, given_e = 0, law = YF_FRIC_COULOMB;
   static const char *const keys[] = {"rho", "E", "nu", "plane_stress", "plane_strain", "lambda", "mu",
-                                     "visc", "damping", "volfac", "pen_n", "pen_t", "friction", NULL};
+                                     "visc", "damping", "volfac", "pen_n", "pen_t", "friction",
+                                     "friction_law", NULL};
   for (int i = 2; i < a->n;) {
     int k = arg_choice(a, i, "keyword", keys);
     if (k == 3 || k == 4) { plane = k == 3 ? YF_PLANE_STRESS : YF_PLANE_STRAIN; i++; continue; }
@@ -50,6 +55,11 @@ void cmd_material(YfSim *s, const YfArgs *a) {
     case 10: pn = arg_nonneg(a, i + 1, "pen_n"); break;
     case 11: pt = arg_nonneg(a, i + 1, "pen_t"); break;
     case 12: fr = arg_nonneg(a, i + 1, "friction"); break;
+    case 13: {
+      static const char *const laws[] = {"y2d", "coulomb", NULL}; /* index = YF_FRIC_* */
+      law = arg_choice(a, i + 1, "friction law", laws);
+      break;
+    }
     }
     i += 2;
   }
@@ -85,5 +95,11 @@ void cmd_material(YfSim *s, const YfArgs *a) {
   m->beta = beta;
   m->pen_n = pn;
   m->pen_t = pt < 0 ? pn : pt;
+  /* the Coulomb law's tangential spring is the normal one with pen_t: above pen_n it would
+   * outrun the contact's stable time step (contact_stable_dt is the normal penalty's) */
+  if (law == YF_FRIC_COULOMB && m->pen_t > pn && pt >= 0)
+    arg_error(a, 0, "pen_t %g is above pen_n %g: with the coulomb friction law the tangential stiffness is pen_t / pen_n "
+              "of the normal one and must not exceed it (give pen_t <= pen_n, or friction_law y2d)", m->pen_t, pn);
   m->fric = fr;
+  m->fric_law = law;
 }

@@ -200,6 +200,11 @@ static void mesh_rect(YfModel *m, const YfArgs *a) {
   int mat = find_material_or_die(m, a, 2);
   double x0 = arg_num(a, 3, "x0"), y0 = arg_num(a, 4, "y0");
   double x1 = arg_num(a, 5, "x1"), y1 = arg_num(a, 6, "y1");
+  const double corner[4] = {x0, y0, x1, y1};
+  for (int k = 0; k < 4; k++)
+    if (!(fabs(corner[k]) <= YF_RANGE_MAX))
+      arg_error(a, 3 + k, "coordinate %g is beyond +-%g m, the range the arithmetic holds (areas and "
+                "energies multiply coordinates)", corner[k], YF_RANGE_MAX);
   if (!(x1 > x0)) arg_error(a, 5, "x1 must be greater than x0 = %g", x0);
   if (!(y1 > y0)) arg_error(a, 6, "y1 must be greater than y0 = %g", y0);
   long nx = arg_int(a, 7, "nx", 1, 100000000), ny = arg_int(a, 8, "ny", 1, 100000000);
@@ -208,6 +213,18 @@ static void mesh_rect(YfModel *m, const YfArgs *a) {
     if (strcmp(a->w[9], "pattern") != 0) arg_error(a, 9, "expected the keyword 'pattern'");
     arg_count(a, 11, 11);
     pat = arg_choice(a, 10, "pattern", pats);
+  }
+  {
+    /* Volumetric locking: with one diagonal per cell the constant-strain triangles cannot deform
+     * at constant volume in bending (each cell's pair has fewer free modes than constraints), so
+     * near-incompressible plane strain is far too stiff: the cantilever of docs/VERIFICATION.md
+     * deflects about half of Timoshenko's value at nu = 0.49, where the crossed mesh is within a
+     * few per cent.  Warn, do not refuse: the pattern is right for compressible solids. */
+    const YfMaterial *mt = &m->mat[mat];
+    if ((pat == PAT_RIGHT || pat == PAT_LEFT) && mt->plane == YF_PLANE_STRAIN && mt->nu > 0.4)
+      yf_warn(&a->loc, "mesh rect: pattern %s with material '%s' in plane strain at nu = %g locks (constant-strain "
+              "triangles in near-incompressible bending: about half the true deflection at nu = 0.49); use "
+              "'pattern cross' (docs/VERIFICATION.md, volumetric locking)", pats[pat], mt->name, mt->nu);
   }
   long long nnode = (long long)(nx + 1) * (ny + 1) + (pat == PAT_CROSS ? (long long)nx * ny : 0);
   long long ntri = (long long)nx * ny * (pat == PAT_CROSS ? 4 : 2);
@@ -398,6 +415,9 @@ static int inline_body(YfModel *m, const char *name, const YfLoc *loc, const cha
 
 static void inline_add_node(YfModel *m, long id, double x, double y, const char *bname,
                             const YfLoc *loc, const char *cmd) {
+  if (!(fabs(x) <= YF_RANGE_MAX && fabs(y) <= YF_RANGE_MAX))
+    yf_deck_error(loc, "%s: node %ld at (%g, %g) is beyond +-%g m, the range the arithmetic holds (areas "
+                  "and energies multiply coordinates)", cmd, id, x, y, YF_RANGE_MAX);
   inline_bind(m);
   int b = inline_body(m, bname, loc, cmd);
   if (idmap_get(&inl.node, id) >= 0)
@@ -480,6 +500,7 @@ static void read_rows(YfModel *m, const YfArgs *a, int want, RowFn fn, const cha
   int rows = 0;
   while (getline(&line, &cap, fp) >= 0) {
     loc.line++;
+    if (loc.line == 1) yf_skip_bom(line);
     char *hash = strchr(line, '#');
     if (hash) *hash = '\0';
     char *w[8];

@@ -18,9 +18,17 @@
 #include <stdint.h>
 
 #define YF_NAME_MAX 48
+/* The largest |coordinate| [m] and |velocity| [m/s] accepted: areas, stiffnesses and energies
+ * multiply two of them (and a modulus or a density), which must stay far inside the range of a
+ * double (1.8e308); 1e100 leaves that room and is beyond any physical scene.  Beyond it the
+ * arithmetic overflows (areas of zero or inf, energies of inf), so it is refused by name. */
+#define YF_RANGE_MAX 1e100
 #define YF_MAX_GROUPS 64 /* group membership is a 64-bit mask per node and per triangle */
 
 enum { YF_PLANE_STRESS = 0, YF_PLANE_STRAIN = 1, YF_PLANE_LAME = 2 };
+/* Contact friction laws (kernel/contact_pair.h has their equations): Y2D's, and the elastic-slip
+ * Coulomb law of native decks. */
+enum { YF_FRIC_Y2D = 0, YF_FRIC_COULOMB = 1 };
 
 /* A material: the triangle law T = (2 mu / J) E + k D + volfac lambda (J - 1/J) I
  * (Munjiza / Y2D, ALGORITHMS.md 2.2).  Native decks give E, nu and plane_stress|plane_strain;
@@ -39,6 +47,8 @@ typedef struct {
   double beta;     /* if > 0: visc = 2 h beta sqrt(E rho), h = smallest edge of the material */
   /* contact (contact.c): penalties [Pa] and Coulomb friction coefficient      */
   double pen_n, pen_t, fric;
+  int fric_law;    /* YF_FRIC_* (contact_pair.h): 0 = Y2D's (read_y2d, zeroed default),
+                      native `material` commands set the Coulomb law unless told y2d */
   int rigid;       /* reserved for Y2D type 2 triangles                          */
   int jset;        /* joint property set for fracture (joint.c), -1 = unbreakable */
 } YfMaterial;

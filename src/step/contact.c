@@ -86,10 +86,9 @@ typedef struct YfContact {
   double *cx, *cy, *cr;  /* per item: centroid and radius [m]                   */
   int nmat;
   double *mpn, *mpt, *mmu; /* per material: pen_n, pen_t [Pa], friction         */
+  int *mlaw;               /* per material: friction law YF_FRIC_* (contact_pair.h) */
   int *jpart, *jidx;     /* joined skip: 3 per triangle, partner triangle and joint (-1 none) */
   const unsigned char *jstate;
-  double dt_limit;       /* contact_stable_dt, computed at prepare              */
-  char dt_what[192];
 
   /* couples */
   YfPairs pairs, fresh;
@@ -137,11 +136,12 @@ static YfContact *get(YfSim *s) {
 static void free_prepared(YfContact *C) {
   free(C->item); free(C->ma); free(C->mb); free(C->pnode);
   free(C->cx); free(C->cy); free(C->cr);
-  free(C->mpn); free(C->mpt); free(C->mmu);
+  free(C->mpn); free(C->mpt); free(C->mmu); free(C->mlaw);
   free(C->jpart); free(C->jidx);
   C->item = C->pnode = C->jpart = C->jidx = NULL;
   C->ma = C->mb = NULL;
   C->cx = C->cy = C->cr = C->mpn = C->mpt = C->mmu = NULL;
+  C->mlaw = NULL;
   C->nitem = C->npn = C->nmat = 0;
   C->prep_ntri = C->prep_nn = -1;
 }
@@ -163,6 +163,12 @@ void contact_free(YfSim *s) {
   free(C);
   s->contact = NULL;
 }
+
+/* The contact share of a node's row sum, in units of one edge's flat-penetration stiffness: 2 for
+ * a node pressed against one equal node (the two-mass bound), x3 for the neighbours a node of a
+ * fracturing body or a body's corner is pressed into at once (docs/STABILITY.md: with 2 the
+ * jointed scenes in contact were unstable at 0.75-0.78 of the limit). */
+#define CONTACT_ROW 6.0
 
 static int active(const YfContact *C) { return C && C->nrule > 0; }
 
@@ -338,8 +344,10 @@ static int joined_keep(int i, int j, void *ctx) {
   return 1;
 }
 
-/* The contact penalty's stable time step (contact.h). */
-static void compute_stable_dt(YfSim *s, YfContact *C) {
+/* The contact penalty's share of the nodes' stiffness for the stable time step (contact.h). */
+int contact_node_stiffness(YfSim *s, double *K, int *tof, double *pof) {
+  const YfContact *C = s->contact;
+  if (!active(C) || !C->ma) return 0;
   const YfModel *m = &s->model;
   Side A[MAX_RULES], B[MAX_RULES];
   for (int r = 0; r < C->nrule; r++) A[r] = B[r] = (Side){0.0, -1, 0};
@@ -359,9 +367,8 @@ static void compute_stable_dt(YfSim *s, YfContact *C) {
   unsigned char *jointed = yf_calloc((size_t)m->tri.n + 1, 1, "contact jointed");
   const YfJoints *J = s->joints;
   for (int j = 0; J && j < J->n; j++) jointed[J->tri[2 * j]] = jointed[J->tri[2 * j + 1]] = 1;
-  double best = INFINITY;
-  int which = -1;
-  double pbest = 0;
+  int any = 0;
+  double *kmax = yf_calloc((size_t)m->node.n + 1, sizeof(double), "contact stiffness");
   for (int k = 0; k < C->nitem; k++) {
     int t = C->item[k], b = m->tri.body[t];
     int meets = jointed[t] || m->body[b].fracture;
@@ -380,25 +387,25 @@ static void compute_stable_dt(YfSim *s, YfContact *C) {
     if (pm < p) p = pm;
     if (!meets || !(p > 0)) continue;
     const int *v = m->tri.v + 3 * t;
-    double mass = INFINITY, L2 = 0;
+    double L2 = 0;
     for (int c = 0; c < 3; c++) {
-      if (m->node.m[v[c]] < mass) mass = m->node.m[v[c]];
       double dx = m->node.x0[v[(c + 1) % 3]] - m->node.x0[v[c]], dy = m->node.y0[v[(c + 1) % 3]] - m->node.y0[v[c]];
       if (dx * dx + dy * dy > L2) L2 = dx * dx + dy * dy;
     }
     double area = 0.5 * m->tri.d0[t];
-    if (!(mass > 0) || !(area > 0)) continue;
-    double kn = 0.75 * p * L2 / area; /* 1.5 p L / h with h = 2 A / L */
-    double d = sqrt(2.0 * mass / kn);
-    if (d < best) { best = d; which = t; pbest = p; }
+    if (!(area > 0)) continue;
+    /* 1.5 p L / h with h = 2 A / L, times CONTACT_ROW (contact.h) */
+    double kn = CONTACT_ROW * 0.75 * p * L2 / area;
+    for (int c = 0; c < 3; c++) {
+      int i = v[c];
+      if (kn > kmax[i]) { kmax[i] = kn; tof[i] = t; pof[i] = p; }
+      K[i] += kn;
+    }
+    any = 1;
   }
   free(jointed);
-  C->dt_limit = best;
-  if (which >= 0)
-    snprintf(C->dt_what, sizeof C->dt_what, "contact penalty %.3g Pa at triangle %d (material %s)", pbest,
-             m->tri.id[which], m->mat[m->tri.mat[which]].name);
-  else
-    C->dt_what[0] = 0;
+  free(kmax);
+  return any;
 }
 
 void contact_prepare(YfSim *s) {
@@ -406,10 +413,7 @@ void contact_prepare(YfSim *s) {
   if (!active(C)) return;
   YfModel *m = &s->model;
   int nt = m->tri.n, nn = m->node.n;
-  if (!C->dirty && C->prep_ntri == nt && C->prep_nn == nn && C->nmat == m->nmat) {
-    compute_stable_dt(s, C); /* masses may have changed (cheap, setup only) */
-    return;
-  }
+  if (!C->dirty && C->prep_ntri == nt && C->prep_nn == nn && C->nmat == m->nmat) return;
   free_prepared(C);
 
   /* rule sides per triangle */
@@ -445,10 +449,12 @@ void contact_prepare(YfSim *s) {
   C->mpn = yf_malloc((size_t)(m->nmat + 1) * sizeof(double), "contact materials");
   C->mpt = yf_malloc((size_t)(m->nmat + 1) * sizeof(double), "contact materials");
   C->mmu = yf_malloc((size_t)(m->nmat + 1) * sizeof(double), "contact materials");
+  C->mlaw = yf_malloc((size_t)(m->nmat + 1) * sizeof(int), "contact materials");
   for (int i = 0; i < m->nmat; i++) {
     C->mpn[i] = m->mat[i].pen_n;
     C->mpt[i] = m->mat[i].pen_t;
     C->mmu[i] = m->mat[i].fric;
+    C->mlaw[i] = m->mat[i].fric_law;
   }
   for (int k = 0; k < C->nitem; k++) {
     int t = C->item[k];
@@ -517,7 +523,6 @@ void contact_prepare(YfSim *s) {
     C->cap_tg = nt;
   }
 
-  compute_stable_dt(s, C);
   /* the first step after a (re)setup searches; couples of the old list that still pass keep
    * their friction memory through the merge (triangle indices do not change) */
   contact_trigger_init(&C->trig, C->buffer, 1e15);
@@ -529,15 +534,6 @@ void contact_prepare(YfSim *s) {
              C->nrule > 1 ? "s" : "", C->nitem, nt, C->buffer, C->joined_skip ? ", joined couples skipped" : "");
 }
 
-double contact_stable_dt(YfSim *s, char *what, size_t n) {
-  YfContact *C = s->contact;
-  if (!active(C) || !isfinite(C->dt_limit)) {
-    if (what && n) what[0] = 0;
-    return INFINITY;
-  }
-  if (what && n) snprintf(what, n, "%s", C->dt_what);
-  return C->dt_limit;
-}
 
 /* ---------------------------------------------------------------- detection */
 
@@ -613,6 +609,7 @@ typedef struct {
   const double *vx, *vy, *tg;
   double *gmem;
   const double *mpn, *mpt, *mmu;
+  const int *mlaw;
   double dt, rem2;
   int np;
   double *hf;
@@ -647,6 +644,7 @@ static void kernel_block(YfContact *C, const KernelPass *P, int b) {
     double pn = P->mpn[ma] < P->mpn[mb] ? P->mpn[ma] : P->mpn[mb];
     double pt = P->mpt[ma] < P->mpt[mb] ? P->mpt[ma] : P->mpt[mb];
     double mu = P->mmu[ma] < P->mmu[mb] ? P->mmu[ma] : P->mmu[mb];
+    int law = P->mlaw[ma] < P->mlaw[mb] ? P->mlaw[ma] : P->mlaw[mb]; /* Y2D's if either is a Y2D material */
     double loc[12];
     double *fa = P->hf ? P->hf + 12 * (size_t)h : loc, *fb = fa + 6;
     for (int c = 0; c < 12; c++) fa[c] = 0.0;
@@ -657,7 +655,7 @@ static void kernel_block(YfContact *C, const KernelPass *P, int b) {
       memset(gmem + 6 * (size_t)gi[k], 0, 6 * sizeof *gmem);
     }
     int hit = contact_pair_force_rec(tg + (size_t)YF_TRI_GEOM * tj, vxa, vya, tg + (size_t)YF_TRI_GEOM * ti, vxb,
-                                     vyb, pn, pt, mu, P->dt, gmem + 6 * (size_t)gi[k], fa, fb, &d2, &info);
+                                     vyb, pn, pt, mu, law, P->dt, gmem + 6 * (size_t)gi[k], fa, fb, &d2, &info);
     e += info.energy;
     d += info.dissip;
     if (P->hf) {
@@ -719,6 +717,8 @@ void contact_step(YfSim *s) {
   int *gi = C->pairs.gi;
   unsigned char *alive = C->alive;
   const double rem2 = 4.0 * C->buffer * C->buffer;
+  const int *mlaw = C->mlaw;
+  double *gmem = C->pairs.g;
   #pragma omp parallel for schedule(static) if (np >= C->par_min && nblk > 1)
   for (int b = 0; b < nblk; b++) {
     int k1 = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np, rm = 0, busy = 0, need = 0;
@@ -728,6 +728,8 @@ void contact_step(YfSim *s) {
       int q = contact_pair_quiet(ra, rb, rem2);
       if (q == 0) { alive[k] = 2; busy++; need += gi[k] < 0; }
       else if (q == 2) { alive[k] = 0; rm++; }
+      else if (gi[k] >= 0 && mlaw[tmat[ij[2 * k]]] != YF_FRIC_Y2D && mlaw[tmat[ij[2 * k + 1]]] != YF_FRIC_Y2D)
+        memset(gmem + 6 * (size_t)gi[k], 0, 6 * sizeof *gmem); /* apart: the Coulomb springs let go */
     }
     C->blk_rm[b] = rm;
     C->blk_busy[b] = busy;
@@ -755,7 +757,7 @@ void contact_step(YfSim *s) {
   nthr = omp_get_max_threads();
 #endif
   const int serial = !(nbusy >= C->par_min / 32 && nblk > 1) || nthr == 1;
-  KernelPass P = {ij, tv, tmat, gi, alive, vx, vy, tg, C->pairs.g, C->mpn, C->mpt, C->mmu, dt, rem2, np,
+  KernelPass P = {ij, tv, tmat, gi, alive, vx, vy, tg, C->pairs.g, C->mpn, C->mpt, C->mmu, C->mlaw, dt, rem2, np,
                   NULL, NULL, NULL, NULL};
   double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
   unsigned char *tmark = C->tmark;

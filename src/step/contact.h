@@ -10,7 +10,7 @@
  *                       touching couples into a compact list in couple order), then added into
  *                       node.fx/fy in pair order (deterministic).  Accumulates contact energy
  *                       and frictional dissipation into s->energy.
- *   contact_stable_dt   the contact penalty's limit (see below); INFINITY without contact.
+ *   contact_node_stiffness  the contact penalty's share of the stable time step (below).
  *
  * Deck commands (one row `contact` in commands.def):
  *   contact pair G1 G2      triangles of group (or body) G1 against those of G2
@@ -52,17 +52,18 @@
 
 void contact_prepare(YfSim *s);
 void contact_step(YfSim *s);
-/* Stable time step of the contact penalty [s] and what sets it.  For every participating
- * triangle e that can touch a triangle of another body (or belongs to a fracturing body: its
- * own fragments), the stiffest contact it can meet is a flat penetration of one of its edges:
- * force per node k = 1.5 p L_e / h_e (ALGORITHMS 6.3 with P = delta / h), L_e its longest edge,
- * h_e = 2 A_e / L_e its smallest height, p = min(its pen_n, the largest pen_n it can meet); two
- * such nodes of mass m_e (the smallest lumped mass of its corners) against each other are stable
- * for dt <= sqrt(2 m_e / k).  The minimum over triangles is returned.  Self-contact of a body
- * that cannot break is left out (it only acts when the body folds onto itself).  For a right
- * triangle with legs a and one triangle per node this is 0.33 a sqrt(rho/p); Y2D's reference
- * decks ran at 0.25-0.56 a sqrt(rho/p_contact) and were stable at twice that. */
-double contact_stable_dt(YfSim *s, char *what, size_t n);
+/* The contact penalty's part of the stable time step (run_stable_dt combines it with the
+ * triangles and joints at every node).  For every participating triangle e that can touch a
+ * triangle of another body (or belongs to a fracturing body: its own fragments), the stiffest
+ * contact it can meet is a flat penetration of one of its edges: force per node
+ * k = 1.5 p L_e / h_e (ALGORITHMS 6.3 with P = delta / h), L_e its longest edge, h_e = 2 A_e / L_e
+ * its smallest height, p = min(its pen_n, the largest pen_n it can meet).  Each corner i of e gets
+ * 2 k added to K[i] [Pa]: the Gershgorin row sum of the node pressed against an equal target node
+ * (alone, a node of mass m is then stable for dt <= sqrt(2 m / k), the two-mass bound).  tof[i],
+ * pof[i]: the triangle giving node i's largest share and its penalty (for the message), where
+ * tof[i] < 0 on entry or a larger share is found.  Self-contact of a body that cannot break is
+ * left out (it only acts when the body folds onto itself).  Returns 0 without contact. */
+int contact_node_stiffness(YfSim *s, double *K, int *tof, double *pof);
 /* Live couples in the list (Y2D's ncouples). */
 long contact_pairs(const YfSim *s);
 void contact_free(YfSim *s);

@@ -106,9 +106,12 @@ typedef struct YfJoints {
 
 void joints_insert(YfSim *s);
 void joints_forces(YfSim *s);
-/* Stable time step limit of the joints' penalty [s] (INFINITY without joints); *what names it.
- * tri_w: each triangle's tri_omega_max, when the caller has them (NULL: computed here). */
-double joints_stable_dt(YfSim *s, const double *tri_w, char *what, size_t n);
+/* The joints' part of the stable time step (run_stable_dt combines it with the triangles and
+ * contact at every node): each intact joint adds its penalty [Pa] to P[i] of its 4 nodes (the
+ * Gershgorin row sum of its stiffness); jof[i] (if < 0 on entry): a joint of node i, for the
+ * message.  Returns 0 without intact joints.  joints_describe names joint j. */
+int joints_node_penalty(const YfSim *s, double *P, int *jof);
+void joints_describe(const YfSim *s, int j, char *what, size_t n);
 /* Counts for the summary and thermo. */
 long joints_count(const YfSim *s);
 long joints_broken(const YfSim *s);

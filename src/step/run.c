@@ -4,9 +4,10 @@
  * in parallel; a node gather sums them in a fixed order, so 1 or N threads give the same bits),
  * external loads, then v_{n+1/2} = v_{n-1/2} + dt (f/m + g) with supports and prescribed motions,
  * x_{n+1} = x_n + dt v_{n+1/2}, t += dt.  Energies are evaluated at thermo lines; the energy
- * check catches an unstable run (kinetic + strain energy growing far beyond what was put in).
+ * balance check (energy.c) stops a run whose balance does not close.
  * Nothing in the step allocates, does I/O (except output at its own stage) or touches strings.
  */
+#include <float.h>
 #include <math.h>
 #include <omp.h>
 #include <sys/resource.h>
@@ -21,6 +22,8 @@
 #include "err.h"
 #include "joint.h"
 #include "partition.h"
+#include "energy.h"
+#include "par.h"
 #include "threads.h"
 
 const char *const yf_stage_names[YF_NSTAGE] = {"elements", "joints", "detection", "contact", "gather", "update", "output"};
@@ -46,9 +49,6 @@ static struct {
   double *blk_badJ;
   double *xo, *yo, *vxo, *vyo; /* positions and velocities before the update */
   int cap_nodes;
-  double e_budget;    /* kinetic + strain energy at the start (step 0 or the first run) [J/m]:
-                       * the growth check's budget and the thermo balance's reference */
-  int e_budget_set;
   double e_floor;     /* energy of a 1e-8 strain everywhere: below it, growth is round-off [J/m] */
   double t_wall0;
 } R;
@@ -114,13 +114,22 @@ double run_model_bytes(const YfSim *s) {
   return nodes + tris + (double)(m->node.n + 1) * sizeof(int);
 }
 
+/* The stable time step: central differences are stable while dt <= 2/omega_max (reduced by the
+ * viscous term).  Triangles alone: each triangle's exact omega_max (tri_omega_max).  A node that
+ * also carries joints or can meet contact: Weyl's inequality bounds omega^2 of the whole by the
+ * sum of the parts' bounds, omega_i^2 <= omega_T^2 + (P_i + K_i) / m_i, with omega_T the largest of
+ * its triangles', P_i its joints' penalties and K_i its contact penalties (Gershgorin row sums,
+ * joint.h, contact.h), all acting on the same node at once: an impactor pressing on a jointed
+ * beam loads its top nodes through all three.  The viscous reduction uses the damping ratio the
+ * triangle's viscosity gives that combined mode.  docs/STABILITY.md compares the result with the
+ * bisected largest stable step of every deck. */
 double run_stable_dt(YfSim *s, char *limiter, size_t n) {
   YfModel *m = &s->model;
   double best = INFINITY;
   int which = -1;
   /* every triangle's omega_max on all threads (a power iteration each: 1 s per 1e6 triangles at
    * setup), then the smallest limit, first of equals, in order: the serial loop's answer */
-  const int nt = m->tri.n;
+  const int nt = m->tri.n, nn = m->node.n;
   double *w = yf_malloc((size_t)(nt > 0 ? nt : 1) * sizeof *w, "stable time step");
   #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
   for (int e = 0; e < nt; e++) w[e] = tri_omega_max(m, R.tm, e);
@@ -134,18 +143,45 @@ double run_stable_dt(YfSim *s, char *limiter, size_t n) {
     else
       snprintf(limiter, n, "nothing (no triangles)");
   }
-  char what[96];
-  double dj = joints_stable_dt(s, w, what, sizeof what); /* the same omegas, without viscosity */
-  free(w);
-  if (dj < best) {
-    best = dj;
-    if (limiter) snprintf(limiter, n, "%s", what);
+  double *P = yf_calloc((size_t)nn + 1, sizeof(double), "stable time step");
+  double *K = yf_calloc((size_t)nn + 1, sizeof(double), "stable time step");
+  double *pof = yf_calloc((size_t)nn + 1, sizeof(double), "stable time step");
+  int *jof = yf_malloc(((size_t)nn + 1) * sizeof(int), "stable time step");
+  int *tof = yf_malloc(((size_t)nn + 1) * sizeof(int), "stable time step");
+  int *tmax = yf_malloc(((size_t)nn + 1) * sizeof(int), "stable time step");
+  for (int i = 0; i < nn; i++) jof[i] = tof[i] = tmax[i] = -1;
+  int any = joints_node_penalty(s, P, jof);
+  any |= contact_node_stiffness(s, K, tof, pof);
+  if (any) {
+    for (int e = 0; e < nt; e++)
+      for (int c = 0; c < 3; c++) {
+        int i = m->tri.v[3 * e + c];
+        if (tmax[i] < 0 || w[e] > w[tmax[i]]) tmax[i] = e;
+      }
+    int bi = -1;
+    for (int i = 0; i < nn; i++) {
+      double mi = m->node.m[i];
+      if (!(P[i] + K[i] > 0) || !(mi > 0) || tmax[i] < 0) continue;
+      double wt = w[tmax[i]] > 0 ? w[tmax[i]] : 0.0, wt2 = wt * wt;
+      double om = sqrt(wt2 + (P[i] + K[i]) / mi);
+      const YfTriMat *mt = R.tm + m->tri.mat[tmax[i]];
+      double M = 2.0 * mt->lamv + mt->mu2; /* lambda + 2 mu of the small-strain law */
+      /* stiffness-proportional viscosity acts on the triangle's share of the mode only:
+       * xi = xi_T omega_T / omega with xi_T = omega_T k / (2 (lambda + 2 mu)) */
+      double xi = M > 0 ? wt2 * mt->k / (2.0 * M * om) : 0.0;
+      double d = 2.0 / om * (sqrt(1.0 + xi * xi) - xi);
+      if (d < best) { best = d; bi = i; }
+    }
+    if (bi >= 0 && limiter) {
+      char what[192];
+      if (P[bi] >= K[bi]) joints_describe(s, jof[bi], what, sizeof what);
+      else
+        snprintf(what, sizeof what, "contact penalty %.3g Pa at triangle %d (material %s)", pof[bi],
+                 m->tri.id[tof[bi]], m->mat[m->tri.mat[tof[bi]]].name);
+      snprintf(limiter, n, "%s", what);
+    }
   }
-  double dc = contact_stable_dt(s, what, sizeof what);
-  if (dc < best) {
-    best = dc;
-    if (limiter) snprintf(limiter, n, "%s", what);
-  }
+  free(w); free(P); free(K); free(pof); free(jof); free(tof); free(tmax);
   return best;
 }
 
@@ -171,6 +207,7 @@ void run_prepare(YfSim *s) {
     for (int e = 0; e < m->tri.n; e++) R.e_floor += 1e-16 * m->mat[m->tri.mat[e]].E * 0.5 * m->tri.d0[e];
     m->prepared = 1;
   }
+  par_prepare(s, R.nblk, BLOCK); /* MPI: which triangles of the element stage this rank computes */
   bc_prepare(s);
   contact_prepare(s);
   /* positions and velocities before the update: read only by bc.c's supports and loads and by
@@ -196,19 +233,9 @@ void run_energies(YfSim *s) {
   }
   s->energy.kinetic = ke;
   s->energy.strain = R.tm ? tri_strain_energy(m, R.tm, 0, m->tri.n) : 0.0;
-  s->energy.strain += joints_energy(s); /* intact joints' stored energy; sets energy.joint_dissipated */
+  s->joint_stored = joints_energy(s); /* intact joints; sets energy.joint_dissipated */
+  s->energy.strain += s->joint_stored;
 }
-
-/* Gravity's work is a function of the state: sum m g . (x - x0). */
-static double gravity_work(const YfSim *s) {
-  if (s->gx == 0 && s->gy == 0) return 0.0;
-  const YfNodes *n = &s->model.node;
-  double w = 0;
-  for (int i = 0; i < n->n; i++) w += n->m[i] * (s->gx * (n->x[i] - n->x0[i]) + s->gy * (n->y[i] - n->y0[i]));
-  return w;
-}
-
-static double total_external(const YfSim *s) { return s->energy.external_work + gravity_work(s); }
 
 static void thermo_header(YfSim *s) {
   if (s->thermo_custom) {
@@ -219,12 +246,58 @@ static void thermo_header(YfSim *s) {
              "Dissipated", "Balance", "Broken", "Pairs", "Wall");
 }
 
+/* The first node whose position or velocity is non-finite or beyond YF_RANGE_MAX, or -1. */
+static int node_out_of_range(const YfNodes *n) {
+  for (int i = 0; i < n->n; i++)
+    if (!(fabs(n->x[i]) <= YF_RANGE_MAX && fabs(n->y[i]) <= YF_RANGE_MAX && fabs(n->vx[i]) <= YF_RANGE_MAX &&
+          fabs(n->vy[i]) <= YF_RANGE_MAX))
+      return i;
+  return -1;
+}
+
+/* Before a run: every position and velocity within the range the arithmetic holds (the commands
+ * check what they set; this covers every other way in: .y decks, files, earlier runs). */
+static void check_range(YfSim *s) {
+  const YfNodes *n = &s->model.node;
+  int i = node_out_of_range(n);
+  if (i < 0) return;
+  char a[4][32];
+  const double v[4] = {n->x[i], n->y[i], n->vx[i], n->vy[i]};
+  for (int k = 0; k < 4; k++) yf_fmt_g(a[k], sizeof a[k], v[k]);
+  yf_deck_error(NULL, "run: node %d (body %s) at (%s, %s) m moving at (%s, %s) m/s: beyond +-%g, the range the "
+                "arithmetic holds (areas and energies multiply coordinates and velocities)", n->id[i],
+                s->model.body[n->body[i]].name, a[0], a[1], a[2], a[3], YF_RANGE_MAX);
+}
+
+/* A thermo value that is not finite: the run failed; say why instead of printing inf or nan. */
+static void thermo_nonfinite(YfSim *s, const double *v, const char *const *names, int nv) {
+  const YfNodes *n = &s->model.node;
+  int i = node_out_of_range(n);
+  if (i >= 0) {
+    char a[4][32];
+    const double w[4] = {n->x[i], n->y[i], n->vx[i], n->vy[i]};
+    for (int k = 0; k < 4; k++) yf_fmt_g(a[k], sizeof a[k], w[k]);
+    yf_numeric_error(s->step, "node %d (body %s) at (%s, %s) m moving at (%s, %s) m/s: beyond +-%g, the range "
+                     "the arithmetic holds (time step %.6g s, stable limit %.6g s set by %s)", n->id[i],
+                     s->model.body[n->body[i]].name, a[0], a[1], a[2], a[3], YF_RANGE_MAX, s->dt, s->dt_limit,
+                     s->dt_limiter);
+  }
+  for (int k = 0; k < nv; k++)
+    if (!isfinite(v[k]))
+      yf_numeric_error(s->step, "the %s overflows the range of a double (the masses, moduli or velocities "
+                       "are too large for the arithmetic)", names[k]);
+}
+
 static void thermo_line(YfSim *s) {
   run_energies(s);
-  double ext = total_external(s);
+  double ext = energy_external(s);
   double diss = s->energy.damping + s->energy.joint_dissipated + s->energy.friction;
-  /* balance: energy now + dissipated - (energy at the start + external work); ~0 when healthy */
-  double bal = s->energy.kinetic + s->energy.strain + s->energy.contact + diss - ext - R.e_budget;
+  double bal = energy_balance(s); /* energy now + dissipated - energy given; ~0 when healthy */
+  static const char *const names[] = {"time", "kinetic energy", "strain energy", "external work",
+                                      "dissipated energy", "energy balance"};
+  const double v[6] = {s->time, s->energy.kinetic, s->energy.strain, ext, diss, bal};
+  for (int k = 0; k < 6; k++)
+    if (!isfinite(v[k])) thermo_nonfinite(s, v, names, 6);
   if (s->thermo_custom) {
     const double std[YF_TH_N] = {(double)s->step, s->time, s->energy.kinetic, s->energy.strain, ext, diss, bal,
                                  (double)joints_broken(s), (double)contact_pairs(s),
@@ -252,17 +325,6 @@ static void timing_table(YfSim *s, const double *stage0, double wall) {
   sim_printf(s, "%-10s %10.3f %7.1f\n", "other", other, wall > 0 ? 100.0 * other / wall : 0.0);
 }
 
-/* Unstable runs show as energy growing without a source: stop them with a clear cause. */
-static void energy_check(YfSim *s) {
-  run_energies(s);
-  double e = s->energy.kinetic + s->energy.strain;
-  double budget = R.e_budget + fabs(total_external(s));
-  if (isfinite(e) && e <= 10.0 * budget + R.e_floor) return;
-  yf_numeric_error(s->step, "energy growing without a source: kinetic + strain = %.6g J/m, but only %.6g J/m was put in "
-                   "(time step %.6g s, stable limit %.6g s set by %s); reduce the time step",
-                   e, budget, s->dt, s->dt_limit, s->dt_limiter);
-}
-
 static void progress(YfSim *s, long done, long total, double t0) {
   static double last;
   double t = yf_now();
@@ -287,8 +349,11 @@ static void progress(YfSim *s, long done, long total, double t0) {
 static void stage_elements(YfSim *s) {
   YfModel *m = &s->model;
   const int nblk = R.nblk, nt = m->tri.n;
+  const double t0 = yf_now();
+  int b0 = 0, b1 = nblk;
+  par_blocks(&b0, &b1); /* MPI: the blocks inside this rank's triangles; then every rank gets all results */
   #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
-  for (int b = 0; b < nblk; b++) {
+  for (int b = b0; b < b1; b++) {
     YfTriPass p;
     int e1 = (b + 1) * BLOCK < nt ? (b + 1) * BLOCK : nt;
     tri_forces(m, R.tm, b * BLOCK, e1, &p);
@@ -296,10 +361,28 @@ static void stage_elements(YfSim *s) {
     R.blk_bad[b] = p.bad;
     R.blk_badJ[b] = p.badJ;
   }
+  par_share_elements(m, R.tm, R.blk, R.blk_bad, R.blk_badJ, yf_now() - t0);
   double power = 0;
   for (int b = 0; b < nblk; b++) {
     if (R.blk_bad[b] >= 0) {
       int e = R.blk_bad[b];
+      if (node_out_of_range(&m->node) >= 0) { /* not an inversion: the motion left the arithmetic */
+        static const char *const none[] = {""};
+        thermo_nonfinite(s, NULL, none, 0);
+      }
+      {
+        /* corners so far from the origin that doubles cannot tell them apart (a body moved
+         * 1e85 m by a huge velocity): the area is rounding, not an inversion */
+        const int *v = m->tri.v + 3 * e;
+        double far = 0;
+        for (int k = 0; k < 3; k++) far = fmax(far, fmax(fabs(m->node.x[v[k]]), fabs(m->node.y[v[k]])));
+        double size = sqrt(fabs(m->tri.d0[e]));
+        if (far * DBL_EPSILON > 1e-3 * size)
+          yf_numeric_error(s->step + 1, "triangle %d (material %s), %.3g m across, is %.3g m from the origin: beyond "
+                           "the range the arithmetic holds (doubles keep 16 digits, so its corners cannot be told "
+                           "apart); are the velocities (or coordinates) far too large?", m->tri.id[e],
+                           m->mat[m->tri.mat[e]].name, size, far);
+      }
       if (R.blk_badJ[b] <= 0)
         yf_numeric_error(s->step + 1, "triangle %d (material %s) inverted: J = %.6g (area ratio current/initial); "
                          "the time step (%.6g s, stable limit %.6g s set by %s) may be too large or the body is "
@@ -438,8 +521,12 @@ static void step_once(YfSim *s) {
 
 void run_steps(YfSim *s, long nsteps) {
   run_prepare(s);
+  check_range(s);
   char lim[96];
   double limit = run_stable_dt(s, lim, sizeof lim);
+  if (s->dt_auto && !isfinite(limit))
+    yf_deck_error(s->dt_loc.file ? &s->dt_loc : NULL, "timestep auto: nothing sets a stable limit (%s); give "
+                  "the time step with 'timestep DT'", lim);
   s->dt_limit = limit;
   snprintf(s->dt_limiter, sizeof s->dt_limiter, "%s", lim);
   if (s->dt_auto) {
@@ -447,11 +534,13 @@ void run_steps(YfSim *s, long nsteps) {
     sim_printf(s, "timestep auto: dt = %.6g s = %.3g x stable limit %.6g s (set by %s)\n", s->dt, s->dt_safety, limit, lim);
   } else if (!(s->dt > 0)) {
     yf_deck_error(NULL, "run: no time step set (use 'timestep DT' or 'timestep auto')");
-  } else if (s->dt > limit && s->dt_warn_only) {
-    /* Y2D never checks dt and its decks choose it by experience (ALGORITHMS.md 10): warn only */
+  } else if (s->dt > limit && energy_dt_above_limit_ok(s)) {
+    /* Y2D never checks dt and its decks choose it by experience (ALGORITHMS.md 10); a native deck
+     * that said energy_check warn|off takes stability over: warn only, the energy check (unless
+     * off) stops the run if it diverges */
     yf_warn(s->dt_loc.file ? &s->dt_loc : NULL,
-            "the Y2D deck's time step %.6g s is above yfdem's conservative stable limit %.6g s (set by %s); "
-            "running it as Y2D would", s->dt, limit, lim);
+            "the %s time step %.6g s is %.3g x the stable limit %.6g s (set by %s); running it as asked: the energy "
+            "check stops the run if it diverges", s->y2d ? "Y2D deck's" : "deck's", s->dt, s->dt / limit, limit, lim);
   } else if (s->dt > limit) {
     yf_deck_error(s->dt_loc.file ? &s->dt_loc : NULL,
                   "timestep %.6g s is above the stable limit %.6g s (set by %s); use at most %.6g s or 'timestep auto'",
@@ -459,10 +548,7 @@ void run_steps(YfSim *s, long nsteps) {
   }
   s->threads = threads_run_begin(); /* the most threads a step may use (threads.c chooses) */
   run_energies(s);
-  if (s->step == 0 || !R.e_budget_set) {
-    R.e_budget = s->energy.kinetic + s->energy.strain;
-    R.e_budget_set = 1;
-  }
+  energy_run_begin(s, R.e_floor);
   s->run_end_step = s->step + nsteps;
   {
     /* stresses of the current state, so the run's first frame shows them */
@@ -477,20 +563,25 @@ void run_steps(YfSim *s, long nsteps) {
   double t_start = R.t_wall0;
   thermo_header(s);
   thermo_line(s);
-  int tty = s->progress && isatty(2);
+  int tty = s->progress && isatty(2) && yf_writer();
   long check_every = 100;
   for (long k = 0; k < nsteps; k++) {
     double ts = yf_now();
     step_once(s);
+    if (k == 0) energy_first_step(s); /* the start state's contact energy belongs to the budget */
     double t0 = yf_now();
     threads_after_step(t0 - ts); /* the next step's thread count (same bits on any) */
     ev.kind = YF_EV_STEP; /* frames, metrics samples and periodic restarts when due */
     sim_notify(s, &ev);
     yf_stage_time[YF_ST_OUTPUT] += yf_now() - t0;
     if (s->thermo_every > 0 && s->step % s->thermo_every == 0 && k + 1 < nsteps) thermo_line(s);
-    if ((k + 1) % check_every == 0) energy_check(s);
+    if ((k + 1) % check_every == 0) {
+      run_energies(s); /* the check reads the energies of this step */
+      energy_check(s);
+    }
     if (tty) progress(s, k + 1, nsteps, t_start);
-    if (s->interrupted) {
+    if (par_any(s->interrupted)) { /* MPI: every rank stops at the same step */
+      s->interrupted = 1;
       /* finish cleanly: a restart of this step, its frame in every dump, files closed */
       YfEvent iev = {.kind = YF_EV_INTERRUPT, .restart_path = ""};
       sim_notify(s, &iev);
@@ -504,8 +595,10 @@ void run_steps(YfSim *s, long nsteps) {
                    "restart could be written (%s)", s->step, s->time, why);
     }
   }
+  run_energies(s);
   energy_check(s);
   thermo_line(s);
+  par_need_stresses(&s->model); /* MPI: the last state whole on every rank, for what follows */
   double wall = yf_now() - R.t_wall0;
   s->wall_s += wall;
   s->elem_steps += (double)s->model.tri.n * (double)nsteps;
@@ -517,6 +610,7 @@ void run_steps(YfSim *s, long nsteps) {
              s->model.tri.n, wall, wall > 0 ? (double)s->model.tri.n * (double)nsteps / wall : 0.0, s->threads,
              s->threads > 1 ? "s" : "", shared ? "; " : "", shared ? shared : "");
   timing_table(s, stage0, wall);
+  par_run_report(s, nsteps, wall);
 }
 
 const YfTriMat *run_tri_mats(void) { return R.tm; }
@@ -525,12 +619,5 @@ void run_free(void) {
   free(R.tm); free(R.blk); free(R.blk_bad); free(R.blk_badJ);
   free(R.xo); free(R.yo); free(R.vxo); free(R.vyo);
   memset(&R, 0, sizeof R);
-}
-
-/* Energy-check budget (energy put in so far): part of a restart, so a continued run checks
- * against the same budget as the uninterrupted one. */
-double run_get_energy_budget(void) { return R.e_budget; }
-void run_set_energy_budget(double e) {
-  R.e_budget = e;
-  R.e_budget_set = 1;
+  energy_reset();
 }

@@ -24,9 +24,6 @@ double run_model_bytes(const YfSim *s);
 /* Material constants of the prepared model, indexed by material (for tests and diagnostics). */
 /* Material constants of the prepared model, indexed by material (tests, diagnostics). */
 const YfTriMat *run_tri_mats(void);
-/* Energy budget of the energy check [J/m] (restart.c saves and restores it). */
-double run_get_energy_budget(void);
-void run_set_energy_budget(double e);
 /* Release the loop's work arrays (at exit). */
 void run_free(void);
 /* Loops of the step shorter than par_min run on one thread; block = triangles per block of the

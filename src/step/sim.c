@@ -29,6 +29,7 @@ void sim_notify(YfSim *s, YfEvent *ev) {
 }
 
 void sim_printf(YfSim *s, const char *fmt, ...) {
+  if (!yf_writer()) return;
   va_list ap;
   va_start(ap, fmt);
   vfprintf(stdout, fmt, ap);

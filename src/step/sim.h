@@ -97,6 +97,8 @@ typedef struct YfSim {
   YfLoc dt_loc;         /* where the time step was set (for the 'above the limit' error)    */
   double gx, gy;        /* gravity [m/s^2]                                                  */
   double mass_damping;  /* alpha [1/s]: force -alpha m v (dynamic relaxation), 0 = off      */
+  int ebal_mode;        /* energy_check: YF_EBAL_STOP (default), _WARN or _OFF (energy.h)    */
+  double ebal_tol;      /* its tolerance, a fraction of the energy given (YF_EBAL_TOL)      */
 
   int nhist;
   YfHistory *hist;
@@ -118,6 +120,7 @@ typedef struct YfSim {
   int restored;           /* 1 after read_restart: a dump's first frame continues its series */
 
   YfEnergy energy;
+  double joint_stored;  /* intact joints' stored energy [J/m], part of energy.strain (run_energies) */
   long thermo_every;    /* thermo line every N steps (0: only at start and end of a run)    */
   YfThermoFn thermo_custom; /* NULL: the default thermo line                               */
   double wall_s;        /* wall time spent in runs [s]                                      */

@@ -10,11 +10,13 @@
 #include "joint.h"
 #include "mesh.h"
 #include "region.h"
+#include "energy.h"
 
 void sim_init(YfSim *s) {
   memset(s, 0, sizeof *s);
   model_init(&s->model);
   s->dt_safety = 0.5;
+  s->ebal_tol = YF_EBAL_TOL;
   s->thermo_every = 0;
   s->threads = 1;
   sim_add_bc_kind(s, &bc_kind_native);

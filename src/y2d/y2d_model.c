@@ -270,7 +270,7 @@ void y2d_update_scalar_only(int on) { scalar_only = on; }
 
 /* ALGORITHMS 7 on nodes [i0, i1); returns the external work of the step there (summed in node
  * order).  Groups of four ordinary nodes of one set go through update_four, the others one by one. */
-__attribute__((target_clones("avx2", "default")))
+YF_CLONES
 static double update_range(const YfY2dRun *r, YfNodes *n, const YfSim *s, int i0, int i1, double *vxo,
                            double *vyo, int move) {
   const int *set = r->set;

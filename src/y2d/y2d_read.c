@@ -326,6 +326,8 @@ static int add_file(YfY2d *y, const char *name) {
 }
 
 static void push_file(Rd *r, FILE *fp, const char *name) {
+  unsigned char bom[3]; /* a UTF-8 byte-order mark is skipped (the files are regular files) */
+  if (fread(bom, 1, 3, fp) != 3 || bom[0] != 0xef || bom[1] != 0xbb || bom[2] != 0xbf) rewind(fp);
   Src *s = &r->src[r->depth++];
   s->fp = fp;
   s->file = add_file(r->y, name);
@@ -489,6 +491,29 @@ static const char *dimname(int k, int d) {
 }
 
 /* KEY n v1..vn | KEY code n1 n2 values | KEY code n1 n2 n3 values (FORMAT.md 1.3). */
+/* Before value m of array key k is read: note its line when it differs from the previous one's
+ * (peeks at the next token's line: blank space and newlines before it are skipped). */
+static void note_value_line(Rd *r, int k, long m) {
+  YfY2d *y = r->y;
+  if (r->depth <= 0) return;
+  Src *s = &r->src[r->depth - 1];
+  int c;
+  while ((c = getc(s->fp)) != EOF && isspace(c))
+    if (c == '\n') s->line++;
+  if (c != EOF) ungetc(c, s->fp);
+  if (y->nvline && y->vline[y->nvline - 1].key == k && y->vline[y->nvline - 1].line == s->line &&
+      y->vline[y->nvline - 1].file == s->file)
+    return;
+  if (y->nvline == y->capvline) {
+    y->capvline = y->capvline ? 2 * y->capvline : 64;
+    y->vline = yf_realloc(y->vline, (size_t)y->capvline * sizeof *y->vline, "y2d value lines");
+  }
+  y->vline[y->nvline].key = k;
+  y->vline[y->nvline].file = s->file;
+  y->vline[y->nvline].line = s->line;
+  y->vline[y->nvline++].m = m;
+}
+
 static void read_array(Rd *r, int k, const YfLoc *kloc) {
   YfY2d *y = r->y;
   const KeyDef *kd = &keydefs[k];
@@ -557,6 +582,7 @@ static void read_array(Rd *r, int k, const YfLoc *kloc) {
   long idx[3] = {0, 0, 0};
   char what[64];
   for (long m = 0; m < total; m++) {
+    note_value_line(r, k, m);
     /* idx of the m-th value: the innermost loop is order[nd-1] */
     long rem = m;
     for (int q = nd - 1; q >= 0; q--) {
@@ -843,6 +869,19 @@ static void read_tokens(Rd *r) {
 
 static YfLoc loc_of(const YfY2d *y, int k) { return y->given[k] ? y->where[k] : y->end; }
 
+/* FILE:LINE of value m (in reading order) of array key k: the line it is on (the key's own line
+ * when unknown). */
+static YfLoc value_loc(const YfY2d *y, int k, long m) {
+  YfLoc l = loc_of(y, k);
+  for (long i = 0; i < y->nvline; i++)
+    if (y->vline[i].key == k && y->vline[i].m <= m) {
+      l.file = y->files[y->vline[i].file];
+      l.line = y->vline[i].line;
+    }
+  return l;
+}
+
+
 static void require(const YfY2d *y, int k, const char *why) {
   if (!y->given[k])
     yf_deck_error(&y->end, "%s is required (%s) but was not given before %s", keydefs[k].full,
@@ -981,7 +1020,7 @@ static void check_meshing(const YfY2d *y) {
             "stops with \"MNOPO too small\"); yfdem allocates what it needs",
             keydefs[Y2D_N_MNOPO].full, y->mnopo, need_nodes);
   for (long j = 0; j < y->npjset; j++) {
-    YfLoc tl = loc_of(y, Y2D_PJ_I1PTYP);
+    YfLoc tl = value_loc(y, Y2D_PJ_I1PTYP, j);
     if (y->pj_i1ptyp[j] != 3)
       yf_deck_error(&tl, "%s: joint set %ld has type %d; 2D joint sets must be 3 (YTE2JOINTS)",
                     keydefs[Y2D_PJ_I1PTYP].full, j, y->pj_i1ptyp[j]);
@@ -1015,7 +1054,7 @@ static void drop_code0_rows(YfY2d *y) {
 static void check_nonneg(const YfY2d *y, int k, const double *a, long n, const char *what) {
   for (long i = 0; i < n; i++)
     if (a[i] < 0) {
-      YfLoc l = loc_of(y, k);
+      YfLoc l = value_loc(y, k, i); /* 1D arrays: value i is the i-th read */
       yf_deck_error(&l, "%s: %s %ld has the negative value %g", keydefs[k].full, what, i, a[i]);
     }
 }
@@ -1122,9 +1161,9 @@ static void check_deck(YfY2d *y) {
                   keydefs[Y2D_E_I2ELTO].full, nbad, first_bad, first_area);
 
   /* ---- element properties ---- */
-  YfLoc tyl = loc_of(y, Y2D_PE_I1PTYP);
   for (long p = 0; p < y->nprop; p++) {
     int t = y->pe_i1ptyp[p];
+    YfLoc tyl = value_loc(y, Y2D_PE_I1PTYP, p);
     if (t == 3)
       yf_deck_error(&tyl, "%s: property %ld has type 3 (YTE2JOINTS), a joint type: it belongs in "
                     "/YD/YDPJ/I1PTYP; triangles are 1 (elastic), 2 (rigid) or 4 (softening)",
@@ -1139,7 +1178,7 @@ static void check_deck(YfY2d *y) {
       yf_warn(&tyl, "%s: property %ld is a softening triangle (type 4, legacy)",
               keydefs[Y2D_PE_I1PTYP].full, p);
     if (t == 1 && !(y->d1pero[p] > 0)) {
-      YfLoc l = loc_of(y, Y2D_PE_D1PERO);
+      YfLoc l = value_loc(y, Y2D_PE_D1PERO, p);
       yf_deck_error(&l, "%s: property %ld (elastic) has density %g; it must be > 0",
                     keydefs[Y2D_PE_D1PERO].full, p, y->d1pero[p]);
     }
@@ -1206,9 +1245,9 @@ static void check_deck(YfY2d *y) {
                 "of 1 unit acts on every node of the set", s, "xy"[d], keydefs[ak[d]].name);
     }
   }
-  YfLoc nl = loc_of(y, Y2D_N_I1NOPR);
   for (long n = 0; n < y->nnopo; n++) {
     int s = y->i1nopr[n];
+    YfLoc nl = value_loc(y, Y2D_N_I1NOPR, n);
     if (s < 0 || s >= y->npnset)
       yf_deck_error(&nl, "%s: node %ld has BC set %d%s, outside 0..NPNSET-1 = 0..%ld (the anchor "
                     "would never move this node)", keydefs[Y2D_N_I1NOPR].full, n, s,
@@ -1372,6 +1411,9 @@ void y2d_free_arrays(YfY2d *y) {
 void y2d_free(YfY2d *y) {
   if (!y) return;
   y2d_free_arrays(y);
+  free(y->vline);
+  y->vline = NULL;
+  y->nvline = y->capvline = 0;
   for (int i = 0; i < y->nfiles; i++) free(y->files[i]);
   free(y->files);
   y->files = NULL;

@@ -88,6 +88,11 @@ typedef struct {
                               D3PNFAC: table points n3); scalars: 1                        */
   int has_ydoit;           /* 1: the deck ends its (only) section with $YDOIT              */
   YfLoc end;               /* where reading stopped ($YDOIT, $YSTOP or end of file)        */
+  /* Where the values of arrays are, for messages about one value (a negative density on the
+   * line after its key): one entry per line an array's values start on (key k, value ordinal m
+   * from which they are on file:line); a few per key, at most one per line of the deck. */
+  struct { int key, file, line; long m; } *vline;
+  long nvline, capvline;
 
   /* ---- /YD/YDC/ control ---- */
   long mcstep;             /* MCSTEP: total steps (loop runs while step < MCSTEP)           */

@@ -128,6 +128,16 @@ void y2d_write(YfSim *s, const char *path, long steps, const YfLoc *loc) {
     if (p == np) { pbody[np] = m->tri.body[t]; pmat[np] = m->tri.mat[t]; np++; }
     tprop[t] = p;
   }
+  /* friction: Y2D has only its own law (tangential force p_t L^2 times the slip, kernel/contact_pair.h);
+   * the elastic-slip Coulomb law, the native default, is another law.  With friction 0 both put no
+   * tangential force, so only a frictional Coulomb material is refused. */
+  for (int p = 0; p < np; p++) {
+    const YfMaterial *mt = &m->mat[pmat[p]];
+    if (mt->fric_law == YF_FRIC_COULOMB && mt->fric > 0)
+      yf_deck_error(loc, "write_y2d: material '%s' has friction %g with the coulomb friction law (the native default): "
+                    "Y2D has only its own friction law (give the material 'friction_law y2d', or friction 0)",
+                    mt->name, mt->fric);
+  }
   /* fracture: whole bodies only, with joint sets Y2D has */
   int *bset = yf_malloc((size_t)(nb + 1) * sizeof(int), "write_y2d bodies");
   int nj = s->joints ? s->joints->nset : 0;

@@ -221,8 +221,10 @@ void y2dref_close(YfY2dRef *r) {
   FILE **f[3] = {&r->fsum, &r->fprobe, &r->fbroken};
   for (int k = 0; k < 3; k++)
     if (*f[k]) {
-      fclose(*f[k]);
+      int bad = ferror(*f[k]);
+      if (fclose(*f[k]) != 0) bad = 1;
       *f[k] = NULL;
+      if (bad) yf_output_error("dump y2dref: cannot write a file of '%s': %s", r->dir, strerror(errno ? errno : EIO));
     }
   r->opened = 0;
 }

@@ -43,7 +43,7 @@ static int has(const uint8_t *d, size_t n, const char *w) {
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
-  if (size > 16384 || has(data, size, "run") || has(data, size, "jump")) return 0;
+  if (size > 65536 || has(data, size, "run") || has(data, size, "jump")) return 0;
   char *buf = malloc(size + 1);
   memcpy(buf, data, size);
   buf[size] = 0;

@@ -1,0 +1,187 @@
+/* energy.c: the energy balance of a run, and the check that stops a run whose balance does not
+ * close (issues 17 and 22).
+ *
+ * This module owns the energy the scene was given and the balance residual
+ *
+ *   r = kinetic + strain + joint stored + contact          (stored now)
+ *     + damping + fracture + friction                      (dissipated so far)
+ *     - (energy at the start of the first run + work of loads, supports and gravity)   [J/m]
+ *
+ * The start energy counts everything the scene holds at step 0: kinetic, strain, joint and the
+ * contact penalty energy of bodies that overlap in the input (a generated deck's rounded
+ * coordinates): that energy is real and is released in the first steps (issue 22).  A stable
+ * central-difference run closes r to its time-integration error, which is bounded: energy put at
+ * once into modes the step barely resolves (an overlap at the start, an impact) is measured, with
+ * half-step velocities, off the conserved discrete energy by up to s^2 / (1 - s^2) of it, s =
+ * omega dt / 2 <= dt / dt_limit, and that offset then stays (docs/STABILITY.md).  An unstable
+ * mode creates energy that grows exponentially, whether it stays as motion or is booked as
+ * damping, fracture or friction.  With tol = ebal_tol (default YF_EBAL_TOL) x the energy given
+ * + the energy of a 1e-8 strain everywhere (round-off), a run stops (exit 3) when
+ *   - r > tol and r exceeds the largest offset a stable step can show, max(1, s^2 / (1 - s^2))
+ *     times the energy given (the energy given alone above the limit), or
+ *   - r > tol and r rose to a new high, by tol/10, at each of GROWING checks in a row (energy from
+ *     nowhere, wherever it went: a bounded offset stops setting new highs), or
+ *   - a dissipation is negative.
+ * Dissipation beyond what the scene was given is energy from nowhere too: it is part of r.  The message names the step, the energy that grew most
+ * since the last closed check and the stage that owns it, and what to change.
+ * `energy_check warn|off` (the one deck switch) lets a run go on against that advice.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include "energy.h"
+
+enum { T_KIN, T_STRAIN, T_JOINT, T_CONTACT, T_DAMP, T_FRACT, T_FRIC, NT };
+static const char *const term_name[NT] = {
+    "kinetic energy (stage 'update')",           "strain energy of the triangles (stage 'elements')",
+    "energy stored in the joints (stage 'joints')", "contact penalty energy (stage 'contact')",
+    "damping dissipation (stages 'elements' and 'update')", "fracture dissipation (stage 'joints')",
+    "friction dissipation (stage 'contact')"};
+
+static struct {
+  double budget;     /* energy held at step 0 [J/m] */
+  int budget_set;
+  int contact_pending; /* the first step's contact energy (that of the start state) is still to add */
+  double floor;      /* energy of a 1e-8 strain everywhere [J/m] */
+  double last[NT];   /* the terms at the last closed check */
+  long last_step;
+  double r_max;      /* the largest residual of the checks so far */
+  int streak;        /* consecutive checks above the tolerance with the residual still growing */
+  int warned;        /* warn mode: one warning per run */
+} E;
+
+/* Checks in a row (100 steps apart) at which a residual above the tolerance must reach a new high,
+ * by a tenth of the tolerance each, before the run is stopped (below the hard bound). */
+#define GROWING 3
+
+void energy_reset(void) { memset(&E, 0, sizeof E); }
+double energy_get_budget(void) { return E.budget; }
+void energy_set_budget(double e) {
+  E.budget = e;
+  E.budget_set = 1;
+  E.contact_pending = 0;
+}
+
+/* Gravity's work is a function of the state: sum m g . (x - x0). */
+static double gravity_work(const YfSim *s) {
+  if (s->gx == 0 && s->gy == 0) return 0.0;
+  const YfNodes *n = &s->model.node;
+  double w = 0;
+  for (int i = 0; i < n->n; i++) w += n->m[i] * (s->gx * (n->x[i] - n->x0[i]) + s->gy * (n->y[i] - n->y0[i]));
+  return w;
+}
+
+double energy_external(const YfSim *s) { return s->energy.external_work + gravity_work(s); }
+
+double energy_balance(const YfSim *s) {
+  const YfEnergy *e = &s->energy;
+  double diss = e->damping + e->joint_dissipated + e->friction;
+  return e->kinetic + e->strain + e->contact + diss - energy_external(s) - E.budget;
+}
+
+int energy_dt_above_limit_ok(const YfSim *s) { return s->dt_warn_only || s->ebal_mode != YF_EBAL_STOP; }
+
+static void terms(const YfSim *s, double *t) {
+  const YfEnergy *e = &s->energy;
+  t[T_KIN] = e->kinetic;
+  t[T_STRAIN] = e->strain - s->joint_stored;
+  t[T_JOINT] = s->joint_stored;
+  t[T_CONTACT] = e->contact;
+  t[T_DAMP] = e->damping;
+  t[T_FRACT] = e->joint_dissipated;
+  t[T_FRIC] = e->friction;
+}
+
+void energy_run_begin(YfSim *s, double e_floor) {
+  E.floor = e_floor;
+  if (s->step == 0 || !E.budget_set) {
+    E.budget = s->energy.kinetic + s->energy.strain;
+    E.budget_set = 1;
+    E.contact_pending = s->step == 0;
+  }
+  terms(s, E.last);
+  E.last_step = s->step;
+  E.r_max = energy_balance(s);
+  E.streak = 0;
+  E.warned = 0;
+}
+
+/* After the first step s->energy.contact is the penalty energy at the positions of step 0. */
+void energy_first_step(YfSim *s) {
+  if (!E.contact_pending) return;
+  E.contact_pending = 0;
+  if (isfinite(s->energy.contact) && s->energy.contact > 0) E.budget += s->energy.contact;
+}
+
+/* What to change: the time step against the limit, and the switch. */
+static void advice(const YfSim *s, char *buf, size_t n) {
+  double ratio = s->dt_limit > 0 && isfinite(s->dt_limit) ? s->dt / s->dt_limit : 0.0;
+  int k;
+  if (ratio > 1.0)
+    k = snprintf(buf, n, "the time step %.6g s is %.3g x the stable limit %.6g s (set by %s): use at most %.6g s%s",
+                 s->dt, ratio, s->dt_limit, s->dt_limiter, YF_DT_SAFETY_RECOMMENDED * s->dt_limit,
+                 s->y2d ? " (DCSTEC of the .y deck)" : " ('timestep auto')");
+  else if (ratio > 0)
+    k = snprintf(buf, n, "the time step %.6g s is %.3g x the stable limit %.6g s (set by %s): reduce it "
+                 "('timestep auto safety %.2g' or less%s), and check the scene for bodies that start overlapping "
+                 "or loads that do work the balance cannot see", s->dt, ratio, s->dt_limit, s->dt_limiter,
+                 ratio < 0.6 ? 0.5 * ratio : 0.5, s->y2d ? ", or DCSTEC of the .y deck" : "");
+  else
+    k = snprintf(buf, n, "reduce the time step (%.6g s)", s->dt);
+  if (k > 0 && (size_t)k < n)
+    snprintf(buf + k, n - (size_t)k, "; to run on against this advice put 'energy_check warn' (or off) before run");
+}
+
+void energy_check(YfSim *s) {
+  if (s->ebal_mode == YF_EBAL_OFF) return;
+  double t[NT];
+  terms(s, t);
+  double ext = energy_external(s);
+  double given = E.budget + ext, scale = E.budget + fabs(ext);
+  double diss = t[T_DAMP] + t[T_FRACT] + t[T_FRIC];
+  double r = energy_balance(s);
+  double tol = s->ebal_tol * scale + E.floor;
+  /* the largest offset a stable step can show: s^2 / (1 - s^2) of the energy, s = dt / dt_limit;
+   * at least the energy given (s <= 0.7), and that alone above the limit (no bound there) */
+  double sr = s->dt_limit > 0 ? s->dt / s->dt_limit : 2.0;
+  double hard = scale * (sr < 1.0 ? fmax(1.0, sr * sr / (1.0 - sr * sr)) : 1.0) + tol;
+  int higher = r > E.r_max + 0.1 * tol; /* a new high of the residual, by a tenth of tol */
+  int finite = isfinite(r) && isfinite(ext);
+  for (int i = 0; i < NT; i++) finite = finite && isfinite(t[i]);
+  char what[640];
+  what[0] = 0;
+  int grew = -1;
+  if (!finite) {
+    snprintf(what, sizeof what, "the energies are not finite (the motion blew up)");
+  } else if (r > tol && (r > hard || E.streak + higher >= GROWING)) {
+    double best = -INFINITY;
+    for (int i = 0; i < NT; i++)
+      if (t[i] - E.last[i] > best) { best = t[i] - E.last[i]; grew = i; }
+    snprintf(what, sizeof what, "energy balance not closed: %.6g J/m appeared from nowhere (kinetic %.6g + stored "
+             "%.6g + dissipated %.6g - given %.6g J/m), %s; since step %ld the %s grew most (+%.6g J/m)", r,
+             t[T_KIN], t[T_STRAIN] + t[T_JOINT] + t[T_CONTACT], diss, given,
+             r > hard ? (diss > scale ? "more than a stable step can show, and more was dissipated than given"
+                                      : "more than a stable step can show") : "still growing at every check",
+             E.last_step, term_name[grew], best);
+  } else {
+    for (int i = T_DAMP; i < NT && grew < 0; i++)
+      if (t[i] < -tol) grew = i;
+    if (grew >= 0)
+      snprintf(what, sizeof what, "energy balance not closed: negative %s of %.6g J/m (tolerance %.6g J/m)",
+               term_name[grew], t[grew], tol);
+  }
+  if (!what[0]) {
+    E.streak = r > tol && higher ? E.streak + 1 : 0;
+    if (r > E.r_max) E.r_max = r;
+    if (E.streak == 0) { /* the reference of "grew most": the last check that was closed or steady */
+      memcpy(E.last, t, sizeof t);
+      E.last_step = s->step;
+    }
+    return;
+  }
+  char adv[640];
+  advice(s, adv, sizeof adv);
+  if (s->ebal_mode == YF_EBAL_STOP) yf_numeric_error(s->step, "%s; %s", what, adv);
+  if (!E.warned) yf_warn(NULL, "step %ld: %s; the run goes on ('energy_check warn')", s->step, what);
+  E.warned = 1;
+}

@@ -1,0 +1,36 @@
+/* energy.h: the energy balance of a run and the check that stops a run whose balance does not
+ * close (energy.c).  run.c calls, in this order:
+ *   energy_run_begin   at the start of every run command, after run_energies;
+ *   energy_first_step  after the first step of a run (the contact energy of the start state);
+ *   energy_check       every 100 steps and at the end of the run (stops, warns or passes);
+ *   energy_balance     for the thermo Balance column.
+ */
+#ifndef YF_ENERGY_H
+#define YF_ENERGY_H
+#include "sim.h"
+
+/* Check modes of the energy_check command (YfSim.ebal_mode). */
+enum { YF_EBAL_STOP = 0, YF_EBAL_WARN, YF_EBAL_OFF };
+
+/* Default tolerance of the balance, as a fraction of the energy the scene was given. */
+#define YF_EBAL_TOL 0.05
+/* Recommended safety factor of `timestep auto` (docs/STABILITY.md: the study's smallest margin). */
+#define YF_DT_SAFETY_RECOMMENDED 0.9
+
+void energy_run_begin(YfSim *s, double e_floor);
+void energy_first_step(YfSim *s);
+/* Reads s->energy as run_energies (run.h) left it at this step. */
+void energy_check(YfSim *s);
+/* Work of loads, supports, prescribed motion and gravity so far [J/m]. */
+double energy_external(const YfSim *s);
+/* kinetic + stored + dissipated - given [J/m] (s->energy as last evaluated): ~0 when healthy. */
+double energy_balance(const YfSim *s);
+/* 1 when a deck's time step above the stable limit is accepted with a warning instead of refused
+ * (Y2D decks, and native decks that said `energy_check warn|off`). */
+int energy_dt_above_limit_ok(const YfSim *s);
+/* The energy given at the start [J/m] (restart.c saves and restores it). */
+double energy_get_budget(void);
+void energy_set_budget(double e);
+void energy_reset(void);
+
+#endif

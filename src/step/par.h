@@ -1,0 +1,58 @@
+/* par.h: the hooks by which a run is shared among MPI ranks (./yfdem_mpi, built by `make mpi`
+ * with -DYF_MPI; the implementation is src/par/par_mpi.c, a layer above the step).  In ./yfdem every hook is an inline no-op and MPI is not
+ * linked.
+ *
+ * This first version distributes the element force stage, the step's largest cost, and
+ * replicates everything else (docs/SCALING.md):
+ *   - every rank runs the whole deck and holds the whole scene (memory is not divided);
+ *   - rank r computes the corner forces of the triangles of its METIS parts (a contiguous range
+ *     of the partition order); the step's fixed 2048-triangle blocks that straddle two ranks are
+ *     summed from per-triangle results in triangle order, so every block sum has its one-rank bits;
+ *   - the corner forces and the per-block results are shared (allgather), so every rank gathers
+ *     every node's force from the same slots in the same order, and joints, contact, supports,
+ *     loads and the update run on every rank on identical data: the same bits as one rank;
+ *   - stresses are shared only when a frame or a metrics sample reads them (io calls
+ *     par_need_stresses), and at the end of a run;
+ *   - only rank 0 prints and writes files (yf_writer); an error stops every rank (par_mpi.c).
+ */
+#ifndef YF_PAR_H
+#define YF_PAR_H
+#include <stdio.h>
+#include "model.h"
+#include "elem_tri.h"
+
+#ifdef YF_MPI
+struct YfSim;
+void par_init(int *argc, char ***argv); /* MPI_Init, the writer rank, the error exit          */
+FILE *par_stdin(FILE *in);              /* a deck on stdin: rank 0 reads it, every rank runs it */
+int par_size(void);
+/* Ownership of the element stage for the scene's triangles in nblk blocks of `block`. */
+void par_prepare(const struct YfSim *s, int nblk, int block);
+void par_blocks(int *b0, int *b1);      /* the blocks this rank sums whole: [b0, b1)           */
+/* After the element stage: this rank's triangles of blocks it shares with others, then every
+ * rank gets every corner force (6 per triangle) and every block's (viscous power, first bad
+ * triangle, its J). */
+void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_bad, double *blk_badJ,
+                        double t_elem);
+/* Every triangle's stress on every rank (a collective: every rank calls it at the same point;
+ * a no-op when they are already shared since the last element stage). */
+void par_need_stresses(YfModel *m);
+int par_any(int flag);                  /* flag set on any rank (the same answer on all)       */
+void par_run_report(struct YfSim *s, long nsteps, double wall); /* ranks, imbalance, traffic */
+#else
+static inline void par_init(int *argc, char ***argv) { (void)argc; (void)argv; }
+static inline FILE *par_stdin(FILE *in) { return in; }
+static inline int par_size(void) { return 1; }
+struct YfSim;
+static inline void par_prepare(const struct YfSim *s, int nblk, int block) { (void)s; (void)nblk; (void)block; }
+static inline void par_blocks(int *b0, int *b1) { (void)b0; (void)b1; }
+static inline void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_bad,
+                                      double *blk_badJ, double t_elem) {
+  (void)m; (void)tm; (void)blk; (void)blk_bad; (void)blk_badJ; (void)t_elem;
+}
+static inline void par_need_stresses(YfModel *m) { (void)m; }
+static inline int par_any(int flag) { return flag; }
+#define par_run_report(s, nsteps, wall) ((void)0)
+#endif
+
+#endif

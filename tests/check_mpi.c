@@ -1,0 +1,347 @@
+/* check_mpi.c: ./yfdem_mpi on 1-4 MPI ranks (oversubscribed on 2 cores) against ./yfdem.
+ *
+ *   - the determinism matrix: the shortened column deck, the beam deck, the 4 shared Y2D decks
+ *     and PERF.md's problem at 1e4 triangles run on 1, 2, 3 and 4 ranks x 1 and 2 threads; the
+ *     summary's state_hash, energies (the viscous dissipation sums the element blocks that
+ *     straddle ranks), broken joints, contact couples, stress peak and the beam's last frame
+ *     of stresses (shared among ranks for metrics and frames) equal ./yfdem's to the last bit;
+ *   - a restart written on 2 ranks and read on 3 continues bitwise (the uninterrupted run's hash);
+ *   - SIGTERM to one rank stops every rank at the same step with one restart, which continues
+ *     bitwise, and exit 130 (interrupted);
+ *   - a deck error ends every rank with exit 1 and one message; a failure injected on rank 1
+ *     only (YFDEM_MPI_FAIL_RANK) ends every rank with exit 3 within seconds, never a hang.
+ *
+ * Skipped, with a message, when mpirun or ./yfdem_mpi is absent (`make check` builds it when
+ * mpicc is installed: tools/install-deps --test installs OpenMPI).  Runs are short (tens to a
+ * few hundred steps): the bits diverge at the first wrong addition, and a wrong exchange is
+ * visible in the hash within a step or two.
+ */
+#include <check.h>
+#include <hdf5.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+#include "yftest.h"
+
+static char ROOT[PATH_MAX], MPIBIN[PATH_MAX], SERBIN[PATH_MAX];
+
+/* The binaries and mpirun; 0 (and a message) when the MPI tests cannot run. */
+static int mpi_ready(void) {
+  if (!getcwd(ROOT, sizeof ROOT)) return 0;
+  const char *m = getenv("YFDEM_MPI"), *s = getenv("YFDEM");
+  if (!realpath(m ? m : "./yfdem_mpi", MPIBIN) || access(MPIBIN, X_OK) != 0 ||
+      system("command -v mpirun >/dev/null 2>&1") != 0) {
+    fprintf(stderr, "check_mpi: SKIPPED: mpirun or ./yfdem_mpi not found (tools/install-deps --mpi; make mpi)\n");
+    return 0;
+  }
+  ck_assert_msg(realpath(s ? s : "./yfdem", SERBIN) != NULL, "no ./yfdem");
+  return 1;
+}
+
+/* A fresh working directory (outputs of the decks land there). */
+static char *workdir(void) {
+  char *d = strdup("/tmp/yf_mpi_XXXXXX");
+  ck_assert_ptr_nonnull(mkdtemp(d));
+  return d;
+}
+
+/* The end of a test: its working directory goes (only after a pass: a failure keeps it). */
+static void drop_dir(char *d) {
+  char cmd[64];
+  snprintf(cmd, sizeof cmd, "rm -rf %s", d);
+  ck_assert_int_eq(system(cmd), 0);
+  free(d);
+}
+
+/* Run in dir: ./yfdem (ranks 0) or mpirun -np ranks ./yfdem_mpi, threads OpenMP threads, with
+ * args; stderr to dir/err.txt.  Returns the exit code; *secs the wall time. */
+static int run_in(const char *dir, int ranks, int threads, const char *args, double *secs) {
+  char cmd[4 * PATH_MAX + 1024];
+  const char *env = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_WAIT_POLICY=passive";
+  if (ranks > 0)
+    snprintf(cmd, sizeof cmd, "cd %s && %s OMP_NUM_THREADS=%d timeout 300 mpirun -q --oversubscribe --mca "
+             "mpi_yield_when_idle 1 -np %d %s %s >out.txt 2>err.txt", dir, env, threads, ranks, MPIBIN, args);
+  else
+    snprintf(cmd, sizeof cmd, "cd %s && OMP_NUM_THREADS=%d %s %s >out.txt 2>err.txt", dir, threads, SERBIN, args);
+  struct timespec t0, t1;
+  clock_gettime(CLOCK_MONOTONIC, &t0);
+  int st = system(cmd);
+  clock_gettime(CLOCK_MONOTONIC, &t1);
+  if (secs) *secs = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+}
+
+/* The summary lines that must be bitwise equal on any ranks x threads. */
+static char *key_lines(const char *path) {
+  static const char *const keys[] = {"\"steps\"", "\"state_hash\"", "\"energy\"", "\"joints_broken\"",
+                                     "\"contact_pairs\"", "\"peak_stress\"", "\"first_break\"", NULL};
+  char *txt = yft_slurp(path, 0);
+  ck_assert_msg(txt != NULL, "no summary %s", path);
+  size_t cap = strlen(txt) + 1, n = 0;
+  char *out = calloc(cap, 1);
+  for (char *line = strtok(txt, "\n"); line; line = strtok(NULL, "\n")) {
+    const char *k = line + strspn(line, " ");
+    for (int i = 0; keys[i]; i++)
+      if (!strncmp(k, keys[i], strlen(keys[i]))) {
+        n += (size_t)snprintf(out + n, cap - n, "%s\n", k);
+        break;
+      }
+  }
+  free(txt);
+  return out;
+}
+
+static void write_file(const char *dir, const char *name, const char *text) {
+  char p[PATH_MAX + 64];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  FILE *f = fopen(p, "w");
+  ck_assert_ptr_nonnull(f);
+  fputs(text, f);
+  fclose(f);
+}
+
+/* /stress of a frame file (every triangle: the ranks' shares gathered for the writer); NULL if
+ * the file has none.  *n: doubles read. */
+static double *frame_stress(const char *dir, const char *frame, long *n) {
+  char p[PATH_MAX + 64];
+  snprintf(p, sizeof p, "%s/%s", dir, frame);
+  *n = 0;
+  hid_t f = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) return NULL;
+  hid_t ds = H5Dopen2(f, "/stress", H5P_DEFAULT);
+  double *buf = NULL;
+  if (ds >= 0) {
+    hid_t sp = H5Dget_space(ds);
+    *n = (long)H5Sget_simple_extent_npoints(sp);
+    buf = malloc((size_t)(*n > 0 ? *n : 1) * sizeof(double));
+    if (H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) *n = -1;
+    H5Sclose(sp);
+    H5Dclose(ds);
+  }
+  H5Fclose(f);
+  return buf;
+}
+
+/* The matrix for one case: ./yfdem on 1 thread, then 1-4 ranks x 1-2 threads; frame (or NULL):
+ * an HDF5 frame whose stresses must be bitwise ./yfdem's too. */
+static void matrix(const char *name, const char *dir, const char *args, const char *frame) {
+  char sargs[2 * PATH_MAX], path[PATH_MAX + 32], line[256];
+  snprintf(sargs, sizeof sargs, "%s -summary ref.json", args);
+  ck_assert_msg(run_in(dir, 0, 1, sargs, NULL) == 0, "%s: ./yfdem failed", name);
+  snprintf(path, sizeof path, "%s/ref.json", dir);
+  char *ref = key_lines(path);
+  ck_assert_msg(strstr(ref, "state_hash") != NULL, "%s: no state_hash", name);
+  long nref = 0, ngot = 0;
+  double *sref = frame ? frame_stress(dir, frame, &nref) : NULL;
+  ck_assert_msg(!frame || (sref && nref > 0), "%s: no stresses in ./yfdem's %s", name, frame);
+  int k = snprintf(line, sizeof line, "check_mpi: %-16s", name);
+  for (int ranks = 1; ranks <= 4; ranks++)
+    for (int th = 1; th <= 2; th++) {
+      double secs;
+      snprintf(sargs, sizeof sargs, "%s -summary m.json", args);
+      int rc = run_in(dir, ranks, th, sargs, &secs);
+      ck_assert_msg(rc == 0, "%s: %d ranks x %d threads: exit %d", name, ranks, th, rc);
+      snprintf(path, sizeof path, "%s/m.json", dir);
+      char *got = key_lines(path);
+      ck_assert_msg(!strcmp(ref, got), "%s: %d ranks x %d threads differ from ./yfdem:\n%s--- vs ./yfdem:\n%s", name,
+                    ranks, th, got, ref);
+      free(got);
+      unlink(path);
+      if (frame) {
+        double *sg = frame_stress(dir, frame, &ngot);
+        ck_assert_msg(sg && ngot == nref && !memcmp(sg, sref, (size_t)nref * sizeof(double)),
+                      "%s: %d ranks x %d threads: the stresses of %s differ from ./yfdem's", name, ranks, th, frame);
+        free(sg);
+        char fp[PATH_MAX + 64];
+        snprintf(fp, sizeof fp, "%s/%s", dir, frame);
+        unlink(fp);
+      }
+      k += snprintf(line + k, sizeof line - (size_t)k, " %dx%d ok", ranks, th);
+    }
+  fprintf(stderr, "%s (state_hash, energies, joints, couples, stresses as ./yfdem)\n", line);
+  free(ref);
+  free(sref);
+}
+
+START_TEST(matrix_column) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), a[2 * PATH_MAX];
+  snprintf(a, sizeof a, "-in %s/decks/column.deck -var steps 120", ROOT);
+  matrix("column", d, a, NULL);
+  drop_dir(d);
+}
+END_TEST
+
+START_TEST(matrix_beam) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), a[2 * PATH_MAX];
+  snprintf(a, sizeof a, "-in %s/decks/beam.deck -var steps 300 -var every 100", ROOT);
+  matrix("beam", d, a, "beam_000003.h5"); /* frames at steps 0, 100, 200, 300 */
+  drop_dir(d);
+}
+END_TEST
+
+static const char *const Y2D[] = {"a_elastic_block", "b_beam_impact", "c_column_impact", "d1_cantilever_bc"};
+
+START_TEST(matrix_y2d) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), deck[PATH_MAX + 128];
+  snprintf(deck, sizeof deck, "read_y2d %s/tests/y2d/decks/%s.y\nrun 150\n", ROOT, Y2D[_i]);
+  write_file(d, "y.deck", deck);
+  matrix(Y2D[_i], d, "-in y.deck", NULL);
+  drop_dir(d);
+}
+END_TEST
+
+/* PERF.md's problem at 1e4 triangles (5 element blocks: blocks inside ranks and blocks split
+ * between them), generated by tools/gen_perf_deck.py. */
+static char *perf_dir(int steps) {
+  char *d = workdir(), cmd[2 * PATH_MAX];
+  snprintf(cmd, sizeof cmd, "python3 %s/tools/gen_perf_deck.py 94 %s/perf.y --steps %d >/dev/null", ROOT, d, steps);
+  ck_assert_msg(system(cmd) == 0, "cannot generate the PERF.md deck");
+  return d;
+}
+
+START_TEST(matrix_perf_1e4) {
+  if (!mpi_ready()) return;
+  char *d = perf_dir(40);
+  write_file(d, "p.deck", "read_y2d perf.y\nrun 40\n");
+  matrix("y2d_perf 1e4", d, "-in p.deck", NULL);
+  drop_dir(d);
+}
+END_TEST
+
+/* The state_hash line of dir/cont.json, checked equal to dir/full.json's (the uninterrupted
+ * run); what names the case in a failure.  Returns the line (static). */
+static const char *same_hash_as_full(const char *dir, const char *what) {
+  static char line[64];
+  char path[PATH_MAX + 32];
+  snprintf(path, sizeof path, "%s/full.json", dir);
+  char *a = key_lines(path);
+  snprintf(path, sizeof path, "%s/cont.json", dir);
+  char *b = key_lines(path);
+  const char *ha = strstr(a, "\"state_hash\""), *hb = strstr(b, "\"state_hash\"");
+  ck_assert_msg(ha && hb && !strncmp(ha, hb, 32), "%s differs:\n%s--- uninterrupted:\n%s", what, b, a);
+  const char *sa = strstr(a, "\"steps\""), *sb = strstr(b, "\"steps\"");
+  ck_assert_msg(sa && sb && !strncmp(sa, sb, strcspn(sa, "\n")), "%s: not the same step:\n%s--- uninterrupted:\n%s",
+                what, b, a);
+  snprintf(line, sizeof line, "%.32s", hb);
+  free(a);
+  free(b);
+  return line;
+}
+
+/* Written on 2 ranks at step 40, read on 3, continued to 80: the uninterrupted run's bits. */
+START_TEST(restart_2_to_3) {
+  if (!mpi_ready()) return;
+  char *d = perf_dir(80);
+  write_file(d, "full.deck", "read_y2d perf.y\nrun 80\n");
+  write_file(d, "first.deck", "read_y2d perf.y\nrun 40\nwrite_restart half.restart\n");
+  write_file(d, "second.deck", "read_y2d perf.y\nread_restart half.restart\nrun 80 upto\n");
+  ck_assert_int_eq(run_in(d, 0, 1, "-in full.deck -summary full.json", NULL), 0);
+  ck_assert_int_eq(run_in(d, 2, 1, "-in first.deck", NULL), 0);
+  ck_assert_int_eq(run_in(d, 3, 1, "-in second.deck -summary cont.json", NULL), 0);
+  fprintf(stderr, "check_mpi: restart written on 2 ranks, read on 3: %s as the uninterrupted run\n",
+          same_hash_as_full(d, "restart 2 -> 3 ranks"));
+  drop_dir(d);
+}
+END_TEST
+
+/* How many times needle occurs in the file dir/name. */
+static int count_in(const char *dir, const char *name, const char *needle) {
+  char p[PATH_MAX + 64];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  char *t = yft_slurp(p, 1);
+  int n = 0;
+  for (const char *q = t; (q = strstr(q, needle)); q++) n++;
+  free(t);
+  return n;
+}
+
+/* A deck error met by every rank: exit 1, the message once. */
+START_TEST(error_all_ranks) {
+  if (!mpi_ready()) return;
+  char *d = workdir();
+  write_file(d, "bad.deck", "material m elastic rho 1 E 1 nu 0.2 plane_stress\nbogus_command 1\n");
+  double secs;
+  int rc = run_in(d, 3, 1, "-in bad.deck", &secs);
+  ck_assert_int_eq(rc, 1);
+  ck_assert_int_eq(count_in(d, "err.txt", "bad.deck:2:"), 1); /* one message, not one per rank */
+  ck_assert_msg(secs < 60, "took %.1f s", secs);
+  drop_dir(d);
+}
+END_TEST
+
+/* A numerical failure on rank 1 only (injected at its 5th element stage): every rank ends,
+ * mpirun exits 3 (numerical failure), the message once, within seconds. */
+START_TEST(error_one_rank) {
+  if (!mpi_ready()) return;
+  char *d = perf_dir(100);
+  write_file(d, "p.deck", "read_y2d perf.y\nrun 100\n");
+  double secs;
+  setenv("YFDEM_MPI_FAIL_RANK", "1", 1);
+  int rc = run_in(d, 3, 1, "-in p.deck", &secs);
+  unsetenv("YFDEM_MPI_FAIL_RANK");
+  ck_assert_int_eq(rc, 3);
+  ck_assert_int_eq(count_in(d, "err.txt", "injected failure"), 1);
+  ck_assert_msg(secs < 60, "took %.1f s", secs);
+  fprintf(stderr, "check_mpi: a failure on rank 1 of 3 ended every rank with exit 3 in %.1f s\n", secs);
+  drop_dir(d);
+}
+END_TEST
+
+/* SIGTERM to one rank only (a signal reaching the ranks at different steps): the flag is
+ * OR-reduced every step, so every rank stops at the same step, rank 0 writes the restart and says
+ * so once, and mpirun exits 4; the restart continued on 3 ranks gives the bits of an
+ * uninterrupted ./yfdem run to the same step.  Without the reduction the signalled rank leaves
+ * alone and the others wait for it (the 300 s timeout, exit 124). */
+START_TEST(interrupt_all_ranks) {
+  if (!mpi_ready()) return;
+  char *d = perf_dir(100000), cmd[4 * PATH_MAX], path[PATH_MAX + 32];
+  write_file(d, "long.deck", "read_y2d perf.y\nrun 100000\n");
+  snprintf(cmd, sizeof cmd, "cd %s && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_WAIT_POLICY=passive "
+           "OMP_NUM_THREADS=1 timeout 300 mpirun -q --oversubscribe --mca mpi_yield_when_idle 1 -np 2 %s -in long.deck "
+           ">out.txt 2>err.txt & pid=$!; sleep 6; kill -TERM $(pgrep -n -x yfdem_mpi); wait $pid", d, MPIBIN);
+  int st = system(cmd);
+  ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) == YF_EXIT_INTERRUPT, "exit %d, not 130 (interrupted)", WIFEXITED(st) ? WEXITSTATUS(st) : -1);
+  snprintf(path, sizeof path, "%s/err.txt", d);
+  char *err = yft_slurp(path, 1);
+  long k = -1;
+  const char *at = strstr(err, "interrupted at step ");
+  ck_assert_msg(at && sscanf(at, "interrupted at step %ld", &k) == 1 && k > 0, "no interrupt message: %s", err);
+  ck_assert_int_eq(count_in(d, "err.txt", "interrupted at step"), 1);
+  free(err);
+  char deck[256];
+  snprintf(deck, sizeof deck, "read_y2d perf.y\nread_restart yfdem_interrupt.restart\nrun %ld upto\n", k + 10);
+  write_file(d, "cont.deck", deck);
+  snprintf(deck, sizeof deck, "read_y2d perf.y\nrun %ld\n", k + 10);
+  write_file(d, "full.deck", deck);
+  ck_assert_int_eq(run_in(d, 3, 1, "-in cont.deck -summary cont.json", NULL), 0);
+  ck_assert_int_eq(run_in(d, 0, 1, "-in full.deck -summary full.json", NULL), 0);
+  char what[96];
+  snprintf(what, sizeof what, "interrupt at step %ld, continued on 3 ranks", k);
+  fprintf(stderr, "check_mpi: SIGTERM to one rank stopped both at step %ld; continued on 3 ranks to step %ld: %s as ./yfdem\n",
+          k, k + 10, same_hash_as_full(d, what));
+  drop_dir(d);
+}
+END_TEST
+
+Suite *mpi_suite(void) {
+  Suite *s = suite_create("mpi");
+  TCase *t = tcase_create("mpi");
+  tcase_set_timeout(t, 900);
+  tcase_add_test(t, matrix_column);
+  tcase_add_test(t, matrix_beam);
+  tcase_add_loop_test(t, matrix_y2d, 0, 4);
+  tcase_add_test(t, matrix_perf_1e4);
+  tcase_add_test(t, restart_2_to_3);
+  tcase_add_test(t, error_all_ranks);
+  tcase_add_test(t, error_one_rank);
+  tcase_add_test(t, interrupt_all_ranks);
+  suite_add_tcase(s, t);
+  return s;
+}
