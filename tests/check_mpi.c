@@ -57,16 +57,21 @@ static void drop_dir(char *d) {
   free(d);
 }
 
-/* Run in dir: ./yfdem (ranks 0) or mpirun -np ranks ./yfdem_mpi, threads OpenMP threads, with
- * args; stderr to dir/err.txt.  Returns the exit code; *secs the wall time. */
+/* Run in dir: ./yfdem (ranks 0) or mpirun -np ranks ./yfdem_mpi, with args; threads > 0: exactly
+ * that many OpenMP threads on every step (-threads), threads < 0: the thread governor's choice of
+ * 1 or -threads on each step (docs/THREADS.md).  stderr to dir/err.txt, stdout to dir/out.txt.
+ * Returns the exit code; *secs the wall time. */
 static int run_in(const char *dir, int ranks, int threads, const char *args, double *secs) {
-  char cmd[4 * PATH_MAX + 1024];
+  char cmd[4 * PATH_MAX + 1024], th[32] = "";
   const char *env = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_WAIT_POLICY=passive";
+  if (threads > 0) snprintf(th, sizeof th, "-threads %d", threads);
+  threads = abs(threads);
   if (ranks > 0)
     snprintf(cmd, sizeof cmd, "cd %s && %s OMP_NUM_THREADS=%d timeout 300 mpirun -q --oversubscribe --mca "
-             "mpi_yield_when_idle 1 -np %d %s %s >out.txt 2>err.txt", dir, env, threads, ranks, MPIBIN, args);
+             "mpi_yield_when_idle 1 -np %d %s %s %s >out.txt 2>err.txt", dir, env, threads, ranks, MPIBIN, th, args);
   else
-    snprintf(cmd, sizeof cmd, "cd %s && OMP_NUM_THREADS=%d %s %s >out.txt 2>err.txt", dir, threads, SERBIN, args);
+    snprintf(cmd, sizeof cmd, "cd %s && OMP_NUM_THREADS=%d %s %s %s >out.txt 2>err.txt", dir, threads, SERBIN, th,
+             args);
   struct timespec t0, t1;
   clock_gettime(CLOCK_MONOTONIC, &t0);
   int st = system(cmd);
@@ -140,7 +145,8 @@ static void matrix(const char *name, const char *dir, const char *args, const ch
   ck_assert_msg(!frame || (sref && nref > 0), "%s: no stresses in ./yfdem's %s", name, frame);
   int k = snprintf(line, sizeof line, "check_mpi: %-16s", name);
   for (int ranks = 1; ranks <= 4; ranks++)
-    for (int th = 1; th <= 2; th++) {
+    for (int th = 1; th >= -2; th = th == 1 ? 2 : -2) { /* 1, 2, and on 2 ranks the governor */
+      if (th < 0 && ranks != 2) break;
       double secs;
       snprintf(sargs, sizeof sargs, "%s -summary m.json", args);
       int rc = run_in(dir, ranks, th, sargs, &secs);
@@ -160,7 +166,16 @@ static void matrix(const char *name, const char *dir, const char *args, const ch
         snprintf(fp, sizeof fp, "%s/%s", dir, frame);
         unlink(fp);
       }
-      k += snprintf(line + k, sizeof line - (size_t)k, " %dx%d ok", ranks, th);
+      if (th < 0) { /* the run line says how the governor shared the steps: both counts ran */
+        snprintf(path, sizeof path, "%s/out.txt", dir);
+        char *out = yft_slurp(path, 0);
+        const char *a = out ? strstr(out, "auto: ") : NULL, *b = a ? strstr(a, " on 2, ") : NULL;
+        long on2 = a ? strtol(a + 6, NULL, 10) : 0, on1 = b ? strtol(b + 7, NULL, 10) : 0;
+        ck_assert_msg(on2 > 0 && on1 > 0, "%s: 2 ranks x auto: the governor did not switch (%.60s)", name,
+                      a ? a : "no 'auto:' on the run line");
+        free(out);
+      }
+      k += snprintf(line + k, sizeof line - (size_t)k, th > 0 ? " %dx%d ok" : " %dxauto ok", ranks, th);
     }
   fprintf(stderr, "%s (state_hash, energies, joints, couples, stresses as ./yfdem)\n", line);
   free(ref);

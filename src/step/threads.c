@@ -167,7 +167,6 @@ const char *threads_run_end(char *buf, int n) {
   omp_use(g_fixed ? g_fixed : g_omp_max);
   long tot = G.steps_at[0] + G.steps_at[1];
   if (G.cap <= 1 || tot == 0) return NULL;
-  snprintf(buf, (size_t)n, "auto: %.0f%% of steps on %d, %.0f%% on 1", 100.0 * (double)G.steps_at[1] / (double)tot,
-           G.cap, 100.0 * (double)G.steps_at[0] / (double)tot);
+  snprintf(buf, (size_t)n, "auto: %ld steps on %d, %ld on 1", G.steps_at[1], G.cap, G.steps_at[0]);
   return buf;
 }
