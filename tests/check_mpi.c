@@ -134,7 +134,7 @@ static double *frame_stress(const char *dir, const char *frame, long *n) {
 /* The matrix for one case: ./yfdem on 1 thread, then 1-4 ranks x 1-2 threads; frame (or NULL):
  * an HDF5 frame whose stresses must be bitwise ./yfdem's too. */
 static void matrix(const char *name, const char *dir, const char *args, const char *frame) {
-  char sargs[2 * PATH_MAX], path[PATH_MAX + 32], line[256];
+  char sargs[2 * PATH_MAX + 64], path[PATH_MAX + 32], line[256];
   snprintf(sargs, sizeof sargs, "%s -summary ref.json", args);
   ck_assert_msg(run_in(dir, 0, 1, sargs, NULL) == 0, "%s: ./yfdem failed", name);
   snprintf(path, sizeof path, "%s/ref.json", dir);
