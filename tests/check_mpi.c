@@ -145,7 +145,8 @@ static void matrix(const char *name, const char *dir, const char *args, const ch
   ck_assert_msg(!frame || (sref && nref > 0), "%s: no stresses in ./yfdem's %s", name, frame);
   int k = snprintf(line, sizeof line, "check_mpi: %-16s", name);
   for (int ranks = 1; ranks <= 4; ranks++)
-    for (int th = 1; th >= -2; th = th == 1 ? 2 : -2) { /* 1, 2, and on 2 ranks the governor */
+    for (int i = 0; i < 3; i++) { /* exactly 1 and 2 threads, and on 2 ranks the governor (-2) */
+      const int th = (const int[]){1, 2, -2}[i];
       if (th < 0 && ranks != 2) break;
       double secs;
       snprintf(sargs, sizeof sargs, "%s -summary m.json", args);
