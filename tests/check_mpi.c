@@ -170,8 +170,9 @@ static void matrix(const char *name, const char *dir, const char *args, const ch
       if (th < 0) { /* the run line says how the governor shared the steps: both counts ran */
         snprintf(path, sizeof path, "%s/out.txt", dir);
         char *out = yft_slurp(path, 0);
-        const char *a = out ? strstr(out, "auto: ") : NULL, *b = a ? strstr(a, " on 2, ") : NULL;
-        long on2 = a ? strtol(a + 6, NULL, 10) : 0, on1 = b ? strtol(b + 7, NULL, 10) : 0;
+        /* "run: ... on 2 threads; auto: N steps on 2, M on 1)" (not "timestep auto: dt = ...") */
+        const char *a = out ? strstr(out, "; auto: ") : NULL, *b = a ? strstr(a, " on 2, ") : NULL;
+        long on2 = a ? strtol(a + 8, NULL, 10) : 0, on1 = b ? strtol(b + 7, NULL, 10) : 0;
         ck_assert_msg(on2 > 0 && on1 > 0, "%s: 2 ranks x auto: the governor did not switch (%.60s)", name,
                       a ? a : "no 'auto:' on the run line");
         free(out);
