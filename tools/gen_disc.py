@@ -22,7 +22,11 @@ needed); `mesh gmsh` reads the result.
 """
 import argparse
 import math
+import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import msh41  # noqa: E402
 
 
 def rings(n, R, phase):
@@ -127,36 +131,8 @@ def main():
     for nodes in (top, bot):
         s = sorted(nodes, key=lambda q: xy[q][0])
         lines.append([(s[i], s[i + 1]) for i in range(len(s) - 1)])
-    with open(o.out, "w") as f:
-        w = f.write
-        w("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n")
-        w('$PhysicalNames\n3\n1 1 "top"\n1 2 "bottom"\n2 3 "rock"\n$EndPhysicalNames\n')
-        w("$Entities\n0 2 1 0\n")
-        w("1 %.17g %.17g 0 %.17g %.17g 0 1 1 0\n" % (-R, 0, R, R))
-        w("2 %.17g %.17g 0 %.17g %.17g 0 1 2 0\n" % (-R, -R, R, 0))
-        w("1 %.17g %.17g 0 %.17g %.17g 0 1 3 2 1 2\n" % (-R, -R, R, R))
-        w("$EndEntities\n")
-        nn = len(xy)
-        w("$Nodes\n1 %d 1 %d\n2 1 0 %d\n" % (nn, nn, nn))
-        for q in range(nn):
-            w("%d\n" % (q + 1))
-        for x, y in xy:
-            w("%.17g %.17g 0\n" % (x, y))
-        w("$EndNodes\n")
-        nl = sum(len(l) for l in lines)
-        ne = nl + len(good)
-        w("$Elements\n3 %d 1 %d\n" % (ne, ne))
-        tag = 1
-        for c, l in enumerate(lines):
-            w("1 %d 1 %d\n" % (c + 1, len(l)))
-            for a, b in l:
-                w("%d %d %d\n" % (tag, a + 1, b + 1))
-                tag += 1
-        w("2 1 2 %d\n" % len(good))
-        for t in good:
-            w("%d %d %d %d\n" % (tag, t[0] + 1, t[1] + 1, t[2] + 1))
-            tag += 1
-        w("$EndElements\n")
+    msh41.write(o.out, xy, good, [("top", lines[0]), ("bottom", lines[1])], "rock")
+    nn = len(xy)
     print("gen_disc: %s: %d nodes, %d triangles, %d + %d face nodes" % (o.out, nn, len(good), len(top), len(bot)))
 
 

@@ -17,8 +17,12 @@ the other, so the slit has zero width and opens freely.  Physical groups: surfac
 Standard library only.
 """
 import argparse
+import os
 import random
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import msh41  # noqa: E402
 
 
 def main():
@@ -105,47 +109,15 @@ def main():
         ja, jb = sorted(jn for _, jn in notches)
         # between the slits: the upper copy of the lower slit's mouth up to the lower copy of the upper one
         groups["impact"] = [node(0, j, 0 if j == ja else 1) for j in range(ja, jb + 1)]
-    with open(o.out, "w") as f:
-        w = f.write
-        names = list(groups)
-        w("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n")
-        w("$PhysicalNames\n%d\n" % (len(names) + 1))
-        for k, nm in enumerate(names):
-            w('1 %d "%s"\n' % (k + 1, nm))
-        w('2 %d "glass"\n$EndPhysicalNames\n' % (len(names) + 1))
-        w("$Entities\n0 %d 1 0\n" % len(names))
-        for k, nm in enumerate(names):
-            xs = [xy[q][0] for q in groups[nm]]
-            ys = [xy[q][1] for q in groups[nm]]
-            w("%d %.17g %.17g 0 %.17g %.17g 0 1 %d 0\n" % (k + 1, min(xs), min(ys), max(xs), max(ys), k + 1))
-        w("1 %.17g %.17g 0 %.17g %.17g 0 1 %d 0\n$EndEntities\n" % (x0, y0, x1, y1, len(names) + 1))
-        nn = len(xy)
-        w("$Nodes\n1 %d 1 %d\n2 1 0 %d\n" % (nn, nn, nn))
-        w("".join("%d\n" % (q + 1) for q in range(nn)))
-        w("".join("%.12g %.12g 0\n" % p for p in xy))
-        w("$EndNodes\n")
-        # each group as a chain of 2-node lines between consecutive nodes (sorted along the side)
-        lines = []
-        for nm in names:
-            g = groups[nm]
-            key = (lambda q: (xy[q][0], q)) if nm in ("top", "bottom") else (lambda q: (xy[q][1], q))
-            s = sorted(set(g), key=key)
-            # a pair of slit copies at the same point is joined by no line
-            lines.append([(s[i], s[i + 1]) for i in range(len(s) - 1)
-                          if abs(xy[s[i]][0] - xy[s[i + 1]][0]) + abs(xy[s[i]][1] - xy[s[i + 1]][1]) > eps])
-        ne = sum(len(l) for l in lines) + len(tris)
-        w("$Elements\n%d %d 1 %d\n" % (len(names) + 1, ne, ne))
-        tag = 1
-        for k, l in enumerate(lines):
-            w("1 %d 1 %d\n" % (k + 1, len(l)))
-            for a, b in l:
-                w("%d %d %d\n" % (tag, a + 1, b + 1))
-                tag += 1
-        w("2 1 2 %d\n" % len(tris))
-        for t in tris:
-            w("%d %d %d %d\n" % (tag, t[0] + 1, t[1] + 1, t[2] + 1))
-            tag += 1
-        w("$EndElements\n")
+    # each group as a chain of 2-node lines between consecutive nodes (sorted along the side); a
+    # pair of slit copies at the same point is joined by no line
+    curves = []
+    for nm, g in groups.items():
+        key = (lambda q: (xy[q][0], q)) if nm in ("top", "bottom") else (lambda q: (xy[q][1], q))
+        s = sorted(set(g), key=key)
+        curves.append((nm, [(s[i], s[i + 1]) for i in range(len(s) - 1)
+                            if abs(xy[s[i]][0] - xy[s[i + 1]][0]) + abs(xy[s[i]][1] - xy[s[i + 1]][1]) > eps]))
+    msh41.write(o.out, xy, tris, curves, "glass", "%.12g")
     print("gen_notched_plate: %s: %d nodes, %d triangles, %d notch(es)" % (o.out, len(xy), len(tris), len(notches)))
 
 
