@@ -41,6 +41,8 @@ DECK = os.path.join(os.path.dirname(HERE), "decks", "beam.deck")
 RHO_C, E_C = 2340.0, 26e9
 BASE = {"nx": 40, "L": 1.0, "D": 0.1, "a": 0.05, "rho_i": 30000, "si": 0.15}
 GEOMS = [(1.0, 0.2), (1.5, 0.2), (1.0, 0.1), (2.0, 0.15), (2.0, 0.1)]
+# L/D 10 at D 0.2 (the grid's L/D 10 is D 0.1): separates depth from slenderness, at the two lightest
+EXTRA = [(2.0, 0.2, 0.1), (2.0, 0.2, 0.3)]
 RATIOS = [0.1, 0.3, 1.0, 3.0]
 OAT = [("a 0.1 (same mass)", {"a": 0.1, "rho_i": 7500}),
        ("inner supports 0.10", {"si": 0.10}),
@@ -51,6 +53,20 @@ OAT = [("a 0.1 (same mass)", {"a": 0.1, "rho_i": 7500}),
        ("Mohr-Coulomb mu 0.6", {"mu": 0.6}),
        ("reversible (y2d 1)", {"y2d": 1}),
        ("default", {})]
+# search: around the grid's only cone (L 1, D 0.2, mass ratio 0.1: rho_i 18720), the axes that could
+# delay the shear at the impactor's edges (Mohr-Coulomb friction, a wider or lighter impactor) or
+# raise the hogging moment over the inner supports (si 0.25), and the mesh
+DEEP = dict(BASE, D=0.2, rho_i=18720)
+SEARCH = [("mu 0.6", dict(DEEP, mu=0.6)),
+          ("mu 1.0", dict(DEEP, mu=1.0)),
+          ("mass ratio 0.05", dict(DEEP, rho_i=9360)),
+          ("a 0.1 (same mass)", dict(DEEP, a=0.1, rho_i=4680)),
+          ("inner supports 0.25", dict(DEEP, si=0.25)),
+          ("mu 0.6, si 0.25", dict(DEEP, mu=0.6, si=0.25)),
+          ("mass ratio 0.3, mu 0.6", dict(DEEP, rho_i=56160, mu=0.6)),
+          ("L 1.5, mu 0.6", dict(DEEP, L=1.5, rho_i=28080, mu=0.6)),
+          ("reversible (y2d 1)", dict(DEEP, y2d=1)),
+          ("cells 1/60 m", dict(DEEP, nx=60))]
 
 
 def mass_ratio(p):
@@ -71,6 +87,15 @@ def design(only=None):
                 p = dict(BASE, L=L, D=D)
                 p["rho_i"] = round(mr * RHO_C * L * D / p["a"] ** 2)
                 runs.append(("grid", "L%g_D%g_mr%g" % (L, D, mr), p))
+    if only in (None, "extra"):
+        for L, D, mr in EXTRA:
+            p = dict(BASE, L=L, D=D)
+            p["rho_i"] = round(mr * RHO_C * L * D / p["a"] ** 2)
+            runs.append(("grid", "L%g_D%g_mr%g" % (L, D, mr), p))
+    if only in (None, "search"):
+        for name, p in SEARCH:
+            runs.append(("search:" + name, "search_" + name.replace(" ", "").replace(",", "_").replace("(", "")
+                         .replace(")", ""), p))
     if only in (None, "oat"):
         for name, ch in OAT:
             runs.append(("oat:" + name, "oat_" + name.split()[0] + "_" + str(list(ch.values())[0] if ch else "base"),
@@ -91,7 +116,7 @@ def one(kind, tag, p, workdir):
                joints_broken=row.get("joints_broken"), first_break=row.get("first_break.time"))
     if row["exit"] == 0:
         c = failure_mode.classify_run(rd)
-        out.update(label=c["label"], paper=c["paper"], other=c["other"])
+        out.update(label=c["label"], paper=c["paper"], other=c["other"], flexural_first=c["flexural_first"])
         for k in failure_mode.CLASSES:
             out["t_" + k] = c[k]["time"] if c[k]["present"] else None
     print("failure_map: %-28s exit %d  %6.1f s  %s" % (tag, out["exit"], out.get("wall_s", 0), out.get("label")),
@@ -100,8 +125,8 @@ def one(kind, tag, p, workdir):
 
 
 COLS = ["kind", "tag", "L", "D", "a", "rho_i", "si", "nx", "pattern", "mu", "y2d", "span_depth", "mass_ratio",
-        "T", "steps", "exit", "wall_s", "joints_broken", "first_break", "label", "paper", "other",
-        "t_plug", "t_flexural", "t_cone", "t_supports"]
+        "T", "steps", "exit", "wall_s", "joints_broken", "first_break", "label", "paper", "flexural_first",
+        "other", "t_plug", "t_edge", "t_flexural", "t_cone", "t_supports"]
 
 
 def write_csv(rows, path):
@@ -118,54 +143,74 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
-STYLE = {"plug": ("s", "tab:red"), "flexural": ("o", "tab:blue"), "cone": ("^", "tab:green"),
-         "supports": ("v", "tab:orange"), "none": ("x", "0.5"), "other": ("d", "0.3")}
+STYLE = {"plug": ("s", "tab:red"), "edge": ("D", "tab:purple"), "flexural": ("o", "tab:blue"),
+         "cone": ("^", "tab:green"), "supports": ("v", "tab:orange")}
+FIXED_COLORS = {"plug": "tab:red", "plug>flexural": "tab:orange", "plug>flexural>cone": "tab:olive",
+                "edge>flexural>cone": "tab:green", "none": "0.6"}
+LABEL_COLORS = ["tab:red", "tab:orange", "tab:green", "tab:purple", "tab:blue", "tab:brown", "tab:pink", "tab:olive"]
 
 
 def plot(rows, path):
+    """Left: the grid, one marker per run coloured by its broken-crack sequence (a black ring: the
+    paper's sequence).  Right: the one-at-a-time and search runs, each class's first break on a
+    time line, the sequence written beside it."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     grid = [r for r in rows if r["kind"] == "grid" and r.get("label")]
-    oat = [r for r in rows if r["kind"].startswith("oat") and r.get("label")]
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.6), gridspec_kw={"width_ratios": [1.15, 1]})
+    oat = [r for r in rows if r["kind"].startswith(("oat", "search")) and r.get("label")]
+    labels = []
+    for r in rows:
+        if r.get("label") and r["label"] not in labels and r["label"] != "none":
+            labels.append(r["label"])
+    color = dict(zip(labels, [c for c in LABEL_COLORS if c not in FIXED_COLORS.values()] * 4))
+    color.update(FIXED_COLORS)
+    color["none"] = "0.6"
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 5.2), gridspec_kw={"width_ratios": [1, 1.25]})
     seen = set()
     for r in grid:
         x, y = float(r["span_depth"]), float(r["mass_ratio"])
-        first = r["label"].split(">")[0]
-        mk, col = STYLE.get(first, STYLE["other"])
-        ax.scatter([x], [y], marker=mk, c=col, s=90, label=None if first in seen else "first: " + first,
-                   edgecolors="k" if r["paper"] == "True" else "none", linewidths=2)
-        seen.add(first)
-        ax.annotate(r["label"].replace(">", ">\n"), (x, y), textcoords="offset points", xytext=(7, -4),
-                    fontsize=6.5)
+        ax.scatter([x], [y], marker="o", c=color[r["label"]], s=160, zorder=3,
+                   label=None if r["label"] in seen else r["label"],
+                   edgecolors="k" if r["paper"] == "True" else "w", linewidths=2)
+        seen.add(r["label"])
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xticks([5, 7.5, 10, 13.3, 20])
-    ax.set_xticklabels(["5", "7.5", "10", "13.3", "20"])
-    ax.set_xlim(4, 32)
-    ax.set_xlabel("span / depth  L / D")
-    ax.set_ylabel("impactor / beam mass  rho_i a^2 / (rho L D)")
-    ax.set_title("broken-crack sequence, v0 = 5 m/s, cells 1/40 m", fontsize=9)
-    ax.legend(fontsize=7, loc="upper left")
-    ax.grid(alpha=0.3, which="both")
-    names = [r["kind"][4:] for r in oat]
+    ticks = sorted({round(float(r["span_depth"]), 1) for r in grid})
+    ax.set_xticks(ticks)
+    ax.set_xticklabels(["%g" % t for t in ticks])
+    ax.minorticks_off()
+    ratios = sorted({float(r["mass_ratio"]) for r in grid})
+    ax.set_yticks(ratios)
+    ax.set_yticklabels(["%g" % t for t in ratios])
+    ax.set_xlim(4, 25)
+    ax.set_ylim(0.06, 5)
+    ax.set_xlabel("span / depth  L / D   (L 1-2 m, D 0.1-0.2 m)")
+    ax.set_ylabel("impactor / beam mass  rho_i a^2 / (2340 L D)")
+    ax.set_title("broken-crack sequence (first break first), v0 5 m/s, a 0.05 m, cells 1/40 m", fontsize=9)
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=3, frameon=False)
+    ax.grid(alpha=0.3)
+    tmax = 0.0
     for i, r in enumerate(oat):
-        for k in failure_mode.CLASSES:
-            t = r.get("t_" + k)
-            if t:
-                mk, col = STYLE[k]
-                bx.scatter([float(t) * 1e6], [i], marker=mk, c=col, s=60, label=k if i == 0 or k not in
-                           [l.get_label() for l in bx.collections] else None)
-        bx.annotate(r["label"], (5, i + 0.25), fontsize=6.5)
+        ts = [(k, float(r["t_" + k]) * 1e6) for k in failure_mode.CLASSES if r.get("t_" + k)]
+        if ts:
+            bx.plot([t for _, t in ts], [i] * len(ts), "-", c="0.8", zorder=1)
+        for k, t in ts:
+            mk, col = STYLE[k]
+            bx.scatter([t], [i], marker=mk, c=col, s=50, zorder=3, label=k)
+            tmax = max(tmax, t)
+    for i, r in enumerate(oat):
+        bx.annotate(r["label"], (1.02, i), xycoords=("axes fraction", "data"), fontsize=7, va="center")
     bx.set_yticks(range(len(oat)))
-    bx.set_yticklabels(names, fontsize=7.5)
-    bx.set_xscale("log")
+    bx.set_yticklabels([r["kind"].replace("oat:", "").replace("search:", "deep: ") for r in oat], fontsize=7)
+    bx.set_xlim(0, tmax * 1.05 + 1)
     bx.set_xlabel("time of the class's first break [us]")
-    bx.set_title("one at a time around the default scene (L/D 10, mass 0.32)", fontsize=9)
-    h, l = bx.get_legend_handles_labels()
-    uniq = dict(zip(l, h))
-    bx.legend(uniq.values(), uniq.keys(), fontsize=7, loc="lower right")
+    bx.set_title("one at a time: the default scene (L/D 10, mass 0.32);\n"
+                 "deep: L 1, D 0.2, mass 0.1 (the grid's edge>flexural>cone)", fontsize=9)
+    h, lab = bx.get_legend_handles_labels()
+    uniq = dict(zip(lab, h))
+    bx.legend(uniq.values(), uniq.keys(), fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=5,
+              frameon=False)
     bx.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
@@ -177,11 +222,23 @@ def main(argv=None):
     ap.add_argument("--workdir", default="sweep_runs/failure_map")
     ap.add_argument("--csv", required=True)
     ap.add_argument("--plot")
-    ap.add_argument("--only", choices=["grid", "oat"])
+    ap.add_argument("--only", choices=["grid", "extra", "oat", "search"])
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--replot", action="store_true", help="only redraw the plot from --csv")
+    ap.add_argument("--reclassify", action="store_true",
+                    help="classify again the runs of --csv from their directories under --workdir (no runs)")
     a = ap.parse_args(argv)
-    if not a.replot:
+    if a.reclassify:
+        rows = read_csv(a.csv)
+        for r in rows:
+            if r["exit"] == "0":
+                c = failure_mode.classify_run(os.path.join(a.workdir, r["tag"]))
+                r.update(label=c["label"], paper=c["paper"], other=c["other"], flexural_first=c["flexural_first"])
+                for k in failure_mode.CLASSES:
+                    r["t_" + k] = c[k]["time"] if c[k]["present"] else None
+        write_csv(rows, a.csv)
+        print("failure_map: reclassified", a.csv)
+    elif not a.replot:
         runs = design(a.only)
         with cf.ThreadPoolExecutor(a.jobs) as ex:
             rows = list(ex.map(lambda r: one(r[0], r[1], r[2], a.workdir), runs))

@@ -13,15 +13,18 @@ Geometry (all in m): beam length L, depth D, impactor side a (half-width b = a/2
 xc = L/2, cell size h, inner supports' centres si from each end.  s = |x - xc|.  A joint's y is
 its midpoint at the break.  The classes and the regions they use:
 
-  plug      vertical shear cracks down the impactor's edges: on EACH side, broken joints with
-            |s - b| <= h cover >= 3/4 of the depth (union of [y - len/2, y + len/2]).
+  plug      near-vertical shear cracks down the impactor's edges: on EACH side, broken joints with
+            -h <= s - b <= max(h, D/8) (one cell, or a 7-degree slope over the depth, outwards)
+            cover >= 3/4 of the depth (union of [y - len/2, y + len/2]).
             Time: the first break in the two edge bands.  When the edge bands hold breaks but
             do not make a plug, the class `edge` (shear under the impactor's edges) is
             reported instead, with the same time.
-  flexural  a mode I (or mixed) break at the bottom of midspan (s <= b + D/2, y <= max(D/4,
-            0.55 h)).  Time: the first such break.  `flexural_first` says whether it is the
+  flexural  a mode I break at the bottom of midspan (s <= b + D/2, y <= max(D/4,
+            0.55 h)) with no earlier break just above it (|dx| <= 1.5 h, dy <= 2 h): a crack that starts at the
+            bottom face, not the lower end of a shear crack come down from the impactor (the
+            plug's cracks break top first).  Time: the first such break.  `flexural_first` says whether it is the
             beam's first break (ties in the same step allowed): the paper's first observation.
-  cone      an inclined pair: on EACH flank (b + h < s <= b + 2 D) the broken joints cover
+  cone      an inclined pair: on EACH flank (b + max(h, D/8) < s <= b + 2 D) the broken joints cover
             >= D/3 of the depth, spread >= max(D/4, h) horizontally, and move away from
             midspan downwards (least-squares ds/dy < 0: the inverted V, a punching cone's
             trace).  Time: the later of the two flanks' first breaks (the pair is complete).
@@ -107,7 +110,8 @@ def classify(breaks, g):
     first = min((r["time"] for r in breaks), default=None)
 
     # plug: the two edge bands, each covering 3/4 of the depth
-    sides = [[r for r in breaks if abs(abs(r["x"] - xc) - b) <= h and (r["x"] - xc) * sgn > 0]
+    wout = max(h, D / 8)
+    sides = [[r for r in breaks if -h <= abs(r["x"] - xc) - b <= wout and (r["x"] - xc) * sgn > 0]
              for sgn in (-1, 1)]
     band = sides[0] + sides[1]
     if band:
@@ -115,8 +119,10 @@ def classify(breaks, g):
         res["plug" if full else "edge"].update(present=True, time=min(r["time"] for r in band), count=len(band))
         used.update(id(r) for r in band)
 
-    # flexural: mode I/mixed at the bottom of midspan, the beam's first break
-    bot = [r for r in breaks if abs(r["x"] - xc) <= b + D / 2 and r["y"] <= zone and r["mode"] != "II"]
+    # flexural: mode I at the bottom of midspan, started there
+    bot = [r for r in breaks if abs(r["x"] - xc) <= b + D / 2 and r["y"] <= zone and r["mode"] == "I"
+           and not any(abs(q["x"] - r["x"]) <= 1.5 * h and r["y"] < q["y"] <= r["y"] + 2 * h and q["time"] < r["time"]
+                       for q in breaks)]
     res["flexural_first"] = False
     if bot:
         t = min(r["time"] for r in bot)
@@ -127,7 +133,7 @@ def classify(breaks, g):
     # cone: both flanks, upper and lower halves, widening downwards
     flank_ok, flank_t, nfl = [], [], 0
     for sgn in (-1, 1):
-        fl = [r for r in breaks if b + h < (r["x"] - xc) * sgn <= b + 2 * D]
+        fl = [r for r in breaks if b + wout < (r["x"] - xc) * sgn <= b + 2 * D]
         nfl += len(fl)
         used.update(id(r) for r in fl)
         ok = False
