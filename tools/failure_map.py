@@ -167,13 +167,19 @@ def plot(rows, path):
     color.update(FIXED_COLORS)
     color["none"] = "0.6"
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 5.2), gridspec_kw={"width_ratios": [1, 1.25]})
-    seen = set()
+    seen, taken = set(), set()
+    marks = {"0.1": "o", "0.15": "s", "0.2": "^"}
     for r in grid:
         x, y = float(r["span_depth"]), float(r["mass_ratio"])
-        ax.scatter([x], [y], marker="o", c=color[r["label"]], s=160, zorder=3,
+        while (round(x, 2), y) in taken:  # two depths at one L/D: side by side
+            x *= 1.08
+        taken.add((round(x, 2), y))
+        ax.scatter([x], [y], marker=marks.get("%g" % float(r["D"]), "D"), c=color[r["label"]], s=150, zorder=3,
                    label=None if r["label"] in seen else r["label"],
                    edgecolors="k" if r["paper"] == "True" else "w", linewidths=2)
         seen.add(r["label"])
+    for d, mk in marks.items():
+        ax.scatter([], [], marker=mk, c="w", edgecolors="k", s=60, label="D %s m" % d)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ticks = sorted({round(float(r["span_depth"]), 1) for r in grid})
