@@ -584,17 +584,24 @@ static int same_outputs(const char *a, const char *b) {
   return compared;
 }
 
-START_TEST(test_interrupt_continue_every_file) {
+/* Every output of the continuation tests: frames (h5, csv), metrics and fracture logs. */
+static const char OUT[] = "dump d h5 300 p.h5 fields u v stress\ndump c csv 300 p\nmetrics log p_metrics.csv every 20\n"
+                          "fracture_log p_breaks.csv opened p_opened.csv\n";
+
+/* A new tmpdir BASE with the directories BASE/a (the continued run) and BASE/b (the uninterrupted one). */
+static void two_dirs(char base[24], char a[40], char b[40]) {
   mk_tmpdir();
-  char base[24], a[40], b[40];
-  ck_assert(strlen(tmpdir) < sizeof base);
-  snprintf(base, sizeof base, "%s", tmpdir);
-  snprintf(a, sizeof a, "%s/a", base);
-  snprintf(b, sizeof b, "%s/b", base);
+  ck_assert(strlen(tmpdir) < 24);
+  snprintf(base, 24, "%s", tmpdir);
+  snprintf(a, 40, "%s/a", base);
+  snprintf(b, 40, "%s/b", base);
   ck_assert_int_eq(mkdir(a, 0755), 0);
   ck_assert_int_eq(mkdir(b, 0755), 0);
-  static const char OUT[] = "dump d h5 300 p.h5 fields u v stress\ndump c csv 300 p\nmetrics log p_metrics.csv every 20\n"
-                            "fracture_log p_breaks.csv opened p_opened.csv\n";
+}
+
+START_TEST(test_interrupt_continue_every_file) {
+  char base[24], a[40], b[40];
+  two_dirs(base, a, b);
   char tail[512];
   snprintf(tmpdir, sizeof tmpdir, "%s", a);
   snprintf(tail, sizeof tail, "%srun 1000000\n", OUT);
@@ -630,16 +637,8 @@ END_TEST
  * differed by MPa in this impact.  The same case, reached by a real interrupt, is rare in
  * test_interrupt_continue_every_file; this one is deterministic. */
 START_TEST(test_restart_on_frame_step) {
-  mk_tmpdir();
   char base[24], a[40], b[40];
-  ck_assert(strlen(tmpdir) < sizeof base);
-  snprintf(base, sizeof base, "%s", tmpdir);
-  snprintf(a, sizeof a, "%s/a", base);
-  snprintf(b, sizeof b, "%s/b", base);
-  ck_assert_int_eq(mkdir(a, 0755), 0);
-  ck_assert_int_eq(mkdir(b, 0755), 0);
-  static const char OUT[] = "dump d h5 300 p.h5 fields u v stress\ndump c csv 300 p\nmetrics log p_metrics.csv every 20\n"
-                            "fracture_log p_breaks.csv opened p_opened.csv\n";
+  two_dirs(base, a, b);
   char tail[512], h[17];
   snprintf(tmpdir, sizeof tmpdir, "%s", a);
   snprintf(tail, sizeof tail, "%srun 600\nwrite_restart frame.restart\n", OUT);
