@@ -24,9 +24,6 @@
 #include "energy.h"
 #include "par.h"
 
-const char *const yf_stage_names[YF_NSTAGE] = {"elements", "joints", "detection", "contact", "gather", "update", "output"};
-double yf_stage_time[YF_NSTAGE];
-
 static int BLOCK = 2048; /* triangles per block of the force loop: fixed, so sums do not depend on threads */
 /* Loops shorter than this run on one thread: a parallel region costs microseconds (much more on
  * a loaded machine) and results are the same bits either way. */
@@ -50,12 +47,6 @@ static struct {
   double e_floor;     /* energy of a 1e-8 strain everywhere: below it, growth is round-off [J/m] */
   double t_wall0;
 } R;
-
-double yf_now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* Build the node -> slot gather lists (CSR): triangle corners (slots 0..3 ntri-1) then the extra
  * slots (joints).  Each node's slots are in increasing slot order, fixed for the whole run. */

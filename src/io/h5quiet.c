@@ -1,0 +1,12 @@
+/* h5quiet.c: HDF5 opened once with its error printing off (h5quiet.h). */
+#include <hdf5.h>
+#include "h5quiet.h"
+
+void yf_h5_quiet(void) {
+  static int done;
+  if (!done) {
+    H5open();
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    done = 1;
+  }
+}
