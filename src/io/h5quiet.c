@@ -1,4 +1,5 @@
-/* h5quiet.c: HDF5 opened once with its error printing off (h5quiet.h). */
+/* h5quiet.c: HDF5 opened once with its error printing off (h5quiet.h): HDF5 prints its error
+ * stack by default, and yfdem reports errors itself (dumps and restarts). */
 #include <hdf5.h>
 #include "h5quiet.h"
 

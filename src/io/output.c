@@ -176,7 +176,6 @@ static void h5_fail(YfDump *d, const char *what) {
   yf_io_error(NULL, "dump %s: cannot write '%s' (%s): %s", d->id, d->cur, what, why);
 }
 
-/* HDF5 prints its error stack by default; yfdem reports errors itself (restart.c uses it too). */
 static YfDump *find_dump(const struct YfOutput *o, const char *id, int *slot) {
   if (!o) return NULL;
   for (int i = 0; i < o->ndump; i++)
