@@ -140,28 +140,34 @@ static void put(const char *path, const char *text) {
   fclose(f);
 }
 
+/* Write root/rel (rel = FOLDER/FILE; the folder is made when missing). */
+static void tree_put(const char *root, const char *rel, const char *text) {
+  char p[512];
+  snprintf(p, sizeof p, "%s/%s", root, rel);
+  *strrchr(p, '/') = 0;
+  mkdir(p, 0700);
+  snprintf(p, sizeof p, "%s/%s", root, rel);
+  put(p, text);
+}
+
+static void tree_remove(const char *root) {
+  char cmd[300];
+  snprintf(cmd, sizeof cmd, "rm -rf %s", root);
+  ck_assert_int_eq(system(cmd), 0);
+}
+
 /* The scan finds a kernel file that includes a step header, and accepts the reverse. */
 START_TEST(test_layers_catch_upward_include) {
   char root[] = "/tmp/yf_layersXXXXXX";
   ck_assert_ptr_nonnull(mkdtemp(root));
-  char p[256];
-  snprintf(p, sizeof p, "%s/kernel", root);
-  mkdir(p, 0700);
-  snprintf(p, sizeof p, "%s/step", root);
-  mkdir(p, 0700);
-  snprintf(p, sizeof p, "%s/kernel/k.h", root);
-  put(p, "#pragma once\n");
-  snprintf(p, sizeof p, "%s/step/s.h", root);
-  put(p, "#include \"k.h\"\n");
+  tree_put(root, "kernel/k.h", "#pragma once\n");
+  tree_put(root, "step/s.h", "#include \"k.h\"\n");
   char rep[1024];
   ck_assert_int_eq(violations(root, rep, sizeof rep), 0);
-  snprintf(p, sizeof p, "%s/kernel/k.c", root);
-  put(p, "#include \"k.h\"\n#include \"s.h\"\n");
+  tree_put(root, "kernel/k.c", "#include \"k.h\"\n#include \"s.h\"\n");
   ck_assert_int_eq(violations(root, rep, sizeof rep), 1);
   ck_assert_msg(strstr(rep, "kernel/k.c includes step/s.h") != NULL, "report: %s", rep);
-  char cmd[300];
-  snprintf(cmd, sizeof cmd, "rm -rf %s", root);
-  ck_assert_int_eq(system(cmd), 0);
+  tree_remove(root);
 }
 END_TEST
 
@@ -246,28 +252,19 @@ END_TEST
 START_TEST(test_layers_catch_cycle) {
   char root[] = "/tmp/yf_cyclesXXXXXX";
   ck_assert_ptr_nonnull(mkdtemp(root));
-  char p[256];
-  snprintf(p, sizeof p, "%s/step", root);
-  mkdir(p, 0700);
-  snprintf(p, sizeof p, "%s/io", root);
-  mkdir(p, 0700);
-  snprintf(p, sizeof p, "%s/step/a.h", root);
-  put(p, "#include \"b.h\"\n");
-  snprintf(p, sizeof p, "%s/step/b.c", root);
-  put(p, "#include \"b.h\"\n#include \"c.h\"\n");
-  snprintf(p, sizeof p, "%s/step/b.h", root);
-  put(p, "#pragma once\n");
-  snprintf(p, sizeof p, "%s/io/c.h", root);
-  put(p, "#pragma once\n");
-  snprintf(p, sizeof p, "%s/io/c.c", root);
-  put(p, "#include \"c.h\"\n#include \"a.h\"\n");
+  static const char *const files[][2] = {
+      {"step/a.h", "#include \"b.h\"\n"},
+      {"step/b.h", "#pragma once\n"},
+      {"step/b.c", "#include \"b.h\"\n#include \"c.h\"\n"},
+      {"io/c.h", "#pragma once\n"},
+      {"io/c.c", "#include \"c.h\"\n#include \"a.h\"\n"}, /* closes a -> b -> c -> a */
+  };
+  for (size_t k = 0; k < sizeof files / sizeof files[0]; k++) tree_put(root, files[k][0], files[k][1]);
   char names[1024];
   ck_assert_int_eq(largest_cycle(root, names, sizeof names), 3);
-  put(p, "#include \"c.h\"\n");
+  tree_put(root, "io/c.c", "#include \"c.h\"\n");
   ck_assert_int_eq(largest_cycle(root, names, sizeof names), 1);
-  char cmd[300];
-  snprintf(cmd, sizeof cmd, "rm -rf %s", root);
-  ck_assert_int_eq(system(cmd), 0);
+  tree_remove(root);
 }
 END_TEST
 

@@ -8,6 +8,13 @@
 #include "region.h"
 #include "report.h"
 
+/* Word w names a region: its index (else a deck error). */
+static int region_word(const YfArgs *a, int w) {
+  int ri = region_find(a->w[w]);
+  if (ri < 0) arg_error(a, w, "no region named '%s' (define it with `region` first)", a->w[w]);
+  return ri;
+}
+
 void cmd_metrics(YfSim *s, const YfArgs *a) {
   io_attach(s); /* its state observes the run loop (report.c) */
   static const char *const kw[] = {"body", "mirror", "region", "midspan", "peak_stress", "log", NULL};
@@ -34,19 +41,13 @@ void cmd_metrics(YfSim *s, const YfArgs *a) {
     if (strlen(name) >= YF_NAME_MAX) arg_error(a, 1, "name longer than %d characters", YF_NAME_MAX - 1);
     if (metrics_region_full(name)) arg_error(a, 1, "at most %d metrics regions", YF_METRICS_REGIONS);
     int r[YF_METRICS_REG_SHAPES], nr = 0;
-    for (int w = 2; w < a->n; w++) {
-      int ri = region_find(a->w[w]);
-      if (ri < 0) arg_error(a, w, "no region named '%s' (define it with `region` first)", a->w[w]);
-      r[nr++] = ri;
-    }
+    for (int w = 2; w < a->n; w++) r[nr++] = region_word(a, w);
     metrics_set_region(name, r, nr);
     break;
   }
   case 3: {
     arg_count(a, 2, 2);
-    int ri = region_find(a->w[1]);
-    if (ri < 0) arg_error(a, 1, "no region named '%s' (define it with `region` first)", a->w[1]);
-    metrics_set_midspan(ri);
+    metrics_set_midspan(region_word(a, 1));
     break;
   }
   case 4: {

@@ -10,34 +10,22 @@
 #include "model.h"
 
 int model_define_material(YfModel *m, const YfMaterial *given) {
-  int idx = model_add_material(m, given->name);
-  YfMaterial *mt = &m->mat[idx];
-  mt->rho = given->rho;
-  mt->volfac = given->volfac;
+  YfMaterial mt = *given;
   const double volfac = given->volfac;
   if (given->plane != YF_PLANE_LAME) {
     const double E = given->E, nu = given->nu;
-    mt->E = E;
-    mt->nu = nu;
-    mt->plane = given->plane;
-    mt->mu = E / (2.0 * (1.0 + nu));
+    mt.mu = E / (2.0 * (1.0 + nu));
     double l = given->plane == YF_PLANE_STRESS ? E * nu / (1.0 - nu * nu) : E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-    mt->lambda = l * 0.5 / volfac; /* 2 volfac lambda_stored = lambda_true */
+    mt.lambda = l * 0.5 / volfac; /* 2 volfac lambda_stored = lambda_true */
   } else {
     const double lam = given->lambda, mu = given->mu;
-    mt->plane = YF_PLANE_LAME;
-    mt->lambda = lam;
-    mt->mu = mu;
     /* in-plane Young's modulus and Poisson's ratio of the law at small strain (for damping) */
     double le = 2.0 * volfac * lam;
-    mt->E = 4.0 * mu * (le + mu) / (le + 2.0 * mu); /* 2D uniaxial-stress modulus */
-    mt->nu = le / (le + 2.0 * mu);
+    mt.E = 4.0 * mu * (le + mu) / (le + 2.0 * mu); /* 2D uniaxial-stress modulus */
+    mt.nu = le / (le + 2.0 * mu);
   }
-  mt->visc = given->visc;
-  mt->beta = given->beta;
-  mt->pen_n = given->pen_n;
-  mt->pen_t = given->pen_t;
-  mt->fric = given->fric;
-  mt->fric_law = given->fric_law;
+  int idx = model_add_material(m, given->name);
+  mt.jset = m->mat[idx].jset; /* no joint property set yet */
+  m->mat[idx] = mt;
   return idx;
 }
