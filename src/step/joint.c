@@ -33,7 +33,6 @@
 #include "err.h"
 #include "mesh.h"
 #include "region.h"
-#include "run.h"
 
 #define JBLOCK 256 /* joints per block of the force loop (break collection granularity) */
 #define PF_GROUPS 4
