@@ -39,6 +39,16 @@ static struct {
   int fail_rank;            /* tests: this rank fails alone at its 5th element stage (-1: none) */
   long nelem;               /* element stages done by this process                             */
   int stress_fresh;         /* every rank's stresses shared since the last element stage        */
+  /* Node ownership (halo mode): rank r owns nodes nlo[r]..nlo[r+1]-1, the nodes whose first
+   * triangle (in the partition order, which numbers nodes as its triangles meet them) is r's.
+   * Only the owner sums a node's force; the corner slots another rank's triangles write on it
+   * come in the slot halo; then every rank gets every node's force (forces of owned ranges). */
+  int halo;                 /* 1: node ranges are contiguous (always after the partition)      */
+  int nn;                   /* nodes when prepared                                             */
+  int *nlo;                 /* size + 1                                                        */
+  int *scnt, *sdsp, *rcnt, *rdsp; /* slot halo: doubles to / from each rank                     */
+  int *sslot, *rslot;       /* corner slot of each halo value sent / received, grouped by rank */
+  double *sbuf, *rbuf;
 } P;
 
 static void on_exit_code(int code) {
@@ -100,6 +110,58 @@ FILE *par_stdin(FILE *in) {
   return f;
 }
 
+/* Node ranges and the slot halo from owner[] (node -> rank, -1: no triangle) and trank[]
+ * (triangle -> rank).  Nodes no triangle meets go with the node before them.  Halo mode needs
+ * owner non-decreasing in node order (the partition numbers nodes so); otherwise the run keeps
+ * the replicated gather (every corner force to every rank). */
+static void build_halo(const YfSim *s, int *owner, const int *trank) {
+  const YfModel *m = &s->model;
+  int nn = m->node.n, nt = m->tri.n, S = P.size;
+  free(P.nlo); free(P.scnt); free(P.sdsp); free(P.rcnt); free(P.rdsp);
+  free(P.sslot); free(P.rslot); free(P.sbuf); free(P.rbuf);
+  P.nlo = yf_calloc((size_t)S + 1, sizeof(int), "node ranges");
+  P.scnt = yf_calloc((size_t)S + 1, sizeof(int), "slot halo");
+  P.sdsp = yf_calloc((size_t)S + 1, sizeof(int), "slot halo");
+  P.rcnt = yf_calloc((size_t)S + 1, sizeof(int), "slot halo");
+  P.rdsp = yf_calloc((size_t)S + 1, sizeof(int), "slot halo");
+  P.nn = nn;
+  P.halo = 1;
+  for (int i = 0, prev = 0; i < nn; i++) {
+    if (owner[i] < 0) owner[i] = prev;
+    if (owner[i] < prev) P.halo = 0;
+    prev = owner[i];
+  }
+  for (int r = 0, i = 0; r <= S; r++) {
+    while (i < nn && owner[i] < r) i++;
+    P.nlo[r] = i;
+  }
+  P.nlo[S] = nn;
+  /* the corner slots of rank q's triangles on rank r's nodes (q != r), in slot order */
+  int me = P.rank, ns = 0, nr = 0;
+  for (int k = 0; k < 3 * nt; k++) {
+    int q = trank[k / 3], r = owner[m->tri.v[k]];
+    if (q == r) continue;
+    if (q == me) P.scnt[r] += 2, ns++;
+    if (r == me) P.rcnt[q] += 2, nr++;
+  }
+  for (int r = 0; r < S; r++) {
+    P.sdsp[r + 1] = P.sdsp[r] + P.scnt[r];
+    P.rdsp[r + 1] = P.rdsp[r] + P.rcnt[r];
+  }
+  P.sslot = yf_malloc((size_t)(ns + 1) * sizeof(int), "slot halo");
+  P.rslot = yf_malloc((size_t)(nr + 1) * sizeof(int), "slot halo");
+  P.sbuf = yf_malloc((size_t)(2 * ns + 1) * sizeof(double), "slot halo");
+  P.rbuf = yf_malloc((size_t)(2 * nr + 1) * sizeof(double), "slot halo");
+  int *fs = yf_calloc((size_t)S + 1, sizeof(int), "slot halo"), *fr = yf_calloc((size_t)S + 1, sizeof(int), "slot halo");
+  for (int k = 0; k < 3 * nt; k++) {
+    int q = trank[k / 3], r = owner[m->tri.v[k]];
+    if (q == r) continue;
+    if (q == me) P.sslot[P.sdsp[r] / 2 + fs[r]++] = k;
+    if (r == me) P.rslot[P.rdsp[q] / 2 + fr[q]++] = k;
+  }
+  free(fs); free(fr);
+}
+
 /* What a halo design would exchange (docs/SCALING.md): the nodes rank r reads but does not own.
  * A node belongs to the rank of the first triangle that meets it (nodes are numbered in that
  * order); rank r reads the nodes of its triangles and of the joints whose first triangle it owns. */
@@ -139,6 +201,7 @@ static void count_ghosts(const YfSim *s) {
     P.ghost_min = ghosts[r] < P.ghost_min ? ghosts[r] : P.ghost_min;
     P.ghost_max = ghosts[r] > P.ghost_max ? ghosts[r] : P.ghost_max;
   }
+  build_halo(s, owner, trank);
   free(owner); free(seen); free(trank); free(ghosts);
 }
 
@@ -242,7 +305,22 @@ void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_ba
     yf_exit_with(YF_EXIT_NUMERIC, "error: injected failure on rank %d (YFDEM_MPI_FAIL_RANK) at its element stage %ld",
                  P.rank, P.nelem);
   if (P.size <= 1) return;
-  share_tris(m->tri.cf, 6);
+  if (P.halo) {
+    /* only the corner forces other ranks' nodes need (border nodes shared by triangles of two
+     * ranks: none once joints give every triangle its own nodes) */
+    for (int k = 0; k < P.sdsp[P.size] / 2; k++) {
+      P.sbuf[2 * k] = m->tri.cf[2 * (size_t)P.sslot[k]];
+      P.sbuf[2 * k + 1] = m->tri.cf[2 * (size_t)P.sslot[k] + 1];
+    }
+    P.bytes += (double)P.sdsp[P.size] * sizeof(double);
+    MPI_Alltoallv(P.sbuf, P.scnt, P.sdsp, MPI_DOUBLE, P.rbuf, P.rcnt, P.rdsp, MPI_DOUBLE, MPI_COMM_WORLD);
+    for (int k = 0; k < P.rdsp[P.size] / 2; k++) {
+      m->tri.cf[2 * (size_t)P.rslot[k]] = P.rbuf[2 * k];
+      m->tri.cf[2 * (size_t)P.rslot[k] + 1] = P.rbuf[2 * k + 1];
+    }
+  } else {
+    share_tris(m->tri.cf, 6);
+  }
   share_blocks(blk, MPI_DOUBLE, sizeof(double));
   share_blocks(blk_bad, MPI_INT, sizeof(int));
   share_blocks(blk_badJ, MPI_DOUBLE, sizeof(double));
@@ -273,6 +351,24 @@ void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_ba
     blk_badJ[b] = badJ;
   }
   P.t_comm += yf_now() - t1;
+}
+
+void par_nodes(int *n0, int *n1) {
+  if (P.size <= 1 || !P.halo) return;
+  *n0 = P.nlo[P.rank];
+  *n1 = P.nlo[P.rank + 1];
+}
+
+void par_share_forces(double *fx, double *fy) {
+  if (P.size <= 1 || !P.halo) return;
+  double t0 = yf_now();
+  for (int r = 0; r < P.size; r++) {
+    P.cnt[r] = P.nlo[r + 1] - P.nlo[r];
+    P.dsp[r] = P.nlo[r];
+  }
+  allgatherv(fx, MPI_DOUBLE, sizeof(double));
+  allgatherv(fy, MPI_DOUBLE, sizeof(double));
+  P.t_comm += yf_now() - t0;
 }
 
 void par_need_stresses(YfModel *m) {

@@ -37,6 +37,10 @@ void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_ba
 /* Every triangle's stress on every rank (a collective: every rank calls it at the same point;
  * a no-op when they are already shared since the last element stage). */
 void par_need_stresses(YfModel *m);
+/* Halo mode: the nodes this rank sums the force of, [n0, n1) (unchanged when every rank sums
+ * every node); then par_share_forces gives every rank every node's force from its owner. */
+void par_nodes(int *n0, int *n1);
+void par_share_forces(double *fx, double *fy);
 int par_any(int flag);                  /* flag set on any rank (the same answer on all)       */
 void par_run_report(struct YfSim *s, long nsteps, double wall); /* ranks, imbalance, traffic */
 #else
@@ -51,6 +55,8 @@ static inline void par_share_elements(YfModel *m, const YfTriMat *tm, double *bl
   (void)m; (void)tm; (void)blk; (void)blk_bad; (void)blk_badJ; (void)t_elem;
 }
 static inline void par_need_stresses(YfModel *m) { (void)m; }
+static inline void par_nodes(int *n0, int *n1) { (void)n0; (void)n1; }
+static inline void par_share_forces(double *fx, double *fy) { (void)fx; (void)fy; }
 static inline int par_any(int flag) { return flag; }
 #define par_run_report(s, nsteps, wall) ((void)0)
 #endif

@@ -410,8 +410,10 @@ static void stage_gather(YfSim *s) {
   const int nn = n->n, nt3 = 3 * m->tri.n;
   const int *off = m->gather_off, *slot = m->gather_slot;
   const double *cf = m->tri.cf, *xf = m->xslot_f;
+  int n0 = 0, n1 = nn;
+  par_nodes(&n0, &n1); /* MPI: the nodes this rank owns (their forces go to every rank after contact) */
   #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
-  for (int i = 0; i < nn; i++) {
+  for (int i = n0; i < n1; i++) {
     double fx = 0, fy = 0;
     for (int k = off[i]; k < off[i + 1]; k++) {
       int q = slot[k];
@@ -438,6 +440,7 @@ static void stage_update(YfSim *s) {
   YfNodes *n = &s->model.node;
   const int nn = n->n;
   const double dt = s->dt, gx = s->gx, gy = s->gy, alpha = s->mass_damping;
+  par_share_forces(n->fx, n->fy); /* MPI: every node's force from its owner; the update is replicated */
   double *x = n->x, *y = n->y, *vx = n->vx, *vy = n->vy;
   const double *fx = n->fx, *fy = n->fy, *ms = n->m;
   const int keep = alpha > 0, nbc = bc_count(s);
