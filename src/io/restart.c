@@ -30,6 +30,7 @@
 #include <gsl/gsl_rng.h>
 #include <hdf5.h>
 #include "restart.h"
+#include "par.h"
 #include "deck.h"
 #include "report.h"
 #include "output.h"
@@ -321,6 +322,7 @@ int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
     if (err) snprintf(err, nerr, "the model is not prepared yet (write_restart needs a run or read_restart first)");
     return -1;
   }
+  par_need_stresses(&s->model); /* MPI: what owners hold (stresses, friction memory), whole on every rank */
   if (!yf_writer()) return 0; /* under MPI rank 0 writes the (replicated) state */
   yf_h5_quiet();
   size_t L = strlen(path);

@@ -20,6 +20,7 @@
 #include "par.h"
 #include "err.h"
 #include "elem_tri.h"
+#include "contact.h"
 #include "joint.h"
 #include "run.h"
 #include "sim.h"
@@ -49,6 +50,10 @@ static struct {
   int *scnt, *sdsp, *rcnt, *rdsp; /* slot halo: doubles to / from each rank                     */
   int *sslot, *rslot;       /* corner slot of each halo value sent / received, grouped by rank */
   double *sbuf, *rbuf;
+  YfSim *sim;               /* the scene of the run (par_need_stresses gathers its owners' state) */
+  int *xs, *xr, *xsd, *xrd; /* par_concat / par_exchange: counts and displacements (bytes)     */
+  char *xbuf;               /* their receive buffer                                            */
+  size_t xcap;
 } P;
 
 static void on_exit_code(int code) {
@@ -205,8 +210,9 @@ static void count_ghosts(const YfSim *s) {
   free(owner); free(seen); free(trank); free(ghosts);
 }
 
-void par_prepare(const YfSim *s, int nblk, int block) {
+void par_prepare(YfSim *s, int nblk, int block) {
   const YfModel *m = &s->model;
+  P.sim = s;
   int nt = m->tri.n, S = P.size;
   if (P.tlo && P.nt == nt && P.nblk == nblk && P.block == block) return; /* the same scene */
   free(P.tlo); free(P.fb0); free(P.fb1); free(P.pcnt); free(P.pdsp); free(P.cnt); free(P.dsp); free(P.piece);
@@ -375,7 +381,87 @@ void par_need_stresses(YfModel *m) {
   if (P.size <= 1 || P.stress_fresh) return;
   double t0 = yf_now();
   share_tris(m->tri.s, 3);
+  if (P.sim && &P.sim->model == m) contact_par_gather(P.sim); /* friction memory, node contact forces */
   P.stress_fresh = 1;
+  P.t_comm += yf_now() - t0;
+}
+
+int par_rank(void) { return P.rank; }
+const int *par_node_lo(void) { return P.size > 1 && P.halo ? P.nlo : NULL; }
+
+/* Couple k (lower triangle ij[2k], the list sorted by it) belongs to the rank owning that
+ * triangle: lo[r] = the first couple whose lower triangle is at or after rank r's first. */
+int par_couple_ranges(const int *ij, int np, int *lo) {
+  if (P.size <= 1 || !P.halo) return 0;
+  for (int r = 0; r <= P.size; r++) {
+    int a = 0, b = np; /* first k in [0, np] with ij[2k] >= tlo[r] */
+    while (a < b) {
+      int c = a + (b - a) / 2;
+      if (ij[2 * c] < P.tlo[r]) a = c + 1;
+      else b = c;
+    }
+    lo[r] = r == P.size ? np : a;
+  }
+  return 1;
+}
+
+static void xroom(size_t need) {
+  if (!P.xs) {
+    size_t n1 = (size_t)P.size + 1;
+    P.xs = yf_calloc(n1, sizeof(int), "rank exchange");
+    P.xr = yf_calloc(n1, sizeof(int), "rank exchange");
+    P.xsd = yf_calloc(n1, sizeof(int), "rank exchange");
+    P.xrd = yf_calloc(n1, sizeof(int), "rank exchange");
+  }
+  if (need > P.xcap) {
+    P.xcap = need + need / 2 + 4096;
+    free(P.xbuf);
+    P.xbuf = yf_malloc(P.xcap, "rank exchange");
+  }
+}
+
+const void *par_concat(const void *mine, int nbytes, int *rbytes) {
+  double t0 = yf_now();
+  xroom(0);
+  MPI_Allgather(&nbytes, 1, MPI_INT, rbytes, 1, MPI_INT, MPI_COMM_WORLD);
+  size_t tot = 0;
+  for (int r = 0; r < P.size; r++) {
+    P.xrd[r] = (int)tot;
+    tot += (size_t)rbytes[r];
+  }
+  xroom(tot);
+  P.bytes += (double)nbytes * (P.size - 1);
+  MPI_Allgatherv(mine, nbytes, MPI_BYTE, P.xbuf, rbytes, P.xrd, MPI_BYTE, MPI_COMM_WORLD);
+  P.t_comm += yf_now() - t0;
+  return P.xbuf;
+}
+
+const void *par_exchange(const void *send, const int *sbytes, int *rbytes) {
+  double t0 = yf_now();
+  xroom(0);
+  MPI_Alltoall(sbytes, 1, MPI_INT, rbytes, 1, MPI_INT, MPI_COMM_WORLD);
+  size_t tot = 0;
+  int st = 0;
+  for (int r = 0; r < P.size; r++) {
+    P.xsd[r] = st;
+    st += sbytes[r];
+    P.xrd[r] = (int)tot;
+    tot += (size_t)rbytes[r];
+  }
+  xroom(tot);
+  P.bytes += (double)(st - sbytes[P.rank]);
+  MPI_Alltoallv(send, sbytes, P.xsd, MPI_BYTE, P.xbuf, rbytes, P.xrd, MPI_BYTE, MPI_COMM_WORLD);
+  P.t_comm += yf_now() - t0;
+  return P.xbuf;
+}
+
+void par_gather_ranges(void *a, const int *lo, int elem_bytes) {
+  double t0 = yf_now();
+  for (int r = 0; r < P.size; r++) {
+    P.cnt[r] = (lo[r + 1] - lo[r]) * elem_bytes;
+    P.dsp[r] = lo[r] * elem_bytes;
+  }
+  allgatherv(a, MPI_BYTE, 1);
   P.t_comm += yf_now() - t0;
 }
 

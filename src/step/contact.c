@@ -47,6 +47,7 @@
 #include "err.h"
 #include "joint.h"
 #include "run.h"
+#include "par.h"
 
 #define MAX_RULES YF_CONTACT_MAX_RULES
 #define PAIR_BLK 1024      /* couples per block of the force loop: fixed, so sums do not depend on threads */
@@ -620,17 +621,19 @@ typedef struct {
 
 /* The kernel on the marked couples of block b, in couple order: friction slots numbered from the
  * block's offset, energy and dissipation summed per block, couples dropped as Y2D drops them. */
-static void kernel_block(YfContact *C, const KernelPass *P, int b) {
+/* The kernel on the marked couples ka..kb-1, hits numbered from h, new friction slots from slot;
+ * energy and dissipation summed in couple order into *eo, *dofs (and, when ed is not NULL, each
+ * touching couple's pair written to ed in order: the pieces of a block shared by two ranks). */
+static void kernel_run(const KernelPass *P, int ka, int kb, int h, int slot, double *eo, double *dofs, int *rmo,
+                       double *ed) {
   double e = 0.0, d = 0.0;
-  int rm = 0, h = C->blk_off[b], slot = C->blk_goff[b];
-  if (h == C->blk_off[b + 1]) { C->blk_e[b] = C->blk_d[b] = 0.0; return; }
+  int rm = 0;
   const int *ij = P->ij, *tv = P->tv, *tmat = P->tmat;
   int *gi = P->gi;
   unsigned char *alive = P->alive;
   const double *vx = P->vx, *vy = P->vy, *tg = P->tg;
   double *gmem = P->gmem;
-  int k1 = (b + 1) * PAIR_BLK < P->np ? (b + 1) * PAIR_BLK : P->np;
-  for (int k = b * PAIR_BLK; k < k1; k++) {
+  for (int k = ka; k < kb; k++) {
     if (alive[k] != 2) continue;
     alive[k] = 1;
     int ti = ij[2 * k], tj = ij[2 * k + 1];
@@ -658,6 +661,10 @@ static void kernel_block(YfContact *C, const KernelPass *P, int b) {
                                      vyb, pn, pt, mu, law, P->dt, gmem + 6 * (size_t)gi[k], fa, fb, &d2, &info);
     e += info.energy;
     d += info.dissip;
+    if (ed) {
+      *ed++ = info.energy;
+      *ed++ = info.dissip;
+    }
     if (P->hf) {
       P->hk[h] = k;
     } else { /* one thread: the scatter's additions, here (A's corners, then B's) */
@@ -671,9 +678,287 @@ static void kernel_block(YfContact *C, const KernelPass *P, int b) {
     h++;
     if (!hit && d2 > P->rem2) { alive[k] = 0; rm++; }
   }
-  C->blk_e[b] = e;
-  C->blk_d[b] = d;
+  *eo = e;
+  *dofs = d;
+  *rmo = rm;
+}
+
+static void kernel_block(YfContact *C, const KernelPass *P, int b) {
+  int h = C->blk_off[b], rm = 0;
+  if (h == C->blk_off[b + 1]) { C->blk_e[b] = C->blk_d[b] = 0.0; return; }
+  int k1 = (b + 1) * PAIR_BLK < P->np ? (b + 1) * PAIR_BLK : P->np;
+  kernel_run(P, b * PAIR_BLK, k1, h, C->blk_goff[b], &C->blk_e[b], &C->blk_d[b], &rm, NULL);
   C->blk_rm[b] += rm;
+}
+
+/* dropped couples: compact once a quarter of the list is dead */
+static void contact_compact(YfContact *C, int removed) {
+  C->nlive -= removed;
+  C->ndead += removed;
+  if (C->ndead > 0 && 4 * C->ndead > C->pairs.n) {
+    contact_pairs_compact(&C->pairs, C->alive);
+    memset(C->alive, 1, (size_t)C->pairs.n);
+    C->ndead = 0;
+  }
+}
+
+/* ---------------------------------------------------------------- the kernel on MPI ranks
+ *
+ * Couple k belongs to the rank owning its lower triangle ij[2k] (par_couple_ranges): the list
+ * is sorted by it, so each rank's couples are one range of it, in rank order, and a couple's
+ * friction memory lives on its owner for the couple's whole life (search merges and
+ * compactions keep it there: its triangles do not change rank).  The screen (pass 1) ran on every
+ * rank, so the marks, the friction slot numbers and the hit offsets are the same everywhere;
+ * each rank runs the kernel on its range only, then:
+ *   - the per-block energy and dissipation of blocks inside one rank's range come from that rank;
+ *     a block two ranks share is summed from its touching couples' values in couple order (the
+ *     owners send them): every block sum has the one-rank bits;
+ *   - couples the kernel drops are sent to every rank (the list stays the same everywhere);
+ *   - each hit's forces on nodes another rank owns go to that rank (node, fx, fy), in couple
+ *     order; the owner of a node adds its couples' contributions rank by rank, i.e. in couple
+ *     order: the one-rank scatter's additions.
+ * Only owned nodes get their contact force here (fcn of the other nodes is stale until
+ * contact_par_gather). */
+typedef struct { double i, fx, fy; } Contrib; /* a hit's force on a node another rank owns */
+
+static struct {
+  void *ed, *drop, *send, *pc, *sum;
+  size_t ced, cdrop, csend, cpc, csum;
+  int *lo, *rb, *sb;
+  int nlo;
+} DS;
+
+static void ds_room(void **p, size_t *cap, size_t need) {
+  if (need <= *cap) return;
+  *cap = need + need / 2 + 1024;
+  free(*p);
+  *p = yf_malloc(*cap, "contact exchange");
+}
+
+/* A piece of block b inside couples [r0, r1): ka..kb-1; whole when it is the block. */
+static int piece(int b, int r0, int r1, int np, int *ka, int *kb) {
+  *ka = b * PAIR_BLK > r0 ? b * PAIR_BLK : r0;
+  *kb = (b + 1) * PAIR_BLK < r1 ? (b + 1) * PAIR_BLK : r1;
+  return *ka == b * PAIR_BLK && (*kb == (b + 1) * PAIR_BLK || *kb == np);
+}
+
+/* The kernel stage on MPI ranks (above); returns the couples the kernel dropped, -1 when the
+ * list is not shared among ranks (one rank: the usual paths). */
+static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nblk, int nbusy) {
+  const int S = par_size(), me = par_rank();
+  if (S <= 1) return -1;
+  if (DS.nlo < S + 1) {
+    free(DS.lo); free(DS.rb); free(DS.sb);
+    DS.lo = yf_malloc(((size_t)S + 1) * sizeof(int), "contact ranges");
+    DS.rb = yf_malloc(((size_t)S + 1) * sizeof(int), "contact ranges");
+    DS.sb = yf_malloc(((size_t)S + 1) * sizeof(int), "contact ranges");
+    DS.nlo = S + 1;
+  }
+  int *lo = DS.lo, *rb = DS.rb, *sb = DS.sb;
+  if (!par_couple_ranges(P->ij, P->np, lo)) return -1;
+  const int *nlo = par_node_lo();
+  const int np = P->np, k0 = lo[me], k1 = lo[me + 1], n0 = nlo[me], n1 = nlo[me + 1];
+  int *gi = P->gi;
+  unsigned char *alive = P->alive;
+  /* friction slots of first contacts, numbered in couple order from each block's offset as the
+   * one-rank kernel numbers them, on every rank (the numbering is the same everywhere) */
+  for (int b = 0; b < nblk; b++) {
+    if (!C->blk_need[b]) continue;
+    int slot = C->blk_goff[b], kend = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np;
+    for (int k = b * PAIR_BLK; k < kend; k++)
+      if (alive[k] == 2 && gi[k] < 0) {
+        gi[k] = slot++;
+        memset(P->gmem + 6 * (size_t)gi[k], 0, 6 * sizeof(double));
+      }
+  }
+  /* touching couples of every rank's pieces of split blocks (the marks of the screen, the same on
+   * every rank, before any kernel runs): how many (e, d) pairs each piece sends */
+  ds_room(&DS.pc, &DS.cpc, (size_t)(4 * S + 4) * sizeof(int));
+  int *pcnt = DS.pc, npcs = 0; /* in rank order, then block order: at most 2 per rank */
+  for (int r = 0; r < S; r++) {
+    if (lo[r + 1] <= lo[r]) continue;
+    for (int b = lo[r] / PAIR_BLK; b <= (lo[r + 1] - 1) / PAIR_BLK; b++) {
+      int xa, xb;
+      if (piece(b, lo[r], lo[r + 1], np, &xa, &xb)) continue;
+      int c = 0;
+      for (int k = xa; k < xb; k++) c += alive[k] == 2;
+      pcnt[npcs++] = c;
+    }
+  }
+  /* this rank's pieces: hits numbered from 0 in couple order */
+  const int b0 = k0 / PAIR_BLK, b1 = k1 > k0 ? (k1 - 1) / PAIR_BLK + 1 : b0, nq = b1 - b0;
+  ds_room(&DS.sum, &DS.csum, (size_t)(4 * nq + 4) * sizeof(double));
+  double *qsum = DS.sum; /* e, d per piece */
+  int nh = 0, ned = 0;
+  ds_room(&DS.drop, &DS.cdrop, (size_t)(3 * nq + 3) * sizeof(int));
+  int *hoff = DS.drop, *eoff = hoff + nq + 1;
+  for (int q = 0; q < nq; q++) {
+    int xa, xb, whole = piece(b0 + q, k0, k1, np, &xa, &xb), c = 0;
+    if (whole) c = C->blk_busy[b0 + q];
+    else
+      for (int k = xa; k < xb; k++) c += alive[k] == 2;
+    hoff[q] = nh;
+    eoff[q] = ned;
+    nh += c;
+    if (!whole) ned += c;
+  }
+  hit_room(C, nh > nbusy ? nh : nbusy);
+  P->hf = C->hf;
+  P->hk = C->hk;
+  ds_room(&DS.ed, &DS.ced, (size_t)(2 * ned + 2 * nq + 2) * sizeof(double));
+  double *ed = DS.ed;
+  #pragma omp parallel for schedule(dynamic, 1) if (nh >= C->par_min / 32 && nq > 1)
+  for (int q = 0; q < nq; q++) {
+    int xa, xb, rm = 0, whole = piece(b0 + q, k0, k1, np, &xa, &xb);
+    kernel_run(P, xa, xb, hoff[q], 0, &qsum[2 * q], &qsum[2 * q + 1], &rm, whole ? NULL : ed + 2 * eoff[q]);
+  }
+  for (int k = 0; k < k0; k++) if (alive[k] == 2) alive[k] = 1;
+  for (int k = k1; k < np; k++) if (alive[k] == 2) alive[k] = 1;
+
+  /* 1. to every rank: the whole blocks' sums, the split pieces' pairs, then the dropped couples */
+  int nwhole = 0;
+  for (int q = 0; q < nq; q++) {
+    int xa, xb;
+    nwhole += piece(b0 + q, k0, k1, np, &xa, &xb);
+  }
+  int ndrop = 0;
+  for (int h = 0; h < nh; h++) ndrop += !alive[C->hk[h]];
+  size_t nsend = (size_t)(2 * nwhole + 2 * ned) * sizeof(double) + (size_t)ndrop * sizeof(int);
+  ds_room(&DS.send, &DS.csend, nsend + 16);
+  double *o = DS.send;
+  for (int q = 0; q < nq; q++) {
+    int xa, xb;
+    if (piece(b0 + q, k0, k1, np, &xa, &xb)) { *o++ = qsum[2 * q]; *o++ = qsum[2 * q + 1]; }
+  }
+  memcpy(o, ed, (size_t)(2 * ned) * sizeof(double));
+  int *od = (int *)(o + 2 * ned);
+  for (int h = 0; h < nh; h++)
+    if (!alive[C->hk[h]]) *od++ = C->hk[h];
+  const char *all = par_concat(DS.send, (int)nsend, rb);
+  int removed = 0, ip = 0;
+  for (int r = 0; r < S; r++, all += rb[r - 1]) {
+    const double *a = (const double *)all;
+    if (lo[r + 1] <= lo[r]) {
+      for (int t = 0; t < rb[r] / (int)sizeof(int); t++) alive[((const int *)all)[t]] = 0, removed++;
+      continue;
+    }
+    int rb0 = lo[r] / PAIR_BLK, rb1 = (lo[r + 1] - 1) / PAIR_BLK + 1, xa, xb;
+    for (int b = rb0; b < rb1; b++)
+      if (piece(b, lo[r], lo[r + 1], np, &xa, &xb)) { C->blk_e[b] = a[0]; C->blk_d[b] = a[1]; a += 2; }
+    for (int b = rb0; b < rb1; b++) {
+      if (piece(b, lo[r], lo[r + 1], np, &xa, &xb)) continue;
+      /* a split block: its touching couples in couple order, rank after rank */
+      double e = xa == b * PAIR_BLK ? 0.0 : C->blk_e[b], d = xa == b * PAIR_BLK ? 0.0 : C->blk_d[b];
+      for (int t = 0; t < pcnt[ip]; t++, a += 2) { e += a[0]; d += a[1]; }
+      ip++;
+      C->blk_e[b] = e;
+      C->blk_d[b] = d;
+    }
+    const int *dr = (const int *)a;
+    int nd = (int)((all + rb[r] - (const char *)a) / (int)sizeof(int));
+    for (int t = 0; t < nd; t++) alive[dr[t]] = 0;
+    removed += nd;
+  }
+
+  /* 2. hits on other ranks' nodes to their owners, in couple order */
+  const int *ij = P->ij, *tv = P->tv;
+  for (int r = 0; r < S; r++) sb[r] = 0;
+  size_t ncon = 0;
+  for (int h = 0; h < nh; h++) {
+    int k = C->hk[h];
+    const int *vv[2] = {tv + 3 * ij[2 * k + 1], tv + 3 * ij[2 * k]};
+    for (int c = 0; c < 6; c++) {
+      int i = vv[c / 3][c % 3];
+      if (i < n0 || i >= n1) ncon++;
+    }
+  }
+  ds_room(&DS.send, &DS.csend, (ncon + 1) * sizeof(Contrib));
+  Contrib *cs = DS.send;
+  /* grouped by owner: count, then fill (the owner of node i: the range holding it) */
+  for (int pass = 0; pass < 2; pass++) {
+    int fill[64], *fl = S <= 64 ? fill : yf_calloc((size_t)S, sizeof(int), "contact exchange");
+    if (pass) for (int r = 0, t = 0; r < S; r++) { fl[r] = t; t += sb[r] / (int)sizeof(Contrib); }
+    for (int h = 0; h < nh; h++) {
+      int k = C->hk[h];
+      const int *vv[2] = {tv + 3 * ij[2 * k + 1], tv + 3 * ij[2 * k]};
+      const double *f = C->hf + 12 * (size_t)h;
+      for (int c = 0; c < 6; c++) {
+        int i = vv[c / 3][c % 3];
+        if (i >= n0 && i < n1) continue;
+        int a = 0, z = S; /* owner: nlo[a] <= i < nlo[a + 1] */
+        while (z - a > 1) { int m = (a + z) / 2; if (nlo[m] <= i) a = m; else z = m; }
+        if (!pass) sb[a] += (int)sizeof(Contrib);
+        else cs[fl[a]++] = (Contrib){(double)i, f[2 * c], f[2 * c + 1]};
+      }
+    }
+    if (fl != fill) free(fl);
+  }
+  const char *in = par_exchange(cs, sb, rb);
+
+  /* 3. the owned nodes' contact forces: every rank's contributions in rank (= couple) order */
+  YfNodes *nd = &s->model.node;
+  double *fcn = C->fcn;
+  unsigned char *tmark = C->tmark;
+  for (int i = n0; i < n1; i++)
+    if (tmark[i]) { fcn[2 * i] = fcn[2 * i + 1] = 0.0; tmark[i] = 0; }
+  for (int r = 0; r < S; r++) {
+    if (r == me) {
+      for (int h = 0; h < nh; h++) {
+        int k = C->hk[h];
+        const int *vv[2] = {tv + 3 * ij[2 * k + 1], tv + 3 * ij[2 * k]};
+        const double *f = C->hf + 12 * (size_t)h;
+        for (int c = 0; c < 6; c++) {
+          int i = vv[c / 3][c % 3];
+          if (i < n0 || i >= n1) continue;
+          tmark[i] = 1;
+          fcn[2 * i] += f[2 * c];
+          fcn[2 * i + 1] += f[2 * c + 1];
+        }
+      }
+    } else {
+      const Contrib *cr = (const Contrib *)in;
+      for (int t = 0; t < rb[r] / (int)sizeof(Contrib); t++) {
+        int i = (int)cr[t].i;
+        tmark[i] = 1;
+        fcn[2 * i] += cr[t].fx;
+        fcn[2 * i + 1] += cr[t].fy;
+      }
+    }
+    if (r != me) in += rb[r];
+  }
+  for (int i = n0; i < n1; i++)
+    if (tmark[i]) { nd->fx[i] += fcn[2 * i]; nd->fy[i] += fcn[2 * i + 1]; }
+  return removed;
+}
+
+/* MPI: the owners' friction memory and node contact forces whole on every rank, for a reader
+ * (frames, restarts, the end of a run).  Every rank calls it at the same point. */
+void contact_par_gather(YfSim *s) {
+  YfContact *C = s->contact;
+  if (!active(C) || !C->fcn_valid || par_size() <= 1) return;
+  const int *nlo = par_node_lo();
+  if (!nlo) return;
+  par_gather_ranges(C->fcn, nlo, 2 * (int)sizeof(double));
+  const int S = par_size(), me = par_rank(), np = C->pairs.n;
+  int *lo = yf_malloc(((size_t)S + 1) * sizeof(int), "contact gather"), *rb = yf_malloc(((size_t)S + 1) * sizeof(int), "contact gather");
+  if (par_couple_ranges(C->pairs.ij, np, lo)) {
+    const int *gi = C->pairs.gi;
+    int n = 0;
+    for (int k = lo[me]; k < lo[me + 1]; k++) n += gi[k] >= 0;
+    double *g = yf_malloc((size_t)(6 * n + 1) * sizeof(double), "contact gather"), *o = g;
+    for (int k = lo[me]; k < lo[me + 1]; k++)
+      if (gi[k] >= 0) { memcpy(o, C->pairs.g + 6 * (size_t)gi[k], 6 * sizeof(double)); o += 6; }
+    const double *a = par_concat(g, 6 * n * (int)sizeof(double), rb);
+    for (int r = 0; r < S; r++)
+      for (int k = lo[r]; k < lo[r + 1]; k++)
+        if (gi[k] >= 0) {
+          if (r != me) memcpy(C->pairs.g + 6 * (size_t)gi[k], a, 6 * sizeof(double));
+          a += 6;
+        }
+    free(g);
+  }
+  free(lo);
+  free(rb);
 }
 
 void contact_step(YfSim *s) {
@@ -762,6 +1047,23 @@ void contact_step(YfSim *s) {
   double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
   unsigned char *tmark = C->tmark;
   const int nn = nd->n;
+  int kdrop = kernel_ranks(s, C, &P, nblk, nbusy); /* MPI: each rank its couples (above) */
+  if (kdrop >= 0) {
+    int removed = kdrop;
+    double esum = 0.0, dsum = 0.0;
+    for (int b = 0; b < nblk; b++) {
+      esum += C->blk_e[b];
+      dsum += C->blk_d[b];
+      removed += C->blk_rm[b];
+    }
+    s->energy.contact = esum;
+    s->energy.friction += dsum;
+    C->pairs.ng = ng;
+    C->fcn_valid = 1;
+    contact_compact(C, removed);
+    yf_stage_time[YF_ST_CONTACT] += yf_now() - t1;
+    return;
+  }
   if (serial) {
     for (int i = 0; i < nn; i++)
       if (tmark[i]) { fcn[2 * i] = fcn[2 * i + 1] = 0.0; tmark[i] = 0; }
@@ -822,14 +1124,7 @@ void contact_step(YfSim *s) {
   }
   C->fcn_valid = 1;
 
-  /* dropped couples: compact once a quarter of the list is dead */
-  C->nlive -= removed;
-  C->ndead += removed;
-  if (C->ndead > 0 && 4 * C->ndead > C->pairs.n) {
-    contact_pairs_compact(&C->pairs, C->alive);
-    memset(C->alive, 1, (size_t)C->pairs.n);
-    C->ndead = 0;
-  }
+  contact_compact(C, removed);
   yf_stage_time[YF_ST_CONTACT] += yf_now() - t1;
 }
 

@@ -27,7 +27,7 @@ void par_init(int *argc, char ***argv); /* MPI_Init, the writer rank, the error 
 FILE *par_stdin(FILE *in);              /* a deck on stdin: rank 0 reads it, every rank runs it */
 int par_size(void);
 /* Ownership of the element stage for the scene's triangles in nblk blocks of `block`. */
-void par_prepare(const struct YfSim *s, int nblk, int block);
+void par_prepare(struct YfSim *s, int nblk, int block);
 void par_blocks(int *b0, int *b1);      /* the blocks this rank sums whole: [b0, b1)           */
 /* After the element stage: this rank's triangles of blocks it shares with others, then every
  * rank gets every corner force (6 per triangle) and every block's (viscous power, first bad
@@ -41,6 +41,21 @@ void par_need_stresses(YfModel *m);
  * every node); then par_share_forces gives every rank every node's force from its owner. */
 void par_nodes(int *n0, int *n1);
 void par_share_forces(double *fx, double *fy);
+/* Generic pieces for the stages that share work by ownership (contact.c):
+ *   par_node_lo        node ranges lo[0..size] of the owners (NULL: every rank sums every node);
+ *   par_couple_ranges  couples of a list sorted by lower triangle, by that triangle's owner:
+ *                      lo[0..size]; 0 when the list is not shared (one rank);
+ *   par_concat         every rank's bytes, concatenated in rank order, to every rank (rbytes:
+ *                      how many from each); the buffer lives until the next call;
+ *   par_exchange       sbytes[r] bytes of send (grouped by rank) to rank r; returns what came,
+ *                      grouped by sender, rbytes[r] from each;
+ *   par_gather_ranges  an array whose elements lo[r]..lo[r+1]-1 rank r holds, whole on every rank. */
+int par_rank(void);
+const int *par_node_lo(void);
+int par_couple_ranges(const int *ij, int np, int *lo);
+const void *par_concat(const void *mine, int nbytes, int *rbytes);
+const void *par_exchange(const void *send, const int *sbytes, int *rbytes);
+void par_gather_ranges(void *a, const int *lo, int elem_bytes);
 int par_any(int flag);                  /* flag set on any rank (the same answer on all)       */
 void par_run_report(struct YfSim *s, long nsteps, double wall); /* ranks, imbalance, traffic */
 #else
@@ -48,7 +63,7 @@ static inline void par_init(int *argc, char ***argv) { (void)argc; (void)argv; }
 static inline FILE *par_stdin(FILE *in) { return in; }
 static inline int par_size(void) { return 1; }
 struct YfSim;
-static inline void par_prepare(const struct YfSim *s, int nblk, int block) { (void)s; (void)nblk; (void)block; }
+static inline void par_prepare(struct YfSim *s, int nblk, int block) { (void)s; (void)nblk; (void)block; }
 static inline void par_blocks(int *b0, int *b1) { (void)b0; (void)b1; }
 static inline void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_bad,
                                       double *blk_badJ, double t_elem) {
@@ -57,6 +72,12 @@ static inline void par_share_elements(YfModel *m, const YfTriMat *tm, double *bl
 static inline void par_need_stresses(YfModel *m) { (void)m; }
 static inline void par_nodes(int *n0, int *n1) { (void)n0; (void)n1; }
 static inline void par_share_forces(double *fx, double *fy) { (void)fx; (void)fy; }
+static inline int par_rank(void) { return 0; }
+static inline const int *par_node_lo(void) { return NULL; }
+static inline int par_couple_ranges(const int *ij, int np, int *lo) { (void)ij; (void)np; (void)lo; return 0; }
+static inline const void *par_concat(const void *mine, int nbytes, int *rbytes) { *rbytes = nbytes; return mine; }
+static inline const void *par_exchange(const void *send, const int *sbytes, int *rbytes) { *rbytes = *sbytes; return send; }
+static inline void par_gather_ranges(void *a, const int *lo, int elem_bytes) { (void)a; (void)lo; (void)elem_bytes; }
 static inline int par_any(int flag) { return flag; }
 #define par_run_report(s, nsteps, wall) ((void)0)
 #endif
