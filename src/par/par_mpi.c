@@ -141,10 +141,24 @@ static void build_halo(const YfSim *s, int *owner, const int *trank) {
     P.nlo[r] = i;
   }
   P.nlo[S] = nn;
-  /* the corner slots of rank q's triangles on rank r's nodes (q != r), in slot order */
-  int me = P.rank, ns = 0, nr = 0;
-  for (int k = 0; k < 3 * nt; k++) {
-    int q = trank[k / 3], r = owner[m->tri.v[k]];
+  /* the force slots rank q writes on rank r's nodes (q != r), in slot order: corners of q's
+   * triangles, then the joint slots of q's joint blocks (a block goes with the owner of its first
+   * joint's lower triangle: joints are sorted by it) */
+  int me = P.rank, ns = 0, nr = 0, nt3 = 3 * nt, nsl = nt3 + m->nxslot;
+  const YfJoints *J = s->joints;
+  int *jrank = NULL;
+  if (m->nxslot) {
+    int nj = J->n, nb = (nj + YF_JBLOCK - 1) / YF_JBLOCK;
+    jrank = yf_malloc((size_t)nj * sizeof(int), "slot halo");
+    for (int b = 0; b < nb; b++) {
+      int a = J->tri[2 * b * YF_JBLOCK], c = J->tri[2 * b * YF_JBLOCK + 1];
+      for (int j = b * YF_JBLOCK; j < nj && j < (b + 1) * YF_JBLOCK; j++) jrank[j] = trank[a < c ? a : c];
+    }
+  }
+#define SLOT_RANKS(k, q, r) int q = (k) < nt3 ? trank[(k) / 3] : jrank[((k) - nt3) / 4]; \
+  int r = owner[(k) < nt3 ? m->tri.v[k] : m->xslot_node[(k) - nt3]]
+  for (int k = 0; k < nsl; k++) {
+    SLOT_RANKS(k, q, r);
     if (q == r) continue;
     if (q == me) P.scnt[r] += 2, ns++;
     if (r == me) P.rcnt[q] += 2, nr++;
@@ -158,13 +172,14 @@ static void build_halo(const YfSim *s, int *owner, const int *trank) {
   P.sbuf = yf_malloc((size_t)(2 * ns + 1) * sizeof(double), "slot halo");
   P.rbuf = yf_malloc((size_t)(2 * nr + 1) * sizeof(double), "slot halo");
   int *fs = yf_calloc((size_t)S + 1, sizeof(int), "slot halo"), *fr = yf_calloc((size_t)S + 1, sizeof(int), "slot halo");
-  for (int k = 0; k < 3 * nt; k++) {
-    int q = trank[k / 3], r = owner[m->tri.v[k]];
+  for (int k = 0; k < nsl; k++) {
+    SLOT_RANKS(k, q, r);
     if (q == r) continue;
     if (q == me) P.sslot[P.sdsp[r] / 2 + fs[r]++] = k;
     if (r == me) P.rslot[P.rdsp[q] / 2 + fr[q]++] = k;
   }
-  free(fs); free(fr);
+#undef SLOT_RANKS
+  free(fs); free(fr); free(jrank);
 }
 
 /* What a halo design would exchange (docs/SCALING.md): the nodes rank r reads but does not own.
@@ -311,22 +326,7 @@ void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_ba
     yf_exit_with(YF_EXIT_NUMERIC, "error: injected failure on rank %d (YFDEM_MPI_FAIL_RANK) at its element stage %ld",
                  P.rank, P.nelem);
   if (P.size <= 1) return;
-  if (P.halo) {
-    /* only the corner forces other ranks' nodes need (border nodes shared by triangles of two
-     * ranks: none once joints give every triangle its own nodes) */
-    for (int k = 0; k < P.sdsp[P.size] / 2; k++) {
-      P.sbuf[2 * k] = m->tri.cf[2 * (size_t)P.sslot[k]];
-      P.sbuf[2 * k + 1] = m->tri.cf[2 * (size_t)P.sslot[k] + 1];
-    }
-    P.bytes += (double)P.sdsp[P.size] * sizeof(double);
-    MPI_Alltoallv(P.sbuf, P.scnt, P.sdsp, MPI_DOUBLE, P.rbuf, P.rcnt, P.rdsp, MPI_DOUBLE, MPI_COMM_WORLD);
-    for (int k = 0; k < P.rdsp[P.size] / 2; k++) {
-      m->tri.cf[2 * (size_t)P.rslot[k]] = P.rbuf[2 * k];
-      m->tri.cf[2 * (size_t)P.rslot[k] + 1] = P.rbuf[2 * k + 1];
-    }
-  } else {
-    share_tris(m->tri.cf, 6);
-  }
+  if (!P.halo) share_tris(m->tri.cf, 6); /* every corner force to every rank */
   share_blocks(blk, MPI_DOUBLE, sizeof(double));
   share_blocks(blk_bad, MPI_INT, sizeof(int));
   share_blocks(blk_badJ, MPI_DOUBLE, sizeof(double));
@@ -359,6 +359,30 @@ void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_ba
   P.t_comm += yf_now() - t1;
 }
 
+/* Halo: the force slots (corners, joint slots) other ranks' nodes need, to their owners: border
+ * nodes shared by triangles of two ranks, and the far side of joints across a rank border. */
+void par_share_slots(YfModel *m) {
+  if (P.size <= 1 || !P.halo) return;
+  double t0 = yf_now();
+  const int nt3 = 3 * m->tri.n;
+  double *cf = m->tri.cf, *xf = m->xslot_f;
+  for (int k = 0; k < P.sdsp[P.size] / 2; k++) {
+    int q = P.sslot[k];
+    const double *f = q < nt3 ? cf + 2 * (size_t)q : xf + 2 * (size_t)(q - nt3);
+    P.sbuf[2 * k] = f[0];
+    P.sbuf[2 * k + 1] = f[1];
+  }
+  P.bytes += (double)P.sdsp[P.size] * sizeof(double);
+  MPI_Alltoallv(P.sbuf, P.scnt, P.sdsp, MPI_DOUBLE, P.rbuf, P.rcnt, P.rdsp, MPI_DOUBLE, MPI_COMM_WORLD);
+  for (int k = 0; k < P.rdsp[P.size] / 2; k++) {
+    int q = P.rslot[k];
+    double *f = q < nt3 ? cf + 2 * (size_t)q : xf + 2 * (size_t)(q - nt3);
+    f[0] = P.rbuf[2 * k];
+    f[1] = P.rbuf[2 * k + 1];
+  }
+  P.t_comm += yf_now() - t0;
+}
+
 void par_nodes(int *n0, int *n1) {
   if (P.size <= 1 || !P.halo) return;
   *n0 = P.nlo[P.rank];
@@ -381,26 +405,30 @@ void par_need_stresses(YfModel *m) {
   if (P.size <= 1 || P.stress_fresh) return;
   double t0 = yf_now();
   share_tris(m->tri.s, 3);
-  if (P.sim && &P.sim->model == m) contact_par_gather(P.sim); /* friction memory, node contact forces */
+  P.t_comm += yf_now() - t0; /* the gathers below count their own time */
+  if (P.sim && &P.sim->model == m) { /* friction memory, node contact forces, joint state */
+    contact_par_gather(P.sim);
+    joints_par_gather(P.sim);
+  }
   P.stress_fresh = 1;
-  P.t_comm += yf_now() - t0;
 }
 
 int par_rank(void) { return P.rank; }
 const int *par_node_lo(void) { return P.size > 1 && P.halo ? P.nlo : NULL; }
 
-/* Couple k (lower triangle ij[2k], the list sorted by it) belongs to the rank owning that
- * triangle: lo[r] = the first couple whose lower triangle is at or after rank r's first. */
-int par_couple_ranges(const int *ij, int np, int *lo) {
+/* Items sorted by a triangle tri[stride k] (couples by their lower triangle, joint blocks by
+ * their first joint's lower triangle) go with that triangle's owner: lo[r] = the first item whose
+ * triangle is at or after rank r's first. */
+int par_owner_ranges(const int *tri, int stride, int n, int *lo) {
   if (P.size <= 1 || !P.halo) return 0;
   for (int r = 0; r <= P.size; r++) {
-    int a = 0, b = np; /* first k in [0, np] with ij[2k] >= tlo[r] */
+    int a = 0, b = n; /* first k in [0, n] with tri[stride k] >= tlo[r] */
     while (a < b) {
       int c = a + (b - a) / 2;
-      if (ij[2 * c] < P.tlo[r]) a = c + 1;
+      if (tri[(size_t)stride * c] < P.tlo[r]) a = c + 1;
       else b = c;
     }
-    lo[r] = r == P.size ? np : a;
+    lo[r] = r == P.size ? n : a;
   }
   return 1;
 }

@@ -704,7 +704,7 @@ static void contact_compact(YfContact *C, int removed) {
 
 /* ---------------------------------------------------------------- the kernel on MPI ranks
  *
- * Couple k belongs to the rank owning its lower triangle ij[2k] (par_couple_ranges): the list
+ * Couple k belongs to the rank owning its lower triangle ij[2k] (par_owner_ranges): the list
  * is sorted by it, so each rank's couples are one range of it, in rank order, and a couple's
  * friction memory lives on its owner for the couple's whole life (search merges and
  * compactions keep it there: its triangles do not change rank).  The screen (pass 1) ran on every
@@ -755,7 +755,7 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nblk, int nbu
     DS.nlo = S + 1;
   }
   int *lo = DS.lo, *rb = DS.rb, *sb = DS.sb;
-  if (!par_couple_ranges(P->ij, P->np, lo)) return -1;
+  if (!par_owner_ranges(P->ij, 2, P->np, lo)) return -1;
   const int *nlo = par_node_lo();
   const int np = P->np, k0 = lo[me], k1 = lo[me + 1], n0 = nlo[me], n1 = nlo[me + 1];
   int *gi = P->gi;
@@ -941,7 +941,7 @@ void contact_par_gather(YfSim *s) {
   par_gather_ranges(C->fcn, nlo, 2 * (int)sizeof(double));
   const int S = par_size(), me = par_rank(), np = C->pairs.n;
   int *lo = yf_malloc(((size_t)S + 1) * sizeof(int), "contact gather"), *rb = yf_malloc(((size_t)S + 1) * sizeof(int), "contact gather");
-  if (par_couple_ranges(C->pairs.ij, np, lo)) {
+  if (par_owner_ranges(C->pairs.ij, 2, np, lo)) {
     const int *gi = C->pairs.gi;
     int n = 0;
     for (int k = lo[me]; k < lo[me + 1]; k++) n += gi[k] >= 0;

@@ -43,8 +43,9 @@ void par_nodes(int *n0, int *n1);
 void par_share_forces(double *fx, double *fy);
 /* Generic pieces for the stages that share work by ownership (contact.c):
  *   par_node_lo        node ranges lo[0..size] of the owners (NULL: every rank sums every node);
- *   par_couple_ranges  couples of a list sorted by lower triangle, by that triangle's owner:
- *                      lo[0..size]; 0 when the list is not shared (one rank);
+ *   par_owner_ranges   items sorted by a triangle tri[stride k] (couples, joint blocks), by that
+ *                      triangle's owner: lo[0..size]; 0 when work is not shared (one rank);
+ *   par_share_slots    the force slots other ranks' owned nodes need, to them (before the gather);
  *   par_concat         every rank's bytes, concatenated in rank order, to every rank (rbytes:
  *                      how many from each); the buffer lives until the next call;
  *   par_exchange       sbytes[r] bytes of send (grouped by rank) to rank r; returns what came,
@@ -52,7 +53,8 @@ void par_share_forces(double *fx, double *fy);
  *   par_gather_ranges  an array whose elements lo[r]..lo[r+1]-1 rank r holds, whole on every rank. */
 int par_rank(void);
 const int *par_node_lo(void);
-int par_couple_ranges(const int *ij, int np, int *lo);
+int par_owner_ranges(const int *tri, int stride, int n, int *lo);
+void par_share_slots(YfModel *m);
 const void *par_concat(const void *mine, int nbytes, int *rbytes);
 const void *par_exchange(const void *send, const int *sbytes, int *rbytes);
 void par_gather_ranges(void *a, const int *lo, int elem_bytes);
@@ -74,7 +76,8 @@ static inline void par_nodes(int *n0, int *n1) { (void)n0; (void)n1; }
 static inline void par_share_forces(double *fx, double *fy) { (void)fx; (void)fy; }
 static inline int par_rank(void) { return 0; }
 static inline const int *par_node_lo(void) { return NULL; }
-static inline int par_couple_ranges(const int *ij, int np, int *lo) { (void)ij; (void)np; (void)lo; return 0; }
+static inline int par_owner_ranges(const int *tri, int stride, int n, int *lo) { (void)tri; (void)stride; (void)n; (void)lo; return 0; }
+static inline void par_share_slots(YfModel *m) { (void)m; }
 static inline const void *par_concat(const void *mine, int nbytes, int *rbytes) { *rbytes = nbytes; return mine; }
 static inline const void *par_exchange(const void *send, const int *sbytes, int *rbytes) { *rbytes = *sbytes; return send; }
 static inline void par_gather_ranges(void *a, const int *lo, int elem_bytes) { (void)a; (void)lo; (void)elem_bytes; }

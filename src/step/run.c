@@ -288,6 +288,7 @@ static void thermo_nonfinite(YfSim *s, const double *v, const char *const *names
 }
 
 static void thermo_line(YfSim *s) {
+  par_need_stresses(&s->model); /* MPI: what owners hold (joints' work and damage), on every rank */
   run_energies(s);
   double ext = energy_external(s);
   double diss = s->energy.damping + s->energy.joint_dissipated + s->energy.friction;
@@ -411,6 +412,7 @@ static void stage_gather(YfSim *s) {
   const int *off = m->gather_off, *slot = m->gather_slot;
   const double *cf = m->tri.cf, *xf = m->xslot_f;
   int n0 = 0, n1 = nn;
+  par_share_slots(m); /* MPI: the slots other ranks wrote on this rank's nodes */
   par_nodes(&n0, &n1); /* MPI: the nodes this rank owns (their forces go to every rank after contact) */
   #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
   for (int i = n0; i < n1; i++) {
@@ -576,6 +578,7 @@ void run_steps(YfSim *s, long nsteps) {
     yf_stage_time[YF_ST_OUTPUT] += yf_now() - t0;
     if (s->thermo_every > 0 && s->step % s->thermo_every == 0 && k + 1 < nsteps) thermo_line(s);
     if ((k + 1) % check_every == 0) {
+      par_need_stresses(&s->model); /* MPI: owners' state whole (a collective: every rank is here) */
       run_energies(s); /* the check reads the energies of this step */
       energy_check(s);
     }
@@ -595,10 +598,10 @@ void run_steps(YfSim *s, long nsteps) {
                    "restart could be written (%s)", s->step, s->time, why);
     }
   }
+  par_need_stresses(&s->model); /* MPI: the last state whole on every rank, for what follows */
   run_energies(s);
   energy_check(s);
   thermo_line(s);
-  par_need_stresses(&s->model); /* MPI: the last state whole on every rank, for what follows */
   double wall = yf_now() - R.t_wall0;
   s->wall_s += wall;
   s->elem_steps += (double)s->model.tri.n * (double)nsteps;
