@@ -54,6 +54,7 @@ static struct {
   int *xs, *xr, *xsd, *xrd; /* par_concat / par_exchange: counts and displacements (bytes)     */
   char *xbuf;               /* their receive buffer                                            */
   size_t xcap;
+  long cross_hits;          /* contact hits of couples whose triangles two ranks own (this rank) */
 } P;
 
 static void on_exit_code(int code) {
@@ -414,6 +415,11 @@ void par_need_stresses(YfModel *m) {
 }
 
 int par_rank(void) { return P.rank; }
+
+void par_note_cross_hits(const int *ij, const int *hk, int nh) {
+  const int t1 = P.tlo[P.rank + 1]; /* couple k is this rank's: ij[2k+1] beyond its triangles is another's */
+  for (int h = 0; h < nh; h++) P.cross_hits += ij[2 * hk[h] + 1] >= t1;
+}
 const int *par_node_lo(void) { return P.size > 1 && P.halo ? P.nlo : NULL; }
 
 /* Items sorted by a triangle tri[stride k] (couples by their lower triangle, joint blocks by
@@ -507,6 +513,19 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
   double mine[3] = {P.t_elem, P.t_comm, P.bytes}, *all = NULL;
   if (P.rank == 0) all = yf_malloc(3 * (size_t)P.size * sizeof(double), "rank report");
   MPI_Gather(mine, 3, MPI_DOUBLE, all, 3, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  long cross = 0;
+  MPI_Reduce(&P.cross_hits, &cross, 1, MPI_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
+  P.cross_hits = 0;
+  /* breaks of joints whose two triangles two ranks own (the records are on every rank) */
+  long jcross = 0;
+  int nrec = 0;
+  const YfBreak *rec = joints_breaks(s, &nrec);
+  for (int i = 0; i < nrec && P.tlo; i++) {
+    int a = rec[i].triA, b = rec[i].triB, ra = 0, rb = 0;
+    while (ra < P.size - 1 && a >= P.tlo[ra + 1]) ra++;
+    while (rb < P.size - 1 && b >= P.tlo[rb + 1]) rb++;
+    jcross += ra != rb;
+  }
   if (P.rank == 0 && nsteps > 0) {
     double emax = 0, esum = 0, cmax = 0, bsum = 0;
     int tmin = P.nt, tmax = 0;
@@ -522,9 +541,10 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
     double emean = esum / P.size;
     sim_printf(s, "mpi: %d ranks x %d threads; triangles per rank %d..%d; element stage imbalance %.3f "
                "(slowest / mean rank); %.4g bytes sent per step; communication %.1f %% of wall (slowest rank); "
-               "ghost nodes per rank %d..%d (what a halo exchange would carry)\n",
+               "ghost nodes per rank %d..%d; contact hits between two ranks' triangles %ld; joints broken "
+               "across rank borders %ld (all runs so far)\n",
                P.size, s->threads, tmin, tmax, emean > 0 ? emax / emean : 1.0, bsum / (double)nsteps,
-               wall > 0 ? 100.0 * cmax / wall : 0.0, P.ghost_min, P.ghost_max);
+               wall > 0 ? 100.0 * cmax / wall : 0.0, P.ghost_min, P.ghost_max, cross, jcross);
   }
   free(all);
   P.t_elem = P.t_comm = P.bytes = 0;

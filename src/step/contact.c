@@ -894,6 +894,7 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nblk, int nbu
     if (fl != fill) free(fl);
   }
   const char *in = par_exchange(cs, sb, rb);
+  par_note_cross_hits(ij, C->hk, nh);
 
   /* 3. the owned nodes' contact forces: every rank's contributions in rank (= couple) order */
   YfNodes *nd = &s->model.node;

@@ -52,6 +52,7 @@ void par_share_forces(double *fx, double *fy);
  *                      grouped by sender, rbytes[r] from each;
  *   par_gather_ranges  an array whose elements lo[r]..lo[r+1]-1 rank r holds, whole on every rank. */
 int par_rank(void);
+void par_note_cross_hits(const int *ij, const int *hk, int nh); /* the run report's count */
 const int *par_node_lo(void);
 int par_owner_ranges(const int *tri, int stride, int n, int *lo);
 void par_share_slots(YfModel *m);
@@ -75,6 +76,7 @@ static inline void par_need_stresses(YfModel *m) { (void)m; }
 static inline void par_nodes(int *n0, int *n1) { (void)n0; (void)n1; }
 static inline void par_share_forces(double *fx, double *fy) { (void)fx; (void)fy; }
 static inline int par_rank(void) { return 0; }
+static inline void par_note_cross_hits(const int *ij, const int *hk, int nh) { (void)ij; (void)hk; (void)nh; }
 static inline const int *par_node_lo(void) { return NULL; }
 static inline int par_owner_ranges(const int *tri, int stride, int n, int *lo) { (void)tri; (void)stride; (void)n; (void)lo; return 0; }
 static inline void par_share_slots(YfModel *m) { (void)m; }
