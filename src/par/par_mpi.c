@@ -35,7 +35,7 @@ static struct {
   double *piece;            /* 3 per split-block triangle, in triangle order: kdd, bad, J      */
   int *cnt, *dsp;           /* scratch counts and displacements of an allgatherv              */
   double bytes;             /* bytes this rank sent in collectives of the current run          */
-  double t_comm, t_elem;    /* seconds in exchanges / in the element stage (this rank)         */
+  double t_comm, t_elem;    /* seconds in exchanges / in divided work: elements, joints, contact */
   int ghost_min, ghost_max; /* ghost nodes a rank would read in a halo design (measured)       */
   int fail_rank;            /* tests: this rank fails alone at its 5th element stage (-1: none) */
   long nelem;               /* element stages done by this process                             */
@@ -416,6 +416,8 @@ void par_need_stresses(YfModel *m) {
 
 int par_rank(void) { return P.rank; }
 
+void par_note_work(double secs) { P.t_elem += secs; }
+
 void par_note_cross_hits(const int *ij, const int *hk, int nh) {
   const int t1 = P.tlo[P.rank + 1]; /* couple k is this rank's: ij[2k+1] beyond its triangles is another's */
   for (int h = 0; h < nh; h++) P.cross_hits += ij[2 * hk[h] + 1] >= t1;
@@ -539,8 +541,8 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
       tmax = nt > tmax ? nt : tmax;
     }
     double emean = esum / P.size;
-    sim_printf(s, "mpi: %d ranks x %d threads; triangles per rank %d..%d; element stage imbalance %.3f "
-               "(slowest / mean rank); %.4g bytes sent per step; communication %.1f %% of wall (slowest rank); "
+    sim_printf(s, "mpi: %d ranks x %d threads; triangles per rank %d..%d; work imbalance %.3f "
+               "(elements, joints and contact kernel: slowest / mean rank); %.4g bytes sent per step; communication %.1f %% of wall (slowest rank); "
                "ghost nodes per rank %d..%d; contact hits between two ranks' triangles %ld; joints broken "
                "across rank borders %ld (all runs so far)\n",
                P.size, s->threads, tmin, tmax, emean > 0 ? emax / emean : 1.0, bsum / (double)nsteps,

@@ -742,6 +742,47 @@ static int piece(int b, int r0, int r1, int np, int *ka, int *kb) {
   return *ka == b * PAIR_BLK && (*kb == (b + 1) * PAIR_BLK || *kb == np);
 }
 
+/* The corners of this rank's hits, in couple order (A's corners, then B's): mode 0 counts the
+ * bytes for each owner of a node another rank owns (sb), 1 writes those contributions grouped by
+ * owner (fl: next place per owner), 2 adds the contributions on owned nodes into fcn. */
+typedef struct {
+  const YfContact *C;
+  const int *ij, *tv;
+  int n0, n1, S;
+  const int *nlo;
+  int *sb, *fl;
+  Contrib *cs;
+  double *fcn;
+  unsigned char *tmark;
+} HitWalk;
+
+static void walk_hits(const HitWalk *w, int nh, int mode) {
+  for (int h = 0; h < nh; h++) {
+    int k = w->C->hk[h];
+    const int *vv[2] = {w->tv + 3 * w->ij[2 * k + 1], w->tv + 3 * w->ij[2 * k]};
+    const double *f = w->C->hf + 12 * (size_t)h;
+    for (int c = 0; c < 6; c++) {
+      int i = vv[c / 3][c % 3], own = i >= w->n0 && i < w->n1;
+      if (mode == 2) {
+        if (!own) continue;
+        w->tmark[i] = 1;
+        w->fcn[2 * i] += f[2 * c];
+        w->fcn[2 * i + 1] += f[2 * c + 1];
+        continue;
+      }
+      if (own) continue;
+      int a = 0, z = w->S; /* owner: nlo[a] <= i < nlo[a + 1] */
+      while (z - a > 1) {
+        int m = (a + z) / 2;
+        if (w->nlo[m] <= i) a = m;
+        else z = m;
+      }
+      if (mode == 0) w->sb[a] += (int)sizeof(Contrib);
+      else w->cs[w->fl[a]++] = (Contrib){(double)i, f[2 * c], f[2 * c + 1]};
+    }
+  }
+}
+
 /* The kernel stage on MPI ranks (above); returns the couples the kernel dropped, -1 when the
  * list is not shared among ranks (one rank: the usual paths). */
 static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nblk, int nbusy) {
@@ -807,11 +848,13 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nblk, int nbu
   P->hk = C->hk;
   ds_room(&DS.ed, &DS.ced, (size_t)(2 * ned + 2 * nq + 2) * sizeof(double));
   double *ed = DS.ed;
+  const double tk = yf_now();
   #pragma omp parallel for schedule(dynamic, 1) if (nh >= C->par_min / 32 && nq > 1)
   for (int q = 0; q < nq; q++) {
     int xa, xb, rm = 0, whole = piece(b0 + q, k0, k1, np, &xa, &xb);
     kernel_run(P, xa, xb, hoff[q], 0, &qsum[2 * q], &qsum[2 * q + 1], &rm, whole ? NULL : ed + 2 * eoff[q]);
   }
+  par_note_work(yf_now() - tk);
   for (int k = 0; k < k0; k++) if (alive[k] == 2) alive[k] = 1;
   for (int k = k1; k < np; k++) if (alive[k] == 2) alive[k] = 1;
 
@@ -863,36 +906,17 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nblk, int nbu
   /* 2. hits on other ranks' nodes to their owners, in couple order */
   const int *ij = P->ij, *tv = P->tv;
   for (int r = 0; r < S; r++) sb[r] = 0;
+  /* grouped by owner: count, then fill */
+  int fill[64], *fl = S <= 64 ? fill : yf_calloc((size_t)S, sizeof(int), "contact exchange");
+  HitWalk w = {C, ij, tv, n0, n1, S, nlo, sb, fl, NULL, NULL, NULL};
+  walk_hits(&w, nh, 0);
   size_t ncon = 0;
-  for (int h = 0; h < nh; h++) {
-    int k = C->hk[h];
-    const int *vv[2] = {tv + 3 * ij[2 * k + 1], tv + 3 * ij[2 * k]};
-    for (int c = 0; c < 6; c++) {
-      int i = vv[c / 3][c % 3];
-      if (i < n0 || i >= n1) ncon++;
-    }
-  }
+  for (int r = 0; r < S; r++) { fl[r] = (int)ncon; ncon += (size_t)sb[r] / sizeof(Contrib); }
   ds_room(&DS.send, &DS.csend, (ncon + 1) * sizeof(Contrib));
   Contrib *cs = DS.send;
-  /* grouped by owner: count, then fill (the owner of node i: the range holding it) */
-  for (int pass = 0; pass < 2; pass++) {
-    int fill[64], *fl = S <= 64 ? fill : yf_calloc((size_t)S, sizeof(int), "contact exchange");
-    if (pass) for (int r = 0, t = 0; r < S; r++) { fl[r] = t; t += sb[r] / (int)sizeof(Contrib); }
-    for (int h = 0; h < nh; h++) {
-      int k = C->hk[h];
-      const int *vv[2] = {tv + 3 * ij[2 * k + 1], tv + 3 * ij[2 * k]};
-      const double *f = C->hf + 12 * (size_t)h;
-      for (int c = 0; c < 6; c++) {
-        int i = vv[c / 3][c % 3];
-        if (i >= n0 && i < n1) continue;
-        int a = 0, z = S; /* owner: nlo[a] <= i < nlo[a + 1] */
-        while (z - a > 1) { int m = (a + z) / 2; if (nlo[m] <= i) a = m; else z = m; }
-        if (!pass) sb[a] += (int)sizeof(Contrib);
-        else cs[fl[a]++] = (Contrib){(double)i, f[2 * c], f[2 * c + 1]};
-      }
-    }
-    if (fl != fill) free(fl);
-  }
+  w.cs = cs;
+  walk_hits(&w, nh, 1);
+  if (fl != fill) free(fl);
   const char *in = par_exchange(cs, sb, rb);
   par_note_cross_hits(ij, C->hk, nh);
 
@@ -900,32 +924,23 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nblk, int nbu
   YfNodes *nd = &s->model.node;
   double *fcn = C->fcn;
   unsigned char *tmark = C->tmark;
+  w.fcn = fcn;
+  w.tmark = tmark;
   for (int i = n0; i < n1; i++)
     if (tmark[i]) { fcn[2 * i] = fcn[2 * i + 1] = 0.0; tmark[i] = 0; }
   for (int r = 0; r < S; r++) {
     if (r == me) {
-      for (int h = 0; h < nh; h++) {
-        int k = C->hk[h];
-        const int *vv[2] = {tv + 3 * ij[2 * k + 1], tv + 3 * ij[2 * k]};
-        const double *f = C->hf + 12 * (size_t)h;
-        for (int c = 0; c < 6; c++) {
-          int i = vv[c / 3][c % 3];
-          if (i < n0 || i >= n1) continue;
-          tmark[i] = 1;
-          fcn[2 * i] += f[2 * c];
-          fcn[2 * i + 1] += f[2 * c + 1];
-        }
-      }
-    } else {
-      const Contrib *cr = (const Contrib *)in;
-      for (int t = 0; t < rb[r] / (int)sizeof(Contrib); t++) {
-        int i = (int)cr[t].i;
-        tmark[i] = 1;
-        fcn[2 * i] += cr[t].fx;
-        fcn[2 * i + 1] += cr[t].fy;
-      }
+      walk_hits(&w, nh, 2);
+      continue;
     }
-    if (r != me) in += rb[r];
+    const Contrib *cr = (const Contrib *)in;
+    for (int t = 0; t < rb[r] / (int)sizeof(Contrib); t++) {
+      int i = (int)cr[t].i;
+      tmark[i] = 1;
+      fcn[2 * i] += cr[t].fx;
+      fcn[2 * i + 1] += cr[t].fy;
+    }
+    in += rb[r];
   }
   for (int i = n0; i < n1; i++)
     if (tmark[i]) { nd->fx[i] += fcn[2 * i]; nd->fy[i] += fcn[2 * i + 1]; }
@@ -1048,24 +1063,8 @@ void contact_step(YfSim *s) {
   double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
   unsigned char *tmark = C->tmark;
   const int nn = nd->n;
-  int kdrop = kernel_ranks(s, C, &P, nblk, nbusy); /* MPI: each rank its couples (above) */
-  if (kdrop >= 0) {
-    int removed = kdrop;
-    double esum = 0.0, dsum = 0.0;
-    for (int b = 0; b < nblk; b++) {
-      esum += C->blk_e[b];
-      dsum += C->blk_d[b];
-      removed += C->blk_rm[b];
-    }
-    s->energy.contact = esum;
-    s->energy.friction += dsum;
-    C->pairs.ng = ng;
-    C->fcn_valid = 1;
-    contact_compact(C, removed);
-    yf_stage_time[YF_ST_CONTACT] += yf_now() - t1;
-    return;
-  }
-  if (serial) {
+  const int kdrop = kernel_ranks(s, C, &P, nblk, nbusy); /* MPI: each rank its couples (above); -1: one rank */
+  if (kdrop < 0 && serial) {
     for (int i = 0; i < nn; i++)
       if (tmark[i]) { fcn[2 * i] = fcn[2 * i + 1] = 0.0; tmark[i] = 0; }
     P.fcn = fcn;
@@ -1073,7 +1072,7 @@ void contact_step(YfSim *s) {
     for (int b = 0; b < nblk; b++) kernel_block(C, &P, b);
     for (int i = 0; i < nn; i++)
       if (tmark[i]) { fx[i] += fcn[2 * i]; fy[i] += fcn[2 * i + 1]; }
-  } else {
+  } else if (kdrop < 0) {
     hit_room(C, nbusy); /* rarely grows: see hit_room */
     P.hf = C->hf;
     P.hk = C->hk;
@@ -1081,7 +1080,7 @@ void contact_step(YfSim *s) {
     for (int b = 0; b < nblk; b++) kernel_block(C, &P, b);
   }
   double esum = 0.0, dsum = 0.0;
-  int removed = 0;
+  int removed = kdrop > 0 ? kdrop : 0;
   for (int b = 0; b < nblk; b++) {
     esum += C->blk_e[b];
     dsum += C->blk_d[b];
@@ -1097,7 +1096,7 @@ void contact_step(YfSim *s) {
    * same order (and bits) on any thread count. */
   const int *hk = C->hk;
   const double *hf = C->hf;
-  if (!serial)
+  if (!serial && kdrop < 0)
   #pragma omp parallel if (nbusy >= C->par_min / 8 && nn >= C->par_min)
   {
     int nth = 1, me = 0;

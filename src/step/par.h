@@ -53,6 +53,7 @@ void par_share_forces(double *fx, double *fy);
  *   par_gather_ranges  an array whose elements lo[r]..lo[r+1]-1 rank r holds, whole on every rank. */
 int par_rank(void);
 void par_note_cross_hits(const int *ij, const int *hk, int nh); /* the run report's count */
+void par_note_work(double secs); /* divided work of this rank (the report's imbalance) */
 const int *par_node_lo(void);
 int par_owner_ranges(const int *tri, int stride, int n, int *lo);
 void par_share_slots(YfModel *m);
@@ -77,6 +78,7 @@ static inline void par_nodes(int *n0, int *n1) { (void)n0; (void)n1; }
 static inline void par_share_forces(double *fx, double *fy) { (void)fx; (void)fy; }
 static inline int par_rank(void) { return 0; }
 static inline void par_note_cross_hits(const int *ij, const int *hk, int nh) { (void)ij; (void)hk; (void)nh; }
+static inline void par_note_work(double secs) { (void)secs; }
 static inline const int *par_node_lo(void) { return NULL; }
 static inline int par_owner_ranges(const int *tri, int stride, int n, int *lo) { (void)tri; (void)stride; (void)n; (void)lo; return 0; }
 static inline void par_share_slots(YfModel *m) { (void)m; }
