@@ -1,8 +1,9 @@
 /* par_mpi.c: MPI ranks for ./yfdem_mpi (see par.h for what is shared and what is replicated).
  *
- * Owns: the rank and size, the element-stage ownership (block ranges per rank), the collective
- * exchanges of corner forces, block results and stresses, the traffic and time counters of the
- * run report, the deck read from stdin, and the error exit of a rank.
+ * Owns: the rank and size, triangle and node ownership (ranges per rank), the slot halo, the
+ * element stage's block ranges, the exchanges (node forces, block results, stresses, and the
+ * generic concat / exchange / range gather that contact.c and joint.c use), the traffic, time
+ * and cross-rank counters of the run report, the deck read from stdin, and the error exit.
  *
  * Errors.  Every rank runs the same deck on the same data, so a deck error or a numerical
  * failure is met by every rank at the same place (block results are shared before they are

@@ -722,8 +722,8 @@ static void contact_compact(YfContact *C, int removed) {
 typedef struct { double i, fx, fy; } Contrib; /* a hit's force on a node another rank owns */
 
 static struct {
-  void *ed, *drop, *send, *pc, *sum;
-  size_t ced, cdrop, csend, cpc, csum;
+  void *ed, *drop, *send, *sum, *hof;
+  size_t ced, cdrop, csend, csum, chof;
   int *lo, *rb, *sb;
   int nlo;
 } DS;
@@ -783,11 +783,10 @@ static void walk_hits(const HitWalk *w, int nh, int mode) {
   }
 }
 
-/* The kernel stage on MPI ranks (above); returns the couples the kernel dropped, -1 when the
- * list is not shared among ranks (one rank: the usual paths). */
-static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nblk, int nbusy) {
-  const int S = par_size(), me = par_rank();
-  if (S <= 1) return -1;
+/* MPI: the couple ranges of the ranks (DS.lo) for the current list; 0 on one rank. */
+static int couple_ranges(const int *ij, int np) {
+  const int S = par_size();
+  if (S <= 1) return 0;
   if (DS.nlo < S + 1) {
     free(DS.lo); free(DS.rb); free(DS.sb);
     DS.lo = yf_malloc(((size_t)S + 1) * sizeof(int), "contact ranges");
@@ -795,44 +794,57 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nblk, int nbu
     DS.sb = yf_malloc(((size_t)S + 1) * sizeof(int), "contact ranges");
     DS.nlo = S + 1;
   }
+  return par_owner_ranges(ij, 2, np, DS.lo);
+}
+
+/* The kernel stage on MPI ranks (above), after the screen of this rank's couples (which marked
+ * its drops 3); *ng: friction slots in use, updated.  Returns the couples dropped this step by
+ * the screens and kernels of all ranks. */
+static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nbusy, int *ng) {
+  const int S = par_size(), me = par_rank();
   int *lo = DS.lo, *rb = DS.rb, *sb = DS.sb;
-  if (!par_owner_ranges(P->ij, 2, P->np, lo)) return -1;
   const int *nlo = par_node_lo();
   const int np = P->np, k0 = lo[me], k1 = lo[me + 1], n0 = nlo[me], n1 = nlo[me + 1];
   int *gi = P->gi;
   unsigned char *alive = P->alive;
-  /* friction slots of first contacts, numbered in couple order from each block's offset as the
-   * one-rank kernel numbers them, on every rank (the numbering is the same everywhere) */
-  for (int b = 0; b < nblk; b++) {
-    if (!C->blk_need[b]) continue;
-    int slot = C->blk_goff[b], kend = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np;
-    for (int k = b * PAIR_BLK; k < kend; k++)
-      if (alive[k] == 2 && gi[k] < 0) {
-        gi[k] = slot++;
-        memset(P->gmem + 6 * (size_t)gi[k], 0, 6 * sizeof(double));
-      }
+  /* 0. first contacts and the screen's drops, to every rank: friction slots are numbered in
+   * couple order (as the one-rank kernel numbers them: each block from its offset), and the list
+   * stays the same everywhere */
+  int nneed = 0, nsd = 0;
+  for (int k = k0; k < k1; k++) {
+    nneed += alive[k] == 2 && gi[k] < 0;
+    nsd += alive[k] == 3;
   }
-  /* touching couples of every rank's pieces of split blocks (the marks of the screen, the same on
-   * every rank, before any kernel runs): how many (e, d) pairs each piece sends */
-  ds_room(&DS.pc, &DS.cpc, (size_t)(4 * S + 4) * sizeof(int));
-  int *pcnt = DS.pc, npcs = 0; /* in rank order, then block order: at most 2 per rank */
+  ds_room(&DS.drop, &DS.cdrop, (size_t)(nneed + nsd + 2) * sizeof(int));
+  int *ev = DS.drop, *o0 = ev + 1;
+  ev[0] = nneed;
+  for (int k = k0; k < k1; k++)
+    if (alive[k] == 2 && gi[k] < 0) *o0++ = k;
+  for (int k = k0; k < k1; k++)
+    if (alive[k] == 3) { *o0++ = k; alive[k] = 0; }
+  const int *e0 = par_concat(ev, (int)((o0 - ev) * (long)sizeof(int)), rb);
+  int removed = 0, slot = *ng, need_all = 0;
+  for (int r = 0, t = 0; r < S; t += rb[r] / (int)sizeof(int), r++) need_all += e0[t];
+  contact_pairs_greserve(&C->pairs, *ng + need_all);
+  P->gmem = C->pairs.g;
   for (int r = 0; r < S; r++) {
-    if (lo[r + 1] <= lo[r]) continue;
-    for (int b = lo[r] / PAIR_BLK; b <= (lo[r + 1] - 1) / PAIR_BLK; b++) {
-      int xa, xb;
-      if (piece(b, lo[r], lo[r + 1], np, &xa, &xb)) continue;
-      int c = 0;
-      for (int k = xa; k < xb; k++) c += alive[k] == 2;
-      pcnt[npcs++] = c;
+    const int n = rb[r] / (int)sizeof(int);
+    for (int t = 1; t <= e0[0]; t++) {
+      gi[e0[t]] = slot++;
+      memset(P->gmem + 6 * (size_t)gi[e0[t]], 0, 6 * sizeof(double));
     }
+    for (int t = e0[0] + 1; t < n; t++) alive[e0[t]] = 0;
+    removed += n - 1 - e0[0];
+    e0 += n;
   }
+  *ng = slot;
   /* this rank's pieces: hits numbered from 0 in couple order */
   const int b0 = k0 / PAIR_BLK, b1 = k1 > k0 ? (k1 - 1) / PAIR_BLK + 1 : b0, nq = b1 - b0;
   ds_room(&DS.sum, &DS.csum, (size_t)(4 * nq + 4) * sizeof(double));
   double *qsum = DS.sum; /* e, d per piece */
   int nh = 0, ned = 0;
-  ds_room(&DS.drop, &DS.cdrop, (size_t)(3 * nq + 3) * sizeof(int));
-  int *hoff = DS.drop, *eoff = hoff + nq + 1;
+  ds_room(&DS.hof, &DS.chof, (size_t)(3 * nq + 3) * sizeof(int));
+  int *hoff = DS.hof, *eoff = hoff + nq + 1;
   for (int q = 0; q < nq; q++) {
     int xa, xb, whole = piece(b0 + q, k0, k1, np, &xa, &xb), c = 0;
     if (whole) c = C->blk_busy[b0 + q];
@@ -855,8 +867,6 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nblk, int nbu
     kernel_run(P, xa, xb, hoff[q], 0, &qsum[2 * q], &qsum[2 * q + 1], &rm, whole ? NULL : ed + 2 * eoff[q]);
   }
   par_note_work(yf_now() - tk);
-  for (int k = 0; k < k0; k++) if (alive[k] == 2) alive[k] = 1;
-  for (int k = k1; k < np; k++) if (alive[k] == 2) alive[k] = 1;
 
   /* 1. to every rank: the whole blocks' sums, the split pieces' pairs, then the dropped couples */
   int nwhole = 0;
@@ -866,19 +876,25 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nblk, int nbu
   }
   int ndrop = 0;
   for (int h = 0; h < nh; h++) ndrop += !alive[C->hk[h]];
-  size_t nsend = (size_t)(2 * nwhole + 2 * ned) * sizeof(double) + (size_t)ndrop * sizeof(int);
+  size_t nsend = (size_t)(2 * nwhole + 2 * ned + 2) * sizeof(double) + (size_t)ndrop * sizeof(int);
   ds_room(&DS.send, &DS.csend, nsend + 16);
   double *o = DS.send;
   for (int q = 0; q < nq; q++) {
     int xa, xb;
     if (piece(b0 + q, k0, k1, np, &xa, &xb)) { *o++ = qsum[2 * q]; *o++ = qsum[2 * q + 1]; }
   }
-  memcpy(o, ed, (size_t)(2 * ned) * sizeof(double));
-  int *od = (int *)(o + 2 * ned);
+  for (int q = 0; q < nq; q++) { /* split pieces: how many touching couples, then their pairs */
+    int xa, xb;
+    if (piece(b0 + q, k0, k1, np, &xa, &xb)) continue;
+    int c = q + 1 < nq ? eoff[q + 1] - eoff[q] : ned - eoff[q];
+    *o++ = c;
+    memcpy(o, ed + 2 * eoff[q], (size_t)(2 * c) * sizeof(double));
+    o += 2 * c;
+  }
+  int *od = (int *)o;
   for (int h = 0; h < nh; h++)
     if (!alive[C->hk[h]]) *od++ = C->hk[h];
-  const char *all = par_concat(DS.send, (int)nsend, rb);
-  int removed = 0, ip = 0;
+  const char *all = par_concat(DS.send, (int)((char *)od - (char *)DS.send), rb);
   for (int r = 0; r < S; r++, all += rb[r - 1]) {
     const double *a = (const double *)all;
     if (lo[r + 1] <= lo[r]) {
@@ -892,8 +908,8 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nblk, int nbu
       if (piece(b, lo[r], lo[r + 1], np, &xa, &xb)) continue;
       /* a split block: its touching couples in couple order, rank after rank */
       double e = xa == b * PAIR_BLK ? 0.0 : C->blk_e[b], d = xa == b * PAIR_BLK ? 0.0 : C->blk_d[b];
-      for (int t = 0; t < pcnt[ip]; t++, a += 2) { e += a[0]; d += a[1]; }
-      ip++;
+      int c = (int)*a++;
+      for (int t = 0; t < c; t++, a += 2) { e += a[0]; d += a[1]; }
       C->blk_e[b] = e;
       C->blk_d[b] = d;
     }
@@ -1020,15 +1036,19 @@ void contact_step(YfSim *s) {
   const double rem2 = 4.0 * C->buffer * C->buffer;
   const int *mlaw = C->mlaw;
   double *gmem = C->pairs.g;
+  /* MPI: this rank screens its own couples only (kernel_ranks), marking its drops 3 */
+  const int dist = couple_ranges(ij, np);
+  const int s0 = dist ? DS.lo[par_rank()] : 0, s1 = dist ? DS.lo[par_rank() + 1] : np;
+  const unsigned char dropped = dist ? 3 : 0;
   #pragma omp parallel for schedule(static) if (np >= C->par_min && nblk > 1)
   for (int b = 0; b < nblk; b++) {
-    int k1 = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np, rm = 0, busy = 0, need = 0;
-    for (int k = b * PAIR_BLK; k < k1; k++) {
+    int k1 = (b + 1) * PAIR_BLK < s1 ? (b + 1) * PAIR_BLK : s1, rm = 0, busy = 0, need = 0;
+    for (int k = b * PAIR_BLK > s0 ? b * PAIR_BLK : s0; k < k1; k++) {
       if (!alive[k]) continue;
       const double *ra = tg + (size_t)YF_TRI_GEOM * ij[2 * k + 1], *rb = tg + (size_t)YF_TRI_GEOM * ij[2 * k];
       int q = contact_pair_quiet(ra, rb, rem2);
       if (q == 0) { alive[k] = 2; busy++; need += gi[k] < 0; }
-      else if (q == 2) { alive[k] = 0; rm++; }
+      else if (q == 2) { alive[k] = dropped; rm++; }
       else if (gi[k] >= 0 && mlaw[tmat[ij[2 * k]]] != YF_FRIC_Y2D && mlaw[tmat[ij[2 * k + 1]]] != YF_FRIC_Y2D)
         memset(gmem + 6 * (size_t)gi[k], 0, 6 * sizeof *gmem); /* apart: the Coulomb springs let go */
     }
@@ -1063,7 +1083,7 @@ void contact_step(YfSim *s) {
   double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
   unsigned char *tmark = C->tmark;
   const int nn = nd->n;
-  const int kdrop = kernel_ranks(s, C, &P, nblk, nbusy); /* MPI: each rank its couples (above); -1: one rank */
+  const int kdrop = dist ? kernel_ranks(s, C, &P, nbusy, &ng) : -1; /* MPI: each rank its couples (above) */
   if (kdrop < 0 && serial) {
     for (int i = 0; i < nn; i++)
       if (tmark[i]) { fcn[2 * i] = fcn[2 * i + 1] = 0.0; tmark[i] = 0; }
@@ -1080,12 +1100,13 @@ void contact_step(YfSim *s) {
     for (int b = 0; b < nblk; b++) kernel_block(C, &P, b);
   }
   double esum = 0.0, dsum = 0.0;
-  int removed = kdrop > 0 ? kdrop : 0;
+  int removed = 0;
   for (int b = 0; b < nblk; b++) {
     esum += C->blk_e[b];
     dsum += C->blk_d[b];
     removed += C->blk_rm[b];
   }
+  if (dist) removed = kdrop; /* blk_rm counted this rank's screen only */
   s->energy.contact = esum;
   s->energy.friction += dsum;
   C->pairs.ng = ng;

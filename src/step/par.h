@@ -2,17 +2,19 @@
  * with -DYF_MPI; the implementation is src/par/par_mpi.c, a layer above the step).  In ./yfdem every hook is an inline no-op and MPI is not
  * linked.
  *
- * This first version distributes the element force stage, the step's largest cost, and
- * replicates everything else (docs/SCALING.md):
+ * The work of a step is divided by ownership and the state is replicated (docs/SCALING.md):
  *   - every rank runs the whole deck and holds the whole scene (memory is not divided);
- *   - rank r computes the corner forces of the triangles of its METIS parts (a contiguous range
- *     of the partition order); the step's fixed 2048-triangle blocks that straddle two ranks are
- *     summed from per-triangle results in triangle order, so every block sum has its one-rank bits;
- *   - the corner forces and the per-block results are shared (allgather), so every rank gathers
- *     every node's force from the same slots in the same order, and joints, contact, supports,
- *     loads and the update run on every rank on identical data: the same bits as one rank;
- *   - stresses are shared only when a frame or a metrics sample reads them (io calls
- *     par_need_stresses), and at the end of a run;
+ *   - rank r owns the triangles of its METIS parts (a contiguous range of the partition order)
+ *     and the nodes their first triangle is r's (a contiguous range too); it computes its
+ *     triangles' forces, the joint blocks and the contact couples whose lower triangle it owns;
+ *   - the forces other ranks' nodes need go to their owners (slot halo, contact contributions);
+ *     each owner sums its nodes' forces in the one-rank slot and couple order; every rank then
+ *     gets every node's force and runs supports, loads and the update on identical data: the
+ *     same bits as one rank;
+ *   - block sums that straddle ranks are summed from per-item results in order; joint events and
+ *     dropped couples go to every rank, so records and lists stay the same everywhere;
+ *   - what only owners hold (stresses, joint state, friction memory, node contact forces) is
+ *     gathered when read (par_need_stresses: thermo, energy checks, frames, metrics, restarts);
  *   - only rank 0 prints and writes files (yf_writer); an error stops every rank (par_mpi.c).
  */
 #ifndef YF_PAR_H
@@ -34,8 +36,8 @@ void par_blocks(int *b0, int *b1);      /* the blocks this rank sums whole: [b0,
  * triangle, its J). */
 void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_bad, double *blk_badJ,
                         double t_elem);
-/* Every triangle's stress on every rank (a collective: every rank calls it at the same point;
- * a no-op when they are already shared since the last element stage). */
+/* Every triangle's stress, and what contact and joints keep on owners, on every rank (a
+ * collective: every rank calls it at the same point; a no-op when shared since the last step). */
 void par_need_stresses(YfModel *m);
 /* Halo mode: the nodes this rank sums the force of, [n0, n1) (unchanged when every rank sums
  * every node); then par_share_forces gives every rank every node's force from its owner. */
