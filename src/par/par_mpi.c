@@ -56,6 +56,7 @@ static struct {
   char *xbuf;               /* their receive buffer                                            */
   size_t xcap;
   long cross_hits;          /* contact hits of couples whose triangles two ranks own (this rank) */
+  double hbytes;            /* of bytes: what went to one rank only (slot halo, contact hits)  */
 } P;
 
 static void on_exit_code(int code) {
@@ -375,6 +376,7 @@ void par_share_slots(YfModel *m) {
     P.sbuf[2 * k + 1] = f[1];
   }
   P.bytes += (double)P.sdsp[P.size] * sizeof(double);
+  P.hbytes += (double)P.sdsp[P.size] * sizeof(double);
   MPI_Alltoallv(P.sbuf, P.scnt, P.sdsp, MPI_DOUBLE, P.rbuf, P.rcnt, P.rdsp, MPI_DOUBLE, MPI_COMM_WORLD);
   for (int k = 0; k < P.rdsp[P.size] / 2; k++) {
     int q = P.rslot[k];
@@ -487,6 +489,7 @@ const void *par_exchange(const void *send, const int *sbytes, int *rbytes) {
   }
   xroom(tot);
   P.bytes += (double)(st - sbytes[P.rank]);
+  P.hbytes += (double)(st - sbytes[P.rank]);
   MPI_Alltoallv(send, sbytes, P.xsd, MPI_BYTE, P.xbuf, rbytes, P.xrd, MPI_BYTE, MPI_COMM_WORLD);
   P.t_comm += yf_now() - t0;
   return P.xbuf;
@@ -513,9 +516,9 @@ int par_any(int flag) {
 
 /* After a run: what each rank computed and sent, as measured on every rank. */
 void par_run_report(YfSim *s, long nsteps, double wall) {
-  double mine[3] = {P.t_elem, P.t_comm, P.bytes}, *all = NULL;
-  if (P.rank == 0) all = yf_malloc(3 * (size_t)P.size * sizeof(double), "rank report");
-  MPI_Gather(mine, 3, MPI_DOUBLE, all, 3, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  double mine[4] = {P.t_elem, P.t_comm, P.bytes, P.hbytes}, *all = NULL;
+  if (P.rank == 0) all = yf_malloc(4 * (size_t)P.size * sizeof(double), "rank report");
+  MPI_Gather(mine, 4, MPI_DOUBLE, all, 4, MPI_DOUBLE, 0, MPI_COMM_WORLD);
   long cross = 0;
   MPI_Reduce(&P.cross_hits, &cross, 1, MPI_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
   P.cross_hits = 0;
@@ -530,25 +533,27 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
     jcross += ra != rb;
   }
   if (P.rank == 0 && nsteps > 0) {
-    double emax = 0, esum = 0, cmax = 0, bsum = 0;
+    double emax = 0, esum = 0, cmax = 0, bsum = 0, hmax = 0;
     int tmin = P.nt, tmax = 0;
     for (int r = 0; r < P.size; r++) {
-      emax = all[3 * r] > emax ? all[3 * r] : emax;
-      esum += all[3 * r];
-      cmax = all[3 * r + 1] > cmax ? all[3 * r + 1] : cmax;
-      bsum += all[3 * r + 2];
+      emax = all[4 * r] > emax ? all[4 * r] : emax;
+      esum += all[4 * r];
+      cmax = all[4 * r + 1] > cmax ? all[4 * r + 1] : cmax;
+      bsum += all[4 * r + 2];
+      hmax = all[4 * r + 3] > hmax ? all[4 * r + 3] : hmax;
       int nt = P.tlo[r + 1] - P.tlo[r];
       tmin = nt < tmin ? nt : tmin;
       tmax = nt > tmax ? nt : tmax;
     }
     double emean = esum / P.size;
     sim_printf(s, "mpi: %d ranks x %d threads; triangles per rank %d..%d; work imbalance %.3f "
-               "(elements, joints and contact kernel: slowest / mean rank); %.4g bytes sent per step; communication %.1f %% of wall (slowest rank); "
+               "(elements, joints and contact kernel: slowest / mean rank); %.4g bytes sent per step (border "
+               "halo %.4g from the busiest rank); communication %.1f %% of wall (slowest rank); "
                "ghost nodes per rank %d..%d; contact hits between two ranks' triangles %ld; joints broken "
                "across rank borders %ld (all runs so far)\n",
-               P.size, s->threads, tmin, tmax, emean > 0 ? emax / emean : 1.0, bsum / (double)nsteps,
+               P.size, s->threads, tmin, tmax, emean > 0 ? emax / emean : 1.0, bsum / (double)nsteps, hmax / (double)nsteps,
                wall > 0 ? 100.0 * cmax / wall : 0.0, P.ghost_min, P.ghost_max, cross, jcross);
   }
   free(all);
-  P.t_elem = P.t_comm = P.bytes = 0;
+  P.t_elem = P.t_comm = P.bytes = P.hbytes = 0;
 }
