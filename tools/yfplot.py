@@ -211,8 +211,13 @@ def cmd_cracks(a):
         nb = len(done)
         no = sum(1 for b in shown if b["time"] <= tf)
         nfr = len(np.unique(lab[fr["body"] == a.body]))
-        ax.set_title("t = %.3g ms: %s%d broken joints, %d pieces of the body" %
-                     (tf * 1e3, "%d opened, " % no if a.opened else "", nb, nfr), fontsize=10)
+        # side by side, the panels are narrow: the counts go on a second line of the title
+        if a.layout == "row":
+            ax.set_title("t = %.3g ms\n%s%d broken joints\n%d pieces of the body" %
+                         (tf * 1e3, "%d opened, " % no if a.opened else "", nb, nfr), fontsize=10)
+        else:
+            ax.set_title("t = %.3g ms: %s%d broken joints, %d pieces of the body" %
+                         (tf * 1e3, "%d opened, " % no if a.opened else "", nb, nfr), fontsize=10)
         ax.set_aspect("equal")
         ax.autoscale_view()
         if a.xlim:
@@ -232,7 +237,8 @@ def cmd_cracks(a):
         fig.legend(h, l, loc="lower center", ncol=3, fontsize=9)
     if a.title:
         fig.suptitle(a.title)
-    fig.tight_layout(rect=(0, 0.04, 1, 0.97))
+    # room for the legend under the panels (a single row of panels is short: a larger share)
+    fig.tight_layout(rect=(0, 0.09 if a.layout == "row" else 0.04, 1, 0.97))
     fig.savefig(a.o, dpi=a.dpi)
     print("yfplot: wrote", a.o)
 

@@ -12,6 +12,9 @@
  *   /meta/{version, nnode, ntri, njoint, topo_hash, complete}
  *   /sim/{step, time, dt, last_step, energy (7), elem_steps, wall_s, e_budget}
  *   /nodes/{x, y, x0, y0, vx, vy, fx, fy, m}                      (nnode each, [m], [m/s], [N/m], [kg/m])
+ *   /tris/s (3 ntri: sxx, syy, sxy [Pa])  the stresses of the step's element stage: a frame due on
+ *            the restart's step is written again by the continued run, and must be the live one's
+ *            (they cannot be recomputed: they belong to the positions at the start of that step)
  *   /joints/{k, fs, dmg(3), w, z, f(8), state, mode, pend, nbroken, diss_broken, dt_prev,
  *            rec_step, rec_d(4: time x y length), rec_i(4: mode triA triB joint), rng_SET}
  *   /contact/{ij(2), g(6), alive, nlive, ndead, travel, nsearch, broken_seen,
@@ -252,6 +255,10 @@ static void write_all(W *w, YfSim *s) {
   put(w, g, "m", H5T_NATIVE_DOUBLE, nn, N->m);
   gclose(g);
 
+  g = group(w, "tris");
+  put(w, g, "s", H5T_NATIVE_DOUBLE, 3 * (size_t)m->tri.n, m->tri.s);
+  gclose(g);
+
   const YfJoints *J = s->joints;
   if (J && J->n) {
     size_t nj = (size_t)J->n;
@@ -322,7 +329,7 @@ int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
     if (err) snprintf(err, nerr, "the model is not prepared yet (write_restart needs a run or read_restart first)");
     return -1;
   }
-  par_need_stresses(&s->model); /* MPI: what owners hold (stresses, friction memory), whole on every rank */
+  par_need_stresses(&s->model); /* MPI: every rank is here; rank 0 needs what owners hold (stresses, joints, friction) */
   if (!yf_writer()) return 0; /* under MPI rank 0 writes the (replicated) state */
   yf_h5_quiet();
   size_t L = strlen(path);
@@ -491,6 +498,15 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   get(&r, g, "fy", H5T_NATIVE_DOUBLE, nn, N->fy);
   get(&r, g, "m", H5T_NATIVE_DOUBLE, nn, N->m);
   H5Gclose(g);
+  /* stresses (absent in restarts written before they were stored: the first frame then shows the
+   * stresses the deck's own preparation left) */
+  if (H5Lexists(r.file, "tris", H5P_DEFAULT) > 0) {
+    g = ropen(&r, "tris");
+    if (dlen(g, "s") != 3 * (long)m->tri.n) rfail(&r, "tris/s: not 3 stresses per triangle");
+    get(&r, g, "s", H5T_NATIVE_DOUBLE, 3 * (size_t)m->tri.n, m->tri.s);
+    H5Gclose(g);
+    m->stress_restored = 1;
+  }
 
   YfJoints *J = s->joints;
   if (J && J->n) {

@@ -110,6 +110,8 @@ typedef struct {
   const int *xslot_node;
   double *xslot_f;
   int prepared;    /* model_prepare done for the current topology               */
+  int stress_restored; /* tri.s was read from a restart: it holds the stresses of the restart's
+                        * step (element stage), which the next run's first frame must show */
   /* partition (partition.c): set by the deck's `partition`, applied once at the first run.
    * Triangles of part p are part_tri[p]..part_tri[p+1]-1, and nodes are numbered in the order
    * their triangles are met, so each part's data is contiguous.  tri_new maps a triangle index of

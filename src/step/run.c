@@ -554,11 +554,13 @@ void run_steps(YfSim *s, long nsteps) {
   run_energies(s);
   energy_run_begin(s, R.e_floor);
   s->run_end_step = s->step + nsteps;
-  {
-    /* stresses of the current state, so the run's first frame shows them */
+  if (!s->model.stress_restored) {
+    /* stresses of the current state, so the run's first frame shows them (a restart's are those
+     * of its step's element stage, as the uninterrupted run's frame of that step shows them) */
     YfTriPass p;
     tri_forces(&s->model, R.tm, 0, s->model.tri.n, &p);
   }
+  s->model.stress_restored = 0;
   YfEvent ev = {.kind = YF_EV_RUN_BEGIN};
   sim_notify(s, &ev);
   double stage0[YF_NSTAGE];
