@@ -36,11 +36,14 @@ static struct {
   double *piece;            /* 3 per split-block triangle, in triangle order: kdd, bad, J      */
   int *cnt, *dsp;           /* scratch counts and displacements of an allgatherv              */
   double bytes;             /* bytes this rank sent in collectives of the current run          */
-  double t_comm, t_elem;    /* seconds in exchanges / in divided work: elements, joints, contact */
+  double t_comm, t_elem;    /* wall seconds in exchanges / CPU seconds of divided work (elements,
+                               joints, contact screen and kernel): CPU, so a loaded machine's
+                               descheduling does not show as imbalance */
   int ghost_min, ghost_max; /* ghost nodes a rank would read in a halo design (measured)       */
   int fail_rank;            /* tests: this rank fails alone at its 5th element stage (-1: none) */
   long nelem;               /* element stages done by this process                             */
   int stress_fresh;         /* every rank's stresses shared since the last element stage        */
+  int state_fresh;          /* joints' and contact's owner state too (par_need_all)            */
   /* Node ownership (halo mode): rank r owns nodes nlo[r]..nlo[r+1]-1, the nodes whose first
    * triangle (in the partition order, which numbers nodes as its triangles meet them) is r's.
    * Only the owner sums a node's force; the corner slots another rank's triangles write on it
@@ -51,7 +54,6 @@ static struct {
   int *scnt, *sdsp, *rcnt, *rdsp; /* slot halo: doubles to / from each rank                     */
   int *sslot, *rslot;       /* corner slot of each halo value sent / received, grouped by rank */
   double *sbuf, *rbuf;
-  YfSim *sim;               /* the scene of the run (par_need_stresses gathers its owners' state) */
   int *xs, *xr, *xsd, *xrd; /* par_concat / par_exchange: counts and displacements (bytes)     */
   char *xbuf;               /* their receive buffer                                            */
   size_t xcap;
@@ -230,7 +232,6 @@ static void count_ghosts(const YfSim *s) {
 
 void par_prepare(YfSim *s, int nblk, int block) {
   const YfModel *m = &s->model;
-  P.sim = s;
   int nt = m->tri.n, S = P.size;
   if (P.tlo && P.nt == nt && P.nblk == nblk && P.block == block) return; /* the same scene */
   free(P.tlo); free(P.fb0); free(P.fb1); free(P.pcnt); free(P.pdsp); free(P.cnt); free(P.dsp); free(P.piece);
@@ -311,9 +312,9 @@ static void share_blocks(void *a, MPI_Datatype type, int size) {
 }
 
 void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_bad, double *blk_badJ, double t_elem) {
-  double t0 = yf_now();
+  double c0 = yf_cpu_now();
   int r = P.rank, B = P.block, nt = P.nt;
-  P.stress_fresh = 0;
+  P.stress_fresh = P.state_fresh = 0;
   /* this rank's head and tail pieces (triangles of blocks it shares with other ranks) */
   double *out = P.piece + 3 * (size_t)P.pdsp[r];
   int e0 = P.tlo[r], e1 = P.tlo[r + 1];
@@ -324,7 +325,7 @@ void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_ba
     for (int e = e0; e < e1; e++, out += 3) piece_one(m, tm, e, out);
   }
   double t1 = yf_now();
-  P.t_elem += t_elem + (t1 - t0);
+  P.t_elem += t_elem + (yf_cpu_now() - c0);
   if (++P.nelem == 5 && P.rank == P.fail_rank)
     yf_exit_with(YF_EXIT_NUMERIC, "error: injected failure on rank %d (YFDEM_MPI_FAIL_RANK) at its element stage %ld",
                  P.rank, P.nelem);
@@ -409,12 +410,17 @@ void par_need_stresses(YfModel *m) {
   if (P.size <= 1 || P.stress_fresh) return;
   double t0 = yf_now();
   share_tris(m->tri.s, 3);
-  P.t_comm += yf_now() - t0; /* the gathers below count their own time */
-  if (P.sim && &P.sim->model == m) { /* friction memory, node contact forces, joint state */
-    contact_par_gather(P.sim);
-    joints_par_gather(P.sim);
-  }
+  P.t_comm += yf_now() - t0;
   P.stress_fresh = 1;
+}
+
+void par_need_all(YfSim *s) {
+  if (P.size <= 1) return;
+  par_need_stresses(&s->model);
+  if (P.state_fresh) return;
+  contact_par_gather(s); /* friction memory, node contact forces */
+  joints_par_gather(s);  /* joints' forces, work, damage */
+  P.state_fresh = 1;
 }
 
 int par_rank(void) { return P.rank; }
@@ -547,11 +553,12 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
     }
     double emean = esum / P.size;
     sim_printf(s, "mpi: %d ranks x %d threads; triangles per rank %d..%d; work imbalance %.3f "
-               "(elements, joints and contact kernel: slowest / mean rank); %.4g bytes sent per step (border "
+               "(CPU of elements, joints and contact: slowest / mean rank; mean %.4g s); %.4g bytes sent per step (border "
                "halo %.4g from the busiest rank); communication %.1f %% of wall (slowest rank); "
                "ghost nodes per rank %d..%d; contact hits between two ranks' triangles %ld; joints broken "
                "across rank borders %ld (all runs so far)\n",
-               P.size, s->threads, tmin, tmax, emean > 0 ? emax / emean : 1.0, bsum / (double)nsteps, hmax / (double)nsteps,
+               P.size, s->threads, tmin, tmax, emean > 0 ? emax / emean : 1.0, emean, bsum / (double)nsteps,
+               hmax / (double)nsteps,
                wall > 0 ? 100.0 * cmax / wall : 0.0, P.ghost_min, P.ghost_max, cross, jcross);
   }
   free(all);

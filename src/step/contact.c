@@ -860,13 +860,13 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nbusy, int *n
   P->hk = C->hk;
   ds_room(&DS.ed, &DS.ced, (size_t)(2 * ned + 2 * nq + 2) * sizeof(double));
   double *ed = DS.ed;
-  const double tk = yf_now();
+  const double tk = yf_cpu_now();
   #pragma omp parallel for schedule(dynamic, 1) if (nh >= C->par_min / 32 && nq > 1)
   for (int q = 0; q < nq; q++) {
     int xa, xb, rm = 0, whole = piece(b0 + q, k0, k1, np, &xa, &xb);
     kernel_run(P, xa, xb, hoff[q], 0, &qsum[2 * q], &qsum[2 * q + 1], &rm, whole ? NULL : ed + 2 * eoff[q]);
   }
-  par_note_work(yf_now() - tk);
+  par_note_work(yf_cpu_now() - tk);
 
   /* 1. to every rank: the whole blocks' sums, the split pieces' pairs, then the dropped couples */
   int nwhole = 0;
@@ -1040,6 +1040,7 @@ void contact_step(YfSim *s) {
   const int dist = couple_ranges(ij, np);
   const int s0 = dist ? DS.lo[par_rank()] : 0, s1 = dist ? DS.lo[par_rank() + 1] : np;
   const unsigned char dropped = dist ? 3 : 0;
+  const double cs0 = dist ? yf_cpu_now() : 0.0;
   #pragma omp parallel for schedule(static) if (np >= C->par_min && nblk > 1)
   for (int b = 0; b < nblk; b++) {
     int k1 = (b + 1) * PAIR_BLK < s1 ? (b + 1) * PAIR_BLK : s1, rm = 0, busy = 0, need = 0;
@@ -1056,6 +1057,7 @@ void contact_step(YfSim *s) {
     C->blk_busy[b] = busy;
     C->blk_need[b] = need;
   }
+  if (dist) par_note_work(yf_cpu_now() - cs0); /* the screen of this rank's couples */
   int nbusy = 0, ng = C->pairs.ng;
   for (int b = 0; b < nblk; b++) {
     C->blk_off[b] = nbusy;

@@ -739,13 +739,13 @@ void joints_forces(YfSim *s) {
   /* dynamic: a block of intact joints costs a fraction of one past its peak (scalar law, softening
    * curve), and the damaged ones cluster where the scene breaks; results are per joint and per
    * block, so the schedule cannot change a bit */
-  const double t0 = yf_now();
+  const double t0 = yf_cpu_now();
   #pragma omp parallel for schedule(dynamic, 8) if (nj >= par_min)
   for (int b = b0; b < b1; b++) {
     int jb1 = (b + 1) * JBLOCK < nj ? (b + 1) * JBLOCK : nj;
     joints_block(J, N, b * JBLOCK, jb1, dtp, &J->blk_nbreak[b], &J->blk_nopen[b]);
   }
-  if (dist) par_note_work(yf_now() - t0);
+  if (dist) par_note_work(yf_cpu_now() - t0);
   if (dist) share_events(J, b0, b1);
   J->npend = 0;
   J_dirty = 1;

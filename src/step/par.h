@@ -14,7 +14,7 @@
  *   - block sums that straddle ranks are summed from per-item results in order; joint events and
  *     dropped couples go to every rank, so records and lists stay the same everywhere;
  *   - what only owners hold (stresses, joint state, friction memory, node contact forces) is
- *     gathered when read (par_need_stresses: thermo, energy checks, frames, metrics, restarts);
+ *     gathered when read (par_need_all: thermo, energy checks, frames, metrics, restarts);
  *   - only rank 0 prints and writes files (yf_writer); an error stops every rank (par_mpi.c).
  */
 #ifndef YF_PAR_H
@@ -36,9 +36,12 @@ void par_blocks(int *b0, int *b1);      /* the blocks this rank sums whole: [b0,
  * triangle, its J). */
 void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_bad, double *blk_badJ,
                         double t_elem);
-/* Every triangle's stress, and what contact and joints keep on owners, on every rank (a
- * collective: every rank calls it at the same point; a no-op when shared since the last step). */
+/* Every triangle's stress on every rank (a collective: every rank calls it at the same point; a
+ * no-op when shared since the last element stage); par_need_all: that and what joints and
+ * contact keep on owners (their forces, work, damage, friction memory, node contact forces),
+ * for energies, frames and restarts. */
 void par_need_stresses(YfModel *m);
+void par_need_all(struct YfSim *s);
 /* Halo mode: the nodes this rank sums the force of, [n0, n1) (unchanged when every rank sums
  * every node); then par_share_forces gives every rank every node's force from its owner. */
 void par_nodes(int *n0, int *n1);
@@ -76,6 +79,7 @@ static inline void par_share_elements(YfModel *m, const YfTriMat *tm, double *bl
   (void)m; (void)tm; (void)blk; (void)blk_bad; (void)blk_badJ; (void)t_elem;
 }
 static inline void par_need_stresses(YfModel *m) { (void)m; }
+static inline void par_need_all(struct YfSim *s) { (void)s; }
 static inline void par_nodes(int *n0, int *n1) { (void)n0; (void)n1; }
 static inline void par_share_forces(double *fx, double *fy) { (void)fx; (void)fy; }
 static inline int par_rank(void) { return 0; }

@@ -58,6 +58,13 @@ double yf_now(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* CPU seconds of the process, all threads (MPI: the work a rank did, whatever the machine's load). */
+double yf_cpu_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 /* Build the node -> slot gather lists (CSR): triangle corners (slots 0..3 ntri-1) then the extra
  * slots (joints).  Each node's slots are in increasing slot order, fixed for the whole run. */
 static void build_gather(YfModel *m) {
@@ -288,7 +295,7 @@ static void thermo_nonfinite(YfSim *s, const double *v, const char *const *names
 }
 
 static void thermo_line(YfSim *s) {
-  par_need_stresses(&s->model); /* MPI: what owners hold (joints' work and damage), on every rank */
+  par_need_all(s); /* MPI: what owners hold (joints' work and damage), on every rank */
   run_energies(s);
   double ext = energy_external(s);
   double diss = s->energy.damping + s->energy.joint_dissipated + s->energy.friction;
@@ -349,7 +356,7 @@ static void progress(YfSim *s, long done, long total, double t0) {
 static void stage_elements(YfSim *s) {
   YfModel *m = &s->model;
   const int nblk = R.nblk, nt = m->tri.n;
-  const double t0 = yf_now();
+  const double c0 = yf_cpu_now();
   int b0 = 0, b1 = nblk;
   par_blocks(&b0, &b1); /* MPI: the blocks inside this rank's triangles; then every rank gets all results */
   #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
@@ -361,7 +368,7 @@ static void stage_elements(YfSim *s) {
     R.blk_bad[b] = p.bad;
     R.blk_badJ[b] = p.badJ;
   }
-  par_share_elements(m, R.tm, R.blk, R.blk_bad, R.blk_badJ, yf_now() - t0);
+  par_share_elements(m, R.tm, R.blk, R.blk_bad, R.blk_badJ, yf_cpu_now() - c0);
   double power = 0;
   for (int b = 0; b < nblk; b++) {
     if (R.blk_bad[b] >= 0) {
@@ -580,7 +587,7 @@ void run_steps(YfSim *s, long nsteps) {
     yf_stage_time[YF_ST_OUTPUT] += yf_now() - t0;
     if (s->thermo_every > 0 && s->step % s->thermo_every == 0 && k + 1 < nsteps) thermo_line(s);
     if ((k + 1) % check_every == 0) {
-      par_need_stresses(&s->model); /* MPI: owners' state whole (a collective: every rank is here) */
+      par_need_all(s); /* MPI: owners' state whole (a collective: every rank is here) */
       run_energies(s); /* the check reads the energies of this step */
       energy_check(s);
     }
@@ -600,7 +607,7 @@ void run_steps(YfSim *s, long nsteps) {
                    "restart could be written (%s)", s->step, s->time, why);
     }
   }
-  par_need_stresses(&s->model); /* MPI: the last state whole on every rank, for what follows */
+  par_need_all(s); /* MPI: the last state whole on every rank, for what follows */
   run_energies(s);
   energy_check(s);
   thermo_line(s);

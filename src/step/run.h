@@ -11,6 +11,7 @@ extern double yf_stage_time[YF_NSTAGE]; /* seconds accumulated over all runs */
 
 /* Monotonic wall clock [s] (stage timers). */
 double yf_now(void);
+double yf_cpu_now(void);
 /* Prepare the model (masses, reference inverses, gather lists, bc) for stepping.  Idempotent. */
 void run_prepare(YfSim *s);
 /* Advance n steps. */
