@@ -375,15 +375,17 @@ END_TEST
  * so once, and mpirun exits 4; the restart continued on 3 ranks gives the bits of an
  * uninterrupted ./yfdem run to the same step.  Without the reduction the signalled rank leaves
  * alone and the others wait for it (the 300 s timeout, exit 124).  The signalled rank is one of
- * this test's own (working directory): other yfdem_mpi runs may share the machine. */
+ * this test's own (working directory: other yfdem_mpi runs may share the machine), signalled
+ * 6 s after it appears (a loaded machine may take seconds to start the ranks). */
 START_TEST(interrupt_all_ranks) {
   if (!mpi_ready()) return;
   char *d = perf_dir(100000), cmd[4 * PATH_MAX], path[PATH_MAX + 32];
   write_file(d, "long.deck", "read_y2d perf.y\nrun 100000\n");
   snprintf(cmd, sizeof cmd, "cd %s && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_WAIT_POLICY=passive "
            "OMP_NUM_THREADS=1 timeout 300 mpirun -q --oversubscribe --mca mpi_yield_when_idle 1 -np 2 %s -in long.deck "
-           ">out.txt 2>err.txt & pid=$!; sleep 6; q=; for p in $(pgrep -x yfdem_mpi); do "
-           "[ \"$(readlink /proc/$p/cwd)\" = \"$PWD\" ] && q=$p; done; kill -TERM $q; wait $pid", d, MPIBIN);
+           ">out.txt 2>err.txt & pid=$!; q=; for i in $(seq 240); do for p in $(pgrep -x yfdem_mpi); do "
+           "[ \"$(readlink /proc/$p/cwd)\" = \"$PWD\" ] && q=$p; done; [ -n \"$q\" ] && break; sleep 0.5; done; "
+           "sleep 6; kill -TERM $q; wait $pid", d, MPIBIN);
   int st = system(cmd);
   ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) == YF_EXIT_INTERRUPT, "exit %d, not 130 (interrupted)", WIFEXITED(st) ? WEXITSTATUS(st) : -1);
   snprintf(path, sizeof path, "%s/err.txt", d);
