@@ -384,8 +384,8 @@ START_TEST(interrupt_all_ranks) {
   snprintf(cmd, sizeof cmd, "cd %s && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_WAIT_POLICY=passive "
            "OMP_NUM_THREADS=1 timeout 300 mpirun -q --oversubscribe --mca mpi_yield_when_idle 1 -np 2 %s -in long.deck "
            ">out.txt 2>err.txt & pid=$!; q=; for i in $(seq 240); do for p in $(pgrep -x yfdem_mpi); do "
-           "[ \"$(readlink /proc/$p/cwd)\" = \"$PWD\" ] && q=$p; done; [ -n \"$q\" ] && break; sleep 0.5; done; "
-           "sleep 6; kill -TERM $q; wait $pid", d, MPIBIN);
+           "[ \"$(readlink /proc/$p/cwd)\" = \"%s\" ] && q=$p; done; [ -n \"$q\" ] && break; sleep 0.5; done; "
+           "sleep 6; kill -TERM $q; wait $pid", d, MPIBIN, d);
   int st = system(cmd);
   ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) == YF_EXIT_INTERRUPT, "exit %d, not 130 (interrupted)", WIFEXITED(st) ? WEXITSTATUS(st) : -1);
   snprintf(path, sizeof path, "%s/err.txt", d);
