@@ -111,6 +111,7 @@ check: deps-test
 	YFDEM=./yfdem tests/paraview/run
 	YFDEM=./yfdem tests/convert/run
 	YFDEM=./yfdem tests/readme/run
+	YFDEM=./yfdem tests/failure_mode/run
 
 test: yfdem $(BUILD)/check_yfdem
 	OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem

@@ -106,7 +106,12 @@ START_TEST(test_bad_mesh_file) {
   fclose(f);
   free(err);
   char cmd[900];
-  snprintf(cmd, sizeof cmd, "cd %s && %s/yfdem -in bad.deck -summary s.json >/dev/null 2>err.txt", dir, getenv("PWD"));
+  /* the binary under test ($YFDEM: build-asan/yfdem under make asan), relative to the test's directory */
+  const char *bin = getenv("YFDEM") ? getenv("YFDEM") : "./yfdem";
+  char cwd[512];
+  ck_assert_ptr_nonnull(getcwd(cwd, sizeof cwd));
+  snprintf(cmd, sizeof cmd, "cd %s && %s%s%s -in bad.deck -summary s.json >/dev/null 2>err.txt", dir, bin[0] == '/' ? "" : cwd,
+           bin[0] == '/' ? "" : "/", bin);
   int st = system(cmd);
   ck_assert_int_eq(WEXITSTATUS(st), 1);
   snprintf(p, sizeof p, "%s/err.txt", dir);

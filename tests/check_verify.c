@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "joint.h"
 #include "query.h"
 #include "yftest.h"
 
@@ -100,6 +101,163 @@ START_TEST(test_mode1_gf) {
 }
 END_TEST
 
+/* ------------------------------------------------------------------ Brazilian disc */
+
+/* decks/verify/brazilian.deck on the coarse ring mesh (8 rings, 3 mm edges) under a uniform
+ * pressure on the flattened faces (2 alpha = 20 deg), raised linearly to twice the load that
+ * gives f_t at the centre at Tr = 2 ms: the load at time t gives the centre's tensile stress
+ * sigma = k 2 F / (pi D) = 2 f_t t / Tr (Hondros' k), so the splitting strength is 2 f_t t_b / Tr
+ * with t_b the time of the first broken joint.  Returns it over f_t; *first is the first break. */
+static double brazil(const char *fs, YfBreak *first, int *ndiam, double *ldiam) {
+  const char *vars[] = {"rings", "8", "fs", fs, NULL};
+  YfSim *s = yft_run_deck("decks/verify/brazilian.deck", vars);
+  int n = 0;
+  const YfBreak *b = joints_breaks(s, &n);
+  ck_assert_int_gt(n, 0);
+  *first = b[0];
+  /* the joints on the loaded diameter x = 0 (the mesh has a line of edges there) */
+  *ndiam = 0;
+  *ldiam = 0.0;
+  for (int i = 0; i < n; i++)
+    if (fabs(b[i].x) < 1e-4) {
+      (*ndiam)++;
+      *ldiam += b[i].length;
+    }
+  double r = 2.0 * b[0].time / 2e-3;
+  fprintf(stderr, "brazilian: fs %s: first break at %.1f us (x %.4f y %.4f mode %d): sigma %.4f f_t; %d broken, %d on the "
+          "diameter (%.4f m)\n", fs, b[0].time * 1e6, b[0].x, b[0].y, b[0].mode, r, n, *ndiam, *ldiam);
+  return r;
+}
+
+/* The set-up that measures f_t (f_s 100 MPa, above the loaded zone's shear stress): the split
+ * starts in mode I at the centre and runs along the loaded diameter to both faces, and the
+ * strength is f_t within the issue's 10 % (1.08 f_t here; 1.06 on 16 rings: the cohesive zone,
+ * l_ch = E G_f / f_t^2 = 9 mm against D = 50 mm, lifts the nominal strength a little, the size
+ * effect of the splitting test). */
+START_TEST(test_brazilian_split) {
+  YfBreak f;
+  int nd;
+  double ld, r = brazil("100e6", &f, &nd, &ld);
+  ck_assert_double_eq_tol(r, 1.0, 0.10);
+  ck_assert_int_eq(f.mode, YF_JMODE_I);
+  ck_assert_double_lt(fabs(f.x), 1e-4);
+  ck_assert_double_lt(fabs(f.y), 0.025 / 3); /* in the central third */
+  ck_assert_double_gt(ld, 0.9 * 0.05);       /* through (the faces are 0.4 mm inside the circle) */
+}
+END_TEST
+
+/* The issue's f_s = 30 MPa, the same set-up: the bearing pressure under the faces at sigma = f_t
+ * is F / w = 9.4 f_t, and the loaded zone fails first, in shear (mode II) next to the faces' ends,
+ * at about half of f_t: why the naive Brazilian test with these joints does not measure f_t. */
+START_TEST(test_brazilian_crush) {
+  YfBreak f;
+  int nd;
+  double ld, r = brazil("30e6", &f, &nd, &ld);
+  ck_assert_double_lt(r, 0.8);
+  ck_assert_int_eq(f.mode, YF_JMODE_II);
+  ck_assert_double_gt(fabs(f.y), 0.025 * 0.6); /* next to a face, not at the centre */
+}
+END_TEST
+
+/* ------------------------------------------------------------------ dynamic fracture */
+
+/* The crack grown from the start point (sx, sy): the broken joints connected to it through
+ * breaks at most `link` apart (tools/crack_tip.py's rule, in time order).  Fills in[] (1 for a
+ * break of the crack) and returns how many. */
+static int crack_from(const YfBreak *b, int n, double sx, double sy, double link, unsigned char *in) {
+  int m = 0, grew = 1;
+  memset(in, 0, (size_t)n);
+  while (grew) {
+    grew = 0;
+    for (int i = 0; i < n; i++) {
+      if (in[i]) continue;
+      int near = hypot(b[i].x - sx, b[i].y - sy) <= link;
+      for (int j = 0; j < n && !near; j++) near = in[j] && hypot(b[i].x - b[j].x, b[i].y - b[j].y) <= link;
+      if (near) { in[i] = 1; m++; grew = 1; }
+    }
+  }
+  return m;
+}
+
+/* The largest tip speed [m/s] of the crack (its farthest break from the start, in time) over
+ * windows of at least w seconds, and the farthest break (*tip). */
+static double tip_speed(const YfBreak *b, int n, const unsigned char *in, double sx, double sy, double w, YfBreak *tip) {
+  double best = -1, vmax = 0, t0 = -1, d0 = 0;
+  for (int i = 0; i < n; i++) { /* breaks are in time order */
+    if (!in[i]) continue;
+    double d = hypot(b[i].x - sx, b[i].y - sy);
+    if (d <= best) continue;
+    best = d;
+    *tip = b[i];
+    if (t0 < 0) { t0 = b[i].time; d0 = d; continue; }
+    if (b[i].time - t0 >= w) {
+      double v = (d - d0) / (b[i].time - t0);
+      if (v > vmax) vmax = v;
+      t0 = b[i].time;
+      d0 = d;
+    }
+  }
+  return vmax;
+}
+
+/* decks/verify/branching.deck on its 1 mm mesh (16 000 triangles), to 32 us of the 43: Ha & Bobaru's glass
+ * plate.  The crack runs from the notch tip (0, 0) and branches: connected breaks at least 3 mm
+ * above and below the notch line, ahead of the notch tip; its tip stays below the Rayleigh speed
+ * (3.1 km/s; measured: at most 1.8 km/s over 4 us windows); it forks after the first 15 us. */
+START_TEST(test_branching) {
+  const char *vars[] = {"nx", "100", "T", "32e-6", "log", "/dev/null", NULL};
+  YfSim *s = yft_run_deck("decks/verify/branching.deck", vars);
+  int n = 0;
+  const YfBreak *b = joints_breaks(s, &n);
+  unsigned char *in = malloc((size_t)n + 1);
+  int m = crack_from(b, n, 0.0, 0.0, 0.0022, in);
+  YfBreak tip = {0};
+  double v = tip_speed(b, n, in, 0.0, 0.0, 4e-6, &tip);
+  double tup = -1, tdn = -1;
+  for (int i = 0; i < n; i++) {
+    if (!in[i] || b[i].x <= 0) continue;
+    if (b[i].y >= 0.003 && tup < 0) tup = b[i].time;
+    if (b[i].y <= -0.003 && tdn < 0) tdn = b[i].time;
+  }
+  fprintf(stderr, "branching: %d of %d breaks on the crack; tip (%.4f, %.4f) at %.2f us; largest speed %.0f m/s; "
+          "3 mm above the line at %.2f us, below at %.2f us\n", m, n, tip.x, tip.y, tip.time * 1e6, v, tup * 1e6, tdn * 1e6);
+  free(in);
+  ck_assert_int_gt(m, 20);
+  ck_assert_msg(tup > 15e-6 && tdn > 15e-6, "the crack must branch (above at %g s, below at %g s)", tup, tdn);
+  ck_assert_double_gt(v, 500.0); /* it runs */
+  ck_assert_double_lt(v, 3100.0);
+}
+END_TEST
+
+/* decks/verify/kalthoff.deck (2.5 mm cells, 70 us): each notch's crack leaves its tip at about 70
+ * degrees to the notch, away from the impact (experiment: about 70; measured 64-75 over three
+ * jittered meshes, 68.1 on this one).  Checked on both notches: the line from the notch tip to the
+ * crack's farthest break, within 60-80 degrees. */
+START_TEST(test_kalthoff) {
+  const char *vars[] = {"log", "/dev/null", NULL};
+  YfSim *s = yft_run_deck("decks/verify/kalthoff.deck", vars);
+  int n = 0;
+  const YfBreak *b = joints_breaks(s, &n);
+  unsigned char *in = malloc((size_t)n + 1);
+  for (int k = 0; k < 2; k++) {
+    double sy = k == 0 ? 0.025 : -0.025;
+    int m = crack_from(b, n, 0.05, sy, 0.0056, in);
+    YfBreak tip = {0};
+    double v = tip_speed(b, n, in, 0.05, sy, 4e-6, &tip);
+    double ang = atan2(fabs(tip.y - sy), tip.x - 0.05) * 180 / M_PI;
+    int away = (tip.y - sy) * sy > 0; /* up from the upper notch, down from the lower one */
+    fprintf(stderr, "kalthoff: notch at y %+.3f: %d breaks, tip (%.4f, %.4f), %.1f mm, angle %.1f degrees, speed %.0f m/s\n",
+            sy, m, tip.x, tip.y, hypot(tip.x - 0.05, tip.y - sy) * 1e3, ang, v);
+    ck_assert_int_gt(m, 5);
+    ck_assert_msg(away, "the crack must run away from the impact zone");
+    ck_assert_double_gt(hypot(tip.x - 0.05, tip.y - sy), 0.02);
+    ck_assert_double_ge(ang, 60.0);
+    ck_assert_double_le(ang, 80.0);
+  }
+  free(in);
+}
+END_TEST
+
 /* ------------------------------------------------------------------ volumetric locking */
 
 /* `mesh rect` warns when one-diagonal cells meet near-incompressible plane strain (the case that
@@ -139,6 +297,16 @@ Suite *verify_suite(void) {
   t = tcase_create("mode1_gf");
   tcase_set_timeout(t, 120);
   tcase_add_loop_test(t, test_mode1_gf, 0, 2);
+  suite_add_tcase(s, t);
+  t = tcase_create("brazilian");
+  tcase_set_timeout(t, 120);
+  tcase_add_test(t, test_brazilian_split);
+  tcase_add_test(t, test_brazilian_crush);
+  suite_add_tcase(s, t);
+  t = tcase_create("dynamic_fracture");
+  tcase_set_timeout(t, 300);
+  tcase_add_test(t, test_branching);
+  tcase_add_test(t, test_kalthoff);
   suite_add_tcase(s, t);
   t = tcase_create("locking");
   tcase_add_test(t, test_locking_warning);

@@ -1,4 +1,4 @@
-/* metrics.c: crack measurements of a run (see metrics.h): the `metrics` command, a per-step
+/* metrics.c: crack measurements of a run (see metrics.h): the `metrics` settings, a per-step
  * tracker (peak tensile stress, first fragment, a sampled time series) and the summary keys
  * (symmetry, midspan crack, crack length by region and orientation, fragments).
  *
@@ -15,15 +15,13 @@
 #include <string.h>
 #include "metrics.h"
 #include "par.h"
-#include "deck.h"
-#include "report.h"
 #include "joint.h"
 #include "region.h"
 #include "run.h"
 #include "summary.h"
 
-#define MAX_REG 16
-#define MAX_REG_SHAPES 8
+#define MAX_REG YF_METRICS_REGIONS
+#define MAX_REG_SHAPES YF_METRICS_REG_SHAPES
 
 typedef struct {
   long step;
@@ -58,7 +56,7 @@ static struct {
   int peak;           /* track stresses */
   double threshold;   /* stress_first_above threshold [Pa], 0 = none */
   double until;       /* peak_stress only over times <= until [s] (INFINITY: the whole run) */
-  char log_path[1024];
+  char log_path[YF_METRICS_PATH_MAX];
   long every;
   /* tracked */
   double peak_val, peak_time;
@@ -125,83 +123,45 @@ static void adopt_log(const YfSim *s) {
   free(t);
 }
 
-/* ---- the command ---- */
+/* ---- settings (the `metrics` command, deck/cmd_metrics.c) ---- */
 
-void cmd_metrics(YfSim *s, const YfArgs *a) {
-  io_attach(s); /* its state observes the run loop (report.c) */
-  static const char *const kw[] = {"body", "mirror", "region", "midspan", "peak_stress", "log", NULL};
-  arg_count(a, 1, -1);
-  int k = arg_choice(a, 0, "keyword", kw);
+void metrics_set_body(int b) { M.on = 1; M.body = b; }
+
+void metrics_set_mirror(int axis, double c) {
   M.on = 1;
-  switch (k) {
-  case 0: {
-    arg_count(a, 2, 2);
-    int b = model_find_body(&s->model, a->w[1]);
-    if (b < 0) arg_error(a, 1, "no body named '%s'", a->w[1]);
-    M.body = b;
-    break;
-  }
-  case 1: {
-    static const char *const ax[] = {"x", "y", NULL};
-    arg_count(a, 3, 3);
-    M.mirror_axis = 1 + arg_choice(a, 1, "axis", ax);
-    M.mirror_c = arg_num(a, 2, "C");
-    break;
-  }
-  case 2: {
-    arg_count(a, 3, 2 + MAX_REG_SHAPES);
-    const char *name = a->w[1];
-    if (strlen(name) >= YF_NAME_MAX) arg_error(a, 1, "name longer than %d characters", YF_NAME_MAX - 1);
-    int i;
-    for (i = 0; i < M.nreg; i++)
-      if (!strcmp(M.reg[i].name, name)) break;
-    if (i == M.nreg) {
-      if (M.nreg == MAX_REG) arg_error(a, 1, "at most %d metrics regions", MAX_REG);
-      M.nreg++;
-    }
-    Reg *r = &M.reg[i];
-    snprintf(r->name, sizeof r->name, "%s", name);
-    r->nr = 0;
-    for (int w = 2; w < a->n; w++) {
-      int ri = region_find(a->w[w]);
-      if (ri < 0) arg_error(a, w, "no region named '%s' (define it with `region` first)", a->w[w]);
-      r->r[r->nr++] = ri;
-    }
-    break;
-  }
-  case 3: {
-    arg_count(a, 2, 2);
-    int ri = region_find(a->w[1]);
-    if (ri < 0) arg_error(a, 1, "no region named '%s' (define it with `region` first)", a->w[1]);
-    M.midspan = ri;
-    break;
-  }
-  case 4: {
-    static const char *const oo[] = {"on", "off", NULL};
-    arg_count(a, 2, 6);
-    M.peak = arg_choice(a, 1, "switch", oo) == 0;
-    for (int w = 2; w < a->n; w += 2) {
-      static const char *const th[] = {"threshold", "until", NULL};
-      int o = arg_choice(a, w, "option", th);
-      if (w + 1 >= a->n) arg_error(a, w, "'%s' needs a value", a->w[w]);
-      if (o == 0) M.threshold = arg_pos(a, w + 1, "threshold S [Pa]");
-      else M.until = arg_pos(a, w + 1, "until T [s]");
-    }
-    break;
-  }
-  case 5: {
-    arg_count(a, 2, 4);
-    if (strlen(a->w[1]) >= sizeof M.log_path) arg_error(a, 1, "path too long");
-    if (!yf_can_create(a->w[1])) yf_io_error(&a->loc, "metrics log: cannot write '%s': %s", a->w[1], strerror(errno));
-    snprintf(M.log_path, sizeof M.log_path, "%s", a->w[1]);
-    if (a->n > 2) {
-      static const char *const ev[] = {"every", NULL};
-      arg_choice(a, 2, "option", ev);
-      M.every = arg_int(a, 3, "N", 1, 1000000000L);
-    }
-    break;
-  }
-  }
+  M.mirror_axis = axis;
+  M.mirror_c = c;
+}
+
+static int reg_slot(const char *name) {
+  int i;
+  for (i = 0; i < M.nreg; i++)
+    if (!strcmp(M.reg[i].name, name)) break;
+  return i;
+}
+
+int metrics_region_full(const char *name) { return reg_slot(name) == MAX_REG; }
+
+void metrics_set_region(const char *name, const int *r, int nr) {
+  M.on = 1;
+  int i = reg_slot(name);
+  YF_ASSERT(i < MAX_REG && nr <= MAX_REG_SHAPES);
+  if (i == M.nreg) M.nreg++;
+  Reg *g = &M.reg[i];
+  snprintf(g->name, sizeof g->name, "%s", name);
+  g->nr = nr;
+  for (int k = 0; k < nr; k++) g->r[k] = r[k];
+}
+
+void metrics_set_midspan(int r) { M.on = 1; M.midspan = r; }
+void metrics_set_peak(int on) { M.on = 1; M.peak = on; }
+void metrics_set_threshold(double s) { M.threshold = s; }
+void metrics_set_until(double t) { M.until = t; }
+
+void metrics_set_log(const char *path, long every) {
+  M.on = 1;
+  snprintf(M.log_path, sizeof M.log_path, "%s", path);
+  if (every > 0) M.every = every;
 }
 
 /* ---- helpers ---- */

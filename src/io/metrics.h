@@ -1,7 +1,8 @@
 /* metrics.h: quantitative crack measurements of a run (the seed paper's questions, answered in
  * numbers instead of pictures).
  *
- * metrics.c owns the `metrics` deck command, a cheap per-step hook that tracks what can only be
+ * metrics.c owns the settings of the `metrics` deck command (its words: deck/cmd_metrics.c), a
+ * cheap per-step hook that tracks what can only be
  * seen during the run (peak tensile stress, the moment the body first falls apart, a time series
  * of energies and crack growth), and the end-of-run keys it adds to the -summary JSON:
  *   symmetry                 fraction of broken joints whose mirror image is broken too (null:
@@ -33,6 +34,22 @@
 #ifndef YF_METRICS_H
 #define YF_METRICS_H
 #include "sim.h"
+
+/* Settings, one per keyword of the command (any of them turns the measurements on). */
+#define YF_METRICS_REGIONS 16     /* metrics regions */
+#define YF_METRICS_REG_SHAPES 8   /* regions in the union of one metrics region */
+#define YF_METRICS_PATH_MAX 1024  /* bytes of the log's path, with its terminating 0 */
+void metrics_set_body(int b);                   /* body index, -1: every fracturing body */
+void metrics_set_mirror(int axis, double c);   /* 1: the line x = c [m], 2: y = c */
+/* 1 when region name is new and the table of metrics regions is full. */
+int metrics_region_full(const char *name);
+/* (Re)define metrics region name as the union of the nr (<= YF_METRICS_REG_SHAPES) regions r. */
+void metrics_set_region(const char *name, const int *r, int nr);
+void metrics_set_midspan(int r);                /* region index */
+void metrics_set_peak(int on);                  /* track the max principal stress */
+void metrics_set_threshold(double s);           /* stress_first_above threshold [Pa] */
+void metrics_set_until(double t);               /* peak_stress over times <= t [s] */
+void metrics_set_log(const char *path, long every); /* every <= 0: keep the period (default 100) */
 
 /* After every completed step (run.c); a few compares when nothing is due. */
 void metrics_step(YfSim *s);

@@ -56,18 +56,14 @@
 #include <unistd.h>
 #include <hdf5.h>
 #include "output.h"
+#include "h5quiet.h"
 #include "par.h"
-#include "deck.h"
 #include "report.h"
 #include "contact.h"
 #include "joint.h"
 #include "err.h"
 #include "y2dref.h"
 #include "run.h"
-
-/* The y2dref style (y2dref.c: Y2D reference CSV files) is written every step; y2dref_frame decides
- * what is due. */
-enum { YF_DUMP_Y2DREF = 2 };
 
 /* A growing text: the <Grid> elements of an index. */
 typedef struct {
@@ -104,7 +100,7 @@ typedef struct YfDump {
   struct YfY2dRef *y2d; /* y2dref style                                                */
 } YfDump;
 
-static const char *const field_names[] = {"u", "v", "f", "stress", "vonmises", "sigma1",
+const char *const output_field_names[] = {"u", "v", "f", "stress", "vonmises", "sigma1",
                                           "material", "body", "fc", "x", NULL};
 
 /* ---------------------------------------------------------------- small helpers */
@@ -178,16 +174,6 @@ static void h5_fail(YfDump *d, const char *what) {
   d->file = -1;
   if (d->cur_tmp) unlink(d->cur_tmp);
   yf_io_error(NULL, "dump %s: cannot write '%s' (%s): %s", d->id, d->cur, what, why);
-}
-
-/* HDF5 prints its error stack by default; yfdem reports errors itself (restart.c uses it too). */
-void yf_h5_quiet(void) {
-  static int done;
-  if (!done) {
-    H5open();
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    done = 1;
-  }
 }
 
 static YfDump *find_dump(const struct YfOutput *o, const char *id, int *slot) {
@@ -961,74 +947,23 @@ int output_remove_dump(YfSim *s, const char *id) {
   return 0;
 }
 
-/* dump ID h5 N FILE.h5 [fields F1 F2 ...] [compress]
- * dump ID csv N PREFIX */
-void cmd_dump(YfSim *s, const YfArgs *a) {
-  static const char *const styles[] = {"h5", "csv", "y2dref", NULL};
-  arg_count(a, 2, -1);
-  const char *id = arg_word(a, 0, "dump id");
-  if (strlen(id) >= YF_NAME_MAX) arg_error(a, 0, "id too long (at most %d characters)", YF_NAME_MAX - 1);
-  int style = arg_choice(a, 1, "style", styles);
-  if (style == YF_DUMP_Y2DREF) { /* dump ID y2dref DIR [corners S,...] [summary K] [probes K E:C ...] */
-    if (find_dump(s->out, id, NULL)) arg_error(a, 0, "a dump with this id exists (undump it first)");
-    if (s->out && s->out->ndump >= YF_MAX_DUMPS) arg_error(a, 0, "at most %d dumps at a time", YF_MAX_DUMPS);
-    struct YfY2dRef *r = y2dref_parse(s, a);
-    int k = output_add_dump(s, id, style, 1, y2dref_dir(r), 0, 0);
-    s->out->dump[k]->y2d = r;
-    sim_printf(s, "dump %s: Y2D reference CSV files in %s\n", id, y2dref_dir(r));
-    return;
-  }
-  arg_count(a, 4, -1);
-  long every = arg_int(a, 2, "N (steps between frames)", 1, LONG_MAX / 4);
-  const char *path = arg_word(a, 3, style == YF_DUMP_H5 ? "file" : "file prefix");
-  unsigned fields = YF_FIELD_ALL;
-  int compress = 0;
-  for (int i = 4; i < a->n;) {
-    if (style == YF_DUMP_H5 && strcmp(a->w[i], "fields") == 0) {
-      int first = ++i;
-      fields = 0;
-      for (; i < a->n && strcmp(a->w[i], "compress") != 0; i++) {
-        int k = arg_choice(a, i, "field", field_names);
-        if (k < 9) fields |= 1u << k; /* "x" (geometry) is always written */
-      }
-      if (i == first) arg_error(a, first - 1, "expected field names after it (u v f stress vonmises sigma1 material body fc)");
-    } else if (style == YF_DUMP_H5 && strcmp(a->w[i], "compress") == 0) {
-      compress = 1;
-      i++;
-    } else if (style == YF_DUMP_H5) {
-      arg_error(a, i, "unknown keyword (expected fields or compress)");
-    } else {
-      arg_error(a, i, "unexpected word (a csv dump takes no keywords)");
-    }
-  }
-  if (!path[0]) arg_error(a, 3, "empty file name");
-  const char *base = strrchr(path, '/');
-  if (style == YF_DUMP_H5 && strchr(base ? base + 1 : path, ':'))
-    arg_error(a, 3, "the file name may not contain ':' (XDMF uses it to separate file and dataset)");
-  struct YfOutput *o = s->out;
-  if (find_dump(o, id, NULL)) arg_error(a, 0, "a dump with this id exists (undump it first)");
-  if (o && o->ndump >= YF_MAX_DUMPS) arg_error(a, 0, "at most %d dumps at a time", YF_MAX_DUMPS);
-  for (int i = 0; o && i < o->ndump; i++)
-    if (strcmp(o->dump[i]->path, path) == 0)
-      arg_error(a, 3, "already written by dump '%s'", o->dump[i]->id);
-  int k = output_add_dump(s, id, style, every, path, fields, compress); /* creates s->out */
-  const YfDump *d = s->out->dump[k];
-  if (style == YF_DUMP_H5)
-    sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN%s (index %s)\n", id, every, d->stem, d->ext, d->xmf);
-  else
-    sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN.csv\n", id, every, path);
+int output_add_y2dref(YfSim *s, const char *id, struct YfY2dRef *r) {
+  int k = output_add_dump(s, id, YF_DUMP_Y2DREF, 1, y2dref_dir(r), 0, 0);
+  if (k >= 0) s->out->dump[k]->y2d = r;
+  return k;
 }
 
-/* undump ID */
-void cmd_undump(YfSim *s, const YfArgs *a) {
-  arg_count(a, 1, 1);
-  const char *id = arg_word(a, 0, "dump id");
-  if (output_remove_dump(s, id) == 0) return;
-  struct YfOutput *o = s->out;
-  char have[YF_MAX_DUMPS * (YF_NAME_MAX + 1) + 8] = "";
-  for (int i = 0; o && i < o->ndump; i++) {
-    strcat(have, i ? " " : "");
-    strcat(have, o->dump[i]->id);
-  }
-  arg_error(a, 0, "no such dump (defined: %s)", have[0] ? have : "none");
+int output_ndump(const YfSim *s) { return s->out ? s->out->ndump : 0; }
+const char *output_dump_id(const YfSim *s, int k) { return s->out->dump[k]->id; }
+const char *output_dump_path(const YfSim *s, int k) { return s->out->dump[k]->path; }
+int output_find_dump(const YfSim *s, const char *id) {
+  int slot;
+  return find_dump(s->out, id, &slot) ? slot : -1;
+}
+
+void output_dump_files(const YfSim *s, int k, const char **stem, const char **ext, const char **xmf) {
+  const YfDump *d = s->out->dump[k];
+  *stem = d->stem;
+  *ext = d->ext;
+  *xmf = d->xmf;
 }

@@ -18,7 +18,9 @@
 
 #define YF_MAX_DUMPS 8
 
-enum { YF_DUMP_H5 = 0, YF_DUMP_CSV = 1 };
+/* Dump styles; y2dref (y2d/y2dref.c: Y2D reference CSV files) is written every step and
+ * y2dref_frame decides what is due. */
+enum { YF_DUMP_H5 = 0, YF_DUMP_CSV = 1, YF_DUMP_Y2DREF = 2 };
 
 /* Fields of an h5 dump (bit mask).  Geometry (current x, y) is always written. */
 enum {
@@ -43,15 +45,28 @@ struct YfOutput {
   struct YfDump *dump[YF_MAX_DUMPS];
 };
 
-/* Deck commands.
+/* Deck commands (their words: deck/cmd_dump.c, cmd_undump.c).
  *   dump ID h5 N FILE.h5 [fields F1 F2 ...] [compress]
  *   dump ID csv N PREFIX
+ *   dump ID y2dref DIR ...
  *   undump ID                                                                     */
 
+/* Field names of an h5 dump: index k is YF_FIELD_* bit k, then "x" (geometry, always written). */
+extern const char *const output_field_names[];
+struct YfY2dRef;
 /* Programmatic form of `dump` (used by cmd_dump and tests).  Returns the dump's slot; checks
  * nothing about the deck (the handler does), but refuses a full table or a duplicate id with -1. */
 int output_add_dump(YfSim *s, const char *id, int style, long every, const char *path,
                     unsigned fields, int compress);
+/* A y2dref dump (every step) writing r, which it then owns; the slot or -1 as output_add_dump. */
+int output_add_y2dref(YfSim *s, const char *id, struct YfY2dRef *r);
+/* The dumps as they stand: count, slot of id (-1: none), id and path of slot k, and the file
+ * names an h5 dump writes (FILE_NNNNNN.EXT frames, the XDMF index). */
+int output_ndump(const YfSim *s);
+int output_find_dump(const YfSim *s, const char *id);
+const char *output_dump_id(const YfSim *s, int k);
+const char *output_dump_path(const YfSim *s, int k);
+void output_dump_files(const YfSim *s, int k, const char **stem, const char **ext, const char **xmf);
 /* Close and forget dump id; returns 0, or -1 when there is no such dump. */
 int output_remove_dump(YfSim *s, const char *id);
 
@@ -70,8 +85,6 @@ void output_topology_changed(YfSim *s);
 void output_close_all(YfSim *s);
 /* output_close_all + free everything (sim_free). */
 void output_free(YfSim *s);
-/* Silence HDF5's own error printing (once); yfdem reports HDF5 errors itself. */
-void yf_h5_quiet(void);
 
 /* Frames written so far by dump id (-1 if no such dump); for tests and messages. */
 long output_frames(const YfSim *s, const char *id);

@@ -33,10 +33,8 @@
 #include <gsl/gsl_rng.h>
 #include <hdf5.h>
 #include "restart.h"
+#include "h5quiet.h"
 #include "par.h"
-#include "deck.h"
-#include "report.h"
-#include "output.h"
 #include "contact.h"
 #include "err.h"
 #include "joint.h"
@@ -407,7 +405,7 @@ static long peek_step(const char *path) {
 }
 
 /* FILE itself, or the newer complete one of FILE.a / FILE.b (malloc'd); NULL when none. */
-static char *pick_file(const char *path) {
+char *restart_pick_file(const char *path) {
   if (exists(path)) return yf_strdup(path);
   size_t L = strlen(path) + 3;
   char *a = yf_malloc(L, "restart path"), *b = yf_malloc(L, "restart path");
@@ -435,7 +433,7 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   if (!m->tri.n)
     yf_deck_error(loc, "read_restart: the scene has no triangles: the deck must rebuild the scene (mesh, fracture, "
                   "contact commands) before read_restart");
-  char *path = pick_file(path_in);
+  char *path = restart_pick_file(path_in);
   if (!path)
     yf_io_error(loc, "read_restart: no restart '%s' (nor %s.a / %s.b): %s", path_in, path_in, path_in, strerror(ENOENT));
   yf_h5_quiet();
@@ -672,61 +670,15 @@ const char *restart_on_interrupt(YfSim *s, char *err, size_t nerr) {
   return name;
 }
 
-/* write_restart FILE */
-void cmd_write_restart(YfSim *s, const YfArgs *a) {
-  arg_count(a, 1, 1);
-  if (!s->model.tri.n) arg_error(a, 0, "the scene has no triangles: nothing to write");
-  run_prepare(s); /* a restart before the first run holds the prepared initial state */
-  const char *p = arg_word(a, 0, "FILE"); /* an output: relative to the working directory */
-  char err[1024];
-  if (restart_write(s, p, err, sizeof err)) yf_io_error(&a->loc, "write_restart: %s", err);
-  sim_printf(s, "write_restart: %s at step %ld\n", p, s->step);
-}
-
-/* read_restart FILE */
-void cmd_read_restart(YfSim *s, const YfArgs *a) {
-  io_attach(s); /* its state observes the run loop (report.c) */
-  arg_count(a, 1, 1);
-  /* Restarts are written relative to the working directory (write_restart, restart every, an
-   * interrupt), so that is where FILE is looked for first; a deck run from elsewhere may keep
-   * its restart beside itself, so the deck's directory is the second place. */
-  const char *w = arg_word(a, 0, "FILE");
-  char *here = pick_file(w), *p = NULL, *there = NULL;
-  if (!here) {
-    p = deck_resolve_path(a, w);
-    there = pick_file(p);
-  }
-  if (!here && !there) {
-    YfLoc l = a->loc;
-    char msg[2200];
-    snprintf(msg, sizeof msg, "no restart '%s' (nor %s.a / %s.b) in the working directory, nor '%s' beside the deck",
-             w, w, w, p);
-    free(p);
-    yf_io_error(&l, "read_restart: %s: %s", msg, strerror(ENOENT));
-  }
-  restart_read(s, here ? w : p, &a->loc);
-  free(here);
-  free(there);
-  free(p);
-}
-
-/* restart every N FILE | restart off */
-void cmd_restart(YfSim *s, const YfArgs *a) {
-  io_attach(s); /* its state observes the run loop (report.c) */
-  arg_count(a, 1, 3);
-  static const char *const w[] = {"every", "off", NULL};
-  int k = arg_choice(a, 0, "restart keyword", w);
+void restart_every(YfSim *s, long every, const char *base) {
   YfRestart *r = rget(s);
-  if (k == 1) {
-    arg_count(a, 1, 1);
+  free(r->base);
+  r->base = NULL;
+  r->every = every;
+  if (every <= 0) {
     r->every = 0;
-    free(r->base);
-    r->base = NULL;
     return;
   }
-  arg_count(a, 3, 3);
-  r->every = arg_int(a, 1, "N (steps)", 1, LONG_MAX);
-  free(r->base);
-  r->base = yf_strdup(arg_word(a, 2, "FILE")); /* an output: relative to the working directory */
+  r->base = yf_strdup(base);
   r->next = 0;
 }

@@ -40,6 +40,12 @@
 int restart_write(YfSim *s, const char *path, char *err, size_t nerr);
 /* Read a restart into a scene built by the deck (see above); errors exit (deck / I/O). */
 void restart_read(YfSim *s, const char *path, const YfLoc *loc);
+/* The file read_restart PATH reads (PATH, else the newer valid of PATH.a / PATH.b; malloc'd), or
+ * NULL when there is none. */
+char *restart_pick_file(const char *path);
+/* `restart every N FILE`: a restart every `every` steps, to base.a and base.b in turn; every <= 0
+ * (`restart off`): none. */
+void restart_every(YfSim *s, long every, const char *base);
 /* Step loop hook: writes the periodic restart when due (cheap when not). */
 void restart_step(YfSim *s);
 /* Interrupt: write the restart; returns the name to give to read_restart ("" on failure, with

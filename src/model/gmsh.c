@@ -9,7 +9,7 @@
  * What becomes what:
  *   - 3-node triangles (type 2) in surfaces become triangles, turned counter-clockwise when the
  *     file has them clockwise; their material comes from the surface's physical group (see
- *     gmsh_read in mesh.h and mesh_gmsh in mesh.c);
+ *     gmsh_read in mesh.h and cmd_mesh_gmsh in deck/cmd_mesh.c);
  *   - every physical group (point, curve, surface) becomes a node group named after it (a
  *     surface also a triangle group), so boundary curves carry loads and supports; unnamed
  *     groups are called phys_<tag> (phys_<tag>_<curve|surface|point> when tags of two

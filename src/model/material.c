@@ -1,105 +1,31 @@
-/* material.c: the `material` command: elastic constants, density, damping and contact/fracture
- * keys of a material, mapped onto the Y2D triangle law (model.h).
+/* material.c: a material's elastic constants mapped onto the Y2D triangle law (model.h).
  *
  * Native decks give E and nu with plane_stress or plane_strain; the law's volumetric term is
  * volfac * lambda * (J - 1/J) ~ 2 volfac lambda tr(eps), so with the book's volfac = 1/2 the
  * stored lambda is the true Lame lambda and the small-strain response is exactly Hooke's law.
  * With `volfac 1` (Y-Geo family) the stored lambda is halved so the bulk modulus stays the one
- * E and nu mean.  Decks that give lambda and mu directly (as Y2D decks do) keep them as given.
+ * E and nu mean.  Materials given by lambda and mu (as Y2D decks do) keep them as given.  The
+ * `material` command's words are read in deck/cmd_material.c.
  */
-#include <math.h>
-#include <string.h>
-#include "deck.h"
 #include "model.h"
-#include "sim.h"
 
-/* material NAME elastic rho R (E E nu NU [plane_stress|plane_strain] | lambda L mu M)
- *          [visc K | damping BETA] [volfac 0.5|1] [pen_n P] [pen_t P] [friction MU]
- *          [friction_law coulomb|y2d]
- * friction_law: coulomb (default) is the elastic-slip Coulomb law whose tangential stiffness is
- * the normal law's with pen_t for pen_n; y2d is Y2D's law (p_t L^2 times the slip, unit-dependent),
- * for comparison with Y2D runs (contact_pair.h). */
-void cmd_material(YfSim *s, const YfArgs *a) {
-  arg_count(a, 4, -1);
-  const char *name = arg_word(a, 0, "name");
-  static const char *const styles[] = {"elastic", NULL};
-  arg_choice(a, 1, "material style", styles);
-  int idx = model_find_material(&s->model, name);
-  if (idx >= 0) arg_error(a, 0, "material already defined (each name once)");
-  double rho = -1, E = -1, nu = -2, lam = -1, mu = -1, visc = 0, beta = 0, volfac = 0.5;
-  double pn = 0, pt = -1, fr = 0;
-  int plane = -1, given_lame = 0, given_e = 0, law = YF_FRIC_COULOMB;
-  static const char *const keys[] = {"rho", "E", "nu", "plane_stress", "plane_strain", "lambda", "mu",
-                                     "visc", "damping", "volfac", "pen_n", "pen_t", "friction",
-                                     "friction_law", NULL};
-  for (int i = 2; i < a->n;) {
-    int k = arg_choice(a, i, "keyword", keys);
-    if (k == 3 || k == 4) { plane = k == 3 ? YF_PLANE_STRESS : YF_PLANE_STRAIN; i++; continue; }
-    if (i + 1 >= a->n) arg_error(a, i, "keyword needs a value");
-    switch (k) {
-    case 0: rho = arg_pos(a, i + 1, "rho"); break;
-    case 1: E = arg_pos(a, i + 1, "E"); given_e = 1; break;
-    case 2:
-      nu = arg_num(a, i + 1, "nu");
-      if (!(nu > -1.0 && nu < 0.5)) arg_error(a, i + 1, "Poisson's ratio must lie in (-1, 0.5)");
-      given_e = 1;
-      break;
-    case 5: lam = arg_num(a, i + 1, "lambda"); given_lame = 1; break;
-    case 6: mu = arg_pos(a, i + 1, "mu"); given_lame = 1; break;
-    case 7: visc = arg_nonneg(a, i + 1, "visc"); break;
-    case 8: beta = arg_nonneg(a, i + 1, "damping"); break;
-    case 9:
-      volfac = arg_pos(a, i + 1, "volfac");
-      if (volfac != 0.5 && volfac != 1.0) arg_error(a, i + 1, "volfac must be 0.5 (book Y2D) or 1 (Y-Geo)");
-      break;
-    case 10: pn = arg_nonneg(a, i + 1, "pen_n"); break;
-    case 11: pt = arg_nonneg(a, i + 1, "pen_t"); break;
-    case 12: fr = arg_nonneg(a, i + 1, "friction"); break;
-    case 13: {
-      static const char *const laws[] = {"y2d", "coulomb", NULL}; /* index = YF_FRIC_* */
-      law = arg_choice(a, i + 1, "friction law", laws);
-      break;
-    }
-    }
-    i += 2;
-  }
-  if (rho < 0) arg_error(a, 0, "missing 'rho R' (density, kg/m^3)");
-  if (given_e && given_lame) arg_error(a, 2, "give either E, nu or lambda, mu, not both");
-  if (!given_e && !given_lame) arg_error(a, 0, "missing elastic constants: 'E E nu NU plane_stress|plane_strain' or 'lambda L mu M'");
-  if (visc > 0 && beta > 0) arg_error(a, 2, "give either visc or damping, not both");
-  idx = model_add_material(&s->model, name);
-  YfMaterial *m = &s->model.mat[idx];
-  m->rho = rho;
-  m->volfac = volfac;
-  if (given_e) {
-    if (E < 0) arg_error(a, 0, "missing 'E' (Young's modulus, Pa)");
-    if (nu < -1) arg_error(a, 0, "missing 'nu' (Poisson's ratio)");
-    if (plane < 0) arg_error(a, 0, "say plane_stress or plane_strain");
-    m->E = E;
-    m->nu = nu;
-    m->plane = plane;
-    m->mu = E / (2.0 * (1.0 + nu));
-    double l = plane == YF_PLANE_STRESS ? E * nu / (1.0 - nu * nu) : E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-    m->lambda = l * 0.5 / volfac; /* 2 volfac lambda_stored = lambda_true */
+int model_define_material(YfModel *m, const YfMaterial *given) {
+  YfMaterial mt = *given;
+  const double volfac = given->volfac;
+  if (given->plane != YF_PLANE_LAME) {
+    const double E = given->E, nu = given->nu;
+    mt.mu = E / (2.0 * (1.0 + nu));
+    double l = given->plane == YF_PLANE_STRESS ? E * nu / (1.0 - nu * nu) : E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    mt.lambda = l * 0.5 / volfac; /* 2 volfac lambda_stored = lambda_true */
   } else {
-    if (lam < 0 || mu < 0) arg_error(a, 0, "give both lambda and mu");
-    m->plane = YF_PLANE_LAME;
-    m->lambda = lam;
-    m->mu = mu;
+    const double lam = given->lambda, mu = given->mu;
     /* in-plane Young's modulus and Poisson's ratio of the law at small strain (for damping) */
     double le = 2.0 * volfac * lam;
-    m->E = 4.0 * mu * (le + mu) / (le + 2.0 * mu); /* 2D uniaxial-stress modulus */
-    m->nu = le / (le + 2.0 * mu);
+    mt.E = 4.0 * mu * (le + mu) / (le + 2.0 * mu); /* 2D uniaxial-stress modulus */
+    mt.nu = le / (le + 2.0 * mu);
   }
-  m->visc = visc;
-  m->beta = beta;
-  m->pen_n = pn;
-  m->pen_t = pt < 0 ? pn : pt;
-  /* the Coulomb law's tangential spring is the normal one with pen_t: above pen_n it would
-   * outrun the contact's stable time step (contact_stable_dt is the normal penalty's) */
-  if (law == YF_FRIC_COULOMB && m->pen_t > pn && pt >= 0)
-    arg_error(a, 0, "pen_t %g is above pen_n %g: with the coulomb friction law the tangential stiffness is pen_t / pen_n "
-              "of the normal one and must not exceed it (give pen_t <= pen_n, or friction_law y2d)", m->pen_t, pn);
-  m->fric = fr;
-  m->fric_law = law;
+  int idx = model_add_material(m, given->name);
+  mt.jset = m->mat[idx].jset; /* no joint property set yet */
+  m->mat[idx] = mt;
+  return idx;
 }

@@ -1,13 +1,14 @@
-/* mesh.c: the commands that put nodes and triangles into the model, and mesh topology queries.
+/* mesh.c: putting nodes and triangles into the model, and mesh topology queries.
  *
  * Every mesh command creates one body and a group of the same name (model_add_body) holding its
  * nodes and triangles, so later commands can select "the beam" without a region.  Triangles are
  * always stored counter-clockwise: the structured mesher builds them so, the Gmsh reader flips
- * clockwise ones, and inline `triangle` commands refuse clockwise input (a Y2D user must know that
+ * clockwise ones, and inline triangles (`triangle` commands) are refused when clockwise (a Y2D user must know that
  * the deck's orientation is wrong, because Y2D would compute negative areas from it).
  *
  * Inline nodes and triangles (`node`, `triangle`, `nodes FILE`, `triangles FILE`) are referred
- * to by user ids; the id -> index maps live in a small static state tied to the model they were
+ * to by user ids; the deck layer reads their words (deck/cmd_node.c ...) and this file keeps the
+ * model right.  The id -> index maps live in a small static state tied to the model they were
  * built for, since one process runs one simulation (mesh_reset() forgets them for tests).
  *
  * Units: coordinates in m.
@@ -21,8 +22,6 @@
 #include "edgesort.h"
 #include "memcap.h"
 #include "mesh.h"
-#include "deck.h"
-#include "sim.h"
 
 /* ------------------------------------------------------------------------------------------ */
 /* small integer map                                                                           */
@@ -170,50 +169,24 @@ int mesh_node_root(const YfModel *m, int i) {
   return i;
 }
 
-static int find_material_or_die(const YfModel *m, const YfArgs *a, int i) {
-  char buf[512];
-  int mt = model_find_material(m, a->w[i]);
-  if (mt < 0) {
-    if (m->nmat == 0)
-      arg_error(a, i, "unknown material (no material is defined yet: define it with 'material' first)");
-    arg_error(a, i, "unknown material (known materials: %s)", mesh_material_names(m, buf, sizeof buf));
-  }
-  return mt;
-}
-
 /* ------------------------------------------------------------------------------------------ */
 /* mesh rect                                                                                   */
 
-enum { PAT_RIGHT, PAT_LEFT, PAT_ALT, PAT_CROSS };
 
-/* mesh rect BODY MATERIAL X0 Y0 X1 Y1 NX NY [pattern right|left|alt|cross]
+/* The structured mesher of `mesh rect` (mesh.h).
  *
  * NX x NY cells; right: each cell cut by its lower-left -> upper-right diagonal; left: by the
  * other one; alt: the two alternate like a chessboard (cell (i,j) is `right` when i+j is even);
  * cross: a centre node per cell and four triangles.  Corner nodes are numbered row by row from
  * the bottom (index j*(NX+1)+i), cross centres follow, also row by row; triangles go cell by
  * cell in the same order.  Ids continue after the largest existing ids. */
-static void mesh_rect(YfModel *m, const YfArgs *a) {
-  static const char *const pats[] = {"right", "left", "alt", "cross", NULL};
-  arg_count(a, 9, 11);
-  const char *bname = arg_word(a, 1, "body name");
-  int mat = find_material_or_die(m, a, 2);
-  double x0 = arg_num(a, 3, "x0"), y0 = arg_num(a, 4, "y0");
-  double x1 = arg_num(a, 5, "x1"), y1 = arg_num(a, 6, "y1");
-  const double corner[4] = {x0, y0, x1, y1};
-  for (int k = 0; k < 4; k++)
-    if (!(fabs(corner[k]) <= YF_RANGE_MAX))
-      arg_error(a, 3 + k, "coordinate %g is beyond +-%g m, the range the arithmetic holds (areas and "
-                "energies multiply coordinates)", corner[k], YF_RANGE_MAX);
-  if (!(x1 > x0)) arg_error(a, 5, "x1 must be greater than x0 = %g", x0);
-  if (!(y1 > y0)) arg_error(a, 6, "y1 must be greater than y0 = %g", y0);
-  long nx = arg_int(a, 7, "nx", 1, 100000000), ny = arg_int(a, 8, "ny", 1, 100000000);
-  int pat = PAT_RIGHT;
-  if (a->n > 9) {
-    if (strcmp(a->w[9], "pattern") != 0) arg_error(a, 9, "expected the keyword 'pattern'");
-    arg_count(a, 11, 11);
-    pat = arg_choice(a, 10, "pattern", pats);
-  }
+const char *const mesh_patterns[] = {"right", "left", "alt", "cross", NULL};
+
+int mesh_rect(YfModel *m, const YfRectSpec *spec, const YfLoc *loc) {
+  const char *const *pats = mesh_patterns;
+  const int mat = spec->mat, pat = spec->pattern;
+  const long nx = spec->nx, ny = spec->ny;
+  const double x0 = spec->x0, y0 = spec->y0, x1 = spec->x1, y1 = spec->y1;
   {
     /* Volumetric locking: with one diagonal per cell the constant-strain triangles cannot deform
      * at constant volume in bending (each cell's pair has fewer free modes than constraints), so
@@ -221,28 +194,27 @@ static void mesh_rect(YfModel *m, const YfArgs *a) {
      * deflects about half of Timoshenko's value at nu = 0.49, where the crossed mesh is within a
      * few per cent.  Warn, do not refuse: the pattern is right for compressible solids. */
     const YfMaterial *mt = &m->mat[mat];
-    if ((pat == PAT_RIGHT || pat == PAT_LEFT) && mt->plane == YF_PLANE_STRAIN && mt->nu > 0.4)
-      yf_warn(&a->loc, "mesh rect: pattern %s with material '%s' in plane strain at nu = %g locks (constant-strain "
+    if ((pat == YF_PAT_RIGHT || pat == YF_PAT_LEFT) && mt->plane == YF_PLANE_STRAIN && mt->nu > 0.4)
+      yf_warn(loc, "mesh rect: pattern %s with material '%s' in plane strain at nu = %g locks (constant-strain "
               "triangles in near-incompressible bending: about half the true deflection at nu = 0.49); use "
               "'pattern cross' (docs/VERIFICATION.md, volumetric locking)", pats[pat], mt->name, mt->nu);
   }
-  long long nnode = (long long)(nx + 1) * (ny + 1) + (pat == PAT_CROSS ? (long long)nx * ny : 0);
-  long long ntri = (long long)nx * ny * (pat == PAT_CROSS ? 4 : 2);
-  if (nnode > INT_MAX / 4 || ntri > INT_MAX / 8)
-    arg_error(a, 7, "%lld x %lld cells is too large a mesh", (long long)nx, (long long)ny);
+  long long nnode = (long long)(nx + 1) * (ny + 1) + (pat == YF_PAT_CROSS ? (long long)nx * ny : 0);
+  long long ntri = (long long)nx * ny * (pat == YF_PAT_CROSS ? 4 : 2);
+  if (nnode > INT_MAX / 4 || ntri > INT_MAX / 8) return -2;
   {
     char what[160]; /* before any allocation: a size beyond memory is a deck error, not a crash */
     snprintf(what, sizeof what, "mesh rect: %lld x %lld cells (%lld nodes, %lld triangles)", (long long)nx,
              (long long)ny, nnode, ntri);
-    yf_mem_check(&a->loc, (double)(m->node.n + nnode) * YF_BYTES_PER_NODE + (double)(m->tri.n + ntri) * YF_BYTES_PER_TRI,
+    yf_mem_check(loc, (double)(m->node.n + nnode) * YF_BYTES_PER_NODE + (double)(m->tri.n + ntri) * YF_BYTES_PER_TRI,
                  what);
   }
 
-  int b = mesh_new_body(m, bname, mat, &a->loc, "mesh rect");
+  int b = mesh_new_body(m, spec->body, mat, loc, "mesh rect");
   uint64_t bit = (uint64_t)1 << m->body[b].group;
   int nid = mesh_next_node_id(m), tid = mesh_next_tri_id(m);
   if ((long long)nid + nnode > INT_MAX || (long long)tid + ntri > INT_MAX)
-    arg_error(a, 7, "user ids would overflow");
+    return -1;
 
   model_reserve(m, (int)nnode, (int)ntri); /* counts known: exact sizes */
   /* Grid coordinates: the last row/column is placed exactly on x1/y1 so that regions and
@@ -257,7 +229,7 @@ static void mesh_rect(YfModel *m, const YfArgs *a) {
     }
   }
   int cbase = m->node.n;
-  if (pat == PAT_CROSS)
+  if (pat == YF_PAT_CROSS)
     for (long j = 0; j < ny; j++)
       for (long i = 0; i < nx; i++) {
         double x = x0 + (x1 - x0) * (((double)i + 0.5) / (double)nx);
@@ -272,8 +244,8 @@ static void mesh_rect(YfModel *m, const YfArgs *a) {
       int p = base + (int)(j * (nx + 1) + i);
       int q = p + 1, r = p + 1 + (int)(nx + 1), s = p + (int)(nx + 1);
       int t[4][3], nt = 2;
-      int use_right = pat == PAT_RIGHT || (pat == PAT_ALT && (i + j) % 2 == 0);
-      if (pat == PAT_CROSS) {
+      int use_right = pat == YF_PAT_RIGHT || (pat == YF_PAT_ALT && (i + j) % 2 == 0);
+      if (pat == YF_PAT_CROSS) {
         int c = cbase + (int)(j * nx + i);
         int tt[4][3] = {{p, q, c}, {q, r, c}, {r, s, c}, {s, p, c}};
         memcpy(t, tt, sizeof tt);
@@ -290,83 +262,7 @@ static void mesh_rect(YfModel *m, const YfArgs *a) {
         m->tri.gmask[e] |= bit;
       }
     }
-}
-
-/* ------------------------------------------------------------------------------------------ */
-/* mesh gmsh                                                                                   */
-
-/* mesh gmsh BODY FILE.msh [material PHYS=MAT ... | material MAT ...] [scale S]
- *
- * After `material`, words PHYS=MAT map a physical surface (by name or tag) to a material and a
- * bare word MAT sets the default material (used by surfaces with no mapping and no material of
- * their own name).  Without a bare default, the first mapping's material is the default. */
-static void mesh_gmsh(YfModel *m, const YfArgs *a) {
-  arg_count(a, 3, -1);
-  const char *bname = arg_word(a, 1, "body name");
-  const char *file = arg_word(a, 2, "mesh file");
-  YfGmshOpts o;
-  memset(&o, 0, sizeof o);
-  o.body = bname;
-  o.defmat = -1;
-  o.scale = 1.0;
-  o.from = a->loc;
-  o.map = yf_calloc((size_t)a->n, sizeof *o.map, "material mappings");
-  int first_map_mat = -1, seen_scale = 0;
-  for (int i = 3; i < a->n;) {
-    if (!strcmp(a->w[i], "material")) {
-      i++;
-      if (i >= a->n || !strcmp(a->w[i], "scale"))
-        arg_error(a, i - 1, "expects PHYS=MAT mappings or a material name after it");
-      for (; i < a->n && strcmp(a->w[i], "scale") != 0 && strcmp(a->w[i], "material") != 0; i++) {
-        char *eq = strchr(a->w[i], '=');
-        char buf[512];
-        if (!eq) {
-          if (o.defmat >= 0) arg_error(a, i, "a second default material (the first was '%s')",
-                                       m->mat[o.defmat].name);
-          o.defmat = find_material_or_die(m, a, i);
-          continue;
-        }
-        if (eq == a->w[i] || eq[1] == '\0') arg_error(a, i, "expected PHYS=MAT");
-        int mt = model_find_material(m, eq + 1);
-        if (mt < 0)
-          arg_error(a, i, "unknown material '%s' (known materials: %s)", eq + 1,
-                    mesh_material_names(m, buf, sizeof buf));
-        size_t plen = (size_t)(eq - a->w[i]);
-        char *phys = yf_malloc(plen + 1, "physical name");
-        memcpy(phys, a->w[i], plen);
-        phys[plen] = '\0';
-        for (int k = 0; k < o.nmap; k++)
-          if (!strcmp(o.map[k].phys, phys)) arg_error(a, i, "physical group '%s' is mapped twice", phys);
-        o.map[o.nmap].phys = phys;
-        o.map[o.nmap].mat = mt;
-        o.nmap++;
-        if (first_map_mat < 0) first_map_mat = mt;
-      }
-    } else if (!strcmp(a->w[i], "scale")) {
-      if (seen_scale) arg_error(a, i, "given twice");
-      seen_scale = 1;
-      if (i + 1 >= a->n) arg_error(a, i, "expects a factor after it");
-      o.scale = arg_pos(a, i + 1, "scale");
-      i += 2;
-    } else {
-      arg_error(a, i, "unknown keyword (expected material or scale)");
-    }
-  }
-  if (o.defmat < 0) o.defmat = first_map_mat;
-  char *path = deck_resolve_path(a, file);
-  gmsh_read(m, path, &o);
-  free(path);
-  for (int k = 0; k < o.nmap; k++) free((char *)o.map[k].phys);
-  free(o.map);
-}
-
-/* mesh rect ... | mesh gmsh ...  (see mesh_rect and mesh_gmsh for the grammar) */
-void cmd_mesh(struct YfSim *sim, const YfArgs *a) {
-  static const char *const kinds[] = {"rect", "gmsh", NULL};
-  arg_count(a, 1, -1);
-  int k = arg_choice(a, 0, "mesh style", kinds);
-  if (k == 0) mesh_rect(&sim->model, a);
-  else mesh_gmsh(&sim->model, a);
+  return b;
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -413,7 +309,7 @@ static int inline_body(YfModel *m, const char *name, const YfLoc *loc, const cha
   return b;
 }
 
-static void inline_add_node(YfModel *m, long id, double x, double y, const char *bname,
+void mesh_inline_node(YfModel *m, long id, double x, double y, const char *bname,
                             const YfLoc *loc, const char *cmd) {
   if (!(fabs(x) <= YF_RANGE_MAX && fabs(y) <= YF_RANGE_MAX))
     yf_deck_error(loc, "%s: node %ld at (%g, %g) is beyond +-%g m, the range the arithmetic holds (areas "
@@ -427,7 +323,7 @@ static void inline_add_node(YfModel *m, long id, double x, double y, const char 
   idmap_put(&inl.node, id, k);
 }
 
-static void inline_add_tri(YfModel *m, long id, const long nid[3], int mat, const char *bname,
+void mesh_inline_tri(YfModel *m, long id, const long nid[3], int mat, const char *bname,
                            const YfLoc *loc, const char *cmd) {
   inline_bind(m);
   int b = inline_body(m, bname, loc, cmd);
@@ -463,111 +359,7 @@ static void inline_add_tri(YfModel *m, long id, const long nid[3], int mat, cons
   if (m->body[b].mat < 0) m->body[b].mat = mat;
 }
 
-/* node ID X Y [BODY]
- * An inline node with user id ID at (X, Y) [m], in body BODY (default "inline"). */
-void cmd_node(struct YfSim *sim, const YfArgs *a) {
-  arg_count(a, 3, 4);
-  long id = arg_int(a, 0, "node id", 0, INT_MAX);
-  double x = arg_num(a, 1, "x"), y = arg_num(a, 2, "y");
-  inline_add_node(&sim->model, id, x, y, a->n > 3 ? a->w[3] : "inline", &a->loc, "node");
-}
 
-/* triangle ID N1 N2 N3 MATERIAL [BODY]
- * An inline triangle on inline nodes N1 N2 N3 (user ids, counter-clockwise), in body BODY
- * (default "inline"); the nodes must be in the same body. */
-void cmd_triangle(struct YfSim *sim, const YfArgs *a) {
-  arg_count(a, 5, 6);
-  long id = arg_int(a, 0, "triangle id", 0, INT_MAX);
-  long n[3];
-  for (int k = 0; k < 3; k++) n[k] = arg_int(a, 1 + k, "node id", 0, INT_MAX);
-  int mat = find_material_or_die(&sim->model, a, 4);
-  inline_add_tri(&sim->model, id, n, mat, a->n > 5 ? a->w[5] : "inline", &a->loc, "triangle");
-}
-
-/* Read a whitespace-separated table with `want` columns per row ('#' starts a comment) and hand
- * each row to fn with the row's FILE:LINE. */
-typedef void (*RowFn)(YfModel *m, char **w, const YfLoc *loc, const char *bname);
-
-static void read_rows(YfModel *m, const YfArgs *a, int want, RowFn fn, const char *layout) {
-  arg_count(a, 1, 2);
-  const char *bname = a->n > 1 ? a->w[1] : "inline";
-  char *path = deck_resolve_path(a, arg_word(a, 0, "file"));
-  FILE *fp = fopen(path, "r");
-  if (!fp) yf_io_error(&a->loc, "%s: cannot open '%s': %s", a->cmd, path, strerror(errno));
-  char *line = NULL;
-  size_t cap = 0;
-  YfLoc loc = {path, 0};
-  int rows = 0;
-  while (getline(&line, &cap, fp) >= 0) {
-    loc.line++;
-    if (loc.line == 1) yf_skip_bom(line);
-    char *hash = strchr(line, '#');
-    if (hash) *hash = '\0';
-    char *w[8];
-    int n = 0;
-    for (char *s = strtok(line, " \t\r\n"); s; s = strtok(NULL, " \t\r\n")) {
-      if (n == want) {
-        n++;
-        break;
-      }
-      w[n++] = s;
-    }
-    if (n == 0) continue;
-    if (n != want)
-      yf_deck_error(&loc, "%s: expected %d columns (%s), found %s%d", a->cmd, want, layout,
-                    n > want ? "more than " : "", n > want ? want : n);
-    fn(m, w, &loc, bname);
-    rows++;
-  }
-  if (ferror(fp)) yf_io_error(&a->loc, "%s: error reading '%s'", a->cmd, path);
-  fclose(fp);
-  free(line);
-  if (rows == 0) yf_warn(&a->loc, "%s: '%s' has no rows", a->cmd, path);
-  free(path);
-}
-
-static long row_long(char *s, const YfLoc *loc, const char *what) {
-  long v;
-  if (!yf_parse_long(s, &v) || v < 0 || v > INT_MAX)
-    yf_deck_error(loc, "%s '%s' is not an integer in 0..%d", what, s, INT_MAX);
-  return v;
-}
-
-static double row_num(char *s, const YfLoc *loc, const char *what) {
-  double v;
-  if (!yf_parse_double(s, &v)) yf_deck_error(loc, "%s '%s' is not a number", what, s);
-  return v;
-}
-
-static void node_row(YfModel *m, char **w, const YfLoc *loc, const char *bname) {
-  long id = row_long(w[0], loc, "node id");
-  double x = row_num(w[1], loc, "x"), y = row_num(w[2], loc, "y");
-  inline_add_node(m, id, x, y, bname, loc, "nodes");
-}
-
-static void tri_row(YfModel *m, char **w, const YfLoc *loc, const char *bname) {
-  char buf[512];
-  long id = row_long(w[0], loc, "triangle id");
-  long n[3];
-  for (int k = 0; k < 3; k++) n[k] = row_long(w[1 + k], loc, "node id");
-  int mat = model_find_material(m, w[4]);
-  if (mat < 0)
-    yf_deck_error(loc, "triangles: unknown material '%s' (known materials: %s)", w[4],
-                  mesh_material_names(m, buf, sizeof buf));
-  inline_add_tri(m, id, n, mat, bname, loc, "triangles");
-}
-
-/* nodes FILE [BODY]
- * Inline nodes from a text file, one "ID X Y" row per node (relative paths: the deck's dir). */
-void cmd_nodes(struct YfSim *sim, const YfArgs *a) {
-  read_rows(&sim->model, a, 3, node_row, "id x y");
-}
-
-/* triangles FILE [BODY]
- * Inline triangles from a text file, one "ID N1 N2 N3 MATERIAL" row per triangle. */
-void cmd_triangles(struct YfSim *sim, const YfArgs *a) {
-  read_rows(&sim->model, a, 5, tri_row, "id n1 n2 n3 material");
-}
 
 /* ------------------------------------------------------------------------------------------ */
 /* topology queries                                                                            */

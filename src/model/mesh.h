@@ -1,9 +1,9 @@
 /* mesh.h: getting meshes into the model, and mesh topology queries.
  *
- * mesh.c owns the commands that create nodes and triangles: the structured rectangle mesher
- * (`mesh rect`), the Gmsh reader front end (`mesh gmsh`, parser in gmsh.c) and the inline
- * Y2D-style lists (`node`, `triangle`, `nodes FILE`, `triangles FILE`).  Every mesh command makes
- * one body and a group of the same name holding its nodes and triangles.  It also answers the
+ * mesh.c owns what creates nodes and triangles: the structured rectangle mesher (`mesh rect`),
+ * the Gmsh reader (`mesh gmsh`, gmsh.c) and the inline Y2D-style nodes and triangles (`node`,
+ * `triangle`, `nodes FILE`, `triangles FILE`); the commands' words are read in deck/cmd_*.c.
+ * Every mesh command makes one body and a group of the same name holding its nodes and triangles.  It also answers the
  * topology questions other modules ask at setup: the boundary edges of a group (loads) and the
  * smallest edge of a material (viscosity, time step).  Nothing here runs inside the step.
  */
@@ -14,9 +14,29 @@
 #include "err.h"
 #include "model.h"
 
-struct YfSim;
+/* ---- the structured mesher (`mesh rect`) ---- */
+enum { YF_PAT_RIGHT, YF_PAT_LEFT, YF_PAT_ALT, YF_PAT_CROSS };
+extern const char *const mesh_patterns[]; /* names of YF_PAT_*, NULL-terminated */
+typedef struct {
+  const char *body;             /* new body (and group) name                               */
+  int mat;                      /* material index                                          */
+  double x0, y0, x1, y1;        /* corners [m], x1 > x0, y1 > y0, within +-YF_RANGE_MAX     */
+  long nx, ny;                  /* cells; (nx+1)(ny+1) nodes fit in an int                 */
+  int pattern;                  /* YF_PAT_*                                                */
+} YfRectSpec;
+/* Mesh the rectangle as a new body (errors and the warning on a locking pattern at loc);
+ * returns the body index, or (nothing meshed) -2 when the mesh is too large for int indices,
+ * -1 when the user ids would overflow an int. */
+int mesh_rect(YfModel *m, const YfRectSpec *spec, const YfLoc *loc);
 
-/* ---- commands (rows for commands.def) ---- */
+/* ---- inline nodes and triangles (`node`, `triangle`, `nodes`, `triangles`) ---- */
+/* Add node user id `id` at (x, y) [m] / triangle `id` on inline node ids nid (counter-clockwise)
+ * to inline body bname (made on first use); deck errors at loc name cmd: a coordinate out of
+ * range, a repeated id, an unknown node, a node of another body, a clockwise or flat triangle. */
+void mesh_inline_node(YfModel *m, long id, double x, double y, const char *bname, const YfLoc *loc,
+                      const char *cmd);
+void mesh_inline_tri(YfModel *m, long id, const long nid[3], int mat, const char *bname, const YfLoc *loc,
+                     const char *cmd);
 
 /* ---- topology queries (setup time) ---- */
 /* Boundary edges: edges that belong to exactly one triangle when copies of a node (node.parent)

@@ -135,6 +135,11 @@ int model_add_node(YfModel *m, double x, double y, int id, int body);
 int model_add_tri(YfModel *m, int n0, int n1, int n2, int mat, int id, int body);
 int model_add_material(YfModel *m, const char *name); /* zeroed, jset = -1, volfac 0.5 */
 int model_find_material(const YfModel *m, const char *name);  /* -1 if none */
+/* Add material given->name from the constants a deck gives (material.c): rho, volfac, visc,
+ * beta, pen_n, pen_t, fric, fric_law, and either E, nu with plane YF_PLANE_STRESS|STRAIN or
+ * lambda, mu with plane YF_PLANE_LAME; derives the other pair (the rest of *given is copied,
+ * jset excepted).  The name must be new.  Returns the material's index. */
+int model_define_material(YfModel *m, const YfMaterial *given);
 int model_add_body(YfModel *m, const char *name, int mat);
 int model_find_body(const YfModel *m, const char *name);
 /* Group index by name, creating it when create != 0 (returns -1 when full or absent). */

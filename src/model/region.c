@@ -1,4 +1,5 @@
-/* region.c: named regions (box, circle, polygon, inside or outside) and the `group` command.
+/* region.c: named regions (box, circle, polygon, inside or outside) and the selections of groups
+ * (the words of `region` and `group` are read in deck/cmd_region.c, cmd_group.c).
  *
  * Regions are a small static table: a deck defines a handful, and each is tested once per node
  * or triangle when a group is built, never inside the step.  Containment is decided with a
@@ -17,10 +18,6 @@
 #include <string.h>
 #include "mesh.h"
 #include "region.h"
-#include "deck.h"
-#include "sim.h"
-
-enum { REG_BOX, REG_CIRCLE, REG_POLYGON };
 
 typedef struct {
   char name[YF_NAME_MAX];
@@ -63,12 +60,12 @@ static double seg_dist(double x, double y, double ax, double ay, double bx, doub
 /* 1 strictly inside, 0 on the boundary (within tol), -1 outside. */
 static int classify(const Region *g, double x, double y) {
   switch (g->kind) {
-  case REG_BOX: {
+  case YF_REG_BOX: {
     double dx = fmin(x - g->p[0], g->p[2] - x), dy = fmin(y - g->p[1], g->p[3] - y);
     if (dx < -g->tol || dy < -g->tol) return -1;
     return dx > g->tol && dy > g->tol ? 1 : 0;
   }
-  case REG_CIRCLE: {
+  case YF_REG_CIRCLE: {
     double d = hypot(x - g->p[0], y - g->p[1]) - g->p[2];
     return d > g->tol ? -1 : d < -g->tol ? 1 : 0;
   }
@@ -92,53 +89,27 @@ int region_contains(int r, double x, double y) {
   return reg[r].out ? c <= 0 : c >= 0;
 }
 
-/* region NAME box X0 Y0 X1 Y1 [side in|out]
- * region NAME circle XC YC R [side in|out]
- * region NAME polygon X1 Y1 X2 Y2 X3 Y3 ... [side in|out]
- * Coordinates in m.  A box may be flat (X0 = X1 or Y0 = Y1) to pick the nodes on a line. */
-void cmd_region(struct YfSim *sim, const YfArgs *a) {
-  static const char *const kinds[] = {"box", "circle", "polygon", NULL};
-  static const char *const sides[] = {"in", "out", NULL};
-  (void)sim;
-  arg_count(a, 2, -1);
-  const char *name = arg_word(a, 0, "region name");
-  if (strlen(name) >= YF_NAME_MAX) arg_error(a, 0, "name longer than %d characters", YF_NAME_MAX - 1);
-  if (region_find(name) >= 0) arg_error(a, 0, "region already exists");
-  int kind = arg_choice(a, 1, "region style", kinds);
-  int n = a->n, out = 0;
-  if (n >= 4 && !strcmp(a->w[n - 2], "side")) {
-    out = arg_choice(a, n - 1, "side", sides);
-    n -= 2;
-  }
+int region_add(const char *name, int kind, int out, const double *c, int nc, const YfModel *m) {
   Region g;
   memset(&g, 0, sizeof g);
   snprintf(g.name, sizeof g.name, "%s", name);
   g.kind = kind;
   g.out = out;
   double size, mag = 0;
-  if (kind == REG_BOX) {
-    if (n != 6) arg_error(a, n < 6 ? n - 1 : 6, "box expects X0 Y0 X1 Y1 [side in|out]");
-    for (int k = 0; k < 4; k++) g.p[k] = arg_num(a, 2 + k, k % 2 ? "y" : "x");
-    if (g.p[2] < g.p[0]) arg_error(a, 4, "X1 must not be less than X0 = %g", g.p[0]);
-    if (g.p[3] < g.p[1]) arg_error(a, 5, "Y1 must not be less than Y0 = %g", g.p[1]);
+  if (kind == YF_REG_BOX) {
+    for (int k = 0; k < 4; k++) g.p[k] = c[k];
     size = fmax(g.p[2] - g.p[0], g.p[3] - g.p[1]);
     for (int k = 0; k < 4; k++) mag = fmax(mag, fabs(g.p[k]));
-  } else if (kind == REG_CIRCLE) {
-    if (n != 5) arg_error(a, n < 5 ? n - 1 : 5, "circle expects XC YC R [side in|out]");
-    g.p[0] = arg_num(a, 2, "xc");
-    g.p[1] = arg_num(a, 3, "yc");
-    g.p[2] = arg_pos(a, 4, "radius");
+  } else if (kind == YF_REG_CIRCLE) {
+    for (int k = 0; k < 3; k++) g.p[k] = c[k];
     size = g.p[2];
     mag = fmax(fabs(g.p[0]), fabs(g.p[1]));
   } else {
-    int nc = n - 2;
-    if (nc < 6) arg_error(a, n - 1, "a polygon needs at least 3 points (X1 Y1 X2 Y2 X3 Y3 ...)");
-    if (nc % 2) arg_error(a, n - 1, "polygon coordinates come in X Y pairs (odd count %d)", nc);
     g.np = nc / 2;
     g.poly = yf_malloc((size_t)nc * sizeof *g.poly, "polygon");
     double bb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
     for (int k = 0; k < nc; k++) {
-      g.poly[k] = arg_num(a, 2 + k, k % 2 ? "y" : "x");
+      g.poly[k] = c[k];
       bb[k % 2] = fmin(bb[k % 2], g.poly[k]);
       bb[2 + k % 2] = fmax(bb[2 + k % 2], g.poly[k]);
       mag = fmax(mag, fabs(g.poly[k]));
@@ -149,7 +120,7 @@ void cmd_region(struct YfSim *sim, const YfArgs *a) {
       area2 += g.poly[2 * j] * g.poly[2 * i + 1] - g.poly[2 * i] * g.poly[2 * j + 1];
     if (!(fabs(area2) > 1e-12 * size * size)) {
       free(g.poly);
-      arg_error(a, 2, "the polygon has zero area");
+      return -1;
     }
   }
   /* relative to the region's size; the magnitude term covers rounding of coordinates far
@@ -158,7 +129,7 @@ void cmd_region(struct YfSim *sim, const YfArgs *a) {
   /* A region much larger than the scene (the half-plane idiom `box -1e30 -1e30 X 1e30`) must not
    * get a tolerance larger than the scene itself: cap it by the same rule applied to the nodes
    * meshed so far (mesher rounding scales with the scene, not with the region). */
-  const YfNodes *nd = &sim->model.node;
+  const YfNodes *nd = &m->node;
   if (nd->n > 0) {
     double bb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY}, nmag = 0;
     for (int i = 0; i < nd->n; i++) {
@@ -170,13 +141,14 @@ void cmd_region(struct YfSim *sim, const YfArgs *a) {
     if (cap > 0 && g.tol > cap) g.tol = cap;
   }
   reg = yf_realloc(reg, (size_t)(nreg + 1) * sizeof *reg, "regions");
-  reg[nreg++] = g;
+  reg[nreg] = g;
+  return nreg++;
 }
 
 /* ------------------------------------------------------------------------------------------ */
 /* group                                                                                       */
 
-static const char *region_list(char *buf, size_t cap) {
+const char *region_names(char *buf, size_t cap) {
   size_t k = 0;
   buf[0] = '\0';
   if (!nreg) return "none defined";
@@ -185,161 +157,95 @@ static const char *region_list(char *buf, size_t cap) {
   return buf;
 }
 
-static int body_or_die(const YfModel *m, const YfArgs *a, int i) {
-  char buf[512];
-  int b = model_find_body(m, a->w[i]);
-  if (b < 0) arg_error(a, i, "unknown body (bodies: %s)", mesh_body_names(m, buf, sizeof buf));
-  return b;
-}
-
-static int group_or_die(YfModel *m, const YfArgs *a, int i) {
-  char buf[1024];
-  int g = model_group(m, a->w[i], 0);
-  if (g < 0) arg_error(a, i, "unknown group (groups: %s)", mesh_group_names(m, buf, sizeof buf));
-  return g;
-}
-
-/* group NAME node|tri|both region R [body B]
- * group NAME node|tri|both id I1 I2 ...
- * group NAME node|tri|both body B
- * group NAME node nearest X Y
- * group NAME union G1 G2 ...
- * group NAME subtract G1 G2 ...     (members of G1 that are in none of G2 ...)
- * group NAME intersect G1 G2 ...
- * Adds the selected nodes and/or triangles to group NAME (created when new).  Selection uses
- * initial positions; a triangle is in a region when its centroid is.  An empty selection is a
- * warning, an unknown group, body or region an error. */
-void cmd_group(struct YfSim *sim, const YfArgs *a) {
-  static const char *const styles[] = {"node", "tri", "both", "union", "subtract", "intersect", NULL};
-  static const char *const sels[] = {"region", "id", "body", "nearest", NULL};
-  enum { S_NODE, S_TRI, S_BOTH, S_UNION, S_SUBTRACT, S_INTERSECT };
-  enum { BY_REGION, BY_ID, BY_BODY, BY_NEAREST };
-  YfModel *m = &sim->model;
-  arg_count(a, 3, -1);
-  const char *name = arg_word(a, 0, "group name");
-  if (strlen(name) >= YF_NAME_MAX) arg_error(a, 0, "name longer than %d characters", YF_NAME_MAX - 1);
-  if (model_find_body(m, name) >= 0)
-    arg_error(a, 0, "is the group of body '%s', which holds exactly that body; choose another name", name);
-  int style = arg_choice(a, 1, "group style", styles);
-  int nn = m->node.n, nt = m->tri.n;
-  unsigned char *ns = yf_calloc((size_t)(nn ? nn : 1), 1, "group selection");
-  unsigned char *ts = yf_calloc((size_t)(nt ? nt : 1), 1, "group selection");
-  const double *X = m->node.x0, *Y = m->node.y0;
-
-  if (style >= S_UNION) {
-    arg_count(a, style == S_UNION ? 3 : 4, -1);
-    uint64_t first = 0, rest = 0;
-    for (int i = 2; i < a->n; i++) {
-      uint64_t bit = (uint64_t)1 << group_or_die(m, a, i);
-      if (i == 2) first = bit;
-      else rest |= bit;
-    }
-    for (int k = 0; k < 2; k++) {
-      const uint64_t *gm = k ? m->tri.gmask : m->node.gmask;
-      unsigned char *sel = k ? ts : ns;
-      int n = k ? nt : nn;
-      for (int i = 0; i < n; i++) {
-        uint64_t g = gm[i];
-        if (style == S_UNION) sel[i] = (g & (first | rest)) != 0;
-        else if (style == S_SUBTRACT) sel[i] = (g & first) && !(g & rest);
-        else sel[i] = (g & (first | rest)) == (first | rest);
-      }
-    }
-  } else {
-    int want_n = style != S_TRI, want_t = style != S_NODE;
-    int by = arg_choice(a, 2, "selection", sels);
-    if (by == BY_REGION) {
-      arg_count(a, 4, 6);
-      int r = region_find(a->w[3]);
-      if (r < 0) {
-        char buf[1024];
-        arg_error(a, 3, "unknown region (regions: %s)", region_list(buf, sizeof buf));
-      }
-      int b = -1;
-      if (a->n > 4) {
-        if (strcmp(a->w[4], "body") != 0) arg_error(a, 4, "expected 'body B'");
-        arg_count(a, 6, 6);
-        b = body_or_die(m, a, 5);
-      }
-      if (want_n)
-        for (int i = 0; i < nn; i++)
-          ns[i] = (b < 0 || m->node.body[i] == b) && region_contains(r, X[i], Y[i]);
-      if (want_t)
-        for (int t = 0; t < nt; t++) {
-          if (b >= 0 && m->tri.body[t] != b) continue;
-          const int *v = m->tri.v + 3 * t;
-          double cx = (X[v[0]] + X[v[1]] + X[v[2]]) / 3.0, cy = (Y[v[0]] + Y[v[1]] + Y[v[2]]) / 3.0;
-          ts[t] = (unsigned char)region_contains(r, cx, cy);
-        }
-    } else if (by == BY_ID) {
-      arg_count(a, 4, -1);
-      YfIdMap want;
-      idmap_init(&want);
-      int nid = a->n - 3;
-      unsigned char *hit_n = yf_calloc((size_t)nid, 1, "group ids");
-      unsigned char *hit_t = yf_calloc((size_t)nid, 1, "group ids");
-      for (int k = 0; k < nid; k++) {
-        long id = arg_int(a, 3 + k, "id", LONG_MIN, LONG_MAX);
-        idmap_put(&want, id, k); /* a repeated id keeps its first position */
-      }
-      if (want_n)
-        for (int i = 0; i < nn; i++) {
-          int k = idmap_get(&want, m->node.id[i]);
-          if (k >= 0) ns[i] = hit_n[k] = 1;
-        }
-      if (want_t)
-        for (int t = 0; t < nt; t++) {
-          int k = idmap_get(&want, m->tri.id[t]);
-          if (k >= 0) ts[t] = hit_t[k] = 1;
-        }
-      /* an id that selects nothing is a typo; with `both` it must name a node or a triangle */
-      for (int k = 0; k < nid; k++) {
-        int pos = idmap_get(&want, arg_int(a, 3 + k, "id", LONG_MIN, LONG_MAX));
-        if (hit_n[pos] || hit_t[pos]) continue;
-        arg_error(a, 3 + k, "no %s has this id", style == S_NODE ? "node" : style == S_TRI ? "triangle"
-                                                                      : "node or triangle");
-      }
-      free(hit_n);
-      free(hit_t);
-      idmap_free(&want);
-    } else if (by == BY_BODY) {
-      arg_count(a, 4, 4);
-      int b = body_or_die(m, a, 3);
-      if (want_n)
-        for (int i = 0; i < nn; i++) ns[i] = m->node.body[i] == b;
-      if (want_t)
-        for (int t = 0; t < nt; t++) ts[t] = m->tri.body[t] == b;
-    } else {
-      if (style != S_NODE) arg_error(a, 1, "'nearest' selects a node: use 'group NAME node nearest X Y'");
-      arg_count(a, 5, 5);
-      double px = arg_num(a, 3, "x"), py = arg_num(a, 4, "y");
-      int best = -1;
-      double bd = INFINITY;
-      for (int i = 0; i < nn; i++) {
-        double d = (X[i] - px) * (X[i] - px) + (Y[i] - py) * (Y[i] - py);
-        if (d < bd) bd = d, best = i;
-      }
-      if (best >= 0) {
-        /* copies of the node (fracturing bodies) belong with it */
-        int root = mesh_node_root(m, best);
-        for (int i = 0; i < nn; i++) ns[i] = mesh_node_root(m, i) == root;
-      }
+void group_select_sets(const YfModel *m, int op, uint64_t first, uint64_t rest, unsigned char *ns,
+                       unsigned char *ts) {
+  for (int k = 0; k < 2; k++) {
+    const uint64_t *gm = k ? m->tri.gmask : m->node.gmask;
+    unsigned char *sel = k ? ts : ns;
+    int n = k ? m->tri.n : m->node.n;
+    for (int i = 0; i < n; i++) {
+      uint64_t g = gm[i];
+      if (op == YF_GROUP_UNION) sel[i] = (g & (first | rest)) != 0;
+      else if (op == YF_GROUP_SUBTRACT) sel[i] = (g & first) && !(g & rest);
+      else sel[i] = (g & (first | rest)) == (first | rest);
     }
   }
+}
 
-  int g = mesh_group_or_die(m, name, &a->loc, "group");
+void group_select_region(const YfModel *m, int r, int b, int want_n, int want_t, unsigned char *ns,
+                         unsigned char *ts) {
+  const double *X = m->node.x0, *Y = m->node.y0;
+  if (want_n)
+    for (int i = 0; i < m->node.n; i++)
+      ns[i] = (b < 0 || m->node.body[i] == b) && region_contains(r, X[i], Y[i]);
+  if (want_t)
+    for (int t = 0; t < m->tri.n; t++) {
+      if (b >= 0 && m->tri.body[t] != b) continue;
+      const int *v = m->tri.v + 3 * t;
+      double cx = (X[v[0]] + X[v[1]] + X[v[2]]) / 3.0, cy = (Y[v[0]] + Y[v[1]] + Y[v[2]]) / 3.0;
+      ts[t] = (unsigned char)region_contains(r, cx, cy);
+    }
+}
+
+void group_select_ids(const YfModel *m, const long *ids, int nid, int want_n, int want_t, unsigned char *ns,
+                      unsigned char *ts, unsigned char *hit) {
+  YfIdMap want;
+  idmap_init(&want);
+  unsigned char *hit_n = yf_calloc((size_t)nid, 1, "group ids");
+  unsigned char *hit_t = yf_calloc((size_t)nid, 1, "group ids");
+  for (int k = 0; k < nid; k++) idmap_put(&want, ids[k], k); /* a repeated id keeps its first position */
+  if (want_n)
+    for (int i = 0; i < m->node.n; i++) {
+      int k = idmap_get(&want, m->node.id[i]);
+      if (k >= 0) ns[i] = hit_n[k] = 1;
+    }
+  if (want_t)
+    for (int t = 0; t < m->tri.n; t++) {
+      int k = idmap_get(&want, m->tri.id[t]);
+      if (k >= 0) ts[t] = hit_t[k] = 1;
+    }
+  for (int k = 0; k < nid; k++) {
+    int pos = idmap_get(&want, ids[k]);
+    hit[k] = hit_n[pos] || hit_t[pos];
+  }
+  free(hit_n);
+  free(hit_t);
+  idmap_free(&want);
+}
+
+void group_select_body(const YfModel *m, int b, int want_n, int want_t, unsigned char *ns, unsigned char *ts) {
+  if (want_n)
+    for (int i = 0; i < m->node.n; i++) ns[i] = m->node.body[i] == b;
+  if (want_t)
+    for (int t = 0; t < m->tri.n; t++) ts[t] = m->tri.body[t] == b;
+}
+
+void group_select_nearest(const YfModel *m, double px, double py, unsigned char *ns) {
+  const double *X = m->node.x0, *Y = m->node.y0;
+  int nn = m->node.n, best = -1;
+  double bd = INFINITY;
+  for (int i = 0; i < nn; i++) {
+    double d = (X[i] - px) * (X[i] - px) + (Y[i] - py) * (Y[i] - py);
+    if (d < bd) bd = d, best = i;
+  }
+  if (best >= 0) {
+    /* copies of the node (fracturing bodies) belong with it */
+    int root = mesh_node_root(m, best);
+    for (int i = 0; i < nn; i++) ns[i] = mesh_node_root(m, i) == root;
+  }
+}
+
+void group_add(YfModel *m, int g, const unsigned char *ns, const unsigned char *ts, long count[4]) {
   uint64_t bit = (uint64_t)1 << g;
+  int nn = m->node.n, nt = m->tri.n;
   long cn = 0, ct = 0;
   for (int i = 0; i < nn; i++)
     if (ns[i]) m->node.gmask[i] |= bit, cn++;
   for (int t = 0; t < nt; t++)
     if (ts[t]) m->tri.gmask[t] |= bit, ct++;
-  if (cn == 0 && ct == 0) yf_warn(&a->loc, "group %s: the selection is empty", name);
-  /* the group as it now stands (groups only grow), as LAMMPS reports its atoms */
+  /* the group as it now stands (groups only grow) */
   long gn = 0, gt = 0;
   for (int i = 0; i < nn; i++) gn += (m->node.gmask[i] & bit) != 0;
   for (int t = 0; t < nt; t++) gt += (m->tri.gmask[t] & bit) != 0;
-  sim_printf(sim, "group %s: %ld node%s, %ld triangle%s\n", name, gn, gn == 1 ? "" : "s", gt, gt == 1 ? "" : "s");
-  free(ns);
-  free(ts);
+  count[0] = cn, count[1] = ct, count[2] = gn, count[3] = gt;
 }

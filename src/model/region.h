@@ -1,4 +1,5 @@
-/* region.h: named geometric regions and the `group` command that builds node/triangle sets.
+/* region.h: named geometric regions and the selections the `group` command builds node/triangle
+ * sets from.
  *
  * A region is a shape in the plane (box, circle, polygon, or the outside of one).  Groups are
  * bits in node.gmask / tri.gmask (model.h); `group` fills them from regions, ids, bodies, the
@@ -7,10 +8,19 @@
  */
 #ifndef YF_REGION_H
 #define YF_REGION_H
+#include <stddef.h>
+#include <stdint.h>
+#include "model.h"
 
-struct YfSim;
-
-/* Commands (rows for commands.def). */
+enum { YF_REG_BOX, YF_REG_CIRCLE, YF_REG_POLYGON };
+/* Add region `name` (new, shorter than YF_NAME_MAX) of kind YF_REG_*, the outside of the shape
+ * when out: box c = X0 Y0 X1 Y1 (X0 <= X1, Y0 <= Y1), circle c = XC YC R (R > 0), polygon c = nc
+ * coordinates X1 Y1 X2 Y2 ... (nc even, >= 6).  The boundary tolerance scales with the shape and,
+ * at most, with the nodes of m meshed so far.  Returns the region's index, or -1 (nothing added)
+ * for a polygon of zero area. */
+int region_add(const char *name, int kind, int out, const double *c, int nc, const YfModel *m);
+/* Comma-separated region names for messages ("none defined" when none). */
+const char *region_names(char *buf, size_t cap);
 
 /* Index of region `name`, or -1. */
 int region_find(const char *name);
@@ -22,5 +32,25 @@ int region_count(void);
 const char *region_name(int r);
 /* Forget all regions (tests, a new simulation in the same process). */
 void region_reset(void);
+
+/* ---- group selections (the `group` command, deck/cmd_group.c) ----
+ * Each sets ns[i] / ts[t] (one flag per node / triangle, initial positions) for the members it
+ * selects; group_add then adds the flagged ones to group g (groups only grow). */
+enum { YF_GROUP_UNION, YF_GROUP_SUBTRACT, YF_GROUP_INTERSECT };
+/* Members of the groups of bit mask first (the first operand) and rest (the others): in any
+ * (union), in first and none of rest (subtract), in all (intersect). */
+void group_select_sets(const YfModel *m, int op, uint64_t first, uint64_t rest, unsigned char *ns,
+                       unsigned char *ts);
+/* Nodes in region r / triangles whose centroid is, of body b only when b >= 0. */
+void group_select_region(const YfModel *m, int r, int b, int want_n, int want_t, unsigned char *ns,
+                         unsigned char *ts);
+/* Nodes / triangles with the user ids ids[0..nid-1]; hit[k] = 1 when ids[k] selected one. */
+void group_select_ids(const YfModel *m, const long *ids, int nid, int want_n, int want_t, unsigned char *ns,
+                      unsigned char *ts, unsigned char *hit);
+void group_select_body(const YfModel *m, int b, int want_n, int want_t, unsigned char *ns, unsigned char *ts);
+/* The node nearest (px, py) [m], with its copies (fracturing bodies). */
+void group_select_nearest(const YfModel *m, double px, double py, unsigned char *ns);
+/* count: nodes and triangles flagged, then the group's nodes and triangles as it now stands. */
+void group_add(YfModel *m, int g, const unsigned char *ns, const unsigned char *ts, long count[4]);
 
 #endif

@@ -306,4 +306,8 @@ void bc_free(YfSim *s) {
   s->bc = NULL;
 }
 
-const YfBcKind bc_kind_native = {.name = "fix/load", .loads = bc_apply_loads, .free = bc_free};
+const YfBcKind bc_kind_native = {.name = "fix/load", .loads = bc_apply_loads, .prepare = bc_prepare,
+                                 .held = bc_count, .save_old = bc_save_old,
+                                 .constrain_velocities = bc_constrain_velocities,
+                                 .redo_positions = bc_redo_positions,
+                                 .constrain_positions = bc_constrain_positions, .free = bc_free};

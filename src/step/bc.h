@@ -3,7 +3,8 @@
 #define YF_BC_H
 #include "sim.h"
 
-/* Native fixes and loads as a boundary-condition kind (sim.h): loads, free. */
+/* Native fixes and loads as a boundary-condition kind (sim.h): prepare, loads, the supports
+ * around the update, free.  The run loop reaches the functions below only through it. */
 extern const YfBcKind bc_kind_native;
 
 /* One fix or load as a deck command describes it (deck/cmd_fix.c, cmd_load.c). */

@@ -46,8 +46,8 @@
 #include "contact_search.h"
 #include "err.h"
 #include "joint.h"
-#include "run.h"
 #include "par.h"
+#include "stage_time.h"
 
 #define MAX_RULES YF_CONTACT_MAX_RULES
 #define PAIR_BLK 1024      /* couples per block of the force loop: fixed, so sums do not depend on threads */

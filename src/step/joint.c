@@ -34,7 +34,7 @@
 #include "err.h"
 #include "mesh.h"
 #include "region.h"
-#include "run.h"
+#include "stage_time.h"
 
 #define JBLOCK YF_JBLOCK /* break collection granularity */
 #define PF_GROUPS 4

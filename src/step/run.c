@@ -16,7 +16,6 @@
 #include <time.h>
 #include <unistd.h>
 #include "run.h"
-#include "bc.h"
 #include "contact.h"
 #include "elem_tri.h"
 #include "err.h"
@@ -24,9 +23,6 @@
 #include "partition.h"
 #include "energy.h"
 #include "par.h"
-
-const char *const yf_stage_names[YF_NSTAGE] = {"elements", "joints", "detection", "contact", "gather", "update", "output"};
-double yf_stage_time[YF_NSTAGE];
 
 static int BLOCK = 2048; /* triangles per block of the force loop: fixed, so sums do not depend on threads */
 /* Loops shorter than this run on one thread: a parallel region costs microseconds (much more on
@@ -51,19 +47,6 @@ static struct {
   double e_floor;     /* energy of a 1e-8 strain everywhere: below it, growth is round-off [J/m] */
   double t_wall0;
 } R;
-
-double yf_now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* CPU seconds of the process, all threads (MPI: the work a rank did, whatever the machine's load). */
-double yf_cpu_now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* Build the node -> slot gather lists (CSR): triangle corners (slots 0..3 ntri-1) then the extra
  * slots (joints).  Each node's slots are in increasing slot order, fixed for the whole run. */
@@ -191,6 +174,14 @@ double run_stable_dt(YfSim *s, char *limiter, size_t n) {
   return best;
 }
 
+/* Nodes whose state before the update the boundary-condition kinds need (0: none). */
+static int bc_held(const YfSim *s) {
+  int n = 0;
+  for (int k = 0; k < s->nbc_kind; k++)
+    if (s->bc_kind[k]->held) n += s->bc_kind[k]->held(s);
+  return n;
+}
+
 void run_prepare(YfSim *s) {
   YfModel *m = &s->model;
   if (!m->tri.n) yf_deck_error(NULL, "run: the scene has no triangles (use mesh, triangle or read_y2d first)");
@@ -214,12 +205,13 @@ void run_prepare(YfSim *s) {
     m->prepared = 1;
   }
   par_prepare(s, R.nblk, BLOCK); /* MPI: which triangles of the element stage this rank computes */
-  bc_prepare(s);
+  for (int k = 0; k < s->nbc_kind; k++)
+    if (s->bc_kind[k]->prepare) s->bc_kind[k]->prepare(s);
   contact_prepare(s);
   /* positions and velocities before the update: read only by bc.c's supports and loads and by
    * the mass damping, so kept only when one of them is active (fix/load commands and damping may
    * come between runs: checked at every run) */
-  if ((bc_count(s) > 0 || s->mass_damping > 0) && R.cap_nodes < m->node.n) {
+  if ((bc_held(s) > 0 || s->mass_damping > 0) && R.cap_nodes < m->node.n) {
     R.cap_nodes = m->node.n;
     R.xo = yf_realloc(R.xo, (size_t)R.cap_nodes * sizeof(double), "old positions");
     R.yo = yf_realloc(R.yo, (size_t)R.cap_nodes * sizeof(double), "old positions");
@@ -442,7 +434,7 @@ static void stage_contact(YfSim *s) { contact_step(s); }
 
 /* update: v_{n+1/2}, then supports, then x_{n+1}.  With damping every node's old velocity is
  * read, and the old state is copied inside the update loops; without, only the supported and
- * loaded nodes' old state is (bc_save_old), one pass moves every node with its free velocity,
+ * loaded nodes' old state is (the kinds' save_old), one pass moves every node with its free velocity,
  * and the supported nodes are moved again after their velocities are imposed: the same
  * operations on every value as velocity update, supports, then position update. */
 static void stage_update(YfSim *s) {
@@ -452,10 +444,12 @@ static void stage_update(YfSim *s) {
   par_share_forces(n->fx, n->fy); /* MPI: every node's force from its owner; the update is replicated */
   double *x = n->x, *y = n->y, *vx = n->vx, *vy = n->vy;
   const double *fx = n->fx, *fy = n->fy, *ms = n->m;
-  const int keep = alpha > 0, nbc = bc_count(s);
+  const int keep = alpha > 0, nbc = bc_held(s);
   double *xo = keep || nbc ? R.xo : NULL, *yo = keep || nbc ? R.yo : NULL;
   double *vxo = keep || nbc ? R.vxo : NULL, *vyo = keep || nbc ? R.vyo : NULL;
-  if (nbc && !keep) bc_save_old(s, xo, yo, vxo, vyo);
+  if (nbc && !keep)
+    for (int k = 0; k < s->nbc_kind; k++)
+      if (s->bc_kind[k]->save_old) s->bc_kind[k]->save_old(s, xo, yo, vxo, vyo);
   const YfBcKind *integ = NULL; /* a boundary-condition kind that owns the velocity update */
   for (int k = 0; k < s->nbc_kind; k++)
     if (s->bc_kind[k]->integrate) integ = s->bc_kind[k];
@@ -483,7 +477,8 @@ static void stage_update(YfSim *s) {
       y[i] += dt * vy[i];
     }
   }
-  bc_constrain_velocities(s, vxo, vyo);
+  for (int k = 0; k < s->nbc_kind; k++)
+    if (s->bc_kind[k]->constrain_velocities) s->bc_kind[k]->constrain_velocities(s, vxo, vyo);
   if (alpha > 0) {
     /* dissipated: alpha m |v_n|^2 dt with v_n the mean of the two half-step velocities, after
      * the supports (a held node dissipates nothing); summed serially: same bits on any threads */
@@ -501,9 +496,11 @@ static void stage_update(YfSim *s) {
       y[i] += dt * vy[i];
     }
   } else if (nbc) {
-    bc_redo_positions(s, xo, yo);
+    for (int k = 0; k < s->nbc_kind; k++)
+      if (s->bc_kind[k]->redo_positions) s->bc_kind[k]->redo_positions(s, xo, yo);
   }
-  bc_constrain_positions(s, xo, yo, vxo, vyo);
+  for (int k = 0; k < s->nbc_kind; k++)
+    if (s->bc_kind[k]->constrain_positions) s->bc_kind[k]->constrain_positions(s, xo, yo, vxo, vyo);
   s->step++;
   s->time += dt;
 }

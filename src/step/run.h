@@ -3,15 +3,7 @@
 #define YF_RUN_H
 #include "sim.h"
 #include "elem_tri.h"
-
-/* Stages of a step, timed separately for the benchmark's breakdown. */
-enum { YF_ST_ELEMENTS, YF_ST_JOINTS, YF_ST_DETECT, YF_ST_CONTACT, YF_ST_GATHER, YF_ST_UPDATE, YF_ST_OUTPUT, YF_NSTAGE };
-extern const char *const yf_stage_names[YF_NSTAGE];
-extern double yf_stage_time[YF_NSTAGE]; /* seconds accumulated over all runs */
-
-/* Monotonic wall clock [s] (stage timers). */
-double yf_now(void);
-double yf_cpu_now(void);
+#include "stage_time.h" /* the stage timers, YF_ST_* */
 /* Prepare the model (masses, reference inverses, gather lists, bc) for stepping.  Idempotent. */
 void run_prepare(YfSim *s);
 /* Advance n steps. */

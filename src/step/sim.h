@@ -51,6 +51,17 @@ typedef struct YfBcKind {
   /* update stage: v_{n+1/2} of every node instead of the free update (at most one kind); par:
    * threaded; vxo, vyo: old velocities to keep (mass damping) or NULL; move: also x_{n+1} */
   void (*integrate)(struct YfSim *s, int par, double *vxo, double *vyo, int move);
+  /* supports and prescribed motions around the update (native fixes, bc.c): prepare resolves
+   * groups at the start of each run; held > 0 when the kind needs the old state of its nodes,
+   * which save_old copies (without damping); constrain_velocities after the velocity update,
+   * redo_positions after the free position update (without damping), constrain_positions last */
+  void (*prepare)(struct YfSim *s);
+  int (*held)(const struct YfSim *s);
+  void (*save_old)(struct YfSim *s, double *xo, double *yo, double *vxo, double *vyo);
+  void (*constrain_velocities)(struct YfSim *s, const double *vxo, const double *vyo);
+  void (*redo_positions)(struct YfSim *s, const double *xo, const double *yo);
+  void (*constrain_positions)(struct YfSim *s, const double *xo, const double *yo, const double *vxo,
+                              const double *vyo);
   void (*renumbered)(struct YfSim *s);     /* nodes and triangles renumbered (partition.c) */
   void (*scene_built)(struct YfSim *s);    /* end of run_prepare: input copies may go */
   void (*free)(struct YfSim *s);

@@ -37,60 +37,29 @@ typedef struct YfY2dRef {
 
 const char *y2dref_dir(const YfY2dRef *r) { return r->dir; }
 
-/* "S1,S2,..." -> steps */
-static void parse_steps(const YfArgs *a, int i, YfY2dRef *r) {
-  const char *w = arg_word(a, i, "corner steps");
-  char *buf = yf_strdup(w), *save = NULL;
-  for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
-    long v;
-    if (!yf_parse_long(t, &v) || v < 0) {
-      free(buf);
-      arg_error(a, i, "expected a comma-separated list of step numbers >= 0 (e.g. 500,2000,4000)");
-    }
-    r->csteps = yf_realloc(r->csteps, (size_t)(r->ncsteps + 1) * sizeof(long), "y2dref steps");
-    r->csteps[r->ncsteps++] = v;
-  }
-  free(buf);
-  if (!r->ncsteps) arg_error(a, i, "expected at least one step");
-}
-
-YfY2dRef *y2dref_parse(YfSim *s, const YfArgs *a) {
-  arg_count(a, 3, -1);
+YfY2dRef *y2dref_new(const char *dir) {
   YfY2dRef *r = yf_calloc(1, sizeof *r, "y2dref dump");
-  const char *d = arg_word(a, 2, "directory");
-  if (!d[0]) arg_error(a, 2, "empty directory name");
-  r->dir = deck_resolve_path(a, d);
-  for (int i = 3; i < a->n;) {
-    const char *k = a->w[i];
-    if (!strcmp(k, "corners")) {
-      parse_steps(a, i + 1, r);
-      i += 2;
-    } else if (!strcmp(k, "summary")) {
-      r->sum_every = arg_int(a, i + 1, "summary period K (steps)", 1, 1000000000L);
-      i += 2;
-    } else if (!strcmp(k, "probes")) {
-      r->probe_every = arg_int(a, i + 1, "probe period K (steps)", 1, 1000000000L);
-      i += 2;
-      for (; i < a->n && strchr(a->w[i], ':'); i++) {
-        long e, c;
-        char *w = yf_strdup(a->w[i]), *colon = strchr(w, ':');
-        *colon = 0;
-        int ok = yf_parse_long(w, &e) && yf_parse_long(colon + 1, &c) && e >= 0 && c >= 0 && c <= 2;
-        free(w);
-        if (!ok) arg_error(a, i, "expected ELEMENT:CORNER (input element index, corner 0, 1 or 2)");
-        if (y2d_tri_of_elem(s, e) < 0) arg_error(a, i, "no triangle with input index %ld in the scene", e);
-        r->probe = yf_realloc(r->probe, (size_t)(2 * r->nprobe + 2) * sizeof(long), "y2dref probes");
-        r->probe[2 * r->nprobe] = e;
-        r->probe[2 * r->nprobe + 1] = c;
-        r->nprobe++;
-      }
-      if (!r->nprobe) arg_error(a, i - 1, "expected probes ELEMENT:CORNER after the period");
-    } else {
-      arg_error(a, i, "unknown keyword (expected corners S1,S2,..., summary K or probes K E:C ...)");
-    }
-  }
+  r->dir = yf_strdup(dir);
   return r;
 }
+
+int y2dref_add_corner_step(YfY2dRef *r, long step) {
+  r->csteps = yf_realloc(r->csteps, (size_t)(r->ncsteps + 1) * sizeof(long), "y2dref steps");
+  r->csteps[r->ncsteps++] = step;
+  return r->ncsteps;
+}
+
+void y2dref_set_summary(YfY2dRef *r, long every) { r->sum_every = every; }
+void y2dref_set_probe_every(YfY2dRef *r, long every) { r->probe_every = every; }
+
+int y2dref_add_probe(YfY2dRef *r, long elem, long corner) {
+  r->probe = yf_realloc(r->probe, (size_t)(2 * r->nprobe + 2) * sizeof(long), "y2dref probes");
+  r->probe[2 * r->nprobe] = elem;
+  r->probe[2 * r->nprobe + 1] = corner;
+  return ++r->nprobe;
+}
+int y2dref_nprobe(const YfY2dRef *r) { return r->nprobe; }
+int y2dref_ncorner_steps(const YfY2dRef *r) { return r->ncsteps; }
 
 /* Create (first time, with its header) or reopen for appending (after y2dref_close) a CSV file. */
 static FILE *open_csv(const YfY2dRef *r, const char *name, const char *header) {

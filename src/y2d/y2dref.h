@@ -15,12 +15,19 @@
 #ifndef YF_Y2DREF_H
 #define YF_Y2DREF_H
 #include "sim.h"
-#include "deck.h"
 
 struct YfY2dRef;
 
-/* Parse the words after `dump ID y2dref` (a->w[2] = DIR ...); exits with a deck error on bad input. */
-struct YfY2dRef *y2dref_parse(YfSim *s, const YfArgs *a);
+/* A dump into directory dir (the words of `dump ID y2dref` are read in deck/cmd_dump.c), then
+ * its corner-table steps, summary and probe periods and probes (input element, corner 0..2);
+ * the adders return how many there are now. */
+struct YfY2dRef *y2dref_new(const char *dir);
+int y2dref_add_corner_step(struct YfY2dRef *r, long step);
+void y2dref_set_summary(struct YfY2dRef *r, long every);
+void y2dref_set_probe_every(struct YfY2dRef *r, long every);
+int y2dref_add_probe(struct YfY2dRef *r, long elem, long corner);
+int y2dref_nprobe(const struct YfY2dRef *r);
+int y2dref_ncorner_steps(const struct YfY2dRef *r);
 /* Directory written by the dump. */
 const char *y2dref_dir(const struct YfY2dRef *r);
 /* After each completed step (and at the start of a run): write what is due at s->step. */

@@ -1,0 +1,123 @@
+/* cmd_dump.c: the `dump` deck command (a row of commands.def): reads a dump's words and adds it
+ * (output_add_dump, io/output.c; the y2dref style's words into a YfY2dRef, y2d/y2dref.c).
+ */
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+#include "deck.h"
+#include "output.h"
+#include "y2d_model.h"
+#include "y2dref.h"
+
+/* "S1,S2,..." -> corner-table steps of r; *n: how many r has (all corners keywords so far) */
+static void parse_steps(const YfArgs *a, int i, struct YfY2dRef *r, int *n) {
+  const char *w = arg_word(a, i, "corner steps");
+  char *buf = yf_strdup(w), *save = NULL;
+  for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+    long v;
+    if (!yf_parse_long(t, &v) || v < 0) {
+      free(buf);
+      arg_error(a, i, "expected a comma-separated list of step numbers >= 0 (e.g. 500,2000,4000)");
+    }
+    *n = y2dref_add_corner_step(r, v);
+  }
+  free(buf);
+  if (!*n) arg_error(a, i, "expected at least one step");
+}
+
+/* dump ID y2dref DIR [corners S1,S2,...] [summary K] [probes K E:C E:C ...]  (y2dref.h) */
+static struct YfY2dRef *parse_y2dref(YfSim *s, const YfArgs *a) {
+  arg_count(a, 3, -1);
+  const char *d = arg_word(a, 2, "directory");
+  if (!d[0]) arg_error(a, 2, "empty directory name");
+  char *dir = deck_resolve_path(a, d);
+  struct YfY2dRef *r = y2dref_new(dir);
+  free(dir);
+  int ncs = 0, nprobe = 0;
+  for (int i = 3; i < a->n;) {
+    const char *k = a->w[i];
+    if (!strcmp(k, "corners")) {
+      parse_steps(a, i + 1, r, &ncs);
+      i += 2;
+    } else if (!strcmp(k, "summary")) {
+      y2dref_set_summary(r, arg_int(a, i + 1, "summary period K (steps)", 1, 1000000000L));
+      i += 2;
+    } else if (!strcmp(k, "probes")) {
+      y2dref_set_probe_every(r, arg_int(a, i + 1, "probe period K (steps)", 1, 1000000000L));
+      i += 2;
+      for (; i < a->n && strchr(a->w[i], ':'); i++) {
+        long e, c;
+        char *w = yf_strdup(a->w[i]), *colon = strchr(w, ':');
+        *colon = 0;
+        int ok = yf_parse_long(w, &e) && yf_parse_long(colon + 1, &c) && e >= 0 && c >= 0 && c <= 2;
+        free(w);
+        if (!ok) arg_error(a, i, "expected ELEMENT:CORNER (input element index, corner 0, 1 or 2)");
+        if (y2d_tri_of_elem(s, e) < 0) arg_error(a, i, "no triangle with input index %ld in the scene", e);
+        nprobe = y2dref_add_probe(r, e, c);
+      }
+      if (!nprobe) arg_error(a, i - 1, "expected probes ELEMENT:CORNER after the period");
+    } else {
+      arg_error(a, i, "unknown keyword (expected corners S1,S2,..., summary K or probes K E:C ...)");
+    }
+  }
+  return r;
+}
+
+/* dump ID h5 N FILE.h5 [fields F1 F2 ...] [compress]
+ * dump ID csv N PREFIX
+ * dump ID y2dref DIR ... */
+void cmd_dump(YfSim *s, const YfArgs *a) {
+  static const char *const styles[] = {"h5", "csv", "y2dref", NULL}; /* index = YF_DUMP_* */
+  arg_count(a, 2, -1);
+  const char *id = arg_word(a, 0, "dump id");
+  if (strlen(id) >= YF_NAME_MAX) arg_error(a, 0, "id too long (at most %d characters)", YF_NAME_MAX - 1);
+  int style = arg_choice(a, 1, "style", styles);
+  if (style == YF_DUMP_Y2DREF) {
+    if (output_find_dump(s, id) >= 0) arg_error(a, 0, "a dump with this id exists (undump it first)");
+    if (output_ndump(s) >= YF_MAX_DUMPS) arg_error(a, 0, "at most %d dumps at a time", YF_MAX_DUMPS);
+    struct YfY2dRef *r = parse_y2dref(s, a);
+    output_add_y2dref(s, id, r);
+    sim_printf(s, "dump %s: Y2D reference CSV files in %s\n", id, y2dref_dir(r));
+    return;
+  }
+  arg_count(a, 4, -1);
+  long every = arg_int(a, 2, "N (steps between frames)", 1, LONG_MAX / 4);
+  const char *path = arg_word(a, 3, style == YF_DUMP_H5 ? "file" : "file prefix");
+  unsigned fields = YF_FIELD_ALL;
+  int compress = 0;
+  for (int i = 4; i < a->n;) {
+    if (style == YF_DUMP_H5 && strcmp(a->w[i], "fields") == 0) {
+      int first = ++i;
+      fields = 0;
+      for (; i < a->n && strcmp(a->w[i], "compress") != 0; i++) {
+        int k = arg_choice(a, i, "field", output_field_names);
+        if (k < 9) fields |= 1u << k; /* "x" (geometry) is always written */
+      }
+      if (i == first) arg_error(a, first - 1, "expected field names after it (u v f stress vonmises sigma1 material body fc)");
+    } else if (style == YF_DUMP_H5 && strcmp(a->w[i], "compress") == 0) {
+      compress = 1;
+      i++;
+    } else if (style == YF_DUMP_H5) {
+      arg_error(a, i, "unknown keyword (expected fields or compress)");
+    } else {
+      arg_error(a, i, "unexpected word (a csv dump takes no keywords)");
+    }
+  }
+  if (!path[0]) arg_error(a, 3, "empty file name");
+  const char *base = strrchr(path, '/');
+  if (style == YF_DUMP_H5 && strchr(base ? base + 1 : path, ':'))
+    arg_error(a, 3, "the file name may not contain ':' (XDMF uses it to separate file and dataset)");
+  if (output_find_dump(s, id) >= 0) arg_error(a, 0, "a dump with this id exists (undump it first)");
+  if (output_ndump(s) >= YF_MAX_DUMPS) arg_error(a, 0, "at most %d dumps at a time", YF_MAX_DUMPS);
+  for (int i = 0; i < output_ndump(s); i++)
+    if (strcmp(output_dump_path(s, i), path) == 0)
+      arg_error(a, 3, "already written by dump '%s'", output_dump_id(s, i));
+  int k = output_add_dump(s, id, style, every, path, fields, compress);
+  if (style == YF_DUMP_H5) {
+    const char *stem, *ext, *xmf;
+    output_dump_files(s, k, &stem, &ext, &xmf);
+    sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN%s (index %s)\n", id, every, stem, ext, xmf);
+  } else {
+    sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN.csv\n", id, every, path);
+  }
+}

@@ -1,0 +1,38 @@
+/* cmd_read_restart.c: the `read_restart` deck command (a row of commands.def): finds the file
+ * (the working directory first, then beside the deck) and continues from it (restart_read,
+ * io/restart.c).
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "deck.h"
+#include "report.h"
+#include "restart.h"
+
+/* read_restart FILE */
+void cmd_read_restart(YfSim *s, const YfArgs *a) {
+  io_attach(s); /* its state observes the run loop (report.c) */
+  arg_count(a, 1, 1);
+  /* Restarts are written relative to the working directory (write_restart, restart every, an
+   * interrupt), so that is where FILE is looked for first; a deck run from elsewhere may keep
+   * its restart beside itself, so the deck's directory is the second place. */
+  const char *w = arg_word(a, 0, "FILE");
+  char *here = restart_pick_file(w), *p = NULL, *there = NULL;
+  if (!here) {
+    p = deck_resolve_path(a, w);
+    there = restart_pick_file(p);
+  }
+  if (!here && !there) {
+    YfLoc l = a->loc;
+    char msg[2200];
+    snprintf(msg, sizeof msg, "no restart '%s' (nor %s.a / %s.b) in the working directory, nor '%s' beside the deck",
+             w, w, w, p);
+    free(p);
+    yf_io_error(&l, "read_restart: %s: %s", msg, strerror(ENOENT));
+  }
+  restart_read(s, here ? w : p, &a->loc);
+  free(here);
+  free(there);
+  free(p);
+}

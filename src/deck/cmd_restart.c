@@ -1,0 +1,23 @@
+/* cmd_restart.c: the `restart` deck command (a row of commands.def): periodic restarts on or off
+ * (restart_every, io/restart.c).
+ */
+#include <limits.h>
+#include "deck.h"
+#include "report.h"
+#include "restart.h"
+
+/* restart every N FILE | restart off */
+void cmd_restart(YfSim *s, const YfArgs *a) {
+  io_attach(s); /* its state observes the run loop (report.c) */
+  arg_count(a, 1, 3);
+  static const char *const w[] = {"every", "off", NULL};
+  int k = arg_choice(a, 0, "restart keyword", w);
+  if (k == 1) {
+    arg_count(a, 1, 1);
+    restart_every(s, 0, NULL);
+    return;
+  }
+  arg_count(a, 3, 3);
+  long every = arg_int(a, 1, "N (steps)", 1, LONG_MAX);
+  restart_every(s, every, arg_word(a, 2, "FILE")); /* an output: relative to the working directory */
+}

@@ -1,0 +1,17 @@
+/* cmd_write_restart.c: the `write_restart` deck command (a row of commands.def): prepares the
+ * scene as `run` would and writes a restart now (restart_write, io/restart.c).
+ */
+#include "deck.h"
+#include "restart.h"
+#include "run.h"
+
+/* write_restart FILE */
+void cmd_write_restart(YfSim *s, const YfArgs *a) {
+  arg_count(a, 1, 1);
+  if (!s->model.tri.n) arg_error(a, 0, "the scene has no triangles: nothing to write");
+  run_prepare(s); /* a restart before the first run holds the prepared initial state */
+  const char *p = arg_word(a, 0, "FILE"); /* an output: relative to the working directory */
+  char err[1024];
+  if (restart_write(s, p, err, sizeof err)) yf_io_error(&a->loc, "write_restart: %s", err);
+  sim_printf(s, "write_restart: %s at step %ld\n", p, s->step);
+}
