@@ -766,7 +766,7 @@ static int continuing(const YfSim *s, const YfDump *d) {
 }
 
 static void write_frame(YfSim *s, YfDump *d) {
-  par_need_stresses(&s->model); /* MPI: every rank is here, in the same order (a collective) */
+  par_need_all(s); /* MPI: every rank is here, in the same order (a collective) */
   if (!yf_writer()) { /* an MPI rank other than 0: the same bookkeeping, no file */
     d->nframe++;
     d->last_step = s->step;

@@ -327,7 +327,7 @@ int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
     if (err) snprintf(err, nerr, "the model is not prepared yet (write_restart needs a run or read_restart first)");
     return -1;
   }
-  par_need_stresses(&s->model); /* MPI: every rank is here; rank 0 needs every triangle's stress */
+  par_need_all(s); /* MPI: every rank is here; rank 0 needs what owners hold (stresses, joints, friction) */
   if (!yf_writer()) return 0; /* under MPI rank 0 writes the (replicated) state */
   yf_h5_quiet();
   size_t L = strlen(path);

@@ -46,6 +46,7 @@
 #include "contact_search.h"
 #include "err.h"
 #include "joint.h"
+#include "par.h"
 #include "stage_time.h"
 
 #define MAX_RULES YF_CONTACT_MAX_RULES
@@ -620,17 +621,19 @@ typedef struct {
 
 /* The kernel on the marked couples of block b, in couple order: friction slots numbered from the
  * block's offset, energy and dissipation summed per block, couples dropped as Y2D drops them. */
-static void kernel_block(YfContact *C, const KernelPass *P, int b) {
+/* The kernel on the marked couples ka..kb-1, hits numbered from h, new friction slots from slot;
+ * energy and dissipation summed in couple order into *eo, *dofs (and, when ed is not NULL, each
+ * touching couple's pair written to ed in order: the pieces of a block shared by two ranks). */
+static void kernel_run(const KernelPass *P, int ka, int kb, int h, int slot, double *eo, double *dofs, int *rmo,
+                       double *ed) {
   double e = 0.0, d = 0.0;
-  int rm = 0, h = C->blk_off[b], slot = C->blk_goff[b];
-  if (h == C->blk_off[b + 1]) { C->blk_e[b] = C->blk_d[b] = 0.0; return; }
+  int rm = 0;
   const int *ij = P->ij, *tv = P->tv, *tmat = P->tmat;
   int *gi = P->gi;
   unsigned char *alive = P->alive;
   const double *vx = P->vx, *vy = P->vy, *tg = P->tg;
   double *gmem = P->gmem;
-  int k1 = (b + 1) * PAIR_BLK < P->np ? (b + 1) * PAIR_BLK : P->np;
-  for (int k = b * PAIR_BLK; k < k1; k++) {
+  for (int k = ka; k < kb; k++) {
     if (alive[k] != 2) continue;
     alive[k] = 1;
     int ti = ij[2 * k], tj = ij[2 * k + 1];
@@ -658,6 +661,10 @@ static void kernel_block(YfContact *C, const KernelPass *P, int b) {
                                      vyb, pn, pt, mu, law, P->dt, gmem + 6 * (size_t)gi[k], fa, fb, &d2, &info);
     e += info.energy;
     d += info.dissip;
+    if (ed) {
+      *ed++ = info.energy;
+      *ed++ = info.dissip;
+    }
     if (P->hf) {
       P->hk[h] = k;
     } else { /* one thread: the scatter's additions, here (A's corners, then B's) */
@@ -671,9 +678,319 @@ static void kernel_block(YfContact *C, const KernelPass *P, int b) {
     h++;
     if (!hit && d2 > P->rem2) { alive[k] = 0; rm++; }
   }
-  C->blk_e[b] = e;
-  C->blk_d[b] = d;
+  *eo = e;
+  *dofs = d;
+  *rmo = rm;
+}
+
+static void kernel_block(YfContact *C, const KernelPass *P, int b) {
+  int h = C->blk_off[b], rm = 0;
+  if (h == C->blk_off[b + 1]) { C->blk_e[b] = C->blk_d[b] = 0.0; return; }
+  int k1 = (b + 1) * PAIR_BLK < P->np ? (b + 1) * PAIR_BLK : P->np;
+  kernel_run(P, b * PAIR_BLK, k1, h, C->blk_goff[b], &C->blk_e[b], &C->blk_d[b], &rm, NULL);
   C->blk_rm[b] += rm;
+}
+
+/* dropped couples: compact once a quarter of the list is dead */
+static void contact_compact(YfContact *C, int removed) {
+  C->nlive -= removed;
+  C->ndead += removed;
+  if (C->ndead > 0 && 4 * C->ndead > C->pairs.n) {
+    contact_pairs_compact(&C->pairs, C->alive);
+    memset(C->alive, 1, (size_t)C->pairs.n);
+    C->ndead = 0;
+  }
+}
+
+/* ---------------------------------------------------------------- the kernel on MPI ranks
+ *
+ * Couple k belongs to the rank owning its lower triangle ij[2k] (par_owner_ranges): the list
+ * is sorted by it, so each rank's couples are one range of it, in rank order, and a couple's
+ * friction memory lives on its owner for the couple's whole life (search merges and
+ * compactions keep it there: its triangles do not change rank).  The screen (pass 1) ran on every
+ * rank, so the marks, the friction slot numbers and the hit offsets are the same everywhere;
+ * each rank runs the kernel on its range only, then:
+ *   - the per-block energy and dissipation of blocks inside one rank's range come from that rank;
+ *     a block two ranks share is summed from its touching couples' values in couple order (the
+ *     owners send them): every block sum has the one-rank bits;
+ *   - couples the kernel drops are sent to every rank (the list stays the same everywhere);
+ *   - each hit's forces on nodes another rank owns go to that rank (node, fx, fy), in couple
+ *     order; the owner of a node adds its couples' contributions rank by rank, i.e. in couple
+ *     order: the one-rank scatter's additions.
+ * Only owned nodes get their contact force here (fcn of the other nodes is stale until
+ * contact_par_gather). */
+typedef struct { double i, fx, fy; } Contrib; /* a hit's force on a node another rank owns */
+
+static struct {
+  void *ed, *drop, *send, *sum, *hof;
+  size_t ced, cdrop, csend, csum, chof;
+  int *lo, *rb, *sb;
+  int nlo;
+} DS;
+
+static void ds_room(void **p, size_t *cap, size_t need) {
+  if (need <= *cap) return;
+  *cap = need + need / 2 + 1024;
+  free(*p);
+  *p = yf_malloc(*cap, "contact exchange");
+}
+
+/* A piece of block b inside couples [r0, r1): ka..kb-1; whole when it is the block. */
+static int piece(int b, int r0, int r1, int np, int *ka, int *kb) {
+  *ka = b * PAIR_BLK > r0 ? b * PAIR_BLK : r0;
+  *kb = (b + 1) * PAIR_BLK < r1 ? (b + 1) * PAIR_BLK : r1;
+  return *ka == b * PAIR_BLK && (*kb == (b + 1) * PAIR_BLK || *kb == np);
+}
+
+/* The corners of this rank's hits, in couple order (A's corners, then B's): mode 0 counts the
+ * bytes for each owner of a node another rank owns (sb), 1 writes those contributions grouped by
+ * owner (fl: next place per owner), 2 adds the contributions on owned nodes into fcn. */
+typedef struct {
+  const YfContact *C;
+  const int *ij, *tv;
+  int n0, n1, S;
+  const int *nlo;
+  int *sb, *fl;
+  Contrib *cs;
+  double *fcn;
+  unsigned char *tmark;
+} HitWalk;
+
+static void walk_hits(const HitWalk *w, int nh, int mode) {
+  for (int h = 0; h < nh; h++) {
+    int k = w->C->hk[h];
+    const int *vv[2] = {w->tv + 3 * w->ij[2 * k + 1], w->tv + 3 * w->ij[2 * k]};
+    const double *f = w->C->hf + 12 * (size_t)h;
+    for (int c = 0; c < 6; c++) {
+      int i = vv[c / 3][c % 3], own = i >= w->n0 && i < w->n1;
+      if (mode == 2) {
+        if (!own) continue;
+        w->tmark[i] = 1;
+        w->fcn[2 * i] += f[2 * c];
+        w->fcn[2 * i + 1] += f[2 * c + 1];
+        continue;
+      }
+      if (own) continue;
+      int a = 0, z = w->S; /* owner: nlo[a] <= i < nlo[a + 1] */
+      while (z - a > 1) {
+        int m = (a + z) / 2;
+        if (w->nlo[m] <= i) a = m;
+        else z = m;
+      }
+      if (mode == 0) w->sb[a] += (int)sizeof(Contrib);
+      else w->cs[w->fl[a]++] = (Contrib){(double)i, f[2 * c], f[2 * c + 1]};
+    }
+  }
+}
+
+/* MPI: the couple ranges of the ranks (DS.lo) for the current list; 0 on one rank. */
+static int couple_ranges(const int *ij, int np) {
+  const int S = par_size();
+  if (S <= 1) return 0;
+  if (DS.nlo < S + 1) {
+    free(DS.lo); free(DS.rb); free(DS.sb);
+    DS.lo = yf_malloc(((size_t)S + 1) * sizeof(int), "contact ranges");
+    DS.rb = yf_malloc(((size_t)S + 1) * sizeof(int), "contact ranges");
+    DS.sb = yf_malloc(((size_t)S + 1) * sizeof(int), "contact ranges");
+    DS.nlo = S + 1;
+  }
+  return par_owner_ranges(ij, 2, np, DS.lo);
+}
+
+/* The kernel stage on MPI ranks (above), after the screen of this rank's couples (which marked
+ * its drops 3); *ng: friction slots in use, updated.  Returns the couples dropped this step by
+ * the screens and kernels of all ranks. */
+static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nbusy, int *ng) {
+  const int S = par_size(), me = par_rank();
+  int *lo = DS.lo, *rb = DS.rb, *sb = DS.sb;
+  const int *nlo = par_node_lo();
+  const int np = P->np, k0 = lo[me], k1 = lo[me + 1], n0 = nlo[me], n1 = nlo[me + 1];
+  int *gi = P->gi;
+  unsigned char *alive = P->alive;
+  /* 0. first contacts and the screen's drops, to every rank: friction slots are numbered in
+   * couple order (as the one-rank kernel numbers them: each block from its offset), and the list
+   * stays the same everywhere */
+  int nneed = 0, nsd = 0;
+  for (int k = k0; k < k1; k++) {
+    nneed += alive[k] == 2 && gi[k] < 0;
+    nsd += alive[k] == 3;
+  }
+  ds_room(&DS.drop, &DS.cdrop, (size_t)(nneed + nsd + 2) * sizeof(int));
+  int *ev = DS.drop, *o0 = ev + 1;
+  ev[0] = nneed;
+  for (int k = k0; k < k1; k++)
+    if (alive[k] == 2 && gi[k] < 0) *o0++ = k;
+  for (int k = k0; k < k1; k++)
+    if (alive[k] == 3) { *o0++ = k; alive[k] = 0; }
+  const int *e0 = par_concat(ev, (int)((o0 - ev) * (long)sizeof(int)), rb);
+  int removed = 0, slot = *ng, need_all = 0;
+  for (int r = 0, t = 0; r < S; t += rb[r] / (int)sizeof(int), r++) need_all += e0[t];
+  contact_pairs_greserve(&C->pairs, *ng + need_all);
+  P->gmem = C->pairs.g;
+  for (int r = 0; r < S; r++) {
+    const int n = rb[r] / (int)sizeof(int);
+    for (int t = 1; t <= e0[0]; t++) {
+      gi[e0[t]] = slot++;
+      memset(P->gmem + 6 * (size_t)gi[e0[t]], 0, 6 * sizeof(double));
+    }
+    for (int t = e0[0] + 1; t < n; t++) alive[e0[t]] = 0;
+    removed += n - 1 - e0[0];
+    e0 += n;
+  }
+  *ng = slot;
+  /* this rank's pieces: hits numbered from 0 in couple order */
+  const int b0 = k0 / PAIR_BLK, b1 = k1 > k0 ? (k1 - 1) / PAIR_BLK + 1 : b0, nq = b1 - b0;
+  ds_room(&DS.sum, &DS.csum, (size_t)(4 * nq + 4) * sizeof(double));
+  double *qsum = DS.sum; /* e, d per piece */
+  int nh = 0, ned = 0;
+  ds_room(&DS.hof, &DS.chof, (size_t)(3 * nq + 3) * sizeof(int));
+  int *hoff = DS.hof, *eoff = hoff + nq + 1;
+  for (int q = 0; q < nq; q++) {
+    int xa, xb, whole = piece(b0 + q, k0, k1, np, &xa, &xb), c = 0;
+    if (whole) c = C->blk_busy[b0 + q];
+    else
+      for (int k = xa; k < xb; k++) c += alive[k] == 2;
+    hoff[q] = nh;
+    eoff[q] = ned;
+    nh += c;
+    if (!whole) ned += c;
+  }
+  hit_room(C, nh > nbusy ? nh : nbusy);
+  P->hf = C->hf;
+  P->hk = C->hk;
+  ds_room(&DS.ed, &DS.ced, (size_t)(2 * ned + 2 * nq + 2) * sizeof(double));
+  double *ed = DS.ed;
+  const double tk = yf_cpu_now();
+  #pragma omp parallel for schedule(dynamic, 1) if (nh >= C->par_min / 32 && nq > 1)
+  for (int q = 0; q < nq; q++) {
+    int xa, xb, rm = 0, whole = piece(b0 + q, k0, k1, np, &xa, &xb);
+    kernel_run(P, xa, xb, hoff[q], 0, &qsum[2 * q], &qsum[2 * q + 1], &rm, whole ? NULL : ed + 2 * eoff[q]);
+  }
+  par_note_work(yf_cpu_now() - tk);
+
+  /* 1. to every rank: the whole blocks' sums, the split pieces' pairs, then the dropped couples */
+  int nwhole = 0;
+  for (int q = 0; q < nq; q++) {
+    int xa, xb;
+    nwhole += piece(b0 + q, k0, k1, np, &xa, &xb);
+  }
+  int ndrop = 0;
+  for (int h = 0; h < nh; h++) ndrop += !alive[C->hk[h]];
+  size_t nsend = (size_t)(2 * nwhole + 2 * ned + 2) * sizeof(double) + (size_t)ndrop * sizeof(int);
+  ds_room(&DS.send, &DS.csend, nsend + 16);
+  double *o = DS.send;
+  for (int q = 0; q < nq; q++) {
+    int xa, xb;
+    if (piece(b0 + q, k0, k1, np, &xa, &xb)) { *o++ = qsum[2 * q]; *o++ = qsum[2 * q + 1]; }
+  }
+  for (int q = 0; q < nq; q++) { /* split pieces: how many touching couples, then their pairs */
+    int xa, xb;
+    if (piece(b0 + q, k0, k1, np, &xa, &xb)) continue;
+    int c = q + 1 < nq ? eoff[q + 1] - eoff[q] : ned - eoff[q];
+    *o++ = c;
+    memcpy(o, ed + 2 * eoff[q], (size_t)(2 * c) * sizeof(double));
+    o += 2 * c;
+  }
+  int *od = (int *)o;
+  for (int h = 0; h < nh; h++)
+    if (!alive[C->hk[h]]) *od++ = C->hk[h];
+  const char *all = par_concat(DS.send, (int)((char *)od - (char *)DS.send), rb);
+  for (int r = 0; r < S; r++, all += rb[r - 1]) {
+    const double *a = (const double *)all;
+    if (lo[r + 1] <= lo[r]) {
+      for (int t = 0; t < rb[r] / (int)sizeof(int); t++) alive[((const int *)all)[t]] = 0, removed++;
+      continue;
+    }
+    int rb0 = lo[r] / PAIR_BLK, rb1 = (lo[r + 1] - 1) / PAIR_BLK + 1, xa, xb;
+    for (int b = rb0; b < rb1; b++)
+      if (piece(b, lo[r], lo[r + 1], np, &xa, &xb)) { C->blk_e[b] = a[0]; C->blk_d[b] = a[1]; a += 2; }
+    for (int b = rb0; b < rb1; b++) {
+      if (piece(b, lo[r], lo[r + 1], np, &xa, &xb)) continue;
+      /* a split block: its touching couples in couple order, rank after rank */
+      double e = xa == b * PAIR_BLK ? 0.0 : C->blk_e[b], d = xa == b * PAIR_BLK ? 0.0 : C->blk_d[b];
+      int c = (int)*a++;
+      for (int t = 0; t < c; t++, a += 2) { e += a[0]; d += a[1]; }
+      C->blk_e[b] = e;
+      C->blk_d[b] = d;
+    }
+    const int *dr = (const int *)a;
+    int nd = (int)((all + rb[r] - (const char *)a) / (int)sizeof(int));
+    for (int t = 0; t < nd; t++) alive[dr[t]] = 0;
+    removed += nd;
+  }
+
+  /* 2. hits on other ranks' nodes to their owners, in couple order */
+  const int *ij = P->ij, *tv = P->tv;
+  for (int r = 0; r < S; r++) sb[r] = 0;
+  /* grouped by owner: count, then fill */
+  int fill[64], *fl = S <= 64 ? fill : yf_calloc((size_t)S, sizeof(int), "contact exchange");
+  HitWalk w = {C, ij, tv, n0, n1, S, nlo, sb, fl, NULL, NULL, NULL};
+  walk_hits(&w, nh, 0);
+  size_t ncon = 0;
+  for (int r = 0; r < S; r++) { fl[r] = (int)ncon; ncon += (size_t)sb[r] / sizeof(Contrib); }
+  ds_room(&DS.send, &DS.csend, (ncon + 1) * sizeof(Contrib));
+  Contrib *cs = DS.send;
+  w.cs = cs;
+  walk_hits(&w, nh, 1);
+  if (fl != fill) free(fl);
+  const char *in = par_exchange(cs, sb, rb);
+  par_note_cross_hits(ij, C->hk, nh);
+
+  /* 3. the owned nodes' contact forces: every rank's contributions in rank (= couple) order */
+  YfNodes *nd = &s->model.node;
+  double *fcn = C->fcn;
+  unsigned char *tmark = C->tmark;
+  w.fcn = fcn;
+  w.tmark = tmark;
+  for (int i = n0; i < n1; i++)
+    if (tmark[i]) { fcn[2 * i] = fcn[2 * i + 1] = 0.0; tmark[i] = 0; }
+  for (int r = 0; r < S; r++) {
+    if (r == me) {
+      walk_hits(&w, nh, 2);
+      continue;
+    }
+    const Contrib *cr = (const Contrib *)in;
+    for (int t = 0; t < rb[r] / (int)sizeof(Contrib); t++) {
+      int i = (int)cr[t].i;
+      tmark[i] = 1;
+      fcn[2 * i] += cr[t].fx;
+      fcn[2 * i + 1] += cr[t].fy;
+    }
+    in += rb[r];
+  }
+  for (int i = n0; i < n1; i++)
+    if (tmark[i]) { nd->fx[i] += fcn[2 * i]; nd->fy[i] += fcn[2 * i + 1]; }
+  return removed;
+}
+
+/* MPI: the owners' friction memory and node contact forces whole on every rank, for a reader
+ * (frames, restarts, the end of a run).  Every rank calls it at the same point. */
+void contact_par_gather(YfSim *s) {
+  YfContact *C = s->contact;
+  if (!active(C) || !C->fcn_valid || par_size() <= 1) return;
+  const int *nlo = par_node_lo();
+  if (!nlo) return;
+  par_gather_ranges(C->fcn, nlo, 2 * (int)sizeof(double));
+  const int S = par_size(), me = par_rank(), np = C->pairs.n;
+  int *lo = yf_malloc(((size_t)S + 1) * sizeof(int), "contact gather"), *rb = yf_malloc(((size_t)S + 1) * sizeof(int), "contact gather");
+  if (par_owner_ranges(C->pairs.ij, 2, np, lo)) {
+    const int *gi = C->pairs.gi;
+    int n = 0;
+    for (int k = lo[me]; k < lo[me + 1]; k++) n += gi[k] >= 0;
+    double *g = yf_malloc((size_t)(6 * n + 1) * sizeof(double), "contact gather"), *o = g;
+    for (int k = lo[me]; k < lo[me + 1]; k++)
+      if (gi[k] >= 0) { memcpy(o, C->pairs.g + 6 * (size_t)gi[k], 6 * sizeof(double)); o += 6; }
+    const double *a = par_concat(g, 6 * n * (int)sizeof(double), rb);
+    for (int r = 0; r < S; r++)
+      for (int k = lo[r]; k < lo[r + 1]; k++)
+        if (gi[k] >= 0) {
+          if (r != me) memcpy(C->pairs.g + 6 * (size_t)gi[k], a, 6 * sizeof(double));
+          a += 6;
+        }
+    free(g);
+  }
+  free(lo);
+  free(rb);
 }
 
 void contact_step(YfSim *s) {
@@ -719,15 +1036,20 @@ void contact_step(YfSim *s) {
   const double rem2 = 4.0 * C->buffer * C->buffer;
   const int *mlaw = C->mlaw;
   double *gmem = C->pairs.g;
+  /* MPI: this rank screens its own couples only (kernel_ranks), marking its drops 3 */
+  const int dist = couple_ranges(ij, np);
+  const int s0 = dist ? DS.lo[par_rank()] : 0, s1 = dist ? DS.lo[par_rank() + 1] : np;
+  const unsigned char dropped = dist ? 3 : 0;
+  const double cs0 = dist ? yf_cpu_now() : 0.0;
   #pragma omp parallel for schedule(static) if (np >= C->par_min && nblk > 1)
   for (int b = 0; b < nblk; b++) {
-    int k1 = (b + 1) * PAIR_BLK < np ? (b + 1) * PAIR_BLK : np, rm = 0, busy = 0, need = 0;
-    for (int k = b * PAIR_BLK; k < k1; k++) {
+    int k1 = (b + 1) * PAIR_BLK < s1 ? (b + 1) * PAIR_BLK : s1, rm = 0, busy = 0, need = 0;
+    for (int k = b * PAIR_BLK > s0 ? b * PAIR_BLK : s0; k < k1; k++) {
       if (!alive[k]) continue;
       const double *ra = tg + (size_t)YF_TRI_GEOM * ij[2 * k + 1], *rb = tg + (size_t)YF_TRI_GEOM * ij[2 * k];
       int q = contact_pair_quiet(ra, rb, rem2);
       if (q == 0) { alive[k] = 2; busy++; need += gi[k] < 0; }
-      else if (q == 2) { alive[k] = 0; rm++; }
+      else if (q == 2) { alive[k] = dropped; rm++; }
       else if (gi[k] >= 0 && mlaw[tmat[ij[2 * k]]] != YF_FRIC_Y2D && mlaw[tmat[ij[2 * k + 1]]] != YF_FRIC_Y2D)
         memset(gmem + 6 * (size_t)gi[k], 0, 6 * sizeof *gmem); /* apart: the Coulomb springs let go */
     }
@@ -735,6 +1057,7 @@ void contact_step(YfSim *s) {
     C->blk_busy[b] = busy;
     C->blk_need[b] = need;
   }
+  if (dist) par_note_work(yf_cpu_now() - cs0); /* the screen of this rank's couples */
   int nbusy = 0, ng = C->pairs.ng;
   for (int b = 0; b < nblk; b++) {
     C->blk_off[b] = nbusy;
@@ -762,7 +1085,8 @@ void contact_step(YfSim *s) {
   double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
   unsigned char *tmark = C->tmark;
   const int nn = nd->n;
-  if (serial) {
+  const int kdrop = dist ? kernel_ranks(s, C, &P, nbusy, &ng) : -1; /* MPI: each rank its couples (above) */
+  if (kdrop < 0 && serial) {
     for (int i = 0; i < nn; i++)
       if (tmark[i]) { fcn[2 * i] = fcn[2 * i + 1] = 0.0; tmark[i] = 0; }
     P.fcn = fcn;
@@ -770,7 +1094,7 @@ void contact_step(YfSim *s) {
     for (int b = 0; b < nblk; b++) kernel_block(C, &P, b);
     for (int i = 0; i < nn; i++)
       if (tmark[i]) { fx[i] += fcn[2 * i]; fy[i] += fcn[2 * i + 1]; }
-  } else {
+  } else if (kdrop < 0) {
     hit_room(C, nbusy); /* rarely grows: see hit_room */
     P.hf = C->hf;
     P.hk = C->hk;
@@ -784,6 +1108,7 @@ void contact_step(YfSim *s) {
     dsum += C->blk_d[b];
     removed += C->blk_rm[b];
   }
+  if (dist) removed = kdrop; /* blk_rm counted this rank's screen only */
   s->energy.contact = esum;
   s->energy.friction += dsum;
   C->pairs.ng = ng;
@@ -794,7 +1119,7 @@ void contact_step(YfSim *s) {
    * same order (and bits) on any thread count. */
   const int *hk = C->hk;
   const double *hf = C->hf;
-  if (!serial)
+  if (!serial && kdrop < 0)
   #pragma omp parallel if (nbusy >= C->par_min / 8 && nn >= C->par_min)
   {
     int nth = 1, me = 0;
@@ -822,14 +1147,7 @@ void contact_step(YfSim *s) {
   }
   C->fcn_valid = 1;
 
-  /* dropped couples: compact once a quarter of the list is dead */
-  C->nlive -= removed;
-  C->ndead += removed;
-  if (C->ndead > 0 && 4 * C->ndead > C->pairs.n) {
-    contact_pairs_compact(&C->pairs, C->alive);
-    memset(C->alive, 1, (size_t)C->pairs.n);
-    C->ndead = 0;
-  }
+  contact_compact(C, removed);
   yf_stage_time[YF_ST_CONTACT] += yf_now() - t1;
 }
 

@@ -67,6 +67,10 @@ int contact_node_stiffness(YfSim *s, double *K, int *tof, double *pof);
 /* Live couples in the list (Y2D's ncouples). */
 long contact_pairs(const YfSim *s);
 void contact_free(YfSim *s);
+/* MPI: each couple's friction memory lives on the rank that evaluates it and each node's contact
+ * force on its owner; this makes both whole on every rank for a reader (a collective: every
+ * rank calls it at the same point; par_need_stresses does). */
+void contact_par_gather(YfSim *s);
 
 /* ---- what the deck's contact command sets (deck/cmd_contact.c) ---- */
 #define YF_CONTACT_MAX_RULES 64

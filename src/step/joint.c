@@ -27,14 +27,16 @@
 #include <gsl/gsl_rng.h>
 #include <gsl/gsl_sf_gamma.h>
 #include "joint.h"
+#include "par.h"
 #include "contact.h"
 #include "edgesort.h"
 #include "elem_tri.h"
 #include "err.h"
 #include "mesh.h"
 #include "region.h"
+#include "stage_time.h"
 
-#define JBLOCK 256 /* joints per block of the force loop (break collection granularity) */
+#define JBLOCK YF_JBLOCK /* break collection granularity */
 #define PF_GROUPS 4
 static int par_min = 4096;
 void joints_set_par_min(int n) { par_min = n < 0 ? 0 : n; }
@@ -617,6 +619,104 @@ static void joints_block(YfJoints *J, const YfNodes *N, int jb0, int jb1, double
   *nopen_out = nopen;
 }
 
+/* ---- MPI ranks: block b is evaluated by the rank owning its first joint's lower triangle
+ * (joints are sorted by it, so each rank's blocks are one range, in rank order).  The pending
+ * (failed) joints, break and opening marks are replicated on every rank; forces, work, damage and
+ * shear strength are current on the owner (joints_par_gather makes them whole for a reader). */
+static int *J_lo, J_nlo, J_dirty;
+static double *J_ev;
+static size_t J_cev;
+
+static int mine_blocks(const YfJoints *J, int *b0, int *b1) {
+  const int S = par_size();
+  if (S <= 1) return 0;
+  if (J_nlo < S + 1) {
+    free(J_lo);
+    J_lo = yf_malloc(((size_t)S + 1) * sizeof(int), "joint ranges");
+    J_nlo = S + 1;
+  }
+  /* the first joint of each block: its lower triangle is J->tri[2 JBLOCK b] or the other one */
+  int nb = J->nblk;
+  int *key = yf_malloc((size_t)(nb + 1) * sizeof(int), "joint ranges");
+  for (int b = 0; b < nb; b++) {
+    int a = J->tri[2 * b * JBLOCK], c = J->tri[2 * b * JBLOCK + 1];
+    key[b] = a < c ? a : c;
+  }
+  int dist = par_owner_ranges(key, 1, nb, J_lo);
+  free(key);
+  if (!dist) return 0;
+  *b0 = J_lo[par_rank()];
+  *b1 = J_lo[par_rank() + 1];
+  return 1;
+}
+
+/* After this rank's blocks: every rank learns the pending joints' final work (their dissipation is
+ * added in joint order), the joints opened and the joints failed, so every rank records them as
+ * one rank does. */
+static void share_events(YfJoints *J, int b0, int b1) {
+  const int nj = J->n;
+  size_t n = 0;
+  for (int q = 0; q < J->npend; q++) n += J->pend[q] / JBLOCK >= b0 && J->pend[q] / JBLOCK < b1;
+  for (int b = b0; b < b1; b++) n += (size_t)J->blk_nbreak[b] + (size_t)J->blk_nopen[b];
+  if (J_cev < 3 * n + 3) {
+    J_cev = 3 * n + 3 + 1024;
+    free(J_ev);
+    J_ev = yf_malloc(J_cev * sizeof(double), "joint events");
+  }
+  double *o = J_ev; /* (joint, kind, value): 0 work of a pending joint, 1 opened, 2 failed */
+  for (int q = 0; q < J->npend; q++) {
+    int j = J->pend[q];
+    if (j / JBLOCK >= b0 && j / JBLOCK < b1) { *o++ = j; *o++ = 0; *o++ = J->w[j]; }
+  }
+  for (int b = b0; b < b1; b++) {
+    if (!J->blk_nbreak[b] && !J->blk_nopen[b]) continue;
+    int j1 = (b + 1) * JBLOCK < nj ? (b + 1) * JBLOCK : nj;
+    for (int j = b * JBLOCK; j < j1; j++) {
+      if (J->opened[j] & 0x80) { *o++ = j; *o++ = 1; *o++ = J->opened[j]; }
+      if (J->state[j] == 1) { *o++ = j; *o++ = 2; *o++ = J->mode[j]; }
+    }
+  }
+  for (int b = 0; b < J->nblk; b++)
+    if (b < b0 || b >= b1) J->blk_nbreak[b] = J->blk_nopen[b] = 0;
+  int S = par_size();
+  int *rb = yf_malloc(((size_t)S + 1) * sizeof(int), "joint events");
+  const double *a = par_concat(J_ev, (int)((o - J_ev) * (long)sizeof(double)), rb);
+  size_t tot = 0;
+  for (int r = 0; r < S; r++) tot += (size_t)rb[r] / sizeof(double);
+  free(rb);
+  for (size_t t = 0; t < tot; t += 3) { /* rank order = joint order */
+    int j = (int)a[t], kind = (int)a[t + 1], b = j / JBLOCK;
+    if (kind == 0) {
+      J->w[j] = a[t + 2];
+      J->diss_broken += a[t + 2];
+    } else if (kind == 1) {
+      J->opened[j] = (unsigned char)a[t + 2];
+      if (b < b0 || b >= b1) J->blk_nopen[b]++;
+    } else {
+      J->state[j] = 1;
+      J->mode[j] = (unsigned char)a[t + 2];
+      if (b < b0 || b >= b1) J->blk_nbreak[b]++;
+    }
+  }
+}
+
+void joints_par_gather(YfSim *s) {
+  YfJoints *J = s->joints;
+  if (!J || !J->n || !J_dirty || par_size() <= 1) return;
+  int b0 = 0, b1 = J->nblk;
+  if (!mine_blocks(J, &b0, &b1)) return;
+  J_dirty = 0;
+  const int nj = J->n, S = par_size();
+  int *lo = yf_malloc(((size_t)S + 1) * sizeof(int), "joint gather");
+  for (int r = 0; r <= S; r++) lo[r] = J_lo[r] * JBLOCK < nj ? J_lo[r] * JBLOCK : nj;
+  par_gather_ranges(J->f, lo, 8 * (int)sizeof(double));
+  par_gather_ranges(J->dmg, lo, 3 * (int)sizeof(double));
+  par_gather_ranges(J->w, lo, (int)sizeof(double));
+  par_gather_ranges(J->z, lo, (int)sizeof(double));
+  par_gather_ranges(J->fs, lo, (int)sizeof(double));
+  free(lo);
+}
+
 void joints_forces(YfSim *s) {
   YfJoints *J = s->joints;
   if (!J || !J->n) return;
@@ -625,23 +725,30 @@ void joints_forces(YfSim *s) {
   static const double zero8[8] = {0, 0, 0, 0, 0, 0, 0, 0};
   /* joints that failed at the last evaluation: their forces acted over the last step; close
    * their work and drop them */
+  const int nj = J->n, nblk = J->nblk;
+  int b0 = 0, b1 = nblk, dist = mine_blocks(J, &b0, &b1); /* MPI: this rank's blocks */
   for (int q = 0; q < J->npend; q++) {
     int j = J->pend[q];
-    J->w[j] += work_inc(N, J->node + 4 * j, J->f + 8 * j, J->f + 8 * j, dtp) ;
-    J->diss_broken += J->w[j];
+    if (j / JBLOCK >= b0 && j / JBLOCK < b1) {
+      J->w[j] += work_inc(N, J->node + 4 * j, J->f + 8 * j, J->f + 8 * j, dtp) ;
+      if (!dist) J->diss_broken += J->w[j];
+    }
     J->state[j] = 2;
     memcpy(J->f + 8 * j, zero8, sizeof zero8);
   }
-  J->npend = 0;
-  const int nj = J->n, nblk = J->nblk;
   /* dynamic: a block of intact joints costs a fraction of one past its peak (scalar law, softening
    * curve), and the damaged ones cluster where the scene breaks; results are per joint and per
    * block, so the schedule cannot change a bit */
+  const double t0 = yf_cpu_now();
   #pragma omp parallel for schedule(dynamic, 8) if (nj >= par_min)
-  for (int b = 0; b < nblk; b++) {
+  for (int b = b0; b < b1; b++) {
     int jb1 = (b + 1) * JBLOCK < nj ? (b + 1) * JBLOCK : nj;
     joints_block(J, N, b * JBLOCK, jb1, dtp, &J->blk_nbreak[b], &J->blk_nopen[b]);
   }
+  if (dist) par_note_work(yf_cpu_now() - t0);
+  if (dist) share_events(J, b0, b1);
+  J->npend = 0;
+  J_dirty = 1;
   /* record the newly opened joints in joint order (before the breaks of the same step) */
   for (int b = 0; b < nblk; b++) {
     if (!J->blk_nopen[b]) continue;

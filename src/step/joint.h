@@ -104,8 +104,13 @@ typedef struct YfJoints {
   char open_log_path[1024]; /* fracture_log ... opened FILE */
 } YfJoints;
 
+#define YF_JBLOCK 256 /* joints per block of the force loop (and per MPI ownership unit) */
 void joints_insert(YfSim *s);
 void joints_forces(YfSim *s);
+/* MPI: each joint block is evaluated by the rank owning its first joint's lower triangle, which
+ * alone holds the blocks' forces, work and damage; this makes them whole on every rank for a
+ * reader (energies, frames, restarts; a collective: par_need_stresses calls it). */
+void joints_par_gather(YfSim *s);
 /* The joints' part of the stable time step (run_stable_dt combines it with the triangles and
  * contact at every node): each intact joint adds its penalty [Pa] to P[i] of its 4 nodes (the
  * Gershgorin row sum of its stiffness); jof[i] (if < 0 on entry): a joint of node i, for the

@@ -2,17 +2,19 @@
  * with -DYF_MPI; the implementation is src/par/par_mpi.c, a layer above the step).  In ./yfdem every hook is an inline no-op and MPI is not
  * linked.
  *
- * This first version distributes the element force stage, the step's largest cost, and
- * replicates everything else (docs/SCALING.md):
+ * The work of a step is divided by ownership and the state is replicated (docs/SCALING.md):
  *   - every rank runs the whole deck and holds the whole scene (memory is not divided);
- *   - rank r computes the corner forces of the triangles of its METIS parts (a contiguous range
- *     of the partition order); the step's fixed 2048-triangle blocks that straddle two ranks are
- *     summed from per-triangle results in triangle order, so every block sum has its one-rank bits;
- *   - the corner forces and the per-block results are shared (allgather), so every rank gathers
- *     every node's force from the same slots in the same order, and joints, contact, supports,
- *     loads and the update run on every rank on identical data: the same bits as one rank;
- *   - stresses are shared only when a frame or a metrics sample reads them (io calls
- *     par_need_stresses), and at the end of a run;
+ *   - rank r owns the triangles of its METIS parts (a contiguous range of the partition order)
+ *     and the nodes their first triangle is r's (a contiguous range too); it computes its
+ *     triangles' forces, the joint blocks and the contact couples whose lower triangle it owns;
+ *   - the forces other ranks' nodes need go to their owners (slot halo, contact contributions);
+ *     each owner sums its nodes' forces in the one-rank slot and couple order; every rank then
+ *     gets every node's force and runs supports, loads and the update on identical data: the
+ *     same bits as one rank;
+ *   - block sums that straddle ranks are summed from per-item results in order; joint events and
+ *     dropped couples go to every rank, so records and lists stay the same everywhere;
+ *   - what only owners hold (stresses, joint state, friction memory, node contact forces) is
+ *     gathered when read (par_need_all: thermo, energy checks, frames, metrics, restarts);
  *   - only rank 0 prints and writes files (yf_writer); an error stops every rank (par_mpi.c).
  */
 #ifndef YF_PAR_H
@@ -27,16 +29,42 @@ void par_init(int *argc, char ***argv); /* MPI_Init, the writer rank, the error 
 FILE *par_stdin(FILE *in);              /* a deck on stdin: rank 0 reads it, every rank runs it */
 int par_size(void);
 /* Ownership of the element stage for the scene's triangles in nblk blocks of `block`. */
-void par_prepare(const struct YfSim *s, int nblk, int block);
+void par_prepare(struct YfSim *s, int nblk, int block);
 void par_blocks(int *b0, int *b1);      /* the blocks this rank sums whole: [b0, b1)           */
 /* After the element stage: this rank's triangles of blocks it shares with others, then every
  * rank gets every corner force (6 per triangle) and every block's (viscous power, first bad
  * triangle, its J). */
 void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_bad, double *blk_badJ,
                         double t_elem);
-/* Every triangle's stress on every rank (a collective: every rank calls it at the same point;
- * a no-op when they are already shared since the last element stage). */
+/* Every triangle's stress on every rank (a collective: every rank calls it at the same point; a
+ * no-op when shared since the last element stage); par_need_all: that and what joints and
+ * contact keep on owners (their forces, work, damage, friction memory, node contact forces),
+ * for energies, frames and restarts. */
 void par_need_stresses(YfModel *m);
+void par_need_all(struct YfSim *s);
+/* Halo mode: the nodes this rank sums the force of, [n0, n1) (unchanged when every rank sums
+ * every node); then par_share_forces gives every rank every node's force from its owner. */
+void par_nodes(int *n0, int *n1);
+void par_share_forces(double *fx, double *fy);
+/* Generic pieces for the stages that share work by ownership (contact.c):
+ *   par_node_lo        node ranges lo[0..size] of the owners (NULL: every rank sums every node);
+ *   par_owner_ranges   items sorted by a triangle tri[stride k] (couples, joint blocks), by that
+ *                      triangle's owner: lo[0..size]; 0 when work is not shared (one rank);
+ *   par_share_slots    the force slots other ranks' owned nodes need, to them (before the gather);
+ *   par_concat         every rank's bytes, concatenated in rank order, to every rank (rbytes:
+ *                      how many from each); the buffer lives until the next call;
+ *   par_exchange       sbytes[r] bytes of send (grouped by rank) to rank r; returns what came,
+ *                      grouped by sender, rbytes[r] from each;
+ *   par_gather_ranges  an array whose elements lo[r]..lo[r+1]-1 rank r holds, whole on every rank. */
+int par_rank(void);
+void par_note_cross_hits(const int *ij, const int *hk, int nh); /* the run report's count */
+void par_note_work(double secs); /* divided work of this rank (the report's imbalance) */
+const int *par_node_lo(void);
+int par_owner_ranges(const int *tri, int stride, int n, int *lo);
+void par_share_slots(YfModel *m);
+const void *par_concat(const void *mine, int nbytes, int *rbytes);
+const void *par_exchange(const void *send, const int *sbytes, int *rbytes);
+void par_gather_ranges(void *a, const int *lo, int elem_bytes);
 int par_any(int flag);                  /* flag set on any rank (the same answer on all)       */
 void par_run_report(struct YfSim *s, long nsteps, double wall); /* ranks, imbalance, traffic */
 #else
@@ -44,13 +72,25 @@ static inline void par_init(int *argc, char ***argv) { (void)argc; (void)argv; }
 static inline FILE *par_stdin(FILE *in) { return in; }
 static inline int par_size(void) { return 1; }
 struct YfSim;
-static inline void par_prepare(const struct YfSim *s, int nblk, int block) { (void)s; (void)nblk; (void)block; }
+static inline void par_prepare(struct YfSim *s, int nblk, int block) { (void)s; (void)nblk; (void)block; }
 static inline void par_blocks(int *b0, int *b1) { (void)b0; (void)b1; }
 static inline void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_bad,
                                       double *blk_badJ, double t_elem) {
   (void)m; (void)tm; (void)blk; (void)blk_bad; (void)blk_badJ; (void)t_elem;
 }
 static inline void par_need_stresses(YfModel *m) { (void)m; }
+static inline void par_need_all(struct YfSim *s) { (void)s; }
+static inline void par_nodes(int *n0, int *n1) { (void)n0; (void)n1; }
+static inline void par_share_forces(double *fx, double *fy) { (void)fx; (void)fy; }
+static inline int par_rank(void) { return 0; }
+static inline void par_note_cross_hits(const int *ij, const int *hk, int nh) { (void)ij; (void)hk; (void)nh; }
+static inline void par_note_work(double secs) { (void)secs; }
+static inline const int *par_node_lo(void) { return NULL; }
+static inline int par_owner_ranges(const int *tri, int stride, int n, int *lo) { (void)tri; (void)stride; (void)n; (void)lo; return 0; }
+static inline void par_share_slots(YfModel *m) { (void)m; }
+static inline const void *par_concat(const void *mine, int nbytes, int *rbytes) { *rbytes = nbytes; return mine; }
+static inline const void *par_exchange(const void *send, const int *sbytes, int *rbytes) { *rbytes = *sbytes; return send; }
+static inline void par_gather_ranges(void *a, const int *lo, int elem_bytes) { (void)a; (void)lo; (void)elem_bytes; }
 static inline int par_any(int flag) { return flag; }
 #define par_run_report(s, nsteps, wall) ((void)0)
 #endif

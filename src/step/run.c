@@ -288,6 +288,7 @@ static void thermo_nonfinite(YfSim *s, const double *v, const char *const *names
 }
 
 static void thermo_line(YfSim *s) {
+  par_need_all(s); /* MPI: what owners hold (joints' work and damage), on every rank */
   run_energies(s);
   double ext = energy_external(s);
   double diss = s->energy.damping + s->energy.joint_dissipated + s->energy.friction;
@@ -348,7 +349,7 @@ static void progress(YfSim *s, long done, long total, double t0) {
 static void stage_elements(YfSim *s) {
   YfModel *m = &s->model;
   const int nblk = R.nblk, nt = m->tri.n;
-  const double t0 = yf_now();
+  const double c0 = yf_cpu_now();
   int b0 = 0, b1 = nblk;
   par_blocks(&b0, &b1); /* MPI: the blocks inside this rank's triangles; then every rank gets all results */
   #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
@@ -360,7 +361,7 @@ static void stage_elements(YfSim *s) {
     R.blk_bad[b] = p.bad;
     R.blk_badJ[b] = p.badJ;
   }
-  par_share_elements(m, R.tm, R.blk, R.blk_bad, R.blk_badJ, yf_now() - t0);
+  par_share_elements(m, R.tm, R.blk, R.blk_bad, R.blk_badJ, yf_cpu_now() - c0);
   double power = 0;
   for (int b = 0; b < nblk; b++) {
     if (R.blk_bad[b] >= 0) {
@@ -410,8 +411,11 @@ static void stage_gather(YfSim *s) {
   const int nn = n->n, nt3 = 3 * m->tri.n;
   const int *off = m->gather_off, *slot = m->gather_slot;
   const double *cf = m->tri.cf, *xf = m->xslot_f;
+  int n0 = 0, n1 = nn;
+  par_share_slots(m); /* MPI: the slots other ranks wrote on this rank's nodes */
+  par_nodes(&n0, &n1); /* MPI: the nodes this rank owns (their forces go to every rank after contact) */
   #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
-  for (int i = 0; i < nn; i++) {
+  for (int i = n0; i < n1; i++) {
     double fx = 0, fy = 0;
     for (int k = off[i]; k < off[i + 1]; k++) {
       int q = slot[k];
@@ -438,6 +442,7 @@ static void stage_update(YfSim *s) {
   YfNodes *n = &s->model.node;
   const int nn = n->n;
   const double dt = s->dt, gx = s->gx, gy = s->gy, alpha = s->mass_damping;
+  par_share_forces(n->fx, n->fy); /* MPI: every node's force from its owner; the update is replicated */
   double *x = n->x, *y = n->y, *vx = n->vx, *vy = n->vy;
   const double *fx = n->fx, *fy = n->fy, *ms = n->m;
   const int keep = alpha > 0, nbc = bc_held(s);
@@ -582,6 +587,7 @@ void run_steps(YfSim *s, long nsteps) {
     yf_stage_time[YF_ST_OUTPUT] += yf_now() - t0;
     if (s->thermo_every > 0 && s->step % s->thermo_every == 0 && k + 1 < nsteps) thermo_line(s);
     if ((k + 1) % check_every == 0) {
+      par_need_all(s); /* MPI: owners' state whole (a collective: every rank is here) */
       run_energies(s); /* the check reads the energies of this step */
       energy_check(s);
     }
@@ -601,10 +607,10 @@ void run_steps(YfSim *s, long nsteps) {
                    "restart could be written (%s)", s->step, s->time, why);
     }
   }
+  par_need_all(s); /* MPI: the last state whole on every rank, for what follows */
   run_energies(s);
   energy_check(s);
   thermo_line(s);
-  par_need_stresses(&s->model); /* MPI: the last state whole on every rank, for what follows */
   double wall = yf_now() - R.t_wall0;
   s->wall_s += wall;
   s->elem_steps += (double)s->model.tri.n * (double)nsteps;

@@ -13,5 +13,7 @@ extern double yf_stage_time[YF_NSTAGE]; /* seconds accumulated over all runs */
 
 /* Monotonic wall clock [s] (stage timers). */
 double yf_now(void);
+/* CPU seconds of the process, all threads (MPI: the work a rank did, whatever the machine's load). */
+double yf_cpu_now(void);
 
 #endif
