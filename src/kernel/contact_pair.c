@@ -407,6 +407,9 @@ __attribute__((target("avx2"))) static int force_rec_avx2(const double *ra, cons
                                                           double fa[6], double fb[6], double *dmin2,
                                                           YfContactInfo *info)
 {
+  /* Y2D's law as a constant: its own copy of the kernel, without the Coulomb branches */
+  if (law == YF_FRIC_Y2D)
+    return pair_force(ra, vxa, vya, rb, vxb, vyb, pn, pt, mu, YF_FRIC_Y2D, dt, g, fa, fb, dmin2, info, mask4_avx2);
   return pair_force(ra, vxa, vya, rb, vxb, vyb, pn, pt, mu, law, dt, g, fa, fb, dmin2, info, mask4_avx2);
 }
 
