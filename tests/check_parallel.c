@@ -141,20 +141,27 @@ START_TEST(test_threads_switching_bitwise) {
 }
 END_TEST
 
-/* The governor's choices, fed with made-up step times [s]: 1 thread takes 1.0, the team `busy`
- * while the machine is busy and 0.55 while it is idle (2 threads 1.8x faster).  `busy_from` and
- * `busy_to` bound the busy steps. */
-static void feed(YfGov *g, long steps, double busy, long busy_from, long busy_to, long *on2_busy, long *on1_idle) {
+/* The governor's choices, fed with made-up step times [s]: 1 thread takes 1.0 while the machine
+ * is idle and `one` while it is busy; the team 0.55 while idle (2 threads 1.8x faster, running
+ * all the time: CPU time 2 x wall) and `busy` while busy, its threads then running 2/3 of the
+ * time (one competitor on 2 cores).  `busy_from` and `busy_to` bound the busy steps. */
+static void feed2(YfGov *g, long steps, double one, double busy, long busy_from, long busy_to, long *on2_busy,
+                  long *on1_idle) {
   int cur = g->cur;
   *on2_busy = *on1_idle = 0;
   for (long k = 0; k < steps; k++) {
     int b = k >= busy_from && k < busy_to;
-    double t = cur == 1 ? 1.0 : (b ? busy : 0.55);
+    double t = cur == 1 ? (b ? one : 1.0) : (b ? busy : 0.55);
+    double cpu = cur == 1 ? t : (b ? 2.0 / 3.0 : 1.0) * 2.0 * t;
     if (b && cur > 1) ++*on2_busy;
     if (!b && cur == 1 && k >= 200 && k - busy_to >= 200) ++*on1_idle; /* after 200 steps to settle */
-    cur = gov_step(g, t);
+    cur = gov_step(g, t, cpu);
     ck_assert(cur == 1 || cur == 2);
   }
+}
+
+static void feed(YfGov *g, long steps, double busy, long busy_from, long busy_to, long *on2_busy, long *on1_idle) {
+  feed2(g, steps, 1.0, busy, busy_from, busy_to, on2_busy, on1_idle);
 }
 
 START_TEST(test_threads_governor) {
@@ -182,7 +189,39 @@ START_TEST(test_threads_governor) {
   ck_assert_int_eq(g.best, 2);
   /* one thread to choose from: always 1 */
   gov_init(&g, 1);
-  ck_assert_int_eq(gov_step(&g, 1.0), 1);
+  ck_assert_int_eq(gov_step(&g, 1.0, 1.0), 1);
+}
+END_TEST
+
+/* What the governor costs on an idle machine (issue 24: PERF.md's 1e5 problem, 150 steps, ran
+ * 9 of them on one thread, 10 % slower than -threads 2): nothing in a short run, and one probe
+ * of at most 3 steps in the first 1000.  And a competitor that slows the team by less than the
+ * 1.5x that triggers a probe by time alone is still seen at once, by the team's utilisation. */
+START_TEST(test_threads_governor_cost) {
+  YfGov g;
+  long on2_busy, on1;
+  long n1 = 0;
+  gov_init(&g, 2);
+  for (int k = 0; k < 150; k++) n1 += gov_step(&g, g.cur == 1 ? 1.0 : 0.55, g.cur == 1 ? 1.0 : 1.1) == 1;
+  ck_assert_msg(n1 == 0, "%ld of 150 idle steps on 1 thread", n1);
+  gov_init(&g, 2);
+  feed(&g, 1000, 3.0, -1, -1, &on2_busy, &on1);
+  ck_assert_int_eq(g.best, 2);
+  ck_assert_msg(g.steps_at[0] <= 3, "%ld of 1000 idle steps on 1 thread", g.steps_at[0]);
+  /* a competitor from step 3000 to 6000: the team 1.45x slower (0.8; 1.5x would trigger by time),
+   * one thread faster (0.75): back to one thread within a few steps, not at the next probe */
+  gov_init(&g, 2);
+  feed(&g, 3000, 3.0, -1, -1, &on2_busy, &on1);
+  ck_assert_int_eq(g.cur, 2);
+  int k = 0;
+  for (; k < 2000 && g.cur == 2; k++) gov_step(&g, 0.8, 2.0 / 3.0 * 2.0 * 0.8);
+  ck_assert_msg(k <= 3, "the competitor found after %d steps", k);
+  feed2(&g, 100, 0.75, 0.8, 0, 100, &on2_busy, &on1);
+  ck_assert_int_eq(g.best, 1);
+  /* a run that begins beside a competitor: the team's first 3 steps, then one thread */
+  gov_init(&g, 2);
+  feed2(&g, 50, 1.0, 3.0, 0, 50, &on2_busy, &on1);
+  ck_assert_msg(on2_busy <= 3 && g.best == 1, "%ld of 50 busy steps on 2 threads (best %d)", on2_busy, g.best);
 }
 END_TEST
 
@@ -362,6 +401,7 @@ Suite *parallel_suite(void) {
   tcase_add_test(t, test_threads_bitwise_y2d);
   tcase_add_test(t, test_threads_switching_bitwise);
   tcase_add_test(t, test_threads_governor);
+  tcase_add_test(t, test_threads_governor_cost);
   tcase_add_test(t, test_threads_option);
   tcase_add_test(t, test_renumbering_same_physics);
   tcase_add_test(t, test_partition_layout);

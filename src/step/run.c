@@ -577,6 +577,7 @@ void run_steps(YfSim *s, long nsteps) {
   int tty = s->progress && isatty(2) && yf_writer();
   long check_every = 100;
   for (long k = 0; k < nsteps; k++) {
+    threads_step_begin();
     double ts = yf_now();
     step_once(s);
     if (k == 0) energy_first_step(s); /* the start state's contact energy belongs to the budget */
