@@ -1247,12 +1247,13 @@ static void check_deck(YfY2d *y) {
   }
   for (long n = 0; n < y->nnopo; n++) {
     int s = y->i1nopr[n];
-    YfLoc nl = value_loc(y, Y2D_N_I1NOPR, n);
-    if (s < 0 || s >= y->npnset)
+    if (s < 0 || s >= y->npnset) {
+      YfLoc nl = value_loc(y, Y2D_N_I1NOPR, n); /* a scan of the value lines: on error only */
       yf_deck_error(&nl, "%s: node %ld has BC set %d%s, outside 0..NPNSET-1 = 0..%ld (the anchor "
                     "would never move this node)", keydefs[Y2D_N_I1NOPR].full, n, s,
                     n >= y->nread[Y2D_N_I1NOPR] ? " (not given: the list is shorter than NNOPO)"
                                                 : "", y->npnset - 1);
+    }
   }
 
   /* ---- time tables ---- */
