@@ -1035,6 +1035,8 @@ void contact_step(YfSim *s) {
   unsigned char *alive = C->alive;
   const double rem2 = 4.0 * C->buffer * C->buffer;
   const int *mlaw = C->mlaw;
+  int coul = 0; /* a Coulomb material: only then can a quiet couple hold a spring to let go */
+  for (int i = 0; i < C->nmat; i++) coul |= mlaw[i] != YF_FRIC_Y2D;
   double *gmem = C->pairs.g;
   /* MPI: this rank screens its own couples only (kernel_ranks), marking its drops 3 */
   const int dist = couple_ranges(ij, np);
@@ -1050,7 +1052,7 @@ void contact_step(YfSim *s) {
       int q = contact_pair_quiet(ra, rb, rem2);
       if (q == 0) { alive[k] = 2; busy++; need += gi[k] < 0; }
       else if (q == 2) { alive[k] = dropped; rm++; }
-      else if (gi[k] >= 0 && mlaw[tmat[ij[2 * k]]] != YF_FRIC_Y2D && mlaw[tmat[ij[2 * k + 1]]] != YF_FRIC_Y2D)
+      else if (coul && gi[k] >= 0 && mlaw[tmat[ij[2 * k]]] != YF_FRIC_Y2D && mlaw[tmat[ij[2 * k + 1]]] != YF_FRIC_Y2D)
         memset(gmem + 6 * (size_t)gi[k], 0, 6 * sizeof *gmem); /* apart: the Coulomb springs let go */
     }
     C->blk_rm[b] = rm;
