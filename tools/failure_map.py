@@ -29,7 +29,7 @@ issue's three axes, aspect H/W 1, 2, 3 (W 0.15 m, H 0.15, 0.30, 0.45 m) x impact
 2/3, 1 (a 0.05, 0.10, 0.15 m; square, density 30000) x platen friction mu 0 (smooth: roller base,
 frictionless impactor) and 0.5 (Coulomb 0.5 on the impactor and on a fixed steel platen under the
 base), 18 runs on cells of W/12 (nx 12; --nx N for another mesh), each the deck's 1.39 ms (1000 nx steps),
-no frames:
+no frames.  --only search: six runs near the full-width impactor with friction (COLUMN_SEARCH).
 
   nice -n 19 tools/failure_map.py --scene column --jobs 1 --workdir /tmp/cmap \\
       --csv docs/sweep/column_map.csv --plot docs/img/column_map.png
@@ -86,8 +86,18 @@ COLUMN_MU = [0, 0.5]
 COLUMN_NX = 12
 
 
-def column_design(nx=COLUMN_NX):
+# search: between the grid's points that come nearest (the full-width impactor with friction breaks
+# the inclined pair before the corners): lighter and heavier friction, a slight overhang
+COLUMN_SEARCH = [(hw, a, mu) for hw in (1, 2) for a, mu in ((0.15, 0.2), (0.15, 1.0), (0.12, 0.5))]
+
+
+def column_design(nx=COLUMN_NX, only=None):
     runs = []
+    if only == "search":
+        for hw, a, mu in COLUMN_SEARCH:
+            p = {"nx": nx, "W": 0.15, "H": round(0.15 * hw, 6), "a": a, "mu": mu}
+            runs.append(("search", "search_HW%g_a%g_mu%g" % (hw, a, mu), p))
+        return runs
     for hw in COLUMN_HW:
         for n, d in COLUMN_AW:
             for mu in COLUMN_MU:
@@ -101,6 +111,18 @@ COLUMN_COLS = ["kind", "tag", "W", "H", "a", "mu", "nx", "steps", "exit", "wall_
                "t_longitudinal", "t_inclined", "t_shoulders"]
 
 
+def column_classes(rd):
+    """The COLUMN_COLS entries that failure_mode.classify_column gives for run directory rd."""
+    c = failure_mode.classify_run(rd)
+    out = dict(label=c["label"], paper=c["paper"], other=c["other"],
+               n_longitudinal=c["longitudinal"]["count"] if c["longitudinal"]["present"] else 0,
+               x_longitudinal=" ".join("%.4g" % x for x in c["longitudinal"].get("x", [])),
+               inclined_shape=c["inclined"].get("shape", ""))
+    for k in failure_mode.COLUMN_CLASSES:
+        out["t_" + k] = c[k]["time"] if c[k]["present"] else None
+    return out
+
+
 def one_column(kind, tag, p, workdir):
     rd = os.path.join(workdir, tag)
     row = yfsweep.run_case(COLUMN_DECK, dict(p, every=10 ** 9), rd, threads=1)
@@ -108,13 +130,7 @@ def one_column(kind, tag, p, workdir):
                joints_broken=row.get("joints_broken"), first_break=row.get("first_break.time"),
                first_fragment=row.get("first_fragment_time"))
     if row["exit"] == 0:
-        c = failure_mode.classify_run(rd)
-        out.update(label=c["label"], paper=c["paper"], other=c["other"],
-                   n_longitudinal=c["longitudinal"]["count"] if c["longitudinal"]["present"] else 0,
-                   x_longitudinal=" ".join("%.4g" % x for x in c["longitudinal"].get("x", [])),
-                   inclined_shape=c["inclined"].get("shape", ""))
-        for k in failure_mode.COLUMN_CLASSES:
-            out["t_" + k] = c[k]["time"] if c[k]["present"] else None
+        out.update(column_classes(rd))
     print("failure_map: %-22s exit %d  %6.1f s  %s" % (tag, out["exit"], out.get("wall_s", 0), out.get("label")),
           flush=True)
     return out
@@ -178,7 +194,7 @@ def plot_column_cracks(rows, workdir, path, tmax=400e-6):
     import matplotlib.pyplot as plt
     hws = sorted({float(r["H"]) / float(r["W"]) for r in rows})
     cols = sorted({(float(r["mu"]), float(r["a"])) for r in rows})
-    fig, axs = plt.subplots(len(hws), len(cols), figsize=(2.1 * len(cols), 1.2 + 2.0 * len(hws)), squeeze=False,
+    fig, axs = plt.subplots(len(hws), len(cols), figsize=(2.1 * len(cols), 1.0 + 2.6 * len(hws)), squeeze=False,
                             sharex=True, sharey="row")
     sc = None
     for r in rows:
@@ -364,7 +380,8 @@ def main(argv=None):
     ap.add_argument("--workdir", default="sweep_runs/failure_map")
     ap.add_argument("--csv", required=True)
     ap.add_argument("--plot")
-    ap.add_argument("--only", choices=["grid", "extra", "oat", "search"])
+    ap.add_argument("--only", choices=["grid", "extra", "oat", "search"],
+                    help="beam: one block; column: search runs only the search block (default: the grid)")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--replot", action="store_true", help="only redraw the plot from --csv")
     ap.add_argument("--reclassify", action="store_true",
@@ -374,9 +391,16 @@ def main(argv=None):
     ap.add_argument("--nx", type=int, default=COLUMN_NX, help="column: cells across (default %d)" % COLUMN_NX)
     a = ap.parse_args(argv)
     if a.scene == "column":
-        if not a.replot:
+        if a.reclassify:
+            rows = read_csv(a.csv)
+            for r in rows:
+                if r["exit"] == "0":
+                    r.update({k: v for k, v in column_classes(os.path.join(a.workdir, r["tag"])).items()})
+            write_csv(rows, a.csv, COLUMN_COLS)
+            print("failure_map: reclassified", a.csv)
+        elif not a.replot:
             with cf.ThreadPoolExecutor(a.jobs) as ex:
-                rows = list(ex.map(lambda r: one_column(r[0], r[1], r[2], a.workdir), column_design(a.nx)))
+                rows = list(ex.map(lambda r: one_column(r[0], r[1], r[2], a.workdir), column_design(a.nx, a.only)))
             write_csv(rows, a.csv, COLUMN_COLS)
             print("failure_map: wrote", a.csv)
         if a.plot:

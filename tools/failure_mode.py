@@ -48,7 +48,8 @@ centred at xc = W/2, the overhang o = W/2 - b, cell size h = W/nx.  The zones ar
              the broken joints within 0.3 h of it (the line's edges, spanning their length in y, and
              the cross pattern's diagonals beside it, spanning len / sqrt 2), whose
              union in y has a contiguous piece >= max(3 h, H/10).  `count` is the number of such
-             lines (the paper: three), `x` their positions.  Time: the first break of those pieces.
+             cracks (the paper: three; cracked lines side by side are one crack), `x` their
+             positions (the mean of their lines).  Time: the first break of those pieces.
   inclined   in the upper half outside S (y > H/2): on EACH side of the axis, a chain of broken
              diagonals on one 45-degree mesh line (x - y or x + y a multiple of h, within 0.2 h),
              consecutive ones at most 0.6 h apart in y, spanning >= max(2 h, W/5) in y.  `shape`: a
@@ -237,15 +238,23 @@ def classify_column(breaks, g):
             half = (r["len"] if dx < 0.125 * h else r["len"] / 2 ** 0.5) / 2
             lines.setdefault(i, []).append((r["y"] - half, r["y"] + half, r))
     need = max(3 * h, H / 10)
-    xs, tl, used = [], [], set(id(r) for r in sh)
+    cracked, tl, used = [], [], set(id(r) for r in sh)
     for i, ys in sorted(lines.items()):
         pieces = [p for p in _runs(ys, 0.1 * h) if p[1] - p[0] >= need - 1e-9]
         used.update(id(r) for p in pieces for r in p[2])
         if pieces:
-            xs.append(i * h)
+            cracked.append(i)
             tl.append(min(r["time"] for p in pieces for r in p[2]))
-    if xs:
-        res["longitudinal"].update(present=True, time=min(tl), count=len(xs), x=xs)
+    # lines side by side are one crack zigzagging between them: a crack per run of adjacent lines
+    groups = []
+    for i in cracked:
+        if groups and i == groups[-1][-1] + 1:
+            groups[-1].append(i)
+        else:
+            groups.append([i])
+    if groups:
+        res["longitudinal"].update(present=True, time=min(tl), count=len(groups),
+                                   x=[h * sum(gr) / len(gr) for gr in groups])
 
     # inclined: a 45-degree diagonal chain on each side of the axis in the upper half
     need = max(2 * h, W / 5)
