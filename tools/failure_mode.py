@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""failure_mode: name the broken-crack pattern of a beam impact run (decks/beam.deck and its sweeps).
+"""failure_mode: name the broken-crack pattern of a beam or column impact run (decks/beam.deck, decks/column.deck and their sweeps).
 
 The seed paper (Yuan, Xu & Yang 2011) reports, for its beam hit at midspan: first a tensile crack at
 the bottom of midspan, then an inclined pair (an inverted V, like a punching cone), then cracks from
