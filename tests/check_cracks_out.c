@@ -72,11 +72,44 @@ START_TEST(test_cracks_in_frames) {
 }
 END_TEST
 
+/* metrics opened_threshold Z: a joint counts as an opened crack once its damage reaches Z, not at
+ * the first damage past the law's peak.  On the pulled bar, every intact joint whose damage is
+ * at least Z is opened, no opened intact joint has less, and joints damaged below Z (which the
+ * default would count) are not opened. */
+START_TEST(test_opened_threshold) {
+  const double Z = 0.5;
+  char deck[2048];
+  snprintf(deck, sizeof deck,
+           "material c elastic rho 2500 E 1e10 nu 0.2 plane_stress\n"
+           "mesh rect bar c 0 0 0.1 0.02 20 4 pattern alt\n"
+           "jointprop cj ft 3e6 fs 3e6 gf 100 pen 1e11 law munjiza_gf\n"
+           "fracture bar cj\nmetrics opened_threshold %g\n"
+           "region l box -1 -1 1e-9 1\nregion r box 0.099999 -1 1 1\n"
+           "group l node region l\ngroup r node region r\nfix hold l fixed xy\n"
+           "history pull ramp 0 1e-3\nfix pull r displacement 4e-4 NULL history pull\n"
+           "damping mass 3000\ntimestep auto\nrun 12000\n", Z);
+  YfSim *s = yft_run(deck);
+  const YfJoints *j = s->joints;
+  int below = 0, flagged = 0;
+  for (int k = 0; k < j->n; k++) {
+    flagged += j->opened[k] != 0;
+    if (j->state[k]) continue; /* broken joints keep the flag they had when they broke */
+    if (j->z[k] >= Z) ck_assert_msg(j->opened[k], "joint %d: damage %g >= %g but not opened", k, j->z[k], Z);
+    else ck_assert_msg(!j->opened[k], "joint %d: damage %g < %g but opened", k, j->z[k], Z);
+    below += j->z[k] > 0.0 && j->z[k] < Z;
+  }
+  ck_assert_int_eq(flagged, j->nopened);
+  ck_assert_msg(below > 0, "no joint damaged below %g: the threshold is not exercised", Z);
+  ck_assert_int_gt(j->nopened, 0);
+}
+END_TEST
+
 Suite *cracks_out_suite(void) {
   Suite *s = suite_create("cracks_out");
   TCase *t = tcase_create("h5");
   tcase_set_timeout(t, 120);
   tcase_add_test(t, test_cracks_in_frames);
+  tcase_add_test(t, test_opened_threshold);
   suite_add_tcase(s, t);
   return s;
 }

@@ -84,6 +84,8 @@ END_TEST
 
 START_TEST(test_bad_choice_lists_valid) {
   expect_fail(BAR "fix hold bar fixed z\n", 1, "bad.deck:3: error:", "x, y, xy");
+  /* a damage is a fraction: the error says the valid range */
+  expect_fail(BAR "metrics opened_threshold 1.5\n", 1, "bad.deck:3: error:", "must lie in [0, 1]");
 }
 END_TEST
 

@@ -23,6 +23,16 @@ step count is T / dt with dt from a one-step probe of the same scene.
       --plot docs/sweep/failure_map.png [--only grid|oat] [--jobs 2]
 
 Runs use OMP_NUM_THREADS=1 (yfsweep threads=1); --jobs runs that many at once.
+
+--scene column: the column's map (decks/column.deck, failure_mode.classify_column): the grid of the
+issue's three axes, aspect H/W 1, 2, 3 (W 0.15 m, H 0.15, 0.30, 0.45 m) x impactor width a/W 1/3,
+2/3, 1 (a 0.05, 0.10, 0.15 m; square, density 30000) x platen friction mu 0 (smooth: roller base,
+frictionless impactor) and 0.5 (Coulomb 0.5 on the impactor and on a fixed steel platen under the
+base), 18 runs on cells of W/12 (nx 12; --nx N for another mesh), each the deck's 1.39 ms (1000 nx steps),
+no frames.  --only search: six runs near the full-width impactor with friction (COLUMN_SEARCH).
+
+  nice -n 19 tools/failure_map.py --scene column --jobs 1 --workdir /tmp/cmap \\
+      --csv docs/sweep/column_map.csv --plot docs/img/column_map.png
 """
 import argparse
 import concurrent.futures as cf
@@ -67,6 +77,147 @@ SEARCH = [("mu 0.6", dict(DEEP, mu=0.6)),
           ("L 1.5, mu 0.6", dict(DEEP, L=1.5, rho_i=28080, mu=0.6)),
           ("reversible (y2d 1)", dict(DEEP, y2d=1)),
           ("cells 1/60 m", dict(DEEP, nx=60))]
+
+
+COLUMN_DECK = os.path.join(os.path.dirname(HERE), "decks", "column.deck")
+COLUMN_HW = [1, 2, 3]
+COLUMN_AW = [(1, 3), (2, 3), (3, 3)]
+COLUMN_MU = [0, 0.5]
+COLUMN_NX = 12
+
+
+# search: between the grid's points that come nearest (the full-width impactor with friction breaks
+# the inclined pair before the corners): lighter and heavier friction, a slight overhang
+COLUMN_SEARCH = [(hw, a, mu) for hw in (1, 2) for a, mu in ((0.15, 0.2), (0.15, 1.0), (0.12, 0.5))]
+
+
+def column_design(nx=COLUMN_NX, only=None):
+    runs = []
+    if only == "search":
+        for hw, a, mu in COLUMN_SEARCH:
+            p = {"nx": nx, "W": 0.15, "H": round(0.15 * hw, 6), "a": a, "mu": mu}
+            runs.append(("search", "search_HW%g_a%g_mu%g" % (hw, a, mu), p))
+        return runs
+    for hw in COLUMN_HW:
+        for n, d in COLUMN_AW:
+            for mu in COLUMN_MU:
+                p = {"nx": nx, "W": 0.15, "H": round(0.15 * hw, 6), "a": round(0.15 * n / d, 6), "mu": mu}
+                runs.append(("column", "HW%g_aW%d-%d_mu%g" % (hw, n, d, mu), p))
+    return runs
+
+
+COLUMN_COLS = ["kind", "tag", "W", "H", "a", "mu", "nx", "steps", "exit", "wall_s", "joints_broken", "first_break",
+               "first_fragment", "label", "paper", "n_longitudinal", "x_longitudinal", "inclined_shape", "other",
+               "t_longitudinal", "t_inclined", "t_shoulders"]
+
+
+def column_classes(rd):
+    """The COLUMN_COLS entries that failure_mode.classify_column gives for run directory rd."""
+    c = failure_mode.classify_run(rd)
+    out = dict(label=c["label"], paper=c["paper"], other=c["other"],
+               n_longitudinal=c["longitudinal"]["count"] if c["longitudinal"]["present"] else 0,
+               x_longitudinal=" ".join("%.4g" % x for x in c["longitudinal"].get("x", [])),
+               inclined_shape=c["inclined"].get("shape", ""))
+    for k in failure_mode.COLUMN_CLASSES:
+        out["t_" + k] = c[k]["time"] if c[k]["present"] else None
+    return out
+
+
+def one_column(kind, tag, p, workdir):
+    rd = os.path.join(workdir, tag)
+    row = yfsweep.run_case(COLUMN_DECK, dict(p, every=10 ** 9), rd, threads=1)
+    out = dict(p, kind=kind, tag=tag, exit=row["exit"], wall_s=row["wall_s"], steps=round(1000 * p["nx"]),
+               joints_broken=row.get("joints_broken"), first_break=row.get("first_break.time"),
+               first_fragment=row.get("first_fragment_time"))
+    if row["exit"] == 0:
+        out.update(column_classes(rd))
+    print("failure_map: %-22s exit %d  %6.1f s  %s" % (tag, out["exit"], out.get("wall_s", 0), out.get("label")),
+          flush=True)
+    return out
+
+
+COLUMN_STYLE = {"longitudinal": ("o", "tab:blue"), "inclined": ("^", "tab:green"), "shoulders": ("s", "tab:red")}
+
+
+def plot_column(rows, path):
+    """One panel per platen friction: a/W on x, H/W on y; at each scene the three classes' first
+    breaks as a small time line (marker per class, left to right in time order), the label below."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    mus = sorted({float(r["mu"]) for r in rows})
+    fig, axs = plt.subplots(1, len(mus), figsize=(5.6 * len(mus), 6.2), squeeze=False)
+    for ax, mu in zip(axs[0], mus):
+        for r in rows:
+            if float(r["mu"]) != mu or not r.get("label"):
+                continue
+            x0, y0 = float(r["a"]) / float(r["W"]), float(r["H"]) / float(r["W"])
+            ts = sorted((float(r["t_" + k]), k) for k in failure_mode.COLUMN_CLASSES if r.get("t_" + k))
+            for j, (t, k) in enumerate(ts):
+                mk, col = COLUMN_STYLE[k]
+                ax.scatter([x0 - 0.1 + 0.1 * j], [y0], marker=mk, c=col, s=120, zorder=3,
+                           edgecolors="k" if r["paper"] == "True" else "w", linewidths=1.5)
+                ax.annotate("%.0f" % (t * 1e6), (x0 - 0.1 + 0.1 * j, y0 + 0.13), fontsize=7, ha="center")
+            txt = r["label"].replace("longitudinal", "long").replace("shoulders", "shoul").replace("inclined", "incl")
+            if r.get("n_longitudinal") and r["n_longitudinal"] != "0":
+                txt += "\n%s long." % r["n_longitudinal"]
+            if r.get("inclined_shape"):
+                txt += " incl. " + r["inclined_shape"].replace("lambda", "Λ")
+            ax.annotate(txt, (x0, y0 - 0.22), fontsize=7, ha="center", va="top")
+        ax.set_xlim(0.1, 1.25)
+        ax.set_ylim(0.4, 3.45)
+        ax.set_xticks([1 / 3, 2 / 3, 1])
+        ax.set_xticklabels(["1/3", "2/3", "1"])
+        ax.set_yticks([1, 2, 3])
+        ax.set_xlabel("impactor width / column width  a / W")
+        ax.set_ylabel("height / width  H / W   (W 0.15 m)")
+        ax.set_title("platen friction %g%s" % (mu, " (smooth: the paper's)" if mu == 0 else ""), fontsize=9)
+        ax.grid(alpha=0.3)
+    hs = [axs[0][0].scatter([], [], marker=mk, c=col, s=60, label=k + " (first break, us)")
+          for k, (mk, col) in COLUMN_STYLE.items()]
+    fig.legend(handles=hs, fontsize=8, loc="lower center", ncol=3, frameon=False)
+    axs[0][0].annotate("decks/column.deck", (2 / 3, 2 - 0.55), fontsize=7, ha="center", color="0.4")
+    nx = rows[0]["nx"] if rows else "?"
+    fig.suptitle("column hit at 10 m/s: broken-crack classes in time order (first break left; black edge: the "
+                 "paper's order), cells W/%s, 1.39 ms" % nx, fontsize=10)
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
+    fig.savefig(path, dpi=100)
+    print("failure_map: wrote", path)
+
+
+def plot_column_cracks(rows, workdir, path, tmax=400e-6):
+    """The broken joints of every run of the column map (from WORKDIR/TAG/column_breaks.csv) at their
+    positions at the break, coloured by the time of the break (capped at tmax), one panel per run:
+    rows H/W, columns a/W and friction."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    hws = sorted({float(r["H"]) / float(r["W"]) for r in rows})
+    cols = sorted({(float(r["mu"]), float(r["a"])) for r in rows})
+    fig, axs = plt.subplots(len(hws), len(cols), figsize=(2.1 * len(cols), 1.0 + 2.6 * len(hws)), squeeze=False,
+                            sharex=True, sharey="row")
+    sc = None
+    for r in rows:
+        i = hws.index(float(r["H"]) / float(r["W"]))
+        j = cols.index((float(r["mu"]), float(r["a"])))
+        ax = axs[i][j]
+        W, H, a = float(r["W"]), float(r["H"]), float(r["a"])
+        ax.plot([0, W, W, 0, 0], [0, 0, H, H, 0], "-", c="0.7", lw=0.8)
+        ax.plot([(W - a) / 2, (W + a) / 2], [H, H], "-", c="k", lw=3)
+        b = failure_mode.read_breaks(os.path.join(workdir, r["tag"], "column_breaks.csv"))
+        for mode, mk in (("I", "o"), ("II", "x"), ("mixed", "^")):
+            q = [x for x in b if x["mode"] == mode]
+            sc = ax.scatter([x["x"] for x in q], [x["y"] for x in q], c=[min(tmax, x["time"]) * 1e6 for x in q],
+                            marker=mk, s=6, cmap="viridis", vmin=0, vmax=tmax * 1e6, linewidths=0.8)
+        ax.set_aspect("equal")
+        ax.set_title("H/W %g, a/W %.2g, mu %g\n%s" % (hws[i], a / W, float(r["mu"]),
+                                                       r["label"].replace("longitudinal", "long")
+                                                       .replace("shoulders", "shoul").replace("inclined", "incl")),
+                     fontsize=7)
+        ax.tick_params(labelsize=6)
+    fig.colorbar(sc, ax=axs, shrink=0.5, label="time of break [us] (o mode I, x mode II, ^ mixed)")
+    fig.savefig(path, dpi=90)
+    print("failure_map: wrote", path)
 
 
 def mass_ratio(p):
@@ -129,13 +280,14 @@ COLS = ["kind", "tag", "L", "D", "a", "rho_i", "si", "nx", "pattern", "mu", "y2d
         "other", "t_plug", "t_edge", "t_flexural", "t_cone", "t_supports"]
 
 
-def write_csv(rows, path):
+def write_csv(rows, path, cols=None):
+    cols = cols or COLS
     with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=COLS, extrasaction="ignore")
+        w = csv.DictWriter(f, fieldnames=cols, extrasaction="ignore")
         w.writeheader()
         for r in rows:
             w.writerow({k: ("" if r.get(k) is None else (("%.6g" % r[k]) if isinstance(r[k], float) else r[k]))
-                        for k in COLS})
+                        for k in cols})
 
 
 def read_csv(path):
@@ -228,12 +380,34 @@ def main(argv=None):
     ap.add_argument("--workdir", default="sweep_runs/failure_map")
     ap.add_argument("--csv", required=True)
     ap.add_argument("--plot")
-    ap.add_argument("--only", choices=["grid", "extra", "oat", "search"])
+    ap.add_argument("--only", choices=["grid", "extra", "oat", "search"],
+                    help="beam: one block; column: search runs only the search block (default: the grid)")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--replot", action="store_true", help="only redraw the plot from --csv")
     ap.add_argument("--reclassify", action="store_true",
                     help="classify again the runs of --csv from their directories under --workdir (no runs)")
+    ap.add_argument("--scene", choices=["beam", "column"], default="beam")
+    ap.add_argument("--cracks", help="column: PNG of every run's broken joints (needs --workdir's runs)")
+    ap.add_argument("--nx", type=int, default=COLUMN_NX, help="column: cells across (default %d)" % COLUMN_NX)
     a = ap.parse_args(argv)
+    if a.scene == "column":
+        if a.reclassify:
+            rows = read_csv(a.csv)
+            for r in rows:
+                if r["exit"] == "0":
+                    r.update({k: v for k, v in column_classes(os.path.join(a.workdir, r["tag"])).items()})
+            write_csv(rows, a.csv, COLUMN_COLS)
+            print("failure_map: reclassified", a.csv)
+        elif not a.replot:
+            with cf.ThreadPoolExecutor(a.jobs) as ex:
+                rows = list(ex.map(lambda r: one_column(r[0], r[1], r[2], a.workdir), column_design(a.nx, a.only)))
+            write_csv(rows, a.csv, COLUMN_COLS)
+            print("failure_map: wrote", a.csv)
+        if a.plot:
+            plot_column(read_csv(a.csv), a.plot)
+        if a.cracks:
+            plot_column_cracks(read_csv(a.csv), a.workdir, a.cracks)
+        return 0
     if a.reclassify:
         rows = read_csv(a.csv)
         for r in rows:

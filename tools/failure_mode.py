@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""failure_mode: name the broken-crack pattern of a beam impact run (decks/beam.deck and its sweeps).
+"""failure_mode: name the broken-crack pattern of a beam or column impact run (decks/beam.deck, decks/column.deck and their sweeps).
 
 The seed paper (Yuan, Xu & Yang 2011) reports, for its beam hit at midspan: first a tensile crack at
 the bottom of midspan, then an inclined pair (an inverted V, like a punching cone), then cracks from
@@ -36,11 +36,39 @@ ordered by their time; `paper` is true when flexural (first), cone and supports 
 that order (t_flexural < t_cone < t_supports).  `label` is the sequence joined with '>' ("none" when
 nothing broke).
 
+The column (decks/column.deck; `--scene column`, or found from the run's column_breaks.csv).  The
+paper sees, for its column hit axially: longitudinal cracks (two in the middle, three in the lower
+part) and two inclined cracks near the top sides first, then crushing at the shoulders under the
+impactor's edges, then fragments.  Geometry: column width W, height H, impactor side a (b = a/2)
+centred at xc = W/2, the overhang o = W/2 - b, cell size h = W/nx.  The zones are disjoint:
+
+  shoulders  S: within o + h of a side and y >= H - max(o, h) - h (the column's top corners beside
+             and under the impactor's edges).  Time: the first break in S ("crushing").
+  longitudinal  in the lower half (y <= H/2): a crack along a vertical mesh line x0 = i h, made of
+             the broken joints within 0.3 h of it (the line's edges, spanning their length in y, and
+             the cross pattern's diagonals beside it, spanning len / sqrt 2), whose
+             union in y has a contiguous piece >= max(3 h, H/10).  `count` is the number of such
+             cracks (the paper: three; cracked lines side by side are one crack), `x` their
+             positions (the mean of their lines).  Time: the first break of those pieces.
+  inclined   in the upper half outside S (y > H/2): on EACH side of the axis, a chain of broken
+             diagonals on one 45-degree mesh line (x - y or x + y a multiple of h, within 0.2 h),
+             consecutive ones at most 0.6 h apart in y, spanning >= max(2 h, W/5) in y.  `shape`: a
+             Lambda (the chain moves away from the axis downwards: the wedge under a punch) or a V
+             (towards the axis downwards: the cone under a platen), or both.  Time: the later of the
+             two sides' first chain breaks (the pair complete).
+
+The inclined test uses the `pattern cross` lattice (its diagonals are the only inclined joints, all
+at 45 degrees): positions at the break are the initial ones to well within 0.1 h (the column's
+strain before its joints break is about 1e-3: the top moves down about 0.1 h at nx 12; the other family is 0.5 h off).  `paper` is true when longitudinal (>= 2 cracks) and
+inclined both break before the shoulders, and the shoulders break.
+
   tools/failure_mode.py RUNDIR                  (a yfsweep run directory: run.deck + *_breaks.csv)
   tools/failure_mode.py --breaks beam_breaks.csv --set L=1.0 --set D=0.1 --set nx=40 [--json]
+  tools/failure_mode.py --scene column --breaks column_breaks.csv --set nx=12 --set H=0.3
 
-Geometry comes from the run's deck (`variable NAME index VALUE` lines: L, D, a, nx, si; h = 1/nx)
-with beam.deck's defaults for names it lacks; --set NAME=VALUE overrides.
+Geometry comes from the run's deck (`variable NAME index VALUE` lines: L, D, a, nx, si; h = 1/nx;
+for the column W, H, a, nx; h = W/nx) with the deck's defaults for names it lacks; --set
+NAME=VALUE overrides.
 """
 import argparse
 import csv
@@ -52,12 +80,15 @@ import sys
 
 DEFAULTS = {"L": 1.0, "D": 0.1, "a": 0.05, "nx": 60.0, "si": 0.15, "so": 0.05}
 CLASSES = ("plug", "edge", "flexural", "cone", "supports")
+COLUMN_DEFAULTS = {"W": 0.15, "H": 0.30, "a": 0.10, "nx": 16.0, "mu": 0.0}
+COLUMN_CLASSES = ("longitudinal", "inclined", "shoulders")
 VAR_RE = re.compile(r"^\s*variable\s+(\S+)\s+index\s+(\S+)")
 
 
-def deck_geometry(path, over=None):
-    """Geometry dict from a deck's `variable NAME index VALUE` lines, beam.deck defaults otherwise."""
-    g = dict(DEFAULTS)
+def deck_geometry(path, over=None, column=False):
+    """Geometry dict from a deck's `variable NAME index VALUE` lines, beam.deck's (column.deck's when
+    column) defaults otherwise."""
+    g = dict(COLUMN_DEFAULTS if column else DEFAULTS)
     if path:
         with open(path) as f:
             for ln in f:
@@ -69,7 +100,7 @@ def deck_geometry(path, over=None):
                         pass
     for k, v in (over or {}).items():
         g[k] = float(v)
-    g["h"] = 1.0 / g["nx"]
+    g["h"] = (g["W"] if column else 1.0) / g["nx"]
     return g
 
 
@@ -169,13 +200,114 @@ def classify(breaks, g):
     return res
 
 
+def _runs(ys, gap):
+    """Contiguous pieces of sorted intervals (lo, hi, row): [(lo, hi, rows)], joined across gaps <= gap."""
+    out = []
+    for lo, hi, r in sorted(ys, key=lambda t: t[0]):
+        if out and lo <= out[-1][1] + gap:
+            out[-1][1] = max(out[-1][1], hi)
+            out[-1][2].append(r)
+        else:
+            out.append([lo, hi, [r]])
+    return out
+
+
+def classify_column(breaks, g):
+    """breaks: read_breaks rows of a column run; g: deck_geometry(column=True).  Returns {class:
+    {present, time, count, ...}, sequence, label, paper, other, broken, first_break}."""
+    W, H, h = g["W"], g["H"], g["h"]
+    xc, o = W / 2, max(0.0, (W - g["a"]) / 2)
+    res = {c: {"present": False, "time": None, "count": 0} for c in COLUMN_CLASSES}
+    first = min((r["time"] for r in breaks), default=None)
+
+    def in_s(r):
+        return W / 2 - abs(r["x"] - xc) <= o + h and r["y"] >= H - max(o, h) - h
+
+    sh = [r for r in breaks if in_s(r)]
+    lower = [r for r in breaks if not in_s(r) and r["y"] <= H / 2]
+    upper = [r for r in breaks if not in_s(r) and r["y"] > H / 2]
+    if sh:
+        res["shoulders"].update(present=True, time=min(r["time"] for r in sh), count=len(sh))
+
+    # longitudinal: pieces along vertical mesh lines in the lower half
+    lines = {}
+    for r in lower:
+        i = round(r["x"] / h)
+        dx = abs(r["x"] - i * h)
+        if 0 < i < round(W / h) and dx <= 0.3 * h:
+            half = (r["len"] if dx < 0.125 * h else r["len"] / 2 ** 0.5) / 2
+            lines.setdefault(i, []).append((r["y"] - half, r["y"] + half, r))
+    need = max(3 * h, H / 10)
+    cracked, tl, used = [], [], set(id(r) for r in sh)
+    for i, ys in sorted(lines.items()):
+        pieces = [p for p in _runs(ys, 0.1 * h) if p[1] - p[0] >= need - 1e-9]
+        used.update(id(r) for p in pieces for r in p[2])
+        if pieces:
+            cracked.append(i)
+            tl.append(min(r["time"] for p in pieces for r in p[2]))
+    # lines side by side are one crack zigzagging between them: a crack per run of adjacent lines
+    groups = []
+    for i in cracked:
+        if groups and i == groups[-1][-1] + 1:
+            groups[-1].append(i)
+        else:
+            groups.append([i])
+    if groups:
+        res["longitudinal"].update(present=True, time=min(tl), count=len(groups),
+                                   x=[h * sum(gr) / len(gr) for gr in groups])
+
+    # inclined: a 45-degree diagonal chain on each side of the axis in the upper half
+    need = max(2 * h, W / 5)
+    side_t, shapes = [], set()
+    for sgn in (-1, 1):
+        rows = [r for r in upper if (r["x"] - xc) * sgn > 0.3 * h]
+        best = None
+        for fam, f in (("/", lambda r: r["x"] - r["y"]), ("\\", lambda r: r["x"] + r["y"])):
+            groups = {}
+            for r in rows:
+                k = f(r) / h
+                if abs(k - round(k)) <= 0.2 and not (abs(r["x"] / h - round(r["x"] / h)) < 0.1):
+                    groups.setdefault(round(k), []).append((r["y"], r["y"], r))
+            for ys in groups.values():
+                for lo, hi, rs in _runs(ys, 0.6 * h):
+                    if hi - lo + h / 2 >= need - 1e-9:
+                        used.update(id(r) for r in rs)
+                        t = min(r["time"] for r in rs)
+                        # left side ("/": x falls as y falls) and right side ("\\") move away downwards
+                        shapes.add("lambda" if (fam == "/") == (sgn < 0) else "V")
+                        best = t if best is None else min(best, t)
+        side_t.append(best)
+    res["inclined"]["count"] = sum(1 for r in upper if id(r) in used)
+    if all(t is not None for t in side_t):
+        res["inclined"].update(present=True, time=max(side_t), shape="+".join(sorted(shapes)))
+
+    seq = sorted((c for c in COLUMN_CLASSES if res[c]["present"]),
+                 key=lambda c: (res[c]["time"], COLUMN_CLASSES.index(c)))
+    tl_, ti, ts = (res[c]["time"] if res[c]["present"] else None for c in COLUMN_CLASSES)
+    res["sequence"] = seq
+    res["label"] = ">".join(seq) if seq else ("none" if not breaks else "other")
+    res["paper"] = None not in (tl_, ti, ts) and res["longitudinal"]["count"] >= 2 and tl_ < ts and ti < ts
+    res["other"] = sum(1 for r in breaks if id(r) not in used)
+    res["broken"] = len(breaks)
+    res["first_break"] = first
+    return res
+
+
+def is_column(rundir_or_csv):
+    """A column run: its break log is column_breaks.csv (decks/column.deck's fracture_log)."""
+    return os.path.basename(rundir_or_csv).startswith("column") or \
+        bool(glob.glob(os.path.join(rundir_or_csv, "column_breaks.csv")))
+
+
 def classify_run(rundir, over=None):
-    """Classify a yfsweep run directory (run.deck and one *_breaks.csv)."""
+    """Classify a yfsweep run directory (run.deck and one *_breaks.csv): beam or column by the log's name."""
     deck = os.path.join(rundir, "run.deck")
     found = sorted(glob.glob(os.path.join(rundir, "*_breaks.csv")))
     if not found:
         raise FileNotFoundError("%s: no *_breaks.csv (the deck needs fracture_log)" % rundir)
-    return classify(read_breaks(found[0]), deck_geometry(deck if os.path.exists(deck) else None, over))
+    col = os.path.basename(found[0]).startswith("column")
+    g = deck_geometry(deck if os.path.exists(deck) else None, over, column=col)
+    return (classify_column if col else classify)(read_breaks(found[0]), g)
 
 
 def main(argv=None):
@@ -183,18 +315,23 @@ def main(argv=None):
     p.add_argument("rundir", nargs="?", help="a yfsweep run directory")
     p.add_argument("--breaks", help="fracture_log CSV (instead of RUNDIR)")
     p.add_argument("--deck", help="deck whose `variable ... index` lines give the geometry")
-    p.add_argument("--set", action="append", default=[], help="NAME=VALUE geometry override (L, D, a, nx, si)")
+    p.add_argument("--set", action="append", default=[],
+                   help="NAME=VALUE geometry override (beam: L, D, a, nx, si; column: W, H, a, nx)")
+    p.add_argument("--scene", choices=["beam", "column"],
+                   help="which classes (default: column when the log or run holds column_breaks.csv)")
     p.add_argument("--json", action="store_true", help="print the whole result as JSON")
     a = p.parse_args(argv)
+    col = a.scene == "column" if a.scene else is_column(a.breaks or a.rundir or "")
+    names = COLUMN_DEFAULTS if col else DEFAULTS
     over = {}
     for it in a.set:
         k, _, v = it.partition("=")
-        if k not in DEFAULTS or not v:
-            sys.exit("failure_mode: --set NAME=VALUE with NAME one of %s, got '%s'" % (", ".join(DEFAULTS), it))
+        if k not in names or not v:
+            sys.exit("failure_mode: --set NAME=VALUE with NAME one of %s, got '%s'" % (", ".join(names), it))
         over[k] = v
     try:
         if a.breaks:
-            res = classify(read_breaks(a.breaks), deck_geometry(a.deck, over))
+            res = (classify_column if col else classify)(read_breaks(a.breaks), deck_geometry(a.deck, over, col))
         elif a.rundir:
             res = classify_run(a.rundir, over)
         else:
@@ -205,6 +342,10 @@ def main(argv=None):
         print(json.dumps(res, indent=1))
     else:
         times = ", ".join("%s %.1f us" % (c, res[c]["time"] * 1e6) for c in res["sequence"])
+        if col and res["longitudinal"]["present"]:
+            times += "; %d longitudinal" % res["longitudinal"]["count"]
+        if col and res["inclined"]["present"]:
+            times += "; inclined " + res["inclined"]["shape"]
         print("%s%s (%d broken, %d other)%s" % (res["label"], " [" + times + "]" if times else "",
                                                res["broken"], res["other"], "  paper's sequence" if res["paper"] else ""))
     return 0

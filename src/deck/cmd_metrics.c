@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <string.h>
 #include "deck.h"
+#include "joint.h"
 #include "metrics.h"
 #include "region.h"
 #include "report.h"
@@ -17,7 +18,7 @@ static int region_word(const YfArgs *a, int w) {
 
 void cmd_metrics(YfSim *s, const YfArgs *a) {
   io_attach(s); /* its state observes the run loop (report.c) */
-  static const char *const kw[] = {"body", "mirror", "region", "midspan", "peak_stress", "log", NULL};
+  static const char *const kw[] = {"body", "mirror", "region", "midspan", "peak_stress", "log", "opened_threshold", NULL};
   arg_count(a, 1, -1);
   int k = arg_choice(a, 0, "keyword", kw);
   switch (k) {
@@ -73,6 +74,13 @@ void cmd_metrics(YfSim *s, const YfArgs *a) {
       arg_choice(a, 2, "option", ev);
       metrics_set_log(a->w[1], arg_int(a, 3, "N", 1, 1000000000L));
     }
+    break;
+  }
+  case 6: { /* opened cracks: only joints whose damage reaches Z (the records, counts and frames) */
+    arg_count(a, 2, 2);
+    double z = arg_nonneg(a, 1, "damage Z");
+    if (z > 1.0) arg_error(a, 1, "damage Z must lie in [0, 1] (0: every joint past its peak; 1: fully damaged)");
+    joints_set_open_threshold(s, z);
     break;
   }
   }

@@ -110,6 +110,8 @@ void joints_set_logs(YfSim *s, const char *breaks, const char *opened) {
   if (opened) snprintf(J->open_log_path, sizeof J->open_log_path, "%s", opened);
 }
 
+void joints_set_open_threshold(YfSim *s, double z) { jget(s)->open_z = z; }
+
 /* ---------------- insertion ---------------- */
 
 typedef YfEdgeRec Edge;
@@ -443,7 +445,8 @@ static void joint_general(YfJoints *J, int j, const double x[4], const double y[
   J->w[j] += work_inc_v(v, fj, f, dtp);
   memcpy(fj, f, sizeof f);
   J->z[j] = info.zmax;
-  if (info.zmax > 0.0 && !J->opened[j]) { /* first time past the peak: an opened crack */
+  /* first time past the peak (and past the user's damage threshold): an opened crack */
+  if (info.zmax > 0.0 && info.zmax >= J->open_z && !J->opened[j]) {
     J->opened[j] = (unsigned char)(0x80 | (info.mode != YF_JMODE_NONE ? info.mode : YF_JMODE_MIXED));
     (*nopen)++;
   }

@@ -94,10 +94,12 @@ typedef struct YfJoints {
   char log_path[1024];
   /* Opened cracks (the fictitious crack of the cohesive model): a joint "opens" at the first
    * evaluation that leaves damage z > 0 at a sampling point (opening beyond o_p or slip beyond
-   * s_p: past the peak of the law, softening but still transmitting stress).  opened[j]: 0 never,
+   * s_p: past the peak of the law, softening but still transmitting stress), and z >= open_z.  opened[j]: 0 never,
    * else the mode at that moment (YF_JMODE_*), | 0x80 until recorded.  The records (same layout
    * as breaks; length = initial length) are appended in joint order per step, like breaks. */
   unsigned char *opened;
+  double open_z;        /* damage z a joint must reach to count as opened (metrics opened_threshold;
+                           0: any z > 0, the law's peak), in [0, 1]                               */
   int *blk_nopen;
   int nopened, caporec;
   YfBreak *orec;
@@ -130,6 +132,9 @@ void joints_free(YfSim *s);
 void joints_add_fracture(YfSim *s, int body, int set, int region, int group, const YfLoc *loc);
 /* CSV files of the break record and (opened != NULL) of the opened-crack record. */
 void joints_set_logs(YfSim *s, const char *breaks, const char *opened);
+/* The damage z in [0, 1] an opened crack must reach (0, the default: any z > 0).  Joints already
+ * marked opened stay opened. */
+void joints_set_open_threshold(YfSim *s, double z);
 
 /* ---- reusable pieces (Y2D reader, tests) ---- */
 /* Add a joint property set; returns its index (deck error at loc when the name is taken or the
