@@ -407,6 +407,42 @@ START_TEST(test_restart_refusals) {
 }
 END_TEST
 
+/* Set /meta/version of restart PATH to V (a file as an older yfdem wrote it). */
+static void set_version(const char *path, long v) {
+  hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+  ck_assert(f >= 0);
+  hid_t d = H5Dopen2(f, "/meta/version", H5P_DEFAULT);
+  ck_assert(d >= 0);
+  ck_assert(H5Dwrite(d, H5T_NATIVE_LONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &v) >= 0);
+  H5Dclose(d);
+  H5Fclose(f);
+}
+
+/* Format version 1 kept the Coulomb friction law's memory as F_t, version 2 as F_t / sqrt(k_t)
+ * (kernel/contact_pair.h): a version 1 file whose Coulomb couples hold memory is refused (I/O
+ * error naming the cause), one without such memory is read as before. */
+START_TEST(test_restart_old_friction_memory) {
+  mk_tmpdir();
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  write_deck("w.deck", NULL, "run 10\nwrite_restart early.restart\nrun 190\nwrite_restart late.restart\n");
+  char h[17];
+  expect_ok("w.deck", 1, h);
+  char path[256];
+  snprintf(path, sizeof path, "%s/late.restart", tmpdir);
+  set_version(path, 1);
+  write_deck("late.deck", NULL, "read_restart late.restart\nrun 210 upto\n");
+  ck_assert_int_eq(run_deck("late.deck", 1, h), YF_EXIT_IO);
+  char *e = err_of("late.deck");
+  ck_assert_msg(strstr(e, "format version 1") && strstr(e, "coulomb"), "%s", e);
+  free(e);
+  snprintf(path, sizeof path, "%s/early.restart", tmpdir);
+  set_version(path, 1);
+  write_deck("early.deck", NULL, "read_restart early.restart\nrun 20 upto\n");
+  expect_ok("early.deck", 1, h);
+  rm_tmpdir();
+}
+END_TEST
+
 /* ---------------------------------------------------------------- signals */
 
 /* Wait until file exists (bounded: 120 s, the machine may be loaded). */
@@ -850,6 +886,7 @@ Suite *restart_suite(void) {
   tcase_add_test(tc, test_restart_dumps_continue);
   tcase_add_test(tc, test_restart_paths);
   tcase_add_test(tc, test_restart_refusals);
+  tcase_add_test(tc, test_restart_old_friction_memory);
   tcase_add_test(tc, test_sigint_restart);
   tcase_add_test(tc, test_sigkill_frames_readable);
   tcase_add_test(tc, test_interrupt_continue_every_file);

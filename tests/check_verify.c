@@ -23,11 +23,13 @@ static double q(YfSim *s, const char *name) {
 
 /* decks/verify/sliding_block.deck with the given variables; returns the block's mean acceleration
  * along the slope 2 u / t^2 [m/s^2] and sets *u to its displacement u [m]. */
+static double slide_time; /* the time the last slide() reached [s] */
 static double slide(const char *slope, const char *phi, const char *nx, const char *pen, const char *law,
                     const char *T, double *u) {
   const char *vars[] = {"slope", slope, "phi", phi, "nx", nx, "pen", pen, "law", law, "T", T, NULL};
   YfSim *s = yft_run_deck("decks/verify/sliding_block.deck", vars);
   *u = q(s, "ux_blk");
+  slide_time = s->time;
   double a = 2.0 * *u / (s->time * s->time);
   fprintf(stderr, "sliding block: slope %s phi %s nx %s pen %s %s T %s: u %.6e m, a %.6f m/s^2\n", slope, phi, nx, pen,
           law, T, *u, a);
@@ -59,14 +61,31 @@ START_TEST(test_slide_cells_penalty) {
 END_TEST
 
 /* mu from 0 to 0.75 on a 50 degree slope: within 1 %.  (mu = 1 there, 5 degrees inside the
- * slope, is +69 %: the near-cone limit of docs/VERIFICATION.md.) */
+ * slope, is +68 %: the near-cone limit of docs/VERIFICATION.md.)  At mu = 0.75 a single run
+ * scatters by about +-1 % from one friction angle to the next, 0.01 degree apart (the undamped
+ * block's ringing makes its edges stick and slip by turns, and where that happens is sensitive to
+ * the last bit; docs/VERIFICATION.md: -0.03 % to +1.15 % over 36.85-36.90 degrees at 0.05 s), so
+ * that row takes the mean error of four angles within 0.03 degree of atan(0.75), each against
+ * its own theory. */
 START_TEST(test_slide_mu) {
   static const char *const phi[] = {"0", "14.036243467926479", "26.56505117707799", "36.86989764584402"};
   static const double mu[] = {0, 0.25, 0.5, 0.75};
   int i = _i;
   double u, a = slide("50", phi[i], "4", "10", "coulomb", "0.05", &u);
   double th = 50 * M_PI / 180, at = 9.81 * (sin(th) - mu[i] * cos(th));
-  ck_assert_double_eq_tol(a, at, 0.01 * at);
+  if (i < 3) {
+    ck_assert_double_eq_tol(a, at, 0.01 * at);
+    return;
+  }
+  static const char *const near[] = {"36.85", "36.87", "36.9"};
+  double err = a / at - 1;
+  for (int k = 0; k < 3; k++) {
+    a = slide("50", near[k], "4", "10", "coulomb", "0.05", &u);
+    err += a / a_theory(50, atof(near[k])) - 1;
+  }
+  err /= 4;
+  fprintf(stderr, "sliding block: mu 0.75 on 50 degrees, mean error of four angles %+.3f %%\n", 100 * err);
+  ck_assert_double_lt(fabs(err), 0.01);
 }
 END_TEST
 
@@ -77,6 +96,19 @@ END_TEST
 START_TEST(test_slide_holds) {
   double u;
   slide("20", "40", "4", "10", "coulomb", "0.05", &u);
+  ck_assert_double_lt(fabs(u), 1e-6);
+}
+END_TEST
+
+/* The table's horizon, 0.3 s (60 000 steps, about 3 s): slope 20 / friction angle 40 holds to
+ * the micrometre (6.9e-7 m) to the end, its energy balance closed.  With the spring's memory
+ * kept as F_t while k_t followed a shrinking contact interval, the stored 0.5 F_t^2 / k_t grew
+ * without work and the energy check stopped the run at 0.265 s (exit 3); the memory is now
+ * s = F_t / sqrt(k_t) (contact_pair.c, coulomb_edge). */
+START_TEST(test_slide_holds_long) {
+  double u;
+  slide("20", "40", "4", "10", "coulomb", "0.3", &u);
+  ck_assert_double_ge(slide_time, 0.3 * (1 - 1e-9));
   ck_assert_double_lt(fabs(u), 1e-6);
 }
 END_TEST
@@ -293,6 +325,7 @@ Suite *verify_suite(void) {
   tcase_add_loop_test(t, test_slide_cells_penalty, 0, 4);
   tcase_add_loop_test(t, test_slide_mu, 0, 4);
   tcase_add_test(t, test_slide_holds);
+  tcase_add_test(t, test_slide_holds_long);
   suite_add_tcase(s, t);
   t = tcase_create("mode1_gf");
   tcase_set_timeout(t, 120);

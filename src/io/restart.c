@@ -41,7 +41,11 @@
 #include "run.h"
 #include "energy.h"
 
-#define RESTART_VERSION 1
+/* 2: the Coulomb friction law's memory is s = F_t / sqrt(k_t) (contact_pair.h), no longer F_t.
+ * A version 1 file is read when none of its Coulomb couples holds friction memory (the rest of
+ * the layout is the same); otherwise it is refused (F_t cannot be turned into s without the
+ * contact interval of the step it was written at). */
+#define RESTART_VERSION 2
 
 typedef struct YfRestart {
   long every;      /* steps between periodic restarts (0: none)            */
@@ -442,7 +446,7 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   hid_t g = ropen(&r, "meta");
   if (dlen(g, "complete") != 1 || get_l(&r, g, "complete") != 1) rfail(&r, "incomplete file: the writer was stopped");
   long ver = get_l(&r, g, "version");
-  if (ver != RESTART_VERSION) {
+  if (ver != RESTART_VERSION && ver != 1) {
     char what[96];
     snprintf(what, sizeof what, "format version %ld, this yfdem reads %d", ver, RESTART_VERSION);
     rfail(&r, what);
@@ -596,6 +600,15 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
     get(&r, g, "alive", H5T_NATIVE_UCHAR, (size_t)np, st.alive);
     for (long k = 0; k < 2 * np; k++)
       if (st.ij[k] < 0 || st.ij[k] >= m->tri.n) rfail(&r, "contact/ij: triangle index out of range");
+    if (ver == 1) /* the old form of the Coulomb memory (F_t): refused where it is not zero */
+      for (long k = 0; k < np; k++) {
+        int ma = m->tri.mat[st.ij[2 * k]], mb = m->tri.mat[st.ij[2 * k + 1]];
+        if (m->mat[ma].fric_law == YF_FRIC_Y2D || m->mat[mb].fric_law == YF_FRIC_Y2D) continue;
+        for (int c = 0; c < 6; c++)
+          if (st.g[6 * k + c] != 0.0)
+            rfail(&r, "format version 1 holds the coulomb friction law's memory as F_t (this yfdem keeps "
+                      "F_t / sqrt(k_t)): rerun from the deck, or with the yfdem that wrote it");
+      }
     st.nlive = (int)get_l(&r, g, "nlive");
     st.ndead = (int)get_l(&r, g, "ndead");
     st.travel = get_d(&r, g, "travel");

@@ -107,18 +107,26 @@ static inline double pmin3(const double al[3], const double dl[3], double s)
 }
 
 /* The elastic-slip Coulomb law on one contactor edge (YF_FRIC_COULOMB, contact_pair.h).
- * Returns F_t, in F's units (times the edge vector it is the force on the contactor [N/m]);
- * *g is the edge's stored F_t.  The tangential spring spreads evenly over the contact interval
- * [s_min, s_max] (stiffness 3 p_t / h per unit contact length: the normal law's 3 p_n / h with
- * p_t for p_n, h the target's height over its edge nearest to the interval's midpoint s_m), so
- * its force acts at s_m, on the contactor with the weights (1 - s_m, s_m) (the caller) and on
- * the target with the barycentric coordinates of that point, and the slip rate w is taken at the
- * same point: F_t w dt is then exactly the work of the forces the spring applies.  (At the normal
- * force's centroid F_b / F instead, which moves as the pressure shifts, the spring does work on
- * a rocking block: a block held by mu = 1e4 rocked itself loose.)  The force is updated
- * incrementally, F_t += k_t w dt / L, so a change of k_t (the interval grows or shrinks) never
- * makes F_t jump, and a trial force above mu |F| is returned onto the cone; the excess is slip
- * (*slip = the slip distance times L [m^2], for the dissipation |F_t| slip). */
+ * Returns F_t, in F's units (times the edge vector it is the force on the contactor [N/m]).
+ * The tangential spring spreads evenly over the contact interval [s_min, s_max] (stiffness 3 p_t / h
+ * per unit contact length: the normal law's 3 p_n / h with p_t for p_n, h the target's height over
+ * its edge nearest to the interval's midpoint s_m), so its force acts at s_m, on the contactor
+ * with the weights (1 - s_m, s_m) (the caller) and on the target with the barycentric coordinates
+ * of that point, and the slip rate w is taken at the same point: F_t w dt is then exactly the work
+ * of the forces the spring applies.  (At the normal force's centroid F_b / F instead, which moves
+ * as the pressure shifts, the spring does work on a rocking block: a block held by mu = 1e4 rocked
+ * itself loose.)
+ *
+ * The memory *g is not F_t but s = F_t / sqrt(k_t), whose square is twice the spring's energy
+ * per unit L (0.5 F_t^2 / k_t = 0.5 s^2).  k_t follows the contact interval, which changes
+ * every step as the bodies move; with F_t kept across such a change (an incremental F_t), a
+ * shrinking interval raised the stored 0.5 F_t^2 / k_t without work: energy from nowhere, which
+ * stopped a block held well inside the cone (docs/VERIFICATION.md).  Keeping s instead keeps the
+ * spring's energy across the change, and the increment F_t += k_t w dt / L adds exactly the
+ * work F_t w dt to it (to first order in dt), so the spring neither makes nor loses energy of
+ * its own; a change of interval that is undone (the ringing of a block at rest) gives back the
+ * same F_t.  A trial force above mu |F| is returned onto the cone; the excess is slip (*slip =
+ * the slip distance times L [m^2], for the dissipation |F_t| slip). */
 static inline double coulomb_edge(const double al[3], const double dl[3], const double vxt[3], const double vyt[3],
                                   double vxa, double vya, double vxb, double vyb, double tcx, double tcy,
                                   double smin, double smax, const v4d Q, double D, double pt, double cap,
@@ -138,13 +146,14 @@ static inline double coulomb_edge(const double al[3], const double dl[3], const 
   double L = sqrt(tcx * tcx + tcy * tcy);
   *w = (vtx - vcx) * tcx + (vty - vcy) * tcy;              /* relative velocity times L [m^2/s] */
   double kt = 3.0 * pt * (smax - smin) * sqrt(Q[kmin]) / D; /* F_t per metre of slip [Pa/m]   */
-  double Ft = *g + kt * (*w * dt / L);
+  double sk = sqrt(kt);
+  double Ft = *g * sk + kt * (*w * dt / L);
   if (fabs(Ft) > cap) {
     *slip = (fabs(Ft) - cap) / kt * L;
     Ft = copysign(cap, Ft);
   }
-  *g = Ft;
-  if (info && kt > 0.0) info->energy += 0.5 * Ft * Ft / kt * L; /* the spring's energy [J/m] */
+  *g = sk > 0.0 ? Ft / sk : 0.0; /* pen_t 0: no spring */
+  if (info) info->energy += 0.5 * *g * *g * L; /* the spring's energy 0.5 F_t^2 / k_t L [J/m] */
   return Ft;
 }
 

@@ -13,7 +13,8 @@
  * These are pure functions on plain numbers: no model, no allocation, no I/O.  Units: SI, 2D per
  * unit thickness.  Forces [N/m]; penalties [Pa]; the sliding memory g is Y2D's (m^2: a relative
  * tangential velocity dotted with the unnormalised edge vector, times dt) or, with the Coulomb
- * law, the edge's tangential force F_t [Pa: times the edge vector, N/m] (see the laws below).
+ * law, s = F_t / sqrt(k_t), the edge's tangential force over the square root of its stiffness
+ * (0.5 s^2 L is the spring's energy [J/m]; see the laws below).
  */
 #ifndef YF_CONTACT_PAIR_H
 #define YF_CONTACT_PAIR_H
@@ -30,9 +31,11 @@
  *                    interval, stiffness k_t = 3 p_t (s_max - s_min) / h per metre of slip (the
  *                    normal law's with p_t for p_n; h = the target's height over its edge nearest
  *                    the interval's midpoint s_m), acting at s_m and fed by the slip rate there;
- *                    g is the stored F_t (F's units), updated F_t += k_t (w / L) dt and
- *                    return-mapped onto |F_t| <= mu |F|; an edge that is apart releases it
- *                    (g = 0).  Unit-independent: k_t / k_n = p_t / p_n.  Native decks. */
+ *                    g is s = F_t / sqrt(k_t) (the spring's energy, 0.5 s^2 per unit L, is
+ *                    kept when k_t follows a change of the interval), F_t = s sqrt(k_t) updated
+ *                    F_t += k_t (w / L) dt and return-mapped onto |F_t| <= mu |F|; an edge that
+ *                    is apart releases it (g = 0).  Unit-independent: k_t / k_n = p_t / p_n.
+ *                    Native decks. */
 
 #define YF_TRI_GEOM 16 /* doubles per triangle record: x[3] y[3] mx[3] my[3] D 1/D H2 (1 spare) */
 
