@@ -60,6 +60,62 @@ START_TEST(test_reference_sections_match_table) {
 }
 END_TEST
 
+static int word_char(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_'; }
+
+/* Is w (n chars) a whole word of text[0..len)? */
+static int has_word(const char *text, size_t len, const char *w, size_t n) {
+  for (size_t i = 0; i + n <= len; i++)
+    if (!strncmp(text + i, w, n) && (i == 0 || !word_char(text[i - 1])) && (i + n == len || !word_char(text[i + n])))
+      return 1;
+  return 0;
+}
+
+/* Every command has its arguments (command_args.def), and every placeholder of its usage (an
+ * upper-case word: NAME, FILE, X0, ...) is explained by a line of them (among the words before
+ * the line's first ": "); no row names a command that does not exist.  The sections of
+ * docs/reference.md print them with units and defaults (issue 19). */
+START_TEST(test_every_command_has_its_arguments) {
+  char missing[4096] = "";
+  size_t k = 0;
+  for (const YfCommand *c = yf_commands; c->name; c++) {
+    const char *args = commands_args(c->name);
+    if (!args || !args[0]) {
+      k += (size_t)snprintf(missing + k, sizeof missing - k, "%s: no arguments row; ", c->name);
+      continue;
+    }
+    const char *u = c->usage;
+    for (size_t i = 0; u[i] && k < sizeof missing - 200; i++) {
+      if (!(u[i] >= 'A' && u[i] <= 'Z') || (i > 0 && (word_char(u[i - 1]) || u[i - 1] == '$'))) continue;
+      size_t n = 0;
+      while ((u[i + n] >= 'A' && u[i + n] <= 'Z') || (u[i + n] >= '0' && u[i + n] <= '9') || u[i + n] == '_') n++;
+      if (word_char(u[i + n])) { i += n; continue; } /* part of a longer word */
+      int found = 0;
+      for (const char *p = args; *p && !found;) { /* the words part of each line */
+        const char *e = strchr(p, '\n'), *end = e ? e : p + strlen(p), *colon = strstr(p, ": ");
+        size_t len = colon && colon < end ? (size_t)(colon - p) : 0;
+        found = has_word(p, len, u + i, n);
+        p = e ? e + 1 : end;
+      }
+      if (!found) k += (size_t)snprintf(missing + k, sizeof missing - k, "%s: %.*s unexplained; ", c->name, (int)n, u + i);
+      i += n;
+    }
+  }
+  for (const YfCommandArgs *r = yf_command_args; r->name; r++) {
+    int n = 0;
+    for (const YfCommandArgs *q = yf_command_args; q->name; q++) n += !strcmp(q->name, r->name);
+    if (!deck_find_command(r->name) || n != 1)
+      k += (size_t)snprintf(missing + k, sizeof missing - k, "%s: %s; ", r->name, n != 1 ? "two rows" : "no such command");
+  }
+  ck_assert_msg(k == 0, "command_args.def: %s", missing);
+  /* and the reference's sections carry them */
+  char *doc = yft_slurp("docs/reference.md", 0);
+  ck_assert_ptr_nonnull(doc);
+  ck_assert_msg(strstr(doc, "\n## material\n") && strstr(doc, "Arguments:\n\n- `NAME`: the material's name") &&
+                strstr(doc, "- `rho R`: density [kg/m^3]; required\n"), "docs/reference.md lacks the arguments");
+  free(doc);
+}
+END_TEST
+
 /* decks/sweep.deck does what its comments say: three bars of 10, 20 and 40 cells along built by a
  * loop, one dump showing all three (sweep.xmf), and each bar's end reaction printed next to
  * E A u / L = 2e4 N/m, a little above it (the clamps' lateral restraint) and closer on finer meshes.
@@ -106,6 +162,7 @@ Suite *docs_suite(void) {
   TCase *t = tcase_create("readme");
   tcase_add_test(t, test_readme_reference_matches_table);
   tcase_add_test(t, test_reference_sections_match_table);
+  tcase_add_test(t, test_every_command_has_its_arguments);
   tcase_add_test(t, test_sweep_deck_does_what_it_says);
   suite_add_tcase(s, t);
   return s;
