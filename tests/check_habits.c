@@ -8,7 +8,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
 #include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
 #include "yftest.h"
 
 #define BAR "variable nx index 10\n" \
@@ -102,6 +105,61 @@ START_TEST(test_var_unused_warns) {
 }
 END_TEST
 
+/* Thermo lines and messages reach stdout and the log as they are printed, also when stdout is a
+ * file (nohup, a batch queue: the C library would hold them in its buffer until exit): a deck
+ * that runs, prints, then starts a run far too long to finish (no thermo lines) has its lines in
+ * both files while it is still running; SIGTERM then stops it (exit 130). */
+START_TEST(test_flushed_while_running) {
+  char tmpl[] = "/tmp/yft_XXXXXX";
+  char *dir = mkdtemp(tmpl);
+  ck_assert_ptr_nonnull(dir);
+  char p[600], cmd[2048];
+  snprintf(p, sizeof p, "%s/a.deck", dir);
+  FILE *f = fopen(p, "w");
+  ck_assert_ptr_nonnull(f);
+  fputs(BAR "thermo 5\nrun 10\nprint \"after the run\"\nthermo 0\nrun 1000000000\n", f);
+  fclose(f);
+  const char *bin = getenv("YFDEM") ? getenv("YFDEM") : "./yfdem";
+  char abs[1024] = "";
+  if (bin[0] != '/' && getcwd(abs, sizeof abs - strlen(bin) - 2)) strcat(strcat(abs, "/"), bin);
+  snprintf(cmd, sizeof cmd, "cd %s && exec %s -in a.deck > out.txt 2> err.txt", dir, abs[0] ? abs : bin);
+  pid_t pid = fork();
+  ck_assert(pid >= 0);
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", cmd, (char *)NULL);
+    _exit(127);
+  }
+  char *out = NULL, *log = NULL;
+  int seen = 0;
+  for (int i = 0; i < 400 && !seen; i++) { /* up to 20 s */
+    struct timespec ts = {0, 50000000};
+    nanosleep(&ts, NULL);
+    free(out);
+    free(log);
+    out = file_in(dir, "out.txt");
+    log = file_in(dir, "log.yfdem");
+    seen = out && log && strstr(out, "after the run\n") && strstr(log, "after the run\n");
+  }
+  kill(pid, SIGTERM);
+  int st = 0;
+  for (int i = 0; i < 200 && waitpid(pid, &st, WNOHANG) == 0; i++) { /* up to 10 s, then SIGKILL */
+    struct timespec ts = {0, 50000000};
+    nanosleep(&ts, NULL);
+    if (i == 199) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &st, 0);
+    }
+  }
+  ck_assert_msg(seen, "while running, stdout holds:\n%s\nand log.yfdem:\n%s", out ? out : "(none)", log ? log : "(none)");
+  ck_assert_msg(strstr(out, "\n        10 ") && strstr(out, "run: 10 steps"), "thermo lines not in stdout:\n%s", out);
+  ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) == 130, "SIGTERM: status %d", st);
+  free(out);
+  free(log);
+  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+  if (system(cmd)) {}
+}
+END_TEST
+
 /* yfdem -h with a misspelt command suggests the nearest one, as the deck does. */
 START_TEST(test_help_suggests) {
   const char *bin = getenv("YFDEM") ? getenv("YFDEM") : "./yfdem";
@@ -156,6 +214,7 @@ Suite *habits_suite(void) {
   tcase_add_test(t, test_log_none_and_named);
   tcase_add_test(t, test_var_unused_warns);
   tcase_add_test(t, test_help_suggests);
+  tcase_add_test(t, test_flushed_while_running);
   tcase_add_test(t, test_no_files_before_run);
   suite_add_tcase(s, t);
   return s;
