@@ -36,7 +36,7 @@ static const char *const ekeys[] = {"kinetic", "strain", "external_work", "dampi
  * native fracture log) the broken joints.  Returns the largest energy difference over the
  * largest energy. */
 static double round_trip(const char *native, const char *extra, const char *exported, const char *breaks,
-                         int *nbroken) {
+                         int *nbroken, char **native_dir) {
   char *err = NULL, *d1 = NULL, *d2 = NULL;
   char args[1024];
   setenv("OMP_NUM_THREADS", "1", 1); /* same bits on any threads; one is fastest on a busy machine */
@@ -86,11 +86,26 @@ static double round_trip(const char *native, const char *extra, const char *expo
     fclose(a);
     fclose(b);
   }
-  free(j1); free(j2); free(d1); free(d2);
+  free(j1); free(j2); free(d2);
+  if (native_dir) *native_dir = d1;
+  else free(d1);
   return worst;
 }
 
-static void seed_round_trip(const char *name, const char *vars, int min_broken) {
+/* The value after KEY in a written .y deck: a scalar key's value, or the first value of a 1D array
+ * ("KEY n" then the values). */
+static double deck_value(const char *deck, const char *key, int array) {
+  char k[80];
+  snprintf(k, sizeof k, "%s ", key);
+  const char *p = strstr(deck, k);
+  ck_assert_msg(p != NULL, "no %s in the written deck", key);
+  char *end;
+  double v = strtod(p + strlen(k), &end);
+  if (array) v = strtod(end, NULL);
+  return v;
+}
+
+static char *seed_round_trip(const char *name, const char *vars, int min_broken) {
   char native[1200], cwd[512], extra[512], exported[64], breaks[64];
   ck_assert(getcwd(cwd, sizeof cwd));
   snprintf(native, sizeof native, "include %s/decks/%s.deck\n", cwd, name);
@@ -98,16 +113,74 @@ static void seed_round_trip(const char *name, const char *vars, int min_broken) 
   snprintf(exported, sizeof exported, "%s.y", name);
   snprintf(breaks, sizeof breaks, "%s_breaks.csv", name);
   int nb = 0;
-  double worst = round_trip(native, extra, exported, breaks, &nb);
+  char *dir = NULL;
+  double worst = round_trip(native, extra, exported, breaks, &nb, &dir);
   printf("write_y2d round trip %s (%s): %d joints broken in both, energies agree to %.1e\n", name, vars, nb, worst);
   ck_assert_msg(nb >= min_broken, "%s: only %d joints broke (the round trip must cover fracture)", name, nb);
   ck_assert_msg(worst <= 1e-9, "%s: energies differ by %.2e of the largest", name, worst);
+  char path[1200];
+  snprintf(path, sizeof path, "%s/%s", dir, exported);
+  free(dir);
+  char *deck = yft_slurp(path, 0);
+  ck_assert_msg(deck != NULL, "cannot read %s", path);
+  return deck;
 }
 
-START_TEST(test_beam_round_trip) { seed_round_trip("beam", "-var nx 20 -var steps 1500", 4); }
+START_TEST(test_beam_round_trip) { free(seed_round_trip("beam", "-var nx 20 -var steps 1500", 4)); }
 END_TEST
 
-START_TEST(test_column_round_trip) { seed_round_trip("column", "-var nx 8 -var steps 1000", 40); }
+START_TEST(test_column_round_trip) { free(seed_round_trip("column", "-var nx 8 -var steps 1000", 40)); }
+END_TEST
+
+/* The beam's Mohr-Coulomb joints (-var mu) with Y2D's physics (-var y2d 1): the exported joint set
+ * keeps them (Y2D's D1PJCO, D1PJFR; D1PJFS 0 makes the cohesion the shear strength), and the round
+ * trip holds.  (Before, -var y2d 1 silently replaced them by fs = ft.) */
+START_TEST(test_beam_mohr_coulomb_round_trip) {
+  char *deck = seed_round_trip("beam", "-var nx 20 -var steps 1500 -var mu 0.6", 4);
+  ck_assert_msg(deck_value(deck, "/YD/YDPJ/D1PJFR", 1) == 0.6 && deck_value(deck, "/YD/YDPJ/D1PJCO", 1) == 3.15e6 &&
+                deck_value(deck, "/YD/YDPJ/D1PJFS", 1) == 0,
+                "joint set: friction %g cohesion %g fs %g (expected 0.6, 3.15e6, 0)", deck_value(deck, "/YD/YDPJ/D1PJFR", 1),
+                deck_value(deck, "/YD/YDPJ/D1PJCO", 1), deck_value(deck, "/YD/YDPJ/D1PJFS", 1));
+  free(deck);
+}
+END_TEST
+
+/* Y2D's coded output (FORMAT.md 7.2) divides every value by its DCSIZ scale and clips it to [-1, 1]:
+ * with the default scales (1) every velocity above 1 m/s and every stress above 1 Pa saturates, and
+ * Y2D's output could not be compared with yfdem's run.  The written deck sets the scales so that
+ * coordinates (with room to move), the impact speed and stresses well past the strength fit, the
+ * 4-digit coding (ICOUTP 4), the first file index (ICOUTI 0) and `every K` as ICOUTF. */
+START_TEST(test_output_scales) {
+  char cwd[512], native[1200];
+  ck_assert(getcwd(cwd, sizeof cwd));
+  snprintf(native, sizeof native, "include %s/decks/beam.deck\n", cwd);
+  char *err = NULL, *dir = NULL;
+  int code = yft_run_binary("native.deck", native, "-var y2d 1 -var nx 20 -var steps 10 -var every 5", &err, &dir);
+  ck_assert_msg(code == 0, "exit %d: %s", code, err);
+  char path[1200];
+  snprintf(path, sizeof path, "%s/beam.y", dir);
+  char *deck = yft_slurp(path, 0);
+  ck_assert(deck != NULL);
+  ck_assert_int_eq((long)deck_value(deck, "/YD/YDC/ICOUTF", 0), 5);
+  ck_assert_int_eq((long)deck_value(deck, "/YD/YDC/ICOUTI", 0), 0);
+  ck_assert_int_eq((long)deck_value(deck, "/YD/YDC/ICOUTP", 0), 4);
+  double c = deck_value(deck, "/YD/YDC/DCSIZC", 0), v = deck_value(deck, "/YD/YDC/DCSIZV", 0),
+         st = deck_value(deck, "/YD/YDC/DCSIZS", 0);
+  /* the largest |coordinate| of D2NCI (beam 1.0 m long, impactor top at 0.15 m) */
+  const char *p = strstr(deck, "/YD/YDN/D2NCI 21 2 ");
+  ck_assert(p != NULL);
+  char *q;
+  long n = strtol(p + strlen("/YD/YDN/D2NCI 21 2 "), &q, 10);
+  double cmax = 0;
+  for (long i = 0; i < 2 * n; i++) cmax = fmax(cmax, fabs(strtod(q, &q)));
+  printf("write_y2d output scales: DCSIZC %g (largest |coordinate| %g), DCSIZV %g, DCSIZS %g\n", c, cmax, v, st);
+  ck_assert_msg(cmax == 1.0 && c >= 2 * cmax && c <= 4 * cmax, "DCSIZC %g for coordinates up to %g", c, cmax);
+  ck_assert_msg(v >= 2 * 5.0 && v <= 100, "DCSIZV %g for an impact at 5 m/s", v);
+  ck_assert_msg(st >= 100 * 3.15e6 && st <= 1e10, "DCSIZS %g for stresses past f_t = 3.15 MPa", st);
+  free(deck);
+  free(err);
+  free(dir);
+}
 END_TEST
 
 /* Every kind of BC set: held base, prescribed velocity ramped in, point load with a table history,
@@ -142,7 +215,7 @@ static const char *bc_scene =
 
 START_TEST(test_bc_sets_round_trip) {
   int nb = 0;
-  double worst = round_trip(bc_scene, "", "scene.y", "native_breaks.csv", &nb);
+  double worst = round_trip(bc_scene, "", "scene.y", "native_breaks.csv", &nb, NULL);
   printf("write_y2d round trip of the BC-set scene: %d joints broken in both, energies agree to %.1e\n", nb, worst);
   ck_assert_msg(nb >= 5, "only %d joints broke (the round trip must cover fracture)", nb);
   ck_assert_msg(worst <= 1e-9, "energies differ by %.2e of the largest", worst);
@@ -189,6 +262,8 @@ Suite *y2d_write_suite(void) {
   tcase_add_test(tc, test_beam_round_trip);
   tcase_add_test(tc, test_column_round_trip);
   tcase_add_test(tc, test_bc_sets_round_trip);
+  tcase_add_test(tc, test_beam_mohr_coulomb_round_trip);
+  tcase_add_test(tc, test_output_scales);
   suite_add_tcase(s, tc);
   tc = tcase_create("refusals");
   tcase_add_loop_test(tc, test_refusals, 0, (int)(sizeof refusals / sizeof refusals[0]));
