@@ -112,6 +112,7 @@ check: deps-test
 	YFDEM=./yfdem tests/convert/run
 	YFDEM=./yfdem tests/readme/run
 	YFDEM=./yfdem tests/failure_mode/run
+	YFDEM=./yfdem tests/ym_compare/run
 
 test: yfdem $(BUILD)/check_yfdem
 	OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem
