@@ -234,6 +234,13 @@ static const struct {
   {"gravity 0 -9.81", "gravity 0 -9.81\ndamping mass 10", "mass damping (damping mass 10)"},
   {"gravity 0 -9.81", "gravity 1 -9.81", "gravity has an x component"},
   {"friction 0.4 friction_law y2d", "friction 0.4", "material 'rock' has friction 0.4 with the coulomb friction law"},
+  {"damage reversible tangent y2d", "damage reversible tangent y2d law linear", "its softening law is not Y2D's"},
+  {"damage reversible tangent y2d", "damage reversible tangent y2d floor none", "floor none (Y2D's softening length"},
+  {"damage reversible tangent y2d", "damage reversible tangent y2d weibull 10", "random strengths (weibull/normal)"},
+  {"load press top pressure 3e6\n", "load press top pressure 3e6\nload side left pressure 1e6\n",
+   "its conditions have different time histories (rise and none)"},
+  {"region top box 0.049 0.129 0.151 1\n", "region top box 0.049 0.0 0.151 1\n", "the edge loads would act on"},
+  {"write_y2d scene.y steps 2400\n", "run 1\nwrite_y2d scene.y steps 2400\n", "put it before the first run"},
 };
 
 START_TEST(test_refusals) {
@@ -255,6 +262,44 @@ START_TEST(test_refusals) {
 }
 END_TEST
 
+/* What write_y2d approximates is said in a warning, and the deck is written: the exact joint tangent
+ * (Y2D's is e/(h + 1e-10 m)), 'contact joined skip', contact rules widened to all pairs.  A scene
+ * read by read_y2d is refused (run that deck in Y2D). */
+START_TEST(test_warnings) {
+  char deck[4096];
+  const char *p = strstr(bc_scene, "contact self rock\n");
+  ck_assert(p != NULL);
+  snprintf(deck, sizeof deck, "%.*scontact self rock\ncontact joined skip\n%s", (int)(p - bc_scene), bc_scene,
+           p + strlen("contact self rock\n"));
+  char *q = strstr(deck, " tangent y2d");
+  ck_assert(q != NULL);
+  memmove(q, q + strlen(" tangent y2d"), strlen(q + strlen(" tangent y2d")) + 1);
+  q = strstr(deck, "run 2400");
+  ck_assert(q != NULL);
+  strcpy(q, "run 1\n");
+  char *err = NULL, *dir = NULL;
+  int code = yft_run_binary("warn.deck", deck, "", &err, &dir);
+  ck_assert_msg(code == 0, "exit %d: %s", code, err);
+  static const char *const want[] = {"e/(h + 1e-10 m), this one as e/h", "'contact joined skip' has no Y2D equivalent",
+                                     "contact rule(s) are widened to all pairs"};
+  for (int i = 0; i < 3; i++)
+    ck_assert_msg(strstr(err, "warn.deck:") && strstr(err, want[i]), "no warning '%s' in: %s", want[i], err);
+  char path[1200];
+  snprintf(path, sizeof path, "%s/scene.y", dir);
+  ck_assert(yft_exists(path));
+  free(err);
+  free(dir);
+  char cwd[512];
+  ck_assert(getcwd(cwd, sizeof cwd));
+  snprintf(deck, sizeof deck, "read_y2d %s/tests/y2d/tiny.y\nwrite_y2d again.y steps 10\n", cwd);
+  code = yft_run_binary("again.deck", deck, "", &err, &dir);
+  ck_assert_msg(code == 1 && strstr(err, "again.deck:2") && strstr(err, "this scene was read from a Y2D deck"), "exit %d: %s",
+                code, err);
+  free(err);
+  free(dir);
+}
+END_TEST
+
 Suite *y2d_write_suite(void) {
   Suite *s = suite_create("y2d_write");
   TCase *tc = tcase_create("round_trip");
@@ -267,6 +312,7 @@ Suite *y2d_write_suite(void) {
   suite_add_tcase(s, tc);
   tc = tcase_create("refusals");
   tcase_add_loop_test(tc, test_refusals, 0, (int)(sizeof refusals / sizeof refusals[0]));
+  tcase_add_test(tc, test_warnings);
   suite_add_tcase(s, tc);
   return s;
 }
