@@ -145,6 +145,21 @@ START_TEST(test_beam_mohr_coulomb_round_trip) {
 }
 END_TEST
 
+/* The column with platen friction (-var mu) in Y2D's physics (-var y2d 1): its materials take Y2D's
+ * friction law, so the scene can be written (D1PEFR = mu for both) and read back.  (Before, write_y2d
+ * refused it: the native Coulomb law is not Y2D's.) */
+START_TEST(test_column_friction_round_trip) {
+  char *deck = seed_round_trip("column", "-var nx 8 -var steps 1000 -var mu 0.5", 20);
+  const char *p = strstr(deck, "/YD/YDPE/D1PEFR ");
+  ck_assert(p != NULL);
+  char *q;
+  long n = strtol(p + strlen("/YD/YDPE/D1PEFR "), &q, 10);
+  ck_assert_int_ge(n, 2);
+  for (long i = 0; i < n; i++) ck_assert_msg(strtod(q, &q) == 0.5, "property %ld: friction is not 0.5", i);
+  free(deck);
+}
+END_TEST
+
 /* Y2D's coded output (FORMAT.md 7.2) divides every value by its DCSIZ scale and clips it to [-1, 1]:
  * with the default scales (1) every velocity above 1 m/s and every stress above 1 Pa saturates, and
  * Y2D's output could not be compared with yfdem's run.  The written deck sets the scales so that
@@ -309,6 +324,7 @@ Suite *y2d_write_suite(void) {
   tcase_add_test(tc, test_bc_sets_round_trip);
   tcase_add_test(tc, test_beam_mohr_coulomb_round_trip);
   tcase_add_test(tc, test_output_scales);
+  tcase_add_test(tc, test_column_friction_round_trip);
   suite_add_tcase(s, tc);
   tc = tcase_create("refusals");
   tcase_add_loop_test(tc, test_refusals, 0, (int)(sizeof refusals / sizeof refusals[0]));
