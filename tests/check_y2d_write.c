@@ -278,8 +278,9 @@ START_TEST(test_refusals) {
 END_TEST
 
 /* What write_y2d approximates is said in a warning, and the deck is written: the exact joint tangent
- * (Y2D's is e/(h + 1e-10 m)), 'contact joined skip', contact rules widened to all pairs.  A scene
- * read by read_y2d is refused (run that deck in Y2D). */
+ * (Y2D's is e/(h + 1e-10 m)), 'contact joined skip', contact rules widened to all pairs, a traction of
+ * fixed direction (Y2D's edge loads turn with the face).  A scene read by read_y2d is refused (run
+ * that deck in Y2D). */
 START_TEST(test_warnings) {
   char deck[4096];
   const char *p = strstr(bc_scene, "contact self rock\n");
@@ -289,6 +290,10 @@ START_TEST(test_warnings) {
   char *q = strstr(deck, " tangent y2d");
   ck_assert(q != NULL);
   memmove(q, q + strlen(" tangent y2d"), strlen(q + strlen(" tangent y2d")) + 1);
+  q = strstr(deck, "pressure 3e6");
+  ck_assert(q != NULL);
+  memmove(q + strlen("traction 0 -3e6"), q + strlen("pressure 3e6"), strlen(q + strlen("pressure 3e6")) + 1);
+  memcpy(q, "traction 0 -3e6", strlen("traction 0 -3e6"));
   q = strstr(deck, "run 2400");
   ck_assert(q != NULL);
   strcpy(q, "run 1\n");
@@ -296,8 +301,9 @@ START_TEST(test_warnings) {
   int code = yft_run_binary("warn.deck", deck, "", &err, &dir);
   ck_assert_msg(code == 0, "exit %d: %s", code, err);
   static const char *const want[] = {"e/(h + 1e-10 m), this one as e/h", "'contact joined skip' has no Y2D equivalent",
-                                     "contact rule(s) are widened to all pairs"};
-  for (int i = 0; i < 3; i++)
+                                     "contact rule(s) are widened to all pairs",
+                                     "load 'press' is a traction of fixed direction (0, -3e+06) Pa; Y2D's edge loads"};
+  for (int i = 0; i < 4; i++)
     ck_assert_msg(strstr(err, "warn.deck:") && strstr(err, want[i]), "no warning '%s' in: %s", want[i], err);
   char path[1200];
   snprintf(path, sizeof path, "%s/scene.y", dir);

@@ -252,6 +252,10 @@ void y2d_write(YfSim *s, const char *path, long steps, long every, const YfLoc *
         chist[2 * tgt + c] = it.hist;
       }
     } else { /* traction, pressure: Y2D's edge pressure and shear, constant along straight faces */
+      if (it.kind == BC_TRACTION)
+        yf_warn(loc, "write_y2d: load '%s' is a traction of fixed direction (%g, %g) Pa; Y2D's edge loads (D1PNAP, "
+                "D1PNAT) are a pressure and a shear that turn with the face: written as those of the undeformed face, "
+                "the same load while the face turns little", bc_id, it.a[0], it.a[1]);
       int *ed = NULL;
       int ne = mesh_boundary_edges(m, (uint64_t)1 << it.group, &ed);
       nedge += ne;
