@@ -95,7 +95,8 @@ deps-test:
 	tools/install-deps --test
 
 # The seed paper's beam on the default coarse mesh (nx 60, 12000 steps = 1.85 ms, more than one
-# bending period): about 30-40 s on 2 loaded cores.  Outputs land beside the deck (decks/).
+# bending period): 19.5 s in all on 2 cores at load 0.8, about 30-40 s on 2 loaded cores.  Outputs
+# land in the working directory (README, Files).
 demo: deps
 	$(MAKE) yfdem
 	./yfdem -in decks/beam.deck -summary demo_summary.json
@@ -112,6 +113,7 @@ check: deps-test
 	YFDEM=./yfdem tests/convert/run
 	YFDEM=./yfdem tests/readme/run
 	YFDEM=./yfdem tests/failure_mode/run
+	YFDEM=./yfdem tests/ym_compare/run
 	YFDEM=./yfdem tests/yfplot/run
 
 test: yfdem $(BUILD)/check_yfdem

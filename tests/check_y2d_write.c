@@ -36,7 +36,7 @@ static const char *const ekeys[] = {"kinetic", "strain", "external_work", "dampi
  * native fracture log) the broken joints.  Returns the largest energy difference over the
  * largest energy. */
 static double round_trip(const char *native, const char *extra, const char *exported, const char *breaks,
-                         int *nbroken) {
+                         int *nbroken, char **native_dir) {
   char *err = NULL, *d1 = NULL, *d2 = NULL;
   char args[1024];
   setenv("OMP_NUM_THREADS", "1", 1); /* same bits on any threads; one is fastest on a busy machine */
@@ -86,11 +86,26 @@ static double round_trip(const char *native, const char *extra, const char *expo
     fclose(a);
     fclose(b);
   }
-  free(j1); free(j2); free(d1); free(d2);
+  free(j1); free(j2); free(d2);
+  if (native_dir) *native_dir = d1;
+  else free(d1);
   return worst;
 }
 
-static void seed_round_trip(const char *name, const char *vars, int min_broken) {
+/* The value after KEY in a written .y deck: a scalar key's value, or the first value of a 1D array
+ * ("KEY n" then the values). */
+static double deck_value(const char *deck, const char *key, int array) {
+  char k[80];
+  snprintf(k, sizeof k, "%s ", key);
+  const char *p = strstr(deck, k);
+  ck_assert_msg(p != NULL, "no %s in the written deck", key);
+  char *end;
+  double v = strtod(p + strlen(k), &end);
+  if (array) v = strtod(end, NULL);
+  return v;
+}
+
+static char *seed_round_trip(const char *name, const char *vars, int min_broken) {
   char native[1200], cwd[512], extra[512], exported[64], breaks[64];
   ck_assert(getcwd(cwd, sizeof cwd));
   snprintf(native, sizeof native, "include %s/decks/%s.deck\n", cwd, name);
@@ -98,16 +113,89 @@ static void seed_round_trip(const char *name, const char *vars, int min_broken) 
   snprintf(exported, sizeof exported, "%s.y", name);
   snprintf(breaks, sizeof breaks, "%s_breaks.csv", name);
   int nb = 0;
-  double worst = round_trip(native, extra, exported, breaks, &nb);
+  char *dir = NULL;
+  double worst = round_trip(native, extra, exported, breaks, &nb, &dir);
   printf("write_y2d round trip %s (%s): %d joints broken in both, energies agree to %.1e\n", name, vars, nb, worst);
   ck_assert_msg(nb >= min_broken, "%s: only %d joints broke (the round trip must cover fracture)", name, nb);
   ck_assert_msg(worst <= 1e-9, "%s: energies differ by %.2e of the largest", name, worst);
+  char path[1200];
+  snprintf(path, sizeof path, "%s/%s", dir, exported);
+  free(dir);
+  char *deck = yft_slurp(path, 0);
+  ck_assert_msg(deck != NULL, "cannot read %s", path);
+  return deck;
 }
 
-START_TEST(test_beam_round_trip) { seed_round_trip("beam", "-var nx 20 -var steps 1500", 4); }
+START_TEST(test_beam_round_trip) { free(seed_round_trip("beam", "-var nx 20 -var steps 1500", 4)); }
 END_TEST
 
-START_TEST(test_column_round_trip) { seed_round_trip("column", "-var nx 8 -var steps 1000", 40); }
+START_TEST(test_column_round_trip) { free(seed_round_trip("column", "-var nx 8 -var steps 1000", 40)); }
+END_TEST
+
+/* The beam's Mohr-Coulomb joints (-var mu) with Y2D's physics (-var y2d 1): the exported joint set
+ * keeps them (Y2D's D1PJCO, D1PJFR; D1PJFS 0 makes the cohesion the shear strength), and the round
+ * trip holds.  (Before, -var y2d 1 silently replaced them by fs = ft.) */
+START_TEST(test_beam_mohr_coulomb_round_trip) {
+  char *deck = seed_round_trip("beam", "-var nx 20 -var steps 1500 -var mu 0.6", 4);
+  ck_assert_msg(deck_value(deck, "/YD/YDPJ/D1PJFR", 1) == 0.6 && deck_value(deck, "/YD/YDPJ/D1PJCO", 1) == 3.15e6 &&
+                deck_value(deck, "/YD/YDPJ/D1PJFS", 1) == 0,
+                "joint set: friction %g cohesion %g fs %g (expected 0.6, 3.15e6, 0)", deck_value(deck, "/YD/YDPJ/D1PJFR", 1),
+                deck_value(deck, "/YD/YDPJ/D1PJCO", 1), deck_value(deck, "/YD/YDPJ/D1PJFS", 1));
+  free(deck);
+}
+END_TEST
+
+/* The column with platen friction (-var mu) in Y2D's physics (-var y2d 1): its materials take Y2D's
+ * friction law, so the scene can be written (D1PEFR = mu for both) and read back.  (Before, write_y2d
+ * refused it: the native Coulomb law is not Y2D's.) */
+START_TEST(test_column_friction_round_trip) {
+  char *deck = seed_round_trip("column", "-var nx 8 -var steps 1000 -var mu 0.5", 20);
+  const char *p = strstr(deck, "/YD/YDPE/D1PEFR ");
+  ck_assert(p != NULL);
+  char *q;
+  long n = strtol(p + strlen("/YD/YDPE/D1PEFR "), &q, 10);
+  ck_assert_int_ge(n, 2);
+  for (long i = 0; i < n; i++) ck_assert_msg(strtod(q, &q) == 0.5, "property %ld: friction is not 0.5", i);
+  free(deck);
+}
+END_TEST
+
+/* Y2D's coded output (FORMAT.md 7.2) divides every value by its DCSIZ scale and clips it to [-1, 1]:
+ * with the default scales (1) every velocity above 1 m/s and every stress above 1 Pa saturates, and
+ * Y2D's output could not be compared with yfdem's run.  The written deck sets the scales so that
+ * coordinates (with room to move), the impact speed and stresses well past the strength fit, the
+ * 4-digit coding (ICOUTP 4), the first file index (ICOUTI 0) and `every K` as ICOUTF. */
+START_TEST(test_output_scales) {
+  char cwd[512], native[1200];
+  ck_assert(getcwd(cwd, sizeof cwd));
+  snprintf(native, sizeof native, "include %s/decks/beam.deck\n", cwd);
+  char *err = NULL, *dir = NULL;
+  int code = yft_run_binary("native.deck", native, "-var y2d 1 -var nx 20 -var steps 10 -var every 5", &err, &dir);
+  ck_assert_msg(code == 0, "exit %d: %s", code, err);
+  char path[1200];
+  snprintf(path, sizeof path, "%s/beam.y", dir);
+  char *deck = yft_slurp(path, 0);
+  ck_assert(deck != NULL);
+  ck_assert_int_eq((long)deck_value(deck, "/YD/YDC/ICOUTF", 0), 5);
+  ck_assert_int_eq((long)deck_value(deck, "/YD/YDC/ICOUTI", 0), 0);
+  ck_assert_int_eq((long)deck_value(deck, "/YD/YDC/ICOUTP", 0), 4);
+  double c = deck_value(deck, "/YD/YDC/DCSIZC", 0), v = deck_value(deck, "/YD/YDC/DCSIZV", 0),
+         st = deck_value(deck, "/YD/YDC/DCSIZS", 0);
+  /* the largest |coordinate| of D2NCI (beam 1.0 m long, impactor top at 0.15 m) */
+  const char *p = strstr(deck, "/YD/YDN/D2NCI 21 2 ");
+  ck_assert(p != NULL);
+  char *q;
+  long n = strtol(p + strlen("/YD/YDN/D2NCI 21 2 "), &q, 10);
+  double cmax = 0;
+  for (long i = 0; i < 2 * n; i++) cmax = fmax(cmax, fabs(strtod(q, &q)));
+  printf("write_y2d output scales: DCSIZC %g (largest |coordinate| %g), DCSIZV %g, DCSIZS %g\n", c, cmax, v, st);
+  ck_assert_msg(cmax == 1.0 && c >= 2 * cmax && c <= 4 * cmax, "DCSIZC %g for coordinates up to %g", c, cmax);
+  ck_assert_msg(v >= 2 * 5.0 && v <= 100, "DCSIZV %g for an impact at 5 m/s", v);
+  ck_assert_msg(st >= 100 * 3.15e6 && st <= 1e10, "DCSIZS %g for stresses past f_t = 3.15 MPa", st);
+  free(deck);
+  free(err);
+  free(dir);
+}
 END_TEST
 
 /* Every kind of BC set: held base, prescribed velocity ramped in, point load with a table history,
@@ -142,7 +230,7 @@ static const char *bc_scene =
 
 START_TEST(test_bc_sets_round_trip) {
   int nb = 0;
-  double worst = round_trip(bc_scene, "", "scene.y", "native_breaks.csv", &nb);
+  double worst = round_trip(bc_scene, "", "scene.y", "native_breaks.csv", &nb, NULL);
   printf("write_y2d round trip of the BC-set scene: %d joints broken in both, energies agree to %.1e\n", nb, worst);
   ck_assert_msg(nb >= 5, "only %d joints broke (the round trip must cover fracture)", nb);
   ck_assert_msg(worst <= 1e-9, "energies differ by %.2e of the largest", worst);
@@ -161,6 +249,13 @@ static const struct {
   {"gravity 0 -9.81", "gravity 0 -9.81\ndamping mass 10", "mass damping (damping mass 10)"},
   {"gravity 0 -9.81", "gravity 1 -9.81", "gravity has an x component"},
   {"friction 0.4 friction_law y2d", "friction 0.4", "material 'rock' has friction 0.4 with the coulomb friction law"},
+  {"damage reversible tangent y2d", "damage reversible tangent y2d law linear", "its softening law is not Y2D's"},
+  {"damage reversible tangent y2d", "damage reversible tangent y2d floor none", "floor none (Y2D's softening length"},
+  {"damage reversible tangent y2d", "damage reversible tangent y2d weibull 10", "random strengths (weibull/normal)"},
+  {"load press top pressure 3e6\n", "load press top pressure 3e6\nload side left pressure 1e6\n",
+   "its conditions have different time histories (rise and none)"},
+  {"region top box 0.049 0.129 0.151 1\n", "region top box 0.049 0.0 0.151 1\n", "the edge loads would act on"},
+  {"write_y2d scene.y steps 2400\n", "run 1\nwrite_y2d scene.y steps 2400\n", "put it before the first run"},
 };
 
 START_TEST(test_refusals) {
@@ -182,6 +277,50 @@ START_TEST(test_refusals) {
 }
 END_TEST
 
+/* What write_y2d approximates is said in a warning, and the deck is written: the exact joint tangent
+ * (Y2D's is e/(h + 1e-10 m)), 'contact joined skip', contact rules widened to all pairs, a traction of
+ * fixed direction (Y2D's edge loads turn with the face).  A scene read by read_y2d is refused (run
+ * that deck in Y2D). */
+START_TEST(test_warnings) {
+  char deck[4096];
+  const char *p = strstr(bc_scene, "contact self rock\n");
+  ck_assert(p != NULL);
+  snprintf(deck, sizeof deck, "%.*scontact self rock\ncontact joined skip\n%s", (int)(p - bc_scene), bc_scene,
+           p + strlen("contact self rock\n"));
+  char *q = strstr(deck, " tangent y2d");
+  ck_assert(q != NULL);
+  memmove(q, q + strlen(" tangent y2d"), strlen(q + strlen(" tangent y2d")) + 1);
+  q = strstr(deck, "pressure 3e6");
+  ck_assert(q != NULL);
+  memmove(q + strlen("traction 0 -3e6"), q + strlen("pressure 3e6"), strlen(q + strlen("pressure 3e6")) + 1);
+  memcpy(q, "traction 0 -3e6", strlen("traction 0 -3e6"));
+  q = strstr(deck, "run 2400");
+  ck_assert(q != NULL);
+  strcpy(q, "run 1\n");
+  char *err = NULL, *dir = NULL;
+  int code = yft_run_binary("warn.deck", deck, "", &err, &dir);
+  ck_assert_msg(code == 0, "exit %d: %s", code, err);
+  static const char *const want[] = {"e/(h + 1e-10 m), this one as e/h", "'contact joined skip' has no Y2D equivalent",
+                                     "contact rule(s) are widened to all pairs",
+                                     "load 'press' is a traction of fixed direction (0, -3e+06) Pa; Y2D's edge loads"};
+  for (int i = 0; i < 4; i++)
+    ck_assert_msg(strstr(err, "warn.deck:") && strstr(err, want[i]), "no warning '%s' in: %s", want[i], err);
+  char path[1200];
+  snprintf(path, sizeof path, "%s/scene.y", dir);
+  ck_assert(yft_exists(path));
+  free(err);
+  free(dir);
+  char cwd[512];
+  ck_assert(getcwd(cwd, sizeof cwd));
+  snprintf(deck, sizeof deck, "read_y2d %s/tests/y2d/tiny.y\nwrite_y2d again.y steps 10\n", cwd);
+  code = yft_run_binary("again.deck", deck, "", &err, &dir);
+  ck_assert_msg(code == 1 && strstr(err, "again.deck:2") && strstr(err, "this scene was read from a Y2D deck"), "exit %d: %s",
+                code, err);
+  free(err);
+  free(dir);
+}
+END_TEST
+
 Suite *y2d_write_suite(void) {
   Suite *s = suite_create("y2d_write");
   TCase *tc = tcase_create("round_trip");
@@ -189,9 +328,13 @@ Suite *y2d_write_suite(void) {
   tcase_add_test(tc, test_beam_round_trip);
   tcase_add_test(tc, test_column_round_trip);
   tcase_add_test(tc, test_bc_sets_round_trip);
+  tcase_add_test(tc, test_beam_mohr_coulomb_round_trip);
+  tcase_add_test(tc, test_output_scales);
+  tcase_add_test(tc, test_column_friction_round_trip);
   suite_add_tcase(s, tc);
   tc = tcase_create("refusals");
   tcase_add_loop_test(tc, test_refusals, 0, (int)(sizeof refusals / sizeof refusals[0]));
+  tcase_add_test(tc, test_warnings);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -4,12 +4,17 @@
 #include "deck.h"
 #include "y2d_write.h"
 
-/* write_y2d FILE steps N */
+/* write_y2d FILE steps N [every K] */
 void cmd_write_y2d(YfSim *s, const YfArgs *a) {
-  arg_count(a, 3, 3);
+  arg_count(a, 3, 5);
   const char *path = arg_word(a, 0, "file");
-  static const char *const kw[] = {"steps", NULL};
+  static const char *const kw[] = {"steps", NULL}, *const kw_every[] = {"every", NULL};
   arg_choice(a, 1, "keyword", kw);
   long steps = arg_int(a, 2, "steps", 1, 2000000000L);
-  y2d_write(s, path, steps, &a->loc);
+  long every = 0; /* Y2D's output interval ICOUTF; 0: the thermo interval */
+  if (a->n > 3) {
+    arg_choice(a, 3, "keyword", kw_every);
+    every = arg_int(a, 4, "output interval K (steps)", 1, 2000000000L);
+  }
+  y2d_write(s, path, steps, every, &a->loc);
 }

@@ -90,9 +90,26 @@ static int hist_knots(const YfSim *s, int h, double tfar, double *t, int cap, co
   return n;
 }
 
+/* Largest |factor| of history h (-1: none, factor 1); sine histories are refused elsewhere. */
+static double hist_max(const YfSim *s, int h) {
+  if (h < 0) return 1.0;
+  const YfHistory *H = &s->hist[h];
+  if (H->kind != YF_HIST_TABLE) return 1.0;
+  double v = 0.0;
+  for (int i = 0; i < H->npts; i++) v = fmax(v, fabs(H->v[i]));
+  return v;
+}
+
+/* An output scale: x rounded up to two significant digits (a round number in the deck). */
+static double round_up2(double x) {
+  if (!(x > 0) || !isfinite(x)) return 1.0;
+  double p = pow(10.0, floor(log10(x)) - 1.0);
+  return ceil(x / p * (1.0 - 1e-12)) * p;
+}
+
 /* ------------------------------------------------------------------ the command */
 
-void y2d_write(YfSim *s, const char *path, long steps, const YfLoc *loc) {
+void y2d_write(YfSim *s, const char *path, long steps, long every, const YfLoc *loc) {
   YfModel *m = &s->model;
   if (s->y2d) yf_deck_error(loc, "this scene was read from a Y2D deck (%s): run that deck in Y2D", s->y2d->path);
   if (m->prepared || s->step > 0)
@@ -235,6 +252,10 @@ void y2d_write(YfSim *s, const char *path, long steps, const YfLoc *loc) {
         chist[2 * tgt + c] = it.hist;
       }
     } else { /* traction, pressure: Y2D's edge pressure and shear, constant along straight faces */
+      if (it.kind == BC_TRACTION)
+        yf_warn(loc, "write_y2d: load '%s' is a traction of fixed direction (%g, %g) Pa; Y2D's edge loads (D1PNAP, "
+                "D1PNAT) are a pressure and a shear that turn with the face: written as those of the undeformed face, "
+                "the same load while the face turns little", bc_id, it.a[0], it.a[1]);
       int *ed = NULL;
       int ne = mesh_boundary_edges(m, (uint64_t)1 << it.group, &ed);
       nedge += ne;
@@ -303,6 +324,25 @@ void y2d_write(YfSim *s, const char *path, long steps, const YfLoc *loc) {
     nset_of[i] = b;
   }
 
+  /* ---- scales of Y2D's coded output (FORMAT.md 7.2): each value is divided by its scale and clipped
+   * to [-1, 1], then stored to 2/(90^4 - 1) = 3e-8 of the scale.  The defaults (1) clip every velocity
+   * above 1 m/s and every stress above 1 Pa.  Coordinates: twice the largest |coordinate| (room for
+   * the scene to move by its own size); velocities: four times the largest initial or prescribed speed
+   * (1 m/s when there is none); stresses: 1 % of the stiffest material's 2 mu + 2 volfac lambda (a
+   * strain of 1 %: concrete breaks near 1e-4). ---- */
+  double cmax = 0.0, vmax = 0.0, smax = 0.0;
+  for (int i = 0; i < nn; i++) {
+    cmax = fmax(cmax, fmax(fmax(fabs(nx0[i]), fabs(ny0[i])), fmax(fabs(nx[i]), fabs(ny[i]))));
+    vmax = fmax(vmax, hypot(nvx[i], nvy[i]));
+    for (int c = 0; c < 2; c++)
+      if (nbc[i].k[c] == 3) vmax = fmax(vmax, fabs(nbc[i].a[c]) * hist_max(s, chist[2 * i + c]));
+  }
+  for (int p = 0; p < np; p++) {
+    const YfMaterial *mt = &m->mat[pmat[p]];
+    smax = fmax(smax, 0.01 * (2.0 * mt->mu + 2.0 * mt->volfac * mt->lambda));
+  }
+  const double sizc = round_up2(2.0 * cmax), sizv = round_up2(vmax > 0 ? 4.0 * vmax : 1.0), sizs = round_up2(smax);
+
   /* ---- what the scene derives: as the first run does it ---- */
   run_prepare(s);
   double dt = s->dt;
@@ -359,8 +399,12 @@ void y2d_write(YfSim *s, const char *path, long steps, const YfLoc *loc) {
           nrow ? ", joints inserted by Y2D at step 0" : "");
   long melem = nt + 3L * nzone + 1, mnopo = nn + 3L * nzone + 1;
   fprintf(f, "/YD/YDC/MCSTEP %ld\n/YD/YDC/NCSTEP 0\n/YD/YDC/DCSTEC %.17g\n/YD/YDC/DCTIME %.17g\n", steps, dt, s->time);
-  fprintf(f, "/YD/YDC/DCGRAY %.17g\n/YD/YDC/ICOUTF %ld\n/YD/YDC/ICSHTF %ld\n", s->gy,
-          s->thermo_every > 0 ? s->thermo_every : (steps >= 10 ? steps / 10 : 1), steps >= 10 ? steps / 10 : 1);
+  long icoutf = every > 0 ? every : s->thermo_every > 0 ? s->thermo_every : (steps >= 10 ? steps / 10 : 1);
+  fprintf(f, "/YD/YDC/DCGRAY %.17g\n/YD/YDC/ICOUTF %ld\n/YD/YDC/ICSHTF %ld\n", s->gy, icoutf,
+          steps >= 10 ? steps / 10 : 1);
+  /* the coded output <deck><index>.ym: index i holds the state after i ICOUTF steps */
+  fprintf(f, "/YD/YDC/ICOUTI 0\n/YD/YDC/ICOUTP 4\n/YD/YDC/DCSIZC %.17g\n/YD/YDC/DCSIZV %.17g\n"
+          "/YD/YDC/DCSIZS %.17g\n", sizc, sizv, sizs);
   fprintf(f, "/YD/YDC/IWFAST %d\n", con && ce.surface_all ? 0 : 1);
   fprintf(f, "/YD/YDE/MELEM %ld\n/YD/YDE/NELEM %d\n/YD/YDE/MELST 1\n/YD/YDE/NELST 1\n/YD/YDE/MELNO 4\n"
           "/YD/YDE/NELNO 3\n", melem, nt);
@@ -468,8 +512,8 @@ void y2d_write(YfSim *s, const char *path, long steps, const YfLoc *loc) {
   int bad = ferror(f);
   if (fclose(f) != 0 || bad) yf_io_error(loc, "write_y2d: cannot write '%s': %s", tmp, strerror(errno));
   if (rename(tmp, path) != 0) yf_io_error(loc, "write_y2d: cannot rename '%s' to '%s': %s", tmp, path, strerror(errno));
-  sim_printf(s, "write_y2d: %s: %d nodes, %d triangles, %d properties, %d BC sets, %d joint set(s), dt %.6g s, %ld steps\n",
-             path, nn, nt, np, nset, njs, dt, steps);
+  sim_printf(s, "write_y2d: %s: %d nodes, %d triangles, %d properties, %d BC sets, %d joint set(s), dt %.6g s, %ld steps, "
+             "output every %ld steps\n", path, nn, nt, np, nset, njs, dt, steps, icoutf);
   free(tmp); free(ik); free(sc); free(col); free(icol); free(knot);
   free(nx0); free(ngm); free(tv); free(tprop); free(pbody); free(pmat); free(bset); free(jmap); free(jsrc);
   free(zuse); free(ouse); free(nobf); free(nbc); free(chist); free(ehist); free(sets); free(nset_of);
