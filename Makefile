@@ -4,7 +4,7 @@
 #   make mpi      build ./yfdem_mpi (MPI ranks, src/par; OpenMPI: tools/install-deps --mpi)
 #   make demo     install what is missing (tools/install-deps), build, run the main example deck
 #   make check    install what tests need, build, run every Check suite through one runner, then
-#                 the dumps in a real ParaView (tests/paraview/run)
+#                 the dumps in a real ParaView (tests/paraview/run) and the script tests (tests/*/run)
 #   make bench    element-steps per second, thread scaling, bytes per element
 #   make bench-mpi the same on 1 and 2 MPI ranks x 1 and 2 threads at 1e5 and 1e6 (./yfdem_mpi)
 #   make asan     the whole test suite under AddressSanitizer + UBSan (build-asan/; CI runs it)
@@ -114,6 +114,7 @@ check: deps-test
 	YFDEM=./yfdem tests/readme/run
 	YFDEM=./yfdem tests/failure_mode/run
 	YFDEM=./yfdem tests/ym_compare/run
+	YFDEM=./yfdem tests/yfplot/run
 
 test: yfdem $(BUILD)/check_yfdem
 	OMP_NUM_THREADS=2 YFDEM=./yfdem $(BUILD)/check_yfdem

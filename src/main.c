@@ -110,7 +110,7 @@ int main(int argc, char **argv) {
           else fprintf(stderr, "yfdem: no deck command '%s' (yfdem -h lists them)\n", argv[i + 1]);
           return YF_EXIT_DECK;
         }
-        printf("%s\n  %s\n  example: %s\n", c->usage, c->help, c->example);
+        commands_print_help(stdout, c);
         return 0;
       }
       usage(stdout);

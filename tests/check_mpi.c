@@ -369,6 +369,23 @@ START_TEST(error_all_ranks) {
 }
 END_TEST
 
+/* An output whose folder is missing, on 3 ranks: only rank 0 writes files, so only it checks (at
+ * the deck line, before the run); the job ends with exit 2 and the message once, within seconds,
+ * though the other ranks went on to the run. */
+START_TEST(output_error_ranks) {
+  if (!mpi_ready()) return;
+  char *d = workdir();
+  write_file(d, "o.deck", "material m elastic rho 2700 E 30e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 1 4 4\n"
+             "timestep auto\ndump d h5 10 no_dir/k.h5\nrun 20\n");
+  double secs;
+  int rc = run_in(d, 3, 1, "-in o.deck", &secs);
+  ck_assert_msg(rc == 2, "exit %d", rc);
+  ck_assert_int_eq(count_in(d, "err.txt", "o.deck:4: error: dump d: cannot write 'no_dir/k_000000.h5'"), 1);
+  ck_assert_msg(secs < 60, "took %.1f s", secs);
+  drop_dir(d);
+}
+END_TEST
+
 /* A numerical failure on rank 1 only (injected at its 5th element stage): every rank ends,
  * mpirun exits 3 (numerical failure), the message once, within seconds. */
 START_TEST(error_one_rank) {
@@ -439,6 +456,7 @@ Suite *mpi_suite(void) {
   tcase_add_test(t, restart_2_to_3);
   tcase_add_test(t, error_all_ranks);
   tcase_add_test(t, error_one_rank);
+  tcase_add_test(t, output_error_ranks);
   tcase_add_test(t, interrupt_all_ranks);
   suite_add_tcase(s, t);
   return s;

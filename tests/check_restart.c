@@ -848,25 +848,32 @@ END_TEST
 
 /* Every output that cannot be created is an I/O error (exit 2) naming it, before anything runs:
  * before issue 20, fracture_log, metrics log and -summary only warned (or said nothing) and
- * the run ended with exit 0. */
+ * the run ended with exit 0.  A deck command's output is checked at its line (the message names
+ * it), so no other output of the deck is written first: until issue 19 the dumps, record and
+ * restart every failed only at the run (the other dump's first frame written) or at their first
+ * restart step. */
 START_TEST(test_outputs_unwritable) {
   static const char *const cases[][3] = {
-      {"fracture_log no_dir/b.csv\n", "", "fracture_log: cannot write 'no_dir/b.csv'"},
-      {"fracture_log b.csv opened no_dir/o.csv\n", "", "fracture_log: cannot write 'no_dir/o.csv'"},
-      {"metrics log no_dir/m.csv every 10\n", "", "metrics log: cannot write 'no_dir/m.csv'"},
+      {"fracture_log no_dir/b.csv\n", "", "o.deck:5: error: fracture_log: cannot write 'no_dir/b.csv'"},
+      {"fracture_log b.csv opened no_dir/o.csv\n", "", "o.deck:5: error: fracture_log: cannot write 'no_dir/o.csv'"},
+      {"metrics log no_dir/m.csv every 10\n", "", "o.deck:5: error: metrics log: cannot write 'no_dir/m.csv'"},
       {"", "-summary no_dir/s.json", "-summary: cannot write 'no_dir/s.json'"},
       {"", "-log no_dir/run.log", "cannot open log file 'no_dir/run.log'"},
-      {"dump d h5 10 no_dir/k.h5\n", "", "no_dir/k"},
-      {"dump c csv 10 no_dir/k\n", "", "no_dir/k"},
-      {"write_restart no_dir/r.restart\n", "", "no_dir/r.restart"},
-      {"restart every 5 no_dir/r\n", "", "no_dir/r"},
+      {"dump d h5 10 no_dir/k.h5\n", "", "o.deck:5: error: dump d: cannot write 'no_dir/k_000000.h5'"},
+      {"dump c csv 10 no_dir/k\n", "", "o.deck:5: error: dump c: cannot write 'no_dir/k_frames.csv'"},
+      {"record r 5 no_dir/r.csv ke\n", "", "o.deck:5: error: record r: cannot write 'no_dir/r.csv'"},
+      {"write_restart no_dir/r.restart\n", "", "o.deck:5: error: write_restart: cannot create 'no_dir/r.restart"},
+      {"restart every 5 no_dir/r\n", "", "o.deck:5: error: restart every: cannot write 'no_dir/r.a'"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
     char deck[1024], *err, *dir;
     snprintf(deck, sizeof deck, "material m elastic rho 2700 E 30e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 1 2 2\n"
-             "timestep auto\n%srun 20\n", cases[i][0]);
+             "timestep auto\ndump g h5 10 g.h5\n%srun 20\n", cases[i][0]);
     int code = yft_run_binary("o.deck", deck, cases[i][1], &err, &dir);
     ck_assert_msg(code == YF_EXIT_IO && strstr(err, cases[i][2]), "case %zu: exit %d: %s", i, code, err);
+    char p[600];
+    snprintf(p, sizeof p, "%s/g.xmf", dir);
+    ck_assert_msg(!yft_exists(p), "case %zu: the other dump was written before the error: %s", i, err);
     free(err);
     char cmd[256];
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);

@@ -201,6 +201,45 @@ START_TEST(metrics_errors) {
 }
 END_TEST
 
+/* The seed decks keep their physical time and frame interval on any mesh: `-var nx` scales the
+ * step count (200 nx for the beam, 1000 nx for the column) and the dump interval (2 nx, 15 nx)
+ * with the time step, which follows the cell size.  So a coarse beam (nx 20) runs the 1.85 ms of
+ * the default nx 60 in 101 frames, 18.5 us apart (the 40 us midspan crack falls between two), and
+ * a coarse column (nx 6) the 1.39 ms of nx 16 in 67 frames. */
+START_TEST(seed_decks_scale_with_nx) {
+  static const struct { const char *deck, *stem; int nx; long steps; double t; int frames; } c[] = {
+      {"decks/beam.deck", "beam", 20, 4000, 1.8527e-3, 101},
+      {"decks/column.deck", "column", 6, 6000, 1.3895e-3, 67},
+  };
+  for (int i = 0; i < 2; i++) {
+    char *text = slurp(c[i].deck), args[128], *err = NULL, *dir = NULL, path[700];
+    ck_assert_ptr_nonnull(text);
+    snprintf(args, sizeof args, "-var nx %d -summary s.json -log none", c[i].nx);
+    int rc = yft_run_binary("scene.deck", text, args, &err, &dir);
+    ck_assert_msg(rc == 0, "%s failed (exit %d): %s", c[i].deck, rc, err);
+    snprintf(path, sizeof path, "%s/s.json", dir);
+    char *js = slurp(path);
+    ck_assert_ptr_nonnull(js);
+    double steps = jnum(js, "steps"), t = jnum(js, "time");
+    snprintf(path, sizeof path, "%s/%s.xmf", dir, c[i].stem);
+    char *xmf = slurp(path);
+    ck_assert_msg(xmf != NULL, "%s: no %s.xmf", c[i].deck, c[i].stem);
+    int nf = 0;
+    for (const char *q = xmf; (q = strstr(q, "<Grid Name=\"frame_")) != NULL; q++) nf++;
+    fprintf(stderr, "%s nx %d: %.0f steps, %.6g s, %d frames\n", c[i].deck, c[i].nx, steps, t, nf);
+    ck_assert_msg(steps == (double)c[i].steps, "%s nx %d: %.0f steps, not %ld", c[i].deck, c[i].nx, steps, c[i].steps);
+    ck_assert_msg(fabs(t / c[i].t - 1) < 1e-3, "%s nx %d: %.6g s, not the default mesh's %.6g s", c[i].deck, c[i].nx, t,
+                  c[i].t);
+    ck_assert_msg(nf == c[i].frames, "%s nx %d: %d frames, not %d", c[i].deck, c[i].nx, nf, c[i].frames);
+    free(xmf);
+    free(js);
+    free(text);
+    free(err);
+    free(dir);
+  }
+}
+END_TEST
+
 Suite *scenes_suite(void) {
   Suite *s = suite_create("scenes");
   TCase *tc = tcase_create("scenes");
@@ -209,6 +248,7 @@ Suite *scenes_suite(void) {
   tcase_add_test(tc, beam_elastic);
   tcase_add_test(tc, column_coarse);
   tcase_add_test(tc, metrics_errors);
+  tcase_add_test(tc, seed_decks_scale_with_nx);
   suite_add_tcase(s, tc);
   return s;
 }

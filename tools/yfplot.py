@@ -163,12 +163,16 @@ def draw_cracks(ax, fr, breaks, t, lw=1.6, what="broken", skip=()):
                                              label="%s, mode %s" % (what, m)))
 
 
+LEGEND_IN = 0.55  # [inch] under the panels for the legend (up to 2 rows of 3 entries), added to the figure
+
+
 def panels(n, a):
-    """n panels stacked (--layout column) or side by side (row), as a flat list."""
+    """n panels stacked (--layout column) or side by side (row), as a flat list; the figure is
+    LEGEND_IN taller than the panels, so the legend never covers an axis label."""
     if a.layout == "row":
-        fig, axs = plt.subplots(1, n, figsize=(a.width * n, a.height), squeeze=False)
+        fig, axs = plt.subplots(1, n, figsize=(a.width * n, a.height + LEGEND_IN), squeeze=False)
         return fig, list(axs[0, :])
-    fig, axs = plt.subplots(n, 1, figsize=(a.width, a.height * n), squeeze=False)
+    fig, axs = plt.subplots(n, 1, figsize=(a.width, a.height * n + LEGEND_IN), squeeze=False)
     return fig, list(axs[:, 0])
 
 
@@ -212,12 +216,13 @@ def cmd_cracks(a):
         no = sum(1 for b in shown if b["time"] <= tf)
         nfr = len(np.unique(lab[fr["body"] == a.body]))
         # side by side, the panels are narrow: the counts go on a second line of the title
+        pieces = "%d piece%s of the body" % (nfr, "" if nfr == 1 else "s")
         if a.layout == "row":
-            ax.set_title("t = %.3g ms\n%s%d broken joints\n%d pieces of the body" %
-                         (tf * 1e3, "%d opened, " % no if a.opened else "", nb, nfr), fontsize=10)
+            ax.set_title("t = %.3g ms\n%s%d broken joints\n%s" %
+                         (tf * 1e3, "%d opened, " % no if a.opened else "", nb, pieces), fontsize=10)
         else:
-            ax.set_title("t = %.3g ms: %s%d broken joints, %d pieces of the body" %
-                         (tf * 1e3, "%d opened, " % no if a.opened else "", nb, nfr), fontsize=10)
+            ax.set_title("t = %.3g ms: %s%d broken joints, %s" %
+                         (tf * 1e3, "%d opened, " % no if a.opened else "", nb, pieces), fontsize=10)
         ax.set_aspect("equal")
         ax.autoscale_view()
         if a.xlim:
@@ -237,9 +242,11 @@ def cmd_cracks(a):
         fig.legend(h, l, loc="lower center", ncol=3, fontsize=9)
     if a.title:
         fig.suptitle(a.title)
-    # room for the legend under the panels (a single row of panels is short: a larger share)
-    fig.tight_layout(rect=(0, 0.09 if a.layout == "row" else 0.04, 1, 0.97))
-    fig.savefig(a.o, dpi=a.dpi)
+    # the legend's own strip under the panels (LEGEND_IN of the figure's height)
+    fig.tight_layout(rect=(0, LEGEND_IN / fig.get_size_inches()[1], 1, 0.97 if a.title else 1))
+    # equal-aspect panels are resized when drawn, after tight_layout: a short row of them could
+    # push the titles past the top edge; the saved picture grows to hold them instead
+    fig.savefig(a.o, dpi=a.dpi, bbox_inches="tight", pad_inches=0.1)
     print("yfplot: wrote", a.o)
 
 

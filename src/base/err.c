@@ -275,6 +275,9 @@ size_t yf_skip_bom(char *s) {
 }
 
 int yf_can_create(const char *path) {
+  /* MPI: only the writer (rank 0) writes files, so only it checks (the probe's PATH.tmp is the
+   * name the real write uses: other ranks must not create or remove it) */
+  if (!writer) return 1;
   size_t n = strlen(path) + 5;
   char *tmp = yf_malloc(n, "path");
   snprintf(tmp, n, "%s.tmp", path);

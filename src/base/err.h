@@ -95,7 +95,8 @@ char *yf_read_file(const char *path, size_t *len, const char *what);
 size_t yf_skip_bom(char *s);
 /* 1 if path can be written as outputs are (PATH.tmp created, then renamed): checked when an
  * output is asked for, so that a missing folder is a clear error before the run, not after it;
- * 0 with errno set if not.  Nothing is left behind. */
+ * 0 with errno set if not.  Nothing is left behind.  Always 1 on a rank that writes no files
+ * (MPI ranks other than 0). */
 int yf_can_create(const char *path);
 
 /* The name of names[0..n-1] nearest to word by edit distance, NULL when none is close

@@ -1,6 +1,7 @@
 /* cmd_dump.c: the `dump` deck command (a row of commands.def): reads a dump's words and adds it
  * (output_add_dump, io/output.c; the y2dref style's words into a YfY2dRef, y2d/y2dref.c).
  */
+#include <errno.h>
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>
@@ -116,8 +117,21 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
   if (style == YF_DUMP_H5) {
     const char *stem, *ext, *xmf;
     output_dump_files(s, k, &stem, &ext, &xmf);
+    /* a missing folder: now, at this line, not at the run after the other outputs began */
+    size_t n = strlen(stem) + strlen(ext) + 8;
+    char *first = yf_malloc(n, "path");
+    snprintf(first, n, "%s_000000%s", stem, ext);
+    const char *const files[] = {first, xmf};
+    for (int i = 0; i < 2; i++)
+      if (!yf_can_create(files[i])) yf_io_error(&a->loc, "dump %s: cannot write '%s': %s", id, files[i], strerror(errno));
+    free(first);
     sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN%s (index %s)\n", id, every, stem, ext, xmf);
   } else {
+    size_t n = strlen(path) + 12;
+    char *index = yf_malloc(n, "path");
+    snprintf(index, n, "%s_frames.csv", path);
+    if (!yf_can_create(index)) yf_io_error(&a->loc, "dump %s: cannot write '%s': %s", id, index, strerror(errno));
+    free(index);
     sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN.csv\n", id, every, path);
   }
 }

@@ -14,4 +14,11 @@
 void commands_print_reference(FILE *fp);
 /* The full reference, a markdown section per command (docs/reference.md). */
 void commands_print_sections(FILE *fp);
+/* The arguments of command NAME (command_args.def): one 'WORDS: meaning' line each; NULL for a
+ * name without a row.  yf_command_args lists the rows (NULL-terminated), for the tests. */
+const char *commands_args(const char *name);
+typedef struct { const char *name, *args; } YfCommandArgs;
+extern const YfCommandArgs yf_command_args[];
+/* `yfdem -h COMMAND`: usage, what it does, its arguments, an example. */
+void commands_print_help(FILE *fp, const YfCommand *c);
 #endif

@@ -171,6 +171,9 @@ void cmd_record(YfSim *s, const YfArgs *a) {
   if (P.nrec >= REPORT_MAX_RECORDS) arg_error(a, 0, "at most %d records at a time", REPORT_MAX_RECORDS);
   long every = arg_int(a, 1, "N (steps between rows)", 1, LONG_MAX / 4);
   const char *file = arg_word(a, 2, "file");
+  if (!file[0]) arg_error(a, 2, "empty file name");
+  /* a missing folder: now, at this line (the file itself is created at its first row) */
+  if (!yf_can_create(file)) yf_io_error(&a->loc, "record %s: cannot write '%s': %s", id, file, strerror(errno));
   Record *r = &P.rec[P.nrec];
   memset(r, 0, sizeof *r);
   snprintf(r->id, sizeof r->id, "%s", id);

@@ -700,5 +700,5 @@ void metrics_summary(YfSim *s) {
       }
     }
   }
-  if (M.log_path[0] && s->model.prepared) write_log(s); /* none for a deck that failed before its first run */
+  if (M.log_path[0] && s->runs_begun) write_log(s); /* none for a deck that failed before its first run began */
 }

@@ -139,8 +139,9 @@ void joints_summary(YfSim *s) {
   summary_add_raw("fragment_sizes", buf);
   free(fr);
   free(area);
-  /* not for a deck that failed before its first run: no run, no file (not even a header) */
-  if (J->log_path[0] && s->model.prepared) write_log(s, J->log_path, J->rec, J->nrec);
-  if (J->open_log_path[0] && s->model.prepared) write_log(s, J->open_log_path, J->orec, J->nopened);
+  /* not for a deck that failed before its first run began (a command before it, or run's own
+   * checks, or write_restart, after the scene was prepared): no run, no file, not even a header */
+  if (J->log_path[0] && s->runs_begun) write_log(s, J->log_path, J->rec, J->nrec);
+  if (J->open_log_path[0] && s->runs_begun) write_log(s, J->open_log_path, J->orec, J->nopened);
 }
 

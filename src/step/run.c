@@ -567,6 +567,7 @@ void run_steps(YfSim *s, long nsteps) {
   }
   s->model.stress_restored = 0;
   YfEvent ev = {.kind = YF_EV_RUN_BEGIN};
+  s->runs_begun++; /* from here on the run's outputs exist (its first frames, then its logs) */
   sim_notify(s, &ev);
   double stage0[YF_NSTAGE];
   memcpy(stage0, yf_stage_time, sizeof stage0);

@@ -140,6 +140,8 @@ typedef struct YfSim {
 
   volatile int interrupted; /* set by SIGINT/SIGTERM; the run stops after the current step */
   long run_end_step;    /* last step of the current run command                            */
+  int runs_begun;       /* run commands past their checks (RUN_BEGIN sent): the logs are
+                           written only after one, so a deck that fails first leaves no file */
 
   /* options */
   char summary_path[1024];
