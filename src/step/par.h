@@ -66,6 +66,10 @@ const void *par_concat(const void *mine, int nbytes, int *rbytes);
 const void *par_exchange(const void *send, const int *sbytes, int *rbytes);
 void par_gather_ranges(void *a, const int *lo, int elem_bytes);
 int par_any(int flag);                  /* flag set on any rank (the same answer on all)       */
+/* Parallel HDF5 frames (output.c): rank 0's value on every rank, and the triangle ranges of
+ * the owners, tlo[0..size] (NULL on one rank). */
+long par_bcast_long(long v);
+const int *par_tri_lo(void);
 void par_run_report(struct YfSim *s, long nsteps, double wall); /* ranks, imbalance, traffic */
 #else
 static inline void par_init(int *argc, char ***argv) { (void)argc; (void)argv; }
@@ -92,6 +96,8 @@ static inline const void *par_concat(const void *mine, int nbytes, int *rbytes) 
 static inline const void *par_exchange(const void *send, const int *sbytes, int *rbytes) { *rbytes = *sbytes; return send; }
 static inline void par_gather_ranges(void *a, const int *lo, int elem_bytes) { (void)a; (void)lo; (void)elem_bytes; }
 static inline int par_any(int flag) { return flag; }
+static inline long par_bcast_long(long v) { return v; }
+static inline const int *par_tri_lo(void) { return NULL; }
 #define par_run_report(s, nsteps, wall) ((void)0)
 #endif
 
