@@ -116,7 +116,8 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
   if (style == YF_DUMP_H5) {
     const char *stem, *ext, *xmf;
     output_dump_files(s, k, &stem, &ext, &xmf);
-    sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN%s (index %s)\n", id, every, stem, ext, xmf);
+    sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN%s (index %s)%s\n", id, every, stem, ext, xmf,
+               output_dump_mpio(s, k) ? "; every rank writes its rows (parallel HDF5, YFDEM_H5_MPIIO=1)" : "");
   } else {
     sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN.csv\n", id, every, path);
   }

@@ -39,6 +39,12 @@
  * Datasets are contiguous and uncompressed by default: a frame is then one write per array.
  * `compress` switches to gzip (level 1, with shuffle) in chunks: half the size, ~20x the time.
  *
+ * ./yfdem_mpi on 2 ranks or more (or YFDEM_H5_MPIIO=1) writes h5 frames with parallel HDF5: every
+ * rank opens the frame file (MPI-IO) and writes, collectively, the rows of the triangles, nodes
+ * and joints it owns (h5_put_rows), so what only owners hold is never gathered; rank 0 alone
+ * renames the file and writes the indexes.  The datasets are those one writer writes, bit for
+ * bit (the files differ in layout only).  YFDEM_H5_MPIIO=0: rank 0 writes, after a gather.
+ *
  * csv dumps.  PREFIX_NNNNNN.csv (node id, x, y, ux, uy, vx, vy) per frame plus PREFIX_frames.csv
  * (frame, step, time, file) for scripts.
  *
@@ -301,7 +307,7 @@ static void h5_open(YfDump *d) {
  * frames already renamed and indexed are untouched. */
 static void h5_close(YfDump *d) {
   if (d->file < 0) return;
-  H5Fclose(d->file);
+  if (!d->mpio) H5Fclose(d->file); /* a parallel file's close would wait for every rank (h5_fail) */
   d->file = -1;
   if (d->cur_tmp) unlink(d->cur_tmp);
 }
@@ -995,14 +1001,16 @@ long output_index_writes(const YfSim *s, const char *id) {
 
 /* ./yfdem_mpi: h5 frames by parallel HDF5 (every rank writes its rows into the one file) or by a
  * gather to rank 0, which writes them alone.  YFDEM_H5_MPIIO=1 or 0 chooses; unset, the faster
- * of the two in docs/SCALING.md's measurement (section "Frames").  The files are the same either
- * way (same datasets, shapes and values: tests/check_mpi.c).  Compressed dumps take the gather:
- * filtered parallel writes need chunk ownership, not tried.  ./yfdem has one writer. */
-#define YF_MPIIO_DEFAULT 0
+ * of the two in docs/SCALING.md's measurement (section 6, PERF.md's problem at 1e6, 400 MB
+ * frames): parallel HDF5 on 2 ranks or more (0.64 against 0.99 s per frame), the one writer on
+ * one rank (0.36 s; through MPI-IO 0.51 s).  The datasets are the same either way (names,
+ * shapes, values: tests/check_mpi.c), so the .xmf and ParaView see one series.  Compressed dumps
+ * take the gather: filtered parallel writes need every rank in each chunk's write, not tried.
+ * ./yfdem has one writer. */
 int output_mpio(void) {
 #ifdef YF_MPI
   const char *e = getenv("YFDEM_H5_MPIIO");
-  if (!e || !*e) return YF_MPIIO_DEFAULT;
+  if (!e || !*e) return par_size() > 1;
   if (strcmp(e, "0") && strcmp(e, "1"))
     yf_exit_with(YF_EXIT_DECK, "error: YFDEM_H5_MPIIO='%s': expected 1 (parallel HDF5) or 0 (gather to rank 0)", e);
   return e[0] == '1';
@@ -1074,6 +1082,7 @@ int output_add_y2dref(YfSim *s, const char *id, struct YfY2dRef *r) {
 }
 
 int output_ndump(const YfSim *s) { return s->out ? s->out->ndump : 0; }
+int output_dump_mpio(const YfSim *s, int k) { return s->out->dump[k]->mpio; }
 const char *output_dump_id(const YfSim *s, int k) { return s->out->dump[k]->id; }
 const char *output_dump_path(const YfSim *s, int k) { return s->out->dump[k]->path; }
 int output_find_dump(const YfSim *s, const char *id) {

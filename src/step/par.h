@@ -14,8 +14,10 @@
  *   - block sums that straddle ranks are summed from per-item results in order; joint events and
  *     dropped couples go to every rank, so records and lists stay the same everywhere;
  *   - what only owners hold (stresses, joint state, friction memory, node contact forces) is
- *     gathered when read (par_need_all: thermo, energy checks, frames, metrics, restarts);
- *   - only rank 0 prints and writes files (yf_writer); an error stops every rank (par_mpi.c).
+ *     gathered when read (par_need_all: thermo, energy checks, gathered frames, metrics, restarts);
+ *   - only rank 0 prints and writes files (yf_writer), except h5 frames on 2 ranks or more, which
+ *     every rank writes with parallel HDF5, each its own rows (io/output.c: no gather for
+ *     them); an error stops every rank (par_mpi.c).
  */
 #ifndef YF_PAR_H
 #define YF_PAR_H
