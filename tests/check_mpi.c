@@ -5,6 +5,8 @@
  *     summary's state_hash, energies (the viscous dissipation sums the element blocks that
  *     straddle ranks), broken joints, contact couples, stress peak and the beam's last frame
  *     of stresses (shared among ranks for metrics and frames) equal ./yfdem's to the last bit;
+ *   - frames written with parallel HDF5 (every rank its rows) and gathered to rank 0, on 2 and 3
+ *     ranks: every dataset and both indexes as ./yfdem's;
  *   - a restart written on 2 ranks and read on 3 continues bitwise (the uninterrupted run's hash);
  *   - SIGTERM to one rank stops every rank at the same step with one restart, which continues
  *     bitwise, and exit 130 (interrupted);
