@@ -117,7 +117,7 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
     const char *stem, *ext, *xmf;
     output_dump_files(s, k, &stem, &ext, &xmf);
     sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN%s (index %s)%s\n", id, every, stem, ext, xmf,
-               output_dump_mpio(s, k) ? "; every rank writes its rows (parallel HDF5, YFDEM_H5_MPIIO=1)" : "");
+               output_dump_mpio(s, k) ? "; every rank writes its rows (parallel HDF5; YFDEM_H5_MPIIO=0: gathered to rank 0)" : "");
   } else {
     sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN.csv\n", id, every, path);
   }
