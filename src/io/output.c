@@ -1002,9 +1002,9 @@ long output_index_writes(const YfSim *s, const char *id) {
 /* ./yfdem_mpi: h5 frames by parallel HDF5 (every rank writes its rows into the one file) or by a
  * gather to rank 0, which writes them alone.  YFDEM_H5_MPIIO=1 or 0 chooses; unset, the faster
  * of the two in docs/SCALING.md's measurement (section 6, PERF.md's problem at 1e6, 400 MB
- * frames, minima of 7-8 runs): parallel HDF5 on 2 ranks or more (0.44 against 0.51 s per frame
- * gathered; it also keeps a frame from passing through one rank when ranks are many), the one
- * writer on one rank (0.36 s; through MPI-IO 0.46 s).  The datasets are the same either way (names,
+ * frames, minima of 10-11 runs on a shared machine): parallel HDF5 on 2 ranks or more (0.44
+ * against 0.51 s per frame gathered: a small margin, but it also keeps every frame from passing
+ * through one rank when ranks are many), the one writer on one rank (0.36 s; MPI-IO 0.42 s).  The datasets are the same either way (names,
  * shapes, values: tests/check_mpi.c), so the .xmf and ParaView see one series.  Compressed dumps
  * take the gather: filtered parallel writes need every rank in each chunk's write, not tried.
  * ./yfdem has one writer. */
