@@ -17,15 +17,24 @@
 # Y2D references, which were computed without FMA).
 
 CC      ?= gcc
-PKGS    := hdf5-serial gsl
+# ./yfdem links Debian's serial HDF5; ./yfdem_mpi (make mpi) its MPI build (libhdf5-openmpi-dev),
+# for frames written by every rank into one file (parallel HDF5, src/io/output.c).
+H5PKG   := hdf5-serial
+ifeq ($(YF_MPI),1)
+H5PKG   := hdf5-openmpi
+ifeq ($(shell pkg-config --exists hdf5-openmpi && echo yes),)
+$(error make mpi needs Debian's libhdf5-openmpi-dev (pkg-config hdf5-openmpi): tools/install-deps --mpi)
+endif
+endif
+PKGS    := $(H5PKG) gsl
 PKGCF   := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 # HDF5 is linked from its static archive when the system has one (Debian's libhdf5-dev does):
 # the shared libhdf5 loads curl, TLS and Kerberos for its S3 driver, which yfdem never uses, and
 # their start-up code makes 6 MB of every process resident (10.0 -> 3.7 MB for an empty deck;
 # PERF.md's problem at 1e4 triangles: 30.6 -> 25.0 MB peak).  The archive pulls in only the
 # objects yfdem calls; szip and zlib are its filters.
-H5LIBDIR := $(patsubst -L%,%,$(shell pkg-config --libs-only-L hdf5-serial 2>/dev/null))
-H5ARCHIVE := $(wildcard $(H5LIBDIR)/libhdf5.a)
+H5LIBDIR := $(patsubst -L%,%,$(shell pkg-config --libs-only-L $(H5PKG) 2>/dev/null))
+H5ARCHIVE := $(firstword $(wildcard $(addsuffix /libhdf5.a,$(H5LIBDIR))))
 ifneq ($(H5ARCHIVE),)
 PKGLIB  := $(H5ARCHIVE) -lsz -lz -ldl $(shell pkg-config --libs gsl 2>/dev/null)
 else

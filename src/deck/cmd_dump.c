@@ -125,7 +125,8 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
     for (int i = 0; i < 2; i++)
       if (!yf_can_create(files[i])) yf_io_error(&a->loc, "dump %s: cannot write '%s': %s", id, files[i], strerror(errno));
     free(first);
-    sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN%s (index %s)\n", id, every, stem, ext, xmf);
+    sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN%s (index %s)%s\n", id, every, stem, ext, xmf,
+               output_dump_mpio(s, k) ? "; every rank writes its rows (parallel HDF5; YFDEM_H5_MPIIO=0: gathered to rank 0)" : "");
   } else {
     size_t n = strlen(path) + 12;
     char *index = yf_malloc(n, "path");

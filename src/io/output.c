@@ -39,6 +39,12 @@
  * Datasets are contiguous and uncompressed by default: a frame is then one write per array.
  * `compress` switches to gzip (level 1, with shuffle) in chunks: half the size, ~20x the time.
  *
+ * ./yfdem_mpi on 2 ranks or more (or YFDEM_H5_MPIIO=1) writes h5 frames with parallel HDF5: every
+ * rank opens the frame file (MPI-IO) and writes, collectively, the rows of the triangles, nodes
+ * and joints it owns (h5_put_rows), so what only owners hold is never gathered; rank 0 alone
+ * renames the file and writes the indexes.  The datasets are those one writer writes, bit for
+ * bit (the files differ in layout only).  YFDEM_H5_MPIIO=0: rank 0 writes, after a gather.
+ *
  * csv dumps.  PREFIX_NNNNNN.csv (node id, x, y, ux, uy, vx, vy) per frame plus PREFIX_frames.csv
  * (frame, step, time, file) for scripts.
  *
@@ -55,6 +61,9 @@
 #include <string.h>
 #include <unistd.h>
 #include <hdf5.h>
+#ifdef YF_MPI
+#include <mpi.h> /* parallel HDF5 (H5Pset_fapl_mpio): ./yfdem_mpi only */
+#endif
 #include "output.h"
 #include "h5quiet.h"
 #include "par.h"
@@ -83,6 +92,7 @@ typedef struct YfDump {
   char *cur, *cur_tmp;/* h5: the frame file being written (STEM_NNNNNN.h5) and its .tmp */
   size_t curcap;      /* bytes allocated for cur and cur_tmp                           */
   hid_t file;         /* the frame file while it is being written, else < 0            */
+  int mpio;           /* h5 frames written by every rank into one file (parallel HDF5)  */
   int created;        /* csv index created in this process (a later open appends)      */
   long nframe;        /* frames written (including those of a continued series)        */
   int adopted;        /* a continued run looked for the earlier run's series (dump_adopt) */
@@ -170,7 +180,9 @@ static const char *h5_message(void) {
 static void h5_fail(YfDump *d, const char *what) __attribute__((noreturn));
 static void h5_fail(YfDump *d, const char *what) {
   const char *why = h5_message();
-  if (d->file >= 0) H5Fclose(d->file);
+  /* a parallel file's close is a collective: the other ranks may never reach it, so the
+   * handle is dropped (the error ends every rank: par_mpi.c) */
+  if (d->file >= 0 && !d->mpio) H5Fclose(d->file);
   d->file = -1;
   if (d->cur_tmp) unlink(d->cur_tmp);
   yf_io_error(NULL, "dump %s: cannot write '%s' (%s): %s", d->id, d->cur, what, why);
@@ -201,9 +213,30 @@ static void update_next_due(YfSim *s) {
 
 /* ---------------------------------------------------------------- HDF5 */
 
-/* Create dataset `name` under loc and write data (memory type = file type). */
-static void h5_put(YfDump *d, hid_t loc, const char *name, hid_t type, int rank,
-                   const hsize_t *dims, const void *data) {
+/* Which rows of a dataset this process writes, [r0, r1) of dims[0].  One writer (./yfdem, or
+ * rank 0 of the gather path) writes every row.  Parallel HDF5 (output_mpio): each rank writes the
+ * rows of what it owns, so what only owners hold (stresses, node contact forces, joints' damage)
+ * is never gathered: triangles by their owner (par_tri_lo), nodes by theirs (par_node_lo),
+ * joints and their cracks by the rank of their block (joints_par_rows); replicated arrays follow
+ * the same ranges (the write is divided too); scalars are rank 0's. */
+enum { ROWS_ONE, ROWS_TRI, ROWS_NODE, ROWS_JOINT, ROWS_CRACK, ROWS_CRACK2, ROWS_N };
+static struct {
+  int on;              /* this frame is written by every rank                       */
+  hsize_t lo[ROWS_N][2];
+  hid_t dxpl;          /* collective transfers                                      */
+} W = {.dxpl = H5P_DEFAULT};
+
+/* rank r's share of n rows: lo[r]..lo[r+1]-1 when given, else an even split */
+static void rows_of(hsize_t *out, const int *lo, long n) {
+  int r = par_rank(), S = par_size();
+  out[0] = lo ? (hsize_t)lo[r] : (hsize_t)((long long)n * r / S);
+  out[1] = lo ? (hsize_t)lo[r + 1] : (hsize_t)((long long)n * (r + 1) / S);
+}
+
+/* Create dataset `name` under loc and write its rows `rows` (ROWS_*) of data (memory type = file
+ * type; data holds every row, at its row's place). */
+static void h5_put_rows(YfDump *d, hid_t loc, const char *name, hid_t type, int rank,
+                        const hsize_t *dims, const void *data, int rows) {
   hid_t space = rank ? H5Screate_simple(rank, dims, NULL) : H5Screate(H5S_SCALAR);
   if (space < 0) h5_fail(d, name);
   hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
@@ -221,9 +254,32 @@ static void h5_put(YfDump *d, hid_t loc, const char *name, hid_t type, int rank,
   if (ds < 0) h5_fail(d, name); /* before any other call: each API call clears the error stack */
   H5Pclose(dcpl);
   static const double none = 0.0; /* HDF5 wants a non-NULL buffer even for 0 elements */
-  if (H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data ? data : &none) < 0) h5_fail(d, name);
+  herr_t st = 0;
+  if (W.on && rank > 0 && dims[0] == 0) {
+    /* nothing to write (no crack yet): parallel HDF5 refuses a write to storage never allocated */
+  } else if (!W.on) {
+    st = H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data ? data : &none);
+  } else {
+    /* every rank takes part in the collective write, with its rows (maybe none); the memory
+     * has the dataset's shape, so the same selection picks this rank's rows in both */
+    int whole = rows == ROWS_ONE || rank == 0; /* scalars and small arrays: rank 0 writes them */
+    hsize_t r0 = W.lo[rows][0], r1 = W.lo[rows][1];
+    if (whole ? par_rank() != 0 : r1 <= r0) {
+      H5Sselect_none(space);
+    } else if (!whole) {
+      hsize_t start[2] = {r0, 0}, count[2] = {r1 - r0, rank > 1 ? dims[1] : 1};
+      H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL);
+    }
+    st = H5Dwrite(ds, type, space, space, W.dxpl, data ? data : &none);
+  }
+  if (st < 0) h5_fail(d, name);
   H5Dclose(ds);
   H5Sclose(space);
+}
+
+static void h5_put(YfDump *d, hid_t loc, const char *name, hid_t type, int rank,
+                   const hsize_t *dims, const void *data) {
+  h5_put_rows(d, loc, name, type, rank, dims, data, ROWS_ONE);
 }
 
 /* Create the frame file (as NAME.tmp; h5_frame renames it when it is complete). */
@@ -231,6 +287,16 @@ static void h5_open(YfDump *d) {
   yf_h5_quiet();
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
   H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG); /* closing after an error also closes its objects */
+#ifdef YF_MPI
+  if (d->mpio) {
+    H5Pset_fapl_mpio(fapl, MPI_COMM_WORLD, MPI_INFO_NULL); /* one file, every rank writes */
+    H5Pset_coll_metadata_write(fapl, 1); /* the headers go out in one collective write */
+    if (W.dxpl == H5P_DEFAULT) {
+      W.dxpl = H5Pcreate(H5P_DATASET_XFER);
+      H5Pset_dxpl_mpio(W.dxpl, H5FD_MPIO_COLLECTIVE);
+    }
+  }
+#endif
   /* Default (earliest) file format: the widest range of readers, ParaView's bundled HDF5 too. */
   d->file = H5Fcreate(d->cur_tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
   if (d->file < 0) h5_fail(d, "create file"); /* before any other call: it clears the error stack */
@@ -241,7 +307,7 @@ static void h5_open(YfDump *d) {
  * frames already renamed and indexed are untouched. */
 static void h5_close(YfDump *d) {
   if (d->file < 0) return;
-  H5Fclose(d->file);
+  if (!d->mpio) H5Fclose(d->file); /* a parallel file's close would wait for every rank (h5_fail) */
   d->file = -1;
   if (d->cur_tmp) unlink(d->cur_tmp);
 }
@@ -254,17 +320,17 @@ static void h5_mesh(YfSim *s, YfDump *d) {
   if (g < 0) h5_fail(d, "mesh");
   hsize_t dt[2] = {(hsize_t)nt, 3}, d1[1] = {(hsize_t)nt}, dn[1] = {(hsize_t)n};
   hsize_t dn2[2] = {(hsize_t)n, 2};
-  h5_put(d, g, "triangles", H5T_NATIVE_INT, 2, dt, m->tri.v);
-  h5_put(d, g, "material", H5T_NATIVE_INT, 1, d1, m->tri.mat);
-  h5_put(d, g, "body", H5T_NATIVE_INT, 1, d1, m->tri.body);
-  h5_put(d, g, "tri_id", H5T_NATIVE_INT, 1, d1, m->tri.id);
-  h5_put(d, g, "node_id", H5T_NATIVE_INT, 1, dn, m->node.id);
+  h5_put_rows(d, g, "triangles", H5T_NATIVE_INT, 2, dt, m->tri.v, ROWS_TRI);
+  h5_put_rows(d, g, "material", H5T_NATIVE_INT, 1, d1, m->tri.mat, ROWS_TRI);
+  h5_put_rows(d, g, "body", H5T_NATIVE_INT, 1, d1, m->tri.body, ROWS_TRI);
+  h5_put_rows(d, g, "tri_id", H5T_NATIVE_INT, 1, d1, m->tri.id, ROWS_TRI);
+  h5_put_rows(d, g, "node_id", H5T_NATIVE_INT, 1, dn, m->node.id, ROWS_NODE);
   double *b = scratch(d, 2 * (size_t)n);
-  for (int i = 0; i < n; i++) {
+  for (int i = (int)W.lo[ROWS_NODE][0]; i < (int)W.lo[ROWS_NODE][1]; i++) {
     b[2 * i] = m->node.x0[i];
     b[2 * i + 1] = m->node.y0[i];
   }
-  h5_put(d, g, "x0", H5T_NATIVE_DOUBLE, 2, dn2, b);
+  h5_put_rows(d, g, "x0", H5T_NATIVE_DOUBLE, 2, dn2, b, ROWS_NODE);
   H5Gclose(g);
 }
 
@@ -502,9 +568,21 @@ static int h5_cracks(YfSim *s, YfDump *d) {
   if (!j || j->n == 0) return -1;
   const YfNodes *nd = &s->model.node;
   hsize_t dj[1] = {(hsize_t)j->n};
-  h5_put(d, d->file, "joint_damage", H5T_NATIVE_DOUBLE, 1, dj, j->z);
-  int nc = 0;
-  for (int k = 0; k < j->n; k++) nc += j->state[k] == 2 || (j->opened && j->opened[k]);
+  h5_put_rows(d, d->file, "joint_damage", H5T_NATIVE_DOUBLE, 1, dj, j->z, ROWS_JOINT);
+  /* the crack rows of this rank's joints (state and openings are on every rank, damage on the
+   * joint's owner): cracks c0..c1-1 */
+  int nc = 0, c0 = 0, c1 = 0;
+  for (int k = 0; k < j->n; k++) {
+    if (k == (int)W.lo[ROWS_JOINT][0]) c0 = nc;
+    if (k == (int)W.lo[ROWS_JOINT][1]) c1 = nc;
+    nc += j->state[k] == 2 || (j->opened && j->opened[k]);
+  }
+  if ((int)W.lo[ROWS_JOINT][1] >= j->n) c1 = nc;
+  if ((int)W.lo[ROWS_JOINT][0] >= j->n) c0 = nc;
+  W.lo[ROWS_CRACK][0] = (hsize_t)c0;
+  W.lo[ROWS_CRACK][1] = (hsize_t)c1;
+  W.lo[ROWS_CRACK2][0] = 2 * (hsize_t)c0;
+  W.lo[ROWS_CRACK2][1] = 2 * (hsize_t)c1;
   double *xy = yf_malloc((size_t)nc * 4 * sizeof(double), "crack output");
   double *dmg = yf_malloc((size_t)nc * sizeof(double), "crack output");
   int *iv = yf_malloc((size_t)nc * 4 * sizeof(int), "crack output"); /* segments (2), state, mode */
@@ -527,11 +605,11 @@ static int h5_cracks(YfSim *s, YfDump *d) {
   hid_t g = H5Gcreate2(d->file, "cracks", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   if (g < 0) h5_fail(d, "cracks");
   hsize_t d2[2] = {(hsize_t)nc, 2}, dp[2] = {(hsize_t)(2 * nc), 2}, d1[1] = {(hsize_t)nc};
-  h5_put(d, g, "segments", H5T_NATIVE_INT, 2, d2, iv);
-  h5_put(d, g, "xy", H5T_NATIVE_DOUBLE, 2, dp, xy);
-  h5_put(d, g, "state", H5T_NATIVE_INT, 1, d1, state);
-  h5_put(d, g, "mode", H5T_NATIVE_INT, 1, d1, mode);
-  h5_put(d, g, "damage", H5T_NATIVE_DOUBLE, 1, d1, dmg);
+  h5_put_rows(d, g, "segments", H5T_NATIVE_INT, 2, d2, iv, ROWS_CRACK);
+  h5_put_rows(d, g, "xy", H5T_NATIVE_DOUBLE, 2, dp, xy, ROWS_CRACK2);
+  h5_put_rows(d, g, "state", H5T_NATIVE_INT, 1, d1, state, ROWS_CRACK);
+  h5_put_rows(d, g, "mode", H5T_NATIVE_INT, 1, d1, mode, ROWS_CRACK);
+  h5_put_rows(d, g, "damage", H5T_NATIVE_DOUBLE, 1, d1, dmg, ROWS_CRACK);
   H5Gclose(g);
   free(xy);
   free(dmg);
@@ -539,10 +617,32 @@ static int h5_cracks(YfSim *s, YfDump *d) {
   return nc;
 }
 
+/* This frame's rows per process (see h5_put_rows): all of them for one writer. */
+static void frame_rows(YfSim *s, YfDump *d) {
+  const YfModel *m = &s->model;
+  long nj = s->joints ? s->joints->n : 0;
+  W.on = d->mpio;
+  memset(W.lo, 0, sizeof W.lo);
+  if (!W.on) {
+    W.lo[ROWS_TRI][1] = (hsize_t)m->tri.n;
+    W.lo[ROWS_NODE][1] = (hsize_t)m->node.n;
+    W.lo[ROWS_JOINT][1] = (hsize_t)nj;
+    return;
+  }
+  rows_of(W.lo[ROWS_TRI], par_tri_lo(), m->tri.n);
+  rows_of(W.lo[ROWS_NODE], par_node_lo(), m->node.n);
+  int *jl = yf_malloc(((size_t)par_size() + 1) * sizeof(int), "joint rows");
+  rows_of(W.lo[ROWS_JOINT], joints_par_rows(s, jl) ? jl : NULL, nj);
+  free(jl);
+}
+
 static void h5_frame(YfSim *s, YfDump *d) {
   const YfModel *m = &s->model;
   const YfNodes *nd = &m->node;
   int n = nd->n, nt = m->tri.n;
+  frame_rows(s, d);
+  /* parallel: every rank opens the file rank 0 names (rank 0 alone adopted an earlier series) */
+  if (d->mpio) d->nframe = par_bcast_long(d->nframe);
   snprintf(d->cur, d->curcap, "%s_%06ld%s", d->stem, d->nframe, d->ext);
   snprintf(d->cur_tmp, d->curcap, "%s.tmp", d->cur);
   h5_open(d);
@@ -555,67 +655,72 @@ static void h5_frame(YfSim *s, YfDump *d) {
   hsize_t dn2[2] = {(hsize_t)n, 2}, dt3[2] = {(hsize_t)nt, 3}, dt1[1] = {(hsize_t)nt};
   size_t need = 2 * (size_t)n > (size_t)nt ? 2 * (size_t)n : (size_t)nt;
   double *b = scratch(d, need);
-  for (int i = 0; i < n; i++) {
+  /* this process's rows: nodes n0..n1-1, triangles e0..e1-1 */
+  const int n0 = (int)W.lo[ROWS_NODE][0], n1 = (int)W.lo[ROWS_NODE][1];
+  const int e0 = (int)W.lo[ROWS_TRI][0], e1 = (int)W.lo[ROWS_TRI][1];
+  for (int i = n0; i < n1; i++) {
     b[2 * i] = nd->x[i];
     b[2 * i + 1] = nd->y[i];
   }
-  h5_put(d, g, "x", H5T_NATIVE_DOUBLE, 2, dn2, b);
+  h5_put_rows(d, g, "x", H5T_NATIVE_DOUBLE, 2, dn2, b, ROWS_NODE);
   if (d->fields & YF_FIELD_U) {
-    for (int i = 0; i < n; i++) {
+    for (int i = n0; i < n1; i++) {
       b[2 * i] = nd->x[i] - nd->x0[i];
       b[2 * i + 1] = nd->y[i] - nd->y0[i];
     }
-    h5_put(d, g, "u", H5T_NATIVE_DOUBLE, 2, dn2, b);
+    h5_put_rows(d, g, "u", H5T_NATIVE_DOUBLE, 2, dn2, b, ROWS_NODE);
   }
   if (d->fields & YF_FIELD_V) {
-    for (int i = 0; i < n; i++) {
+    for (int i = n0; i < n1; i++) {
       b[2 * i] = nd->vx[i];
       b[2 * i + 1] = nd->vy[i];
     }
-    h5_put(d, g, "v", H5T_NATIVE_DOUBLE, 2, dn2, b);
+    h5_put_rows(d, g, "v", H5T_NATIVE_DOUBLE, 2, dn2, b, ROWS_NODE);
   }
   if (d->fields & YF_FIELD_F) {
-    for (int i = 0; i < n; i++) {
+    for (int i = n0; i < n1; i++) {
       b[2 * i] = nd->fx[i];
       b[2 * i + 1] = nd->fy[i];
     }
-    h5_put(d, g, "f", H5T_NATIVE_DOUBLE, 2, dn2, b);
+    h5_put_rows(d, g, "f", H5T_NATIVE_DOUBLE, 2, dn2, b, ROWS_NODE);
   }
   const double *sg = m->tri.s; /* sxx, syy, sxy per triangle, already the file layout */
   if (d->fields & YF_FIELD_STRESS) {
-    h5_put(d, g, "stress", H5T_NATIVE_DOUBLE, 2, dt3, sg);
+    h5_put_rows(d, g, "stress", H5T_NATIVE_DOUBLE, 2, dt3, sg, ROWS_TRI);
     for (int c = 0; c < 3; c++) { /* the parts by name, for ParaView (see xmf_add_frame) */
-      for (int e = 0; e < nt; e++) b[e] = sg[3 * e + c];
-      h5_put(d, g, stress_parts[c], H5T_NATIVE_DOUBLE, 1, dt1, b);
+      for (int e = e0; e < e1; e++) b[e] = sg[3 * e + c];
+      h5_put_rows(d, g, stress_parts[c], H5T_NATIVE_DOUBLE, 1, dt1, b, ROWS_TRI);
     }
   }
   if (d->fields & YF_FIELD_VONMISES) {
     /* In-plane von Mises (szz taken as 0): sqrt(sxx^2 - sxx syy + syy^2 + 3 sxy^2). */
-    for (int e = 0; e < nt; e++) {
+    for (int e = e0; e < e1; e++) {
       double a = sg[3 * e], c = sg[3 * e + 1], t = sg[3 * e + 2];
       b[e] = sqrt(a * a - a * c + c * c + 3.0 * t * t);
     }
-    h5_put(d, g, "vonmises", H5T_NATIVE_DOUBLE, 1, dt1, b);
+    h5_put_rows(d, g, "vonmises", H5T_NATIVE_DOUBLE, 1, dt1, b, ROWS_TRI);
   }
   if (d->fields & YF_FIELD_SIGMA1) {
-    for (int e = 0; e < nt; e++) {
+    for (int e = e0; e < e1; e++) {
       double a = sg[3 * e], c = sg[3 * e + 1], t = sg[3 * e + 2];
       double h = 0.5 * (a - c);
       b[e] = 0.5 * (a + c) + sqrt(h * h + t * t);
     }
-    h5_put(d, g, "sigma1", H5T_NATIVE_DOUBLE, 1, dt1, b);
+    h5_put_rows(d, g, "sigma1", H5T_NATIVE_DOUBLE, 1, dt1, b, ROWS_TRI);
   }
   /* contact force per node: only while contact is on (else the field would be all zeros) */
   const double *fc = (d->fields & YF_FIELD_FC) ? contact_node_forces(s) : NULL;
-  if (fc) h5_put(d, g, "fc", H5T_NATIVE_DOUBLE, 2, dn2, fc);
+  if (fc) h5_put_rows(d, g, "fc", H5T_NATIVE_DOUBLE, 2, dn2, fc, ROWS_NODE);
   int ncrack = h5_cracks(s, d);
   /* Complete and closed, then renamed, then indexed: the .xmf never names a partial file. */
   herr_t st = H5Fclose(d->file);
   d->file = -1;
+  W.on = 0;
   if (st < 0) {
     unlink(d->cur_tmp);
     h5_fail(d, "close");
   }
+  if (!yf_writer()) return; /* parallel: rank 0 renames and indexes */
   /* A frame file of an earlier run with this name is listed by no index any more (this run's
    * index was rewritten at its first frame), so it is removed first: ext4 flushes a file that
    * replaces another by rename (see xmf_write), ~3 ms per frame when a deck is run again in the
@@ -766,8 +871,10 @@ static int continuing(const YfSim *s, const YfDump *d) {
 }
 
 static void write_frame(YfSim *s, YfDump *d) {
-  par_need_all(s); /* MPI: every rank is here, in the same order (a collective) */
-  if (!yf_writer()) { /* an MPI rank other than 0: the same bookkeeping, no file */
+  /* MPI: every rank is here, in the same order (a collective).  A parallel h5 frame is written
+   * by every rank from what it owns; otherwise what owners hold is gathered for rank 0. */
+  if (!d->mpio) par_need_all(s);
+  if (!yf_writer() && !d->mpio) { /* an MPI rank other than 0: the same bookkeeping, no file */
     d->nframe++;
     d->last_step = s->step;
     return;
@@ -892,6 +999,27 @@ long output_index_writes(const YfSim *s, const char *id) {
 
 /* ---------------------------------------------------------------- commands */
 
+/* ./yfdem_mpi: h5 frames by parallel HDF5 (every rank writes its rows into the one file) or by a
+ * gather to rank 0, which writes them alone.  YFDEM_H5_MPIIO=1 or 0 chooses; unset, the faster
+ * of the two in docs/SCALING.md's measurement (section 6, PERF.md's problem at 1e6, 400 MB
+ * frames, minima of 10-11 runs on a shared machine): parallel HDF5 on 2 ranks or more (0.44
+ * against 0.51 s per frame gathered: a small margin, but it also keeps every frame from passing
+ * through one rank when ranks are many), the one writer on one rank (0.36 s; MPI-IO 0.42 s).  The datasets are the same either way (names,
+ * shapes, values: tests/check_mpi.c), so the .xmf and ParaView see one series.  Compressed dumps
+ * take the gather: filtered parallel writes need every rank in each chunk's write, not tried.
+ * ./yfdem has one writer. */
+int output_mpio(void) {
+#ifdef YF_MPI
+  const char *e = getenv("YFDEM_H5_MPIIO");
+  if (!e || !*e) return par_size() > 1;
+  if (strcmp(e, "0") && strcmp(e, "1"))
+    yf_exit_with(YF_EXIT_DECK, "error: YFDEM_H5_MPIIO='%s': expected 1 (parallel HDF5) or 0 (gather to rank 0)", e);
+  return e[0] == '1';
+#else
+  return 0;
+#endif
+}
+
 int output_add_dump(YfSim *s, const char *id, int style, long every, const char *path,
                     unsigned fields, int compress) {
   io_attach(s); /* dumps observe the run loop (report.c) */
@@ -910,6 +1038,7 @@ int output_add_dump(YfSim *s, const char *id, int style, long every, const char 
   d->path = yf_strdup(path);
   d->file = -1;
   d->last_step = LONG_MIN;
+  d->mpio = style == YF_DUMP_H5 && !compress && output_mpio();
   if (style == YF_DUMP_H5) {
     const char *base = strrchr(path, '/');
     size_t l = strlen(path);
@@ -954,6 +1083,7 @@ int output_add_y2dref(YfSim *s, const char *id, struct YfY2dRef *r) {
 }
 
 int output_ndump(const YfSim *s) { return s->out ? s->out->ndump : 0; }
+int output_dump_mpio(const YfSim *s, int k) { return s->out->dump[k]->mpio; }
 const char *output_dump_id(const YfSim *s, int k) { return s->out->dump[k]->id; }
 const char *output_dump_path(const YfSim *s, int k) { return s->out->dump[k]->path; }
 int output_find_dump(const YfSim *s, const char *id) {

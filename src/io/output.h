@@ -94,5 +94,9 @@ long output_index_writes(const YfSim *s, const char *id);
  * at every frame, larger ones when gap x their last rewrite time has passed.  Defaults 1 MiB
  * and 20; for tests. */
 void output_set_index_policy(size_t small_bytes, double gap);
+/* ./yfdem_mpi: 1 when h5 dumps are written by every rank with parallel HDF5 (YFDEM_H5_MPIIO=1|0,
+ * unset: the measured default, docs/SCALING.md), 0 when gathered to rank 0; ./yfdem: 0. */
+int output_mpio(void);
+int output_dump_mpio(const YfSim *s, int k); /* dump k is written so */
 
 #endif

@@ -520,6 +520,13 @@ int par_any(int flag) {
   return any;
 }
 
+long par_bcast_long(long v) {
+  if (P.size > 1) MPI_Bcast(&v, 1, MPI_LONG, 0, MPI_COMM_WORLD);
+  return v;
+}
+
+const int *par_tri_lo(void) { return P.size > 1 ? P.tlo : NULL; }
+
 /* After a run: what each rank computed and sent, as measured on every rank. */
 void par_run_report(YfSim *s, long nsteps, double wall) {
   double mine[4] = {P.t_elem, P.t_comm, P.bytes, P.hbytes}, *all = NULL;

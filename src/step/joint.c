@@ -703,6 +703,14 @@ static void share_events(YfJoints *J, int b0, int b1) {
   }
 }
 
+int joints_par_rows(const YfSim *s, int *lo) {
+  const YfJoints *J = s->joints;
+  int b0, b1;
+  if (!J || !J->n || !mine_blocks(J, &b0, &b1)) return 0;
+  for (int r = 0; r <= par_size(); r++) lo[r] = J_lo[r] * JBLOCK < J->n ? J_lo[r] * JBLOCK : J->n;
+  return 1;
+}
+
 void joints_par_gather(YfSim *s) {
   YfJoints *J = s->joints;
   if (!J || !J->n || !J_dirty || par_size() <= 1) return;

@@ -14,8 +14,10 @@
  *   - block sums that straddle ranks are summed from per-item results in order; joint events and
  *     dropped couples go to every rank, so records and lists stay the same everywhere;
  *   - what only owners hold (stresses, joint state, friction memory, node contact forces) is
- *     gathered when read (par_need_all: thermo, energy checks, frames, metrics, restarts);
- *   - only rank 0 prints and writes files (yf_writer); an error stops every rank (par_mpi.c).
+ *     gathered when read (par_need_all: thermo, energy checks, gathered frames, metrics, restarts);
+ *   - only rank 0 prints and writes files (yf_writer), except h5 frames on 2 ranks or more, which
+ *     every rank writes with parallel HDF5, each its own rows (io/output.c: no gather for
+ *     them); an error stops every rank (par_mpi.c).
  */
 #ifndef YF_PAR_H
 #define YF_PAR_H
@@ -66,6 +68,10 @@ const void *par_concat(const void *mine, int nbytes, int *rbytes);
 const void *par_exchange(const void *send, const int *sbytes, int *rbytes);
 void par_gather_ranges(void *a, const int *lo, int elem_bytes);
 int par_any(int flag);                  /* flag set on any rank (the same answer on all)       */
+/* Parallel HDF5 frames (output.c): rank 0's value on every rank, and the triangle ranges of
+ * the owners, tlo[0..size] (NULL on one rank). */
+long par_bcast_long(long v);
+const int *par_tri_lo(void);
 void par_run_report(struct YfSim *s, long nsteps, double wall); /* ranks, imbalance, traffic */
 #else
 static inline void par_init(int *argc, char ***argv) { (void)argc; (void)argv; }
@@ -92,6 +98,8 @@ static inline const void *par_concat(const void *mine, int nbytes, int *rbytes) 
 static inline const void *par_exchange(const void *send, const int *sbytes, int *rbytes) { *rbytes = *sbytes; return send; }
 static inline void par_gather_ranges(void *a, const int *lo, int elem_bytes) { (void)a; (void)lo; (void)elem_bytes; }
 static inline int par_any(int flag) { return flag; }
+static inline long par_bcast_long(long v) { return v; }
+static inline const int *par_tri_lo(void) { return NULL; }
 #define par_run_report(s, nsteps, wall) ((void)0)
 #endif
 
