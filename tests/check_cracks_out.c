@@ -10,20 +10,27 @@
 #include "joint.h"
 #include "yftest.h"
 
+/* A bar of joints pulled by a prescribed displacement until cracks open and break
+ * (12000 steps, mass-damped): `pre` goes after the fracture line, `post` before the run. */
+static void pulled_bar_deck(char *deck, size_t n, const char *pre, const char *post) {
+  snprintf(deck, n,
+           "material c elastic rho 2500 E 1e10 nu 0.2 plane_stress\n"
+           "mesh rect bar c 0 0 0.1 0.02 20 4 pattern alt\n"
+           "jointprop cj ft 3e6 fs 3e6 gf 100 pen 1e11 law munjiza_gf\n"
+           "fracture bar cj\n%s"
+           "region l box -1 -1 1e-9 1\nregion r box 0.099999 -1 1 1\n"
+           "group l node region l\ngroup r node region r\nfix hold l fixed xy\n"
+           "history pull ramp 0 1e-3\nfix pull r displacement 4e-4 NULL history pull\n"
+           "damping mass 3000\ntimestep auto\n%srun 12000\n", pre, post);
+}
+
 START_TEST(test_cracks_in_frames) {
   freopen("/dev/null", "w", stdout);
   char dir[] = "/tmp/yf_cracks_XXXXXX";
   ck_assert_ptr_nonnull(mkdtemp(dir));
-  char deck[2048];
-  snprintf(deck, sizeof deck,
-           "material c elastic rho 2500 E 1e10 nu 0.2 plane_stress\n"
-           "mesh rect bar c 0 0 0.1 0.02 20 4 pattern alt\n"
-           "jointprop cj ft 3e6 fs 3e6 gf 100 pen 1e11 law munjiza_gf\n"
-           "fracture bar cj\n"
-           "region l box -1 -1 1e-9 1\nregion r box 0.099999 -1 1 1\n"
-           "group l node region l\ngroup r node region r\nfix hold l fixed xy\n"
-           "history pull ramp 0 1e-3\nfix pull r displacement 4e-4 NULL history pull\n"
-           "damping mass 3000\ntimestep auto\ndump d h5 12000 %s/bar.h5\nrun 12000\n", dir);
+  char deck[2048], extra[256];
+  snprintf(extra, sizeof extra, "dump d h5 12000 %s/bar.h5\n", dir);
+  pulled_bar_deck(deck, sizeof deck, "", extra);
   YfSim *s = yft_run(deck);
   const YfJoints *j = s->joints;
   ck_assert_int_gt(j->nbroken, 0);
@@ -78,16 +85,9 @@ END_TEST
  * default would count) are not opened. */
 START_TEST(test_opened_threshold) {
   const double Z = 0.5;
-  char deck[2048];
-  snprintf(deck, sizeof deck,
-           "material c elastic rho 2500 E 1e10 nu 0.2 plane_stress\n"
-           "mesh rect bar c 0 0 0.1 0.02 20 4 pattern alt\n"
-           "jointprop cj ft 3e6 fs 3e6 gf 100 pen 1e11 law munjiza_gf\n"
-           "fracture bar cj\nmetrics opened_threshold %g\n"
-           "region l box -1 -1 1e-9 1\nregion r box 0.099999 -1 1 1\n"
-           "group l node region l\ngroup r node region r\nfix hold l fixed xy\n"
-           "history pull ramp 0 1e-3\nfix pull r displacement 4e-4 NULL history pull\n"
-           "damping mass 3000\ntimestep auto\nrun 12000\n", Z);
+  char deck[2048], extra[64];
+  snprintf(extra, sizeof extra, "metrics opened_threshold %g\n", Z);
+  pulled_bar_deck(deck, sizeof deck, extra, "");
   YfSim *s = yft_run(deck);
   const YfJoints *j = s->joints;
   int below = 0, flagged = 0;
