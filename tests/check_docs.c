@@ -88,7 +88,7 @@ START_TEST(test_every_command_has_its_arguments) {
       if (!(u[i] >= 'A' && u[i] <= 'Z') || (i > 0 && (word_char(u[i - 1]) || u[i - 1] == '$'))) continue;
       size_t n = 0;
       while ((u[i + n] >= 'A' && u[i + n] <= 'Z') || (u[i + n] >= '0' && u[i + n] <= '9') || u[i + n] == '_') n++;
-      if (word_char(u[i + n])) { i += n; continue; } /* part of a longer word */
+      if (word_char(u[i + n])) { i += n - 1; continue; } /* part of a longer word (n >= 1; the loop adds 1) */
       int found = 0;
       for (const char *p = args; *p && !found;) { /* the words part of each line */
         const char *e = strchr(p, '\n'), *end = e ? e : p + strlen(p), *colon = strstr(p, ": ");
@@ -97,7 +97,7 @@ START_TEST(test_every_command_has_its_arguments) {
         p = e ? e + 1 : end;
       }
       if (!found) k += (size_t)snprintf(missing + k, sizeof missing - k, "%s: %.*s unexplained; ", c->name, (int)n, u + i);
-      i += n;
+      i += n - 1; /* the loop's i++ lands on the character after the word: never past the NUL */
     }
   }
   for (const YfCommandArgs *r = yf_command_args; r->name; r++) {
