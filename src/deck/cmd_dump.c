@@ -118,21 +118,16 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
     const char *stem, *ext, *xmf;
     output_dump_files(s, k, &stem, &ext, &xmf);
     /* a missing folder: now, at this line, not at the run after the other outputs began */
-    size_t n = strlen(stem) + strlen(ext) + 8;
-    char *first = yf_malloc(n, "path");
-    snprintf(first, n, "%s_000000%s", stem, ext);
-    const char *const files[] = {first, xmf};
-    for (int i = 0; i < 2; i++)
-      if (!yf_can_create(files[i])) yf_io_error(&a->loc, "dump %s: cannot write '%s': %s", id, files[i], strerror(errno));
-    free(first);
+    char what[256];
+    snprintf(what, sizeof what, "dump %s", id);
+    arg_writable(a, what, "%s_000000%s", stem, ext);
+    arg_writable(a, what, "%s", xmf);
     sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN%s (index %s)%s\n", id, every, stem, ext, xmf,
                output_dump_mpio(s, k) ? "; every rank writes its rows (parallel HDF5; YFDEM_H5_MPIIO=0: gathered to rank 0)" : "");
   } else {
-    size_t n = strlen(path) + 12;
-    char *index = yf_malloc(n, "path");
-    snprintf(index, n, "%s_frames.csv", path);
-    if (!yf_can_create(index)) yf_io_error(&a->loc, "dump %s: cannot write '%s': %s", id, index, strerror(errno));
-    free(index);
+    char what[256];
+    snprintf(what, sizeof what, "dump %s", id);
+    arg_writable(a, what, "%s_frames.csv", path);
     sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN.csv\n", id, every, path);
   }
 }

@@ -1,11 +1,7 @@
 /* cmd_restart.c: the `restart` deck command (a row of commands.def): periodic restarts on or off
  * (restart_every, io/restart.c).
  */
-#include <errno.h>
 #include <limits.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
 #include "deck.h"
 #include "report.h"
 #include "restart.h"
@@ -26,10 +22,6 @@ void cmd_restart(YfSim *s, const YfArgs *a) {
   const char *base = arg_word(a, 2, "FILE"); /* an output: relative to the working directory */
   if (!base[0]) arg_error(a, 2, "empty file name");
   /* a missing folder: now, at this line, not at the first restart step after frames were written */
-  size_t n = strlen(base) + 3;
-  char *first = yf_malloc(n, "path");
-  snprintf(first, n, "%s.a", base);
-  if (!yf_can_create(first)) yf_io_error(&a->loc, "restart every: cannot write '%s': %s", first, strerror(errno));
-  free(first);
+  arg_writable(a, "restart every", "%s.a", base);
   restart_every(s, every, base);
 }

@@ -1216,3 +1216,12 @@ void deck_cmd_quit(struct YfSim *sim, const YfArgs *a) {
   arg_count(a, 0, 0);
   d->quit = 1;
 }
+
+void arg_writable(const YfArgs *a, const char *what, const char *fmt, ...) {
+  char path[4096];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(path, sizeof path, fmt, ap);
+  va_end(ap);
+  if (!yf_can_create(path)) yf_io_error(&a->loc, "%s: cannot write '%s': %s", what, path, strerror(errno));
+}

@@ -72,6 +72,10 @@ int arg_choice(const YfArgs *a, int i, const char *what, const char *const *choi
 const char *arg_word(const YfArgs *a, int i, const char *what);
 /* Error naming word i: "FILE:LINE: error: CMD: WHAT 'word': message". */
 void arg_error(const YfArgs *a, int i, const char *fmt, ...) __attribute__((noreturn, format(printf, 3, 4)));
+/* An output the command will write, checked at its deck line (a missing folder is an error here,
+ * not at the run after other outputs began): the path from fmt; what names it in the message
+ * ("dump d", "restart every"). */
+void arg_writable(const YfArgs *a, const char *what, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
 /* Strict number parsing without a deck context: returns 1 and sets *out on success. */
 int yf_parse_double(const char *s, double *out);
