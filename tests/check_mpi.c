@@ -66,7 +66,10 @@ static void drop_dir(char *d) {
  * Returns the exit code; *secs the wall time. */
 static int run_in(const char *dir, int ranks, int threads, const char *args, double *secs) {
   char cmd[4 * PATH_MAX + 1024], th[32] = "";
-  const char *env = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_WAIT_POLICY=passive";
+  /* YFDEM_MPI_POISON=1: after each step a rank sets NaN into every node it neither owns nor reads
+   * as a ghost (the divided update, par.h), so a reader that forgot to gather shows in the bits */
+  const char *env = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_WAIT_POLICY=passive "
+                    "YFDEM_MPI_POISON=1";
   if (threads > 0) snprintf(th, sizeof th, "-threads %d", threads);
   threads = abs(threads);
   if (ranks > 0)
@@ -235,6 +238,90 @@ START_TEST(matrix_perf_1e4) {
 }
 END_TEST
 
+static long report_count(const char *dir, const char *what);
+
+/* A number the ranks' report gives just before `what` ("N WHAT"), or -1. */
+static double report_before(const char *dir, const char *what) {
+  char p[PATH_MAX + 64];
+  snprintf(p, sizeof p, "%s/out.txt", dir);
+  char *t = yft_slurp(p, 1);
+  const char *q = strstr(t, what);
+  double v = -1;
+  if (q && q > t + 1) {
+    q--; /* the space before WHAT, then back to the start of the number */
+    while (q > t && q[-1] != ' ') q--;
+    v = strtod(q, NULL);
+  }
+  free(t);
+  return v;
+}
+
+/* The divided update (par.h): on PERF.md's problem at 1e4 (every triangle fracturing: 3 nodes
+ * per triangle, 29 682 nodes) on 2 ranks each rank updates its own nodes and receives only its
+ * ghosts' state (32 B per ghost node per step) and, at a contact search, every node's position
+ * (16 B per node).  The replicated update it replaces sends every node's force every step (16 B
+ * per node, and per rank beyond the first).  So the bytes per step must fall below what that
+ * allgather alone would send, with ./yfdem's bits; YFDEM_MPI_DIVIDE=0 (the replicated update)
+ * must send at least that; a mass-damped deck says why it replicates. */
+START_TEST(divided_update) {
+  if (!mpi_ready()) return;
+  char *d = perf_dir(40);
+  write_file(d, "p.deck", "read_y2d perf.y\nrun 40\n");
+  ck_assert_int_eq(run_in(d, 0, 1, "-in p.deck -summary ref.json", NULL), 0);
+  char path[PATH_MAX + 32];
+  snprintf(path, sizeof path, "%s/ref.json", d);
+  char *ref = key_lines(path);
+  double nodes = 0, bytes[2] = {0, 0};
+  {
+    char *t = yft_slurp(path, 1);
+    const char *q = strstr(t, "\"nodes\":");
+    ck_assert(q != NULL);
+    nodes = strtod(q + 8, NULL);
+    free(t);
+  }
+  const double allgather = 16.0 * nodes; /* 2 ranks: each sends its half of every node's force */
+  for (int div = 1; div >= 0; div--) {
+    setenv("YFDEM_MPI_DIVIDE", div ? "1" : "0", 1);
+    int rc = run_in(d, 2, 1, "-in p.deck -summary m.json", NULL);
+    unsetenv("YFDEM_MPI_DIVIDE");
+    ck_assert_int_eq(rc, 0);
+    snprintf(path, sizeof path, "%s/m.json", d);
+    char *got = key_lines(path);
+    ck_assert_msg(!strcmp(ref, got), "YFDEM_MPI_DIVIDE=%d: differs from ./yfdem:\n%s--- vs ./yfdem:\n%s", div, got, ref);
+    free(got);
+    bytes[div] = report_before(d, "bytes sent per step");
+    ck_assert_msg(report_count(d, div ? "mpi: update divided" : "mpi: update replicated (YFDEM_MPI_DIVIDE=0)") != -1,
+                  "YFDEM_MPI_DIVIDE=%d: the report does not say how the update ran", div);
+  }
+  /* the divided update still sends every position at a search (16 B per node, every few steps
+   * here) and what readers gather at the run's end: it must save at least half the allgather */
+  ck_assert_msg(bytes[1] > 0 && bytes[0] - bytes[1] >= 0.5 * allgather,
+                "divided update: %.4g bytes per step against %.4g replicated: saves less than half the force "
+                "allgather's %.4g", bytes[1], bytes[0], allgather);
+  ck_assert_msg(bytes[0] >= allgather, "replicated update: %.4g bytes per step, below the allgather's %.4g", bytes[0],
+                allgather);
+  fprintf(stderr, "check_mpi: divided update on 2 ranks: %.3g bytes per step against %.3g replicated (force "
+          "allgather alone %.3g), ./yfdem's bits both ways\n", bytes[1], bytes[0], allgather);
+  free(ref);
+  /* mass damping sums over every node every step: replicated, said, the same bits */
+  write_file(d, "pd.deck", "read_y2d perf.y\ndamping mass 2000\nrun 40\n");
+  {
+    ck_assert_int_eq(run_in(d, 0, 1, "-in pd.deck -summary ref.json", NULL), 0);
+    snprintf(path, sizeof path, "%s/ref.json", d);
+    ref = key_lines(path);
+    ck_assert_int_eq(run_in(d, 2, 1, "-in pd.deck -summary m.json", NULL), 0);
+    snprintf(path, sizeof path, "%s/m.json", d);
+    char *got = key_lines(path);
+    ck_assert_msg(!strcmp(ref, got), "mass damping: differs from ./yfdem:\n%s--- vs ./yfdem:\n%s", got, ref);
+    ck_assert_msg(report_count(d, "mpi: update replicated (mass damping") != -1, "mass damping: the report does not "
+                  "say the update is replicated for it");
+    free(got);
+    free(ref);
+  }
+  drop_dir(d);
+}
+END_TEST
+
 /* Every dataset of frame file b equals a's: the same objects (names), and for each dataset the
  * same type, shape and bytes.  Returns NULL, or what differs (a static message). */
 typedef struct {
@@ -368,7 +455,7 @@ static const char CROSS_DECK[] =
     "mesh rect b c 0.0205 0 0.0405 0.02 8 8 pattern right\n"
     "fracture a j\nfracture b j\nvelocity a set 50 0\n"
     "contact self a\ncontact self b\ncontact pair a b\n"
-    "timestep auto safety 0.5\nthermo 0\nrun 600\n"
+    "timestep auto safety 0.5\nthermo 0\nrecord r 50 rec.csv vx_a vx_b ux_b fx_a ke broken\nrun 600\n"
     "print \"momentum $(mass_a) $(vx_a) $(mass_b) $(vx_b)\"\n";
 
 /* The momentum line of dir/out.txt: |p - p0| / p0 with p0 = m_a 50 m/s. */
@@ -403,6 +490,8 @@ START_TEST(bodies_cross_ranks) {
   ck_assert_msg(momentum_error(d) <= 1e-12, "./yfdem: momentum off by %g", momentum_error(d));
   snprintf(path, sizeof path, "%s/ref.json", d);
   char *ref = key_lines(path);
+  snprintf(path, sizeof path, "%s/rec.csv", d);
+  char *rec = yft_slurp(path, 1);
   long jx_most = 0;
   for (int ranks = 2; ranks <= 4; ranks++) {
     int th = ranks == 2 ? 2 : 1;
@@ -412,6 +501,11 @@ START_TEST(bodies_cross_ranks) {
     ck_assert_msg(!strcmp(ref, got), "%d ranks x %d threads differ from ./yfdem:\n%s--- vs ./yfdem:\n%s", ranks, th,
                   got, ref);
     free(got);
+    /* the record rows read node means and forces of both blocks: gathered, written by rank 0 */
+    snprintf(path, sizeof path, "%s/rec.csv", d);
+    char *rg = yft_slurp(path, 1);
+    ck_assert_msg(!strcmp(rec, rg), "%d ranks: rec.csv differs from ./yfdem's:\n%s--- vs ./yfdem:\n%s", ranks, rg, rec);
+    free(rg);
     double pe = momentum_error(d);
     ck_assert_msg(pe <= 1e-12, "%d ranks: momentum off by %g", ranks, pe);
     long hits = report_count(d, "contact hits between two ranks' triangles ");
@@ -424,6 +518,7 @@ START_TEST(bodies_cross_ranks) {
   }
   ck_assert_msg(jx_most > 0, "no joint broke across a rank border on 3 or 4 ranks");
   free(ref);
+  free(rec);
   drop_dir(d);
 }
 END_TEST
@@ -572,6 +667,7 @@ Suite *mpi_suite(void) {
   tcase_add_test(t, matrix_beam);
   tcase_add_loop_test(t, matrix_y2d, 0, 4);
   tcase_add_test(t, matrix_perf_1e4);
+  tcase_add_test(t, divided_update);
   tcase_add_test(t, frames_parallel_h5);
   tcase_add_test(t, bodies_cross_ranks);
   tcase_add_test(t, restart_2_to_3);

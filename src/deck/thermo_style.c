@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include "par.h"
 #include "thermo_style.h"
 #include "deck.h"
 #include "err.h"
@@ -209,9 +210,15 @@ static void record_row(YfSim *s, Record *r) {
 
 static void record_step(YfSim *s, int force) {
   if (!force && s->step < P.next_due) return;
+  int due = 0;
+  for (int i = 0; i < P.nrec; i++) due |= P.rec[i].last_step != s->step && (force || s->step % P.rec[i].every == 0);
+  if (due) par_need_all(s); /* MPI: the rows read any node (every rank is here); rank 0 writes them */
   for (int i = 0; i < P.nrec; i++) {
     Record *r = &P.rec[i];
-    if (r->last_step != s->step && (force || s->step % r->every == 0)) record_row(s, r);
+    if (r->last_step != s->step && (force || s->step % r->every == 0)) {
+      if (yf_writer()) record_row(s, r);
+      else r->last_step = s->step;
+    }
   }
   update_due(s);
 }

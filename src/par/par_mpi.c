@@ -13,6 +13,7 @@
  * alone waits 2 s (rank 0, if it fails too, ends the job first and prints the message once),
  * then prints its message and aborts.  Nothing waits on a rank that has failed, so no hang.
  */
+#include <math.h>
 #include <mpi.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -26,14 +27,25 @@
 #include "run.h"
 #include "sim.h"
 
+/* Blocks of a fixed-order sum over items held in ranges per rank (triangles, nodes): rank r sums
+ * blocks b0[r]..b1[r]-1 whole (inside its range) and gives one value per item (`per` doubles) of
+ * the blocks it shares with another rank, its head and tail pieces; every rank then sums a split
+ * block from its items' values in item order: the additions of the one-rank loop. */
+typedef struct {
+  int n, nblk, block, per;
+  int *b0, *b1;             /* size + 1                                                        */
+  int *pcnt, *pdsp;         /* items of split blocks per rank, and where they start in piece   */
+  int npiece;               /* items of split blocks, all ranks                                */
+  double *piece;            /* per * npiece, in item order                                      */
+} Split;
+
 static struct {
   int rank, size;
   int nt, nblk, block;
   int *tlo;                 /* size + 1: rank r owns triangles tlo[r]..tlo[r+1]-1 (its parts)  */
-  int *fb0, *fb1;           /* rank r sums blocks fb0[r]..fb1[r]-1 whole (inside its triangles) */
-  int *pcnt, *pdsp;         /* triangles of split blocks per rank (its head and tail pieces)    */
-  int npiece;               /* triangles of split blocks, all ranks                            */
-  double *piece;            /* 3 per split-block triangle, in triangle order: kdd, bad, J      */
+  Split st;                 /* the element stage's blocks over the triangle ranges (3 per piece:
+                               kdd, bad, J)                                                     */
+  Split sn;                 /* a node sum's blocks over the node ranges (par_node_split)        */
   int *cnt, *dsp;           /* scratch counts and displacements of an allgatherv              */
   double bytes;             /* bytes this rank sent in collectives of the current run          */
   double t_comm, t_elem;    /* wall seconds in exchanges / CPU seconds of divided work (elements,
@@ -57,6 +69,23 @@ static struct {
   int *xs, *xr, *xsd, *xrd; /* par_concat / par_exchange: counts and displacements (bytes)     */
   char *xbuf;               /* their receive buffer                                            */
   size_t xcap;
+  /* Divided update (par.h): this run's nodes, per node what is kept current here */
+  int div;                  /* 1: each rank updates its own nodes and the shared ones           */
+  int run_id;               /* par_run_begin calls so far (contact.c rebuilds its ghosts on change) */
+  unsigned char *nmark;     /* per node: YF_BC_* of the kinds, | NEED when this rank reads it   */
+  int nshared, *shared;     /* YF_BC_SHARED nodes, increasing; owners' slices bcnt/bdsp (doubles) */
+  int *bcnt, *bdsp;
+  double *bbuf;
+  int nsneed, *sneed;       /* ghosts of the triangles, joint blocks and loads (fixed per run)  */
+  int ncneed, *cneed;       /* ghosts of the contact couples (par_contact_ghosts)              */
+  int ngh, *gh;             /* all ghosts, increasing: what this rank receives                 */
+  int *gcnt, *gdsp;         /* ghosts per owner (doubles: 4 per node), received               */
+  int *ocnt, *odsp, *oidx;  /* nodes this rank sends to each rank, and their indices           */
+  double *gsend, *grecv;
+  int pos_fresh, nodes_fresh; /* every node's position / state current on this rank            */
+  int poison;               /* tests (YFDEM_MPI_POISON): NaN into what is neither owned nor read */
+  const char *why;          /* why this run's update is replicated ("" when divided)           */
+  int ngh_max;              /* most ghost nodes this rank received in a step (this run)        */
   long cross_hits;          /* contact hits of couples whose triangles two ranks own (this rank) */
   double hbytes;            /* of bytes: what went to one rank only (slot halo, contact hits)  */
 } P;
@@ -230,17 +259,59 @@ static void count_ghosts(const YfSim *s) {
   free(owner); free(seen); free(trank); free(ghosts);
 }
 
+/* The blocks of n items (nblk of `block`) over the ranges lo[0..size]: which each rank sums
+ * whole, and its pieces. */
+static void split_build(Split *sp, const int *lo, int n, int nblk, int block, int per) {
+  const int S = P.size;
+  free(sp->b0); free(sp->b1); free(sp->pcnt); free(sp->pdsp); free(sp->piece);
+  size_t n1 = (size_t)S + 1;
+  sp->b0 = yf_malloc(n1 * sizeof(int), "rank ranges");
+  sp->b1 = yf_malloc(n1 * sizeof(int), "rank ranges");
+  sp->pcnt = yf_malloc(n1 * sizeof(int), "rank ranges");
+  sp->pdsp = yf_malloc(n1 * sizeof(int), "rank ranges");
+  sp->n = n;
+  sp->nblk = nblk;
+  sp->block = block;
+  sp->per = per;
+  sp->npiece = 0;
+  for (int r = 0; r < S; r++) {
+    int e0 = lo[r], e1 = lo[r + 1];
+    int b0 = (e0 + block - 1) / block, b1 = e1 == n ? nblk : e1 / block;
+    if (b1 < b0) b1 = b0;
+    sp->b0[r] = b0;
+    sp->b1[r] = b1;
+    int full = b1 > b0 ? (b1 * block < n ? b1 * block : n) - b0 * block : 0;
+    sp->pcnt[r] = e1 - e0 - full;
+    sp->pdsp[r] = sp->npiece;
+    sp->npiece += sp->pcnt[r];
+  }
+  sp->piece = yf_malloc((size_t)per * (size_t)(sp->npiece > 0 ? sp->npiece : 1) * sizeof(double), "split blocks");
+}
+
+/* Every rank's pieces to every rank. */
+static void allgatherv(void *a, MPI_Datatype type, int size);
+static void split_share_pieces(Split *sp) {
+  for (int q = 0; q < P.size; q++) {
+    P.cnt[q] = sp->per * sp->pcnt[q];
+    P.dsp[q] = sp->per * sp->pdsp[q];
+  }
+  allgatherv(sp->piece, MPI_DOUBLE, sizeof(double));
+}
+
+/* Block b is split between ranks (no rank sums it whole). */
+static int split_block(const Split *sp, int b) {
+  for (int q = 0; q < P.size; q++)
+    if (b >= sp->b0[q] && b < sp->b1[q]) return 0;
+  return 1;
+}
+
 void par_prepare(YfSim *s, int nblk, int block) {
   const YfModel *m = &s->model;
   int nt = m->tri.n, S = P.size;
   if (P.tlo && P.nt == nt && P.nblk == nblk && P.block == block) return; /* the same scene */
-  free(P.tlo); free(P.fb0); free(P.fb1); free(P.pcnt); free(P.pdsp); free(P.cnt); free(P.dsp); free(P.piece);
+  free(P.tlo); free(P.cnt); free(P.dsp);
   size_t n1 = (size_t)S + 1;
   P.tlo = yf_malloc(n1 * sizeof(int), "rank ranges");
-  P.fb0 = yf_malloc(n1 * sizeof(int), "rank ranges");
-  P.fb1 = yf_malloc(n1 * sizeof(int), "rank ranges");
-  P.pcnt = yf_malloc(n1 * sizeof(int), "rank ranges");
-  P.pdsp = yf_malloc(n1 * sizeof(int), "rank ranges");
   P.cnt = yf_malloc(n1 * sizeof(int), "rank ranges");
   P.dsp = yf_malloc(n1 * sizeof(int), "rank ranges");
   P.nt = nt;
@@ -259,25 +330,14 @@ void par_prepare(YfSim *s, int nblk, int block) {
   /* A block inside one rank's triangles is summed there, as on one rank.  The triangles of a
    * block split between ranks are evaluated one by one by their owners, and every rank sums the
    * block's per-triangle results in triangle order: the same additions as the one-rank loop. */
-  P.npiece = 0;
-  for (int r = 0; r < S; r++) {
-    int e0 = P.tlo[r], e1 = P.tlo[r + 1];
-    int b0 = (e0 + block - 1) / block, b1 = e1 == nt ? nblk : e1 / block;
-    if (b1 < b0) b1 = b0;
-    P.fb0[r] = b0;
-    P.fb1[r] = b1;
-    int full = b1 > b0 ? (b1 * block < nt ? b1 * block : nt) - b0 * block : 0;
-    P.pcnt[r] = e1 - e0 - full;
-    P.pdsp[r] = P.npiece;
-    P.npiece += P.pcnt[r];
-  }
-  P.piece = yf_malloc(3 * (size_t)(P.npiece > 0 ? P.npiece : 1) * sizeof(double), "split blocks");
+  split_build(&P.st, P.tlo, nt, nblk, block, 3);
+  P.sn.n = -1; /* the node sums' blocks: again at their first use */
   count_ghosts(s);
 }
 
 void par_blocks(int *b0, int *b1) {
-  *b0 = P.fb0[P.rank];
-  *b1 = P.fb1[P.rank];
+  *b0 = P.st.b0[P.rank];
+  *b1 = P.st.b1[P.rank];
 }
 
 /* One triangle of a split block: its corner forces and stress, and (kdd, bad, J) packed. */
@@ -305,8 +365,8 @@ static void share_tris(double *a, int per) {
 
 static void share_blocks(void *a, MPI_Datatype type, int size) {
   for (int r = 0; r < P.size; r++) {
-    P.cnt[r] = P.fb1[r] - P.fb0[r];
-    P.dsp[r] = P.fb0[r];
+    P.cnt[r] = P.st.b1[r] - P.st.b0[r];
+    P.dsp[r] = P.st.b0[r];
   }
   allgatherv(a, type, size);
 }
@@ -314,13 +374,14 @@ static void share_blocks(void *a, MPI_Datatype type, int size) {
 void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_bad, double *blk_badJ, double t_elem) {
   double c0 = yf_cpu_now();
   int r = P.rank, B = P.block, nt = P.nt;
+  const Split *sp = &P.st;
   P.stress_fresh = P.state_fresh = 0;
-  /* this rank's head and tail pieces (triangles of blocks it shares with other ranks) */
-  double *out = P.piece + 3 * (size_t)P.pdsp[r];
+  /* this rank's head and tail pieces (triangles of blocks it shares with others) */
+  double *out = sp->piece + 3 * (size_t)sp->pdsp[r];
   int e0 = P.tlo[r], e1 = P.tlo[r + 1];
-  if (P.fb1[r] > P.fb0[r]) {
-    for (int e = e0; e < P.fb0[r] * B; e++, out += 3) piece_one(m, tm, e, out);
-    for (int e = P.fb1[r] * B < nt ? P.fb1[r] * B : nt; e < e1; e++, out += 3) piece_one(m, tm, e, out);
+  if (sp->b1[r] > sp->b0[r]) {
+    for (int e = e0; e < sp->b0[r] * B; e++, out += 3) piece_one(m, tm, e, out);
+    for (int e = sp->b1[r] * B < nt ? sp->b1[r] * B : nt; e < e1; e++, out += 3) piece_one(m, tm, e, out);
   } else {
     for (int e = e0; e < e1; e++, out += 3) piece_one(m, tm, e, out);
   }
@@ -334,17 +395,11 @@ void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_ba
   share_blocks(blk, MPI_DOUBLE, sizeof(double));
   share_blocks(blk_bad, MPI_INT, sizeof(int));
   share_blocks(blk_badJ, MPI_DOUBLE, sizeof(double));
-  for (int q = 0; q < P.size; q++) {
-    P.cnt[q] = 3 * P.pcnt[q];
-    P.dsp[q] = 3 * P.pdsp[q];
-  }
-  allgatherv(P.piece, MPI_DOUBLE, sizeof(double));
-  /* the split blocks, in order: their triangles are consecutive in P.piece */
-  const double *pc = P.piece;
-  for (int b = 0, k = 0; b < P.nblk && k < P.npiece; b++) {
-    int whole = 0;
-    for (int q = 0; q < P.size && !whole; q++) whole = b >= P.fb0[q] && b < P.fb1[q];
-    if (whole) continue;
+  split_share_pieces(&P.st);
+  /* the split blocks, in order: their triangles are consecutive in the pieces */
+  const double *pc = sp->piece;
+  for (int b = 0, k = 0; b < P.nblk && k < sp->npiece; b++) {
+    if (!split_block(sp, b)) continue;
     int t1b = (b + 1) * B < nt ? (b + 1) * B : nt;
     double power = 0.0;
     int bad = -1;
@@ -397,6 +452,22 @@ void par_nodes(int *n0, int *n1) {
 void par_share_forces(double *fx, double *fy) {
   if (P.size <= 1 || !P.halo) return;
   double t0 = yf_now();
+  if (P.div) { /* the shared nodes' forces only, from their owners */
+    const int k0 = P.bdsp[P.rank] / 2;
+    for (int k = k0; k < k0 + P.bcnt[P.rank] / 2; k++) {
+      P.bbuf[2 * k] = fx[P.shared[k]];
+      P.bbuf[2 * k + 1] = fy[P.shared[k]];
+    }
+    memcpy(P.cnt, P.bcnt, (size_t)P.size * sizeof(int));
+    memcpy(P.dsp, P.bdsp, (size_t)P.size * sizeof(int));
+    allgatherv(P.bbuf, MPI_DOUBLE, sizeof(double));
+    for (int k = 0; k < P.nshared; k++) {
+      fx[P.shared[k]] = P.bbuf[2 * k];
+      fy[P.shared[k]] = P.bbuf[2 * k + 1];
+    }
+    P.t_comm += yf_now() - t0;
+    return;
+  }
   for (int r = 0; r < P.size; r++) {
     P.cnt[r] = P.nlo[r + 1] - P.nlo[r];
     P.dsp[r] = P.nlo[r];
@@ -414,13 +485,274 @@ void par_need_stresses(YfModel *m) {
   P.stress_fresh = 1;
 }
 
+/* Divided update: every node's state (or positions only) from its owner. */
+static void gather_nodes(YfNodes *n, int all) {
+  if (!P.div || (all ? P.nodes_fresh : P.pos_fresh || P.nodes_fresh)) return;
+  double *a[6] = {n->x, n->y, n->vx, n->vy, n->fx, n->fy};
+  for (int k = 0; k < (all ? 6 : 2); k++) par_gather_ranges(a[k], P.nlo, (int)sizeof(double));
+  P.pos_fresh = 1;
+  P.nodes_fresh = all;
+}
+
+void par_need_positions(YfNodes *n) { gather_nodes(n, 0); }
+
 void par_need_all(YfSim *s) {
   if (P.size <= 1) return;
   par_need_stresses(&s->model);
+  gather_nodes(&s->model.node, 1);
   if (P.state_fresh) return;
   contact_par_gather(s); /* friction memory, node contact forces */
   joints_par_gather(s);  /* joints' forces, work, damage */
   P.state_fresh = 1;
+}
+
+/* ---------------------------------------------------------------- the divided update */
+
+static int owner_of(int i) { /* nlo[a] <= i < nlo[a + 1] */
+  int a = 0, z = P.size;
+  while (z - a > 1) {
+    int c = (a + z) / 2;
+    if (P.nlo[c] <= i) a = c;
+    else z = c;
+  }
+  return a;
+}
+
+enum { NEED = 4, GHOST = 8 }; /* nmark bits above the kinds' YF_BC_* */
+
+/* The ghosts from the fixed and the contact lists: what this rank asks of each owner, and (an
+ * exchange of node indices) what it sends to each rank. */
+static void build_requests(void) {
+  const int S = P.size, me = P.rank, n0 = P.nlo[me], n1 = P.nlo[me + 1];
+  for (int k = 0; k < P.ngh; k++) P.nmark[P.gh[k]] &= (unsigned char)~GHOST;
+  int cap = P.nsneed + P.ncneed;
+  free(P.gh);
+  P.gh = yf_malloc((size_t)(cap > 0 ? cap : 1) * sizeof(int), "ghost nodes");
+  P.ngh = 0;
+  const int *lists[2] = {P.sneed, P.cneed}, nl[2] = {P.nsneed, P.ncneed};
+  for (int l = 0; l < 2; l++)
+    for (int k = 0; k < nl[l]; k++) {
+      int i = lists[l][k];
+      if (i >= n0 && i < n1) continue;
+      if (P.nmark[i] & (GHOST | YF_BC_SHARED)) continue;
+      P.nmark[i] |= GHOST;
+      P.gh[P.ngh++] = i;
+    }
+  /* increasing, so grouped by owner in rank order (node ranges are contiguous) */
+  int nn = P.nn, w = 0;
+  for (int i = 0; i < nn && w < P.ngh; i++)
+    if (P.nmark[i] & GHOST) P.gh[w++] = i;
+  for (int r = 0; r <= S; r++) P.gcnt[r] = 0;
+  for (int k = 0; k < P.ngh; k++) P.gcnt[owner_of(P.gh[k])]++;
+  int *rq = yf_malloc((size_t)S * sizeof(int), "ghost requests");
+  for (int r = 0; r < S; r++) rq[r] = P.gcnt[r];
+  MPI_Alltoall(rq, 1, MPI_INT, P.ocnt, 1, MPI_INT, MPI_COMM_WORLD);
+  P.gdsp[0] = P.odsp[0] = 0;
+  for (int r = 0; r < S; r++) {
+    P.gdsp[r + 1] = P.gdsp[r] + P.gcnt[r];
+    P.odsp[r + 1] = P.odsp[r] + P.ocnt[r];
+  }
+  free(P.oidx);
+  P.oidx = yf_malloc((size_t)(P.odsp[S] + 1) * sizeof(int), "ghost requests");
+  MPI_Alltoallv(P.gh, P.gcnt, P.gdsp, MPI_INT, P.oidx, P.ocnt, P.odsp, MPI_INT, MPI_COMM_WORLD);
+  P.bytes += (double)P.ngh * sizeof(int);
+  /* from here on in doubles: 4 per node (x, y, vx, vy) */
+  for (int r = 0; r <= S; r++) {
+    P.gcnt[r] *= 4; P.gdsp[r] *= 4; P.ocnt[r] *= 4; P.odsp[r] *= 4;
+  }
+  free(P.gsend); free(P.grecv); free(rq);
+  if (P.ngh > P.ngh_max) P.ngh_max = P.ngh;
+  P.gsend = yf_malloc((size_t)(P.odsp[S] + 1) * sizeof(double), "ghost exchange");
+  P.grecv = yf_malloc((size_t)(P.gdsp[S] + 1) * sizeof(double), "ghost exchange");
+}
+
+void par_ghost_exchange(YfNodes *n) {
+  if (!P.div) return;
+  double t0 = yf_now();
+  const int no = P.odsp[P.size] / 4;
+  for (int k = 0; k < no; k++) {
+    int i = P.oidx[k];
+    double *o = P.gsend + 4 * (size_t)k;
+    o[0] = n->x[i]; o[1] = n->y[i]; o[2] = n->vx[i]; o[3] = n->vy[i];
+  }
+  P.bytes += (double)P.odsp[P.size] * sizeof(double);
+  P.hbytes += (double)P.odsp[P.size] * sizeof(double);
+  MPI_Alltoallv(P.gsend, P.ocnt, P.odsp, MPI_DOUBLE, P.grecv, P.gcnt, P.gdsp, MPI_DOUBLE, MPI_COMM_WORLD);
+  for (int k = 0; k < P.ngh; k++) {
+    int i = P.gh[k];
+    const double *a = P.grecv + 4 * (size_t)k;
+    n->x[i] = a[0]; n->y[i] = a[1]; n->vx[i] = a[2]; n->vy[i] = a[3];
+  }
+  P.pos_fresh = P.nodes_fresh = 0;
+  P.state_fresh = 0;
+  if (P.poison) { /* tests: what this rank neither owns, shares nor reads must never be read */
+    const double nan = NAN;
+    const int n0 = P.nlo[P.rank], n1 = P.nlo[P.rank + 1];
+    for (int i = 0; i < P.nn; i++) {
+      if ((i >= n0 && i < n1) || (P.nmark[i] & YF_BC_SHARED)) continue;
+      n->fx[i] = n->fy[i] = nan;
+      if (!(P.nmark[i] & GHOST)) n->x[i] = n->y[i] = n->vx[i] = n->vy[i] = nan;
+    }
+  }
+  P.t_comm += yf_now() - t0;
+}
+
+void par_contact_ghosts(YfNodes *n, const int *nodes, int nnodes) {
+  if (!P.div) return;
+  double t0 = yf_now();
+  free(P.cneed);
+  P.cneed = yf_malloc((size_t)(nnodes > 0 ? nnodes : 1) * sizeof(int), "contact ghosts");
+  memcpy(P.cneed, nodes, (size_t)nnodes * sizeof(int));
+  P.ncneed = nnodes;
+  build_requests();
+  P.t_comm += yf_now() - t0;
+  int pf = P.pos_fresh, nf = P.nodes_fresh;
+  par_ghost_exchange(n); /* the new ghosts' state now: this step's couples read them */
+  P.pos_fresh = pf;
+  P.nodes_fresh = nf;
+}
+
+void par_run_begin(YfSim *s) {
+  P.run_id++;
+  P.div = 0;
+  P.why = "";
+  if (P.size <= 1) return;
+  const YfModel *m = &s->model;
+  const int nn = m->node.n, S = P.size, me = P.rank;
+  if (!P.halo || nn != P.nn) { /* node ranges of another scene, or not one range per rank */
+    P.why = "the node order does not follow the triangles' ranks: an unpartitioned mesh below 8192 triangles "
+            "(every corner force goes to every rank)";
+    return;
+  }
+  free(P.nmark);
+  P.nmark = yf_calloc((size_t)(nn > 0 ? nn : 1), 1, "node marks");
+  int integ = 0;
+  for (int k = 0; k < s->nbc_kind; k++) {
+    if (s->bc_kind[k]->mark_nodes) s->bc_kind[k]->mark_nodes(s, P.nmark);
+    integ |= s->bc_kind[k]->integrate != NULL;
+  }
+  int nsh = 0;
+  for (int i = 0; i < nn; i++) nsh += (P.nmark[i] & YF_BC_SHARED) != 0;
+  /* the update is divided unless mass damping sums over every node every step, or a kind that
+   * replaces the update would have to update shared nodes it does not own */
+  P.div = !(s->mass_damping > 0) && !(integ && nsh);
+  P.why = s->mass_damping > 0 ? "mass damping sums over every node" : integ && nsh ? "a Y2D deck with native fixes or loads" : "";
+  const char *e = getenv("YFDEM_MPI_DIVIDE"); /* tests and benchmarks: 0 keeps the replicated update */
+  if (e && *e == '0' && P.div) {
+    P.div = 0;
+    P.why = "YFDEM_MPI_DIVIDE=0";
+  }
+  e = getenv("YFDEM_MPI_POISON");
+  P.poison = e && *e == '1';
+  if (!P.div) return;
+  /* the shared nodes and each owner's slice of them */
+  free(P.shared); free(P.bcnt); free(P.bdsp); free(P.bbuf);
+  P.shared = yf_malloc((size_t)(nsh > 0 ? nsh : 1) * sizeof(int), "shared nodes");
+  P.bcnt = yf_calloc((size_t)S + 1, sizeof(int), "shared nodes");
+  P.bdsp = yf_calloc((size_t)S + 1, sizeof(int), "shared nodes");
+  P.bbuf = yf_malloc(2 * (size_t)(nsh > 0 ? nsh : 1) * sizeof(double), "shared nodes");
+  P.nshared = 0;
+  for (int i = 0; i < nn; i++)
+    if (P.nmark[i] & YF_BC_SHARED) {
+      P.shared[P.nshared++] = i;
+      P.bcnt[owner_of(i)] += 2;
+    }
+  for (int r = 0; r < S; r++) P.bdsp[r + 1] = P.bdsp[r] + P.bcnt[r];
+  /* the fixed ghosts: corners of this rank's triangles, nodes of its joint blocks (a block goes
+   * with the owner of its first joint's lower triangle), nodes the kinds read */
+  int cap = 3 * (P.tlo[me + 1] - P.tlo[me]) + nn / 16 + 16, ns = 0;
+  int *sn = yf_malloc((size_t)cap * sizeof(int), "ghost nodes");
+#define PUSH(i) do { if (ns == cap) sn = yf_realloc(sn, (size_t)(cap *= 2) * sizeof(int), "ghost nodes"); \
+                     sn[ns++] = (i); } while (0)
+  for (int e2 = 3 * P.tlo[me]; e2 < 3 * P.tlo[me + 1]; e2++) PUSH(m->tri.v[e2]);
+  const YfJoints *J = s->joints;
+  if (J && J->n) {
+    const int nb = (J->n + YF_JBLOCK - 1) / YF_JBLOCK;
+    for (int b = 0; b < nb; b++) {
+      int a = J->tri[2 * b * YF_JBLOCK], c = J->tri[2 * b * YF_JBLOCK + 1], t = a < c ? a : c;
+      if (t < P.tlo[me] || t >= P.tlo[me + 1]) continue;
+      for (int j = b * YF_JBLOCK; j < J->n && j < (b + 1) * YF_JBLOCK; j++)
+        for (int c4 = 0; c4 < 4; c4++) PUSH(J->node[4 * j + c4]);
+    }
+  }
+  for (int i = 0; i < nn; i++)
+    if (P.nmark[i] & YF_BC_READS) PUSH(i);
+#undef PUSH
+  free(P.sneed);
+  P.sneed = sn;
+  P.nsneed = ns;
+  P.ncneed = 0;
+  if (!P.gcnt) {
+    size_t n1 = (size_t)S + 1;
+    P.gcnt = yf_calloc(n1, sizeof(int), "ghost nodes");
+    P.gdsp = yf_calloc(n1, sizeof(int), "ghost nodes");
+    P.ocnt = yf_calloc(n1, sizeof(int), "ghost nodes");
+    P.odsp = yf_calloc(n1, sizeof(int), "ghost nodes");
+  }
+  P.ngh = 0;
+  build_requests();
+  /* the state is whole now (the run starts from a replicated state) */
+  P.pos_fresh = P.nodes_fresh = 1;
+}
+
+int par_divided(void) { return P.div; }
+int par_run_id(void) { return P.run_id; }
+
+void par_update_nodes(int *n0, int *n1, const int **extra, int *nextra) {
+  if (!P.div) return;
+  *n0 = P.nlo[P.rank];
+  *n1 = P.nlo[P.rank + 1];
+  if (extra) {
+    /* the shared nodes of other owners: every rank updates them (their forces came first) */
+    static int *ex, cap;
+    if (cap < P.nshared + 1) {
+      free(ex);
+      cap = P.nshared + 1;
+      ex = yf_malloc((size_t)cap * sizeof(int), "shared nodes");
+    }
+    int k = 0;
+    for (int q = 0; q < P.nshared; q++)
+      if (P.shared[q] < *n0 || P.shared[q] >= *n1) ex[k++] = P.shared[q];
+    *extra = ex;
+    *nextra = k;
+  }
+}
+
+double *par_node_split(int nblk, int block, int *kb0, int *kb1) {
+  if (!P.div) return NULL;
+  if (P.sn.n != P.nn || P.sn.nblk != nblk || P.sn.block != block) split_build(&P.sn, P.nlo, P.nn, nblk, block, 1);
+  *kb0 = P.sn.b0[P.rank];
+  *kb1 = P.sn.b1[P.rank];
+  return P.sn.piece + P.sn.pdsp[P.rank];
+}
+
+void par_node_block_sums(double *blk) {
+  if (!P.div) return;
+  double t0 = yf_now();
+  Split *sp = &P.sn;
+  for (int r = 0; r < P.size; r++) {
+    P.cnt[r] = sp->b1[r] - sp->b0[r];
+    P.dsp[r] = sp->b0[r];
+  }
+  allgatherv(blk, MPI_DOUBLE, sizeof(double));
+  split_share_pieces(sp);
+  const double *pc = sp->piece;
+  for (int b = 0, k = 0; b < sp->nblk && k < sp->npiece; b++) {
+    if (!split_block(sp, b)) continue;
+    int i1 = (b + 1) * sp->block < sp->n ? (b + 1) * sp->block : sp->n;
+    double sum = 0.0;
+    for (int i = b * sp->block; i < i1; i++, k++) sum += pc[k];
+    blk[b] = sum;
+  }
+  P.t_comm += yf_now() - t0;
+}
+
+double par_max(double v) {
+  if (P.size <= 1) return v;
+  double t0 = yf_now(), all = v;
+  MPI_Allreduce(&v, &all, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  P.t_comm += yf_now() - t0;
+  return all;
 }
 
 int par_rank(void) { return P.rank; }
@@ -529,9 +861,9 @@ const int *par_tri_lo(void) { return P.size > 1 ? P.tlo : NULL; }
 
 /* After a run: what each rank computed and sent, as measured on every rank. */
 void par_run_report(YfSim *s, long nsteps, double wall) {
-  double mine[4] = {P.t_elem, P.t_comm, P.bytes, P.hbytes}, *all = NULL;
-  if (P.rank == 0) all = yf_malloc(4 * (size_t)P.size * sizeof(double), "rank report");
-  MPI_Gather(mine, 4, MPI_DOUBLE, all, 4, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  double mine[5] = {P.t_elem, P.t_comm, P.bytes, P.hbytes, P.ngh_max}, *all = NULL;
+  if (P.rank == 0) all = yf_malloc(5 * (size_t)P.size * sizeof(double), "rank report");
+  MPI_Gather(mine, 5, MPI_DOUBLE, all, 5, MPI_DOUBLE, 0, MPI_COMM_WORLD);
   long cross = 0;
   MPI_Reduce(&P.cross_hits, &cross, 1, MPI_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
   P.cross_hits = 0;
@@ -546,14 +878,17 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
     jcross += ra != rb;
   }
   if (P.rank == 0 && nsteps > 0) {
-    double emax = 0, esum = 0, cmax = 0, bsum = 0, hmax = 0;
+    double emax = 0, esum = 0, cmax = 0, bsum = 0, hmax = 0, gmin = 1e300, gmax = 0;
     int tmin = P.nt, tmax = 0;
     for (int r = 0; r < P.size; r++) {
-      emax = all[4 * r] > emax ? all[4 * r] : emax;
-      esum += all[4 * r];
-      cmax = all[4 * r + 1] > cmax ? all[4 * r + 1] : cmax;
-      bsum += all[4 * r + 2];
-      hmax = all[4 * r + 3] > hmax ? all[4 * r + 3] : hmax;
+      const double *a = all + 5 * r;
+      emax = a[0] > emax ? a[0] : emax;
+      esum += a[0];
+      cmax = a[1] > cmax ? a[1] : cmax;
+      bsum += a[2];
+      hmax = a[3] > hmax ? a[3] : hmax;
+      gmin = a[4] < gmin ? a[4] : gmin;
+      gmax = a[4] > gmax ? a[4] : gmax;
       int nt = P.tlo[r + 1] - P.tlo[r];
       tmin = nt < tmin ? nt : tmin;
       tmax = nt > tmax ? nt : tmax;
@@ -567,7 +902,16 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
                P.size, s->threads, tmin, tmax, emean > 0 ? emax / emean : 1.0, emean, bsum / (double)nsteps,
                hmax / (double)nsteps,
                wall > 0 ? 100.0 * cmax / wall : 0.0, P.ghost_min, P.ghost_max, cross, jcross);
+    if (P.div)
+      sim_printf(s, "mpi: update divided: each rank updates its own nodes and receives its ghosts' positions and "
+                 "velocities, %.0f..%.0f nodes per rank (triangles' corners, joints, loaded edges, contact "
+                 "couples), and every node's only at a contact search or for a reader; %d shared nodes (fixes, "
+                 "loads) updated on every rank\n", gmin, gmax, P.nshared);
+    else if (P.why && *P.why)
+      sim_printf(s, "mpi: update replicated (%s): every rank receives every node's force and updates every node\n",
+                 P.why);
   }
+  P.ngh_max = 0;
   free(all);
   P.t_elem = P.t_comm = P.bytes = P.hbytes = 0;
 }

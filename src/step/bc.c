@@ -158,6 +158,14 @@ const YfBcSpec *bc_spec(const YfSim *s, int i, const char **id) {
 
 const unsigned char *bc_node_flags(const YfSim *s) { return s->bc ? s->bc->flags : NULL; }
 
+/* MPI: every node of a fix or load is shared (par.h): the supports' and loads' work is summed
+ * over them in list order, so every rank keeps them whole (lists resolved by bc_prepare). */
+static void bc_mark_nodes(YfSim *s, unsigned char *mark) {
+  const YfBc *b = s->bc;
+  for (int i = 0; b && i < b->n; i++)
+    for (int k = 0; k < b->item[i].nn; k++) mark[b->item[i].nodes[k]] |= YF_BC_SHARED;
+}
+
 static double factor(const YfSim *s, int hist, double t) {
   return hist < 0 ? 1.0 : history_value(&s->hist[hist], t);
 }
@@ -310,4 +318,5 @@ const YfBcKind bc_kind_native = {.name = "fix/load", .loads = bc_apply_loads, .p
                                  .held = bc_count, .save_old = bc_save_old,
                                  .constrain_velocities = bc_constrain_velocities,
                                  .redo_positions = bc_redo_positions,
-                                 .constrain_positions = bc_constrain_positions, .free = bc_free};
+                                 .constrain_positions = bc_constrain_positions, .mark_nodes = bc_mark_nodes,
+                                 .free = bc_free};

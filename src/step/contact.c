@@ -116,6 +116,7 @@ typedef struct YfContact {
   long nsearch;
   long broken_seen;
   int force_search;
+  int ghost_run;         /* MPI: par_run_id() when this rank's contact ghosts were set       */
 } YfContact;
 
 
@@ -726,6 +727,10 @@ static struct {
   size_t ced, cdrop, csend, csum, chof;
   int *lo, *rb, *sb;
   int nlo;
+  unsigned char *tmk;    /* divided update: per triangle, scratch mark (all 0 between uses)  */
+  int ntmk;
+  int *rtri, nrtri, crtri; /* the triangles this rank's couples read (increasing)           */
+  int *rnode;            /* their corners                                                   */
 } DS;
 
 static void ds_room(void **p, size_t *cap, size_t need) {
@@ -781,6 +786,44 @@ static void walk_hits(const HitWalk *w, int nh, int mode) {
       else w->cs[w->fl[a]++] = (Contrib){(double)i, f[2 * c], f[2 * c + 1]};
     }
   }
+}
+
+/* MPI, divided update (par.h): the participating triangles of this rank's couples (both sides),
+ * whose records its screen and kernel read, and their corners as this rank's contact ghosts; at
+ * each search and at the start of each run. */
+static int couple_ranges(const int *ij, int np);
+static void contact_ghosts(YfSim *s, YfContact *C) {
+  const YfModel *m = &s->model;
+  const int nt = m->tri.n, np = C->pairs.n, me = par_rank(), *ij = C->pairs.ij;
+  if (DS.ntmk < nt) {
+    free(DS.tmk);
+    DS.tmk = yf_calloc((size_t)nt, 1, "contact ghosts");
+    DS.ntmk = nt;
+  }
+  if (DS.crtri < C->nitem + 1) {
+    free(DS.rtri); free(DS.rnode);
+    DS.crtri = C->nitem + 1;
+    DS.rtri = yf_malloc((size_t)DS.crtri * sizeof(int), "contact ghosts");
+    DS.rnode = yf_malloc(3 * (size_t)DS.crtri * sizeof(int), "contact ghosts");
+  }
+  int k0 = 0, k1 = np;
+  if (couple_ranges(ij, np)) {
+    k0 = DS.lo[me];
+    k1 = DS.lo[me + 1];
+  }
+  for (int k = k0; k < k1; k++) DS.tmk[ij[2 * k]] = DS.tmk[ij[2 * k + 1]] = 1;
+  int n = 0;
+  for (int q = 0; q < C->nitem; q++) {
+    int t = C->item[q];
+    if (!DS.tmk[t]) continue;
+    DS.tmk[t] = 0;
+    DS.rtri[n] = t;
+    for (int c = 0; c < 3; c++) DS.rnode[3 * n + c] = m->tri.v[3 * t + c];
+    n++;
+  }
+  DS.nrtri = n;
+  C->ghost_run = par_run_id();
+  par_contact_ghosts(&s->model.node, DS.rnode, 3 * n);
 }
 
 /* MPI: the couple ranges of the ranks (DS.lo) for the current list; 0 on one rank. */
@@ -993,6 +1036,17 @@ void contact_par_gather(YfSim *s) {
   free(rb);
 }
 
+/* The first k in [0, n] with v[k] >= x (v increasing). */
+static int first_at_least(const int *v, int n, int x) {
+  int a = 0, b = n;
+  while (a < b) {
+    int c = a + (b - a) / 2;
+    if (v[c] < x) a = c + 1;
+    else b = c;
+  }
+  return a;
+}
+
 void contact_step(YfSim *s) {
   YfContact *C = s->contact;
   if (!active(C)) return;
@@ -1001,23 +1055,44 @@ void contact_step(YfSim *s) {
   YfNodes *nd = &m->node;
   const double dt = s->dt;
 
-  /* detection (ALGORITHMS 5): travel of the previous half step's velocities */
-  double vmax2 = contact_vmax2(C->npn, C->pnode, nd->vx, nd->vy);
+  /* detection (ALGORITHMS 5): travel of the previous half step's velocities (MPI, divided
+   * update: of this rank's nodes, then the largest of all ranks: a maximum is exact) */
+  double vmax2;
+  if (par_divided()) {
+    int n0 = 0, n1 = nd->n;
+    par_update_nodes(&n0, &n1, NULL, NULL);
+    const int a = first_at_least(C->pnode, C->npn, n0), b = first_at_least(C->pnode, C->npn, n1);
+    vmax2 = par_max(contact_vmax2(b - a, C->pnode + a, nd->vx, nd->vy));
+  } else {
+    vmax2 = contact_vmax2(C->npn, C->pnode, nd->vx, nd->vy);
+  }
   int due = contact_trigger_step(&C->trig, dt, vmax2);
   if (C->jpart) {
     long nb = joints_broken(s);
     if (nb != C->broken_seen) { due = 1; C->broken_seen = nb; } /* newly free faces must see each other now */
   }
+  int searched = 0;
   if (due || C->force_search || C->search_every) {
     if (!due) C->trig.travel = 0.0;
+    par_need_positions(nd); /* MPI, divided update: every participating corner, for the search */
     search(s, C);
     C->force_search = 0;
+    searched = 1;
+  }
+  /* MPI, divided update: the triangles this rank's couples read, their corners as ghosts */
+  const int *item = C->item;
+  int nitem = C->nitem;
+  if (par_divided()) {
+    if (searched || C->ghost_run != par_run_id()) contact_ghosts(s, C);
+    item = DS.rtri;
+    nitem = DS.nrtri;
   }
   double t1 = yf_now();
   yf_stage_time[YF_ST_DETECT] += t1 - t0;
 
-  /* the screen's triangle records of this step (participating triangles only) */
-  const int *tv = m->tri.v, *tmat = m->tri.mat, *item = C->item, nitem = C->nitem;
+  /* the screen's triangle records of this step (participating triangles only; MPI, divided
+   * update: those of this rank's couples) */
+  const int *tv = m->tri.v, *tmat = m->tri.mat;
   const double *x = nd->x, *y = nd->y, *vx = nd->vx, *vy = nd->vy;
   double *tg = C->tg;
   #pragma omp parallel for schedule(static) if (nitem >= C->par_min)

@@ -627,8 +627,19 @@ static void joints_block(YfJoints *J, const YfNodes *N, int jb0, int jb1, double
  * (failed) joints, break and opening marks are replicated on every rank; forces, work, damage and
  * shear strength are current on the owner (joints_par_gather makes them whole for a reader). */
 static int *J_lo, J_nlo, J_dirty;
-static double *J_ev;
-static size_t J_cev;
+static double *J_ev, *J_mxy, *J_rmxy; /* events; the records' coordinate sums (J_rmxy: next one) */
+static size_t J_cev, J_cmxy;
+
+/* The sums of a joint's 4 nodes' coordinates (its record's midpoint is a quarter of them). */
+static void node_sums(const YfNodes *N, const int *nd, double *mx, double *my) {
+  double sx = 0, sy = 0;
+  for (int c = 0; c < 4; c++) {
+    sx += N->x[nd[c]];
+    sy += N->y[nd[c]];
+  }
+  *mx = sx;
+  *my = sy;
+}
 
 static int mine_blocks(const YfJoints *J, int *b0, int *b1) {
   const int S = par_size();
@@ -656,27 +667,32 @@ static int mine_blocks(const YfJoints *J, int *b0, int *b1) {
 /* After this rank's blocks: every rank learns the pending joints' final work (their dissipation is
  * added in joint order), the joints opened and the joints failed, so every rank records them as
  * one rank does. */
-static void share_events(YfJoints *J, int b0, int b1) {
+static void share_events(YfJoints *J, const YfNodes *N, int b0, int b1) {
   const int nj = J->n;
   size_t n = 0;
   for (int q = 0; q < J->npend; q++) n += J->pend[q] / JBLOCK >= b0 && J->pend[q] / JBLOCK < b1;
   for (int b = b0; b < b1; b++) n += (size_t)J->blk_nbreak[b] + (size_t)J->blk_nopen[b];
-  if (J_cev < 3 * n + 3) {
-    J_cev = 3 * n + 3 + 1024;
+  if (J_cev < 5 * n + 5) {
+    J_cev = 5 * n + 5 + 1024;
     free(J_ev);
     J_ev = yf_malloc(J_cev * sizeof(double), "joint events");
   }
-  double *o = J_ev; /* (joint, kind, value): 0 work of a pending joint, 1 opened, 2 failed */
+  /* (joint, kind, value, mx, my): 0 work of a pending joint, 1 opened, 2 failed; mx, my: the sums
+   * of its 4 nodes' coordinates for the records, from the owner (other ranks may not hold them
+   * current: the divided update) */
+  double *o = J_ev;
   for (int q = 0; q < J->npend; q++) {
     int j = J->pend[q];
-    if (j / JBLOCK >= b0 && j / JBLOCK < b1) { *o++ = j; *o++ = 0; *o++ = J->w[j]; }
+    if (j / JBLOCK >= b0 && j / JBLOCK < b1) { *o++ = j; *o++ = 0; *o++ = J->w[j]; *o++ = 0; *o++ = 0; }
   }
   for (int b = b0; b < b1; b++) {
     if (!J->blk_nbreak[b] && !J->blk_nopen[b]) continue;
     int j1 = (b + 1) * JBLOCK < nj ? (b + 1) * JBLOCK : nj;
     for (int j = b * JBLOCK; j < j1; j++) {
-      if (J->opened[j] & 0x80) { *o++ = j; *o++ = 1; *o++ = J->opened[j]; }
-      if (J->state[j] == 1) { *o++ = j; *o++ = 2; *o++ = J->mode[j]; }
+      double mx = 0, my = 0;
+      if ((J->opened[j] & 0x80) || J->state[j] == 1) node_sums(N, J->node + 4 * j, &mx, &my);
+      if (J->opened[j] & 0x80) { *o++ = j; *o++ = 1; *o++ = J->opened[j]; *o++ = mx; *o++ = my; }
+      if (J->state[j] == 1) { *o++ = j; *o++ = 2; *o++ = J->mode[j]; *o++ = mx; *o++ = my; }
     }
   }
   for (int b = 0; b < J->nblk; b++)
@@ -687,7 +703,21 @@ static void share_events(YfJoints *J, int b0, int b1) {
   size_t tot = 0;
   for (int r = 0; r < S; r++) tot += (size_t)rb[r] / sizeof(double);
   free(rb);
-  for (size_t t = 0; t < tot; t += 3) { /* rank order = joint order */
+  size_t nmxy = 0, no = 0;
+  for (size_t t = 0; t < tot; t += 5) {
+    nmxy += (int)a[t + 1] != 0;
+    no += (int)a[t + 1] == 1;
+  }
+  if (J_cmxy < 2 * nmxy + 2) {
+    J_cmxy = 2 * nmxy + 2 + 256;
+    free(J_mxy);
+    J_mxy = yf_malloc(J_cmxy * sizeof(double), "joint events");
+  }
+  /* the records' coordinates in the records' order: the opened joints in joint order, then the
+   * failed ones (rank order = joint order) */
+  double *om = J_mxy, *fm = J_mxy + 2 * no;
+  J_rmxy = J_mxy;
+  for (size_t t = 0; t < tot; t += 5) {
     int j = (int)a[t], kind = (int)a[t + 1], b = j / JBLOCK;
     if (kind == 0) {
       J->w[j] = a[t + 2];
@@ -695,10 +725,14 @@ static void share_events(YfJoints *J, int b0, int b1) {
     } else if (kind == 1) {
       J->opened[j] = (unsigned char)a[t + 2];
       if (b < b0 || b >= b1) J->blk_nopen[b]++;
+      *om++ = a[t + 3];
+      *om++ = a[t + 4];
     } else {
       J->state[j] = 1;
       J->mode[j] = (unsigned char)a[t + 2];
       if (b < b0 || b >= b1) J->blk_nbreak[b]++;
+      *fm++ = a[t + 3];
+      *fm++ = a[t + 4];
     }
   }
 }
@@ -757,7 +791,7 @@ void joints_forces(YfSim *s) {
     joints_block(J, N, b * JBLOCK, jb1, dtp, &J->blk_nbreak[b], &J->blk_nopen[b]);
   }
   if (dist) par_note_work(yf_cpu_now() - t0);
-  if (dist) share_events(J, b0, b1);
+  if (dist) share_events(J, N, b0, b1);
   J->npend = 0;
   J_dirty = 1;
   /* record the newly opened joints in joint order (before the breaks of the same step) */
@@ -771,12 +805,9 @@ void joints_forces(YfSim *s) {
         J->caporec = J->caporec ? 2 * J->caporec : 256;
         J->orec = yf_realloc(J->orec, (size_t)J->caporec * sizeof *J->orec, "opened record");
       }
-      const int *nd = J->node + 4 * j;
-      double mx = 0, my = 0;
-      for (int c = 0; c < 4; c++) {
-        mx += N->x[nd[c]];
-        my += N->y[nd[c]];
-      }
+      double mx, my;
+      if (dist) { mx = *J_rmxy++; my = *J_rmxy++; } /* MPI: from the owner (share_events) */
+      else node_sums(N, J->node + 4 * j, &mx, &my);
       J->orec[J->nopened++] = (YfBreak){s->step + 1, s->time, 0.25 * mx, 0.25 * my, J->L0[j], J->opened[j],
                                          J->tri[2 * j], J->tri[2 * j + 1], j};
     }
@@ -793,12 +824,9 @@ void joints_forces(YfSim *s) {
         J->caprec = J->caprec ? 2 * J->caprec : 256;
         J->rec = yf_realloc(J->rec, (size_t)J->caprec * sizeof *J->rec, "break record");
       }
-      const int *nd = J->node + 4 * j;
-      double mx = 0, my = 0;
-      for (int c = 0; c < 4; c++) {
-        mx += N->x[nd[c]];
-        my += N->y[nd[c]];
-      }
+      double mx, my;
+      if (dist) { mx = *J_rmxy++; my = *J_rmxy++; }
+      else node_sums(N, J->node + 4 * j, &mx, &my);
       J->rec[J->nrec++] = (YfBreak){s->step + 1, s->time, 0.25 * mx, 0.25 * my, J->L0[j], J->mode[j],
                                      J->tri[2 * j], J->tri[2 * j + 1], j};
     }

@@ -2,15 +2,16 @@
  * with -DYF_MPI; the implementation is src/par/par_mpi.c, a layer above the step).  In ./yfdem every hook is an inline no-op and MPI is not
  * linked.
  *
- * The work of a step is divided by ownership and the state is replicated (docs/SCALING.md):
- *   - every rank runs the whole deck and holds the whole scene (memory is not divided);
+ * The work of a step is divided by ownership (docs/SCALING.md):
+ *   - every rank runs the whole deck and holds the whole scene (memory is not divided), but
+ *     between readers only its own and its ghost nodes are current (the divided update below);
  *   - rank r owns the triangles of its METIS parts (a contiguous range of the partition order)
  *     and the nodes their first triangle is r's (a contiguous range too); it computes its
  *     triangles' forces, the joint blocks and the contact couples whose lower triangle it owns;
  *   - the forces other ranks' nodes need go to their owners (slot halo, contact contributions);
- *     each owner sums its nodes' forces in the one-rank slot and couple order; every rank then
- *     gets every node's force and runs supports, loads and the update on identical data: the
- *     same bits as one rank;
+ *     each owner sums its nodes' forces in the one-rank slot and couple order and updates its
+ *     nodes (the divided update), or, where the update cannot be divided, every rank gets every
+ *     node's force and updates every node: the same bits as one rank either way;
  *   - block sums that straddle ranks are summed from per-item results in order; joint events and
  *     dropped couples go to every rank, so records and lists stay the same everywhere;
  *   - what only owners hold (stresses, joint state, friction memory, node contact forces) is
@@ -73,6 +74,30 @@ int par_any(int flag);                  /* flag set on any rank (the same answer
 long par_bcast_long(long v);
 const int *par_tri_lo(void);
 void par_run_report(struct YfSim *s, long nsteps, double wall); /* ranks, imbalance, traffic */
+/* Divided update (docs/SCALING.md section 1).  At each run's start par_run_begin decides whether
+ * every rank updates only the nodes it owns (no mass damping, and no boundary-condition kind that
+ * both replaces the update and shares nodes), plus the nodes the kinds share (YF_BC_SHARED: every
+ * rank updates them, from forces their owners send); then, after each update, each rank receives
+ * the positions and velocities of the ghost nodes it reads in the next step: its triangles'
+ * corners, its joint blocks' nodes, the nodes the kinds read (YF_BC_READS), and the nodes of its
+ * contact couples' triangles (par_contact_ghosts, at each search).  Other ranks' nodes are stale
+ * between readers: par_need_all makes them whole, par_need_positions the positions (the search).
+ *   par_update_nodes   the nodes this rank updates: [n0, n1) and extra[0..nextra-1]
+ *   par_node_split     for a sum over nblk fixed blocks of nodes: the blocks inside this rank's
+ *                      nodes, [kb0, kb1), and a buffer for one value per node of its head and tail
+ *                      pieces ([n0, kb0 block) and [kb1 block, n1), or all of [n0, n1) when kb1 <= kb0)
+ *   par_node_block_sums  every block's sum on every rank: whole blocks from their rank, split
+ *                      blocks summed from the pieces' values in node order (the one-rank bits) */
+void par_run_begin(struct YfSim *s);
+int par_divided(void);
+int par_run_id(void);
+void par_update_nodes(int *n0, int *n1, const int **extra, int *nextra);
+double *par_node_split(int nblk, int block, int *kb0, int *kb1);
+void par_node_block_sums(double *blk);
+void par_ghost_exchange(YfNodes *n);
+void par_contact_ghosts(YfNodes *n, const int *nodes, int nnodes);
+void par_need_positions(YfNodes *n);
+double par_max(double v);
 #else
 static inline void par_init(int *argc, char ***argv) { (void)argc; (void)argv; }
 static inline FILE *par_stdin(FILE *in) { return in; }
@@ -101,6 +126,20 @@ static inline int par_any(int flag) { return flag; }
 static inline long par_bcast_long(long v) { return v; }
 static inline const int *par_tri_lo(void) { return NULL; }
 #define par_run_report(s, nsteps, wall) ((void)0)
+static inline void par_run_begin(struct YfSim *s) { (void)s; }
+static inline int par_divided(void) { return 0; }
+static inline int par_run_id(void) { return 0; }
+static inline void par_update_nodes(int *n0, int *n1, const int **extra, int *nextra) {
+  (void)n0; (void)n1; (void)extra; (void)nextra;
+}
+static inline double *par_node_split(int nblk, int block, int *kb0, int *kb1) {
+  (void)nblk; (void)block; (void)kb0; (void)kb1; return NULL;
+}
+static inline void par_node_block_sums(double *blk) { (void)blk; }
+static inline void par_ghost_exchange(YfNodes *n) { (void)n; }
+static inline void par_contact_ghosts(YfNodes *n, const int *nodes, int nnodes) { (void)n; (void)nodes; (void)nnodes; }
+static inline void par_need_positions(YfNodes *n) { (void)n; }
+static inline double par_max(double v) { return v; }
 #endif
 
 #endif

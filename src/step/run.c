@@ -366,6 +366,7 @@ static void stage_elements(YfSim *s) {
   for (int b = 0; b < nblk; b++) {
     if (R.blk_bad[b] >= 0) {
       int e = R.blk_bad[b];
+      par_need_all(s); /* MPI: every node, for the diagnosis (every rank is here: blk_bad is shared) */
       if (node_out_of_range(&m->node) >= 0) { /* not an inversion: the motion left the arithmetic */
         static const char *const none[] = {""};
         thermo_nonfinite(s, NULL, none, 0);
@@ -442,7 +443,7 @@ static void stage_update(YfSim *s) {
   YfNodes *n = &s->model.node;
   const int nn = n->n;
   const double dt = s->dt, gx = s->gx, gy = s->gy, alpha = s->mass_damping;
-  par_share_forces(n->fx, n->fy); /* MPI: every node's force from its owner; the update is replicated */
+  par_share_forces(n->fx, n->fy); /* MPI: forces from their owners: the shared nodes', or every node's */
   double *x = n->x, *y = n->y, *vx = n->vx, *vy = n->vy;
   const double *fx = n->fx, *fy = n->fy, *ms = n->m;
   const int keep = alpha > 0, nbc = bc_held(s);
@@ -468,8 +469,21 @@ static void stage_update(YfSim *s) {
       vy[i] = (c1 * vy[i] + dt * (fy[i] / ms[i] + gy)) * c2;
     }
   } else {
-    #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
-    for (int i = 0; i < nn; i++) {
+    /* MPI: this rank's nodes, then the shared nodes other ranks own (all nodes on one rank) */
+    int u0 = 0, u1 = nn, nex = 0;
+    const int *ex = NULL;
+    par_update_nodes(&u0, &u1, &ex, &nex);
+    #pragma omp parallel for schedule(static) if (u1 - u0 >= PAR_MIN)
+    for (int i = u0; i < u1; i++) {
+      if (ms[i] > 1e-300) {
+        vx[i] += dt * (fx[i] / ms[i] + gx);
+        vy[i] += dt * (fy[i] / ms[i] + gy);
+      }
+      x[i] += dt * vx[i];
+      y[i] += dt * vy[i];
+    }
+    for (int k = 0; k < nex; k++) {
+      const int i = ex[k];
       if (ms[i] > 1e-300) {
         vx[i] += dt * (fx[i] / ms[i] + gx);
         vy[i] += dt * (fy[i] / ms[i] + gy);
@@ -502,6 +516,7 @@ static void stage_update(YfSim *s) {
   }
   for (int k = 0; k < s->nbc_kind; k++)
     if (s->bc_kind[k]->constrain_positions) s->bc_kind[k]->constrain_positions(s, xo, yo, vxo, vyo);
+  par_ghost_exchange(n); /* MPI: the ghosts' new positions and velocities from their owners */
   s->step++;
   s->time += dt;
 }
@@ -555,6 +570,7 @@ void run_steps(YfSim *s, long nsteps) {
                   "timestep %.6g s is above the stable limit %.6g s (set by %s); use at most %.6g s or 'timestep auto'",
                   s->dt, limit, lim, limit);
   }
+  par_run_begin(s); /* MPI: whether each rank updates its own nodes only; the ghosts it reads */
   s->threads = threads_run_begin(); /* the most threads a step may use (threads.c chooses) */
   run_energies(s);
   energy_run_begin(s, R.e_floor);

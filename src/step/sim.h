@@ -62,11 +62,17 @@ typedef struct YfBcKind {
   void (*redo_positions)(struct YfSim *s, const double *xo, const double *yo);
   void (*constrain_positions)(struct YfSim *s, const double *xo, const double *yo, const double *vxo,
                               const double *vyo);
+  /* MPI (par.h): the nodes the kind acts on beyond the node-by-node update, marked in mark[]
+   * (one per node): YF_BC_READS, its loads read their current state (every rank computes them);
+   * YF_BC_SHARED, it also imposes their motion or sums work over them (every rank keeps them
+   * whole and updates them).  NULL: none. */
+  void (*mark_nodes)(struct YfSim *s, unsigned char *mark);
   void (*renumbered)(struct YfSim *s);     /* nodes and triangles renumbered (partition.c) */
   void (*scene_built)(struct YfSim *s);    /* end of run_prepare: input copies may go */
   void (*free)(struct YfSim *s);
 } YfBcKind;
 #define YF_MAX_BC_KINDS 4
+enum { YF_BC_READS = 1, YF_BC_SHARED = 2 };
 
 /* Observers: what the step tells the layers above it (dumps, metrics, restarts) at fixed points
  * of the run loop, as event records.  The step never calls output; the front end registers the

@@ -26,6 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "y2d_model.h"
+#include "par.h"
 #include "yfvec.h"
 #include "y2d_read.h"
 #include "contact.h"
@@ -316,11 +317,22 @@ void y2d_update_velocities(YfSim *s, int par, double *vxo, double *vyo, int move
     r->acur[2 * b + 1] = r->amp[2 * b + 1] * r->phi[b];
   }
   const int nn = n->n, nb = r->nublk;
+  /* MPI (par.h): this rank's nodes only; the blocks inside them whole, and one work value per
+   * node of the blocks it shares with another rank, summed in node order by par_node_block_sums */
+  int kb0 = 0, kb1 = nb, n0 = 0, n1 = nn;
+  double *piece = par_node_split(nb, Y2D_UBLOCK, &kb0, &kb1);
   /* work summed per fixed block of nodes, blocks added in order: the same bits on any threads */
   #pragma omp parallel for schedule(static) if (par)
-  for (int k = 0; k < nb; k++) {
+  for (int k = kb0; k < kb1; k++) {
     int i1 = (k + 1) * Y2D_UBLOCK < nn ? (k + 1) * Y2D_UBLOCK : nn;
     r->ublk[k] = update_range(r, n, s, k * Y2D_UBLOCK, i1, vxo, vyo, move);
+  }
+  if (piece) {
+    par_update_nodes(&n0, &n1, NULL, NULL);
+    const int h1 = kb1 > kb0 ? kb0 * Y2D_UBLOCK : n1, t0 = kb1 > kb0 && kb1 * Y2D_UBLOCK < nn ? kb1 * Y2D_UBLOCK : n1;
+    for (int i = n0; i < h1; i++) *piece++ = update_range(r, n, s, i, i + 1, vxo, vyo, move);
+    for (int i = t0; i < n1; i++) *piece++ = update_range(r, n, s, i, i + 1, vxo, vyo, move);
+    par_node_block_sums(r->ublk);
   }
   double work = 0.0;
   for (int k = 0; k < nb; k++) work += r->ublk[k];
@@ -623,7 +635,23 @@ static void y2d_loads(YfSim *s) {
 /* Y2D's BC sets as a boundary-condition kind (sim.h): edge loads at the gather stage, and the
  * BC-set velocity update (kinds, local frames, time factors), which without damping moves the
  * nodes too, block by block while they are in cache. */
+/* MPI: the ends of loaded edges are read by every rank (y2d_apply_loads computes every edge);
+ * the update itself is node by node, divided by owner (y2d_update_velocities). */
+static void y2d_mark_nodes(YfSim *s, unsigned char *mark) {
+  YfY2dRun *r = s->y2d;
+  if (!r) return;
+  if (r->nn != s->model.node.n) resolve(s, r);
+  const int *tv = s->model.tri.v;
+  for (int k = 0; k < r->nle; k++) {
+    const int *v = tv + 3 * r->le[2 * k];
+    int jj = r->le[2 * k + 1];
+    mark[v[jj]] |= YF_BC_READS;
+    mark[v[(jj + 1) % 3]] |= YF_BC_READS;
+  }
+}
+
 const YfBcKind y2d_bc_kind = {.name = "y2d", .loads = y2d_loads, .integrate = y2d_update_velocities,
+                              .mark_nodes = y2d_mark_nodes,
                               .renumbered = y2d_renumbered, .scene_built = y2d_release_deck,
                               .free = y2d_model_free};
 
