@@ -523,6 +523,41 @@ START_TEST(bodies_cross_ranks) {
 }
 END_TEST
 
+/* The contact search on ranks by bounding boxes (contact.c search_ranks): two blocks on two ranks
+ * 1.5 mm apart, less than two triangles' disc radii (1.86 mm each) plus the buffer (0.75 mm) but
+ * more than the discs reach (1.03 mm beyond each face): the couples across the gap exist only
+ * through the buffer, so a rank must receive the other's discs that reach its box within the
+ * buffer.  The couple count and every other key equal ./yfdem's on 2 and 3 ranks (seen to fail,
+ * 8 couples against 16, with the buffer left out of the reach). */
+static const char GAP_DECK[] =
+    "material c elastic rho 2340 E 26e9 nu 0.18 plane_stress pen_n 1e11 pen_t 1e10 friction 0.3\n"
+    "mesh rect a c 0 0 0.02 0.02 8 8 pattern right\n"
+    "mesh rect b c 0.0215 0 0.0415 0.02 8 8 pattern right\n"
+    "velocity a set 1 0\ncontact pair a b\ntimestep auto safety 0.5\nthermo 0\nrun 20\n";
+
+START_TEST(search_by_boxes) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), path[PATH_MAX + 32];
+  write_file(d, "gap.deck", GAP_DECK);
+  ck_assert_int_eq(run_in(d, 0, 1, "-in gap.deck -summary ref.json", NULL), 0);
+  snprintf(path, sizeof path, "%s/ref.json", d);
+  char *ref = key_lines(path);
+  const char *cp = strstr(ref, "\"contact_pairs\":");
+  ck_assert_msg(cp && strtol(cp + 16, NULL, 10) > 0, "./yfdem: no couple across the gap:\n%s", ref);
+  for (int ranks = 2; ranks <= 3; ranks++) {
+    ck_assert_int_eq(run_in(d, ranks, 1, "-in gap.deck -summary m.json", NULL), 0);
+    snprintf(path, sizeof path, "%s/m.json", d);
+    char *got = key_lines(path);
+    ck_assert_msg(!strcmp(ref, got), "%d ranks differ from ./yfdem:\n%s--- vs ./yfdem:\n%s", ranks, got, ref);
+    free(got);
+  }
+  fprintf(stderr, "check_mpi: couples across a gap within the search buffer found on 2 and 3 ranks as ./yfdem "
+          "(%.30s)\n", cp);
+  free(ref);
+  drop_dir(d);
+}
+END_TEST
+
 /* The state_hash line of dir/cont.json, checked equal to dir/full.json's (the uninterrupted
  * run); what names the case in a failure.  Returns the line (static). */
 static const char *same_hash_as_full(const char *dir, const char *what) {
@@ -670,6 +705,7 @@ Suite *mpi_suite(void) {
   tcase_add_test(t, divided_update);
   tcase_add_test(t, frames_parallel_h5);
   tcase_add_test(t, bodies_cross_ranks);
+  tcase_add_test(t, search_by_boxes);
   tcase_add_test(t, restart_2_to_3);
   tcase_add_test(t, error_all_ranks);
   tcase_add_test(t, error_one_rank);

@@ -1,9 +1,11 @@
 /* par_mpi.c: MPI ranks for ./yfdem_mpi (see par.h for what is shared and what is replicated).
  *
  * Owns: the rank and size, triangle and node ownership (ranges per rank), the slot halo, the
- * element stage's block ranges, the exchanges (node forces, block results, stresses, and the
- * generic concat / exchange / range gather that contact.c and joint.c use), the traffic, time
- * and cross-rank counters of the run report, the deck read from stdin, and the error exit.
+ * element stage's and the node sums' block ranges, the divided update (which nodes a rank
+ * updates, its ghost lists and their exchange, the shared nodes of fixes and loads), the
+ * exchanges (node forces, block results, stresses, node state for readers, and the generic
+ * concat / exchange / range gather that contact.c and joint.c use), the traffic, time and
+ * cross-rank counters of the run report, the deck read from stdin, and the error exit.
  *
  * Errors.  Every rank runs the same deck on the same data, so a deck error or a numerical
  * failure is met by every rank at the same place (block results are shared before they are
@@ -82,7 +84,7 @@ static struct {
   int *gcnt, *gdsp;         /* ghosts per owner (doubles: 4 per node), received               */
   int *ocnt, *odsp, *oidx;  /* nodes this rank sends to each rank, and their indices           */
   double *gsend, *grecv;
-  int pos_fresh, nodes_fresh; /* every node's position / state current on this rank            */
+  int nodes_fresh;          /* every node's state current on this rank (since the last update) */
   int poison;               /* tests (YFDEM_MPI_POISON): NaN into what is neither owned nor read */
   const char *why;          /* why this run's update is replicated ("" when divided)           */
   int ngh_max;              /* most ghost nodes this rank received in a step (this run)        */
@@ -485,21 +487,18 @@ void par_need_stresses(YfModel *m) {
   P.stress_fresh = 1;
 }
 
-/* Divided update: every node's state (or positions only) from its owner. */
-static void gather_nodes(YfNodes *n, int all) {
-  if (!P.div || (all ? P.nodes_fresh : P.pos_fresh || P.nodes_fresh)) return;
+/* Divided update: every node's state from its owner. */
+static void gather_nodes(YfNodes *n) {
+  if (!P.div || P.nodes_fresh) return;
   double *a[6] = {n->x, n->y, n->vx, n->vy, n->fx, n->fy};
-  for (int k = 0; k < (all ? 6 : 2); k++) par_gather_ranges(a[k], P.nlo, (int)sizeof(double));
-  P.pos_fresh = 1;
-  P.nodes_fresh = all;
+  for (int k = 0; k < 6; k++) par_gather_ranges(a[k], P.nlo, (int)sizeof(double));
+  P.nodes_fresh = 1;
 }
-
-void par_need_positions(YfNodes *n) { gather_nodes(n, 0); }
 
 void par_need_all(YfSim *s) {
   if (P.size <= 1) return;
   par_need_stresses(&s->model);
-  gather_nodes(&s->model.node, 1);
+  gather_nodes(&s->model.node);
   if (P.state_fresh) return;
   contact_par_gather(s); /* friction memory, node contact forces */
   joints_par_gather(s);  /* joints' forces, work, damage */
@@ -583,7 +582,7 @@ void par_ghost_exchange(YfNodes *n) {
     const double *a = P.grecv + 4 * (size_t)k;
     n->x[i] = a[0]; n->y[i] = a[1]; n->vx[i] = a[2]; n->vy[i] = a[3];
   }
-  P.pos_fresh = P.nodes_fresh = 0;
+  P.nodes_fresh = 0;
   P.state_fresh = 0;
   if (P.poison) { /* tests: what this rank neither owns, shares nor reads must never be read */
     const double nan = NAN;
@@ -606,9 +605,8 @@ void par_contact_ghosts(YfNodes *n, const int *nodes, int nnodes) {
   P.ncneed = nnodes;
   build_requests();
   P.t_comm += yf_now() - t0;
-  int pf = P.pos_fresh, nf = P.nodes_fresh;
+  int nf = P.nodes_fresh;
   par_ghost_exchange(n); /* the new ghosts' state now: this step's couples read them */
-  P.pos_fresh = pf;
   P.nodes_fresh = nf;
 }
 
@@ -692,7 +690,7 @@ void par_run_begin(YfSim *s) {
   P.ngh = 0;
   build_requests();
   /* the state is whole now (the run starts from a replicated state) */
-  P.pos_fresh = P.nodes_fresh = 1;
+  P.nodes_fresh = 1;
 }
 
 int par_divided(void) { return P.div; }

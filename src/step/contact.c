@@ -570,9 +570,20 @@ static void hit_room(YfContact *C, int n) {
   C->hf = yf_malloc((size_t)C->cap_hit * 12 * sizeof(double), "contact hits");
 }
 
+/* The first k in [0, n] with v[k] >= x (v increasing). */
+static int first_at_least(const int *v, int n, int x) {
+  int a = 0, b = n;
+  while (a < b) {
+    int c = a + (b - a) / 2;
+    if (v[c] < x) a = c + 1;
+    else b = c;
+  }
+  return a;
+}
+
+static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f);
 static void search(YfSim *s, YfContact *C) {
   const YfModel *m = &s->model;
-  contact_search_bounds(C->nitem, C->item, m->tri.v, m->node.x, m->node.y, C->cx, C->cy, C->cr);
   /* couples dropped since the last search are forgotten (their friction memory too) */
   if (C->ndead) contact_pairs_compact(&C->pairs, C->alive);
   YfSearchFilter f = {0};
@@ -583,7 +594,12 @@ static void search(YfSim *s, YfContact *C) {
     f.keep = joined_keep;
     f.ctx = C;
   }
-  contact_search(&C->work, C->nitem, C->item, C->cx, C->cy, C->cr, C->buffer, &f, &C->fresh);
+  if (par_divided()) { /* MPI: each rank its own triangles against its neighbours' (below) */
+    search_ranks(s, C, &f);
+  } else {
+    contact_search_bounds(C->nitem, C->item, m->tri.v, m->node.x, m->node.y, C->cx, C->cy, C->cr);
+    contact_search(&C->work, C->nitem, C->item, C->cx, C->cy, C->cr, C->buffer, &f, &C->fresh);
+  }
   contact_search_merge(&C->pairs, &C->fresh);
   YfPairs tmp = C->pairs;
   C->pairs = C->fresh;
@@ -731,6 +747,8 @@ static struct {
   int ntmk;
   int *rtri, nrtri, crtri; /* the triangles this rank's couples read (increasing)           */
   int *rnode;            /* their corners                                                   */
+  int *uitem, cu;        /* search on ranks: the triangles searched and their discs          */
+  double *ucx, *ucy, *ucr;
 } DS;
 
 static void ds_room(void **p, size_t *cap, size_t need) {
@@ -826,10 +844,99 @@ static void contact_ghosts(YfSim *s, YfContact *C) {
   par_contact_ghosts(&s->model.node, DS.rnode, 3 * n);
 }
 
+/* MPI, divided update: the search on ranks, by bounding boxes.  Each rank computes the discs of
+ * its own participating triangles (their corners are its own nodes or ghosts, current) and the
+ * box that holds them; the boxes go to every rank; each rank sends a rank the discs of its
+ * triangles whose disc, grown by the buffer, reaches into that rank's box (a couple's partner
+ * always does: |c_i - c_j| < r_i + r_j + buffer puts c_j within r_j + buffer of i's disc); then
+ * each rank searches its own triangles with those it received, keeps the couples whose lower
+ * triangle it owns, and the ranks' lists, concatenated in rank order, are the one-rank list
+ * (sorted by lower triangle; the search's test is made from the lower triangle's side on the
+ * same numbers).  Boxes are made again at each search, so the exchange follows fragments however
+ * far they fly.  No rank reads another rank's nodes. */
+typedef struct { double t, cx, cy, r; } Disc;
+static void ds_ranks(void);
+static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f) {
+  const YfModel *m = &s->model;
+  const int S = par_size(), me = par_rank(), *tlo = par_tri_lo();
+  const int qa = first_at_least(C->item, C->nitem, tlo[me]), qb = first_at_least(C->item, C->nitem, tlo[me + 1]);
+  const double buf = C->buffer;
+  contact_search_bounds(qb - qa, C->item + qa, m->tri.v, m->node.x, m->node.y, C->cx + qa, C->cy + qa, C->cr + qa);
+  double box[4] = {DBL_MAX, DBL_MAX, -DBL_MAX, -DBL_MAX}; /* xmin, ymin, xmax, ymax: empty */
+  for (int q = qa; q < qb; q++) {
+    box[0] = fmin(box[0], C->cx[q] - C->cr[q]);
+    box[1] = fmin(box[1], C->cy[q] - C->cr[q]);
+    box[2] = fmax(box[2], C->cx[q] + C->cr[q]);
+    box[3] = fmax(box[3], C->cy[q] + C->cr[q]);
+  }
+  ds_ranks();
+  int *rb = DS.rb, *sb = DS.sb;
+  const double *boxes = par_concat(box, (int)sizeof box, rb);
+  double *bx = yf_malloc(4 * (size_t)S * sizeof(double), "contact boxes"); /* once per search */
+  memcpy(bx, boxes, 4 * (size_t)S * sizeof(double));
+  /* the discs each rank needs from this one: grown by the buffer and a margin for rounding */
+#define REACHES(q, k) (C->cx[k] - pad < bx[4 * (q) + 2] && C->cx[k] + pad > bx[4 * (q)] && \
+                       C->cy[k] - pad < bx[4 * (q) + 3] && C->cy[k] + pad > bx[4 * (q) + 1])
+  size_t nsend = 0;
+  for (int r = 0; r < S; r++) sb[r] = 0;
+  for (int r = 0; r < S; r++)
+    for (int k = qa; k < qb && r != me; k++) {
+      const double pad = (C->cr[k] + buf) * (1.0 + 1e-6) + 1e-12 * (fabs(C->cx[k]) + fabs(C->cy[k]));
+      if (REACHES(r, k)) sb[r] += (int)sizeof(Disc), nsend++;
+    }
+  ds_room(&DS.send, &DS.csend, (nsend + 1) * sizeof(Disc));
+  Disc *o = DS.send;
+  for (int r = 0; r < S; r++)
+    for (int k = qa; k < qb && r != me; k++) {
+      const double pad = (C->cr[k] + buf) * (1.0 + 1e-6) + 1e-12 * (fabs(C->cx[k]) + fabs(C->cy[k]));
+      if (REACHES(r, k)) *o++ = (Disc){C->item[k], C->cx[k], C->cy[k], C->cr[k]};
+    }
+#undef REACHES
+  free(bx);
+  const Disc *in = par_exchange(DS.send, sb, rb);
+  /* the discs to search, by triangle: those of lower ranks, this rank's, those of higher ranks */
+  size_t nin = 0;
+  for (int r = 0; r < S; r++) nin += (size_t)rb[r] / sizeof(Disc);
+  const int nu = (int)nin + (qb - qa);
+  if (DS.cu < nu + 1) {
+    free(DS.uitem); free(DS.ucx); free(DS.ucy); free(DS.ucr);
+    DS.cu = nu + nu / 2 + 1024;
+    DS.uitem = yf_malloc((size_t)DS.cu * sizeof(int), "contact search on ranks");
+    DS.ucx = yf_malloc((size_t)DS.cu * sizeof(double), "contact search on ranks");
+    DS.ucy = yf_malloc((size_t)DS.cu * sizeof(double), "contact search on ranks");
+    DS.ucr = yf_malloc((size_t)DS.cu * sizeof(double), "contact search on ranks");
+  }
+  int u = 0;
+  for (int r = 0; r < S; r++) {
+    if (r == me) {
+      for (int k = qa; k < qb; k++, u++) {
+        DS.uitem[u] = C->item[k];
+        DS.ucx[u] = C->cx[k]; DS.ucy[u] = C->cy[k]; DS.ucr[u] = C->cr[k];
+      }
+      continue;
+    }
+    for (size_t t = 0; t < (size_t)rb[r] / sizeof(Disc); t++, u++, in++) {
+      DS.uitem[u] = (int)in->t;
+      DS.ucx[u] = in->cx; DS.ucy[u] = in->cy; DS.ucr[u] = in->r;
+    }
+  }
+  contact_search(&C->work, nu, DS.uitem, DS.ucx, DS.ucy, DS.ucr, buf, f, &C->fresh);
+  /* this rank's couples (lower triangle its own: one range of the sorted list), then all ranks' */
+  const int *ij = C->fresh.ij, nf = C->fresh.n;
+  int ka = 0, kb = nf;
+  while (ka < nf && ij[2 * ka] < tlo[me]) ka++;
+  for (kb = ka; kb < nf && ij[2 * kb] < tlo[me + 1];) kb++;
+  const int *all = par_concat(ij + 2 * ka, (int)((size_t)(kb - ka) * 2 * sizeof(int)), rb);
+  int ntot = 0;
+  for (int r = 0; r < S; r++) ntot += rb[r] / (int)(2 * sizeof(int));
+  contact_pairs_reserve(&C->fresh, ntot);
+  memcpy(C->fresh.ij, all, (size_t)ntot * 2 * sizeof(int));
+  C->fresh.n = ntot;
+}
+
 /* MPI: the couple ranges of the ranks (DS.lo) for the current list; 0 on one rank. */
-static int couple_ranges(const int *ij, int np) {
+static void ds_ranks(void) {
   const int S = par_size();
-  if (S <= 1) return 0;
   if (DS.nlo < S + 1) {
     free(DS.lo); free(DS.rb); free(DS.sb);
     DS.lo = yf_malloc(((size_t)S + 1) * sizeof(int), "contact ranges");
@@ -837,6 +944,11 @@ static int couple_ranges(const int *ij, int np) {
     DS.sb = yf_malloc(((size_t)S + 1) * sizeof(int), "contact ranges");
     DS.nlo = S + 1;
   }
+}
+
+static int couple_ranges(const int *ij, int np) {
+  if (par_size() <= 1) return 0;
+  ds_ranks();
   return par_owner_ranges(ij, 2, np, DS.lo);
 }
 
@@ -1036,17 +1148,6 @@ void contact_par_gather(YfSim *s) {
   free(rb);
 }
 
-/* The first k in [0, n] with v[k] >= x (v increasing). */
-static int first_at_least(const int *v, int n, int x) {
-  int a = 0, b = n;
-  while (a < b) {
-    int c = a + (b - a) / 2;
-    if (v[c] < x) a = c + 1;
-    else b = c;
-  }
-  return a;
-}
-
 void contact_step(YfSim *s) {
   YfContact *C = s->contact;
   if (!active(C)) return;
@@ -1074,7 +1175,6 @@ void contact_step(YfSim *s) {
   int searched = 0;
   if (due || C->force_search || C->search_every) {
     if (!due) C->trig.travel = 0.0;
-    par_need_positions(nd); /* MPI, divided update: every participating corner, for the search */
     search(s, C);
     C->force_search = 0;
     searched = 1;

@@ -81,7 +81,8 @@ void par_run_report(struct YfSim *s, long nsteps, double wall); /* ranks, imbala
  * the positions and velocities of the ghost nodes it reads in the next step: its triangles'
  * corners, its joint blocks' nodes, the nodes the kinds read (YF_BC_READS), and the nodes of its
  * contact couples' triangles (par_contact_ghosts, at each search).  Other ranks' nodes are stale
- * between readers: par_need_all makes them whole, par_need_positions the positions (the search).
+ * between readers: par_need_all makes them whole.  The contact search runs on ranks by bounding
+ * boxes (contact.c search_ranks) and reads no other rank's node.
  *   par_update_nodes   the nodes this rank updates: [n0, n1) and extra[0..nextra-1]
  *   par_node_split     for a sum over nblk fixed blocks of nodes: the blocks inside this rank's
  *                      nodes, [kb0, kb1), and a buffer for one value per node of its head and tail
@@ -96,7 +97,6 @@ double *par_node_split(int nblk, int block, int *kb0, int *kb1);
 void par_node_block_sums(double *blk);
 void par_ghost_exchange(YfNodes *n);
 void par_contact_ghosts(YfNodes *n, const int *nodes, int nnodes);
-void par_need_positions(YfNodes *n);
 double par_max(double v);
 #else
 static inline void par_init(int *argc, char ***argv) { (void)argc; (void)argv; }
@@ -138,7 +138,6 @@ static inline double *par_node_split(int nblk, int block, int *kb0, int *kb1) {
 static inline void par_node_block_sums(double *blk) { (void)blk; }
 static inline void par_ghost_exchange(YfNodes *n) { (void)n; }
 static inline void par_contact_ghosts(YfNodes *n, const int *nodes, int nnodes) { (void)n; (void)nodes; (void)nnodes; }
-static inline void par_need_positions(YfNodes *n) { (void)n; }
 static inline double par_max(double v) { return v; }
 #endif
 
