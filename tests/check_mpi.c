@@ -290,7 +290,7 @@ START_TEST(divided_update) {
     ck_assert_msg(!strcmp(ref, got), "YFDEM_MPI_DIVIDE=%d: differs from ./yfdem:\n%s--- vs ./yfdem:\n%s", div, got, ref);
     free(got);
     bytes[div] = report_before(d, "bytes sent per step");
-    ck_assert_msg(report_count(d, div ? "mpi: update divided" : "mpi: update replicated (YFDEM_MPI_DIVIDE=0)") != -1,
+    ck_assert_msg(report_count(d, div ? "; update divided (" : "; update replicated (YFDEM_MPI_DIVIDE=0") != -1,
                   "YFDEM_MPI_DIVIDE=%d: the report does not say how the update ran", div);
   }
   /* the divided update still sends every position at a search (16 B per node, every few steps
@@ -313,7 +313,7 @@ START_TEST(divided_update) {
     snprintf(path, sizeof path, "%s/m.json", d);
     char *got = key_lines(path);
     ck_assert_msg(!strcmp(ref, got), "mass damping: differs from ./yfdem:\n%s--- vs ./yfdem:\n%s", got, ref);
-    ck_assert_msg(report_count(d, "mpi: update replicated (mass damping") != -1, "mass damping: the report does not "
+    ck_assert_msg(report_count(d, "; update replicated (mass damping") != -1, "mass damping: the report does not "
                   "say the update is replicated for it");
     free(got);
     free(ref);

@@ -892,22 +892,24 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
       tmax = nt > tmax ? nt : tmax;
     }
     double emean = esum / P.size;
+    char upd[512];
+    if (P.size <= 1)
+      snprintf(upd, sizeof upd, "update on one rank");
+    else if (P.div)
+      snprintf(upd, sizeof upd, "update divided (each rank updates its own nodes and receives its ghosts' positions "
+               "and velocities: %.0f..%.0f nodes per rank, from triangles' corners, joints, loaded edges and contact "
+               "couples; %d shared nodes of fixes and loads updated on every rank)", gmin, gmax, P.nshared);
+    else
+      snprintf(upd, sizeof upd, "update replicated (%s: every rank receives every node's force and updates every "
+               "node)", P.why && *P.why ? P.why : "not prepared");
     sim_printf(s, "mpi: %d ranks x %d threads; triangles per rank %d..%d; work imbalance %.3f "
                "(CPU of elements, joints and contact: slowest / mean rank; mean %.4g s); %.4g bytes sent per step (border "
                "halo %.4g from the busiest rank); communication %.1f %% of wall (slowest rank); "
                "ghost nodes per rank %d..%d; contact hits between two ranks' triangles %ld; joints broken "
-               "across rank borders %ld (all runs so far)\n",
+               "across rank borders %ld (all runs so far); %s\n",
                P.size, s->threads, tmin, tmax, emean > 0 ? emax / emean : 1.0, emean, bsum / (double)nsteps,
                hmax / (double)nsteps,
-               wall > 0 ? 100.0 * cmax / wall : 0.0, P.ghost_min, P.ghost_max, cross, jcross);
-    if (P.div)
-      sim_printf(s, "mpi: update divided: each rank updates its own nodes and receives its ghosts' positions and "
-                 "velocities, %.0f..%.0f nodes per rank (triangles' corners, joints, loaded edges, contact "
-                 "couples), and every node's only at a contact search or for a reader; %d shared nodes (fixes, "
-                 "loads) updated on every rank\n", gmin, gmax, P.nshared);
-    else if (P.why && *P.why)
-      sim_printf(s, "mpi: update replicated (%s): every rank receives every node's force and updates every node\n",
-                 P.why);
+               wall > 0 ? 100.0 * cmax / wall : 0.0, P.ghost_min, P.ghost_max, cross, jcross, upd);
   }
   P.ngh_max = 0;
   free(all);
