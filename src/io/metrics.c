@@ -306,13 +306,16 @@ void metrics_step(YfSim *s) {
     }
   }
   if (M.peak || M.log_path[0]) {
-    par_need_stresses(&s->model); /* MPI: every rank's triangles' stresses (every rank is here) */
     /* the largest sigma1 (first triangle of equals) and the first triangle at the threshold, per
      * fixed block on all threads, the blocks combined in order: the serial scan's answer.  A
      * parallel region only from 4 blocks (16384 triangles): below, waking the team every step
      * costs more than the scan (on a busy machine up to a time slice: issue 24's fine beam spent
-     * 99.8 s here on 2 threads and 0.85 s on 1) */
+     * 99.8 s here on 2 threads and 0.85 s on 1).  MPI: each rank scans its own triangles (their
+     * stresses are current there) and the ranks' answers are combined in rank order, which is
+     * triangle order: the same answer, 24 B per rank instead of every stress. */
     const int nt = m->tri.n, nb = (nt + MBLK - 1) / MBLK;
+    const int *tlo = par_tri_lo();
+    const int e0 = tlo ? tlo[par_rank()] : 0, e1 = tlo ? tlo[par_rank() + 1] : nt;
     const int want_above = M.peak && M.threshold > 0 && !M.above_found;
     const double thr = M.threshold;
     const unsigned char *in = M.intri;
@@ -321,8 +324,8 @@ void metrics_step(YfSim *s) {
     #pragma omp parallel for schedule(static) if (nb >= 4)
     for (int b = 0; b < nb; b++) {
       PeakBlk r = {-INFINITY, 0.0, -1, -1};
-      const int t1 = (b + 1) * MBLK < nt ? (b + 1) * MBLK : nt;
-      for (int t = b * MBLK; t < t1; t++) {
+      const int ta = b * MBLK > e0 ? b * MBLK : e0, t1 = (b + 1) * MBLK < e1 ? (b + 1) * MBLK : e1;
+      for (int t = ta; t < t1; t++) {
         if (!in[t]) continue;
         const double *st = ts + 3 * t;
         double c = 0.5 * (st[0] + st[1]), rr = hypot(0.5 * (st[0] - st[1]), st[2]);
@@ -338,19 +341,42 @@ void metrics_step(YfSim *s) {
       }
       pb[b] = r;
     }
+    PeakBlk mine = {-INFINITY, 0.0, -1, -1};
+    for (int b = 0; b < nb; b++) {
+      if (pb[b].best > mine.best) {
+        mine.best = pb[b].best;
+        mine.bt = pb[b].bt;
+      }
+      if (mine.above < 0 && pb[b].above >= 0) {
+        mine.above = pb[b].above;
+        mine.above_val = pb[b].above_val;
+      }
+    }
+    const PeakBlk *all = &mine;
+    int nr = 1;
+    if (tlo) {
+      static int *rbs, nrbs; /* received sizes (grown once) */
+      if (nrbs < par_size() + 1) {
+        free(rbs);
+        nrbs = par_size() + 1;
+        rbs = yf_malloc((size_t)nrbs * sizeof(int), "peak stress");
+      }
+      all = par_concat(&mine, (int)sizeof mine, rbs);
+      nr = par_size();
+    }
     double best = -INFINITY;
     int bt = -1;
-    for (int b = 0; b < nb; b++) {
-      if (pb[b].best > best) {
-        best = pb[b].best;
-        bt = pb[b].bt;
+    for (int q = 0; q < nr; q++) {
+      if (all[q].best > best) {
+        best = all[q].best;
+        bt = all[q].bt;
       }
-      if (want_above && !M.above_found && pb[b].above >= 0) {
+      if (want_above && !M.above_found && all[q].above >= 0) {
         M.above_found = 1;
-        M.above_val = pb[b].above_val;
+        M.above_val = all[q].above_val;
         M.above_time = s->time;
         M.above_step = s->step;
-        M.above_tri = pb[b].above;
+        M.above_tri = all[q].above;
       }
     }
     M.s1_step = best;
