@@ -79,11 +79,12 @@ static struct {
   int *bcnt, *bdsp;
   double *bbuf;
   int nsneed, *sneed;       /* ghosts of the triangles, joint blocks and loads (fixed per run)  */
-  int ncneed, *cneed;       /* ghosts of the contact couples (par_contact_ghosts)              */
-  int ngh, *gh;             /* all ghosts, increasing: what this rank receives                 */
+  int ncneed, *cneed, ccneed; /* ghosts of the contact couples (par_contact_ghosts)            */
+  int ngh, *gh, cgh;        /* all ghosts, increasing: what this rank receives                 */
   int *gcnt, *gdsp;         /* ghosts per owner (doubles: 4 per node), received               */
-  int *ocnt, *odsp, *oidx;  /* nodes this rank sends to each rank, and their indices           */
+  int *ocnt, *odsp, *oidx, coidx; /* nodes this rank sends to each rank, and their indices     */
   double *gsend, *grecv;
+  int cgsend, cgrecv;
   int nodes_fresh;          /* every node's state current on this rank (since the last update) */
   int poison;               /* tests (YFDEM_MPI_POISON): NaN into what is neither owned nor read */
   const char *why;          /* why this run's update is replicated ("" when divided)           */
@@ -519,14 +520,22 @@ static int owner_of(int i) { /* nlo[a] <= i < nlo[a + 1] */
 
 enum { NEED = 4, GHOST = 8 }; /* nmark bits above the kinds' YF_BC_* */
 
+/* Room for n items of `size` bytes in *p (capacity *cap, grown by half again, never shrunk): the
+ * ghost lists change at each contact search; they allocate only when they outgrow their room. */
+static void room(void **p, int *cap, int n, size_t size) {
+  if (n <= *cap) return;
+  *cap = n + n / 2 + 256;
+  free(*p);
+  *p = yf_malloc((size_t)*cap * size, "ghost lists");
+}
+
 /* The ghosts from the fixed and the contact lists: what this rank asks of each owner, and (an
  * exchange of node indices) what it sends to each rank. */
 static void build_requests(void) {
   const int S = P.size, me = P.rank, n0 = P.nlo[me], n1 = P.nlo[me + 1];
   for (int k = 0; k < P.ngh; k++) P.nmark[P.gh[k]] &= (unsigned char)~GHOST;
   int cap = P.nsneed + P.ncneed;
-  free(P.gh);
-  P.gh = yf_malloc((size_t)(cap > 0 ? cap : 1) * sizeof(int), "ghost nodes");
+  room((void **)&P.gh, &P.cgh, cap, sizeof(int));
   P.ngh = 0;
   const int *lists[2] = {P.sneed, P.cneed}, nl[2] = {P.nsneed, P.ncneed};
   for (int l = 0; l < 2; l++)
@@ -543,26 +552,22 @@ static void build_requests(void) {
     if (P.nmark[i] & GHOST) P.gh[w++] = i;
   for (int r = 0; r <= S; r++) P.gcnt[r] = 0;
   for (int k = 0; k < P.ngh; k++) P.gcnt[owner_of(P.gh[k])]++;
-  int *rq = yf_malloc((size_t)S * sizeof(int), "ghost requests");
-  for (int r = 0; r < S; r++) rq[r] = P.gcnt[r];
-  MPI_Alltoall(rq, 1, MPI_INT, P.ocnt, 1, MPI_INT, MPI_COMM_WORLD);
+  MPI_Alltoall(P.gcnt, 1, MPI_INT, P.ocnt, 1, MPI_INT, MPI_COMM_WORLD);
   P.gdsp[0] = P.odsp[0] = 0;
   for (int r = 0; r < S; r++) {
     P.gdsp[r + 1] = P.gdsp[r] + P.gcnt[r];
     P.odsp[r + 1] = P.odsp[r] + P.ocnt[r];
   }
-  free(P.oidx);
-  P.oidx = yf_malloc((size_t)(P.odsp[S] + 1) * sizeof(int), "ghost requests");
+  room((void **)&P.oidx, &P.coidx, P.odsp[S] + 1, sizeof(int));
   MPI_Alltoallv(P.gh, P.gcnt, P.gdsp, MPI_INT, P.oidx, P.ocnt, P.odsp, MPI_INT, MPI_COMM_WORLD);
   P.bytes += (double)P.ngh * sizeof(int);
   /* from here on in doubles: 4 per node (x, y, vx, vy) */
   for (int r = 0; r <= S; r++) {
     P.gcnt[r] *= 4; P.gdsp[r] *= 4; P.ocnt[r] *= 4; P.odsp[r] *= 4;
   }
-  free(P.gsend); free(P.grecv); free(rq);
   if (P.ngh > P.ngh_max) P.ngh_max = P.ngh;
-  P.gsend = yf_malloc((size_t)(P.odsp[S] + 1) * sizeof(double), "ghost exchange");
-  P.grecv = yf_malloc((size_t)(P.gdsp[S] + 1) * sizeof(double), "ghost exchange");
+  room((void **)&P.gsend, &P.cgsend, P.odsp[S] + 1, sizeof(double));
+  room((void **)&P.grecv, &P.cgrecv, P.gdsp[S] + 1, sizeof(double));
 }
 
 void par_ghost_exchange(YfNodes *n) {
@@ -599,8 +604,7 @@ void par_ghost_exchange(YfNodes *n) {
 void par_contact_ghosts(YfNodes *n, const int *nodes, int nnodes) {
   if (!P.div) return;
   double t0 = yf_now();
-  free(P.cneed);
-  P.cneed = yf_malloc((size_t)(nnodes > 0 ? nnodes : 1) * sizeof(int), "contact ghosts");
+  room((void **)&P.cneed, &P.ccneed, nnodes + 1, sizeof(int));
   memcpy(P.cneed, nodes, (size_t)nnodes * sizeof(int));
   P.ncneed = nnodes;
   build_requests();

@@ -739,8 +739,8 @@ static void contact_compact(YfContact *C, int removed) {
 typedef struct { double i, fx, fy; } Contrib; /* a hit's force on a node another rank owns */
 
 static struct {
-  void *ed, *drop, *send, *sum, *hof;
-  size_t ced, cdrop, csend, csum, chof;
+  void *ed, *drop, *send, *sum, *hof, *box;
+  size_t ced, cdrop, csend, csum, chof, cbox;
   int *lo, *rb, *sb;
   int nlo;
   unsigned char *tmk;    /* divided update: per triangle, scratch mark (all 0 between uses)  */
@@ -872,7 +872,8 @@ static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f) {
   ds_ranks();
   int *rb = DS.rb, *sb = DS.sb;
   const double *boxes = par_concat(box, (int)sizeof box, rb);
-  double *bx = yf_malloc(4 * (size_t)S * sizeof(double), "contact boxes"); /* once per search */
+  ds_room(&DS.box, &DS.cbox, 4 * (size_t)S * sizeof(double));
+  double *bx = DS.box;
   memcpy(bx, boxes, 4 * (size_t)S * sizeof(double));
   /* the discs each rank needs from this one: grown by the buffer and a margin for rounding */
 #define REACHES(q, k) (C->cx[k] - pad < bx[4 * (q) + 2] && C->cx[k] + pad > bx[4 * (q)] && \
@@ -892,7 +893,6 @@ static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f) {
       if (REACHES(r, k)) *o++ = (Disc){C->item[k], C->cx[k], C->cy[k], C->cr[k]};
     }
 #undef REACHES
-  free(bx);
   const Disc *in = par_exchange(DS.send, sb, rb);
   /* the discs to search, by triangle: those of lower ranks, this rank's, those of higher ranks */
   size_t nin = 0;
