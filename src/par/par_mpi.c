@@ -74,8 +74,9 @@ static struct {
   /* Divided update (par.h): this run's nodes, per node what is kept current here */
   int div;                  /* 1: each rank updates its own nodes and the shared ones           */
   int run_id;               /* par_run_begin calls so far (contact.c rebuilds its ghosts on change) */
-  unsigned char *nmark;     /* per node: YF_BC_* of the kinds, | NEED when this rank reads it   */
+  unsigned char *nmark;     /* per node: YF_BC_* of the kinds, | GHOST when this rank receives it */
   int nshared, *shared;     /* YF_BC_SHARED nodes, increasing; owners' slices bcnt/bdsp (doubles) */
+  int nextra, *extra;       /* the shared nodes other ranks own (this rank updates them too)   */
   int *bcnt, *bdsp;
   double *bbuf;
   int nsneed, *sneed;       /* ghosts of the triangles, joint blocks and loads (fixed per run)  */
@@ -518,7 +519,7 @@ static int owner_of(int i) { /* nlo[a] <= i < nlo[a + 1] */
   return a;
 }
 
-enum { NEED = 4, GHOST = 8 }; /* nmark bits above the kinds' YF_BC_* */
+enum { GHOST = 8 }; /* the nmark bit above the kinds' YF_BC_*: this rank receives the node */
 
 /* Room for n items of `size` bytes in *p (capacity *cap, grown by half again, never shrunk): the
  * ghost lists change at each contact search; they allocate only when they outgrow their room. */
@@ -660,6 +661,11 @@ void par_run_begin(YfSim *s) {
       P.bcnt[owner_of(i)] += 2;
     }
   for (int r = 0; r < S; r++) P.bdsp[r + 1] = P.bdsp[r] + P.bcnt[r];
+  free(P.extra);
+  P.extra = yf_malloc((size_t)(nsh > 0 ? nsh : 1) * sizeof(int), "shared nodes");
+  P.nextra = 0;
+  for (int q = 0; q < P.nshared; q++)
+    if (P.shared[q] < P.nlo[me] || P.shared[q] >= P.nlo[me + 1]) P.extra[P.nextra++] = P.shared[q];
   /* the fixed ghosts: corners of this rank's triangles, nodes of its joint blocks (a block goes
    * with the owner of its first joint's lower triangle), nodes the kinds read */
   int cap = 3 * (P.tlo[me + 1] - P.tlo[me]) + nn / 16 + 16, ns = 0;
@@ -704,19 +710,9 @@ void par_update_nodes(int *n0, int *n1, const int **extra, int *nextra) {
   if (!P.div) return;
   *n0 = P.nlo[P.rank];
   *n1 = P.nlo[P.rank + 1];
-  if (extra) {
-    /* the shared nodes of other owners: every rank updates them (their forces came first) */
-    static int *ex, cap;
-    if (cap < P.nshared + 1) {
-      free(ex);
-      cap = P.nshared + 1;
-      ex = yf_malloc((size_t)cap * sizeof(int), "shared nodes");
-    }
-    int k = 0;
-    for (int q = 0; q < P.nshared; q++)
-      if (P.shared[q] < *n0 || P.shared[q] >= *n1) ex[k++] = P.shared[q];
-    *extra = ex;
-    *nextra = k;
+  if (extra) { /* the shared nodes of other owners: every rank updates them (their forces came first) */
+    *extra = P.extra;
+    *nextra = P.nextra;
   }
 }
 
