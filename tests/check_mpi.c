@@ -239,6 +239,7 @@ START_TEST(matrix_perf_1e4) {
 END_TEST
 
 static long report_count(const char *dir, const char *what);
+static int count_in(const char *dir, const char *name, const char *needle);
 
 /* A number the ranks' report gives just before `what` ("N WHAT"), or -1. */
 static double report_before(const char *dir, const char *what) {
@@ -300,6 +301,12 @@ START_TEST(divided_update) {
                 "allgather's %.4g", bytes[1], bytes[0], allgather);
   ck_assert_msg(bytes[0] >= allgather, "replicated update: %.4g bytes per step, below the allgather's %.4g", bytes[0],
                 allgather);
+  /* a value that is neither 0 nor 1 is refused, once, with exit 1 (a deck error), not taken for one */
+  setenv("YFDEM_MPI_DIVIDE", "yes", 1);
+  int rc = run_in(d, 2, 1, "-in p.deck", NULL);
+  unsetenv("YFDEM_MPI_DIVIDE");
+  ck_assert_msg(rc == 1 && count_in(d, "err.txt", "YFDEM_MPI_DIVIDE='yes'") >= 1,
+                "YFDEM_MPI_DIVIDE=yes: exit %d, message %d times", rc, count_in(d, "err.txt", "YFDEM_MPI_DIVIDE='yes'"));
   fprintf(stderr, "check_mpi: divided update on 2 ranks: %.3g bytes per step against %.3g replicated (force "
           "allgather alone %.3g), ./yfdem's bits both ways\n", bytes[1], bytes[0], allgather);
   free(ref);

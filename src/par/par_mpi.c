@@ -640,13 +640,20 @@ void par_run_begin(YfSim *s) {
    * replaces the update would have to update shared nodes it does not own */
   P.div = !(s->mass_damping > 0) && !(integ && nsh);
   P.why = s->mass_damping > 0 ? "mass damping sums over every node" : integ && nsh ? "a Y2D deck with native fixes or loads" : "";
-  const char *e = getenv("YFDEM_MPI_DIVIDE"); /* tests and benchmarks: 0 keeps the replicated update */
+  /* tests and benchmarks: YFDEM_MPI_DIVIDE=0 keeps the replicated update; YFDEM_MPI_POISON=1
+   * writes NaN into what a rank neither owns nor reads (par_ghost_exchange) */
+  const char *e = getenv("YFDEM_MPI_DIVIDE"), *po = getenv("YFDEM_MPI_POISON");
+  if (e && *e && strcmp(e, "0") && strcmp(e, "1"))
+    yf_exit_with(YF_EXIT_DECK, "error: YFDEM_MPI_DIVIDE='%s': expected 1 (divide the update where it can be, the "
+                 "default) or 0 (every rank updates every node)", e);
+  if (po && *po && strcmp(po, "0") && strcmp(po, "1"))
+    yf_exit_with(YF_EXIT_DECK, "error: YFDEM_MPI_POISON='%s': expected 1 (tests: NaN into the nodes a rank neither "
+                 "owns nor reads) or 0 (off, the default)", po);
   if (e && *e == '0' && P.div) {
     P.div = 0;
     P.why = "YFDEM_MPI_DIVIDE=0";
   }
-  e = getenv("YFDEM_MPI_POISON");
-  P.poison = e && *e == '1';
+  P.poison = po && *po == '1';
   if (!P.div) return;
   /* the shared nodes and each owner's slice of them */
   free(P.shared); free(P.bcnt); free(P.bdsp); free(P.bbuf);
