@@ -259,11 +259,12 @@ static double report_before(const char *dir, const char *what) {
 
 /* The divided update (par.h): on PERF.md's problem at 1e4 (every triangle fracturing: 3 nodes
  * per triangle, 29 682 nodes) on 2 ranks each rank updates its own nodes and receives only its
- * ghosts' state (32 B per ghost node per step) and, at a contact search, every node's position
- * (16 B per node).  The replicated update it replaces sends every node's force every step (16 B
- * per node, and per rank beyond the first).  So the bytes per step must fall below what that
- * allgather alone would send, with ./yfdem's bits; YFDEM_MPI_DIVIDE=0 (the replicated update)
- * must send at least that; a mass-damped deck says why it replicates. */
+ * ghosts' state (32 B per ghost node per step) and, at a contact search, the discs that reach its
+ * box and the other ranks' new couples (8 B each).  The replicated update it replaces sends every
+ * node's force every step (16 B per node, and per rank beyond the first).  So the divided update
+ * must save at least half of what that allgather alone sends, with ./yfdem's bits;
+ * YFDEM_MPI_DIVIDE=0 (the replicated update) must send at least that; a mass-damped deck says why
+ * it replicates; a value other than 0 or 1 is refused. */
 START_TEST(divided_update) {
   if (!mpi_ready()) return;
   char *d = perf_dir(40);
