@@ -257,14 +257,31 @@ static double report_before(const char *dir, const char *what) {
   return v;
 }
 
+/* The couple list by ranks (contact.c): each rank holds its own couples only, so on 2 ranks the
+ * entries the two hold add up to the whole list's, and each holds some (a replicated list: each
+ * holds all of them).  From the report's "contact couples held per rank A..B of N". */
+static void couples_divided(const char *dir, const char *what) {
+  char p[PATH_MAX + 64];
+  snprintf(p, sizeof p, "%s/out.txt", dir);
+  char *t = yft_slurp(p, 1);
+  const char *q = strstr(t, "contact couples held per rank ");
+  long a = -1, b = -1, n = -1;
+  ck_assert_msg(q && sscanf(q, "contact couples held per rank %ld..%ld of %ld", &a, &b, &n) == 3,
+                "%s: the report does not say which couples each rank holds", what);
+  free(t);
+  ck_assert_msg(n > 1000 && a > 0 && a + b == n, "%s: ranks hold %ld and %ld couples of the list's %ld: not each "
+                "its own", what, a, b, n);
+}
+
 /* The divided update (par.h): on PERF.md's problem at 1e4 (every triangle fracturing: 3 nodes
  * per triangle, 29 682 nodes) on 2 ranks each rank updates its own nodes and receives only its
  * ghosts' state (32 B per ghost node per step) and, at a contact search, the discs that reach its
- * box and the other ranks' new couples (8 B each).  The replicated update it replaces sends every
- * node's force every step (16 B per node, and per rank beyond the first).  So the divided update
- * must save at least half of what that allgather alone sends, with ./yfdem's bits;
+ * box and its neighbours' couple counts (4 B per rank).  The replicated update it replaces sends
+ * every node's force every step (16 B per node, and per rank beyond the first).  So the divided
+ * update must save at least half of what that allgather alone sends, with ./yfdem's bits;
  * YFDEM_MPI_DIVIDE=0 (the replicated update) must send at least that; a mass-damped deck says why
- * it replicates; a value other than 0 or 1 is refused. */
+ * it replicates; a value other than 0 or 1 is refused.  Each way, and under mass damping, each
+ * rank holds its own couples only (couples_divided). */
 START_TEST(divided_update) {
   if (!mpi_ready()) return;
   char *d = perf_dir(40);
@@ -294,9 +311,10 @@ START_TEST(divided_update) {
     bytes[div] = report_before(d, "bytes sent per step");
     ck_assert_msg(report_count(d, div ? "; update divided (" : "; update replicated (YFDEM_MPI_DIVIDE=0") != -1,
                   "YFDEM_MPI_DIVIDE=%d: the report does not say how the update ran", div);
+    couples_divided(d, div ? "divided update" : "replicated update");
   }
-  /* the divided update still sends every position at a search (16 B per node, every few steps
-   * here) and what readers gather at the run's end: it must save at least half the allgather */
+  /* the divided update still sends the ghosts' state, the discs at a search and what readers
+   * gather at the run's start and end: it must save at least half the allgather */
   ck_assert_msg(bytes[1] > 0 && bytes[0] - bytes[1] >= 0.5 * allgather,
                 "divided update: %.4g bytes per step against %.4g replicated: saves less than half the force "
                 "allgather's %.4g", bytes[1], bytes[0], allgather);
@@ -323,6 +341,7 @@ START_TEST(divided_update) {
     ck_assert_msg(!strcmp(ref, got), "mass damping: differs from ./yfdem:\n%s--- vs ./yfdem:\n%s", got, ref);
     ck_assert_msg(report_count(d, "; update replicated (mass damping") != -1, "mass damping: the report does not "
                   "say the update is replicated for it");
+    couples_divided(d, "mass damping");
     free(got);
     free(ref);
   }
@@ -667,7 +686,7 @@ END_TEST
  * so once, and mpirun exits 4; the restart continued on 3 ranks gives the bits of an
  * uninterrupted ./yfdem run to the same step.  Without the reduction the signalled rank leaves
  * alone and the others wait for it (the 300 s timeout, exit 124).  The signalled rank is one of
- * this test's own (working directory: other yfdem_mpi runs may share the machine), signalled
+ * this test's own (by the binary's name and the working directory: other runs may share the machine), signalled
  * 6 s after it appears (a loaded machine may take seconds to start the ranks). */
 START_TEST(interrupt_all_ranks) {
   if (!mpi_ready()) return;
@@ -675,9 +694,9 @@ START_TEST(interrupt_all_ranks) {
   write_file(d, "long.deck", "read_y2d perf.y\nrun 100000\n");
   snprintf(cmd, sizeof cmd, "cd %s && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_WAIT_POLICY=passive "
            "OMP_NUM_THREADS=1 timeout 300 mpirun -q --oversubscribe --mca mpi_yield_when_idle 1 -np 2 %s -in long.deck "
-           ">out.txt 2>err.txt & pid=$!; q=; for i in $(seq 240); do for p in $(pgrep -x yfdem_mpi); do "
+           ">out.txt 2>err.txt & pid=$!; q=; for i in $(seq 240); do for p in $(pgrep -x \"$(basename %s | cut -c1-15)\"); do "
            "[ \"$(readlink /proc/$p/cwd)\" = \"%s\" ] && q=$p; done; [ -n \"$q\" ] && break; sleep 0.5; done; "
-           "sleep 6; kill -TERM $q; wait $pid", d, MPIBIN, d);
+           "sleep 6; kill -TERM $q; wait $pid", d, MPIBIN, MPIBIN, d);
   int st = system(cmd);
   ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) == YF_EXIT_INTERRUPT, "exit %d, not 130 (interrupted)", WIFEXITED(st) ? WEXITSTATUS(st) : -1);
   snprintf(path, sizeof path, "%s/err.txt", d);

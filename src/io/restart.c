@@ -331,7 +331,8 @@ int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
     if (err) snprintf(err, nerr, "the model is not prepared yet (write_restart needs a run or read_restart first)");
     return -1;
   }
-  par_need_all(s); /* MPI: every rank is here; rank 0 needs what owners hold (stresses, joints, friction) */
+  par_need_all(s); /* MPI: every rank is here; rank 0 needs what owners hold (stresses, joints) */
+  contact_par_whole(s); /* MPI: and the couples with their friction memory */
   if (!yf_writer()) return 0; /* under MPI rank 0 writes the (replicated) state */
   yf_h5_quiet();
   size_t L = strlen(path);
@@ -467,8 +468,7 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
     yf_deck_error(loc, "read_restart: '%s' was written for a different scene: same counts, but the triangle corners, "
                   "materials, initial positions or joints differ (the deck must rebuild the same scene)", path);
   }
-  YfContactState cs;
-  int c_here = contact_state_save(s, &cs);
+  int c_here = contact_has_state(s);
   int c_file = H5Lexists(r.file, "contact", H5P_DEFAULT) > 0;
   if (c_here != c_file) {
     H5Fclose(r.file);

@@ -866,9 +866,11 @@ const int *par_tri_lo(void) { return P.size > 1 ? P.tlo : NULL; }
 
 /* After a run: what each rank computed and sent, as measured on every rank. */
 void par_run_report(YfSim *s, long nsteps, double wall) {
-  double mine[5] = {P.t_elem, P.t_comm, P.bytes, P.hbytes, P.ngh_max}, *all = NULL;
-  if (P.rank == 0) all = yf_malloc(5 * (size_t)P.size * sizeof(double), "rank report");
-  MPI_Gather(mine, 5, MPI_DOUBLE, all, 5, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  long held = 0, whole = 0;
+  contact_held(s, &held, &whole);
+  double mine[6] = {P.t_elem, P.t_comm, P.bytes, P.hbytes, P.ngh_max, (double)held}, *all = NULL;
+  if (P.rank == 0) all = yf_malloc(6 * (size_t)P.size * sizeof(double), "rank report");
+  MPI_Gather(mine, 6, MPI_DOUBLE, all, 6, MPI_DOUBLE, 0, MPI_COMM_WORLD);
   long cross = 0;
   MPI_Reduce(&P.cross_hits, &cross, 1, MPI_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
   P.cross_hits = 0;
@@ -883,10 +885,10 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
     jcross += ra != rb;
   }
   if (P.rank == 0 && nsteps > 0) {
-    double emax = 0, esum = 0, cmax = 0, bsum = 0, hmax = 0, gmin = 1e300, gmax = 0;
+    double emax = 0, esum = 0, cmax = 0, bsum = 0, hmax = 0, gmin = 1e300, gmax = 0, cpmin = 1e300, cpmax = 0;
     int tmin = P.nt, tmax = 0;
     for (int r = 0; r < P.size; r++) {
-      const double *a = all + 5 * r;
+      const double *a = all + 6 * r;
       emax = a[0] > emax ? a[0] : emax;
       esum += a[0];
       cmax = a[1] > cmax ? a[1] : cmax;
@@ -894,6 +896,8 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
       hmax = a[3] > hmax ? a[3] : hmax;
       gmin = a[4] < gmin ? a[4] : gmin;
       gmax = a[4] > gmax ? a[4] : gmax;
+      cpmin = a[5] < cpmin ? a[5] : cpmin;
+      cpmax = a[5] > cpmax ? a[5] : cpmax;
       int nt = P.tlo[r + 1] - P.tlo[r];
       tmin = nt < tmin ? nt : tmin;
       tmax = nt > tmax ? nt : tmax;
@@ -912,11 +916,11 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
     sim_printf(s, "mpi: %d ranks x %d threads; triangles per rank %d..%d; work imbalance %.3f "
                "(CPU of elements, joints and contact: slowest / mean rank; mean %.4g s); %.4g bytes sent per step (border "
                "halo %.4g from the busiest rank); communication %.1f %% of wall (slowest rank); "
-               "ghost nodes per rank %d..%d; contact hits between two ranks' triangles %ld; joints broken "
-               "across rank borders %ld (all runs so far); %s\n",
+               "ghost nodes per rank %d..%d; contact hits between two ranks' triangles %ld; contact couples held "
+               "per rank %.0f..%.0f of %ld; joints broken across rank borders %ld (all runs so far); %s\n",
                P.size, s->threads, tmin, tmax, emean > 0 ? emax / emean : 1.0, emean, bsum / (double)nsteps,
                hmax / (double)nsteps,
-               wall > 0 ? 100.0 * cmax / wall : 0.0, P.ghost_min, P.ghost_max, cross, jcross, upd);
+               wall > 0 ? 100.0 * cmax / wall : 0.0, P.ghost_min, P.ghost_max, cross, cpmin, cpmax, whole, jcross, upd);
   }
   P.ngh_max = 0;
   free(all);

@@ -117,6 +117,13 @@ typedef struct YfContact {
   long broken_seen;
   int force_search;
   int ghost_run;         /* MPI: par_run_id() when this rank's contact ghosts were set       */
+  /* MPI (halo mode): the couple list holds this rank's couples only, the one-rank list's range
+   * DS.lo[rank] .. DS.lo[rank + 1] - 1 (friction slots numbered on this rank); nlive and ndead
+   * still count the whole list.  wij, walive, gdense: the whole list gathered for a restart
+   * (contact_par_whole), wn couples, current while wfresh. */
+  int local;
+  int *wij, wn, wfresh;
+  unsigned char *walive;
 } YfContact;
 
 
@@ -158,7 +165,7 @@ void contact_free(YfSim *s) {
   contact_pairs_free(&C->fresh);
   free(C->alive); free(C->tg);
   free(C->blk_e); free(C->blk_d); free(C->blk_rm); free(C->blk_busy); free(C->blk_off);
-  free(C->blk_need); free(C->blk_goff); free(C->gdense);
+  free(C->blk_need); free(C->blk_goff); free(C->gdense); free(C->wij); free(C->walive);
   free(C->hk); free(C->hf);
   free(C->tmark); free(C->fcn);
   contact_search_work_free(&C->work);
@@ -255,6 +262,12 @@ long contact_searches(const YfSim *s) { return s->contact ? s->contact->nsearch 
 int contact_participants(const YfSim *s) { return active(s->contact) ? s->contact->nitem : 0; }
 double contact_buffer(const YfSim *s) { return active(s->contact) ? s->contact->buffer : 0.0; }
 long contact_pairs(const YfSim *s) { return active(s->contact) ? s->contact->nlive : 0; }
+static int ntotal(const YfContact *C);
+void contact_held(const YfSim *s, long *mine, long *whole) {
+  const YfContact *C = s->contact;
+  *mine = active(C) ? C->pairs.n : 0;
+  *whole = active(C) ? ntotal(C) : 0;
+}
 
 int contact_export(const YfSim *s, YfContactExport *e) {
   const YfContact *C = s->contact;
@@ -539,13 +552,14 @@ void contact_prepare(YfSim *s) {
 
 /* ---------------------------------------------------------------- detection */
 
-/* Room for the per-couple arrays of n couples. */
-static void couple_arrays(YfContact *C, int n) {
+/* Room for the per-couple arrays of n couples, and for the blocks of a list of ntot (MPI: the
+ * one-rank list, whose blocks every rank sums). */
+static void couple_arrays(YfContact *C, int n, int ntot) {
   if (C->cap_alive < n) {
     C->cap_alive = n + n / 4 + 64;
     C->alive = yf_realloc(C->alive, (size_t)C->cap_alive, "contact couples");
   }
-  int nblk = (n + PAIR_BLK - 1) / PAIR_BLK;
+  int nblk = (ntot + PAIR_BLK - 1) / PAIR_BLK;
   if (C->cap_blk < nblk + 1) {
     C->cap_blk = nblk + nblk / 4 + 16;
     C->blk_e = yf_realloc(C->blk_e, (size_t)C->cap_blk * sizeof(double), "contact blocks");
@@ -582,6 +596,8 @@ static int first_at_least(const int *v, int n, int x) {
 }
 
 static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f);
+static void keep_own(YfPairs *p);
+static int set_ranges(int n);
 static void search(YfSim *s, YfContact *C) {
   const YfModel *m = &s->model;
   /* couples dropped since the last search are forgotten (their friction memory too) */
@@ -599,15 +615,16 @@ static void search(YfSim *s, YfContact *C) {
   } else {
     contact_search_bounds(C->nitem, C->item, m->tri.v, m->node.x, m->node.y, C->cx, C->cy, C->cr);
     contact_search(&C->work, C->nitem, C->item, C->cx, C->cy, C->cr, C->buffer, &f, &C->fresh);
+    if (C->local) keep_own(&C->fresh); /* MPI, replicated update: every rank searched everything */
   }
   contact_search_merge(&C->pairs, &C->fresh);
   YfPairs tmp = C->pairs;
   C->pairs = C->fresh;
   C->fresh = tmp;
-  int n = C->pairs.n;
-  couple_arrays(C, n);
+  int n = C->pairs.n, ntot = C->local ? set_ranges(n) : n;
+  couple_arrays(C, n, ntot);
   memset(C->alive, 1, (size_t)n);
-  C->nlive = n;
+  C->nlive = ntot;
   C->ndead = 0;
   int want = 2 * C->max_busy, floor16 = n / 16;
   hit_room(C, want > floor16 ? want : floor16);
@@ -708,34 +725,40 @@ static void kernel_block(YfContact *C, const KernelPass *P, int b) {
   C->blk_rm[b] += rm;
 }
 
-/* dropped couples: compact once a quarter of the list is dead */
+/* dropped couples (removed: of the whole list, every rank's): compact once a quarter of the list
+ * is dead (MPI: of the one-rank list, so that every rank compacts its own couples at the step one
+ * rank would, and the blocks of the energy sums hold the same couples) */
 static void contact_compact(YfContact *C, int removed) {
   C->nlive -= removed;
   C->ndead += removed;
-  if (C->ndead > 0 && 4 * C->ndead > C->pairs.n) {
+  if (C->ndead > 0 && 4 * (long)C->ndead > ntotal(C)) {
     contact_pairs_compact(&C->pairs, C->alive);
     memset(C->alive, 1, (size_t)C->pairs.n);
     C->ndead = 0;
+    if (C->local) set_ranges(C->pairs.n);
   }
 }
 
 /* ---------------------------------------------------------------- the kernel on MPI ranks
  *
- * Couple k belongs to the rank owning its lower triangle ij[2k] (par_owner_ranges): the list
- * is sorted by it, so each rank's couples are one range of it, in rank order, and a couple's
- * friction memory lives on its owner for the couple's whole life (search merges and
- * compactions keep it there: its triangles do not change rank).  The screen (pass 1) ran on every
- * rank, so the marks, the friction slot numbers and the hit offsets are the same everywhere;
- * each rank runs the kernel on its range only, then:
- *   - the per-block energy and dissipation of blocks inside one rank's range come from that rank;
- *     a block two ranks share is summed from its touching couples' values in couple order (the
- *     owners send them): every block sum has the one-rank bits;
- *   - couples the kernel drops are sent to every rank (the list stays the same everywhere);
+ * Couple k of the one-rank list belongs to the rank owning its lower triangle ij[2k]: the list
+ * is sorted by it, so each rank's couples are one range of it, DS.lo[r] .. DS.lo[r + 1] - 1, in
+ * rank order.  Each rank holds its own range only (C->local): its search keeps the couples whose
+ * lower triangle it owns, merges them with its old ones (a couple's friction memory stays on its
+ * owner for the couple's whole life: triangles do not change rank), and the ranks' counts give
+ * the ranges (4 B per rank, at each search and compaction).  Each rank screens and runs the kernel
+ * on its couples only, numbering the friction slots of first contacts itself, then:
+ *   - the per-block energy and dissipation (blocks of PAIR_BLK couples of the one-rank list) of
+ *     blocks inside one rank's range come from that rank; a block two ranks share is summed from
+ *     its touching couples' values in couple order (the owners send them): every block sum has
+ *     the one-rank bits;
+ *   - each rank's count of dropped couples goes to every rank, so the live and dead counts of the
+ *     whole list, and with them the step at which each rank compacts its own, are one rank's;
  *   - each hit's forces on nodes another rank owns go to that rank (node, fx, fy), in couple
  *     order; the owner of a node adds its couples' contributions rank by rank, i.e. in couple
  *     order: the one-rank scatter's additions.
  * Only owned nodes get their contact force here (fcn of the other nodes is stale until
- * contact_par_gather). */
+ * contact_par_gather).  The whole list is gathered only for a restart (contact_par_whole). */
 typedef struct { double i, fx, fy; } Contrib; /* a hit's force on a node another rank owns */
 
 static struct {
@@ -809,10 +832,9 @@ static void walk_hits(const HitWalk *w, int nh, int mode) {
 /* MPI, divided update (par.h): the participating triangles of this rank's couples (both sides),
  * whose records its screen and kernel read, and their corners as this rank's contact ghosts; at
  * each search and at the start of each run. */
-static int couple_ranges(const int *ij, int np);
 static void contact_ghosts(YfSim *s, YfContact *C) {
   const YfModel *m = &s->model;
-  const int nt = m->tri.n, np = C->pairs.n, me = par_rank(), *ij = C->pairs.ij;
+  const int nt = m->tri.n, np = C->pairs.n, *ij = C->pairs.ij;
   if (DS.ntmk < nt) {
     free(DS.tmk);
     DS.tmk = yf_calloc((size_t)nt, 1, "contact ghosts");
@@ -824,12 +846,8 @@ static void contact_ghosts(YfSim *s, YfContact *C) {
     DS.rtri = yf_malloc((size_t)DS.crtri * sizeof(int), "contact ghosts");
     DS.rnode = yf_malloc(3 * (size_t)DS.crtri * sizeof(int), "contact ghosts");
   }
-  int k0 = 0, k1 = np;
-  if (couple_ranges(ij, np)) {
-    k0 = DS.lo[me];
-    k1 = DS.lo[me + 1];
-  }
-  for (int k = k0; k < k1; k++) DS.tmk[ij[2 * k]] = DS.tmk[ij[2 * k + 1]] = 1;
+  YF_ASSERT(C->local); /* the divided update runs in halo mode: this rank's couples only */
+  for (int k = 0; k < np; k++) DS.tmk[ij[2 * k]] = DS.tmk[ij[2 * k + 1]] = 1;
   int n = 0;
   for (int q = 0; q < C->nitem; q++) {
     int t = C->item[q];
@@ -849,10 +867,10 @@ static void contact_ghosts(YfSim *s, YfContact *C) {
  * box that holds them; the boxes go to every rank; each rank sends a rank the discs of its
  * triangles whose disc, grown by the buffer, reaches into that rank's box (a couple's partner
  * always does: |c_i - c_j| < r_i + r_j + buffer puts c_j within r_j + buffer of i's disc); then
- * each rank searches its own triangles with those it received, keeps the couples whose lower
- * triangle it owns, and the ranks' lists, concatenated in rank order, are the one-rank list
- * (sorted by lower triangle; the search's test is made from the lower triangle's side on the
- * same numbers).  Boxes are made again at each search, so the exchange follows fragments however
+ * each rank searches its own triangles with those it received and keeps the couples whose lower
+ * triangle it owns: the ranks' lists, concatenated in rank order, are the one-rank list (sorted by
+ * lower triangle; the search's test is made from the lower triangle's side on the same numbers),
+ * but no rank receives the others'.  Boxes are made again at each search, so the exchange follows fragments however
  * far they fly.  No rank reads another rank's nodes. */
 typedef struct { double t, cx, cy, r; } Disc;
 static void ds_ranks(void);
@@ -921,20 +939,36 @@ static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f) {
     }
   }
   contact_search(&C->work, nu, DS.uitem, DS.ucx, DS.ucy, DS.ucr, buf, f, &C->fresh);
-  /* this rank's couples (lower triangle its own: one range of the sorted list), then all ranks' */
-  const int *ij = C->fresh.ij, nf = C->fresh.n;
-  int ka = 0, kb = nf;
-  while (ka < nf && ij[2 * ka] < tlo[me]) ka++;
-  for (kb = ka; kb < nf && ij[2 * kb] < tlo[me + 1];) kb++;
-  const int *all = par_concat(ij + 2 * ka, (int)((size_t)(kb - ka) * 2 * sizeof(int)), rb);
-  int ntot = 0;
-  for (int r = 0; r < S; r++) ntot += rb[r] / (int)(2 * sizeof(int));
-  contact_pairs_reserve(&C->fresh, ntot);
-  memcpy(C->fresh.ij, all, (size_t)ntot * 2 * sizeof(int));
-  C->fresh.n = ntot;
+  keep_own(&C->fresh);
 }
 
-/* MPI: the couple ranges of the ranks (DS.lo) for the current list; 0 on one rank. */
+/* MPI: of a sorted list, the couples whose lower triangle this rank owns (one range of it),
+ * moved to its start. */
+static void keep_own(YfPairs *p) {
+  const int *tlo = par_tri_lo(), me = par_rank(), n = p->n;
+  if (!tlo) return; /* one rank */
+  int *ij = p->ij, ka = 0, kb;
+  while (ka < n && ij[2 * ka] < tlo[me]) ka++;
+  for (kb = ka; kb < n && ij[2 * kb] < tlo[me + 1];) kb++;
+  memmove(ij, ij + 2 * (size_t)ka, (size_t)(kb - ka) * 2 * sizeof(int));
+  p->n = kb - ka;
+}
+
+/* MPI: the ranks' ranges of the one-rank list (DS.lo) from their counts (n: this rank's); a
+ * collective.  Returns the length of the whole list. */
+static int set_ranges(int n) {
+  const int S = par_size();
+  ds_ranks();
+  const int *c = par_concat(&n, (int)sizeof n, DS.rb);
+  DS.lo[0] = 0;
+  for (int r = 0; r < S; r++) DS.lo[r + 1] = DS.lo[r] + c[r];
+  return DS.lo[S];
+}
+
+/* The length of the whole (one-rank) list. */
+static int ntotal(const YfContact *C) { return C->local ? DS.lo[par_size()] : C->pairs.n; }
+
+/* MPI: rank r's scratch counts (DS.rb, DS.sb) and ranges (DS.lo), room for par_size() ranks. */
 static void ds_ranks(void) {
   const int S = par_size();
   if (DS.nlo < S + 1) {
@@ -946,52 +980,59 @@ static void ds_ranks(void) {
   }
 }
 
-static int couple_ranges(const int *ij, int np) {
-  if (par_size() <= 1) return 0;
+/* Lay the couples of the list by ranks (local) or whole on every rank, as the mode of this run
+ * wants (halo mode on 2 ranks or more: by ranks).  A list is whole on every rank after a restart
+ * is read (every rank then keeps its range); it is gathered whole again only if a run leaves
+ * halo mode (not met: the partition that decides it is made once).  A collective. */
+static void install(YfContact *C, int n, const int *ij, const double *g, const unsigned char *alive);
+static void lay_out(YfSim *s, YfContact *C) {
+  const int want = par_node_lo() != NULL;
+  if (want == C->local) return;
+  if (!want) { /* gather the ranks' ranges whole */
+    contact_par_whole(s);
+    C->local = 0;
+    install(C, C->wn, C->wij, C->gdense, C->walive);
+    return;
+  }
+  /* the whole list is the same on every rank: each keeps its range (friction slots stay) */
   ds_ranks();
-  return par_owner_ranges(ij, 2, np, DS.lo);
+  par_owner_ranges(C->pairs.ij, 2, C->pairs.n, DS.lo);
+  const int a = DS.lo[par_rank()], n = DS.lo[par_rank() + 1] - a, ntot = C->pairs.n;
+  memmove(C->pairs.ij, C->pairs.ij + 2 * (size_t)a, (size_t)n * 2 * sizeof(int));
+  memmove(C->pairs.gi, C->pairs.gi + a, (size_t)n * sizeof(int));
+  memmove(C->alive, C->alive + a, (size_t)n);
+  C->pairs.n = n;
+  couple_arrays(C, n, ntot);
+  C->local = 1;
 }
 
 /* The kernel stage on MPI ranks (above), after the screen of this rank's couples (which marked
- * its drops 3); *ng: friction slots in use, updated.  Returns the couples dropped this step by
- * the screens and kernels of all ranks. */
+ * its drops 3).  P's couple arrays hold this rank's couples, the one-rank list's k0 .. k1 - 1
+ * (P->np: the length of that list); *ng: this rank's friction slots in use, updated.  Returns
+ * the couples dropped this step by the screens and kernels of all ranks. */
 static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nbusy, int *ng) {
   const int S = par_size(), me = par_rank();
   int *lo = DS.lo, *rb = DS.rb, *sb = DS.sb;
   const int *nlo = par_node_lo();
   const int np = P->np, k0 = lo[me], k1 = lo[me + 1], n0 = nlo[me], n1 = nlo[me + 1];
   int *gi = P->gi;
-  unsigned char *alive = P->alive;
-  /* 0. first contacts and the screen's drops, to every rank: friction slots are numbered in
-   * couple order (as the one-rank kernel numbers them: each block from its offset), and the list
-   * stays the same everywhere */
+  unsigned char *alive = P->alive; /* alive[k - k0]: couple k of the one-rank list */
+  /* 0. the screen's drops; first contacts get zeroed friction slots, numbered on this rank (a
+   * couple's memory never leaves it, so no other rank needs the numbers) */
   int nneed = 0, nsd = 0;
-  for (int k = k0; k < k1; k++) {
+  for (int k = 0; k < k1 - k0; k++) {
     nneed += alive[k] == 2 && gi[k] < 0;
-    nsd += alive[k] == 3;
+    if (alive[k] == 3) { alive[k] = 0; nsd++; }
   }
-  ds_room(&DS.drop, &DS.cdrop, (size_t)(nneed + nsd + 2) * sizeof(int));
-  int *ev = DS.drop, *o0 = ev + 1;
-  ev[0] = nneed;
-  for (int k = k0; k < k1; k++)
-    if (alive[k] == 2 && gi[k] < 0) *o0++ = k;
-  for (int k = k0; k < k1; k++)
-    if (alive[k] == 3) { *o0++ = k; alive[k] = 0; }
-  const int *e0 = par_concat(ev, (int)((o0 - ev) * (long)sizeof(int)), rb);
-  int removed = 0, slot = *ng, need_all = 0;
-  for (int r = 0, t = 0; r < S; t += rb[r] / (int)sizeof(int), r++) need_all += e0[t];
-  contact_pairs_greserve(&C->pairs, *ng + need_all);
+  int slot = *ng;
+  contact_pairs_greserve(&C->pairs, slot + nneed);
   P->gmem = C->pairs.g;
-  for (int r = 0; r < S; r++) {
-    const int n = rb[r] / (int)sizeof(int);
-    for (int t = 1; t <= e0[0]; t++) {
-      gi[e0[t]] = slot++;
-      memset(P->gmem + 6 * (size_t)gi[e0[t]], 0, 6 * sizeof(double));
+  for (int k = 0; k < k1 - k0 && nneed; k++)
+    if (alive[k] == 2 && gi[k] < 0) {
+      gi[k] = slot++;
+      memset(P->gmem + 6 * (size_t)gi[k], 0, 6 * sizeof(double));
+      nneed--;
     }
-    for (int t = e0[0] + 1; t < n; t++) alive[e0[t]] = 0;
-    removed += n - 1 - e0[0];
-    e0 += n;
-  }
   *ng = slot;
   /* this rank's pieces: hits numbered from 0 in couple order */
   const int b0 = k0 / PAIR_BLK, b1 = k1 > k0 ? (k1 - 1) / PAIR_BLK + 1 : b0, nq = b1 - b0;
@@ -1004,7 +1045,7 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nbusy, int *n
     int xa, xb, whole = piece(b0 + q, k0, k1, np, &xa, &xb), c = 0;
     if (whole) c = C->blk_busy[b0 + q];
     else
-      for (int k = xa; k < xb; k++) c += alive[k] == 2;
+      for (int k = xa; k < xb; k++) c += alive[k - k0] == 2;
     hoff[q] = nh;
     eoff[q] = ned;
     nh += c;
@@ -1019,19 +1060,21 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nbusy, int *n
   #pragma omp parallel for schedule(dynamic, 1) if (nh >= C->par_min / 32 && nq > 1)
   for (int q = 0; q < nq; q++) {
     int xa, xb, rm = 0, whole = piece(b0 + q, k0, k1, np, &xa, &xb);
-    kernel_run(P, xa, xb, hoff[q], 0, &qsum[2 * q], &qsum[2 * q + 1], &rm, whole ? NULL : ed + 2 * eoff[q]);
+    kernel_run(P, xa - k0, xb - k0, hoff[q], 0, &qsum[2 * q], &qsum[2 * q + 1], &rm,
+               whole ? NULL : ed + 2 * eoff[q]);
   }
   par_note_work(yf_cpu_now() - tk);
 
-  /* 1. to every rank: the whole blocks' sums, the split pieces' pairs, then the dropped couples */
+  /* 1. to every rank: the whole blocks' sums, the split pieces' pairs, then how many couples this
+   * rank dropped (screen and kernel) */
   int nwhole = 0;
   for (int q = 0; q < nq; q++) {
     int xa, xb;
     nwhole += piece(b0 + q, k0, k1, np, &xa, &xb);
   }
-  int ndrop = 0;
+  int ndrop = nsd;
   for (int h = 0; h < nh; h++) ndrop += !alive[C->hk[h]];
-  size_t nsend = (size_t)(2 * nwhole + 2 * ned + 2) * sizeof(double) + (size_t)ndrop * sizeof(int);
+  size_t nsend = (size_t)(2 * nwhole + 2 * ned + 3) * sizeof(double);
   ds_room(&DS.send, &DS.csend, nsend + 16);
   double *o = DS.send;
   for (int q = 0; q < nq; q++) {
@@ -1046,16 +1089,13 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nbusy, int *n
     memcpy(o, ed + 2 * eoff[q], (size_t)(2 * c) * sizeof(double));
     o += 2 * c;
   }
-  int *od = (int *)o;
-  for (int h = 0; h < nh; h++)
-    if (!alive[C->hk[h]]) *od++ = C->hk[h];
-  const char *all = par_concat(DS.send, (int)((char *)od - (char *)DS.send), rb);
+  *o++ = ndrop;
+  const char *all = par_concat(DS.send, (int)((char *)o - (char *)DS.send), rb);
+  int removed = 0;
   for (int r = 0; r < S; r++, all += rb[r - 1]) {
     const double *a = (const double *)all;
-    if (lo[r + 1] <= lo[r]) {
-      for (int t = 0; t < rb[r] / (int)sizeof(int); t++) alive[((const int *)all)[t]] = 0, removed++;
-      continue;
-    }
+    removed += (int)a[rb[r] / (int)sizeof(double) - 1];
+    if (lo[r + 1] <= lo[r]) continue;
     int rb0 = lo[r] / PAIR_BLK, rb1 = (lo[r + 1] - 1) / PAIR_BLK + 1, xa, xb;
     for (int b = rb0; b < rb1; b++)
       if (piece(b, lo[r], lo[r + 1], np, &xa, &xb)) { C->blk_e[b] = a[0]; C->blk_d[b] = a[1]; a += 2; }
@@ -1068,10 +1108,6 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nbusy, int *n
       C->blk_e[b] = e;
       C->blk_d[b] = d;
     }
-    const int *dr = (const int *)a;
-    int nd = (int)((all + rb[r] - (const char *)a) / (int)sizeof(int));
-    for (int t = 0; t < nd; t++) alive[dr[t]] = 0;
-    removed += nd;
   }
 
   /* 2. hits on other ranks' nodes to their owners, in couple order */
@@ -1118,34 +1154,53 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nbusy, int *n
   return removed;
 }
 
-/* MPI: the owners' friction memory and node contact forces whole on every rank, for a reader
- * (frames, restarts, the end of a run).  Every rank calls it at the same point. */
+/* MPI: the node contact forces whole on every rank, for a reader (frames, restarts, the end of a
+ * run).  Every rank calls it at the same point.  (The couples and their friction memory stay
+ * with their owners: contact_par_whole gathers them for a restart.) */
 void contact_par_gather(YfSim *s) {
   YfContact *C = s->contact;
   if (!active(C) || !C->fcn_valid || par_size() <= 1) return;
   const int *nlo = par_node_lo();
   if (!nlo) return;
   par_gather_ranges(C->fcn, nlo, 2 * (int)sizeof(double));
-  const int S = par_size(), me = par_rank(), np = C->pairs.n;
-  int *lo = yf_malloc(((size_t)S + 1) * sizeof(int), "contact gather"), *rb = yf_malloc(((size_t)S + 1) * sizeof(int), "contact gather");
-  if (par_owner_ranges(C->pairs.ij, 2, np, lo)) {
-    const int *gi = C->pairs.gi;
-    int n = 0;
-    for (int k = lo[me]; k < lo[me + 1]; k++) n += gi[k] >= 0;
-    double *g = yf_malloc((size_t)(6 * n + 1) * sizeof(double), "contact gather"), *o = g;
-    for (int k = lo[me]; k < lo[me + 1]; k++)
-      if (gi[k] >= 0) { memcpy(o, C->pairs.g + 6 * (size_t)gi[k], 6 * sizeof(double)); o += 6; }
-    const double *a = par_concat(g, 6 * n * (int)sizeof(double), rb);
-    for (int r = 0; r < S; r++)
-      for (int k = lo[r]; k < lo[r + 1]; k++)
-        if (gi[k] >= 0) {
-          if (r != me) memcpy(C->pairs.g + 6 * (size_t)gi[k], a, 6 * sizeof(double));
-          a += 6;
-        }
-    free(g);
+}
+
+/* MPI: the whole couple list, its states and its friction memory (6 per couple, zeros where a
+ * couple has none, as a restart stores it) into wij, walive, gdense on every rank, from the
+ * ranks' ranges in rank order: 9 B per couple and 48 B per couple with memory.  A collective;
+ * a no-op unless the list is laid out by ranks. */
+void contact_par_whole(YfSim *s) {
+  YfContact *C = s->contact;
+  if (!active(C) || !C->local) return;
+  const int S = par_size(), n = C->pairs.n, ntot = DS.lo[S];
+  int *rb = DS.rb;
+  free(C->wij); free(C->walive); free(C->gdense);
+  C->wij = yf_malloc((size_t)(ntot + 1) * 2 * sizeof(int), "restart couples");
+  C->walive = yf_malloc((size_t)ntot + 1, "restart couples");
+  C->gdense = yf_calloc((size_t)(ntot + 1) * 6, sizeof(double), "restart friction memory");
+  C->wn = ntot;
+  memcpy(C->wij, par_concat(C->pairs.ij, (int)((size_t)n * 2 * sizeof(int)), rb), (size_t)ntot * 2 * sizeof(int));
+  /* per couple: its state, + 4 when it has friction memory; then the memories in couple order */
+  unsigned char *st = yf_malloc((size_t)n + 1, "restart couples");
+  int nm = 0;
+  for (int k = 0; k < n; k++) {
+    st[k] = (unsigned char)(C->alive[k] | (C->pairs.gi[k] >= 0 ? 4 : 0));
+    nm += C->pairs.gi[k] >= 0;
   }
-  free(lo);
-  free(rb);
+  memcpy(C->walive, par_concat(st, n, rb), (size_t)ntot);
+  free(st);
+  double *g = yf_malloc((size_t)(6 * nm + 1) * sizeof(double), "restart friction memory"), *o = g;
+  for (int k = 0; k < n; k++)
+    if (C->pairs.gi[k] >= 0) { memcpy(o, C->pairs.g + 6 * (size_t)C->pairs.gi[k], 6 * sizeof(double)); o += 6; }
+  const double *a = par_concat(g, 6 * nm * (int)sizeof(double), rb);
+  for (int k = 0; k < ntot; k++)
+    if (C->walive[k] & 4) {
+      memcpy(C->gdense + 6 * (size_t)k, a, 6 * sizeof(double));
+      a += 6;
+      C->walive[k] &= 3;
+    }
+  free(g);
+  C->wfresh = 1;
 }
 
 void contact_step(YfSim *s) {
@@ -1155,6 +1210,8 @@ void contact_step(YfSim *s) {
   YfModel *m = &s->model;
   YfNodes *nd = &m->node;
   const double dt = s->dt;
+  lay_out(s, C); /* MPI: each rank its own couples (after a restart is read, say) */
+  C->wfresh = 0;
 
   /* detection (ALGORITHMS 5): travel of the previous half step's velocities (MPI, divided
    * update: of this rank's nodes, then the largest of all ranks: a maximum is exact) */
@@ -1204,7 +1261,10 @@ void contact_step(YfSim *s) {
 
   /* pass 1, the screen: couples whose edges all miss give no force (only their distance decides
    * whether they stay); the others are marked 2 and counted per fixed block */
-  const int np = C->pairs.n, nblk = (np + PAIR_BLK - 1) / PAIR_BLK;
+  /* MPI: this rank's couples, the one-rank list's s0 .. s1 - 1, in ij[2 (k - s0)] etc.; the
+   * blocks are the one-rank list's */
+  const int np = C->pairs.n, dist = par_size() > 1 && C->local, s0 = dist ? DS.lo[par_rank()] : 0, s1 = s0 + np;
+  const int ntot = ntotal(C), nblk = (ntot + PAIR_BLK - 1) / PAIR_BLK;
   const int *ij = C->pairs.ij;
   int *gi = C->pairs.gi;
   unsigned char *alive = C->alive;
@@ -1214,14 +1274,12 @@ void contact_step(YfSim *s) {
   for (int i = 0; i < C->nmat; i++) coul |= mlaw[i] != YF_FRIC_Y2D;
   double *gmem = C->pairs.g;
   /* MPI: this rank screens its own couples only (kernel_ranks), marking its drops 3 */
-  const int dist = couple_ranges(ij, np);
-  const int s0 = dist ? DS.lo[par_rank()] : 0, s1 = dist ? DS.lo[par_rank() + 1] : np;
   const unsigned char dropped = dist ? 3 : 0;
   const double cs0 = dist ? yf_cpu_now() : 0.0;
   #pragma omp parallel for schedule(static) if (np >= C->par_min && nblk > 1)
   for (int b = 0; b < nblk; b++) {
     int k1 = (b + 1) * PAIR_BLK < s1 ? (b + 1) * PAIR_BLK : s1, rm = 0, busy = 0, need = 0;
-    for (int k = b * PAIR_BLK > s0 ? b * PAIR_BLK : s0; k < k1; k++) {
+    for (int k = (b * PAIR_BLK > s0 ? b * PAIR_BLK : s0) - s0; k < k1 - s0; k++) {
       if (!alive[k]) continue;
       const double *ra = tg + (size_t)YF_TRI_GEOM * ij[2 * k + 1], *rb = tg + (size_t)YF_TRI_GEOM * ij[2 * k];
       int q = contact_pair_quiet(ra, rb, rem2);
@@ -1257,11 +1315,12 @@ void contact_step(YfSim *s) {
   nthr = omp_get_max_threads();
 #endif
   const int serial = !(nbusy >= C->par_min / 32 && nblk > 1) || nthr == 1;
-  KernelPass P = {ij, tv, tmat, gi, alive, vx, vy, tg, C->pairs.g, C->mpn, C->mpt, C->mmu, C->mlaw, dt, rem2, np,
+  KernelPass P = {ij, tv, tmat, gi, alive, vx, vy, tg, C->pairs.g, C->mpn, C->mpt, C->mmu, C->mlaw, dt, rem2, ntot,
                   NULL, NULL, NULL, NULL};
   double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
   unsigned char *tmark = C->tmark;
   const int nn = nd->n;
+  if (dist) ng = C->pairs.ng; /* kernel_ranks numbers this rank's first contacts itself */
   const int kdrop = dist ? kernel_ranks(s, C, &P, nbusy, &ng) : -1; /* MPI: each rank its couples (above) */
   if (kdrop < 0 && serial) {
     for (int i = 0; i < nn; i++)
@@ -1330,19 +1389,30 @@ void contact_step(YfSim *s) {
 
 /* ---------------------------------------------------------------- restart accessors (restart.c) */
 
+int contact_has_state(const YfSim *s) { return active(s->contact) && s->contact->cx; }
+
 int contact_state_save(const YfSim *s, YfContactState *st) {
   YfContact *C = s->contact; /* keeps the dense copy of the friction memory */
   memset(st, 0, sizeof *st);
-  if (!active(C) || !C->cx) return 0; /* not prepared */
-  st->n = C->pairs.n;
-  st->ij = C->pairs.ij;
-  /* the friction memory as 6 values per couple (the file format; zeros where a couple has no slot) */
-  free(C->gdense);
-  C->gdense = yf_calloc((size_t)(st->n > 0 ? st->n : 1) * 6, sizeof(double), "restart friction memory");
-  for (int k = 0; k < st->n; k++)
-    if (C->pairs.gi[k] >= 0) memcpy(C->gdense + 6 * (size_t)k, C->pairs.g + 6 * (size_t)C->pairs.gi[k], 6 * sizeof(double));
-  st->g = C->gdense;
-  st->alive = C->alive;
+  if (!contact_has_state(s)) return 0; /* not prepared */
+  if (C->local) { /* MPI: the whole list, gathered by contact_par_whole at this step */
+    YF_ASSERT(C->wfresh);
+    st->n = C->wn;
+    st->ij = C->wij;
+    st->g = C->gdense;
+    st->alive = C->walive;
+  } else {
+    st->n = C->pairs.n;
+    st->ij = C->pairs.ij;
+    /* the friction memory as 6 values per couple (the file format; zeros where a couple has no slot) */
+    free(C->gdense);
+    C->gdense = yf_calloc((size_t)(st->n > 0 ? st->n : 1) * 6, sizeof(double), "restart friction memory");
+    for (int k = 0; k < st->n; k++)
+      if (C->pairs.gi[k] >= 0)
+        memcpy(C->gdense + 6 * (size_t)k, C->pairs.g + 6 * (size_t)C->pairs.gi[k], 6 * sizeof(double));
+    st->g = C->gdense;
+    st->alive = C->alive;
+  }
   st->nlive = C->nlive;
   st->ndead = C->ndead;
   st->travel = C->trig.travel;
@@ -1355,30 +1425,37 @@ int contact_state_save(const YfSim *s, YfContactState *st) {
   return 1;
 }
 
-int contact_state_load(YfSim *s, const YfContactState *st) {
-  YfContact *C = s->contact;
-  if (!active(C) || !C->cx) return -1;
-  int n = st->n;
+/* A whole couple list (n couples ij, friction memory g 6 per couple with zeros for none, states
+ * alive) into C: friction slots in couple order for the couples whose memory is not zero. */
+static void install(YfContact *C, int n, const int *ij, const double *g, const unsigned char *alive) {
   contact_pairs_reserve(&C->pairs, n);
   C->pairs.n = n;
   C->pairs.ng = 0;
   if (n) {
-    memcpy(C->pairs.ij, st->ij, (size_t)n * 2 * sizeof(int));
+    memcpy(C->pairs.ij, ij, (size_t)n * 2 * sizeof(int));
     int used = 0;
     for (int k = 0; k < n; k++) {
-      const double *g = st->g + 6 * (size_t)k;
-      C->pairs.gi[k] = -(g[0] != 0.0 || g[1] != 0.0 || g[2] != 0.0 || g[3] != 0.0 || g[4] != 0.0 || g[5] != 0.0);
+      const double *gk = g + 6 * (size_t)k;
+      C->pairs.gi[k] = -(gk[0] != 0.0 || gk[1] != 0.0 || gk[2] != 0.0 || gk[3] != 0.0 || gk[4] != 0.0 || gk[5] != 0.0);
       used -= C->pairs.gi[k];
     }
     contact_pairs_greserve(&C->pairs, 2 * used + n / 64 + 256);
     for (int k = 0; k < n; k++) { /* gi -1 marks the couples with memory, 0 the others */
       int has = C->pairs.gi[k] < 0;
       C->pairs.gi[k] = -1;
-      if (has) memcpy(contact_pairs_gslot(&C->pairs, k), st->g + 6 * (size_t)k, 6 * sizeof(double));
+      if (has) memcpy(contact_pairs_gslot(&C->pairs, k), g + 6 * (size_t)k, 6 * sizeof(double));
     }
   }
-  couple_arrays(C, n);
-  if (n) memcpy(C->alive, st->alive, (size_t)n);
+  couple_arrays(C, n, n);
+  if (n) memcpy(C->alive, alive, (size_t)n);
+}
+
+int contact_state_load(YfSim *s, const YfContactState *st) {
+  YfContact *C = s->contact;
+  if (!active(C) || !C->cx) return -1;
+  install(C, st->n, st->ij, st->g, st->alive);
+  C->local = 0; /* whole on every rank: each keeps its range at the next step (lay_out) */
+  C->wfresh = 0;
   C->nlive = st->nlive;
   C->ndead = st->ndead;
   C->trig.travel = st->travel;

@@ -66,11 +66,17 @@ void contact_step(YfSim *s);
 int contact_node_stiffness(YfSim *s, double *K, int *tof, double *pof);
 /* Live couples in the list (Y2D's ncouples). */
 long contact_pairs(const YfSim *s);
+/* The couple list's entries (dead ones too, until a compaction) this rank holds, and the whole
+ * list's (MPI: each rank holds its own couples; both equal on one rank). */
+void contact_held(const YfSim *s, long *mine, long *whole);
 void contact_free(YfSim *s);
-/* MPI: each couple's friction memory lives on the rank that evaluates it and each node's contact
- * force on its owner; this makes both whole on every rank for a reader (a collective: every
- * rank calls it at the same point; par_need_stresses does). */
+/* MPI: each node's contact force lives on its owner; this makes it whole on every rank for a
+ * reader (a collective: every rank calls it at the same point; par_need_all does). */
 void contact_par_gather(YfSim *s);
+/* MPI: each couple, with its friction memory, lives on the rank that evaluates it (docs/SCALING.md
+ * section 1); this gathers the whole list for contact_state_save (a collective: every rank calls
+ * it, after par_need_all, before a restart is written; a no-op on one rank). */
+void contact_par_whole(YfSim *s);
 
 /* ---- what the deck's contact command sets (deck/cmd_contact.c) ---- */
 #define YF_CONTACT_MAX_RULES 64
@@ -144,8 +150,11 @@ typedef struct {
   double *fcn;           /* 2 per node: contact force of the last step [N/m]       */
   int fcn_valid;
 } YfContactState;
-/* Pointers into the live state (no copy; valid until the next step).  Returns 0 when contact
- * is off or not prepared (nothing to save), 1 otherwise. */
+/* 1 when contact is on and prepared (there is a state to save), 0 otherwise. */
+int contact_has_state(const YfSim *s);
+/* Pointers into the live state (no copy; valid until the next step; under MPI, after
+ * contact_par_whole).  Returns 0 when contact is off or not prepared (nothing to save), 1
+ * otherwise. */
 int contact_state_save(const YfSim *s, YfContactState *st);
 /* Copy a saved state into a prepared contact (after contact_prepare for the same scene):
  * couple list, friction memory, node contact forces, counters.  Returns 0,
