@@ -31,14 +31,20 @@
 
 /* Blocks of a fixed-order sum over items held in ranges per rank (triangles, nodes): rank r sums
  * blocks b0[r]..b1[r]-1 whole (inside its range) and gives one value per item (`per` doubles) of
- * the blocks it shares with another rank, its head and tail pieces; every rank then sums a split
- * block from its items' values in item order: the additions of the one-rank loop. */
+ * the blocks it shares with another rank, its head and tail pieces.  A split block is summed by
+ * the rank holding its first item (its tail block): the ranks after it send it their heads
+ * (split_to_starters), and it adds its own items' values, then theirs, in item order: the
+ * additions of the one-rank loop.  Then each rank gives every rank the sums of the blocks whose
+ * first item it holds, b0[r]..s1[r]-1 (one range per rank, in rank order). */
 typedef struct {
   int n, nblk, block, per;
-  int *b0, *b1;             /* size + 1                                                        */
+  int *b0, *b1, *s1;        /* size + 1; b1 < s1: the rank's last block is split (its tail block) */
   int *pcnt, *pdsp;         /* items of split blocks per rank, and where they start in piece   */
   int npiece;               /* items of split blocks, all ranks                                */
-  double *piece;            /* per * npiece, in item order                                      */
+  double *piece;            /* per * npiece: rank r's at pdsp[r], its head then its tail       */
+  int *scnt, *sdsp, *rcnt, *rdsp; /* doubles of heads sent to / received from each rank        */
+  int nhead, ntail;         /* this rank's head and tail items                                  */
+  double *tail;             /* per * items of this rank's tail block, in item order             */
 } Split;
 
 static struct {
@@ -48,6 +54,7 @@ static struct {
   Split st;                 /* the element stage's blocks over the triangle ranges (3 per piece:
                                kdd, bad, J)                                                     */
   Split sn;                 /* a node sum's blocks over the node ranges (par_node_split)        */
+  double *erec;             /* the element stage's block records: power, bad, badJ per block    */
   int *cnt, *dsp;           /* scratch counts and displacements of an allgatherv              */
   double bytes;             /* bytes this rank sent in collectives of the current run          */
   double t_comm, t_elem;    /* wall seconds in exchanges / CPU seconds of divided work (elements,
@@ -267,12 +274,18 @@ static void count_ghosts(const YfSim *s) {
  * whole, and its pieces. */
 static void split_build(Split *sp, const int *lo, int n, int nblk, int block, int per) {
   const int S = P.size;
-  free(sp->b0); free(sp->b1); free(sp->pcnt); free(sp->pdsp); free(sp->piece);
+  free(sp->b0); free(sp->b1); free(sp->s1); free(sp->pcnt); free(sp->pdsp); free(sp->piece);
+  free(sp->scnt); free(sp->sdsp); free(sp->rcnt); free(sp->rdsp); free(sp->tail);
   size_t n1 = (size_t)S + 1;
   sp->b0 = yf_malloc(n1 * sizeof(int), "rank ranges");
   sp->b1 = yf_malloc(n1 * sizeof(int), "rank ranges");
+  sp->s1 = yf_malloc(n1 * sizeof(int), "rank ranges");
   sp->pcnt = yf_malloc(n1 * sizeof(int), "rank ranges");
   sp->pdsp = yf_malloc(n1 * sizeof(int), "rank ranges");
+  sp->scnt = yf_calloc(n1, sizeof(int), "rank ranges");
+  sp->sdsp = yf_calloc(n1, sizeof(int), "rank ranges");
+  sp->rcnt = yf_calloc(n1, sizeof(int), "rank ranges");
+  sp->rdsp = yf_calloc(n1, sizeof(int), "rank ranges");
   sp->n = n;
   sp->nblk = nblk;
   sp->block = block;
@@ -284,30 +297,70 @@ static void split_build(Split *sp, const int *lo, int n, int nblk, int block, in
     if (b1 < b0) b1 = b0;
     sp->b0[r] = b0;
     sp->b1[r] = b1;
+    int s1 = e1 == n ? nblk : (e1 + block - 1) / block;
+    sp->s1[r] = s1 > b1 ? s1 : b1;
     int full = b1 > b0 ? (b1 * block < n ? b1 * block : n) - b0 * block : 0;
     sp->pcnt[r] = e1 - e0 - full;
     sp->pdsp[r] = sp->npiece;
     sp->npiece += sp->pcnt[r];
   }
   sp->piece = yf_malloc((size_t)per * (size_t)(sp->npiece > 0 ? sp->npiece : 1) * sizeof(double), "split blocks");
-}
-
-/* Every rank's pieces to every rank. */
-static void allgatherv(void *a, MPI_Datatype type, int size);
-static void split_share_pieces(Split *sp) {
-  for (int q = 0; q < P.size; q++) {
-    P.cnt[q] = sp->per * sp->pcnt[q];
-    P.dsp[q] = sp->per * sp->pdsp[q];
+  /* heads: rank r's items before its first whole block go to the rank holding that block's first
+   * item (a lower rank); this rank's tail block gathers its own tail, then the heads of the ranks
+   * after it in rank order, i.e. item order */
+  const int me = P.rank;
+  sp->nhead = sp->ntail = 0;
+  int nrecv = 0;
+  for (int r = 0; r < S; r++) {
+    int e0 = lo[r], e1 = lo[r + 1], h1 = sp->b0[r] * block < e1 ? sp->b0[r] * block : e1, nh = h1 - e0;
+    if (nh <= 0) continue;
+    int first = e0 / block * block, q = 0; /* the starter: lo[q] <= first < lo[q + 1] */
+    while (q + 1 < S && lo[q + 1] <= first) q++;
+    if (r == me) {
+      sp->nhead = nh;
+      sp->scnt[q] = per * nh;
+    }
+    if (q == me) {
+      sp->rcnt[r] = per * nh;
+      nrecv += nh;
+    }
   }
-  allgatherv(sp->piece, MPI_DOUBLE, sizeof(double));
+  if (sp->s1[me] > sp->b1[me]) {
+    int t0 = sp->b1[me] * block > lo[me] ? sp->b1[me] * block : lo[me];
+    sp->ntail = lo[me + 1] - t0;
+  }
+  for (int r = 0, d = per * sp->ntail; r < S; r++) {
+    sp->rdsp[r] = d;
+    d += sp->rcnt[r];
+  }
+  sp->tail = yf_malloc((size_t)per * (size_t)(sp->ntail + nrecv + 1) * sizeof(double), "split blocks");
 }
 
-/* Block b is split between ranks (no rank sums it whole). */
-static int split_block(const Split *sp, int b) {
-  for (int q = 0; q < P.size; q++)
-    if (b >= sp->b0[q] && b < sp->b1[q]) return 0;
-  return 1;
+/* This rank's tail block's items in item order into sp->tail (its own tail, then the heads the
+ * ranks after it send), its head to the rank that sums its block; returns the items of sp->tail
+ * (0: this rank has no tail block).  A collective. */
+static int split_to_starters(Split *sp) {
+  const int me = P.rank, per = sp->per;
+  const double *mine = sp->piece + (size_t)per * sp->pdsp[me];
+  memcpy(sp->tail, mine + (size_t)per * sp->nhead, (size_t)per * sp->ntail * sizeof(double));
+  P.bytes += (double)per * sp->nhead * sizeof(double);
+  MPI_Alltoallv(mine, sp->scnt, sp->sdsp, MPI_DOUBLE, sp->tail, sp->rcnt, sp->rdsp, MPI_DOUBLE, MPI_COMM_WORLD);
+  if (sp->s1[me] <= sp->b1[me]) return 0;
+  int b = sp->b1[me], i1 = (b + 1) * sp->block < sp->n ? (b + 1) * sp->block : sp->n;
+  return i1 - b * sp->block;
 }
+
+/* Every rank's records of the blocks whose first item it holds (b0[r]..s1[r]-1, `per` doubles
+ * each, in rec), to every rank. */
+static void allgatherv(void *a, MPI_Datatype type, int size);
+static void split_share_sums(const Split *sp, double *rec, int per) {
+  for (int r = 0; r < P.size; r++) {
+    P.cnt[r] = per * (sp->s1[r] - sp->b0[r]);
+    P.dsp[r] = per * sp->b0[r];
+  }
+  allgatherv(rec, MPI_DOUBLE, sizeof(double));
+}
+
 
 void par_prepare(YfSim *s, int nblk, int block) {
   const YfModel *m = &s->model;
@@ -332,9 +385,12 @@ void par_prepare(YfSim *s, int nblk, int block) {
   P.tlo[0] = 0;
   P.tlo[S] = nt;
   /* A block inside one rank's triangles is summed there, as on one rank.  The triangles of a
-   * block split between ranks are evaluated one by one by their owners, and every rank sums the
-   * block's per-triangle results in triangle order: the same additions as the one-rank loop. */
+   * block split between ranks are evaluated one by one by their owners, and the rank holding its
+   * first triangle sums the block's per-triangle results in triangle order: the same additions as
+   * the one-rank loop. */
   split_build(&P.st, P.tlo, nt, nblk, block, 3);
+  free(P.erec);
+  P.erec = yf_malloc(3 * ((size_t)nblk + 1) * sizeof(double), "block records");
   P.sn.n = -1; /* the node sums' blocks: again at their first use */
   count_ghosts(s);
 }
@@ -367,14 +423,6 @@ static void share_tris(double *a, int per) {
   allgatherv(a, MPI_DOUBLE, sizeof(double));
 }
 
-static void share_blocks(void *a, MPI_Datatype type, int size) {
-  for (int r = 0; r < P.size; r++) {
-    P.cnt[r] = P.st.b1[r] - P.st.b0[r];
-    P.dsp[r] = P.st.b0[r];
-  }
-  allgatherv(a, type, size);
-}
-
 void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_bad, double *blk_badJ, double t_elem) {
   double c0 = yf_cpu_now();
   int r = P.rank, B = P.block, nt = P.nt;
@@ -396,28 +444,36 @@ void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_ba
                  P.rank, P.nelem);
   if (P.size <= 1) return;
   if (!P.halo) share_tris(m->tri.cf, 6); /* every corner force to every rank */
-  share_blocks(blk, MPI_DOUBLE, sizeof(double));
-  share_blocks(blk_bad, MPI_INT, sizeof(int));
-  share_blocks(blk_badJ, MPI_DOUBLE, sizeof(double));
-  split_share_pieces(&P.st);
-  /* the split blocks, in order: their triangles are consecutive in the pieces */
-  const double *pc = sp->piece;
-  for (int b = 0, k = 0; b < P.nblk && k < sp->npiece; b++) {
-    if (!split_block(sp, b)) continue;
-    int t1b = (b + 1) * B < nt ? (b + 1) * B : nt;
-    double power = 0.0;
-    int bad = -1;
-    double badJ = 0.0;
-    for (int e = b * B; e < t1b; e++, k++, pc += 3) {
+  /* the records of the blocks whose first triangle this rank holds: its whole blocks, then its
+   * tail block summed from its triangles' and the next ranks' results in triangle order (a
+   * triangle index is exact in a double) */
+  double *rec = P.erec;
+  for (int b = sp->b0[r]; b < sp->b1[r]; b++) {
+    rec[3 * b] = blk[b];
+    rec[3 * b + 1] = blk_bad[b];
+    rec[3 * b + 2] = blk_badJ[b];
+  }
+  const int ni = split_to_starters(&P.st);
+  if (ni) {
+    const int b = sp->b1[r];
+    const double *pc = sp->tail;
+    double power = 0.0, bad = -1, badJ = 0.0;
+    for (int k = 0; k < ni; k++, pc += 3) {
       if (bad < 0 && pc[1] != 0.0) {
-        bad = e;
+        bad = b * B + k;
         badJ = pc[2];
       }
       power += pc[0];
     }
-    blk[b] = power;
-    blk_bad[b] = bad;
-    blk_badJ[b] = badJ;
+    rec[3 * b] = power;
+    rec[3 * b + 1] = bad;
+    rec[3 * b + 2] = badJ;
+  }
+  split_share_sums(sp, rec, 3);
+  for (int b = 0; b < P.nblk; b++) {
+    blk[b] = rec[3 * b];
+    blk_bad[b] = (int)rec[3 * b + 1];
+    blk_badJ[b] = rec[3 * b + 2];
   }
   P.t_comm += yf_now() - t1;
 }
@@ -735,20 +791,13 @@ void par_node_block_sums(double *blk) {
   if (!P.div) return;
   double t0 = yf_now();
   Split *sp = &P.sn;
-  for (int r = 0; r < P.size; r++) {
-    P.cnt[r] = sp->b1[r] - sp->b0[r];
-    P.dsp[r] = sp->b0[r];
-  }
-  allgatherv(blk, MPI_DOUBLE, sizeof(double));
-  split_share_pieces(sp);
-  const double *pc = sp->piece;
-  for (int b = 0, k = 0; b < sp->nblk && k < sp->npiece; b++) {
-    if (!split_block(sp, b)) continue;
-    int i1 = (b + 1) * sp->block < sp->n ? (b + 1) * sp->block : sp->n;
+  const int ni = split_to_starters(sp); /* this rank's tail block, summed in node order */
+  if (ni) {
     double sum = 0.0;
-    for (int i = b * sp->block; i < i1; i++, k++) sum += pc[k];
-    blk[b] = sum;
+    for (int k = 0; k < ni; k++) sum += sp->tail[k];
+    blk[sp->b1[P.rank]] = sum;
   }
+  split_share_sums(sp, blk, 1);
   P.t_comm += yf_now() - t0;
 }
 
