@@ -63,7 +63,7 @@ HDR     := $(wildcard src/*/*.h src/*/*.def)
 TSRC    := $(wildcard tests/check_*.c)
 TOBJ    := $(TSRC:tests/%.c=$(BUILD)/tests/%.o)
 
-.PHONY: all demo check test deps deps-test bench bench-mpi clean asan fuzz valgrind mpi
+.PHONY: all demo check test deps deps-test bench bench-mpi clean asan asan-mpi fuzz valgrind mpi
 
 BIN     ?= yfdem
 
@@ -143,6 +143,16 @@ asan: deps-test
 	ASAN_OPTIONS=detect_leaks=0:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	CK_TIMEOUT_MULTIPLIER=4 OMP_NUM_THREADS=2 YFDEM=build-asan/yfdem build-asan/check_yfdem
 
+# The MPI suite under the same sanitizers: ./yfdem_mpi built with them (build-mpi-asan/), the
+# suite's runner and ./yfdem (the reference it compares with) as make check builds them.
+asan-mpi: deps-test
+	$(MAKE) BUILD=build-mpi-asan BIN=build-mpi-asan/yfdem_mpi CC=$(MPICC) YF_MPI=1 CFLAGS="$(ASAN_FLAGS)" \
+	  build-mpi-asan/yfdem_mpi
+	$(MAKE) yfdem $(BUILD)/check_yfdem
+	ASAN_OPTIONS=detect_leaks=0:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	CK_RUN_SUITE=mpi CK_TIMEOUT_MULTIPLIER=4 OMP_NUM_THREADS=2 YFDEM=./yfdem YFDEM_MPI=build-mpi-asan/yfdem_mpi \
+	  $(BUILD)/check_yfdem
+
 # FUZZ_TIME=S: stop after S seconds (CI: .ci/run), whichever of the two limits comes first.
 FUZZ_RUNS ?= 1000000
 FUZZ_TIME ?= 0
@@ -154,7 +164,7 @@ valgrind: yfdem
 	tools/valgrind-decks
 
 clean:
-	rm -rf $(BUILD) build-asan build-fuzz build-mpi yfdem yfdem_mpi
+	rm -rf $(BUILD) build-asan build-fuzz build-mpi build-mpi-asan yfdem yfdem_mpi
 
 # Header dependencies (.dep, with -MP: a header that moves or goes away is no error; the .d files
 # of the flat src/ layout are ignored).

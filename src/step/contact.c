@@ -555,7 +555,7 @@ void contact_prepare(YfSim *s) {
 /* Room for the per-couple arrays of n couples, and for the blocks of a list of ntot (MPI: the
  * one-rank list, whose blocks every rank sums). */
 static void couple_arrays(YfContact *C, int n, int ntot) {
-  if (C->cap_alive < n) {
+  if (C->cap_alive < n || !C->alive) { /* (MPI: a rank may hold no couple; the array exists) */
     C->cap_alive = n + n / 4 + 64;
     C->alive = yf_realloc(C->alive, (size_t)C->cap_alive, "contact couples");
   }
@@ -950,7 +950,7 @@ static void keep_own(YfPairs *p) {
   int *ij = p->ij, ka = 0, kb;
   while (ka < n && ij[2 * ka] < tlo[me]) ka++;
   for (kb = ka; kb < n && ij[2 * kb] < tlo[me + 1];) kb++;
-  memmove(ij, ij + 2 * (size_t)ka, (size_t)(kb - ka) * 2 * sizeof(int));
+  if (kb > ka && ka > 0) memmove(ij, ij + 2 * (size_t)ka, (size_t)(kb - ka) * 2 * sizeof(int));
   p->n = kb - ka;
 }
 
@@ -998,9 +998,11 @@ static void lay_out(YfSim *s, YfContact *C) {
   ds_ranks();
   par_owner_ranges(C->pairs.ij, 2, C->pairs.n, DS.lo);
   const int a = DS.lo[par_rank()], n = DS.lo[par_rank() + 1] - a, ntot = C->pairs.n;
-  memmove(C->pairs.ij, C->pairs.ij + 2 * (size_t)a, (size_t)n * 2 * sizeof(int));
-  memmove(C->pairs.gi, C->pairs.gi + a, (size_t)n * sizeof(int));
-  memmove(C->alive, C->alive + a, (size_t)n);
+  if (n > 0) { /* (an empty list may have no arrays yet) */
+    memmove(C->pairs.ij, C->pairs.ij + 2 * (size_t)a, (size_t)n * 2 * sizeof(int));
+    memmove(C->pairs.gi, C->pairs.gi + a, (size_t)n * sizeof(int));
+    memmove(C->alive, C->alive + a, (size_t)n);
+  }
   C->pairs.n = n;
   couple_arrays(C, n, ntot);
   C->local = 1;
@@ -1179,7 +1181,8 @@ void contact_par_whole(YfSim *s) {
   C->walive = yf_malloc((size_t)ntot + 1, "restart couples");
   C->gdense = yf_calloc((size_t)(ntot + 1) * 6, sizeof(double), "restart friction memory");
   C->wn = ntot;
-  memcpy(C->wij, par_concat(C->pairs.ij, (int)((size_t)n * 2 * sizeof(int)), rb), (size_t)ntot * 2 * sizeof(int));
+  const void *all = par_concat(C->pairs.ij, (int)((size_t)n * 2 * sizeof(int)), rb);
+  if (ntot) memcpy(C->wij, all, (size_t)ntot * 2 * sizeof(int));
   /* per couple: its state, + 4 when it has friction memory; then the memories in couple order */
   unsigned char *st = yf_malloc((size_t)n + 1, "restart couples");
   int nm = 0;
@@ -1187,7 +1190,8 @@ void contact_par_whole(YfSim *s) {
     st[k] = (unsigned char)(C->alive[k] | (C->pairs.gi[k] >= 0 ? 4 : 0));
     nm += C->pairs.gi[k] >= 0;
   }
-  memcpy(C->walive, par_concat(st, n, rb), (size_t)ntot);
+  all = par_concat(st, n, rb);
+  if (ntot) memcpy(C->walive, all, (size_t)ntot);
   free(st);
   double *g = yf_malloc((size_t)(6 * nm + 1) * sizeof(double), "restart friction memory"), *o = g;
   for (int k = 0; k < n; k++)
