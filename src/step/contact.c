@@ -762,8 +762,8 @@ static void contact_compact(YfContact *C, int removed) {
 typedef struct { double i, fx, fy; } Contrib; /* a hit's force on a node another rank owns */
 
 static struct {
-  void *ed, *drop, *send, *sum, *hof, *box;
-  size_t ced, cdrop, csend, csum, chof, cbox;
+  void *ed, *send, *sum, *hof, *box;
+  size_t ced, csend, csum, chof, cbox;
   int *lo, *rb, *sb;
   int nlo;
   unsigned char *tmk;    /* divided update: per triangle, scratch mark (all 0 between uses)  */
@@ -870,8 +870,8 @@ static void contact_ghosts(YfSim *s, YfContact *C) {
  * each rank searches its own triangles with those it received and keeps the couples whose lower
  * triangle it owns: the ranks' lists, concatenated in rank order, are the one-rank list (sorted by
  * lower triangle; the search's test is made from the lower triangle's side on the same numbers),
- * but no rank receives the others'.  Boxes are made again at each search, so the exchange follows fragments however
- * far they fly.  No rank reads another rank's nodes. */
+ * but no rank receives the others'.  Boxes are made again at each search, so the exchange
+ * follows fragments however far they fly.  No rank reads another rank's nodes. */
 typedef struct { double t, cx, cy, r; } Disc;
 static void ds_ranks(void);
 static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f) {
