@@ -39,9 +39,8 @@
 typedef struct {
   int n, nblk, block, per;
   int *b0, *b1, *s1;        /* size + 1; b1 < s1: the rank's last block is split (its tail block) */
-  int *pcnt, *pdsp;         /* items of split blocks per rank, and where they start in piece   */
-  int npiece;               /* items of split blocks, all ranks                                */
-  double *piece;            /* per * npiece: rank r's at pdsp[r], its head then its tail       */
+  int npiece;               /* this rank's items of split blocks: its head, then its tail       */
+  double *piece;            /* per * npiece, in item order                                      */
   int *scnt, *sdsp, *rcnt, *rdsp; /* doubles of heads sent to / received from each rank        */
   int nhead, ntail;         /* this rank's head and tail items                                  */
   double *tail;             /* per * items of this rank's tail block, in item order             */
@@ -274,14 +273,12 @@ static void count_ghosts(const YfSim *s) {
  * whole, and its pieces. */
 static void split_build(Split *sp, const int *lo, int n, int nblk, int block, int per) {
   const int S = P.size;
-  free(sp->b0); free(sp->b1); free(sp->s1); free(sp->pcnt); free(sp->pdsp); free(sp->piece);
+  free(sp->b0); free(sp->b1); free(sp->s1); free(sp->piece);
   free(sp->scnt); free(sp->sdsp); free(sp->rcnt); free(sp->rdsp); free(sp->tail);
   size_t n1 = (size_t)S + 1;
   sp->b0 = yf_malloc(n1 * sizeof(int), "rank ranges");
   sp->b1 = yf_malloc(n1 * sizeof(int), "rank ranges");
   sp->s1 = yf_malloc(n1 * sizeof(int), "rank ranges");
-  sp->pcnt = yf_malloc(n1 * sizeof(int), "rank ranges");
-  sp->pdsp = yf_malloc(n1 * sizeof(int), "rank ranges");
   sp->scnt = yf_calloc(n1, sizeof(int), "rank ranges");
   sp->sdsp = yf_calloc(n1, sizeof(int), "rank ranges");
   sp->rcnt = yf_calloc(n1, sizeof(int), "rank ranges");
@@ -300,9 +297,7 @@ static void split_build(Split *sp, const int *lo, int n, int nblk, int block, in
     int s1 = e1 == n ? nblk : (e1 + block - 1) / block;
     sp->s1[r] = s1 > b1 ? s1 : b1;
     int full = b1 > b0 ? (b1 * block < n ? b1 * block : n) - b0 * block : 0;
-    sp->pcnt[r] = e1 - e0 - full;
-    sp->pdsp[r] = sp->npiece;
-    sp->npiece += sp->pcnt[r];
+    if (r == P.rank) sp->npiece = e1 - e0 - full;
   }
   sp->piece = yf_malloc((size_t)per * (size_t)(sp->npiece > 0 ? sp->npiece : 1) * sizeof(double), "split blocks");
   /* heads: rank r's items before its first whole block go to the rank holding that block's first
@@ -341,7 +336,7 @@ static void split_build(Split *sp, const int *lo, int n, int nblk, int block, in
  * (0: this rank has no tail block).  A collective. */
 static int split_to_starters(Split *sp) {
   const int me = P.rank, per = sp->per;
-  const double *mine = sp->piece + (size_t)per * sp->pdsp[me];
+  const double *mine = sp->piece;
   memcpy(sp->tail, mine + (size_t)per * sp->nhead, (size_t)per * sp->ntail * sizeof(double));
   P.bytes += (double)per * sp->nhead * sizeof(double);
   MPI_Alltoallv(mine, sp->scnt, sp->sdsp, MPI_DOUBLE, sp->tail, sp->rcnt, sp->rdsp, MPI_DOUBLE, MPI_COMM_WORLD);
@@ -429,7 +424,7 @@ void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_ba
   const Split *sp = &P.st;
   P.stress_fresh = P.state_fresh = 0;
   /* this rank's head and tail pieces (triangles of blocks it shares with others) */
-  double *out = sp->piece + 3 * (size_t)sp->pdsp[r];
+  double *out = sp->piece;
   int e0 = P.tlo[r], e1 = P.tlo[r + 1];
   if (sp->b1[r] > sp->b0[r]) {
     for (int e = e0; e < sp->b0[r] * B; e++, out += 3) piece_one(m, tm, e, out);
@@ -784,7 +779,7 @@ double *par_node_split(int nblk, int block, int *kb0, int *kb1) {
   if (P.sn.n != P.nn || P.sn.nblk != nblk || P.sn.block != block) split_build(&P.sn, P.nlo, P.nn, nblk, block, 1);
   *kb0 = P.sn.b0[P.rank];
   *kb1 = P.sn.b1[P.rank];
-  return P.sn.piece + P.sn.pdsp[P.rank];
+  return P.sn.piece;
 }
 
 void par_node_block_sums(double *blk) {
