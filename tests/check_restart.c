@@ -4,8 +4,8 @@
  *     restart step): run 2N vs run N + write_restart + a new process with read_restart + run 2N
  *     upto gives the same state_hash (bitwise), with 1 and 2 threads; the same through the
  *     periodic FILE.a / FILE.b pair, and in-process (write and read in one test process);
- *   - the dumps of a continued run continue the earlier run's series (index and frames equal the
- *     uninterrupted run's);
+ *   - the dumps and record files of a continued run continue the earlier run's series (index,
+ *     frames and rows equal the uninterrupted run's);
  *   - restarts and fracture logs are written to the working directory; read_restart looks there,
  *     then beside the deck;
  *   - a restart read by a deck that builds another scene is refused (deck error, exit 1), a
@@ -301,6 +301,40 @@ START_TEST(test_restart_dumps_continue) {
     ck_assert_uint_eq(frame_x(names[k][1], b, 4096), n);
     ck_assert_msg(!memcmp(a, b, n * sizeof *a), "%s differs from %s", names[k][1], names[k][0]);
   }
+  rm_tmpdir();
+}
+END_TEST
+
+/* A record file (LAMMPS's fix print) continues as the dumps do: a run continued from a restart
+ * keeps the earlier run's rows before the restart step, drops those the earlier run wrote at or
+ * after it (here its second run's start row at 220 and the rows to 260), writes no row at its own
+ * start when none is due (220 is not a multiple of 40), and the file equals the uninterrupted
+ * run's.  Until 2026-11-28 the continued run began the file afresh at its restart step (the rows
+ * 0-200 lost) with a row at 220 the uninterrupted run never wrote. */
+START_TEST(test_restart_record_continues) {
+  mk_tmpdir();
+  write_deck("full.deck", NULL, "record r 40 r_full.csv ke broken pairs\nrun 300\n");
+  write_deck("first.deck", NULL, "record r 40 r.csv ke broken pairs\nrun 220\nwrite_restart rec.restart\nrun 260 upto\n");
+  write_deck("second.deck", NULL, "record r 40 r.csv ke broken pairs\nread_restart rec.restart\nrun 300 upto\n");
+  char h[17], hf[17];
+  expect_ok("full.deck", 2, hf);
+  expect_ok("first.deck", 2, h);
+  expect_ok("second.deck", 1, h);
+  ck_assert_str_eq(h, hf);
+  char path[256];
+  snprintf(path, sizeof path, "%s/r_full.csv", tmpdir);
+  char *full = slurp(path);
+  snprintf(path, sizeof path, "%s/r.csv", tmpdir);
+  char *cont = slurp(path);
+  ck_assert_msg(strstr(full, "\n0,") && strstr(full, "\n280,") && !strstr(full, "\n220,"), "r_full.csv: %.200s", full);
+  ck_assert_msg(!strcmp(cont, full), "the continued r.csv differs from the uninterrupted run's:\n%.300s", cont);
+  free(full); free(cont);
+  /* a file with another header (another record's) is begun afresh, not adopted */
+  write_deck("other.deck", NULL, "record r 40 r.csv ke\nread_restart rec.restart\nrun 300 upto\n");
+  expect_ok("other.deck", 1, h);
+  cont = slurp(path);
+  ck_assert_msg(!strncmp(cont, "step,time,ke\n240,", 17), "r.csv: %.100s", cont);
+  free(cont);
   rm_tmpdir();
 }
 END_TEST
@@ -891,6 +925,7 @@ Suite *restart_suite(void) {
   tcase_add_test(tc, test_restart_periodic);
   tcase_add_test(tc, test_restart_in_process);
   tcase_add_test(tc, test_restart_dumps_continue);
+  tcase_add_test(tc, test_restart_record_continues);
   tcase_add_test(tc, test_restart_paths);
   tcase_add_test(tc, test_restart_refusals);
   tcase_add_test(tc, test_restart_old_friction_memory);

@@ -45,6 +45,7 @@ typedef struct {
   char *path; /* the CSV file, in the working directory as dumps are */
   FILE *fp;
   long last_step;
+  int adopted; /* a run continued by read_restart took up this file's earlier rows (adopt) */
 } Record;
 
 static struct {
@@ -189,14 +190,49 @@ void cmd_record(YfSim *s, const YfArgs *a) {
   update_due(s);
 }
 
-static void record_row(YfSim *s, Record *r) {
-  if (!r->fp) {
-    r->fp = fopen(r->path, "w");
-    if (!r->fp) yf_io_error(&r->q.loc, "record %s: cannot create '%s': %s", r->id, r->path, strerror(errno));
-    fprintf(r->fp, "step,time");
-    for (int i = 0; i < r->q.n; i++) fprintf(r->fp, ",%s", r->q.w[i]);
-    fputc('\n', r->fp);
+/* The file created with its header line and, when a run continued by read_restart adopts it,
+ * the earlier run's rows kept (keep: NULL or text after the header). */
+static void record_open(Record *r, const char *keep) {
+  r->fp = fopen(r->path, "w");
+  if (!r->fp) yf_io_error(&r->q.loc, "record %s: cannot create '%s': %s", r->id, r->path, strerror(errno));
+  fprintf(r->fp, "step,time");
+  for (int i = 0; i < r->q.n; i++) fprintf(r->fp, ",%s", r->q.w[i]);
+  fputc('\n', r->fp);
+  if (keep) fputs(keep, r->fp);
+}
+
+/* A run continued by read_restart continues each record's file as the dumps continue their
+ * series (output.c): the earlier run's rows of steps before the one this run continues from stay,
+ * and rows of later steps (written before an interrupt) are this run's to write again.  A file
+ * that is missing, or whose header is not this record's, starts afresh at the first row. */
+static void adopt(YfSim *s, Record *r) {
+  r->adopted = 1;
+  size_t len;
+  char *t = yf_read_file(r->path, &len, "record file");
+  if (!t) return;
+  size_t hl = strlen("step,time");
+  int same = !strncmp(t, "step,time", hl);
+  for (int i = 0; same && i < r->q.n; i++) {
+    size_t wl = strlen(r->q.w[i]);
+    same = t[hl] == ',' && !strncmp(t + hl + 1, r->q.w[i], wl);
+    hl += 1 + wl;
   }
+  if (same && t[hl] == '\n') {
+    char *keep = t + hl + 1, *end = keep;
+    for (char *p = keep, *nl; (nl = strchr(p, '\n')); p = nl + 1) {
+      char *e;
+      long step = strtol(p, &e, 10);
+      if (e == p || *e != ',' || step >= s->step) break;
+      end = nl + 1;
+    }
+    *end = 0;
+    record_open(r, keep);
+  }
+  free(t);
+}
+
+static void record_row(YfSim *s, Record *r) {
+  if (!r->fp) record_open(r, NULL);
   fprintf(r->fp, "%ld,%.17g", s->step, s->time);
   for (int i = 0; i < r->q.n; i++) {
     double v = value(s, &r->q, i, NULL);
@@ -210,6 +246,16 @@ static void record_row(YfSim *s, Record *r) {
 
 static void record_step(YfSim *s, int force) {
   if (!force && s->step < P.next_due) return;
+  if (force && s->restored) /* the first run after read_restart: the earlier rows taken up */
+    for (int i = 0; i < P.nrec; i++) {
+      Record *r = &P.rec[i];
+      if (r->adopted || r->last_step != LONG_MIN) continue;
+      if (yf_writer()) adopt(s, r);
+      else r->adopted = 1;
+      /* the uninterrupted run went through this step in one run: no row here unless one was
+       * due (a continued run's dumps write no frame either, output.c) */
+      if (s->step % r->every != 0) r->last_step = s->step;
+    }
   int due = 0;
   for (int i = 0; i < P.nrec; i++) due |= P.rec[i].last_step != s->step && (force || s->step % P.rec[i].every == 0);
   if (due) par_need_all(s); /* MPI: the rows read any node (every rank is here); rank 0 writes them */
