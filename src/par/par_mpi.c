@@ -862,6 +862,25 @@ const void *par_concat(const void *mine, int nbytes, int *rbytes) {
   return P.xbuf;
 }
 
+const void *par_concat_writer(const void *mine, int nbytes, int *rbytes) {
+  double t0 = yf_now();
+  xroom(0);
+  MPI_Gather(&nbytes, 1, MPI_INT, P.xr, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  size_t tot = 0;
+  if (P.rank == 0)
+    for (int r = 0; r < P.size; r++) {
+      P.xrd[r] = (int)tot;
+      tot += (size_t)P.xr[r];
+    }
+  xroom(tot);
+  if (P.rank) P.bytes += (double)nbytes;
+  MPI_Gatherv(mine, nbytes, MPI_BYTE, P.xbuf, P.xr, P.xrd, MPI_BYTE, 0, MPI_COMM_WORLD);
+  P.t_comm += yf_now() - t0;
+  if (P.rank) return NULL;
+  memcpy(rbytes, P.xr, (size_t)P.size * sizeof(int));
+  return P.xbuf;
+}
+
 const void *par_exchange(const void *send, const int *sbytes, int *rbytes) {
   double t0 = yf_now();
   xroom(0);

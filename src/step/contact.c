@@ -120,7 +120,7 @@ typedef struct YfContact {
   /* MPI (halo mode): the couple list holds this rank's couples only, the one-rank list's range
    * DS.lo[rank] .. DS.lo[rank + 1] - 1 (friction slots numbered on this rank); nlive and ndead
    * still count the whole list.  wij, walive, gdense: the whole list gathered for a restart
-   * (contact_par_whole), wn couples, current while wfresh. */
+   * on the writer rank (contact_par_whole), wn couples (0 elsewhere), current while wfresh. */
   int local;
   int *wij, wn, wfresh;
   unsigned char *walive;
@@ -980,20 +980,14 @@ static void ds_ranks(void) {
   }
 }
 
-/* Lay the couples of the list by ranks (local) or whole on every rank, as the mode of this run
- * wants (halo mode on 2 ranks or more: by ranks).  A list is whole on every rank after a restart
- * is read (every rank then keeps its range); it is gathered whole again only if a run leaves
- * halo mode (not met: the partition that decides it is made once).  A collective. */
-static void install(YfContact *C, int n, const int *ij, const double *g, const unsigned char *alive);
-static void lay_out(YfSim *s, YfContact *C) {
+/* Lay the couples of the list by ranks (C->local) when this run is in halo mode (2 ranks or
+ * more).  A list is whole on every rank after a restart is read (every rank then keeps its range,
+ * a collective); once laid out it stays so, since halo mode is decided by the partition, which is
+ * made once. */
+static void lay_out(YfContact *C) {
   const int want = par_node_lo() != NULL;
   if (want == C->local) return;
-  if (!want) { /* gather the ranks' ranges whole */
-    contact_par_whole(s);
-    C->local = 0;
-    install(C, C->wn, C->wij, C->gdense, C->walive);
-    return;
-  }
+  YF_ASSERT(want); /* a run never leaves halo mode: the partition that decides it is made once */
   /* the whole list is the same on every rank: each keeps its range (friction slots stay) */
   ds_ranks();
   par_owner_ranges(C->pairs.ij, 2, C->pairs.n, DS.lo);
@@ -1168,21 +1162,25 @@ void contact_par_gather(YfSim *s) {
 }
 
 /* MPI: the whole couple list, its states and its friction memory (6 per couple, zeros where a
- * couple has none, as a restart stores it) into wij, walive, gdense on every rank, from the
- * ranks' ranges in rank order: 9 B per couple and 48 B per couple with memory.  A collective;
- * a no-op unless the list is laid out by ranks. */
+ * couple has none, as a restart stores it) into wij, walive, gdense on the writer rank (rank 0,
+ * the one that writes the restart), from the ranks' ranges in rank order: 9 B per couple and
+ * 48 B per couple with memory, sent to that rank only.  A collective; a no-op unless the list is
+ * laid out by ranks. */
 void contact_par_whole(YfSim *s) {
   YfContact *C = s->contact;
   if (!active(C) || !C->local) return;
-  const int S = par_size(), n = C->pairs.n, ntot = DS.lo[S];
+  const int S = par_size(), n = C->pairs.n, ntot = DS.lo[S], w = yf_writer();
   int *rb = DS.rb;
   free(C->wij); free(C->walive); free(C->gdense);
-  C->wij = yf_malloc((size_t)(ntot + 1) * 2 * sizeof(int), "restart couples");
-  C->walive = yf_malloc((size_t)ntot + 1, "restart couples");
-  C->gdense = yf_calloc((size_t)(ntot + 1) * 6, sizeof(double), "restart friction memory");
-  C->wn = ntot;
-  const void *all = par_concat(C->pairs.ij, (int)((size_t)n * 2 * sizeof(int)), rb);
-  if (ntot) memcpy(C->wij, all, (size_t)ntot * 2 * sizeof(int));
+  C->wij = NULL; C->walive = NULL; C->gdense = NULL;
+  C->wn = w ? ntot : 0;
+  if (w) {
+    C->wij = yf_malloc((size_t)(ntot + 1) * 2 * sizeof(int), "restart couples");
+    C->walive = yf_malloc((size_t)ntot + 1, "restart couples");
+    C->gdense = yf_calloc((size_t)(ntot + 1) * 6, sizeof(double), "restart friction memory");
+  }
+  const void *all = par_concat_writer(C->pairs.ij, (int)((size_t)n * 2 * sizeof(int)), rb);
+  if (all && ntot) memcpy(C->wij, all, (size_t)ntot * 2 * sizeof(int));
   /* per couple: its state, + 4 when it has friction memory; then the memories in couple order */
   unsigned char *st = yf_malloc((size_t)n + 1, "restart couples");
   int nm = 0;
@@ -1190,14 +1188,14 @@ void contact_par_whole(YfSim *s) {
     st[k] = (unsigned char)(C->alive[k] | (C->pairs.gi[k] >= 0 ? 4 : 0));
     nm += C->pairs.gi[k] >= 0;
   }
-  all = par_concat(st, n, rb);
-  if (ntot) memcpy(C->walive, all, (size_t)ntot);
+  all = par_concat_writer(st, n, rb);
+  if (all && ntot) memcpy(C->walive, all, (size_t)ntot);
   free(st);
   double *g = yf_malloc((size_t)(6 * nm + 1) * sizeof(double), "restart friction memory"), *o = g;
   for (int k = 0; k < n; k++)
     if (C->pairs.gi[k] >= 0) { memcpy(o, C->pairs.g + 6 * (size_t)C->pairs.gi[k], 6 * sizeof(double)); o += 6; }
-  const double *a = par_concat(g, 6 * nm * (int)sizeof(double), rb);
-  for (int k = 0; k < ntot; k++)
+  const double *a = par_concat_writer(g, 6 * nm * (int)sizeof(double), rb);
+  for (int k = 0; a && k < ntot; k++)
     if (C->walive[k] & 4) {
       memcpy(C->gdense + 6 * (size_t)k, a, 6 * sizeof(double));
       a += 6;
@@ -1214,7 +1212,7 @@ void contact_step(YfSim *s) {
   YfModel *m = &s->model;
   YfNodes *nd = &m->node;
   const double dt = s->dt;
-  lay_out(s, C); /* MPI: each rank its own couples (after a restart is read, say) */
+  lay_out(C); /* MPI: each rank its own couples (after a restart is read, say) */
   C->wfresh = 0;
 
   /* detection (ALGORITHMS 5): travel of the previous half step's velocities (MPI, divided

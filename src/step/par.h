@@ -56,6 +56,8 @@ void par_share_forces(double *fx, double *fy);
  *   par_share_slots    the force slots other ranks' owned nodes need, to them (before the gather);
  *   par_concat         every rank's bytes, concatenated in rank order, to every rank (rbytes:
  *                      how many from each); the buffer lives until the next call;
+ *   par_concat_writer  the same to the writer rank (rank 0) only: NULL on the others, whose
+ *                      rbytes are left alone (what only the writer reads: a restart's couples);
  *   par_exchange       sbytes[r] bytes of send (grouped by rank) to rank r; returns what came,
  *                      grouped by sender, rbytes[r] from each;
  *   par_gather_ranges  an array whose elements lo[r]..lo[r+1]-1 rank r holds, whole on every rank. */
@@ -66,6 +68,7 @@ const int *par_node_lo(void);
 int par_owner_ranges(const int *tri, int stride, int n, int *lo);
 void par_share_slots(YfModel *m);
 const void *par_concat(const void *mine, int nbytes, int *rbytes);
+const void *par_concat_writer(const void *mine, int nbytes, int *rbytes);
 const void *par_exchange(const void *send, const int *sbytes, int *rbytes);
 void par_gather_ranges(void *a, const int *lo, int elem_bytes);
 int par_any(int flag);                  /* flag set on any rank (the same answer on all)       */
@@ -120,6 +123,7 @@ static inline const int *par_node_lo(void) { return NULL; }
 static inline int par_owner_ranges(const int *tri, int stride, int n, int *lo) { (void)tri; (void)stride; (void)n; (void)lo; return 0; }
 static inline void par_share_slots(YfModel *m) { (void)m; }
 static inline const void *par_concat(const void *mine, int nbytes, int *rbytes) { *rbytes = nbytes; return mine; }
+static inline const void *par_concat_writer(const void *mine, int nbytes, int *rbytes) { *rbytes = nbytes; return mine; }
 static inline const void *par_exchange(const void *send, const int *sbytes, int *rbytes) { *rbytes = *sbytes; return send; }
 static inline void par_gather_ranges(void *a, const int *lo, int elem_bytes) { (void)a; (void)lo; (void)elem_bytes; }
 static inline int par_any(int flag) { return flag; }
