@@ -7,6 +7,8 @@
  *     of stresses (shared among ranks for metrics and frames) equal ./yfdem's to the last bit;
  *   - frames written with parallel HDF5 (every rank its rows) and gathered to rank 0, on 2 and 3
  *     ranks: every dataset and both indexes as ./yfdem's;
+ *   - every output a user reads (record rows, metrics log, fracture logs, CSV frames, thermo and
+ *     print lines) of a deck with most of the commands, on 3 ranks, as ./yfdem's byte for byte;
  *   - a restart written on 2 ranks and read on 3 continues bitwise (the uninterrupted run's hash);
  *   - SIGTERM to one rank stops every rank at the same step with one restart, which continues
  *     bitwise, and exit 130 (interrupted);
@@ -509,6 +511,112 @@ static long report_count(const char *dir, const char *what) {
   return n;
 }
 
+/* Every output a user reads, not the state alone: a fracturing slab hit by a steel block, on a
+ * steel foot, pushed at one end by a velocity fix with a history, under gravity, a traction with
+ * a sine history and a point load, with contact, friction, Weibull-scattered joints, two runs with
+ * an `if` on a result between them that removes the point load and the fix.  On 3 ranks (poisoned:
+ * a reader that forgot to gather would see NaN) every file equals ./yfdem's byte for byte: the
+ * record rows (expressions of group quantities), the metrics log, both fracture logs, the CSV
+ * frames and their index; and so do the thermo lines (custom, with a group quantity; wall time
+ * aside) and the `print` lines of results between and after the runs. */
+static const char *OUTPUTS_DECK =
+    "history rise ramp 0 2e-5\n"
+    "history wob sine 1e-4\n"
+    "material c elastic rho 2400 E 30e9 nu 0.2 plane_stress damping 0.05 pen_n 3e11 pen_t 3e10 friction 0.4\n"
+    "material s elastic rho 7800 E 200e9 nu 0.3 plane_stress pen_n 3e11 pen_t 3e10 friction 0.3\n"
+    "mesh rect slab c 0 0 0.6 0.1 180 30 pattern alt\n"
+    "mesh rect ball s 0.27 0.10002 0.33 0.16002 8 8\n"
+    "mesh rect foot s 0.0 -0.03 0.6 0 40 2\n"
+    "jointprop cj ft 2e6 fs 6e6 gf 30 pen 3e11 weibull 6 seed 5\n"
+    "region mid box 0.2 -1 0.4 1\n"
+    "fracture slab cj region mid\n"
+    "region base box -1 -1 2 -0.0299\n"
+    "group base node region base\n"
+    "fix hold base fixed xy\n"
+    "region lend box -1 -1 1e-9 1\n"
+    "group lend node region lend body slab\n"
+    "fix pushl lend velocity 0.2 NULL history rise\n"
+    "region rtop box 0.55 0.0999 0.61 0.11\n"
+    "group rtop node region rtop body slab\n"
+    "load rl rtop traction 0 -2e5 history wob\n"
+    "load pt point at 0.45 0.1 0 -500\n"
+    "gravity 0 -9.81\n"
+    "velocity ball set 0.5 -25\n"
+    "contact pair ball slab\n"
+    "contact pair slab foot\n"
+    "contact self slab\n"
+    "metrics body slab\n"
+    "metrics region mid mid\n"
+    "metrics log m.csv every 50\n"
+    "fracture_log br.csv opened op.csv\n"
+    "record r 25 r.csv ke strain broken pairs uy_ball \"ke+strain\"\n"
+    "timestep auto safety 0.5\n"
+    "thermo_style custom step ke strain broken pairs vy_ball\n"
+    "thermo 100\n"
+    "dump d csv 100 fr\n"
+    "run 300\n"
+    "print \"after 1: broken $(broken) vy_ball $(vy_ball)\"\n"
+    "if \"$(broken) > 0\" then \"unload pt\" \"unfix pushl\"\n"
+    "run 200\n"
+    "print \"end: broken $(broken) vy_ball $(vy_ball) ux_slab $(ux_slab) crack $(crack_length)\"\n"
+;
+static const char *const OUTPUT_FILES[] = {"r.csv", "m.csv", "br.csv", "op.csv", "fr_frames.csv", "fr_000000.csv",
+                                           "fr_000003.csv", "fr_000005.csv", NULL};
+
+/* out.txt of a run without what differs between ./yfdem and ./yfdem_mpi by design: timings, the
+ * mpi: report, the parallel frame note (only lines printed by rank 0, in order). */
+static char *printed(const char *dir) {
+  char p[PATH_MAX + 64];
+  snprintf(p, sizeof p, "%s/out.txt", dir);
+  char *t = yft_slurp(p, 0), *o = calloc(strlen(t ? t : "") + 1, 1);
+  size_t n = 0;
+  for (char *line = t ? strtok(t, "\n") : NULL; line; line = strtok(NULL, "\n")) {
+    static const char *const skip[] = {"run:", "stage", "elements", "joints ", "detection", "contact ", "gather",
+                                       "update", "output", "other", "mpi:", NULL};
+    int drop = 0;
+    for (int i = 0; skip[i] && !drop; i++) drop = !strncmp(line, skip[i], strlen(skip[i]));
+    if (!drop) n += (size_t)sprintf(o + n, "%s\n", line);
+  }
+  free(t);
+  return o;
+}
+
+START_TEST(outputs_equal) {
+  if (!mpi_ready()) return;
+  char *a = workdir(), *b = workdir();
+  write_file(a, "o.deck", OUTPUTS_DECK);
+  write_file(b, "o.deck", OUTPUTS_DECK);
+  ck_assert_int_eq(run_in(a, 0, 2, "-in o.deck -summary s.json", NULL), 0);
+  ck_assert_int_eq(run_in(b, 3, 1, "-in o.deck -summary s.json", NULL), 0);
+  char pa[PATH_MAX + 64], pb[PATH_MAX + 64];
+  snprintf(pa, sizeof pa, "%s/s.json", a);
+  snprintf(pb, sizeof pb, "%s/s.json", b);
+  char *ka = key_lines(pa), *kb = key_lines(pb);
+  ck_assert_msg(!strcmp(ka, kb), "3 ranks:\n%s--- vs ./yfdem:\n%s", kb, ka);
+  free(ka); free(kb);
+  int nfiles = 0;
+  for (int i = 0; OUTPUT_FILES[i]; i++) {
+    snprintf(pa, sizeof pa, "%s/%s", a, OUTPUT_FILES[i]);
+    snprintf(pb, sizeof pb, "%s/%s", b, OUTPUT_FILES[i]);
+    char *fa = yft_slurp(pa, 0), *fb = yft_slurp(pb, 0);
+    ck_assert_msg(fa && strchr(fa, '\n') != strrchr(fa, '\n'), "./yfdem wrote no rows to %s", OUTPUT_FILES[i]);
+    ck_assert_msg(fb && !strcmp(fa, fb), "%s on 3 ranks differs from ./yfdem's", OUTPUT_FILES[i]);
+    free(fa); free(fb);
+    nfiles++;
+  }
+  char *oa = printed(a), *ob = printed(b);
+  /* the deck's prints, after the runs' thermo lines: the physics happened (joints broke, the if
+   * took its branch) */
+  ck_assert_msg(strstr(oa, "after 1: broken ") && !strstr(oa, "after 1: broken 0 ") && strstr(oa, "end: broken "),
+                "./yfdem printed:\n%s", oa);
+  ck_assert_msg(!strcmp(oa, ob), "what 3 ranks printed differs from ./yfdem:\n%s--- vs ./yfdem:\n%s", ob, oa);
+  free(oa); free(ob);
+  fprintf(stderr, "check_mpi: outputs_equal: %d files and the printed lines on 3 ranks as ./yfdem\n", nfiles);
+  drop_dir(a);
+  drop_dir(b);
+}
+END_TEST
+
 START_TEST(bodies_cross_ranks) {
   if (!mpi_ready()) return;
   char *d = workdir(), path[PATH_MAX + 32];
@@ -731,6 +839,7 @@ Suite *mpi_suite(void) {
   tcase_add_test(t, matrix_perf_1e4);
   tcase_add_test(t, divided_update);
   tcase_add_test(t, frames_parallel_h5);
+  tcase_add_test(t, outputs_equal);
   tcase_add_test(t, bodies_cross_ranks);
   tcase_add_test(t, search_by_boxes);
   tcase_add_test(t, restart_2_to_3);
