@@ -622,7 +622,7 @@ static int same_file(const char *a, const char *b) {
 }
 
 /* Interrupted at a step no output is due on, then continued: every file the run writes (frames,
- * their indexes, CSV frames, the metrics log, the break and opened-crack logs) is byte for byte
+ * their indexes, CSV frames, the metrics log, the break and opened-crack logs, a record) is byte for byte
  * the uninterrupted run's, and there is no other (no frame of the interrupt's step left over).
  * Before issue 20 the index listed the interrupt's frame, later frames were numbered one off
  * and the metrics log lost its rows before the restart. */
@@ -654,9 +654,9 @@ static int same_outputs(const char *a, const char *b) {
   return compared;
 }
 
-/* Every output of the continuation tests: frames (h5, csv), metrics and fracture logs. */
+/* Every output of the continuation tests: frames (h5, csv), metrics and fracture logs, a record. */
 static const char OUT[] = "dump d h5 300 p.h5 fields u v stress\ndump c csv 300 p\nmetrics log p_metrics.csv every 20\n"
-                          "fracture_log p_breaks.csv opened p_opened.csv\n";
+                          "fracture_log p_breaks.csv opened p_opened.csv\nrecord r 40 p_rec.csv ke broken pairs\n";
 
 /* A new tmpdir BASE with the directories BASE/a (the continued run) and BASE/b (the uninterrupted one). */
 static void two_dirs(char base[24], char a[40], char b[40]) {

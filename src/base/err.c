@@ -233,6 +233,17 @@ char *yf_read_file(const char *path, size_t *len, const char *what) {
   return t;
 }
 
+size_t yf_rows_before(const char *text, long step) {
+  const char *end = text;
+  for (const char *p = text, *nl; (nl = strchr(p, '\n')); p = nl + 1) {
+    char *e;
+    long k = strtol(p, &e, 10);
+    if (e == p || *e != ',' || k >= step) break;
+    end = nl + 1;
+  }
+  return (size_t)(end - text);
+}
+
 /* Edit distance, for "did you mean" in messages (the deck and the .y reader). */
 
 static int levenshtein(const char *a, const char *b) {

@@ -89,6 +89,10 @@ char *yf_strdup(const char *s);
  * set if it cannot be opened or read.  what names it for an allocation failure.  A UTF-8
  * byte-order mark at its start is left out. */
 char *yf_read_file(const char *path, size_t *len, const char *what);
+/* Of CSV rows that each begin with a step ("STEP,..."), text from its start: the length of the
+ * leading rows whose step is below step (a log continued after a restart keeps these, and writes
+ * the rest again). */
+size_t yf_rows_before(const char *text, long step);
 /* A UTF-8 byte-order mark (EF BB BF, which some Windows editors put at the start of a text) at
  * the start of the NUL-terminated s is removed; returns the bytes removed (0 or 3).  Every text
  * reader skips it (yf_read_file does), so that 'material' is not read as '\xef\xbb\xbfmaterial'. */

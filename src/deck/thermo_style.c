@@ -218,14 +218,8 @@ static void adopt(YfSim *s, Record *r) {
     hl += 1 + wl;
   }
   if (same && t[hl] == '\n') {
-    char *keep = t + hl + 1, *end = keep;
-    for (char *p = keep, *nl; (nl = strchr(p, '\n')); p = nl + 1) {
-      char *e;
-      long step = strtol(p, &e, 10);
-      if (e == p || *e != ',' || step >= s->step) break;
-      end = nl + 1;
-    }
-    *end = 0;
+    char *keep = t + hl + 1;
+    keep[yf_rows_before(keep, s->step)] = 0;
     record_open(r, keep);
   }
   free(t);

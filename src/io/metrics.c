@@ -104,18 +104,8 @@ static void adopt_log(const YfSim *s) {
   size_t len;
   char *t = yf_read_file(M.log_path, &len, "metrics log");
   if (!t) return;
-  char *keep_end = NULL;
   if (!strncmp(t, log_head, sizeof log_head - 1)) {
-    keep_end = t + sizeof log_head - 1;
-    for (char *p = keep_end, *nl; (nl = strchr(p, '\n')); p = nl + 1) {
-      char *e;
-      long step = strtol(p, &e, 10);
-      if (e == p || *e != ',' || step >= s->step) break;
-      keep_end = nl + 1;
-    }
-  }
-  if (keep_end) {
-    size_t n = (size_t)(keep_end - t) - (sizeof log_head - 1);
+    size_t n = yf_rows_before(t + sizeof log_head - 1, s->step);
     M.earlier = yf_malloc(n + 1, "metrics log");
     memcpy(M.earlier, t + sizeof log_head - 1, n);
     M.earlier[n] = 0;
