@@ -192,12 +192,22 @@ void cmd_record(YfSim *s, const YfArgs *a) {
 
 /* The file created with its header line and, when a run continued by read_restart adopts it,
  * the earlier run's rows kept (keep: NULL or text after the header). */
+/* The file's header line, "step,time,K1,K2,...\n" (allocated). */
+static char *record_head(const Record *r) {
+  size_t n = sizeof "step,time\n";
+  for (int i = 0; i < r->q.n; i++) n += 1 + strlen(r->q.w[i]);
+  char *h = yf_malloc(n, "record header"), *o = h + sprintf(h, "step,time");
+  for (int i = 0; i < r->q.n; i++) o += sprintf(o, ",%s", r->q.w[i]);
+  strcpy(o, "\n");
+  return h;
+}
+
 static void record_open(Record *r, const char *keep) {
   r->fp = fopen(r->path, "w");
   if (!r->fp) yf_io_error(&r->q.loc, "record %s: cannot create '%s': %s", r->id, r->path, strerror(errno));
-  fprintf(r->fp, "step,time");
-  for (int i = 0; i < r->q.n; i++) fprintf(r->fp, ",%s", r->q.w[i]);
-  fputc('\n', r->fp);
+  char *h = record_head(r);
+  fputs(h, r->fp);
+  free(h);
   if (keep) fputs(keep, r->fp);
 }
 
@@ -210,18 +220,14 @@ static void adopt(YfSim *s, Record *r) {
   size_t len;
   char *t = yf_read_file(r->path, &len, "record file");
   if (!t) return;
-  size_t hl = strlen("step,time");
-  int same = !strncmp(t, "step,time", hl);
-  for (int i = 0; same && i < r->q.n; i++) {
-    size_t wl = strlen(r->q.w[i]);
-    same = t[hl] == ',' && !strncmp(t + hl + 1, r->q.w[i], wl);
-    hl += 1 + wl;
-  }
-  if (same && t[hl] == '\n') {
-    char *keep = t + hl + 1;
+  char *h = record_head(r);
+  size_t hl = strlen(h);
+  if (!strncmp(t, h, hl)) {
+    char *keep = t + hl;
     keep[yf_rows_before(keep, s->step)] = 0;
     record_open(r, keep);
   }
+  free(h);
   free(t);
 }
 
