@@ -24,6 +24,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
+#include <stdio_ext.h>
 #include <stdlib.h>
 #include <string.h>
 #include "edgesort.h"
@@ -328,6 +329,10 @@ static int add_file(YfY2d *y, const char *name) {
 static void push_file(Rd *r, FILE *fp, const char *name) {
   unsigned char bom[3]; /* a UTF-8 byte-order mark is skipped (the files are regular files) */
   if (fread(bom, 1, 3, fp) != 3 || bom[0] != 0xef || bom[1] != 0xbb || bom[2] != 0xbf) rewind(fp);
+  /* One thread reads the stream, so stdio's per-character lock is only cost: under MPI the
+   * library's own threads make glibc take it on every getc (10x the time of the read itself at
+   * 1e6 triangles, 2026-11-28), where a one-thread ./yfdem skips it. */
+  __fsetlocking(fp, FSETLOCKING_BYCALLER);
   Src *s = &r->src[r->depth++];
   s->fp = fp;
   s->file = add_file(r->y, name);
