@@ -693,6 +693,50 @@ START_TEST(search_by_boxes) {
 }
 END_TEST
 
+/* The search on ranks sends only what is near another rank's triangles (contact.c search_ranks:
+ * one box per chunk of a rank's triangles, a chunk never spanning two METIS parts).  The beam
+ * deck at nx 200 (16 112 triangles, every one fracturing and in contact, 4 METIS parts): its
+ * rank borders are cuts across its depth of 20 cells, and a disc reaches r_i + r_j + buffer,
+ * about 1.5 cells; with a chunk's box a few rows of a part, a rank needs the other's triangles
+ * within ~3 cells of a border: 3 cells x 20 deep x 4 triangles x 2 sides = 480 discs a border,
+ * and 2 ranks' parts meet at up to 3 borders, so at most 1 611 (10 %) per search.  One box per
+ * rank (before 2026-11-28) sent 9 792 (61 %): a rank's parts need not be one region, and the
+ * box of two far parts held the whole beam.  The bits stay ./yfdem's on 2 and 3 ranks. */
+START_TEST(search_sends_near_only) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), a[2 * PATH_MAX], path[PATH_MAX + 32];
+  snprintf(a, sizeof a, "-in %s/decks/beam.deck -var nx 200 -var steps 200 -var out b -summary ref.json", ROOT);
+  ck_assert_int_eq(run_in(d, 0, 1, a, NULL), 0);
+  snprintf(path, sizeof path, "%s/ref.json", d);
+  char *ref = key_lines(path);
+  for (int ranks = 2; ranks <= 3; ranks++) {
+    snprintf(a, sizeof a, "-in %s/decks/beam.deck -var nx 200 -var steps 200 -var out b -summary m.json", ROOT);
+    ck_assert_int_eq(run_in(d, ranks, 1, a, NULL), 0);
+    snprintf(path, sizeof path, "%s/m.json", d);
+    char *got = key_lines(path);
+    ck_assert_msg(!strcmp(ref, got), "%d ranks differ from ./yfdem:\n%s--- vs ./yfdem:\n%s", ranks, got, ref);
+    free(got);
+    snprintf(path, sizeof path, "%s/out.txt", d);
+    char *t = yft_slurp(path, 1);
+    const char *q = strstr(t, "contact search discs sent ");
+    double sent = -1, own = -1;
+    long nsearch = 0;
+    ck_assert_msg(q && sscanf(q, "contact search discs sent %lf per search of %lf (all ranks, %ld searches", &sent,
+                              &own, &nsearch) == 3, "%d ranks: the report does not count the discs sent", ranks);
+    free(t);
+    ck_assert_msg(own == 16112 && nsearch > 0, "%d ranks: %g discs searched (not the beam's 16 112), %ld searches",
+                  ranks, own, nsearch);
+    if (ranks == 2)
+      ck_assert_msg(sent > 0 && sent <= 0.10 * own, "2 ranks: %g discs sent per search of %g: more than the 10 %% near "
+                    "the rank borders", sent, own);
+    fprintf(stderr, "check_mpi: beam nx 200 on %d ranks: ./yfdem's bits, %.0f discs sent per search of %.0f (%ld "
+            "searches)\n", ranks, sent, own, nsearch);
+  }
+  free(ref);
+  drop_dir(d);
+}
+END_TEST
+
 /* The state_hash line of dir/cont.json, checked equal to dir/full.json's (the uninterrupted
  * run); what names the case in a failure.  Returns the line (static). */
 static const char *same_hash_as_full(const char *dir, const char *what) {
@@ -842,6 +886,7 @@ Suite *mpi_suite(void) {
   tcase_add_test(t, outputs_equal);
   tcase_add_test(t, bodies_cross_ranks);
   tcase_add_test(t, search_by_boxes);
+  tcase_add_test(t, search_sends_near_only);
   tcase_add_test(t, restart_2_to_3);
   tcase_add_test(t, error_all_ranks);
   tcase_add_test(t, error_one_rank);

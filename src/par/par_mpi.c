@@ -97,6 +97,8 @@ static struct {
   const char *why;          /* why this run's update is replicated ("" when divided)           */
   int ngh_max;              /* most ghost nodes this rank received in a step (this run)        */
   long cross_hits;          /* contact hits of couples whose triangles two ranks own (this rank) */
+  long disc_sent, disc_own, nsearch; /* contact searches on ranks: discs this rank sent (to every
+                             * other rank, counted once per rank), its own discs, searches */
   double hbytes;            /* of bytes: what went to one rank only (slot halo, contact hits)  */
 } P;
 
@@ -808,6 +810,12 @@ int par_rank(void) { return P.rank; }
 
 void par_note_work(double secs) { P.t_elem += secs; }
 
+void par_note_discs(long sent, long own) {
+  P.disc_sent += sent;
+  P.disc_own += own;
+  P.nsearch++;
+}
+
 void par_note_cross_hits(const int *ij, const int *hk, int nh) {
   const int t1 = P.tlo[P.rank + 1]; /* couple k is this rank's: ij[2k+1] beyond its triangles is another's */
   for (int h = 0; h < nh; h++) P.cross_hits += ij[2 * hk[h] + 1] >= t1;
@@ -937,6 +945,10 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
   long cross = 0;
   MPI_Reduce(&P.cross_hits, &cross, 1, MPI_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
   P.cross_hits = 0;
+  long dmine[2] = {P.disc_sent, P.disc_own}, disc[2] = {0, 0};
+  MPI_Reduce(dmine, disc, 2, MPI_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
+  const long nsearch = P.nsearch; /* the same on every rank: every rank searches at the same step */
+  P.disc_sent = P.disc_own = P.nsearch = 0;
   /* breaks of joints whose two triangles two ranks own (the records are on every rank) */
   long jcross = 0;
   int nrec = 0;
@@ -980,10 +992,13 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
                "(CPU of elements, joints and contact: slowest / mean rank; mean %.4g s); %.4g bytes sent per step (border "
                "halo %.4g from the busiest rank); communication %.1f %% of wall (slowest rank); "
                "ghost nodes per rank %d..%d; contact hits between two ranks' triangles %ld; contact couples held "
-               "per rank %.0f..%.0f of %ld; joints broken across rank borders %ld (all runs so far); %s\n",
+               "per rank %.0f..%.0f of %ld; contact search discs sent %.0f per search of %.0f (all ranks, %ld searches); "
+               "joints broken across rank borders %ld (all runs so far); %s\n",
                P.size, s->threads, tmin, tmax, emean > 0 ? emax / emean : 1.0, emean, bsum / (double)nsteps,
                hmax / (double)nsteps,
-               wall > 0 ? 100.0 * cmax / wall : 0.0, P.ghost_min, P.ghost_max, cross, cpmin, cpmax, whole, jcross, upd);
+               wall > 0 ? 100.0 * cmax / wall : 0.0, P.ghost_min, P.ghost_max, cross, cpmin, cpmax, whole,
+               nsearch ? (double)disc[0] / (double)nsearch : 0.0, nsearch ? (double)disc[1] / (double)nsearch : 0.0,
+               nsearch, jcross, upd);
   }
   P.ngh_max = 0;
   free(all);

@@ -762,8 +762,8 @@ static void contact_compact(YfContact *C, int removed) {
 typedef struct { double i, fx, fy; } Contrib; /* a hit's force on a node another rank owns */
 
 static struct {
-  void *ed, *send, *sum, *hof, *box;
-  size_t ced, csend, csum, chof, cbox;
+  void *ed, *send, *sum, *hof, *box, *cbx;
+  size_t ced, csend, csum, chof, cbox, ccbx;
   int *lo, *rb, *sb;
   int nlo;
   unsigned char *tmk;    /* divided update: per triangle, scratch mark (all 0 between uses)  */
@@ -771,6 +771,7 @@ static struct {
   int *rtri, nrtri, crtri; /* the triangles this rank's couples read (increasing)           */
   int *rnode;            /* their corners                                                   */
   int *uitem, cu;        /* search on ranks: the triangles searched and their discs          */
+  int *cst, ncst;        /* search on ranks: this rank's chunks' first items                 */
   double *ucx, *ucy, *ucr;
 } DS;
 
@@ -864,15 +865,35 @@ static void contact_ghosts(YfSim *s, YfContact *C) {
 
 /* MPI, divided update: the search on ranks, by bounding boxes.  Each rank computes the discs of
  * its own participating triangles (their corners are its own nodes or ghosts, current) and the
- * box that holds them; the boxes go to every rank; each rank sends a rank the discs of its
- * triangles whose disc, grown by the buffer, reaches into that rank's box (a couple's partner
- * always does: |c_i - c_j| < r_i + r_j + buffer puts c_j within r_j + buffer of i's disc); then
- * each rank searches its own triangles with those it received and keeps the couples whose lower
- * triangle it owns: the ranks' lists, concatenated in rank order, are the one-rank list (sorted by
- * lower triangle; the search's test is made from the lower triangle's side on the same numbers),
- * but no rank receives the others'.  Boxes are made again at each search, so the exchange
- * follows fragments however far they fly.  No rank reads another rank's nodes. */
+ * boxes that hold them, one per chunk of its triangles (below); the boxes go to every rank; each
+ * rank sends a rank the discs of its triangles whose disc, grown by the buffer, reaches into one
+ * of that rank's boxes (a couple's partner always does: |c_i - c_j| < r_i + r_j + buffer puts
+ * c_j within r_j + buffer of i's disc, which lies in its chunk's box); then each rank searches
+ * its own triangles with those it received and keeps the couples whose lower triangle it owns:
+ * the ranks' lists, concatenated in rank order, are the one-rank list (sorted by lower triangle;
+ * the search's test is made from the lower triangle's side on the same numbers), but no rank
+ * receives the others'.  Boxes are made again at each search, so the exchange follows fragments
+ * however far they fly.  No rank reads another rank's nodes.
+ *
+ * Chunks, not one box per rank: a rank's METIS parts are a contiguous range of part numbers,
+ * which need not be one compact region, so one box per rank can hold most of another rank's
+ * triangles (the beam deck at 1e6 on 2 ranks: rank 1 sent 401 717 of its 488 370 discs, and
+ * each rank searched 0.9e6 discs for 0.5e6 of its own).  The partition numbers triangles part by
+ * part, so a chunk of consecutive ones is a compact piece of the mesh with a tight box. */
 typedef struct { double t, cx, cy, r; } Disc;
+enum { CHUNK_MIN = 512, CHUNKS_MAX = 256, FAR_CUTS = 512 }; /* triangles per chunk, at least (but at a cut);
+                                                              * chunks per rank by count, at most; far cuts */
+
+/* How far disc k reaches beyond its radius: the buffer, with a margin for rounding. */
+static double disc_pad(const YfContact *C, int k) {
+  return (C->cr[k] + C->buffer) * (1.0 + 1e-6) + 1e-12 * (fabs(C->cx[k]) + fabs(C->cy[k]));
+}
+
+/* Box a (xmin, ymin, xmax, ymax) grown by p overlaps box b (strictly). */
+static int box_meets(const double *a, double p, const double *b) {
+  return a[0] - p < b[2] && a[2] + p > b[0] && a[1] - p < b[3] && a[3] + p > b[1];
+}
+
 static void ds_ranks(void);
 static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f) {
   const YfModel *m = &s->model;
@@ -880,37 +901,96 @@ static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f) {
   const int qa = first_at_least(C->item, C->nitem, tlo[me]), qb = first_at_least(C->item, C->nitem, tlo[me + 1]);
   const double buf = C->buffer;
   contact_search_bounds(qb - qa, C->item + qa, m->tri.v, m->node.x, m->node.y, C->cx + qa, C->cy + qa, C->cr + qa);
-  double box[4] = {DBL_MAX, DBL_MAX, -DBL_MAX, -DBL_MAX}; /* xmin, ymin, xmax, ymax: empty */
-  for (int q = qa; q < qb; q++) {
-    box[0] = fmin(box[0], C->cx[q] - C->cr[q]);
-    box[1] = fmin(box[1], C->cy[q] - C->cr[q]);
-    box[2] = fmax(box[2], C->cx[q] + C->cr[q]);
-    box[3] = fmax(box[3], C->cy[q] + C->cr[q]);
+  /* this rank's chunks: its items qa.. in order, cut every `per` items, at METIS part borders
+   * (two parts need not be near each other) and where a disc lies beyond its chunk's box by more
+   * than two of its diameters (a part's order can jump, a fragment can fly: at most FAR_CUTS such
+   * cuts, so the count of boxes stays bounded).  cs[c]: chunk c's first item; mine: the boxes
+   * (xmin, ymin, xmax, ymax); mpad[c]: chunk c's largest pad. */
+  const int nown = qb - qa, per = nown / CHUNKS_MAX + 1 > CHUNK_MIN ? nown / CHUNKS_MAX + 1 : CHUNK_MIN;
+  const int *pt = m->npart > 1 ? m->part_tri : NULL;
+  const int cap = nown / per + 2 + (pt ? m->npart : 0) + FAR_CUTS;
+  if (DS.ncst < cap + 1) {
+    free(DS.cst);
+    DS.ncst = cap + 1;
+    DS.cst = yf_malloc((size_t)DS.ncst * sizeof(int), "contact search on ranks");
   }
+  ds_room(&DS.cbx, &DS.ccbx, 5 * ((size_t)cap + 1) * sizeof(double));
+  int *cs = DS.cst, nch = 0, nfar = 0, p = 0;
+  double *mine = DS.cbx, *mpad = mine + 4 * ((size_t)cap + 1), *bc = NULL;
+  for (int q = qa, k = 0; q < qb; q++, k++) {
+    const double x = C->cx[q], y = C->cy[q], r = C->cr[q], g = 4.0 * r;
+    int cut = q == qa || k == per;
+    while (pt && p < m->npart && C->item[q] >= pt[p + 1]) p++, cut = 1;
+    if (!cut && nfar < FAR_CUTS && (x < bc[0] - g || x > bc[2] + g || y < bc[1] - g || y > bc[3] + g)) cut = 1, nfar++;
+    if (cut) {
+      YF_ASSERT(nch < cap);
+      cs[nch] = q;
+      bc = mine + 4 * nch;
+      bc[0] = bc[1] = DBL_MAX;
+      bc[2] = bc[3] = -DBL_MAX;
+      mpad[nch++] = 0.0;
+      k = 0;
+    }
+    bc[0] = fmin(bc[0], x - r);
+    bc[1] = fmin(bc[1], y - r);
+    bc[2] = fmax(bc[2], x + r);
+    bc[3] = fmax(bc[3], y + r);
+    mpad[nch - 1] = fmax(mpad[nch - 1], disc_pad(C, q));
+  }
+  cs[nch] = qb;
   ds_ranks();
   int *rb = DS.rb, *sb = DS.sb;
-  const double *boxes = par_concat(box, (int)sizeof box, rb);
-  ds_room(&DS.box, &DS.cbox, 4 * (size_t)S * sizeof(double));
-  double *bx = DS.box;
-  memcpy(bx, boxes, 4 * (size_t)S * sizeof(double));
-  /* the discs each rank needs from this one: grown by the buffer and a margin for rounding */
-#define REACHES(q, k) (C->cx[k] - pad < bx[4 * (q) + 2] && C->cx[k] + pad > bx[4 * (q)] && \
-                       C->cy[k] - pad < bx[4 * (q) + 3] && C->cy[k] + pad > bx[4 * (q) + 1])
+  const double *boxes = par_concat(mine, 4 * nch * (int)sizeof(double), rb);
+  /* every rank's boxes (from bo[r] on), each rank's hull, and a list of one rank's boxes */
+  int nbox = 0;
+  for (int r = 0; r < S; r++) nbox += rb[r] / (4 * (int)sizeof(double));
+  ds_room(&DS.box, &DS.cbox, (4 * (size_t)nbox + 4 * (size_t)S) * sizeof(double) + ((size_t)S + 1 + nbox) * sizeof(int));
+  double *bx = DS.box, *hull = bx + 4 * (size_t)nbox;
+  int *bo = (int *)(hull + 4 * (size_t)S), *near = bo + S + 1;
+  memcpy(bx, boxes, 4 * (size_t)nbox * sizeof(double));
+  bo[0] = 0;
+  for (int r = 0; r < S; r++) {
+    bo[r + 1] = bo[r] + rb[r] / (4 * (int)sizeof(double));
+    double *h = hull + 4 * r;
+    h[0] = h[1] = DBL_MAX;
+    h[2] = h[3] = -DBL_MAX;
+    for (int b = bo[r]; b < bo[r + 1]; b++) {
+      h[0] = fmin(h[0], bx[4 * b]);
+      h[1] = fmin(h[1], bx[4 * b + 1]);
+      h[2] = fmax(h[2], bx[4 * b + 2]);
+      h[3] = fmax(h[3], bx[4 * b + 3]);
+    }
+  }
+  /* the discs each rank needs from this one, rank by rank in triangle order: pass 0 counts,
+   * pass 1 writes.  A chunk grown by its largest pad holds every grown disc of it, so a rank
+   * whose boxes it misses needs none of them. */
   size_t nsend = 0;
-  for (int r = 0; r < S; r++) sb[r] = 0;
-  for (int r = 0; r < S; r++)
-    for (int k = qa; k < qb && r != me; k++) {
-      const double pad = (C->cr[k] + buf) * (1.0 + 1e-6) + 1e-12 * (fabs(C->cx[k]) + fabs(C->cy[k]));
-      if (REACHES(r, k)) sb[r] += (int)sizeof(Disc), nsend++;
+  Disc *o = NULL;
+  for (int pass = 0; pass < 2; pass++) {
+    if (pass) {
+      ds_room(&DS.send, &DS.csend, (nsend + 1) * sizeof(Disc));
+      o = DS.send;
     }
-  ds_room(&DS.send, &DS.csend, (nsend + 1) * sizeof(Disc));
-  Disc *o = DS.send;
-  for (int r = 0; r < S; r++)
-    for (int k = qa; k < qb && r != me; k++) {
-      const double pad = (C->cr[k] + buf) * (1.0 + 1e-6) + 1e-12 * (fabs(C->cx[k]) + fabs(C->cy[k]));
-      if (REACHES(r, k)) *o++ = (Disc){C->item[k], C->cx[k], C->cy[k], C->cr[k]};
+    for (int r = 0; r < S; r++) {
+      sb[r] = 0;
+      for (int c = 0; c < nch && r != me; c++) {
+        if (!box_meets(mine + 4 * c, mpad[c], hull + 4 * r)) continue;
+        int nn = 0;
+        for (int b = bo[r]; b < bo[r + 1]; b++)
+          if (box_meets(mine + 4 * c, mpad[c], bx + 4 * b)) near[nn++] = b;
+        for (int k = cs[c]; nn && k < cs[c + 1]; k++) {
+          const double pad = disc_pad(C, k), d[4] = {C->cx[k], C->cy[k], C->cx[k], C->cy[k]};
+          int hit = 0;
+          for (int z = 0; z < nn && !hit; z++) hit = box_meets(d, pad, bx + 4 * near[z]);
+          if (!hit) continue;
+          sb[r] += (int)sizeof(Disc);
+          if (pass) *o++ = (Disc){C->item[k], C->cx[k], C->cy[k], C->cr[k]};
+          else nsend++;
+        }
+      }
     }
-#undef REACHES
+  }
+  par_note_discs((long)nsend, (long)nown);
   const Disc *in = par_exchange(DS.send, sb, rb);
   /* the discs to search, by triangle: those of lower ranks, this rank's, those of higher ranks */
   size_t nin = 0;

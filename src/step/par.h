@@ -64,6 +64,7 @@ void par_share_forces(double *fx, double *fy);
 int par_rank(void);
 void par_note_cross_hits(const int *ij, const int *hk, int nh); /* the run report's count */
 void par_note_work(double secs); /* divided work of this rank (the report's imbalance) */
+void par_note_discs(long sent, long own); /* a contact search on ranks: discs sent, own discs */
 const int *par_node_lo(void);
 int par_owner_ranges(const int *tri, int stride, int n, int *lo);
 void par_share_slots(YfModel *m);
@@ -119,6 +120,7 @@ static inline void par_share_forces(double *fx, double *fy) { (void)fx; (void)fy
 static inline int par_rank(void) { return 0; }
 static inline void par_note_cross_hits(const int *ij, const int *hk, int nh) { (void)ij; (void)hk; (void)nh; }
 static inline void par_note_work(double secs) { (void)secs; }
+static inline void par_note_discs(long sent, long own) { (void)sent; (void)own; }
 static inline const int *par_node_lo(void) { return NULL; }
 static inline int par_owner_ranges(const int *tri, int stride, int n, int *lo) { (void)tri; (void)stride; (void)n; (void)lo; return 0; }
 static inline void par_share_slots(YfModel *m) { (void)m; }
