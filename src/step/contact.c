@@ -894,6 +894,18 @@ static double disc_pad(const YfContact *C, int k) {
   return (C->cr[k] + C->buffer) * (1.0 + 1e-6) + 1e-12 * (fabs(C->cx[k]) + fabs(C->cy[k]));
 }
 
+/* Box b (xmin, ymin, xmax, ymax) made empty; grown to hold the box (xmin, ymin, xmax, ymax). */
+static void box_empty(double *b) {
+  b[0] = b[1] = DBL_MAX;
+  b[2] = b[3] = -DBL_MAX;
+}
+static void box_grow(double *b, double xmin, double ymin, double xmax, double ymax) {
+  b[0] = fmin(b[0], xmin);
+  b[1] = fmin(b[1], ymin);
+  b[2] = fmax(b[2], xmax);
+  b[3] = fmax(b[3], ymax);
+}
+
 /* Box a (xmin, ymin, xmax, ymax) grown by p overlaps box b (strictly). */
 static int box_meets(const double *a, double p, const double *b) {
   return a[0] - p < b[2] && a[2] + p > b[0] && a[1] - p < b[3] && a[3] + p > b[1];
@@ -931,15 +943,11 @@ static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f) {
       YF_ASSERT(nch < cap);
       cs[nch] = q;
       bc = mine + 4 * nch;
-      bc[0] = bc[1] = DBL_MAX;
-      bc[2] = bc[3] = -DBL_MAX;
+      box_empty(bc);
       mpad[nch++] = 0.0;
       k = 0;
     }
-    bc[0] = fmin(bc[0], x - r);
-    bc[1] = fmin(bc[1], y - r);
-    bc[2] = fmax(bc[2], x + r);
-    bc[3] = fmax(bc[3], y + r);
+    box_grow(bc, x - r, y - r, x + r, y + r);
     mpad[nch - 1] = fmax(mpad[nch - 1], disc_pad(C, q));
   }
   cs[nch] = qb;
@@ -957,14 +965,8 @@ static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f) {
   for (int r = 0; r < S; r++) {
     bo[r + 1] = bo[r] + rb[r] / (4 * (int)sizeof(double));
     double *h = hull + 4 * r;
-    h[0] = h[1] = DBL_MAX;
-    h[2] = h[3] = -DBL_MAX;
-    for (int b = bo[r]; b < bo[r + 1]; b++) {
-      h[0] = fmin(h[0], bx[4 * b]);
-      h[1] = fmin(h[1], bx[4 * b + 1]);
-      h[2] = fmax(h[2], bx[4 * b + 2]);
-      h[3] = fmax(h[3], bx[4 * b + 3]);
-    }
+    box_empty(h);
+    for (int b = bo[r]; b < bo[r + 1]; b++) box_grow(h, bx[4 * b], bx[4 * b + 1], bx[4 * b + 2], bx[4 * b + 3]);
   }
   /* the discs each rank needs from this one, rank by rank in triangle order: pass 0 counts,
    * pass 1 writes.  A chunk grown by its largest pad holds every grown disc of it, so a rank
