@@ -773,6 +773,174 @@ START_TEST(restart_2_to_3) {
 }
 END_TEST
 
+/* Re-balancing (par_mpi.c par_balance): a fracturing block in self-contact (every triangle in
+ * couples with its neighbours: 3 nodes, 1.5 joints and about 9 couples per triangle) beside a
+ * steel plate of as many triangles that takes no part in contact (1 node per 2 triangles).  METIS
+ * gives each body whole parts, so the first cut on 2 ranks puts the block on one rank and the
+ * plate on the other: by the fixed weights (13 ns a triangle, 6 a node, 16 a joint, 11 a couple)
+ * the block's rank carries 1.8 x the mean.  After the first search the border moves into the
+ * block: its couples are shared (each rank holds at least half as many as the other, against
+ * 0 and all of them with YFDEM_MPI_BALANCE=0), the weight imbalance after the cut is within the
+ * granularity of a block of 256 triangles (about 3 % here), the bits are ./yfdem's on 2 and 3
+ * ranks, and a restart written after the re-cut on 2 ranks and read on 3 continues bitwise. */
+static const char REBAL_DECK[] =
+    "material c elastic rho 2340 E 26e9 nu 0.18 plane_stress pen_n 1e11 pen_t 1e10 friction 0.3\n"
+    "material s elastic rho 7800 E 210e9 nu 0.3 plane_stress\n"
+    "jointprop cj ft 3e6 fs 3e6 gf 100 pen 1e11 law munjiza\n"
+    "mesh rect rubble c 0 0 0.064 0.032 64 32 pattern cross\n"
+    "mesh rect plate s 0.1 0 0.164 0.032 64 32 pattern cross\n"
+    "fracture rubble cj\ncontact self rubble\nvelocity rubble set 0.5 -2\nvelocity plate set 0 1\n"
+    "timestep auto safety 0.5\nthermo 0\n";
+
+static void held_couples(const char *dir, long *a, long *b) {
+  char p[PATH_MAX + 64];
+  snprintf(p, sizeof p, "%s/out.txt", dir);
+  char *t = yft_slurp(p, 1);
+  const char *q = strstr(t, "contact couples held per rank ");
+  long n = 0;
+  ck_assert_msg(q && sscanf(q, "contact couples held per rank %ld..%ld of %ld", a, b, &n) == 3,
+                "the report does not say which couples each rank holds");
+  free(t);
+}
+
+START_TEST(rebalance_contact_work) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), path[PATH_MAX + 32], deck[sizeof REBAL_DECK + 128];
+  snprintf(deck, sizeof deck, "%srun 100\n", REBAL_DECK);
+  write_file(d, "full.deck", deck);
+  snprintf(deck, sizeof deck, "%srun 50\nwrite_restart half.restart\n", REBAL_DECK);
+  write_file(d, "first.deck", deck);
+  snprintf(deck, sizeof deck, "%sread_restart half.restart\nrun 100 upto\n", REBAL_DECK);
+  write_file(d, "second.deck", deck);
+  ck_assert_int_eq(run_in(d, 0, 1, "-in full.deck -summary full.json", NULL), 0);
+  snprintf(path, sizeof path, "%s/full.json", d);
+  char *ref = key_lines(path);
+  long a = -1, b = -1;
+  setenv("YFDEM_MPI_BALANCE", "0", 1);
+  int rc = run_in(d, 2, 1, "-in full.deck -summary m.json", NULL);
+  unsetenv("YFDEM_MPI_BALANCE");
+  ck_assert_int_eq(rc, 0);
+  held_couples(d, &a, &b);
+  ck_assert_msg(a == 0 && b > 10000, "YFDEM_MPI_BALANCE=0: ranks hold %ld..%ld couples: the scene is not one-sided", a,
+                b);
+  ck_assert_msg(count_in(d, "out.txt", "not re-balanced (YFDEM_MPI_BALANCE=0") == 1,
+                "YFDEM_MPI_BALANCE=0: the report does not say the borders stayed");
+  for (int ranks = 2; ranks <= 3; ranks++) {
+    ck_assert_int_eq(run_in(d, ranks, 1, "-in full.deck -summary m.json", NULL), 0);
+    snprintf(path, sizeof path, "%s/m.json", d);
+    char *got = key_lines(path);
+    ck_assert_msg(!strcmp(ref, got), "%d ranks differ from ./yfdem:\n%s--- vs ./yfdem:\n%s", ranks, got, ref);
+    free(got);
+    held_couples(d, &a, &b);
+    snprintf(path, sizeof path, "%s/out.txt", d);
+    char *t = yft_slurp(path, 1);
+    const char *q = strstr(t, "re-balanced ");
+    int n = 0;
+    double w0 = 0, w1 = 0;
+    ck_assert_msg(q && sscanf(q, "re-balanced %d time%*[s ](weight imbalance %lf -> %lf", &n, &w0, &w1) == 3,
+                  "%d ranks: the report does not say the borders moved (%.80s)", ranks, q ? q : "no 're-balanced'");
+    free(t);
+    ck_assert_msg(n >= 1 && w0 > 1.5 && w1 < 1.05, "%d ranks: re-balanced %d times, weight imbalance %.3f -> %.3f",
+                  ranks, n, w0, w1);
+    ck_assert_msg(a > 0 && 2 * a >= b, "%d ranks: couples held per rank %ld..%ld after the re-cut", ranks, a, b);
+    fprintf(stderr, "check_mpi: re-balanced on %d ranks: weight imbalance %.3f -> %.3f, couples held per rank "
+            "%ld..%ld (all on one rank without), ./yfdem's bits\n", ranks, w0, w1, a, b);
+  }
+  free(ref);
+  ck_assert_int_eq(run_in(d, 2, 1, "-in first.deck", NULL), 0);
+  ck_assert_msg(count_in(d, "out.txt", "re-balanced 1 time") == 1, "2 ranks, first half: not re-balanced");
+  ck_assert_int_eq(run_in(d, 3, 1, "-in second.deck -summary cont.json", NULL), 0);
+  fprintf(stderr, "check_mpi: restart written after a re-cut on 2 ranks, read on 3: %s as the uninterrupted run\n",
+          same_hash_as_full(d, "re-balanced restart 2 -> 3 ranks"));
+  /* a value that is neither 0 nor 1 is refused (a deck error, exit 1), not taken for one */
+  setenv("YFDEM_MPI_BALANCE", "yes", 1);
+  rc = run_in(d, 2, 1, "-in full.deck", NULL);
+  unsetenv("YFDEM_MPI_BALANCE");
+  ck_assert_msg(rc == 1 && count_in(d, "err.txt", "YFDEM_MPI_BALANCE='yes'") >= 1,
+                "YFDEM_MPI_BALANCE=yes: exit %d, message %d times", rc, count_in(d, "err.txt", "YFDEM_MPI_BALANCE='yes'"));
+  drop_dir(d);
+}
+END_TEST
+
+/* Scenes that change between runs (found by a sweep of new decks, 2026-11-28):
+ *   - a body added after a run moves the first cut (the triangle count changed): a couple whose
+ *     lower triangle changed owner must keep its friction memory (it was zeroed: the block slid
+ *     on with another friction energy on 2 ranks);
+ *   - a body added on 4 ranks whose cut falls inside a cell leaves halo mode (node order no
+ *     longer follows the ranks): the couple list must be made whole again (an assertion ended
+ *     the run, exit 70);
+ *   - a node with no triangle added after a run (a point-loaded node): its force must be summed
+ *     anew each step (it added up: fx 3 after 3 steps of a unit load on 2 ranks);
+ *   - an error after a record row was begun: the file keeps what ./yfdem's exit keeps (MPI_Abort
+ *     dropped rank 0's buffers: an empty file).
+ * Each: ./yfdem's state_hash, printed results and files, on 2 to 4 ranks. */
+static const char *const CHANGE_DECKS[][2] = {
+    {"fric_add.deck",
+     "material c elastic rho 2340 E 26e9 nu 0.18 plane_stress pen_n 1e11 pen_t 1e10 friction 0.5\n"
+     "mesh rect base c 0 0 0.1 0.01 20 2\nmesh rect blk c 0.02 0.01 0.05 0.02 6 2 pattern left\n"
+     "region bot box -1 -1 1 1e-9\ngroup bot node region bot\nfix hold bot fixed xy\nvelocity blk set 2 0\n"
+     "gravity 0 -9.81e3\ncontact pair base blk\ntimestep auto\nrun 500\nprint \"r1 $(vx_blk) $(friction)\"\n"
+     "mesh rect far c 5 5 5.01 5.01 1 1\nrun 500\nprint \"r2 $(vx_blk) $(friction)\"\n"},
+    {"halo_off.deck",
+     "material c elastic rho 2340 E 26e9 nu 0.18 plane_stress pen_n 1e11\nmesh rect a c 0 0 0.02 0.02 4 4\n"
+     "partition metis parts 2\ncontact self a\ntimestep auto\nrun 10\nmesh rect b c 1 1 1.01 1.01 1 6\nrun 10\n"},
+    {"stray_node.deck",
+     "material m elastic rho 2000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 1 2 2\ntimestep auto\nrun 1\n"
+     "node 99 5 5\ngroup s node id 99\nload p point node 99 1 0\nrun 3\nprint \"fx_s $(fx_s)\"\n"},
+    {"record_err.deck",
+     "material m elastic rho 2000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 1 4 4\nvelocity b set 1 0\n"
+     "timestep auto\nrecord r 10 r.csv ke \"sqrt(vx_b-1.5)\"\nrun 20\n"},
+};
+
+/* The lines of dir/out.txt that a deck prints itself ("r1 ...", "fx_s ..."): the results read. */
+static char *print_lines(const char *dir) {
+  char p[PATH_MAX + 64];
+  snprintf(p, sizeof p, "%s/out.txt", dir);
+  char *t = yft_slurp(p, 1), *out = calloc(strlen(t) + 1, 1);
+  size_t n = 0;
+  for (char *line = strtok(t, "\n"); line; line = strtok(NULL, "\n"))
+    if (!strncmp(line, "r1 ", 3) || !strncmp(line, "r2 ", 3) || !strncmp(line, "fx_s ", 5))
+      n += (size_t)sprintf(out + n, "%s\n", line);
+  free(t);
+  return out;
+}
+
+START_TEST(scene_changes_between_runs) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), args[256], path[PATH_MAX + 64];
+  const int nd = (int)(sizeof CHANGE_DECKS / sizeof CHANGE_DECKS[0]);
+  for (int k = 0; k < nd; k++) {
+    const char *name = CHANGE_DECKS[k][0];
+    write_file(d, name, CHANGE_DECKS[k][1]);
+    snprintf(args, sizeof args, "-in %s -summary ref.json", name);
+    const int rc0 = run_in(d, 0, 1, args, NULL);
+    snprintf(path, sizeof path, "%s/ref.json", d);
+    char *ref = key_lines(path), *pref = print_lines(d);
+    snprintf(path, sizeof path, "%s/r.csv", d);
+    char *cref = yft_slurp(path, 1);
+    unlink(path);
+    for (int ranks = 2; ranks <= 4; ranks++) {
+      snprintf(args, sizeof args, "-in %s -summary m.json", name);
+      const int rc = run_in(d, ranks, 1, args, NULL);
+      ck_assert_msg(rc == rc0, "%s, %d ranks: exit %d, ./yfdem %d", name, ranks, rc, rc0);
+      snprintf(path, sizeof path, "%s/m.json", d);
+      char *got = key_lines(path), *pgot = print_lines(d);
+      ck_assert_msg(!strcmp(ref, got), "%s, %d ranks differ from ./yfdem:\n%s--- vs ./yfdem:\n%s", name, ranks, got, ref);
+      ck_assert_msg(!strcmp(pref, pgot), "%s, %d ranks print:\n%s--- ./yfdem:\n%s", name, ranks, pgot, pref);
+      snprintf(path, sizeof path, "%s/r.csv", d);
+      char *cgot = yft_slurp(path, 1);
+      ck_assert_msg(!strcmp(cref, cgot), "%s, %d ranks: r.csv is '%s', ./yfdem's '%s'", name, ranks, cgot, cref);
+      unlink(path);
+      free(got); free(pgot); free(cgot);
+    }
+    fprintf(stderr, "check_mpi: %s (exit %d) on 2-4 ranks: ./yfdem's state_hash%s\n", name, rc0,
+            *pref ? ", printed results" : *cref ? ", record file" : "");
+    free(ref); free(pref); free(cref);
+  }
+  drop_dir(d);
+}
+END_TEST
+
 /* How many times needle occurs in the file dir/name. */
 static int count_in(const char *dir, const char *name, const char *needle) {
   char p[PATH_MAX + 64];
@@ -888,6 +1056,8 @@ Suite *mpi_suite(void) {
   tcase_add_test(t, search_by_boxes);
   tcase_add_test(t, search_sends_near_only);
   tcase_add_test(t, restart_2_to_3);
+  tcase_add_test(t, rebalance_contact_work);
+  tcase_add_test(t, scene_changes_between_runs);
   tcase_add_test(t, error_all_ranks);
   tcase_add_test(t, error_one_rank);
   tcase_add_test(t, output_error_ranks);

@@ -85,7 +85,7 @@ static struct {
   int nextra, *extra;       /* the shared nodes other ranks own (this rank updates them too)   */
   int *bcnt, *bdsp;
   double *bbuf;
-  int nsneed, *sneed;       /* ghosts of the triangles, joint blocks and loads (fixed per run)  */
+  int nsneed, *sneed, csneed; /* ghosts of the triangles, joint blocks and loads (fixed per run)  */
   int ncneed, *cneed, ccneed; /* ghosts of the contact couples (par_contact_ghosts)            */
   int ngh, *gh, cgh;        /* all ghosts, increasing: what this rank receives                 */
   int *gcnt, *gdsp;         /* ghosts per owner (doubles: 4 per node), received               */
@@ -100,6 +100,20 @@ static struct {
   long disc_sent, disc_own, nsearch; /* contact searches on ranks: discs this rank sent (to every
                              * other rank, counted once per rank), its own discs, searches */
   double hbytes;            /* of bytes: what went to one rank only (slot halo, contact hits)  */
+  /* Re-balancing (par_balance): each triangle's fixed cost, per block of bal_g triangles too */
+  unsigned char *tw;        /* per triangle: W_TRI + W_NODE per node it numbers + W_JOINT per
+                               joint it is the lower triangle of (units of about 1 ns a step)  */
+  long *bw;                 /* per block: the sum of tw                                         */
+  int *bc;                  /* per block: contact couples whose lower triangle is in it         */
+  int tw_nt, tw_nn, tw_nj, bal_g, bal_nb;
+  int bal;                  /* 1: re-balance (YFDEM_MPI_BALANCE, default 1)                    */
+  long bal_search;          /* contact searches when the ranks' weights were last looked at     */
+  int nrecut;               /* re-cuts in this run                                              */
+  double bal_from, bal_to;  /* the first re-cut's weight imbalance before, the last's after     */
+  double t_recut;           /* wall seconds of this run's re-cuts                              */
+  int lay_id;               /* changes with the triangle ranges (par_prepare, a re-cut)         */
+  void *sc[4];              /* the layout's scratch: owner, seen, trank, jrank                 */
+  size_t sc_cap[4];
 } P;
 
 static void on_exit_code(int code) {
@@ -115,6 +129,7 @@ static void on_exit_code(int code) {
     fprintf(stderr, "rank %d: %s\n", P.rank, yf_last_message());
     fflush(stderr);
   }
+  fflush(NULL); /* what ./yfdem's exit() would keep: a record's last rows, say (MPI_Abort drops buffers) */
   MPI_Abort(MPI_COMM_WORLD, code);
   exit(code);
 }
@@ -161,6 +176,15 @@ FILE *par_stdin(FILE *in) {
   return f;
 }
 
+static void *scratch(int k, size_t bytes) { /* kept between calls: a re-cut touches no fresh page */
+  if (bytes > P.sc_cap[k]) {
+    free(P.sc[k]);
+    P.sc[k] = yf_malloc(bytes, "rank layout");
+    P.sc_cap[k] = bytes;
+  }
+  return P.sc[k];
+}
+
 /* Node ranges and the slot halo from owner[] (node -> rank, -1: no triangle) and trank[]
  * (triangle -> rank).  Nodes no triangle meets go with the node before them.  Halo mode needs
  * owner non-decreasing in node order (the partition numbers nodes so); otherwise the run keeps
@@ -195,7 +219,7 @@ static void build_halo(const YfSim *s, int *owner, const int *trank) {
   int *jrank = NULL;
   if (m->nxslot) {
     int nj = J->n, nb = (nj + YF_JBLOCK - 1) / YF_JBLOCK;
-    jrank = yf_malloc((size_t)nj * sizeof(int), "slot halo");
+    jrank = scratch(3, (size_t)nj * sizeof(int));
     for (int b = 0; b < nb; b++) {
       int a = J->tri[2 * b * YF_JBLOCK], c = J->tri[2 * b * YF_JBLOCK + 1];
       for (int j = b * YF_JBLOCK; j < nj && j < (b + 1) * YF_JBLOCK; j++) jrank[j] = trank[a < c ? a : c];
@@ -225,7 +249,7 @@ static void build_halo(const YfSim *s, int *owner, const int *trank) {
     if (r == me) P.rslot[P.rdsp[q] / 2 + fr[q]++] = k;
   }
 #undef SLOT_RANKS
-  free(fs); free(fr); free(jrank);
+  free(fs); free(fr);
 }
 
 /* What a halo design would exchange (docs/SCALING.md): the nodes rank r reads but does not own.
@@ -234,9 +258,9 @@ static void build_halo(const YfSim *s, int *owner, const int *trank) {
 static void count_ghosts(const YfSim *s) {
   const YfModel *m = &s->model;
   int nn = m->node.n, nt = m->tri.n;
-  int *owner = yf_malloc((size_t)(nn > 0 ? nn : 1) * sizeof(int), "ghost count");
-  int *seen = yf_malloc((size_t)(nn > 0 ? nn : 1) * sizeof(int), "ghost count");
-  int *trank = yf_malloc((size_t)(nt > 0 ? nt : 1) * sizeof(int), "ghost count");
+  int *owner = scratch(0, (size_t)(nn > 0 ? nn : 1) * sizeof(int));
+  int *seen = scratch(1, (size_t)(nn > 0 ? nn : 1) * sizeof(int));
+  int *trank = scratch(2, (size_t)(nt > 0 ? nt : 1) * sizeof(int));
   for (int i = 0; i < nn; i++) owner[i] = seen[i] = -1;
   for (int r = 0; r < P.size; r++)
     for (int e = P.tlo[r]; e < P.tlo[r + 1]; e++) {
@@ -246,15 +270,17 @@ static void count_ghosts(const YfSim *s) {
     }
   int *ghosts = yf_calloc((size_t)P.size, sizeof(int), "ghost count");
   const YfJoints *J = s->joints;
-  for (int r = 0; r < P.size; r++) { /* seen[q] == r: q already counted for rank r */
+  const int nj = J ? J->n : 0;
+  for (int r = 0, j = 0; r < P.size; r++) { /* seen[q] == r: q already counted for rank r */
     for (int e = P.tlo[r]; e < P.tlo[r + 1]; e++)
       for (int c = 0; c < 3; c++) {
         int q = m->tri.v[3 * e + c];
         if (owner[q] != r && seen[q] != r) seen[q] = r, ghosts[r]++;
       }
-    for (int j = 0; J && j < J->n; j++) {
+    /* rank r's joints: sorted by their lower triangle, so the next ones in joint order */
+    for (; j < nj; j++) {
       int ta = J->tri[2 * j], tb = J->tri[2 * j + 1];
-      if (trank[ta < tb ? ta : tb] != r) continue;
+      if (trank[ta < tb ? ta : tb] != r) break;
       for (int c = 0; c < 4; c++) {
         int q = J->node[4 * j + c];
         if (owner[q] != r && seen[q] != r) seen[q] = r, ghosts[r]++;
@@ -268,7 +294,7 @@ static void count_ghosts(const YfSim *s) {
     P.ghost_max = ghosts[r] > P.ghost_max ? ghosts[r] : P.ghost_max;
   }
   build_halo(s, owner, trank);
-  free(owner); free(seen); free(trank); free(ghosts);
+  free(ghosts);
 }
 
 /* The blocks of n items (nblk of `block`) over the ranges lo[0..size]: which each rank sums
@@ -358,11 +384,21 @@ static void split_share_sums(const Split *sp, double *rec, int per) {
   allgatherv(rec, MPI_DOUBLE, sizeof(double));
 }
 
+/* What follows from the triangle ranges P.tlo: the element stage's split blocks, the node ranges
+ * and the slot halo (count_ghosts); the node sums' blocks again at their first use. */
+static void layout(YfSim *s) {
+  split_build(&P.st, P.tlo, s->model.tri.n, P.nblk, P.block, 3);
+  P.sn.n = -1;
+  count_ghosts(s);
+}
 
 void par_prepare(YfSim *s, int nblk, int block) {
   const YfModel *m = &s->model;
   int nt = m->tri.n, S = P.size;
-  if (P.tlo && P.nt == nt && P.nblk == nblk && P.block == block) return; /* the same scene */
+  /* the same scene: the same triangles and nodes (a node added after a run, with no triangle,
+   * changes the node ranges, and with them whose force each rank sums) */
+  if (P.tlo && P.nt == nt && P.nn == m->node.n && P.nblk == nblk && P.block == block) return;
+  P.lay_id++; /* contact.c moves its couples to their new owners at its next step */
   free(P.tlo); free(P.cnt); free(P.dsp);
   size_t n1 = (size_t)S + 1;
   P.tlo = yf_malloc(n1 * sizeof(int), "rank ranges");
@@ -385,11 +421,9 @@ void par_prepare(YfSim *s, int nblk, int block) {
    * block split between ranks are evaluated one by one by their owners, and the rank holding its
    * first triangle sums the block's per-triangle results in triangle order: the same additions as
    * the one-rank loop. */
-  split_build(&P.st, P.tlo, nt, nblk, block, 3);
   free(P.erec);
   P.erec = yf_malloc(3 * ((size_t)nblk + 1) * sizeof(double), "block records");
-  P.sn.n = -1; /* the node sums' blocks: again at their first use */
-  count_ghosts(s);
+  layout(s);
 }
 
 void par_blocks(int *b0, int *b1) {
@@ -543,9 +577,10 @@ void par_need_stresses(YfModel *m) {
 }
 
 /* Divided update: every node's state from its owner. */
+#define NODE_STATE(n) {(n)->x, (n)->y, (n)->vx, (n)->vy, (n)->fx, (n)->fy} /* what owners keep current */
 static void gather_nodes(YfNodes *n) {
   if (!P.div || P.nodes_fresh) return;
-  double *a[6] = {n->x, n->y, n->vx, n->vy, n->fx, n->fy};
+  double *a[6] = NODE_STATE(n);
   for (int k = 0; k < 6; k++) par_gather_ranges(a[k], P.nlo, (int)sizeof(double));
   P.nodes_fresh = 1;
 }
@@ -668,13 +703,14 @@ void par_contact_ghosts(YfNodes *n, const int *nodes, int nnodes) {
   P.nodes_fresh = nf;
 }
 
+static void divide(YfSim *s);
 void par_run_begin(YfSim *s) {
   P.run_id++;
   P.div = 0;
   P.why = "";
   if (P.size <= 1) return;
   const YfModel *m = &s->model;
-  const int nn = m->node.n, S = P.size, me = P.rank;
+  const int nn = m->node.n;
   if (!P.halo || nn != P.nn) { /* node ranges of another scene, or not one range per rank */
     P.why = "the node order does not follow the triangles' ranks: an unpartitioned mesh below 8192 triangles "
             "(every corner force goes to every rank)";
@@ -682,6 +718,7 @@ void par_run_begin(YfSim *s) {
   }
   free(P.nmark);
   P.nmark = yf_calloc((size_t)(nn > 0 ? nn : 1), 1, "node marks");
+  P.ngh = 0; /* no ghost marked yet */
   int integ = 0;
   for (int k = 0; k < s->nbc_kind; k++) {
     if (s->bc_kind[k]->mark_nodes) s->bc_kind[k]->mark_nodes(s, P.nmark);
@@ -707,7 +744,28 @@ void par_run_begin(YfSim *s) {
     P.why = "YFDEM_MPI_DIVIDE=0";
   }
   P.poison = po && *po == '1';
+  const char *b = getenv("YFDEM_MPI_BALANCE");
+  if (b && *b && strcmp(b, "0") && strcmp(b, "1"))
+    yf_exit_with(YF_EXIT_DECK, "error: YFDEM_MPI_BALANCE='%s': expected 1 (move the ranks' borders when the contact "
+                 "work is uneven, the default) or 0 (keep the first cut)", b);
+  P.bal = !(b && *b == '0');
+  P.bal_search = -1;
+  P.nrecut = 0;
+  P.t_recut = 0.0;
   if (!P.div) return;
+  divide(s);
+  /* the state is whole now (the run starts from a replicated state) */
+  P.nodes_fresh = 1;
+}
+
+/* The divided update's lists for the current ranges (a run's start, a re-cut): the shared nodes
+ * and each owner's slice of them, the fixed ghosts and what this rank asks of each owner.  The
+ * contact ghosts are set again at the next contact stage (par_run_id changes). */
+static void divide(YfSim *s) {
+  const YfModel *m = &s->model;
+  const int nn = m->node.n, S = P.size, me = P.rank;
+  int nsh = 0;
+  for (int i = 0; i < nn; i++) nsh += (P.nmark[i] & YF_BC_SHARED) != 0;
   /* the shared nodes and each owner's slice of them */
   free(P.shared); free(P.bcnt); free(P.bdsp); free(P.bbuf);
   P.shared = yf_malloc((size_t)(nsh > 0 ? nsh : 1) * sizeof(int), "shared nodes");
@@ -728,8 +786,9 @@ void par_run_begin(YfSim *s) {
     if (P.shared[q] < P.nlo[me] || P.shared[q] >= P.nlo[me + 1]) P.extra[P.nextra++] = P.shared[q];
   /* the fixed ghosts: corners of this rank's triangles, nodes of its joint blocks (a block goes
    * with the owner of its first joint's lower triangle), nodes the kinds read */
-  int cap = 3 * (P.tlo[me + 1] - P.tlo[me]) + nn / 16 + 16, ns = 0;
-  int *sn = yf_malloc((size_t)cap * sizeof(int), "ghost nodes");
+  int ns = 0;
+  room((void **)&P.sneed, &P.csneed, 3 * (P.tlo[me + 1] - P.tlo[me]) + nn / 16 + 16, sizeof(int));
+  int *sn = P.sneed, cap = P.csneed;
 #define PUSH(i) do { if (ns == cap) sn = yf_realloc(sn, (size_t)(cap *= 2) * sizeof(int), "ghost nodes"); \
                      sn[ns++] = (i); } while (0)
   for (int e2 = 3 * P.tlo[me]; e2 < 3 * P.tlo[me + 1]; e2++) PUSH(m->tri.v[e2]);
@@ -746,8 +805,8 @@ void par_run_begin(YfSim *s) {
   for (int i = 0; i < nn; i++)
     if (P.nmark[i] & YF_BC_READS) PUSH(i);
 #undef PUSH
-  free(P.sneed);
-  P.sneed = sn;
+  P.sneed = sn; /* (kept between calls, as the other ghost lists) */
+  P.csneed = cap;
   P.nsneed = ns;
   P.ncneed = 0;
   if (!P.gcnt) {
@@ -757,13 +816,11 @@ void par_run_begin(YfSim *s) {
     P.ocnt = yf_calloc(n1, sizeof(int), "ghost nodes");
     P.odsp = yf_calloc(n1, sizeof(int), "ghost nodes");
   }
-  P.ngh = 0;
-  build_requests();
-  /* the state is whole now (the run starts from a replicated state) */
-  P.nodes_fresh = 1;
+  build_requests(); /* (clears the marks of the ghosts it had) */
 }
 
 int par_divided(void) { return P.div; }
+int par_layout_id(void) { return P.lay_id; }
 int par_run_id(void) { return P.run_id; }
 
 void par_update_nodes(int *n0, int *n1, const int **extra, int *nextra) {
@@ -919,6 +976,190 @@ void par_gather_ranges(void *a, const int *lo, int elem_bytes) {
   P.t_comm += yf_now() - t0;
 }
 
+/* An array held by ranges lo_old (rank r: items lo_old[r]..lo_old[r+1]-1 current) made current
+ * on the ranges lo_new: each item whose owner changes goes from its old owner to its new one, and
+ * nothing else moves (a collective). */
+void par_move_ranges(void *a, const int *lo_old, const int *lo_new, int elem_bytes) {
+  const int S = P.size, me = P.rank;
+  xroom(0);
+  size_t tot = 0;
+  for (int r = 0; r < S; r++) {
+    int s0 = lo_old[me] > lo_new[r] ? lo_old[me] : lo_new[r], s1 = lo_old[me + 1] < lo_new[r + 1] ? lo_old[me + 1] : lo_new[r + 1];
+    int g0 = lo_old[r] > lo_new[me] ? lo_old[r] : lo_new[me], g1 = lo_old[r + 1] < lo_new[me + 1] ? lo_old[r + 1] : lo_new[me + 1];
+    P.xs[r] = r != me && s1 > s0 ? (s1 - s0) * elem_bytes : 0;
+    P.xsd[r] = P.xs[r] ? s0 * elem_bytes : 0;
+    P.xr[r] = r != me && g1 > g0 ? (g1 - g0) * elem_bytes : 0;
+    P.xrd[r] = (int)tot;
+    tot += (size_t)P.xr[r];
+  }
+  xroom(tot);
+  double t0 = yf_now();
+  for (int r = 0; r < S; r++) P.bytes += P.xs[r];
+  MPI_Alltoallv(a, P.xs, P.xsd, MPI_BYTE, P.xbuf, P.xr, P.xrd, MPI_BYTE, MPI_COMM_WORLD);
+  for (int r = 0; r < S; r++) {
+    int g0 = lo_old[r] > lo_new[me] ? lo_old[r] : lo_new[me];
+    if (P.xr[r]) memcpy((char *)a + (size_t)g0 * elem_bytes, P.xbuf + P.xrd[r], (size_t)P.xr[r]);
+  }
+  P.t_comm += yf_now() - t0;
+}
+
+/* ---------------------------------------------------------------- re-balancing
+ *
+ * Triangles keep their rank as fragments fly (Lagrangian ownership), and the first cut balances
+ * triangles, not work.  What makes a rank slower is mostly its contact couples (a couple is
+ * evaluated by the owner of its lower triangle, and couples per triangle vary across a scene: the
+ * beam deck at 1e6 on 2 ranks holds 4.60e6 and 4.37e6).  After each contact search the ranks
+ * weigh their work: a fixed cost per triangle, per node it numbers and per joint it is the lower
+ * triangle of, and a cost per couple (W_*, measured from ./yfdem's stage table: the beam deck at
+ * 1e6, one thread: elements and the screen's records 13 ns a triangle, gather and update 6 ns a
+ * node, joints 16 ns a joint, contact 11 ns a couple).  When the heaviest rank is more than
+ * BAL_TOL above the mean and a cut by weight would save, over the steps left in the run, twice
+ * what the re-cut costs, the borders move: every rank computes the same new ranges from the same integer counts (the cut is at a
+ * block of bal_g triangles), the state of the items that change owner goes to their new owners
+ * (nodes, stresses, joints, couples with their friction memory and contact forces), and the
+ * ranges, halos and ghost lists are made again.  The one-rank order of every sum is the same for
+ * any ranges, so a re-cut changes no bit; only where the work is done. */
+enum { W_TRI = 13, W_NODE = 6, W_JOINT = 16, W_COUPLE = 11 }; /* ns of a step, one thread */
+#define BAL_TOL 0.01
+#define RECUT_NS 17.0
+
+/* Each triangle's fixed weight and its blocks' sums, for this scene (again when it changes). */
+static void tri_weights(const YfSim *s) {
+  const YfModel *m = &s->model;
+  const YfJoints *J = s->joints;
+  const int nt = m->tri.n, nn = m->node.n, nj = J ? J->n : 0;
+  if (P.tw && P.tw_nt == nt && P.tw_nn == nn && P.tw_nj == nj) return;
+  free(P.tw); free(P.bw); free(P.bc);
+  P.tw = yf_malloc((size_t)(nt > 0 ? nt : 1), "rank weights");
+  unsigned char *seen = scratch(1, (size_t)(nn > 0 ? nn : 1));
+  memset(seen, 0, (size_t)nn);
+  for (int e = 0; e < nt; e++) {
+    int w = W_TRI;
+    for (int c = 0; c < 3; c++) {
+      int i = m->tri.v[3 * e + c];
+      if (!seen[i]) seen[i] = 1, w += W_NODE;
+    }
+    P.tw[e] = (unsigned char)w;
+  }
+  for (int j = 0; j < nj; j++) {
+    int a = J->tri[2 * j], b = J->tri[2 * j + 1], t = a < b ? a : b;
+    P.tw[t] = (unsigned char)(P.tw[t] + W_JOINT <= 255 ? P.tw[t] + W_JOINT : 255);
+  }
+  /* blocks: at most 1024 per rank, of 256 triangles at least */
+  P.bal_g = nt / (1024 * P.size) > 256 ? nt / (1024 * P.size) : 256;
+  P.bal_nb = (nt + P.bal_g - 1) / P.bal_g;
+  P.bw = yf_calloc((size_t)P.bal_nb + 1, sizeof(long), "rank weights");
+  P.bc = yf_calloc((size_t)P.bal_nb + 1, sizeof(int), "rank weights");
+  for (int e = 0; e < nt; e++) P.bw[e / P.bal_g] += P.tw[e];
+  P.tw_nt = nt;
+  P.tw_nn = nn;
+  P.tw_nj = nj;
+}
+
+/* A rank's fixed weight: its triangles' tw. */
+static long range_weight(int e0, int e1) {
+  long w = 0;
+  for (int e = e0; e < e1; e++) w += P.tw[e];
+  return w;
+}
+
+static void recut(YfSim *s, const int *tnew);
+void par_balance(YfSim *s) {
+  if (P.size <= 1 || !P.div || !P.bal) return;
+  const long ns = contact_searches(s);
+  if (ns == P.bal_search) return; /* the couples have not changed since the last look */
+  P.bal_search = ns;
+  const int *clo = contact_rank_lo(s); /* every rank's couples: ranges of the one-rank list */
+  const int S = P.size, nt = s->model.tri.n;
+  if (!clo || nt < 4 * 256 * S) return;
+  double t0 = yf_now();
+  tri_weights(s);
+  long wmax = 0, wsum = 0;
+  for (int r = 0; r < S; r++) {
+    long w = range_weight(P.tlo[r], P.tlo[r + 1]) + (long)W_COUPLE * (clo[r + 1] - clo[r]);
+    wmax = w > wmax ? w : wmax;
+    wsum += w;
+  }
+  const double mean = (double)wsum / S;
+  P.t_recut += yf_now() - t0;
+  if ((double)wmax <= mean * (1.0 + BAL_TOL)) return;
+  /* every rank's couples per block, summed (integers: every rank gets the same counts) */
+  const int G = P.bal_g, nb = P.bal_nb;
+  memset(P.bc, 0, (size_t)nb * sizeof(int));
+  contact_count_by_block(s, G, P.bc);
+  MPI_Allreduce(MPI_IN_PLACE, P.bc, nb, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  P.bytes += (double)nb * sizeof(int);
+  /* the new cut: rank r starts at the block border whose weight before it is nearest r/S of the
+   * whole, at least one block after rank r-1's */
+  long tot = 0;
+  for (int b = 0; b < nb; b++) tot += P.bw[b] + (long)W_COUPLE * P.bc[b];
+  int *tnew = yf_malloc(((size_t)S + 1) * sizeof(int), "rank weights");
+  long pre = 0, nmax = 0, last = 0;
+  tnew[0] = 0;
+  for (int r = 1, b = 0; r < S; r++) {
+    const double want = (double)tot * r / S;
+    const int bmin = tnew[r - 1] / G + 1, bmax = nb - (S - r); /* a block at least for each rank */
+    for (; b < bmin; b++) pre += P.bw[b] + (long)W_COUPLE * P.bc[b];
+    for (; b < bmax; b++) {
+      const long wb = P.bw[b] + (long)W_COUPLE * P.bc[b];
+      if ((double)pre + 0.5 * (double)wb > want) break; /* the border before block b is the nearer */
+      pre += wb;
+    }
+    tnew[r] = b * G;
+    nmax = pre - last > nmax ? pre - last : nmax;
+    last = pre;
+  }
+  tnew[S] = nt;
+  nmax = tot - last > nmax ? tot - last : nmax;
+  /* worth the move when what it saves over the rest of the run (in the weights' units, about a
+   * ns of a step) is at least twice what a re-cut costs: RECUT_NS per triangle, node and joint
+   * (passes over all of them: the node ranges, the slot halo, the ghost lists; 0.093 s for the
+   * beam deck at 1e6, 5.5e6 of them, on 2 ranks) */
+  const YfJoints *J = s->joints;
+  const double left = (double)(s->run_end_step - s->step);
+  const double cost = RECUT_NS * ((double)nt + s->model.node.n + (J ? J->n : 0));
+  if ((double)(wmax - nmax) * left < 2.0 * cost) {
+    free(tnew);
+    P.t_recut += yf_now() - t0;
+    return;
+  }
+  if (!P.nrecut) P.bal_from = (double)wmax / mean;
+  P.bal_to = (double)nmax / mean;
+  recut(s, tnew);
+  free(tnew);
+  P.nrecut++;
+  P.t_recut += yf_now() - t0;
+}
+
+/* The ranges become tnew; the state of what changes owner goes to its new owner. */
+static void recut(YfSim *s, const int *tnew) {
+  YfModel *m = &s->model;
+  const int S = P.size;
+  size_t n1 = (size_t)S + 1;
+  int *told = yf_malloc(n1 * sizeof(int), "re-cut"), *nold = yf_malloc(n1 * sizeof(int), "re-cut");
+  int *jold = yf_malloc(n1 * sizeof(int), "re-cut");
+  memcpy(told, P.tlo, n1 * sizeof(int));
+  memcpy(nold, P.nlo, n1 * sizeof(int));
+  const int joints = joints_par_rows(s, jold);
+  memcpy(P.tlo, tnew, n1 * sizeof(int));
+  P.lay_id++;
+  layout(s); /* the new node ranges, split blocks and slot halo */
+  if (!P.nodes_fresh) {
+    double *a[6] = NODE_STATE(&m->node);
+    for (int k = 0; k < 6; k++) par_move_ranges(a[k], nold, P.nlo, (int)sizeof(double));
+  }
+  if (!P.stress_fresh) par_move_ranges(m->tri.s, told, P.tlo, 3 * (int)sizeof(double));
+  if (joints) joints_par_move(s, jold);
+  contact_rehome(s, nold);
+  const int nf = P.nodes_fresh, sf = P.state_fresh;
+  P.run_id++; /* contact.c sets its ghosts and its list of forced nodes again */
+  divide(s);
+  if (!nf) par_ghost_exchange(&m->node); /* the new ghosts' state: the next step reads it */
+  P.nodes_fresh = nf;
+  P.state_fresh = sf;
+  free(told); free(nold); free(jold);
+}
+
 int par_any(int flag) {
   if (P.size <= 1) return flag;
   int any = 0;
@@ -978,7 +1219,13 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
       tmax = nt > tmax ? nt : tmax;
     }
     double emean = esum / P.size;
-    char upd[512];
+    char upd[512], bal[256];
+    if (P.nrecut)
+      snprintf(bal, sizeof bal, "re-balanced %d time%s (weight imbalance %.3f -> %.3f, %.3f s)", P.nrecut,
+               P.nrecut > 1 ? "s" : "", P.bal_from, P.bal_to, P.t_recut);
+    else
+      snprintf(bal, sizeof bal, "not re-balanced (%s; %.3f s weighing)", P.size <= 1 ? "one rank" : !P.div ? "the update is replicated" :
+               !P.bal ? "YFDEM_MPI_BALANCE=0" : "the ranks' work within 1 % of the mean, or a re-cut would cost more than it saves", P.t_recut);
     if (P.size <= 1)
       snprintf(upd, sizeof upd, "update on one rank");
     else if (P.div)
@@ -993,12 +1240,12 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
                "halo %.4g from the busiest rank); communication %.1f %% of wall (slowest rank); "
                "ghost nodes per rank %d..%d; contact hits between two ranks' triangles %ld; contact couples held "
                "per rank %.0f..%.0f of %ld; contact search discs sent %.0f per search of %.0f (all ranks, %ld searches); "
-               "joints broken across rank borders %ld (all runs so far); %s\n",
+               "joints broken across rank borders %ld (all runs so far); %s; %s\n",
                P.size, s->threads, tmin, tmax, emean > 0 ? emax / emean : 1.0, emean, bsum / (double)nsteps,
                hmax / (double)nsteps,
                wall > 0 ? 100.0 * cmax / wall : 0.0, P.ghost_min, P.ghost_max, cross, cpmin, cpmax, whole,
                nsearch ? (double)disc[0] / (double)nsearch : 0.0, nsearch ? (double)disc[1] / (double)nsearch : 0.0,
-               nsearch, jcross, upd);
+               nsearch, jcross, upd, bal);
   }
   P.ngh_max = 0;
   free(all);

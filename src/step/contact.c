@@ -120,6 +120,7 @@ typedef struct YfContact {
   long broken_seen;
   int force_search;
   int ghost_run;         /* MPI: par_run_id() when this rank's contact ghosts were set       */
+  int lay_id;            /* MPI: par_layout_id() of the triangle ranges the list is laid by  */
   /* MPI (halo mode): the couple list holds this rank's couples only, the one-rank list's range
    * DS.lo[rank] .. DS.lo[rank + 1] - 1 (friction slots numbered on this rank); nlive and ndead
    * still count the whole list.  wij, walive, gdense: the whole list gathered for a restart
@@ -749,7 +750,8 @@ static void contact_compact(YfContact *C, int removed) {
  * is sorted by it, so each rank's couples are one range of it, DS.lo[r] .. DS.lo[r + 1] - 1, in
  * rank order.  Each rank holds its own range only (C->local): its search keeps the couples whose
  * lower triangle it owns, merges them with its old ones (a couple's friction memory stays on its
- * owner for the couple's whole life: triangles do not change rank), and the ranks' counts give
+ * owner, and goes with the couple when its lower triangle changes rank: a re-cut, or a scene
+ * changed between runs, contact_rehome and lay_out), and the ranks' counts give
  * the ranges (4 B per rank, at each search and compaction).  Each rank screens and runs the kernel
  * on its couples only, numbering the friction slots of first contacts itself, then:
  *   - the per-block energy and dissipation (blocks of PAIR_BLK couples of the one-rank list) of
@@ -1069,12 +1071,24 @@ static void ds_ranks(void) {
 
 /* Lay the couples of the list by ranks (C->local) when this run is in halo mode (2 ranks or
  * more).  A list is whole on every rank after a restart is read (every rank then keeps its range,
- * a collective); once laid out it stays so, since halo mode is decided by the partition, which is
- * made once. */
+ * a collective).  Once laid out it follows the triangle ranges: when they change (a re-cut, or a
+ * scene changed between runs: triangles added move the cut) each couple goes to its lower
+ * triangle's new owner, and when a changed scene leaves halo mode (its node order no longer
+ * follows the ranks) the list is made whole on every rank again, friction memory and all. */
+static void gather_whole(YfContact *C, int everyone);
+static void install(YfContact *C, int n, const int *ij, const double *g, const unsigned char *alive);
+static void rehome_couples(YfContact *C);
 static void lay_out(YfContact *C) {
   const int want = par_node_lo() != NULL;
+  if (!want && C->local) {
+    gather_whole(C, 1);
+    install(C, C->wn, C->wij, C->gdense, C->walive);
+    C->local = 0;
+    C->wfresh = 0;
+    return;
+  }
+  if (want && C->local && C->lay_id != par_layout_id()) rehome_couples(C);
   if (want == C->local) return;
-  YF_ASSERT(want); /* a run never leaves halo mode: the partition that decides it is made once */
   /* the whole list is the same on every rank: each keeps its range (friction slots stay) */
   ds_ranks();
   par_owner_ranges(C->pairs.ij, 2, C->pairs.n, DS.lo);
@@ -1087,6 +1101,7 @@ static void lay_out(YfContact *C) {
   C->pairs.n = n;
   couple_arrays(C, n, ntot);
   C->local = 1;
+  C->lay_id = par_layout_id();
 }
 
 /* The kernel stage on MPI ranks (above), after the screen of this rank's couples (which marked
@@ -1285,7 +1300,14 @@ void contact_par_gather(YfSim *s) {
 void contact_par_whole(YfSim *s) {
   YfContact *C = s->contact;
   if (!active(C) || !C->local) return;
-  const int S = par_size(), n = C->pairs.n, ntot = DS.lo[S], w = yf_writer();
+  gather_whole(C, 0);
+}
+
+/* The whole list into wij, walive, gdense (wn couples) on the writer rank, or on every rank
+ * (everyone: par_concat). */
+static void gather_whole(YfContact *C, int everyone) {
+  const int S = par_size(), n = C->pairs.n, ntot = DS.lo[S], w = everyone || yf_writer();
+  const void *(*cat)(const void *, int, int *) = everyone ? par_concat : par_concat_writer;
   int *rb = DS.rb;
   free(C->wij); free(C->walive); free(C->gdense);
   C->wij = NULL; C->walive = NULL; C->gdense = NULL;
@@ -1295,7 +1317,7 @@ void contact_par_whole(YfSim *s) {
     C->walive = yf_malloc((size_t)ntot + 1, "restart couples");
     C->gdense = yf_calloc((size_t)(ntot + 1) * 6, sizeof(double), "restart friction memory");
   }
-  const void *all = par_concat_writer(C->pairs.ij, (int)((size_t)n * 2 * sizeof(int)), rb);
+  const void *all = cat(C->pairs.ij, (int)((size_t)n * 2 * sizeof(int)), rb);
   if (all && ntot) memcpy(C->wij, all, (size_t)ntot * 2 * sizeof(int));
   /* per couple: its state, + 4 when it has friction memory; then the memories in couple order */
   unsigned char *st = yf_malloc((size_t)n + 1, "restart couples");
@@ -1304,13 +1326,13 @@ void contact_par_whole(YfSim *s) {
     st[k] = (unsigned char)(C->alive[k] | (C->pairs.gi[k] >= 0 ? 4 : 0));
     nm += C->pairs.gi[k] >= 0;
   }
-  all = par_concat_writer(st, n, rb);
+  all = cat(st, n, rb);
   if (all && ntot) memcpy(C->walive, all, (size_t)ntot);
   free(st);
   double *g = yf_malloc((size_t)(6 * nm + 1) * sizeof(double), "restart friction memory"), *o = g;
   for (int k = 0; k < n; k++)
     if (C->pairs.gi[k] >= 0) { memcpy(o, C->pairs.g + 6 * (size_t)C->pairs.gi[k], 6 * sizeof(double)); o += 6; }
-  const double *a = par_concat_writer(g, 6 * nm * (int)sizeof(double), rb);
+  const double *a = cat(g, 6 * nm * (int)sizeof(double), rb);
   for (int k = 0; a && k < ntot; k++)
     if (C->walive[k] & 4) {
       memcpy(C->gdense + 6 * (size_t)k, a, 6 * sizeof(double));
@@ -1507,6 +1529,95 @@ void contact_step(YfSim *s) {
 }
 
 /* ---------------------------------------------------------------- restart accessors (restart.c) */
+
+/* MPI: each rank's range of the one-rank couple list (size + 1; NULL unless laid out by ranks). */
+const int *contact_rank_lo(const YfSim *s) {
+  const YfContact *C = s->contact;
+  return active(C) && C->local ? DS.lo : NULL;
+}
+
+void contact_count_by_block(const YfSim *s, int g, int *cnt) {
+  const YfContact *C = s->contact;
+  if (!active(C)) return;
+  for (int k = 0; k < C->pairs.n; k++) cnt[C->pairs.ij[2 * k] / g]++;
+}
+
+/* A couple on its way to the new owner of its lower triangle (64 B). */
+typedef struct { int i, j, st, pad; double g[6]; } Moved;
+
+void contact_rehome(YfSim *s, const int *nold) {
+  YfContact *C = s->contact;
+  if (!active(C) || !C->local) return;
+  const int me = par_rank(), *nlo = par_node_lo();
+  if (!nlo) return; /* (one rank) */
+  /* the node contact forces of the last step, for a reader before the next one; an owned node is
+   * marked when it holds one, so that the next step clears it before adding (the list of marked
+   * nodes is not known: the next step passes over every owned node) */
+  if (C->fcn_valid) par_move_ranges(C->fcn, nold, nlo, 2 * (int)sizeof(double));
+  for (int i = nlo[me]; i < nlo[me + 1]; i++) C->tmark[i] = C->fcn[2 * i] != 0.0 || C->fcn[2 * i + 1] != 0.0;
+  C->ntl = -1;
+  rehome_couples(C);
+}
+
+/* MPI: this rank's couples to the owners of their lower triangles by the current ranges, with
+ * their states and friction memory, after the ranges changed (a re-cut, or a new scene between
+ * runs whose triangle count moved the cut): the one-rank list and its order are unchanged, only
+ * where its pieces live.  A collective. */
+static void rehome_couples(YfContact *C) {
+  const int S = par_size(), me = par_rank(), n = C->pairs.n;
+  C->wfresh = 0;
+  C->lay_id = par_layout_id();
+  /* this rank's couples by their new owner: the list is sorted by lower triangle, so each new
+   * owner's are one range of it, d[r]..d[r+1]-1 */
+  ds_ranks();
+  int *d = yf_malloc(((size_t)S + 1) * sizeof(int), "contact re-cut"), *sb = DS.sb, *rb = DS.rb;
+  par_owner_ranges(C->pairs.ij, 2, n, d);
+  for (int r = 0; r < S; r++) sb[r] = r == me ? 0 : (d[r + 1] - d[r]) * (int)sizeof(Moved);
+  ds_room(&DS.send, &DS.csend, (size_t)(n - (d[me + 1] - d[me]) + 1) * sizeof(Moved));
+  Moved *o = DS.send;
+  for (int k = 0; k < n; k++) {
+    if (k >= d[me] && k < d[me + 1]) continue;
+    const int gi = C->pairs.gi[k];
+    Moved mv = {C->pairs.ij[2 * k], C->pairs.ij[2 * k + 1], C->alive[k] | (gi >= 0 ? 4 : 0), 0, {0, 0, 0, 0, 0, 0}};
+    if (gi >= 0) memcpy(mv.g, C->pairs.g + 6 * (size_t)gi, sizeof mv.g);
+    *o++ = mv;
+  }
+  const Moved *in = par_exchange(DS.send, sb, rb);
+  /* the new list, in place: what ranks before this one sent, the couples it keeps (moved up or
+   * down as a block, their friction slots kept), what ranks after it sent (rank order is
+   * triangle order); the sent couples' slots stay unused until the next search's merge, as a
+   * dropped couple's do */
+  int nlow = 0, nhigh = 0, nmem = 0;
+  for (int r = 0; r < S; r++) {
+    if (r < me) nlow += rb[r] / (int)sizeof(Moved);
+    if (r > me) nhigh += rb[r] / (int)sizeof(Moved);
+  }
+  for (int t = 0; t < nlow + nhigh; t++) nmem += (in[t].st & 4) != 0;
+  const int k0 = d[me], nk = d[me + 1] - d[me], nnew = nlow + nk + nhigh, ntot = DS.lo[S];
+  YfPairs *p = &C->pairs;
+  contact_pairs_reserve(p, nnew);
+  contact_pairs_greserve(p, p->ng + nmem);
+  couple_arrays(C, nnew, ntot);
+  if (nk && k0 != nlow) {
+    memmove(p->ij + 2 * (size_t)nlow, p->ij + 2 * (size_t)k0, (size_t)nk * 2 * sizeof(int));
+    memmove(p->gi + nlow, p->gi + k0, (size_t)nk * sizeof(int));
+    memmove(C->alive + nlow, C->alive + k0, (size_t)nk);
+  }
+  for (int t = 0; t < nlow + nhigh; t++) {
+    const int w = t < nlow ? t : nk + t;
+    p->ij[2 * w] = in[t].i;
+    p->ij[2 * w + 1] = in[t].j;
+    p->gi[w] = -1;
+    if (in[t].st & 4) {
+      p->gi[w] = p->ng++;
+      memcpy(p->g + 6 * (size_t)p->gi[w], in[t].g, 6 * sizeof(double));
+    }
+    C->alive[w] = (unsigned char)(in[t].st & 3);
+  }
+  p->n = nnew;
+  set_ranges(nnew);
+  free(d);
+}
 
 int contact_has_state(const YfSim *s) { return active(s->contact) && s->contact->cx; }
 

@@ -77,6 +77,14 @@ void contact_par_gather(YfSim *s);
  * section 1); this gathers the whole list for contact_state_save (a collective: every rank calls
  * it, after par_need_all, before a restart is written; a no-op on one rank). */
 void contact_par_whole(YfSim *s);
+/* MPI, re-balancing (par_balance): each rank's range of the one-rank list (size + 1 ints; NULL
+ * unless the list is laid out by ranks); this rank's couples counted by the block of g triangles
+ * of their lower triangle (added into cnt); and, once the triangle ranges changed, each couple
+ * with its state and friction memory to the new owner of its lower triangle and the node contact
+ * forces to their nodes' new owners (nold: the node ranges before; a collective). */
+const int *contact_rank_lo(const YfSim *s);
+void contact_count_by_block(const YfSim *s, int g, int *cnt);
+void contact_rehome(YfSim *s, const int *nold);
 
 /* ---- what the deck's contact command sets (deck/cmd_contact.c) ---- */
 #define YF_CONTACT_MAX_RULES 64

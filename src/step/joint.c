@@ -745,20 +745,39 @@ int joints_par_rows(const YfSim *s, int *lo) {
   return 1;
 }
 
+/* What only a block's owner keeps current: forces, damage, work, opening, shear force. */
+enum { J_OWNED = 5 };
+static void owned_arrays(YfJoints *J, void **a, int *bytes) {
+  void *arr[J_OWNED] = {J->f, J->dmg, J->w, J->z, J->fs};
+  const int by[J_OWNED] = {8 * sizeof(double), 3 * sizeof(double), sizeof(double), sizeof(double), sizeof(double)};
+  memcpy(a, arr, sizeof arr);
+  memcpy(bytes, by, sizeof by);
+}
+
 void joints_par_gather(YfSim *s) {
   YfJoints *J = s->joints;
   if (!J || !J->n || !J_dirty || par_size() <= 1) return;
-  int b0 = 0, b1 = J->nblk;
-  if (!mine_blocks(J, &b0, &b1)) return;
-  J_dirty = 0;
-  const int nj = J->n, S = par_size();
-  int *lo = yf_malloc(((size_t)S + 1) * sizeof(int), "joint gather");
-  for (int r = 0; r <= S; r++) lo[r] = J_lo[r] * JBLOCK < nj ? J_lo[r] * JBLOCK : nj;
-  par_gather_ranges(J->f, lo, 8 * (int)sizeof(double));
-  par_gather_ranges(J->dmg, lo, 3 * (int)sizeof(double));
-  par_gather_ranges(J->w, lo, (int)sizeof(double));
-  par_gather_ranges(J->z, lo, (int)sizeof(double));
-  par_gather_ranges(J->fs, lo, (int)sizeof(double));
+  int *lo = yf_malloc(((size_t)par_size() + 1) * sizeof(int), "joint gather");
+  if (joints_par_rows(s, lo)) {
+    J_dirty = 0;
+    void *a[J_OWNED];
+    int by[J_OWNED];
+    owned_arrays(J, a, by);
+    for (int k = 0; k < J_OWNED; k++) par_gather_ranges(a[k], lo, by[k]);
+  }
+  free(lo);
+}
+
+void joints_par_move(YfSim *s, const int *lo_old) {
+  YfJoints *J = s->joints;
+  if (!J || !J->n || !J_dirty || par_size() <= 1) return; /* (whole on every rank: nothing to move) */
+  int *lo = yf_malloc(((size_t)par_size() + 1) * sizeof(int), "joint ranges");
+  if (joints_par_rows(s, lo)) {
+    void *a[J_OWNED];
+    int by[J_OWNED];
+    owned_arrays(J, a, by);
+    for (int k = 0; k < J_OWNED; k++) par_move_ranges(a[k], lo_old, lo, by[k]);
+  }
   free(lo);
 }
 

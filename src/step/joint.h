@@ -116,6 +116,9 @@ void joints_par_gather(YfSim *s);
 /* MPI: the joints whose damage (z) and forces are current on rank r, lo[r]..lo[r+1]-1 (lo: size
  * + 1 ints); 0 when every rank holds every joint's (one rank, or work not divided). */
 int joints_par_rows(const YfSim *s, int *lo);
+/* MPI, after the triangle ranges changed (par_balance): the blocks' forces, work and damage to
+ * their new owners from the ranges lo_old (joints_par_rows before the change; a collective). */
+void joints_par_move(YfSim *s, const int *lo_old);
 /* The joints' part of the stable time step (run_stable_dt combines it with the triangles and
  * contact at every node): each intact joint adds its penalty [Pa] to P[i] of its 4 nodes (the
  * Gershgorin row sum of its stiffness); jof[i] (if < 0 on entry): a joint of node i, for the

@@ -5,7 +5,8 @@
  * The work of a step is divided by ownership (docs/SCALING.md):
  *   - every rank runs the whole deck and holds the whole scene (memory is not divided), but
  *     between readers only its own and its ghost nodes are current (the divided update below);
- *   - rank r owns the triangles of its METIS parts (a contiguous range of the partition order)
+ *   - rank r owns the triangles of its METIS parts (a contiguous range of the partition order,
+ *     whose borders move when contact makes the ranks' work uneven: par_balance)
  *     and the nodes their first triangle is r's (a contiguous range too); it computes its
  *     triangles' forces, the joint blocks and the contact couples whose lower triangle it owns;
  *   - the forces other ranks' nodes need go to their owners (slot halo, contact contributions);
@@ -96,12 +97,19 @@ void par_run_report(struct YfSim *s, long nsteps, double wall); /* ranks, imbala
 void par_run_begin(struct YfSim *s);
 int par_divided(void);
 int par_run_id(void);
+int par_layout_id(void); /* changes when the triangle ranges do (a new scene, a re-cut) */
 void par_update_nodes(int *n0, int *n1, const int **extra, int *nextra);
 double *par_node_split(int nblk, int block, int *kb0, int *kb1);
 void par_node_block_sums(double *blk);
 void par_ghost_exchange(YfNodes *n);
 void par_contact_ghosts(YfNodes *n, const int *nodes, int nnodes);
 double par_max(double v);
+/* Re-balancing (docs/SCALING.md section 1): after a step whose contact stage searched, the ranks
+ * weigh their work (triangles, nodes, joints, couples); when it is uneven the triangle ranges
+ * move, and what changes owner goes to its new owner (a collective; the bits do not change).
+ *   par_move_ranges  an array held by ranges lo_old made current on lo_new (what moves only). */
+void par_balance(struct YfSim *s);
+void par_move_ranges(void *a, const int *lo_old, const int *lo_new, int elem_bytes);
 #else
 static inline void par_init(int *argc, char ***argv) { (void)argc; (void)argv; }
 static inline FILE *par_stdin(FILE *in) { return in; }
@@ -135,6 +143,7 @@ static inline const int *par_tri_lo(void) { return NULL; }
 static inline void par_run_begin(struct YfSim *s) { (void)s; }
 static inline int par_divided(void) { return 0; }
 static inline int par_run_id(void) { return 0; }
+static inline int par_layout_id(void) { return 0; }
 static inline void par_update_nodes(int *n0, int *n1, const int **extra, int *nextra) {
   (void)n0; (void)n1; (void)extra; (void)nextra;
 }
@@ -145,6 +154,10 @@ static inline void par_node_block_sums(double *blk) { (void)blk; }
 static inline void par_ghost_exchange(YfNodes *n) { (void)n; }
 static inline void par_contact_ghosts(YfNodes *n, const int *nodes, int nnodes) { (void)n; (void)nodes; (void)nnodes; }
 static inline double par_max(double v) { return v; }
+static inline void par_balance(struct YfSim *s) { (void)s; }
+static inline void par_move_ranges(void *a, const int *lo_old, const int *lo_new, int elem_bytes) {
+  (void)a; (void)lo_old; (void)lo_new; (void)elem_bytes;
+}
 #endif
 
 #endif

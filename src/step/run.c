@@ -598,6 +598,7 @@ void run_steps(YfSim *s, long nsteps) {
     double ts = yf_now();
     step_once(s);
     if (k == 0) energy_first_step(s); /* the start state's contact energy belongs to the budget */
+    par_balance(s); /* MPI: after a contact search, move the ranks' borders if their work is uneven */
     double t0 = yf_now();
     threads_after_step(t0 - ts); /* the next step's thread count (same bits on any) */
     ev.kind = YF_EV_STEP; /* frames, metrics samples and periodic restarts when due */
