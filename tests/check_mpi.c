@@ -872,8 +872,9 @@ END_TEST
  *   - a node with no triangle added after a run (a point-loaded node): its force must be summed
  *     anew each step (it added up: fx 3 after 3 steps of a unit load on 2 ranks);
  *   - an error after a record row was begun: the file keeps what ./yfdem's exit keeps (MPI_Abort
- *     dropped rank 0's buffers: an empty file).
- * Each: ./yfdem's state_hash, printed results and files, on 2 to 4 ranks. */
+ *     dropped rank 0's buffers: an empty file);
+ *   - write_y2d: every rank wrote and renamed the one file (a rank then failed, exit 2).
+ * Each: ./yfdem's exit code, state_hash, printed results and files, on 2 to 4 ranks. */
 static const char *const CHANGE_DECKS[][2] = {
     {"fric_add.deck",
      "material c elastic rho 2340 E 26e9 nu 0.18 plane_stress pen_n 1e11 pen_t 1e10 friction 0.5\n"
@@ -890,6 +891,9 @@ static const char *const CHANGE_DECKS[][2] = {
     {"record_err.deck",
      "material m elastic rho 2000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 1 4 4\nvelocity b set 1 0\n"
      "timestep auto\nrecord r 10 r.csv ke \"sqrt(vx_b-1.5)\"\nrun 20\n"},
+    {"write_y2d.deck",
+     "material c elastic rho 2340 E 26e9 nu 0.18 plane_stress pen_n 1e11\nmesh rect a c 0 0 0.02 0.02 6 6\n"
+     "velocity a set 1 0\ntimestep auto\nwrite_y2d g.y steps 50\nrun 10\n"},
 };
 
 /* The lines of dir/out.txt that a deck prints itself ("r1 ...", "fx_s ..."): the results read. */
@@ -937,6 +941,56 @@ START_TEST(scene_changes_between_runs) {
             *pref ? ", printed results" : *cref ? ", record file" : "");
     free(ref); free(pref); free(cref);
   }
+  drop_dir(d);
+}
+END_TEST
+
+/* The energies are sums over fixed blocks on the ranks that own them (run.c energies), so the
+ * default thermo line, the energy check and a metrics sample gather no node, triangle or joint
+ * state (before 2026-11-28 each gathered every node's position, velocity and force, every
+ * stress and every joint's owner state: at 1e6 a metrics sample spent 0.03 s gathering).  On
+ * PERF.md's problem at 1e4 (29 682 nodes, every triangle fracturing) on 2 ranks, a thermo line
+ * and a metrics sample every 10 steps over 200 steps may add their block sums (a few doubles per
+ * block of 4096 nodes or 2048 triangles and per 256 joints: 4.7 kB a sample here) but less than
+ * one double per node per line: under 8 B x nodes / 10 a step (one gather of the node state
+ * alone is 48 B a node).  The metrics log and the summary equal ./yfdem's. */
+START_TEST(readers_gather_nothing) {
+  if (!mpi_ready()) return;
+  char *d = perf_dir(200), path[PATH_MAX + 32];
+  write_file(d, "quiet.deck", "read_y2d perf.y\nthermo 0\nrun 200\n");
+  write_file(d, "busy.deck", "read_y2d perf.y\nthermo 10\nmetrics log m.csv every 10\nrun 200\n");
+  ck_assert_int_eq(run_in(d, 0, 1, "-in busy.deck -summary ref.json", NULL), 0);
+  snprintf(path, sizeof path, "%s/ref.json", d);
+  char *ref = key_lines(path);
+  snprintf(path, sizeof path, "%s/m.csv", d);
+  char *mref = yft_slurp(path, 0);
+  double bytes[2] = {0, 0}, nodes = 0;
+  {
+    snprintf(path, sizeof path, "%s/ref.json", d);
+    char *t = yft_slurp(path, 1);
+    const char *q = strstr(t, "\"nodes\":");
+    ck_assert(q != NULL);
+    nodes = strtod(q + 8, NULL);
+    free(t);
+  }
+  for (int busy = 0; busy <= 1; busy++) {
+    ck_assert_int_eq(run_in(d, 2, 1, busy ? "-in busy.deck -summary m.json" : "-in quiet.deck", NULL), 0);
+    bytes[busy] = report_before(d, "bytes sent per step");
+    if (!busy) continue;
+    snprintf(path, sizeof path, "%s/m.json", d);
+    char *got = key_lines(path);
+    ck_assert_msg(!strcmp(ref, got), "2 ranks differ from ./yfdem:\n%s--- vs ./yfdem:\n%s", got, ref);
+    snprintf(path, sizeof path, "%s/m.csv", d);
+    char *mgot = yft_slurp(path, 0);
+    ck_assert_msg(mref && mgot && !strcmp(mref, mgot), "2 ranks: the metrics log differs from ./yfdem's");
+    free(got); free(mgot);
+  }
+  const double extra = bytes[1] - bytes[0], bound = 8.0 * nodes / 10.0;
+  ck_assert_msg(bytes[0] > 0 && extra < bound, "a thermo line and a metrics sample every 10 steps add %.4g bytes a step "
+                "(%.4g against %.4g): at least a double per node per line (bound %.4g)", extra, bytes[1], bytes[0], bound);
+  fprintf(stderr, "check_mpi: thermo and metrics every 10 steps on 2 ranks add %.4g bytes a step (bound %.4g: no state "
+          "gathered), metrics log and summary as ./yfdem\n", extra, bound);
+  free(ref); free(mref);
   drop_dir(d);
 }
 END_TEST
@@ -1058,6 +1112,7 @@ Suite *mpi_suite(void) {
   tcase_add_test(t, restart_2_to_3);
   tcase_add_test(t, rebalance_contact_work);
   tcase_add_test(t, scene_changes_between_runs);
+  tcase_add_test(t, readers_gather_nothing);
   tcase_add_test(t, error_all_ranks);
   tcase_add_test(t, error_one_rank);
   tcase_add_test(t, output_error_ranks);

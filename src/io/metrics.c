@@ -248,8 +248,7 @@ static int joint_measured(const YfSim *s, int j) {
 
 static void sample(YfSim *s) {
   if (M.nsmp >= M.capsmp) return; /* sized at the run's start; never grows inside the loop */
-  par_need_all(s); /* MPI: owners' state (joints, contact) whole: every rank is here */
-  run_energies(s);
+  run_energies(s); /* MPI: a collective (every rank is here); each rank sums what it owns */
   Sample *q = &M.smp[M.nsmp++];
   q->step = s->step;
   q->time = s->time;

@@ -52,7 +52,7 @@ int sim_query(YfSim *s, const char *name, double *val, char *err, size_t errlen)
     if (!strncmp(name, red[i], L) && name[L] == '_' && name[L + 1]) return group_reduce(s, red[i], name + L + 1, val, err, errlen);
   }
   int energy = !strcmp(name, "ke") || !strcmp(name, "strain");
-  if (energy && s->model.prepared) run_energies(s);
+  if (energy && s->model.prepared) run_energies_whole(s); /* (what reads a result reads a whole state) */
   if (!strcmp(name, "ke")) *val = s->energy.kinetic;
   else if (!strcmp(name, "strain")) *val = s->energy.strain;
   else if (!strcmp(name, "ext_work")) *val = s->energy.external_work;

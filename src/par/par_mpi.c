@@ -53,6 +53,7 @@ static struct {
   Split st;                 /* the element stage's blocks over the triangle ranges (3 per piece:
                                kdd, bad, J)                                                     */
   Split sn;                 /* a node sum's blocks over the node ranges (par_node_split)        */
+  Split se;                 /* a triangle sum's blocks over the triangle ranges (par_tri_split) */
   double *erec;             /* the element stage's block records: power, bad, badJ per block    */
   int *cnt, *dsp;           /* scratch counts and displacements of an allgatherv              */
   double bytes;             /* bytes this rank sent in collectives of the current run          */
@@ -389,6 +390,7 @@ static void split_share_sums(const Split *sp, double *rec, int per) {
 static void layout(YfSim *s) {
   split_build(&P.st, P.tlo, s->model.tri.n, P.nblk, P.block, 3);
   P.sn.n = -1;
+  P.se.n = -1;
   count_ghosts(s);
 }
 
@@ -841,11 +843,11 @@ double *par_node_split(int nblk, int block, int *kb0, int *kb1) {
   return P.sn.piece;
 }
 
-void par_node_block_sums(double *blk) {
-  if (!P.div) return;
+/* Every block's sum on every rank: this rank's tail block summed from its items' values and the
+ * next ranks' heads in item order, then the blocks whose first item each rank holds. */
+static void split_sums(Split *sp, double *blk) {
   double t0 = yf_now();
-  Split *sp = &P.sn;
-  const int ni = split_to_starters(sp); /* this rank's tail block, summed in node order */
+  const int ni = split_to_starters(sp);
   if (ni) {
     double sum = 0.0;
     for (int k = 0; k < ni; k++) sum += sp->tail[k];
@@ -853,6 +855,22 @@ void par_node_block_sums(double *blk) {
   }
   split_share_sums(sp, blk, 1);
   P.t_comm += yf_now() - t0;
+}
+
+void par_node_block_sums(double *blk) {
+  if (P.div) split_sums(&P.sn, blk);
+}
+
+double *par_tri_split(int nblk, int block, int *kb0, int *kb1) {
+  if (!P.div) return NULL;
+  if (P.se.n != P.nt || P.se.nblk != nblk || P.se.block != block) split_build(&P.se, P.tlo, P.nt, nblk, block, 1);
+  *kb0 = P.se.b0[P.rank];
+  *kb1 = P.se.b1[P.rank];
+  return P.se.piece;
+}
+
+void par_tri_block_sums(double *blk) {
+  if (P.div) split_sums(&P.se, blk);
 }
 
 double par_max(double v) {

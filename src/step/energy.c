@@ -30,6 +30,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "energy.h"
+#include "par.h"
 
 enum { T_KIN, T_STRAIN, T_JOINT, T_CONTACT, T_DAMP, T_FRACT, T_FRIC, NT };
 static const char *const term_name[NT] = {
@@ -63,15 +64,8 @@ void energy_set_budget(double e) {
 }
 
 /* Gravity's work is a function of the state: sum m g . (x - x0). */
-static double gravity_work(const YfSim *s) {
-  if (s->gx == 0 && s->gy == 0) return 0.0;
-  const YfNodes *n = &s->model.node;
-  double w = 0;
-  for (int i = 0; i < n->n; i++) w += n->m[i] * (s->gx * (n->x[i] - n->x0[i]) + s->gy * (n->y[i] - n->y0[i]));
-  return w;
-}
-
-double energy_external(const YfSim *s) { return s->energy.external_work + gravity_work(s); }
+/* (gravity's work: summed with the kinetic energy by run_energies, per block of nodes) */
+double energy_external(const YfSim *s) { return s->energy.external_work + s->gravity_work; }
 
 double energy_balance(const YfSim *s) {
   const YfEnergy *e = &s->energy;
@@ -181,6 +175,9 @@ void energy_check(YfSim *s) {
   }
   char adv[640];
   advice(s, adv, sizeof adv);
+  /* MPI: every rank is here (the energies are every rank's), so the failed run's summary can
+   * hash the whole state */
+  if (s->ebal_mode == YF_EBAL_STOP) par_need_all(s);
   if (s->ebal_mode == YF_EBAL_STOP) yf_numeric_error(s->step, "%s; %s", what, adv);
   if (!E.warned) yf_warn(NULL, "step %ld: %s; the run goes on ('energy_check warn')", s->step, what);
   E.warned = 1;

@@ -630,6 +630,16 @@ static int *J_lo, J_nlo, J_dirty;
 static double *J_ev, *J_mxy, *J_rmxy; /* events; the records' coordinate sums (J_rmxy: next one) */
 static size_t J_cev, J_cmxy;
 
+/* The exchange buffer J_ev with room for n doubles. */
+static double *J_ev_room(size_t n) {
+  if (J_cev < n) {
+    J_cev = n + 1024;
+    free(J_ev);
+    J_ev = yf_malloc(J_cev * sizeof(double), "joint events");
+  }
+  return J_ev;
+}
+
 /* The sums of a joint's 4 nodes' coordinates (its record's midpoint is a quarter of them). */
 static void node_sums(const YfNodes *N, const int *nd, double *mx, double *my) {
   double sx = 0, sy = 0;
@@ -672,11 +682,7 @@ static void share_events(YfJoints *J, const YfNodes *N, int b0, int b1) {
   size_t n = 0;
   for (int q = 0; q < J->npend; q++) n += J->pend[q] / JBLOCK >= b0 && J->pend[q] / JBLOCK < b1;
   for (int b = b0; b < b1; b++) n += (size_t)J->blk_nbreak[b] + (size_t)J->blk_nopen[b];
-  if (J_cev < 5 * n + 5) {
-    J_cev = 5 * n + 5 + 1024;
-    free(J_ev);
-    J_ev = yf_malloc(J_cev * sizeof(double), "joint events");
-  }
+  J_ev_room(5 * n + 5);
   /* (joint, kind, value, mx, my): 0 work of a pending joint, 1 opened, 2 failed; mx, my: the sums
    * of its 4 nodes' coordinates for the records, from the owner (other ranks may not hold them
    * current: the divided update) */
@@ -885,18 +891,13 @@ static double stored_irrev(const YfJointProp *p, const double *x, const double *
   return e;
 }
 
-double joints_energy(YfSim *s) {
-  YfJoints *J = s->joints;
-  if (!J || !J->n) return 0.0;
-  const YfNodes *N = &s->model.node;
-  double stored = 0, diss = J->diss_broken;
+/* Stored and dissipated energy of the intact joints of block b (joint order) into e[0], e[1]. */
+static void block_energy(YfJoints *J, const YfNodes *N, int b, double *e) {
   YfJointProp lp;
   int cur = -1;
-  for (int q = 0; q < J->npend; q++) {
-    int j = J->pend[q];
-    diss += J->w[j] + work_inc(N, J->node + 4 * j, J->f + 8 * j, J->f + 8 * j, J->dt_prev);
-  }
-  for (int j = 0; j < J->n; j++) {
+  double stored = 0.0, diss = 0.0;
+  const int j1 = (b + 1) * JBLOCK < J->n ? (b + 1) * JBLOCK : J->n;
+  for (int j = b * JBLOCK; j < j1; j++) {
     if (J->state[j]) continue;
     scaled_prop(J, j, &lp, &cur);
     const int *nd = J->node + 4 * j;
@@ -908,9 +909,61 @@ double joints_energy(YfSim *s) {
     joint_force(&lp, x, y, &fs, dmg, f, NULL);
     /* work up to the current positions (the last step is not yet in w) */
     double W = J->w[j] + work_inc(N, nd, J->f + 8 * j, f, J->dt_prev);
-    double e = lp.irreversible ? stored_irrev(&lp, x, y, f, dmg, fs) : W;
-    stored += e;
-    diss += W - e;
+    double en = lp.irreversible ? stored_irrev(&lp, x, y, f, dmg, fs) : W;
+    stored += en;
+    diss += W - en;
+  }
+  e[0] = stored;
+  e[1] = diss;
+}
+
+/* Per block of joints (stored, dissipated), and the pending joints' final work in pend order. */
+static double *JE, *JP;
+static int JE_cap, JP_cap;
+
+double joints_energy(YfSim *s, int dist) {
+  YfJoints *J = s->joints;
+  if (!J || !J->n) return 0.0;
+  const YfNodes *N = &s->model.node;
+  const int nb = J->nblk, np = J->npend;
+  if (JE_cap < 2 * nb + 2) {
+    free(JE);
+    JE_cap = 2 * nb + 2;
+    JE = yf_malloc((size_t)JE_cap * sizeof(double), "joint energies");
+  }
+  if (JP_cap < np + 1) {
+    free(JP);
+    JP_cap = np + 1;
+    JP = yf_malloc((size_t)JP_cap * sizeof(double), "joint energies");
+  }
+  /* blocks in parallel, each in joint order; MPI (dist): this rank's blocks, whose joints' forces,
+   * work and damage it alone holds current, then every block's pair from its owner */
+  int b0 = 0, b1 = nb;
+  const int mine = dist && mine_blocks(J, &b0, &b1);
+  #pragma omp parallel for schedule(dynamic, 8) if (J->n >= par_min)
+  for (int b = b0; b < b1; b++) block_energy(J, N, b, JE + 2 * b);
+  for (int q = 0; q < np; q++) {
+    const int j = J->pend[q];
+    JP[q] = !mine || (j / JBLOCK >= b0 && j / JBLOCK < b1) ? J->w[j] + work_inc(N, J->node + 4 * j, J->f + 8 * j, J->f + 8 * j, J->dt_prev) : 0.0;
+  }
+  if (mine) {
+    par_gather_ranges(JE, J_lo, 2 * (int)sizeof(double));
+    /* the pending joints' work from their owners: (q, value) pairs, every rank's */
+    double *o = J_ev_room(2 * (size_t)np + 2), *w = o;
+    for (int q = 0; q < np; q++)
+      if (J->pend[q] / JBLOCK >= b0 && J->pend[q] / JBLOCK < b1) { *w++ = q; *w++ = JP[q]; }
+    int *rb = yf_malloc(((size_t)par_size() + 1) * sizeof(int), "joint energies");
+    const double *a = par_concat(o, (int)((w - o) * (long)sizeof(double)), rb);
+    size_t tot = 0;
+    for (int r = 0; r < par_size(); r++) tot += (size_t)rb[r] / sizeof(double);
+    free(rb);
+    for (size_t t = 0; t < tot; t += 2) JP[(int)a[t]] = a[t + 1];
+  }
+  double stored = 0.0, diss = J->diss_broken;
+  for (int q = 0; q < np; q++) diss += JP[q];
+  for (int b = 0; b < nb; b++) {
+    stored += JE[2 * b];
+    diss += JE[2 * b + 1];
   }
   s->energy.joint_dissipated = diss;
   return stored;

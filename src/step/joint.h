@@ -10,7 +10,8 @@
  *                      (parallel over joints), writes 8 forces per joint into jf (zero for broken
  *                      ones), marks new breaks and records them (step, time, position, mode) in
  *                      joint index order, so the record does not depend on the thread count.
- *   joints_energy(s)   from run_energies: returns the elastic energy stored in intact joints [J/m]
+ *   joints_energy(s, dist)  from run_energies: returns the elastic energy stored in intact joints
+ *                      [J/m], summed per block (MPI, dist: each rank its own blocks, a collective)
  *                      (added to energy.strain) and sets energy.joint_dissipated, both for the
  *                      current positions.
  *                      Joints first past their peak (damage > 0) are recorded the same way
@@ -129,7 +130,7 @@ void joints_describe(const YfSim *s, int j, char *what, size_t n);
 long joints_count(const YfSim *s);
 long joints_broken(const YfSim *s);
 /* Stored elastic energy of intact joints [J/m]; sets s->energy.joint_dissipated (see above). */
-double joints_energy(YfSim *s);
+double joints_energy(YfSim *s, int dist);
 void joints_free(YfSim *s);
 
 /* ---- what the deck's commands call (deck/cmd_jointprop.c, cmd_fracture.c, cmd_fracture_log.c) ---- */

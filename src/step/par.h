@@ -16,7 +16,8 @@
  *   - block sums that straddle ranks are summed from per-item results in order; joint events and
  *     dropped couples go to every rank, so records and lists stay the same everywhere;
  *   - what only owners hold (stresses, joint state, friction memory, node contact forces) is
- *     gathered when read (par_need_all: thermo, energy checks, gathered frames, metrics, restarts);
+ *     gathered when read (par_need_all: custom thermo, gathered frames, records, restarts; the
+ *     energies are block sums on owners, run.c, and gather nothing);
  *   - only rank 0 prints and writes files (yf_writer), except h5 frames on 2 ranks or more, which
  *     every rank writes with parallel HDF5, each its own rows (io/output.c: no gather for
  *     them); an error stops every rank (par_mpi.c).
@@ -101,6 +102,11 @@ int par_layout_id(void); /* changes when the triangle ranges do (a new scene, a 
 void par_update_nodes(int *n0, int *n1, const int **extra, int *nextra);
 double *par_node_split(int nblk, int block, int *kb0, int *kb1);
 void par_node_block_sums(double *blk);
+/* The same for a sum over nblk fixed blocks of triangles over the triangle ranges (the strain
+ * energy): par_tri_split gives the blocks inside this rank's triangles and the buffer of its
+ * head and tail triangles' values; par_tri_block_sums every block's sum on every rank. */
+double *par_tri_split(int nblk, int block, int *kb0, int *kb1);
+void par_tri_block_sums(double *blk);
 void par_ghost_exchange(YfNodes *n);
 void par_contact_ghosts(YfNodes *n, const int *nodes, int nnodes);
 double par_max(double v);
@@ -151,6 +157,10 @@ static inline double *par_node_split(int nblk, int block, int *kb0, int *kb1) {
   (void)nblk; (void)block; (void)kb0; (void)kb1; return NULL;
 }
 static inline void par_node_block_sums(double *blk) { (void)blk; }
+static inline double *par_tri_split(int nblk, int block, int *kb0, int *kb1) {
+  (void)nblk; (void)block; (void)kb0; (void)kb1; return NULL;
+}
+static inline void par_tri_block_sums(double *blk) { (void)blk; }
 static inline void par_ghost_exchange(YfNodes *n) { (void)n; }
 static inline void par_contact_ghosts(YfNodes *n, const int *nodes, int nnodes) { (void)n; (void)nodes; (void)nnodes; }
 static inline double par_max(double v) { return v; }

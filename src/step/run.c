@@ -223,18 +223,90 @@ void run_prepare(YfSim *s) {
     if (s->bc_kind[k]->scene_built) s->bc_kind[k]->scene_built(s);
 }
 
-void run_energies(YfSim *s) {
+/* Kinetic energy of nodes i0..i1-1 (g == NULL), or gravity's work on their displacements (g:
+ * gx, gy), added in node order [J/m]. */
+static double node_sum(const YfNodes *n, const double *g, int i0, int i1) {
+  double sum = 0.0;
+  if (g)
+    for (int i = i0; i < i1; i++) sum += n->m[i] * (g[0] * (n->x[i] - n->x0[i]) + g[1] * (n->y[i] - n->y0[i]));
+  else
+    for (int i = i0; i < i1; i++) sum += 0.5 * n->m[i] * (n->vx[i] * n->vx[i] + n->vy[i] * n->vy[i]);
+  return sum;
+}
+
+/* A sum over the nodes by fixed blocks bk (nbn of E_NBLK), blocks in order (dist: see energies). */
+static double node_blocks(const YfNodes *n, const double *g, double *bk, int nbn, int dist);
+
+/* Room for n doubles in *p (capacity *cap): the energies' block sums, grown when the scene does. */
+static double *blocks(double **p, int *cap, int n) {
+  if (n + 1 > *cap) {
+    free(*p);
+    *cap = n + 1;
+    *p = yf_malloc((size_t)*cap * sizeof(double), "energy blocks");
+  }
+  return *p;
+}
+
+/* The energies as sums over fixed blocks (E_NBLK nodes, BLOCK triangles, the joints' blocks), each
+ * added in item order and the blocks in block order: the same bits on any number of threads, and
+ * on MPI ranks (dist), where each rank sums the blocks inside what it owns and the blocks it
+ * shares are summed from per-item values in item order (par_node_split, par_tri_split; joints by
+ * owned blocks), so nothing is gathered: the thermo lines, the energy check and the metrics
+ * samples read no other rank's state.  Without dist every block is summed here (the state must
+ * be whole: a writer alone, between runs). */
+enum { E_NBLK = 4096 }; /* nodes per block (as the Y2D update's Y2D_UBLOCK: one node split serves both) */
+static struct { double *ke, *st; int cke, cst; } E;
+static void energies(YfSim *s, int dist) {
   YfModel *m = &s->model;
   const YfNodes *n = &m->node;
-  double ke = 0;
-  for (int i = 0; i < n->n; i++) {
-    ke += 0.5 * n->m[i] * (n->vx[i] * n->vx[i] + n->vy[i] * n->vy[i]);
+  const int nbn = (n->n + E_NBLK - 1) / E_NBLK;
+  double *bk = blocks(&E.ke, &E.cke, nbn);
+  s->energy.kinetic = node_blocks(n, NULL, bk, nbn, dist);
+  const double g[2] = {s->gx, s->gy};
+  s->gravity_work = s->gx == 0 && s->gy == 0 ? 0.0 : node_blocks(n, g, bk, nbn, dist);
+  double strain = 0.0;
+  if (R.tm) {
+    const int nt = m->tri.n, nbt = (nt + BLOCK - 1) / BLOCK;
+    double *bt = blocks(&E.st, &E.cst, nbt);
+    int tb0 = 0, tb1 = nbt;
+    double *tp = dist ? par_tri_split(nbt, BLOCK, &tb0, &tb1) : NULL;
+    #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
+    for (int b = tb0; b < tb1; b++) bt[b] = tri_strain_energy(m, R.tm, b * BLOCK, (b + 1) * BLOCK < nt ? (b + 1) * BLOCK : nt);
+    if (tp) {
+      const int *tlo = par_tri_lo(), e0 = tlo[par_rank()], e1 = tlo[par_rank() + 1];
+      const int h1 = tb1 > tb0 ? tb0 * BLOCK : e1, t0 = tb1 > tb0 && tb1 * BLOCK < nt ? tb1 * BLOCK : e1;
+      for (int e = e0; e < h1; e++) *tp++ = tri_strain_energy(m, R.tm, e, e + 1);
+      for (int e = t0; e < e1; e++) *tp++ = tri_strain_energy(m, R.tm, e, e + 1);
+      par_tri_block_sums(bt);
+    }
+    for (int b = 0; b < nbt; b++) strain += bt[b];
   }
-  s->energy.kinetic = ke;
-  s->energy.strain = R.tm ? tri_strain_energy(m, R.tm, 0, m->tri.n) : 0.0;
-  s->joint_stored = joints_energy(s); /* intact joints; sets energy.joint_dissipated */
+  s->energy.strain = strain;
+  s->joint_stored = joints_energy(s, dist); /* intact joints; sets energy.joint_dissipated */
   s->energy.strain += s->joint_stored;
 }
+
+static double node_blocks(const YfNodes *n, const double *g, double *bk, int nbn, int dist) {
+  const int nn = n->n;
+  int kb0 = 0, kb1 = nbn;
+  double *piece = dist ? par_node_split(nbn, E_NBLK, &kb0, &kb1) : NULL;
+  #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
+  for (int b = kb0; b < kb1; b++) bk[b] = node_sum(n, g, b * E_NBLK, (b + 1) * E_NBLK < nn ? (b + 1) * E_NBLK : nn);
+  if (piece) {
+    int n0 = 0, n1 = nn;
+    par_update_nodes(&n0, &n1, NULL, NULL);
+    const int h1 = kb1 > kb0 ? kb0 * E_NBLK : n1, t0 = kb1 > kb0 && kb1 * E_NBLK < nn ? kb1 * E_NBLK : n1;
+    for (int i = n0; i < h1; i++) *piece++ = node_sum(n, g, i, i + 1);
+    for (int i = t0; i < n1; i++) *piece++ = node_sum(n, g, i, i + 1);
+    par_node_block_sums(bk);
+  }
+  double sum = 0.0;
+  for (int b = 0; b < nbn; b++) sum += bk[b];
+  return sum;
+}
+
+void run_energies(YfSim *s) { energies(s, 1); }
+void run_energies_whole(YfSim *s) { energies(s, 0); }
 
 static void thermo_header(YfSim *s) {
   if (s->thermo_custom) {
@@ -288,7 +360,9 @@ static void thermo_nonfinite(YfSim *s, const double *v, const char *const *names
 }
 
 static void thermo_line(YfSim *s) {
-  par_need_all(s); /* MPI: what owners hold (joints' work and damage), on every rank */
+  /* MPI: the energies are summed where the state is (a collective); a custom line's group
+   * quantities and expressions read any node, so they have the whole state gathered first */
+  if (s->thermo_custom) par_need_all(s);
   run_energies(s);
   double ext = energy_external(s);
   double diss = s->energy.damping + s->energy.joint_dissipated + s->energy.friction;
@@ -297,7 +371,10 @@ static void thermo_line(YfSim *s) {
                                       "dissipated energy", "energy balance"};
   const double v[6] = {s->time, s->energy.kinetic, s->energy.strain, ext, diss, bal};
   for (int k = 0; k < 6; k++)
-    if (!isfinite(v[k])) thermo_nonfinite(s, v, names, 6);
+    if (!isfinite(v[k])) {
+      par_need_all(s); /* MPI: every rank is here (the same energies): the diagnosis reads every node */
+      thermo_nonfinite(s, v, names, 6);
+    }
   if (s->thermo_custom) {
     const double std[YF_TH_N] = {(double)s->step, s->time, s->energy.kinetic, s->energy.strain, ext, diss, bal,
                                  (double)joints_broken(s), (double)contact_pairs(s),
@@ -606,8 +683,7 @@ void run_steps(YfSim *s, long nsteps) {
     yf_stage_time[YF_ST_OUTPUT] += yf_now() - t0;
     if (s->thermo_every > 0 && s->step % s->thermo_every == 0 && k + 1 < nsteps) thermo_line(s);
     if ((k + 1) % check_every == 0) {
-      par_need_all(s); /* MPI: owners' state whole (a collective: every rank is here) */
-      run_energies(s); /* the check reads the energies of this step */
+      run_energies(s); /* the check reads the energies of this step (MPI: a collective, nothing gathered) */
       energy_check(s);
     }
     if (tty) progress(s, k + 1, nsteps, t_start);
@@ -647,6 +723,8 @@ void run_steps(YfSim *s, long nsteps) {
 const YfTriMat *run_tri_mats(void) { return R.tm; }
 
 void run_free(void) {
+  free(E.ke); free(E.st);
+  memset(&E, 0, sizeof E);
   free(R.tm); free(R.blk); free(R.blk_bad); free(R.blk_badJ);
   free(R.xo); free(R.yo); free(R.vxo); free(R.vyo);
   memset(&R, 0, sizeof R);

@@ -8,8 +8,11 @@
 void run_prepare(YfSim *s);
 /* Advance n steps. */
 void run_steps(YfSim *s, long n);
-/* Current energies into s->energy (kinetic, strain; accumulated terms are kept). */
+/* Current energies into s->energy (kinetic, strain; accumulated terms are kept).  MPI: a
+ * collective (each rank sums what it owns); run_energies_whole sums everything on the calling
+ * rank alone, from a whole state (a writer after par_need_all, a deck expression between runs). */
 void run_energies(YfSim *s);
+void run_energies_whole(YfSim *s);
 /* Stable time step of the prepared model and what limits it. */
 double run_stable_dt(YfSim *s, char *limiter, size_t n);
 /* Bytes held by the model's arrays (for the benchmark's bytes per element). */

@@ -138,6 +138,7 @@ typedef struct YfSim {
 
   YfEnergy energy;
   double joint_stored;  /* intact joints' stored energy [J/m], part of energy.strain (run_energies) */
+  double gravity_work;  /* work of gravity on the nodes' displacements [J/m] (run_energies)      */
   long thermo_every;    /* thermo line every N steps (0: only at start and end of a run)    */
   YfThermoFn thermo_custom; /* NULL: the default thermo line                               */
   double wall_s;        /* wall time spent in runs [s]                                      */

@@ -32,6 +32,7 @@
 #include "err.h"
 #include "joint.h"
 #include "mesh.h"
+#include "par.h"
 #include "run.h"
 #include "y2d_model.h"
 #include "y2d_write.h"
@@ -392,7 +393,10 @@ void y2d_write(YfSim *s, const char *path, long steps, long every, const YfLoc *
   size_t plen = strlen(path) + 8;
   char *tmp = yf_malloc(plen, "path");
   snprintf(tmp, plen, "%s.tmp", path);
-  FILE *f = fopen(tmp, "w");
+  /* MPI: rank 0 writes the file; the others format it into /dev/null (the same path, so the
+   * same errors), then every rank waits for the file (a deck may read it next) */
+  const int w = yf_writer();
+  FILE *f = fopen(w ? tmp : "/dev/null", "w");
   if (!f) yf_io_error(loc, "write_y2d: cannot write '%s': %s", tmp, strerror(errno));
   fprintf(f, "/* written by yfdem write_y2d from %s line %d */\n", loc && loc->file ? loc->file : "?", loc ? loc->line : 0);
   fprintf(f, "/* %d nodes, %d triangles, %d element properties, %d BC sets%s */\n", nn, nt, np, nset,
@@ -511,7 +515,8 @@ void y2d_write(YfSim *s, const char *path, long steps, long every, const YfLoc *
   fprintf(f, "$YDOIT\n$YSTOP\n");
   int bad = ferror(f);
   if (fclose(f) != 0 || bad) yf_io_error(loc, "write_y2d: cannot write '%s': %s", tmp, strerror(errno));
-  if (rename(tmp, path) != 0) yf_io_error(loc, "write_y2d: cannot rename '%s' to '%s': %s", tmp, path, strerror(errno));
+  if (w && rename(tmp, path) != 0) yf_io_error(loc, "write_y2d: cannot rename '%s' to '%s': %s", tmp, path, strerror(errno));
+  (void)par_any(0); /* MPI: the file is whole before any rank goes on */
   sim_printf(s, "write_y2d: %s: %d nodes, %d triangles, %d properties, %d BC sets, %d joint set(s), dt %.6g s, %ld steps, "
              "output every %ld steps\n", path, nn, nt, np, nset, njs, dt, steps, icoutf);
   free(tmp); free(ik); free(sc); free(col); free(icol); free(knot);

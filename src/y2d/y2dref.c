@@ -130,7 +130,7 @@ static void write_corners(YfSim *s, YfY2dRef *r) {
 static void write_summary(YfSim *s, YfY2dRef *r) {
   /* README 3: kinetic = sum m |v|^2 / 2; elastic = triangles only (A_c/2 T:E, no viscous part,
    * no joint energy, which run_energies adds to energy.strain) */
-  run_energies(s);
+  run_energies_whole(s); /* MPI: on the writer alone, from the state gathered for the frame */
   const YfTriMat *tm = run_tri_mats();
   double elastic = tm ? tri_strain_energy(&s->model, tm, 0, s->model.tri.n) : 0.0;
   const YfNodes *n = &s->model.node;
