@@ -781,8 +781,9 @@ END_TEST
  * the block's rank carries 1.8 x the mean.  After the first search the border moves into the
  * block: its couples are shared (each rank holds at least half as many as the other, against
  * 0 and all of them with YFDEM_MPI_BALANCE=0), the weight imbalance after the cut is within the
- * granularity of a block of 256 triangles (about 3 % here), the bits are ./yfdem's on 2 and 3
- * ranks, and a restart written after the re-cut on 2 ranks and read on 3 continues bitwise. */
+ * granularity of a block of 256 triangles (about 3 % here), the bits and the h5 frames (every
+ * rank writes its rows by the new ranges) are ./yfdem's on 2 and 3 ranks, and a restart written
+ * after the re-cut on 2 ranks and read on 3 continues bitwise. */
 static const char REBAL_DECK[] =
     "material c elastic rho 2340 E 26e9 nu 0.18 plane_stress pen_n 1e11 pen_t 1e10 friction 0.3\n"
     "material s elastic rho 7800 E 210e9 nu 0.3 plane_stress\n"
@@ -806,18 +807,18 @@ static void held_couples(const char *dir, long *a, long *b) {
 START_TEST(rebalance_contact_work) {
   if (!mpi_ready()) return;
   char *d = workdir(), path[PATH_MAX + 32], deck[sizeof REBAL_DECK + 128];
-  snprintf(deck, sizeof deck, "%srun 100\n", REBAL_DECK);
+  snprintf(deck, sizeof deck, "%sdump d h5 20 ${out}.h5\nrun 100\n", REBAL_DECK);
   write_file(d, "full.deck", deck);
   snprintf(deck, sizeof deck, "%srun 50\nwrite_restart half.restart\n", REBAL_DECK);
   write_file(d, "first.deck", deck);
   snprintf(deck, sizeof deck, "%sread_restart half.restart\nrun 100 upto\n", REBAL_DECK);
   write_file(d, "second.deck", deck);
-  ck_assert_int_eq(run_in(d, 0, 1, "-in full.deck -summary full.json", NULL), 0);
+  ck_assert_int_eq(run_in(d, 0, 1, "-in full.deck -var out ref -summary full.json", NULL), 0);
   snprintf(path, sizeof path, "%s/full.json", d);
   char *ref = key_lines(path);
   long a = -1, b = -1;
   setenv("YFDEM_MPI_BALANCE", "0", 1);
-  int rc = run_in(d, 2, 1, "-in full.deck -summary m.json", NULL);
+  int rc = run_in(d, 2, 1, "-in full.deck -var out m -summary m.json", NULL);
   unsetenv("YFDEM_MPI_BALANCE");
   ck_assert_int_eq(rc, 0);
   held_couples(d, &a, &b);
@@ -826,11 +827,18 @@ START_TEST(rebalance_contact_work) {
   ck_assert_msg(count_in(d, "out.txt", "not re-balanced (YFDEM_MPI_BALANCE=0") == 1,
                 "YFDEM_MPI_BALANCE=0: the report does not say the borders stayed");
   for (int ranks = 2; ranks <= 3; ranks++) {
-    ck_assert_int_eq(run_in(d, ranks, 1, "-in full.deck -summary m.json", NULL), 0);
+    ck_assert_int_eq(run_in(d, ranks, 1, "-in full.deck -var out m -summary m.json", NULL), 0);
     snprintf(path, sizeof path, "%s/m.json", d);
     char *got = key_lines(path);
     ck_assert_msg(!strcmp(ref, got), "%d ranks differ from ./yfdem:\n%s--- vs ./yfdem:\n%s", ranks, got, ref);
     free(got);
+    for (int k = 0; k <= 5; k++) { /* every rank's rows of the frames after the re-cut, by the new ranges */
+      char pa[PATH_MAX + 64], pb[PATH_MAX + 64];
+      snprintf(pa, sizeof pa, "%s/ref_%06d.h5", d, k);
+      snprintf(pb, sizeof pb, "%s/m_%06d.h5", d, k);
+      const char *why = frame_diff(pa, pb);
+      ck_assert_msg(why == NULL, "%d ranks: frame %d differs from ./yfdem's: %s", ranks, k, why);
+    }
     held_couples(d, &a, &b);
     snprintf(path, sizeof path, "%s/out.txt", d);
     char *t = yft_slurp(path, 1);
@@ -844,7 +852,7 @@ START_TEST(rebalance_contact_work) {
                   ranks, n, w0, w1);
     ck_assert_msg(a > 0 && 2 * a >= b, "%d ranks: couples held per rank %ld..%ld after the re-cut", ranks, a, b);
     fprintf(stderr, "check_mpi: re-balanced on %d ranks: weight imbalance %.3f -> %.3f, couples held per rank "
-            "%ld..%ld (all on one rank without), ./yfdem's bits\n", ranks, w0, w1, a, b);
+            "%ld..%ld (all on one rank without), ./yfdem's bits and h5 frames\n", ranks, w0, w1, a, b);
   }
   free(ref);
   ck_assert_int_eq(run_in(d, 2, 1, "-in first.deck", NULL), 0);
@@ -854,7 +862,7 @@ START_TEST(rebalance_contact_work) {
           same_hash_as_full(d, "re-balanced restart 2 -> 3 ranks"));
   /* a value that is neither 0 nor 1 is refused (a deck error, exit 1), not taken for one */
   setenv("YFDEM_MPI_BALANCE", "yes", 1);
-  rc = run_in(d, 2, 1, "-in full.deck", NULL);
+  rc = run_in(d, 2, 1, "-in full.deck -var out m", NULL);
   unsetenv("YFDEM_MPI_BALANCE");
   ck_assert_msg(rc == 1 && count_in(d, "err.txt", "YFDEM_MPI_BALANCE='yes'") >= 1,
                 "YFDEM_MPI_BALANCE=yes: exit %d, message %d times", rc, count_in(d, "err.txt", "YFDEM_MPI_BALANCE='yes'"));
