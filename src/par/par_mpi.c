@@ -56,7 +56,8 @@ static struct {
   Split se;                 /* a triangle sum's blocks over the triangle ranges (par_tri_split) */
   double *erec;             /* the element stage's block records: power, bad, badJ per block    */
   int *cnt, *dsp;           /* scratch counts and displacements of an allgatherv              */
-  double bytes;             /* bytes this rank sent in collectives of the current run          */
+  double bytes;             /* bytes this rank sent in collectives of the current run's steps  */
+  double bytes_end;         /* and in its end gather (par_run_end)                              */
   double t_comm, t_elem;    /* wall seconds in exchanges / CPU seconds of divided work (elements,
                                joints, contact screen and kernel): CPU, so a loaded machine's
                                descheduling does not show as imbalance */
@@ -585,6 +586,15 @@ static void gather_nodes(YfNodes *n) {
   double *a[6] = NODE_STATE(n);
   for (int k = 0; k < 6; k++) par_gather_ranges(a[k], P.nlo, (int)sizeof(double));
   P.nodes_fresh = 1;
+}
+
+/* The end of a run: the state whole on every rank for what follows (deck expressions, the next
+ * run's start), its bytes kept apart from the run's per-step traffic in the report. */
+void par_run_end(YfSim *s) {
+  const double b0 = P.bytes;
+  par_need_all(s);
+  P.bytes_end = P.bytes - b0;
+  P.bytes = b0;
 }
 
 void par_need_all(YfSim *s) {
@@ -1198,9 +1208,9 @@ const int *par_tri_lo(void) { return P.size > 1 ? P.tlo : NULL; }
 void par_run_report(YfSim *s, long nsteps, double wall) {
   long held = 0, whole = 0;
   contact_held(s, &held, &whole);
-  double mine[6] = {P.t_elem, P.t_comm, P.bytes, P.hbytes, P.ngh_max, (double)held}, *all = NULL;
-  if (P.rank == 0) all = yf_malloc(6 * (size_t)P.size * sizeof(double), "rank report");
-  MPI_Gather(mine, 6, MPI_DOUBLE, all, 6, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  double mine[7] = {P.t_elem, P.t_comm, P.bytes, P.hbytes, P.ngh_max, (double)held, P.bytes_end}, *all = NULL;
+  if (P.rank == 0) all = yf_malloc(7 * (size_t)P.size * sizeof(double), "rank report");
+  MPI_Gather(mine, 7, MPI_DOUBLE, all, 7, MPI_DOUBLE, 0, MPI_COMM_WORLD);
   long cross = 0;
   MPI_Reduce(&P.cross_hits, &cross, 1, MPI_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
   P.cross_hits = 0;
@@ -1219,10 +1229,11 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
     jcross += ra != rb;
   }
   if (P.rank == 0 && nsteps > 0) {
-    double emax = 0, esum = 0, cmax = 0, bsum = 0, hmax = 0, gmin = 1e300, gmax = 0, cpmin = 1e300, cpmax = 0;
+    double emax = 0, esum = 0, cmax = 0, bsum = 0, hmax = 0, gmin = 1e300, gmax = 0, cpmin = 1e300, cpmax = 0, bend = 0;
     int tmin = P.nt, tmax = 0;
     for (int r = 0; r < P.size; r++) {
-      const double *a = all + 6 * r;
+      const double *a = all + 7 * r;
+      bend += a[6];
       emax = a[0] > emax ? a[0] : emax;
       esum += a[0];
       cmax = a[1] > cmax ? a[1] : cmax;
@@ -1255,17 +1266,17 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
                "node)", P.why && *P.why ? P.why : "not prepared");
     sim_printf(s, "mpi: %d ranks x %d threads; triangles per rank %d..%d; work imbalance %.3f "
                "(CPU of elements, joints and contact: slowest / mean rank; mean %.4g s); %.4g bytes sent per step (border "
-               "halo %.4g from the busiest rank); communication %.1f %% of wall (slowest rank); "
+               "halo %.4g from the busiest rank; %.4g more at the run's end, to make the state whole); communication %.1f %% of wall (slowest rank); "
                "ghost nodes per rank %d..%d; contact hits between two ranks' triangles %ld; contact couples held "
                "per rank %.0f..%.0f of %ld; contact search discs sent %.0f per search of %.0f (all ranks, %ld searches); "
                "joints broken across rank borders %ld (all runs so far); %s; %s\n",
                P.size, s->threads, tmin, tmax, emean > 0 ? emax / emean : 1.0, emean, bsum / (double)nsteps,
-               hmax / (double)nsteps,
+               hmax / (double)nsteps, bend,
                wall > 0 ? 100.0 * cmax / wall : 0.0, P.ghost_min, P.ghost_max, cross, cpmin, cpmax, whole,
                nsearch ? (double)disc[0] / (double)nsearch : 0.0, nsearch ? (double)disc[1] / (double)nsearch : 0.0,
                nsearch, jcross, upd, bal);
   }
   P.ngh_max = 0;
   free(all);
-  P.t_elem = P.t_comm = P.bytes = P.hbytes = 0;
+  P.t_elem = P.t_comm = P.bytes = P.hbytes = P.bytes_end = 0;
 }

@@ -47,6 +47,7 @@ void par_share_elements(YfModel *m, const YfTriMat *tm, double *blk, int *blk_ba
  * for energies, frames and restarts. */
 void par_need_stresses(YfModel *m);
 void par_need_all(struct YfSim *s);
+void par_run_end(struct YfSim *s); /* par_need_all at a run's end, its bytes apart in the report */
 /* Halo mode: the nodes this rank sums the force of, [n0, n1) (unchanged when every rank sums
  * every node); then par_share_forces gives every rank every node's force from its owner. */
 void par_nodes(int *n0, int *n1);
@@ -129,6 +130,7 @@ static inline void par_share_elements(YfModel *m, const YfTriMat *tm, double *bl
 }
 static inline void par_need_stresses(YfModel *m) { (void)m; }
 static inline void par_need_all(struct YfSim *s) { (void)s; }
+static inline void par_run_end(struct YfSim *s) { (void)s; }
 static inline void par_nodes(int *n0, int *n1) { (void)n0; (void)n1; }
 static inline void par_share_forces(double *fx, double *fy) { (void)fx; (void)fy; }
 static inline int par_rank(void) { return 0; }

@@ -702,7 +702,7 @@ void run_steps(YfSim *s, long nsteps) {
                    "restart could be written (%s)", s->step, s->time, why);
     }
   }
-  par_need_all(s); /* MPI: the last state whole on every rank, for what follows */
+  par_run_end(s); /* MPI: the last state whole on every rank, for what follows */
   run_energies(s);
   energy_check(s);
   thermo_line(s);
