@@ -24,6 +24,11 @@
  *   - a dissipation is negative.
  * Dissipation beyond what the scene was given is energy from nowhere too: it is part of r.  The message names the step, the energy that grew most
  * since the last closed check and the stage that owns it, and what to change.
+ * What a deck does between two runs is energy given too: a `velocity set`, a body added, gravity
+ * or a material changed.  So a later run takes the residual of the state it starts from as the
+ * one the last run ended with (the budget moves by the difference: nothing, bit for bit, when the
+ * deck changed nothing), and when the scene's nodes or triangles changed, the contact energy of
+ * its first step is taken as given as at step 0 (a body added where it overlaps another).
  * `energy_check warn|off` (the one deck switch) lets a run go on against that advice.
  */
 #include <math.h>
@@ -43,6 +48,10 @@ static struct {
   double budget;     /* energy held at step 0 [J/m] */
   int budget_set;
   int contact_pending; /* the first step's contact energy (that of the start state) is still to add */
+  double contact_base; /* ... less this much: the contact energy booked before it (0 at step 0) */
+  int have_end;      /* a run of this process ended with the residual r_end, on nn_end nodes, nt_end triangles */
+  double r_end;
+  int nn_end, nt_end;
   double floor;      /* energy of a 1e-8 strain everywhere [J/m] */
   double last[NT];   /* the terms at the last closed check */
   long last_step;
@@ -61,6 +70,7 @@ void energy_set_budget(double e) {
   E.budget = e;
   E.budget_set = 1;
   E.contact_pending = 0;
+  E.have_end = 0; /* a restart's state: its budget holds, nothing to carry over */
 }
 
 /* Gravity's work is a function of the state: sum m g . (x - x0). */
@@ -92,6 +102,14 @@ void energy_run_begin(YfSim *s, double e_floor) {
     E.budget = s->energy.kinetic + s->energy.strain;
     E.budget_set = 1;
     E.contact_pending = s->step == 0;
+    E.contact_base = 0.0;
+  } else if (E.have_end) {
+    /* the deck's changes since the last run (velocities set, gravity or materials changed,
+     * bodies added): energy given now, so the residual goes on from where that run left it */
+    double r = energy_balance(s);
+    if (isfinite(r) && isfinite(E.r_end)) E.budget += r - E.r_end;
+    E.contact_pending = s->model.node.n != E.nn_end || s->model.tri.n != E.nt_end;
+    E.contact_base = s->energy.contact;
   }
   terms(s, E.last);
   E.last_step = s->step;
@@ -104,7 +122,15 @@ void energy_run_begin(YfSim *s, double e_floor) {
 void energy_first_step(YfSim *s) {
   if (!E.contact_pending) return;
   E.contact_pending = 0;
-  if (isfinite(s->energy.contact) && s->energy.contact > 0) E.budget += s->energy.contact;
+  double c = s->energy.contact - E.contact_base;
+  if (isfinite(c) && c > 0) E.budget += c;
+}
+
+void energy_run_end(const YfSim *s) {
+  E.r_end = energy_balance(s);
+  E.nn_end = s->model.node.n;
+  E.nt_end = s->model.tri.n;
+  E.have_end = 1;
 }
 
 /* What to change: the time step against the limit, and the switch. */

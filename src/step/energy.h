@@ -3,6 +3,7 @@
  *   energy_run_begin   at the start of every run command, after run_energies;
  *   energy_first_step  after the first step of a run (the contact energy of the start state);
  *   energy_check       every 100 steps and at the end of the run (stops, warns or passes);
+ *   energy_run_end     at the end of the run, after its last check (what the next run starts from);
  *   energy_balance     for the thermo Balance column.
  */
 #ifndef YF_ENERGY_H
@@ -19,6 +20,7 @@ enum { YF_EBAL_STOP = 0, YF_EBAL_WARN, YF_EBAL_OFF };
 
 void energy_run_begin(YfSim *s, double e_floor);
 void energy_first_step(YfSim *s);
+void energy_run_end(const YfSim *s);
 /* Reads s->energy as run_energies (run.h) left it at this step. */
 void energy_check(YfSim *s);
 /* Work of loads, supports, prescribed motion and gravity so far [J/m]. */

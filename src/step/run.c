@@ -705,6 +705,7 @@ void run_steps(YfSim *s, long nsteps) {
   par_run_end(s); /* MPI: the last state whole on every rank, for what follows */
   run_energies(s);
   energy_check(s);
+  energy_run_end(s);
   thermo_line(s);
   double wall = yf_now() - R.t_wall0;
   s->wall_s += wall;
