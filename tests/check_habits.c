@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -206,6 +207,43 @@ START_TEST(test_no_files_before_run) {
 }
 END_TEST
 
+/* README, Files: what a deck reads is relative to the deck's directory, what yfdem writes is
+ * relative to the working directory (as LAMMPS).  A deck in sub/ run from its parent with every
+ * kind of output: each file lands in the working directory and none in sub/ (the y2dref dump's
+ * folder was made beside the deck until 2026-11-28). */
+START_TEST(test_outputs_in_working_dir) {
+  char tmpl[] = "/tmp/yft_cwd_XXXXXX", cwd[1024], cmd[4096], p[1200];
+  char *dir = mkdtemp(tmpl);
+  ck_assert_ptr_nonnull(dir);
+  ck_assert_ptr_nonnull(getcwd(cwd, sizeof cwd));
+  snprintf(p, sizeof p, "%s/sub", dir);
+  ck_assert_int_eq(mkdir(p, 0755), 0);
+  snprintf(p, sizeof p, "%s/sub/a.deck", dir);
+  FILE *f = fopen(p, "w");
+  ck_assert_ptr_nonnull(f);
+  fputs(BAR "jointprop j ft 1e6 fs 1e6 gf 10 pen 1e11 damage reversible\nfracture bar j\nfracture_log b.csv opened o.csv\n"
+        "metrics body bar\nmetrics log m.csv every 5\nrecord r 5 rec.csv ke\ndump d h5 5 d.h5\ndump c csv 5 c\n"
+        "dump y y2dref yref corners 0,10\nrestart every 5 rs.restart\ntimestep auto\nwrite_y2d x.y steps 10\n"
+        "run 10\nwrite_restart w.restart\n", f);
+  fclose(f);
+  const char *bin = getenv("YFDEM") ? getenv("YFDEM") : "./yfdem";
+  snprintf(cmd, sizeof cmd, "cd %s && OMP_NUM_THREADS=1 %s%s%s -in sub/a.deck -summary s.json >/dev/null 2>err.txt", dir,
+           bin[0] == '/' ? "" : cwd, bin[0] == '/' ? "" : "/", bin);
+  ck_assert_int_eq(system(cmd), 0);
+  static const char *const out[] = {"b.csv", "o.csv", "m.csv", "rec.csv", "d.xmf", "d_000002.h5", "c_frames.csv",
+                                    "c_000002.csv", "yref/corners_0000010.csv", "yref/broken.csv", "rs.restart.a",
+                                    "w.restart", "x.y", "s.json", "log.yfdem"};
+  for (size_t i = 0; i < sizeof out / sizeof *out; i++) {
+    snprintf(p, sizeof p, "%s/%s", dir, out[i]);
+    ck_assert_msg(yft_exists(p), "%s not written in the working directory", out[i]);
+    snprintf(p, sizeof p, "%s/sub/%s", dir, out[i]);
+    ck_assert_msg(!yft_exists(p), "%s written beside the deck (sub/), not in the working directory", out[i]);
+  }
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  ck_assert_int_eq(system(cmd), 0);
+}
+END_TEST
+
 Suite *habits_suite(void) {
   Suite *s = suite_create("habits");
   TCase *t = tcase_create("lammps");
@@ -216,6 +254,7 @@ Suite *habits_suite(void) {
   tcase_add_test(t, test_help_suggests);
   tcase_add_test(t, test_flushed_while_running);
   tcase_add_test(t, test_no_files_before_run);
+  tcase_add_test(t, test_outputs_in_working_dir);
   suite_add_tcase(s, t);
   return s;
 }

@@ -31,9 +31,8 @@ static struct YfY2dRef *parse_y2dref(YfSim *s, const YfArgs *a) {
   arg_count(a, 3, -1);
   const char *d = arg_word(a, 2, "directory");
   if (!d[0]) arg_error(a, 2, "empty directory name");
-  char *dir = deck_resolve_path(a, d);
-  struct YfY2dRef *r = y2dref_new(dir);
-  free(dir);
+  /* relative to the working directory, as every file yfdem writes (README, Files) */
+  struct YfY2dRef *r = y2dref_new(d);
   int ncs = 0, nprobe = 0;
   for (int i = 3; i < a->n;) {
     const char *k = a->w[i];
