@@ -259,7 +259,7 @@ void contact_renumber_tris(YfSim *s, const int *tnew, int n) {
 
 const double *contact_node_forces(const YfSim *s) {
   const YfContact *C = s->contact;
-  return active(C) && C->fcn_valid ? C->fcn : NULL;
+  return active(C) && C->fcn ? C->fcn : NULL; /* zeros until the first contact step (contact_prepare) */
 }
 
 long contact_searches(const YfSim *s) { return s->contact ? s->contact->nsearch : 0; }

@@ -131,9 +131,10 @@ typedef struct {
 int contact_export(const YfSim *s, YfContactExport *e);
 
 /* ---- diagnostics (output, tests) ---- */
-/* Contact force of the last evaluated step per node (2 per node, fx fy) [N/m], NULL when
- * contact is off or no step has been evaluated since contact_prepare.  h5 dumps write it as the
- * node field `fc` (so the frame written at the start of a run, before the first step, has none). */
+/* Contact force of the last evaluated step per node (2 per node, fx fy) [N/m], zeros before the
+ * first step evaluated since contact_prepare, NULL when contact is off or not prepared.  h5 dumps
+ * write it as the node field `fc`, in every frame (ParaView's reader lists a field only if every
+ * frame has it: the frame at the start of the first run, before any contact step, has zeros). */
 const double *contact_node_forces(const YfSim *s);
 /* Searches made so far. */
 long contact_searches(const YfSim *s);
