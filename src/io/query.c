@@ -1,13 +1,15 @@
 /* query.c: what a deck expression can ask the simulation (see query.h).
  *
- * Thermo keywords: ke, strain, ext_work, damping, joint_dissipated, contact_energy, friction,
- * broken, pairs, ntri, nnodes, dt_limit.  Group reductions, NAME_GROUP with GROUP a group or
+ * Thermo keywords: ke, strain, ext_work (loads and supports), gravity_work, ext (the two: the thermo
+ * line's ExtWork), damping, joint_dissipated, friction, diss (the three), contact_energy, balance
+ * (the energy check's residual, energy.c), broken, pairs, ntri, nnodes, dt_limit.  Group reductions, NAME_GROUP with GROUP a group or
  * body name: ux_G, uy_G (mean displacement [m]), vx_G, vy_G (mean velocity [m/s]), x_G, y_G
  * (mean position [m]), fx_G, fy_G (sum of nodal forces [N/m]), mass_G [kg/m].  Means are plain
  * averages over the group's nodes (copies of a node in a fracturing body count separately).
  */
 #include <string.h>
 #include "contact.h"
+#include "energy.h"
 #include "joint.h"
 #include "query.h"
 #include "run.h"
@@ -51,11 +53,16 @@ int sim_query(YfSim *s, const char *name, double *val, char *err, size_t errlen)
     size_t L = strlen(red[i]);
     if (!strncmp(name, red[i], L) && name[L] == '_' && name[L + 1]) return group_reduce(s, red[i], name + L + 1, val, err, errlen);
   }
-  int energy = !strcmp(name, "ke") || !strcmp(name, "strain");
+  int energy = !strcmp(name, "ke") || !strcmp(name, "strain") || !strcmp(name, "gravity_work") ||
+               !strcmp(name, "ext") || !strcmp(name, "balance");
   if (energy && s->model.prepared) run_energies_whole(s); /* (what reads a result reads a whole state) */
   if (!strcmp(name, "ke")) *val = s->energy.kinetic;
   else if (!strcmp(name, "strain")) *val = s->energy.strain;
   else if (!strcmp(name, "ext_work")) *val = s->energy.external_work;
+  else if (!strcmp(name, "gravity_work")) *val = s->gravity_work;
+  else if (!strcmp(name, "ext")) *val = energy_external(s);
+  else if (!strcmp(name, "diss")) *val = s->energy.damping + s->energy.joint_dissipated + s->energy.friction;
+  else if (!strcmp(name, "balance")) *val = energy_balance(s);
   else if (!strcmp(name, "damping")) *val = s->energy.damping;
   else if (!strcmp(name, "joint_dissipated")) *val = s->energy.joint_dissipated;
   else if (!strcmp(name, "contact_energy")) *val = s->energy.contact;

@@ -63,6 +63,7 @@ void run_summary_update(YfSim *s) {
     snprintf(buf + k, sizeof buf - (size_t)k, "}");
     summary_add_raw("stage_seconds", buf);
   }
+  summary_add_number("gravity_work", s->gravity_work); /* not in energy.external_work (loads, supports) */
   summary_add_number("dt", s->dt);
   if (isfinite(s->dt_limit) && s->dt_limit > 0) summary_add_number("dt_limit", s->dt_limit);
   joints_summary(s);
