@@ -13,7 +13,12 @@
  *   - negative dissipation stops a run; `energy_check warn` lets a run go on, with one warning;
  *   - what a deck does between runs is energy given, not energy from nowhere: a velocity set and a
  *     body added where it overlaps another (both were stopped with exit 3), and the check still
- *     stops a run that then blows up.
+ *     stops a run that then blows up; so is a change made after read_restart;
+ *   - a healthy run is never stopped (found by a sweep of new decks, 2026-11-28): a slab bouncing on
+ *     its support under gravity with a period near the checks' interval; a bar held by a
+ *     prescribed displacement under mass damping (the dissipation grew at rest); a Y2D deck at
+ *     rest (the round-off floor was 0 for Y2D materials);
+ *   - gravity's work is a deck quantity and a summary key (the loads' `ext_work` leaves it out).
  * Every case is small (a few hundred triangles, at most a few thousand steps).
  */
 #include <check.h>
@@ -26,6 +31,7 @@
 #include "bc.h"
 #include "energy.h"
 #include "joint.h"
+#include "query.h"
 #include "run.h"
 #include "yftest.h"
 
@@ -283,6 +289,158 @@ START_TEST(test_changes_between_runs_are_given) {
 }
 END_TEST
 
+/* A slab on a fixed floor under gravity bounces once about every 100 steps at safety 0.5 (the
+ * checks' old interval): every check met the phase where gravity's work is small, measured a
+ * healthy residual (3 % of the motion's energy) against it, saw it "grow" by aliasing and stopped
+ * the run at step 300.  Now the checks fall at irregular steps (energy_check_due), which meet
+ * every phase: at safety 0.5, 0.9 and 1.0 the run reaches its end with the balance a few per cent
+ * of the motion's energy. */
+START_TEST(test_bouncing_slab_not_stopped) {
+  const double sf[3] = {0.5, 0.9, 1.0};
+  for (int k = 0; k < 3; k++) {
+    char deck[1024];
+    snprintf(deck, sizeof deck, "material m elastic rho 1000 E 1e7 nu 0.25 plane_strain\nmesh rect base m 0 0 1 0.1 20 2\n"
+             "region bl box -1 -1 2 1e-9\ngroup bot node region bl\nfix c bot fixed xy\ngravity 0 -9.81\n"
+             "timestep auto safety %g\nrun 2000\n", sf[k]);
+    YfSim *s = yft_run(deck);
+    /* gravity's work in the static state: (rho g)^2 h^3 / (3 M) per metre of width, M the
+     * P-wave modulus in plane strain; the sudden load's motion reaches twice that */
+    double M = 1e7 * 0.75 / (1.25 * 0.5), rg = 1000 * 9.81, est = 2.0 * rg * rg * 0.1 * 0.1 * 0.1 / (3.0 * M) * 1.0;
+    fprintf(stderr, "energy: bouncing slab safety %g: step %ld, balance %.4g J/m, energy scale %.4g J/m\n", sf[k], s->step,
+            energy_balance(s), est);
+    ck_assert_int_eq(s->step, 2000);
+    /* 2.5-5.5 % of it: the half-step velocities' offset (docs/STABILITY.md), largest at s = 1 */
+    ck_assert_double_lt(fabs(energy_balance(s)), 0.1 * est);
+    sim_free(s);
+  }
+  int due = 0, at100 = 0;
+  for (long st = 1; st <= 100000; st++)
+    if (energy_check_due(st)) { due++; at100 += st % 100 == 0; }
+  ck_assert_int_eq(due, 1000);    /* one in each 100 steps */
+  ck_assert_int_lt(at100, 100);   /* not at a fixed phase */
+}
+END_TEST
+
+/* A bar held at one end and pulled at the other by a prescribed displacement (ramped over 0.05
+ * s), under mass damping: once at rest its dissipation must stay put.  Before, the damping was
+ * booked on the pulled nodes at their free velocity (the reaction's), 0.085 J/m every 1000 steps,
+ * and the run stopped with "more dissipated than given" at step 27300. */
+START_TEST(test_damping_with_prescribed_displacement) {
+  YfSim *s = yft_run("material m elastic rho 1000 E 1e7 nu 0.25 plane_stress\nmesh rect b m 0 0 1 0.1 20 2\n"
+                     "region l box -1 -1 1e-9 1\ngroup l node region l\nregion r box 0.99999 -1 2 1\ngroup r node region r\n"
+                     "fix c l fixed xy\nhistory up ramp 0 0.05\nfix p r displacement 0.002 NULL history up\n"
+                     "damping mass 50\ntimestep auto safety 0.5\nrun 15000\n");
+  double d1 = s->energy.damping, t1 = s->time;
+  run_steps(s, 15000);
+  double d2 = s->energy.damping, r = energy_balance(s), given = energy_get_budget() + energy_external(s);
+  fprintf(stderr, "energy: damped pull: dissipated %.9g J/m at %.3g s, %.9g at %.3g s; balance %.3g of %.4g J/m\n", d1, t1,
+          d2, s->time, r, given);
+  ck_assert_double_gt(t1, 0.2); /* well after the ramp: at rest */
+  ck_assert_double_lt(fabs(d2 - d1), 1e-6 * d1);
+  ck_assert_double_lt(fabs(r), YF_EBAL_TOL * given);
+  sim_free(s);
+}
+END_TEST
+
+/* A velocity set after read_restart is energy given too: a restart of a moving bar continued
+ * with the bar set moving otherwise runs to its end (it stopped with "300 J/m appeared from
+ * nowhere") with the balance closed, and a restart continued unchanged gives the uninterrupted
+ * run's balance to the bit. */
+START_TEST(test_change_after_restart_is_given) {
+  char tmpl[] = "/tmp/yfe_rs_XXXXXX";
+  char *dir = mkdtemp(tmpl);
+  ck_assert_ptr_nonnull(dir);
+  char deck[2048];
+  const char *scene = "material m elastic rho 1000 E 1e7 nu 0.25 plane_strain\nmesh rect b m 0 0 1 0.2 10 2\n"
+                      "timestep auto\n";
+  snprintf(deck, sizeof deck, "%svelocity b set 1 0\nrun 500\nwrite_restart %s/a.restart\nrun 500\n", scene, dir);
+  YfSim *s = yft_run(deck);
+  double r_whole = energy_balance(s);
+  sim_free(s);
+  snprintf(deck, sizeof deck, "%sread_restart %s/a.restart\nrun 1000 upto\n", scene, dir);
+  s = yft_run(deck);
+  double r_same = energy_balance(s);
+  sim_free(s);
+  snprintf(deck, sizeof deck, "%sread_restart %s/a.restart\nvelocity b set 0 2\nrun 1000 upto\n", scene, dir);
+  s = yft_run(deck);
+  double r = energy_balance(s), given = energy_get_budget() + energy_external(s);
+  fprintf(stderr, "energy: restart: balance %.17g whole, %.17g restarted; %.4g of %.4g J/m after a velocity set\n", r_whole,
+          r_same, r, given);
+  ck_assert_int_eq(s->step, 1000);
+  ck_assert(r_same == r_whole);
+  ck_assert_double_gt(given, 0.99 * 400.0); /* 0.5 x 1000 x 0.2 m^2 x (2 m/s)^2 */
+  ck_assert_double_lt(fabs(r), YF_EBAL_TOL * given);
+  sim_free(s);
+  char cmd[300];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  ck_assert_int_eq(system(cmd), 0);
+}
+END_TEST
+
+/* A Y2D deck whose body holds still (supports, no gravity, no load): its energies are 0 and
+ * round-off; the check's round-off floor (1e-16 E per unit area) was 0 for Y2D materials (no E),
+ * and the run stopped with "2.9e-24 J/m appeared from nowhere". */
+START_TEST(test_y2d_at_rest_runs) {
+  char path[] = "/tmp/yfe_rest_XXXXXX.y";
+  int fd = mkstemps(path, 2);
+  ck_assert_int_ge(fd, 0);
+  FILE *f = fdopen(fd, "w");
+  fputs("/YD/YDC/MCSTEP 300 /YD/YDC/DCSTEC 1e-7\n/YD/YDE/MELEM 8 /YD/YDE/NELEM 8 /YD/YDE/MELNO 3 /YD/YDE/NELNO 3\n"
+        "/YD/YDE/I1ELPR 8 0 0 0 0 0 0 0 0\n/YD/YDE/I2ELTO 21 3 8 0 1 4 0 4 3 1 2 5 1 5 4 3 4 7 3 7 6 4 5 8 4 8 7\n"
+        "/YD/YDN/MNODIM 2 /YD/YDN/NNODIM 2 /YD/YDN/MNOPO 9 /YD/YDN/NNOPO 9\n"
+        "/YD/YDN/D2NCI 21 2 9 0 0 0.05 0 0.1 0 0 0.05 0.05 0.05 0.1 0.05 0 0.1 0.05 0.1 0.1 0.1\n"
+        "/YD/YDN/I1NOPR 9 1 1 1 0 0 0 0 0 0\n/YD/YDPE/MPROP 1 /YD/YDPE/NPROP 1 /YD/YDPE/I1PTYP 1 1\n"
+        "/YD/YDPE/D1PERO 1 2400 /YD/YDPE/D1PELA 1 1e10 /YD/YDPE/D1PEMU 1 1e10 /YD/YDPE/D1PSEM 1 0\n"
+        "/YD/YDPN/MPNSET 2 /YD/YDPN/NPNSET 2 /YD/YDPN/I1PNFX 2 1 3 /YD/YDPN/I1PNFY 2 1 3\n"
+        "/YD/YDPN/D1PNAX 2 0 0 /YD/YDPN/D1PNAY 2 0 0\n$YDOIT\n$YSTOP\n", f);
+  fclose(f);
+  char deck[256];
+  snprintf(deck, sizeof deck, "read_y2d %s\nrun\n", path);
+  YfSim *s = yft_run(deck);
+  ck_assert_int_eq(s->step, 300);
+  ck_assert_double_lt(fabs(energy_balance(s)), 1e-12);
+  sim_free(s);
+  unlink(path);
+}
+END_TEST
+
+/* Gravity's work: `gravity_work`, `ext` (loads and supports + gravity, the thermo line's ExtWork),
+ * `diss` and `balance` are deck quantities, and the summary has `gravity_work` (energy.external_work
+ * is the loads' and supports' only).  A free block falling from rest under g = 10 for t = 1 ms:
+ * gravity's work is m g^2 t^2 / 2 = 10 kg/m x 100 x 1e-6 / 2 = 5e-4 J/m (to the leapfrog's dt/t). */
+START_TEST(test_gravity_work_reported) {
+  const char *deck = "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 0.1 0.1 2 2\ngravity 0 -10\n"
+                     "timestep 1e-6\nrun 1000\n";
+  YfSim *s = yft_run(deck);
+  double g = 0, ext = 0, ew = 0, bal = 0, diss = -1;
+  char err[256];
+  ck_assert_int_eq(sim_query(s, "gravity_work", &g, err, sizeof err), 1);
+  ck_assert_int_eq(sim_query(s, "ext", &ext, err, sizeof err), 1);
+  ck_assert_int_eq(sim_query(s, "ext_work", &ew, err, sizeof err), 1);
+  ck_assert_int_eq(sim_query(s, "balance", &bal, err, sizeof err), 1);
+  ck_assert_int_eq(sim_query(s, "diss", &diss, err, sizeof err), 1);
+  fprintf(stderr, "energy: falling block: gravity_work %.9g, ext %.9g, ext_work %.3g, balance %.3g, diss %.3g\n", g, ext, ew, bal, diss);
+  ck_assert_double_lt(fabs(g - 5e-4), 2e-3 * 5e-4);
+  ck_assert(ext == g + ew);
+  ck_assert_double_eq(ew, 0.0);
+  ck_assert_double_eq(diss, 0.0);
+  ck_assert_double_lt(fabs(bal), 2e-3 * 5e-4);
+  sim_free(s);
+  char *e = NULL, *dir = NULL;
+  ck_assert_int_eq(yft_run_binary("fall.deck", deck, "-summary s.json", &e, &dir), 0);
+  char p[600];
+  snprintf(p, sizeof p, "%s/s.json", dir);
+  char *j = yft_slurp(p, 0);
+  ck_assert_ptr_nonnull(j);
+  const char *q = strstr(j, "\"gravity_work\": ");
+  ck_assert_ptr_nonnull(q);
+  ck_assert_double_lt(fabs(strtod(q + strlen("\"gravity_work\": "), NULL) - g), 1e-12);
+  free(j);
+  free(e);
+  free(dir);
+}
+END_TEST
+
 Suite *energy_suite(void) {
   Suite *s = suite_create("energy");
   TCase *tc = tcase_create("energy");
@@ -294,6 +452,11 @@ Suite *energy_suite(void) {
   tcase_add_test(tc, test_negative_dissipation_stops);
   tcase_add_test(tc, test_energy_check_switch);
   tcase_add_test(tc, test_changes_between_runs_are_given);
+  tcase_add_test(tc, test_bouncing_slab_not_stopped);
+  tcase_add_test(tc, test_damping_with_prescribed_displacement);
+  tcase_add_test(tc, test_change_after_restart_is_given);
+  tcase_add_test(tc, test_y2d_at_rest_runs);
+  tcase_add_test(tc, test_gravity_work_reported);
   suite_add_tcase(s, tc);
   return s;
 }

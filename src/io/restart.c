@@ -642,7 +642,10 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   e->joint_dissipated = en[4]; e->contact = en[5]; e->friction = en[6];
   s->elem_steps = elem_steps;
   s->wall_s = wall_s;
-  energy_set_budget(budget);
+  /* the energies of this state (the file holds those last evaluated), as the residual the deck's
+   * changes before the next run are measured from (energy.c) */
+  run_energies_whole(s);
+  energy_restored(s, budget);
   sim_printf(s, "read_restart: %s: step %ld, time %.6g s, dt %.6g s, %d nodes, %d triangles, %ld joints (%ld broken)%s\n",
              path, step, time, dt, m->node.n, m->tri.n, nj, s->joints ? (long)s->joints->nbroken : 0L,
              c_file ? ", contact couples restored" : "");

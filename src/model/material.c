@@ -9,6 +9,14 @@
  */
 #include "model.h"
 
+/* In-plane Young's modulus and Poisson's ratio of the law at small strain, of a material given by
+ * lambda, mu and volfac (element damping's beta and the energy check's round-off floor read E). */
+void model_lame_moduli(YfMaterial *mt) {
+  const double le = 2.0 * mt->volfac * mt->lambda, mu = mt->mu;
+  mt->E = 4.0 * mu * (le + mu) / (le + 2.0 * mu); /* 2D uniaxial-stress modulus */
+  mt->nu = le / (le + 2.0 * mu);
+}
+
 int model_define_material(YfModel *m, const YfMaterial *given) {
   YfMaterial mt = *given;
   const double volfac = given->volfac;
@@ -18,11 +26,7 @@ int model_define_material(YfModel *m, const YfMaterial *given) {
     double l = given->plane == YF_PLANE_STRESS ? E * nu / (1.0 - nu * nu) : E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
     mt.lambda = l * 0.5 / volfac; /* 2 volfac lambda_stored = lambda_true */
   } else {
-    const double lam = given->lambda, mu = given->mu;
-    /* in-plane Young's modulus and Poisson's ratio of the law at small strain (for damping) */
-    double le = 2.0 * volfac * lam;
-    mt.E = 4.0 * mu * (le + mu) / (le + 2.0 * mu); /* 2D uniaxial-stress modulus */
-    mt.nu = le / (le + 2.0 * mu);
+    model_lame_moduli(&mt);
   }
   int idx = model_add_material(m, given->name);
   mt.jset = m->mat[idx].jset; /* no joint property set yet */

@@ -139,6 +139,7 @@ int model_find_material(const YfModel *m, const char *name);  /* -1 if none */
  * beta, pen_n, pen_t, fric, fric_law, and either E, nu with plane YF_PLANE_STRESS|STRAIN or
  * lambda, mu with plane YF_PLANE_LAME; derives the other pair (the rest of *given is copied,
  * jset excepted).  The name must be new.  Returns the material's index. */
+void model_lame_moduli(YfMaterial *mt);
 int model_define_material(YfModel *m, const YfMaterial *given);
 int model_add_body(YfModel *m, const char *name, int mat);
 int model_find_body(const YfModel *m, const char *name);

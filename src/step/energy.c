@@ -25,7 +25,7 @@
  * Dissipation beyond what the scene was given is energy from nowhere too: it is part of r.  The message names the step, the energy that grew most
  * since the last closed check and the stage that owns it, and what to change.
  * What a deck does between two runs is energy given too: a `velocity set`, a body added, gravity
- * or a material changed.  So a later run takes the residual of the state it starts from as the
+ * changed; a read_restart counts as a run that ended at its step.  So a later run takes the residual of the state it starts from as the
  * one the last run ended with (the budget moves by the difference: nothing, bit for bit, when the
  * deck changed nothing), and when the scene's nodes or triangles changed, the contact energy of
  * its first step is taken as given as at step 0 (a body added where it overlaps another).
@@ -70,7 +70,15 @@ void energy_set_budget(double e) {
   E.budget = e;
   E.budget_set = 1;
   E.contact_pending = 0;
-  E.have_end = 0; /* a restart's state: its budget holds, nothing to carry over */
+  E.have_end = 0;
+}
+
+/* A restart's state: its budget, and the residual it was written with (its energies were those of
+ * its step), as if a run had ended there: a deck that changes the scene after read_restart gives
+ * energy as between two runs. */
+void energy_restored(const YfSim *s, double budget) {
+  energy_set_budget(budget);
+  energy_run_end(s);
 }
 
 /* Gravity's work is a function of the state: sum m g . (x - x0). */
@@ -124,6 +132,17 @@ void energy_first_step(YfSim *s) {
   E.contact_pending = 0;
   double c = s->energy.contact - E.contact_base;
   if (isfinite(c) && c > 0) E.budget += c;
+}
+
+/* The checks' steps: one in each hundred, the c-th at step 100 c + j with j in -32..31 from a hash
+ * of c, a function of the step alone (a restart checks where the uninterrupted run did).  At a fixed
+ * interval a motion whose period divides it (a slab bouncing once every 100 steps) showed every
+ * check the same phase. */
+int energy_check_due(long step) {
+  long c = (step + 50) / 100;
+  if (c < 1) return 0;
+  unsigned long h = ((unsigned long)c * 2654435761ul) & 0xfffffffful;
+  return step == 100 * c + (long)(h >> 26) - 32;
 }
 
 void energy_run_end(const YfSim *s) {

@@ -2,7 +2,7 @@
  * close (energy.c).  run.c calls, in this order:
  *   energy_run_begin   at the start of every run command, after run_energies;
  *   energy_first_step  after the first step of a run (the contact energy of the start state);
- *   energy_check       every 100 steps and at the end of the run (stops, warns or passes);
+ *   energy_check       about every 100 steps (energy_check_due) and at the end of the run;
  *   energy_run_end     at the end of the run, after its last check (what the next run starts from);
  *   energy_balance     for the thermo Balance column.
  */
@@ -21,6 +21,8 @@ enum { YF_EBAL_STOP = 0, YF_EBAL_WARN, YF_EBAL_OFF };
 void energy_run_begin(YfSim *s, double e_floor);
 void energy_first_step(YfSim *s);
 void energy_run_end(const YfSim *s);
+/* Whether an energy check is due after the step that made s->step = step (about every 100). */
+int energy_check_due(long step);
 /* Reads s->energy as run_energies (run.h) left it at this step. */
 void energy_check(YfSim *s);
 /* Work of loads, supports, prescribed motion and gravity so far [J/m]. */
@@ -33,6 +35,9 @@ int energy_dt_above_limit_ok(const YfSim *s);
 /* The energy given at the start [J/m] (restart.c saves and restores it). */
 double energy_get_budget(void);
 void energy_set_budget(double e);
+/* read_restart: the budget, and the state's energies as those a run ended with (s->energy as the
+ * restart holds them; changes the deck makes before the next run are energy given). */
+void energy_restored(const YfSim *s, double budget);
 void energy_reset(void);
 
 #endif

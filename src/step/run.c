@@ -572,14 +572,6 @@ static void stage_update(YfSim *s) {
   for (int k = 0; k < s->nbc_kind; k++)
     if (s->bc_kind[k]->constrain_velocities) s->bc_kind[k]->constrain_velocities(s, vxo, vyo);
   if (alpha > 0) {
-    /* dissipated: alpha m |v_n|^2 dt with v_n the mean of the two half-step velocities, after
-     * the supports (a held node dissipates nothing); summed serially: same bits on any threads */
-    double diss = 0;
-    for (int i = 0; i < nn; i++) {
-      double ax = 0.5 * (vx[i] + vxo[i]), ay = 0.5 * (vy[i] + vyo[i]);
-      diss += ms[i] * (ax * ax + ay * ay);
-    }
-    s->energy.damping += alpha * diss * dt;
     #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
     for (int i = 0; i < nn; i++) {
       xo[i] = x[i];
@@ -593,6 +585,18 @@ static void stage_update(YfSim *s) {
   }
   for (int k = 0; k < s->nbc_kind; k++)
     if (s->bc_kind[k]->constrain_positions) s->bc_kind[k]->constrain_positions(s, xo, yo, vxo, vyo);
+  if (alpha > 0) {
+    /* dissipated: alpha m |v_n|^2 dt with v_n the mean of the two half-step velocities, after
+     * the supports and prescribed displacements, at the velocities the nodes moved with (a held
+     * node dissipates nothing; the supports' reactions take the rest of the damping force, bc.c);
+     * summed serially: same bits on any threads */
+    double diss = 0;
+    for (int i = 0; i < nn; i++) {
+      double ax = 0.5 * (vx[i] + vxo[i]), ay = 0.5 * (vy[i] + vyo[i]);
+      diss += ms[i] * (ax * ax + ay * ay);
+    }
+    s->energy.damping += alpha * diss * dt;
+  }
   par_ghost_exchange(n); /* MPI: the ghosts' new positions and velocities from their owners */
   s->step++;
   s->time += dt;
@@ -640,8 +644,11 @@ void run_steps(YfSim *s, long nsteps) {
      * that said energy_check warn|off takes stability over: warn only, the energy check (unless
      * off) stops the run if it diverges */
     yf_warn(s->dt_loc.file ? &s->dt_loc : NULL,
-            "the %s time step %.6g s is %.3g x the stable limit %.6g s (set by %s); running it as asked: the energy "
-            "check stops the run if it diverges", s->y2d ? "Y2D deck's" : "deck's", s->dt, s->dt / limit, limit, lim);
+            "the %s time step %.6g s is %.3g x the stable limit %.6g s (set by %s); running it as asked: %s",
+            s->y2d ? "Y2D deck's" : "deck's", s->dt, s->dt / limit, limit, lim,
+            s->ebal_mode == YF_EBAL_STOP ? "the energy check stops the run if it diverges"
+            : s->ebal_mode == YF_EBAL_WARN ? "the energy check warns if it diverges (energy_check warn)"
+                                           : "nothing checks whether it diverges (energy_check off)");
   } else if (s->dt > limit) {
     yf_deck_error(s->dt_loc.file ? &s->dt_loc : NULL,
                   "timestep %.6g s is above the stable limit %.6g s (set by %s); use at most %.6g s or 'timestep auto'",
@@ -669,7 +676,6 @@ void run_steps(YfSim *s, long nsteps) {
   thermo_header(s);
   thermo_line(s);
   int tty = s->progress && isatty(2) && yf_writer();
-  long check_every = 100;
   for (long k = 0; k < nsteps; k++) {
     threads_step_begin();
     double ts = yf_now();
@@ -682,7 +688,7 @@ void run_steps(YfSim *s, long nsteps) {
     sim_notify(s, &ev);
     yf_stage_time[YF_ST_OUTPUT] += yf_now() - t0;
     if (s->thermo_every > 0 && s->step % s->thermo_every == 0 && k + 1 < nsteps) thermo_line(s);
-    if ((k + 1) % check_every == 0) {
+    if (energy_check_due(s->step)) {
       run_energies(s); /* the check reads the energies of this step (MPI: a collective, nothing gathered) */
       energy_check(s);
     }

@@ -500,6 +500,7 @@ void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from) {
     mt->pen_n = y->d1pepe[p];
     mt->pen_t = y->d1pept[p];
     mt->fric = y->d1pefr[p];
+    model_lame_moduli(mt); /* E, nu: the energy check's round-off floor is 1e-16 E per unit area */
     pmat[p] = k;
     pbody[p] = model_add_body(m, name, k);
   }
