@@ -168,7 +168,7 @@ int main(int argc, char **argv) {
   yf_catch_signals(on_signal);
   if (in) {
     size_t L = strlen(in);
-    if (L > 2 && !strcmp(in + L - 2, ".y")) {
+    if (L > 2 && (!strcmp(in + L - 2, ".y") || !strcmp(in + L - 2, ".Y"))) {
       /* A Y2D deck: read it and run to its own last step (read_y2d + run). */
       y2d_run_file(&g_sim, in);
     } else {

@@ -14,6 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include "y2d_read.h"
+#include "yftest.h"
 
 #define DECKS "tests/y2d/decks/"
 #define BAD "tests/y2d_bad/"
@@ -262,6 +263,8 @@ static const struct {
   {"other_derivative.y", 1, 4, "/YD/YDC/ICSAVF: not a Y2D key (restart save frequency"},
   {"ygeo_ydp_group.y", 1, 21, "/YD/YDP/MPROP: Y-Geo group /YD/YDP/"},
   {"nnodim3.y", 1, 13, "/YD/YDN/NNODIM = 3: yfdem reads 2D decks only"},
+  /* a NUL in MCSTEP's value ran 1 step silently (the token was cut at it) until 2026-11-28 */
+  {"nul_byte.y", 1, 2, "a NUL byte in a token: a .y deck is plain text"},
 };
 
 START_TEST(test_bad_decks) {
@@ -285,6 +288,37 @@ START_TEST(test_missing_deck) {
 }
 END_TEST
 
+/* A Y2D deck under another name (no extension, or on standard input) is read as a native deck:
+ * its first word is refused with a hint to name it .y or read it with read_y2d (it was "unknown
+ * command '/ *' (did you mean 'if'?)"); FILE.Y runs as FILE.y does. */
+START_TEST(test_y2d_deck_misnamed) {
+  char *text = yft_slurp("tests/y2d/decks/a_elastic_block.y", 0);
+  ck_assert_ptr_nonnull(text);
+  char *err = NULL, *dir = NULL;
+  int code = yft_run_binary("model", text, NULL, &err, &dir);
+  fprintf(stderr, "y2d_read: a .y deck named 'model': exit %d: %s", code, err);
+  ck_assert_int_eq(code, 1);
+  ck_assert_ptr_nonnull(strstr(err, "model:1: error: unknown command '/*': this looks like a Y2D .y deck"));
+  ck_assert_ptr_nonnull(strstr(err, "read_y2d FILE"));
+  free(err);
+  free(dir);
+  /* MCSTEP 4000 -> 20: the same deck, short */
+  char *m = strstr(text, "/YD/YDC/MCSTEP 4000");
+  ck_assert_ptr_nonnull(m);
+  memcpy(m, "/YD/YDC/MCSTEP   20", 19);
+  code = yft_run_binary("MODEL.Y", text, "-summary s.json", &err, &dir);
+  ck_assert_msg(code == 0, "MODEL.Y: exit %d: %s", code, err);
+  char p[600];
+  snprintf(p, sizeof p, "%s/s.json", dir);
+  char *j = yft_slurp(p, 0);
+  ck_assert_ptr_nonnull(strstr(j, "\"steps\": 20,"));
+  free(j);
+  free(err);
+  free(dir);
+  free(text);
+}
+END_TEST
+
 Suite *y2d_read_suite(void) {
   Suite *s = suite_create("y2d_read");
   TCase *tc = tcase_create("reference_decks");
@@ -296,6 +330,7 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_array_orders);
   tcase_add_test(tc, test_defaults_and_prefix);
   tcase_add_test(tc, test_include_relative_to_deck);
+  tcase_add_test(tc, test_y2d_deck_misnamed);
   suite_add_tcase(s, tc);
   tc = tcase_create("errors");
   tcase_add_loop_test(tc, test_bad_decks, 0, (int)(sizeof bad / sizeof bad[0]));

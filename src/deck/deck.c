@@ -757,6 +757,9 @@ static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
     int nn;
     const char *const *names = command_names(&nn);
     const char *near = yf_nearest(w[0], names, nn);
+    if (!strncmp(w[0], "/YD/", 4) || !strncmp(w[0], "/*", 2) || !strncmp(w[0], "$Y", 2))
+      fail_ctx(loc, line, cols[0], "unknown command '%s': this looks like a Y2D .y deck, which yfdem reads as one "
+               "when its name ends in .y (yfdem FILE.y), or inside a deck with 'read_y2d FILE'", w[0]);
     if (near) fail_ctx(loc, line, cols[0], "unknown command '%s' (did you mean '%s'?)", w[0], near);
     fail_ctx(loc, line, cols[0], "unknown command '%s'", w[0]);
   }

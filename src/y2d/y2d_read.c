@@ -356,6 +356,9 @@ static const char *next_tok(Rd *r) {
     r->loc.file = r->y->files[s->file];
     r->loc.line = s->line;
     do {
+      if (c == 0) /* a NUL would cut the token short, silently (as the native reader, deck.c) */
+        yf_deck_error(&r->loc, "a NUL byte in a token: a .y deck is plain text (is this a binary file, or a UTF-16 "
+                      "text? save it as UTF-8 or ASCII)");
       if (n + 2 > r->tokcap) {
         r->tokcap = r->tokcap ? 2 * r->tokcap : 256;
         r->tok = yf_realloc(r->tok, r->tokcap, "y2d token");
