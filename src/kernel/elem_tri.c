@@ -226,6 +226,37 @@ double tri_strain_energy(const YfModel *m, const YfTriMat *tm, int e0, int e1) {
   return sum;
 }
 
+/* j - log(1 + j) >= 0 without cancellation: its series below |j| = 0.05 (terms to j^16, below
+ * 1e-17 of the first), log1p above. */
+static double j_minus_log1p(double j) {
+  if (fabs(j) >= 0.05) return j - log1p(j);
+  double s = 0.0;
+  for (int k = 16; k >= 2; k--) s = (k & 1 ? -1.0 : 1.0) / k + j * s;
+  return j * j * s;
+}
+
+double tri_strain_potential(const YfModel *m, const YfTriMat *tm, int e0, int e1) {
+  const double *x = m->node.x, *y = m->node.y;
+  const YfTris *t = &m->tri;
+  double sum = 0.0;
+  for (int e = e0; e < e1; e++) {
+    const int *v = t->v + 3 * e;
+    const double *xi = t->xinv + 4 * e;
+    double x1 = x[v[1]] - x[v[0]], x2 = x[v[2]] - x[v[0]];
+    double y1 = y[v[1]] - y[v[0]], y2 = y[v[2]] - y[v[0]];
+    double F11 = x1 * xi[0] + x2 * xi[2], F12 = x1 * xi[1] + x2 * xi[3];
+    double F21 = y1 * xi[0] + y2 * xi[2], F22 = y1 * xi[1] + y2 * xi[3];
+    double dc = x1 * y2 - x2 * y1, j = (dc - t->d0[e]) / t->d0[e]; /* J - 1 */
+    const YfTriMat *mt = tm + t->mat[e];
+    double mu = 0.5 * mt->mu2, lv = mt->lamv;
+    /* mu/2 (|F|^2 - 2) - mu ln J = mu/2 ((F11 - F22)^2 + (F12 + F21)^2) + mu (J - 1 - ln J) */
+    double dev = (F11 - F22) * (F11 - F22) + (F12 + F21) * (F12 + F21);
+    double w = 0.5 * mu * dev + (mu + lv) * j_minus_log1p(j) + 0.5 * lv * j * j;
+    sum += 0.5 * t->d0[e] * w; /* per reference area A0 = d0/2 */
+  }
+  return sum;
+}
+
 double tri_omega_max(const YfModel *m, const YfTriMat *tm, int e) {
   /* Linearised element: K_e = A B^T C B, M_e = (rho A / 3) I.  The non-zero eigenvalues of
    * B^T C B are those of the 3x3 product C G with G = B B^T, so omega_max^2 = 3 lmax(C G)/rho. */

@@ -23,8 +23,16 @@ typedef struct {
 int tri_prepare(YfModel *m, const YfTriMat *tm);
 /* Stress and corner forces of triangles [e0, e1) at the current x, v: writes tri.s and tri.cf. */
 void tri_forces(YfModel *m, const YfTriMat *tm, int e0, int e1, YfTriPass *out);
-/* Strain energy of triangles [e0, e1): sum A_c/2 T:E without the viscous part [J/m]. */
+/* Y2D's strain energy diagnostic of triangles [e0, e1): sum A_c/2 T:E without the viscous part
+ * [J/m] (the y2dref dump's "elastic", shared/y2d/README.md); a secant measure, above the law's
+ * energy by 4/3 of the strain (relative) in uniaxial stretch. */
 double tri_strain_energy(const YfModel *m, const YfTriMat *tm, int e0, int e1);
+/* The law's own strain energy of triangles [e0, e1) [J/m]: the stress T = (2 mu / J) E +
+ * lamv (J - 1/J) I, E = (F F^T - I)/2, is the derivative of the potential per reference area
+ *   W = mu/2 (|F|^2 - 2) - mu ln J + lamv (J^2/2 - ln J - 1/2)
+ * (a compressible neo-Hookean solid), so the work the elements' forces do is its change at any
+ * strain: the energy balance uses it (energy.c).  Equal to tri_strain_energy to second order. */
+double tri_strain_potential(const YfModel *m, const YfTriMat *tm, int e0, int e1);
 /* Stable time step of triangle e with lumped masses: 2/omega_max of the linearised element
  * (an upper bound of the mesh's highest frequency, Irons' element-by-element theorem), reduced
  * for the viscous term.  Uses initial positions. [s] */

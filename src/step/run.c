@@ -271,12 +271,12 @@ static void energies(YfSim *s, int dist) {
     int tb0 = 0, tb1 = nbt;
     double *tp = dist ? par_tri_split(nbt, BLOCK, &tb0, &tb1) : NULL;
     #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
-    for (int b = tb0; b < tb1; b++) bt[b] = tri_strain_energy(m, R.tm, b * BLOCK, (b + 1) * BLOCK < nt ? (b + 1) * BLOCK : nt);
+    for (int b = tb0; b < tb1; b++) bt[b] = tri_strain_potential(m, R.tm, b * BLOCK, (b + 1) * BLOCK < nt ? (b + 1) * BLOCK : nt);
     if (tp) {
       const int *tlo = par_tri_lo(), e0 = tlo[par_rank()], e1 = tlo[par_rank() + 1];
       const int h1 = tb1 > tb0 ? tb0 * BLOCK : e1, t0 = tb1 > tb0 && tb1 * BLOCK < nt ? tb1 * BLOCK : e1;
-      for (int e = e0; e < h1; e++) *tp++ = tri_strain_energy(m, R.tm, e, e + 1);
-      for (int e = t0; e < e1; e++) *tp++ = tri_strain_energy(m, R.tm, e, e + 1);
+      for (int e = e0; e < h1; e++) *tp++ = tri_strain_potential(m, R.tm, e, e + 1);
+      for (int e = t0; e < e1; e++) *tp++ = tri_strain_potential(m, R.tm, e, e + 1);
       par_tri_block_sums(bt);
     }
     for (int b = 0; b < nbt; b++) strain += bt[b];
