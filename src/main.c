@@ -79,6 +79,8 @@ static void finish(int code, const char *message) {
  * the flag and stop cleanly: files closed, a restart in a run, the summary says "interrupted".
  * A second signal before that is done stops at once (only async-signal-safe calls here). */
 static void on_signal(int sig) {
+  if (yf_exiting()) return; /* the run already ends (mpirun's SIGTERM to the ranks after one left) */
+  par_interrupted();
   if (g_sim.interrupted) {
     static const char m[] = "yfdem: interrupted again: stopping at once (the summary is not written)\n";
     if (write(2, m, sizeof m - 1) < 0) {}
@@ -175,7 +177,7 @@ int main(int argc, char **argv) {
       deck_run_file(g_deck, in, NULL);
     }
   } else {
-    deck_run_stream(g_deck, par_stdin(stdin), "<stdin>");
+    deck_run_stream(g_deck, par_stdin(stdin, &g_sim.interrupted), "<stdin>");
   }
   int code = yf_finish(YF_EXIT_OK);
   deck_free(g_deck);

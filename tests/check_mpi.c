@@ -21,6 +21,7 @@
  * visible in the hash within a step or two.
  */
 #include <check.h>
+#include <glob.h>
 #include <hdf5.h>
 #include <limits.h>
 #include <math.h>
@@ -1070,6 +1071,110 @@ START_TEST(error_one_rank) {
 }
 END_TEST
 
+/* A full disk under parallel h5 frames (3 ranks; a tmpfs of a few sizes in a mount namespace of
+ * its own): exit 2 with the cause, no NAME.tmp left, and every frame file on disk opens and
+ * reads.  With OpenMPI's default MPI-IO (ompio) the collective write printed its own error and
+ * returned success, so rank 0 renamed an incomplete frame into the series and failed later on
+ * the index (a sweep of new decks, 2026-11-28); par_init now asks for ROMIO, which returns the
+ * error. */
+START_TEST(full_disk_parallel_frames) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), cmd[4 * PATH_MAX + 1024], path[PATH_MAX + 64];
+  write_file(d, "f.deck", "material m elastic rho 2000 E 1e9 nu 0.25 plane_stress\nmesh rect plate m 0 0 1.0 0.2 20 4\n"
+             "partition metis parts 4\njointprop cj ft 1e5 fs 1e5 gf 1 pen 1e10 law linear\nfracture plate cj\n"
+             "region left box -1 -1 1e-9 1\ngroup left node region left\nfix clamp left fixed xy\n"
+             "velocity plate set 0 -5\ntimestep auto\ndump d h5 20 fr.h5\nrun 300\n");
+  snprintf(cmd, sizeof cmd, "unshare -rm sh -c 'mkdir -p %s/t0 && mount -t tmpfs -o size=64k tmpfs %s/t0' 2>/dev/null", d, d);
+  if (system(cmd) != 0) {
+    fprintf(stderr, "check_mpi: full_disk_parallel_frames: no mount namespace here: not run\n");
+    drop_dir(d);
+    return;
+  }
+  static const int kb[] = {150, 200, 260, 400};
+  for (int i = 0; i < 4; i++) {
+    snprintf(cmd, sizeof cmd,
+             "cd %s && mkdir -p o%d && unshare -rm sh -c 'mkdir -p t && mount -t tmpfs -o size=%dk tmpfs t && cd t && "
+             "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 timeout 120 mpirun -q "
+             "--oversubscribe -np 3 %s -threads 1 -in ../f.deck -summary ../o%d/s.json >/dev/null 2>../o%d/err.txt; "
+             "echo $? > ../o%d/code; cp -a . ../o%d/'",
+             d, kb[i], kb[i], MPIBIN, kb[i], kb[i], kb[i], kb[i]);
+    ck_assert_int_eq(system(cmd), 0);
+    snprintf(path, sizeof path, "%s/o%d/code", d, kb[i]);
+    char *c = yft_slurp(path, 1);
+    int code = atoi(c);
+    free(c);
+    snprintf(path, sizeof path, "%s/o%d/err.txt", d, kb[i]);
+    char *e = yft_slurp(path, 1);
+    fprintf(stderr, "check_mpi: full disk of %d KB, parallel frames on 3 ranks: exit %d\n", kb[i], code);
+    ck_assert_msg(code == 2, "%d KB: exit %d: %s", kb[i], code, e);
+    ck_assert_msg(strstr(e, "MPI_ERR_IO") || strstr(e, "No space left"), "%d KB: %s", kb[i], e);
+    /* the summary says io_error; when the disk filled in one rank's part only, that rank ends
+     * the job alone (a collective after a failed one could wait forever): its message, no summary */
+    snprintf(path, sizeof path, "%s/o%d/s.json", d, kb[i]);
+    char *j = yft_slurp(path, 1);
+    if (j[0]) ck_assert_msg(strstr(j, "\"status\": \"io_error\""), "%d KB: summary: %s", kb[i], j);
+    else ck_assert_msg(strstr(e, "rank ") == e, "%d KB: no summary, and not one rank's failure: %s", kb[i], e);
+    free(j);
+    free(e);
+    snprintf(cmd, sizeof cmd, "ls %s/o%d | grep -q '\\.tmp$'", d, kb[i]);
+    ck_assert_msg(system(cmd) != 0, "%d KB: a NAME.tmp is left", kb[i]);
+    /* every frame file on disk (listed, or renamed just before the index write failed) is whole */
+    snprintf(path, sizeof path, "%s/o%d/fr_0*.h5", d, kb[i]);
+    glob_t g;
+    int nf = glob(path, 0, NULL, &g) == 0 ? (int)g.gl_pathc : 0;
+    for (int k = 0; k < nf; k++) {
+      const char *name = g.gl_pathv[k];
+      hid_t f = H5Fopen(name, H5F_ACC_RDONLY, H5P_DEFAULT);
+      ck_assert_msg(f >= 0, "%d KB: %s does not open", kb[i], name);
+      hid_t ds = H5Dopen2(f, "/x", H5P_DEFAULT);
+      ck_assert_msg(ds >= 0, "%d KB: %s has no /x", kb[i], name);
+      static double buf[2 * 2000];
+      hid_t sp = H5Dget_space(ds);
+      hsize_t dims[2];
+      H5Sget_simple_extent_dims(sp, dims, NULL);
+      ck_assert_msg(dims[0] <= 2000 && H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) >= 0,
+                    "%d KB: %s: /x does not read", kb[i], name);
+      H5Sclose(sp);
+      H5Dclose(ds);
+      H5Fclose(f);
+    }
+    if (nf) globfree(&g);
+    ck_assert_msg(nf >= 1, "%d KB: no frame at all", kb[i]);
+  }
+  drop_dir(d);
+}
+END_TEST
+
+/* Ctrl-C to mpirun itself while rank 0 prints a thermo line every 10 steps: mpirun stops reading
+ * the ranks' output and sends them SIGTERM, then SIGKILL a few seconds later.  Rank 0 used to
+ * block in a write to its full output pipe, never reached the step's interrupt check, and was
+ * killed with no restart and no summary (8 of 8 tries, a sweep of new decks, 2026-11-28); now the
+ * signal makes the ranks' stdout and stderr non-blocking, and the run stops with a restart and
+ * the summary "interrupted". */
+START_TEST(interrupt_mpirun_chatty) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), cmd[4 * PATH_MAX], path[PATH_MAX + 32];
+  write_file(d, "chatty.deck", "material m elastic rho 2000 E 1e9 nu 0.25 plane_stress\nmesh rect plate m 0 0 1.0 0.2 20 4\n"
+             "region left box -1 -1 1e-9 1\ngroup left node region left\nfix clamp left fixed xy\ngravity 0 -9.81\n"
+             "timestep auto\nthermo 10\nrun 100000000\n");
+  snprintf(cmd, sizeof cmd, "cd %s && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 "
+           "timeout 120 mpirun -q --oversubscribe -np 2 %s -threads 1 -in chatty.deck -summary s.json >out.txt 2>err.txt & "
+           "pid=$!; for i in $(seq 60); do [ -s out.txt ] && break; sleep 0.5; done; sleep 3; kill -INT $pid; wait $pid",
+           d, MPIBIN);
+  int st = system(cmd);
+  fprintf(stderr, "check_mpi: Ctrl-C to mpirun with a thermo line every 10 steps: mpirun exit %d\n",
+          WIFEXITED(st) ? WEXITSTATUS(st) : -1);
+  ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) != 124, "mpirun did not end (timeout)");
+  snprintf(path, sizeof path, "%s/yfdem_interrupt.restart", d);
+  ck_assert_msg(yft_exists(path), "no restart written at the interrupt");
+  snprintf(path, sizeof path, "%s/s.json", d);
+  char *j = yft_slurp(path, 1);
+  ck_assert_msg(strstr(j, "\"status\": \"interrupted\""), "summary: %s", j);
+  free(j);
+  drop_dir(d);
+}
+END_TEST
+
 /* SIGTERM to one rank only (a signal reaching the ranks at different steps): the flag is
  * OR-reduced every step, so every rank stops at the same step, rank 0 writes the restart and says
  * so once, and mpirun exits 4; the restart continued on 3 ranks gives the bits of an
@@ -1132,6 +1237,8 @@ Suite *mpi_suite(void) {
   tcase_add_test(t, error_one_rank);
   tcase_add_test(t, output_error_ranks);
   tcase_add_test(t, interrupt_all_ranks);
+  tcase_add_test(t, interrupt_mpirun_chatty);
+  tcase_add_test(t, full_disk_parallel_frames);
   suite_add_tcase(s, t);
   return s;
 }

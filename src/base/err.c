@@ -61,7 +61,11 @@ void yf_set_writer(int on) { writer = on; }
 
 /* Run the cleanup once (output files closed, logs and the summary written); an output that fails
  * there (yf_output_error) turns a successful exit into YF_EXIT_IO.  Returns the exit code. */
+static volatile sig_atomic_t exiting; /* the exit path has begun (read by signal handlers) */
+int yf_exiting(void) { return exiting; }
+
 static int cleanup(int code) {
+  exiting = 1;
   if (cleanup_fn && !in_cleanup) {
     in_cleanup = 1;
     cleanup_code = code;

@@ -69,6 +69,8 @@ void yf_warn(const YfLoc *loc, const char *fmt, ...) __attribute__((format(print
  * the read (EINTR) and the reader can stop; yf_interruptible(0) puts SA_RESTART back. */
 void yf_catch_signals(void (*handler)(int sig));
 void yf_interruptible(int on);
+/* 1 once the exit path (files closed, summary written) has begun: a signal then changes nothing. */
+int yf_exiting(void);
 
 /* v as "%.6g", or "inf", "-inf", "nan" spelled out as what they mean ("beyond the range of a
  * double", "not a number"): messages never print inf or nan. */

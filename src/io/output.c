@@ -713,6 +713,10 @@ static void h5_frame(YfSim *s, YfDump *d) {
   if (fc) h5_put_rows(d, g, "fc", H5T_NATIVE_DOUBLE, 2, dn2, fc, ROWS_NODE);
   int ncrack = h5_cracks(s, d);
   /* Complete and closed, then renamed, then indexed: the .xmf never names a partial file. */
+  /* Parallel: a rank whose part failed leaves at once (h5_fail: a collective after a failed one
+   * could wait forever), and the job ends with its message (par_mpi.c); that every rank's part
+   * reached the file rests on the MPI-IO layer reporting a failed write, which OpenMPI's ROMIO
+   * does and its default ompio did not (par_init). */
   herr_t st = H5Fclose(d->file);
   d->file = -1;
   W.on = 0;

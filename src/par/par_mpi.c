@@ -15,6 +15,7 @@
  * alone waits 2 s (rank 0, if it fails too, ends the job first and prints the message once),
  * then prints its message and aborts.  Nothing waits on a rank that has failed, so no hang.
  */
+#include <fcntl.h>
 #include <math.h>
 #include <mpi.h>
 #include <signal.h>
@@ -144,6 +145,11 @@ static void finalize_at_exit(void) {
 
 void par_init(int *argc, char ***argv) {
   int got = 0;
+  /* Parallel h5 frames through OpenMPI's ROMIO, not its default ompio: on a full disk ompio's
+   * collective write printed its own error and returned success, so an incomplete frame was
+   * renamed into the series; ROMIO returns MPI_ERR_IO to every rank (a sweep of new decks,
+   * 2026-11-28).  A user's own OMPI_MCA_io wins. */
+  setenv("OMPI_MCA_io", "romio321", 0);
   /* OpenMP threads inside a rank; only the main thread calls MPI */
   MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &got);
   MPI_Comm_rank(MPI_COMM_WORLD, &P.rank);
@@ -158,24 +164,35 @@ void par_init(int *argc, char ***argv) {
 
 int par_size(void) { return P.size; }
 
-FILE *par_stdin(FILE *in) {
+FILE *par_stdin(FILE *in, const volatile int *stop) {
   /* mpirun gives stdin to rank 0 only: it reads the deck and sends it to every rank */
   long n = 0;
   char *buf = NULL;
   if (P.rank == 0) {
     size_t cap = 1 << 16, k;
     buf = yf_malloc(cap, "deck from stdin");
-    while ((k = fread(buf + n, 1, cap - (size_t)n, in)) > 0) {
+    yf_interruptible(1); /* a pipe or a terminal may block here: a signal ends the read (EINTR) */
+    while (!*stop && (k = fread(buf + n, 1, cap - (size_t)n, in)) > 0) {
       n += (long)k;
       if ((size_t)n == cap) buf = yf_realloc(buf, cap *= 2, "deck from stdin");
     }
+    yf_interruptible(0);
+    if (*stop) n = -1;
   }
   MPI_Bcast(&n, 1, MPI_LONG, 0, MPI_COMM_WORLD);
+  if (n < 0) yf_exit_with(YF_EXIT_INTERRUPT, "interrupted while reading the deck: nothing was run");
   if (P.rank != 0) buf = yf_malloc((size_t)n + 1, "deck from stdin");
   MPI_Bcast(buf, (int)n, MPI_CHAR, 0, MPI_COMM_WORLD);
   FILE *f = fmemopen(buf, (size_t)n, "r"); /* buf lives as long as the program */
   if (!f) yf_io_error(NULL, "cannot read the deck from standard input");
   return f;
+}
+
+void par_interrupted(void) {
+  for (int fd = 1; fd <= 2; fd++) {
+    int fl = fcntl(fd, F_GETFL);
+    if (fl >= 0) fcntl(fd, F_SETFL, fl | O_NONBLOCK);
+  }
 }
 
 static void *scratch(int k, size_t bytes) { /* kept between calls: a re-cut touches no fresh page */

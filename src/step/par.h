@@ -31,7 +31,13 @@
 #ifdef YF_MPI
 struct YfSim;
 void par_init(int *argc, char ***argv); /* MPI_Init, the writer rank, the error exit          */
-FILE *par_stdin(FILE *in);              /* a deck on stdin: rank 0 reads it, every rank runs it */
+/* A deck on stdin: rank 0 reads it, every rank runs it; an interrupt (*stop set by the signal
+ * handler) while it is read ends every rank with "interrupted while reading the deck". */
+FILE *par_stdin(FILE *in, const volatile int *stop);
+/* From the signal handler (async-signal-safe): the ranks' standard output and error stop
+ * blocking.  mpirun stops reading them at a Ctrl-C, and a rank blocked in a write would never
+ * reach the step's interrupt check (nor write the restart) before mpirun kills the job. */
+void par_interrupted(void);
 int par_size(void);
 /* Ownership of the element stage for the scene's triangles in nblk blocks of `block`. */
 void par_prepare(struct YfSim *s, int nblk, int block);
@@ -119,7 +125,8 @@ void par_balance(struct YfSim *s);
 void par_move_ranges(void *a, const int *lo_old, const int *lo_new, int elem_bytes);
 #else
 static inline void par_init(int *argc, char ***argv) { (void)argc; (void)argv; }
-static inline FILE *par_stdin(FILE *in) { return in; }
+static inline FILE *par_stdin(FILE *in, const volatile int *stop) { (void)stop; return in; }
+static inline void par_interrupted(void) {}
 static inline int par_size(void) { return 1; }
 struct YfSim;
 static inline void par_prepare(struct YfSim *s, int nblk, int block) { (void)s; (void)nblk; (void)block; }
