@@ -204,18 +204,28 @@ void tri_forces(YfModel *m, const YfTriMat *tm, int e0, int e1, YfTriPass *out) 
   out->visc_power = power;
 }
 
-double tri_strain_energy(const YfModel *m, const YfTriMat *tm, int e0, int e1) {
+/* Triangle e's deformation gradient F = (F11 F12; F21 F22) at the current positions, and twice
+ * its current area dc. */
+static inline void tri_gradient(const YfModel *m, int e, double F[4], double *dc) {
   const double *x = m->node.x, *y = m->node.y;
+  const int *v = m->tri.v + 3 * e;
+  const double *xi = m->tri.xinv + 4 * e;
+  double x1 = x[v[1]] - x[v[0]], x2 = x[v[2]] - x[v[0]];
+  double y1 = y[v[1]] - y[v[0]], y2 = y[v[2]] - y[v[0]];
+  F[0] = x1 * xi[0] + x2 * xi[2];
+  F[1] = x1 * xi[1] + x2 * xi[3];
+  F[2] = y1 * xi[0] + y2 * xi[2];
+  F[3] = y1 * xi[1] + y2 * xi[3];
+  *dc = x1 * y2 - x2 * y1;
+}
+
+double tri_strain_energy(const YfModel *m, const YfTriMat *tm, int e0, int e1) {
   const YfTris *t = &m->tri;
   double sum = 0.0;
   for (int e = e0; e < e1; e++) {
-    const int *v = t->v + 3 * e;
-    const double *xi = t->xinv + 4 * e;
-    double x1 = x[v[1]] - x[v[0]], x2 = x[v[2]] - x[v[0]];
-    double y1 = y[v[1]] - y[v[0]], y2 = y[v[2]] - y[v[0]];
-    double F11 = x1 * xi[0] + x2 * xi[2], F12 = x1 * xi[1] + x2 * xi[3];
-    double F21 = y1 * xi[0] + y2 * xi[2], F22 = y1 * xi[1] + y2 * xi[3];
-    double dc = x1 * y2 - x2 * y1, J = dc / t->d0[e];
+    double F[4], dc;
+    tri_gradient(m, e, F, &dc);
+    const double F11 = F[0], F12 = F[1], F21 = F[2], F22 = F[3], J = dc / t->d0[e];
     double E11 = 0.5 * (F11 * F11 + F12 * F12 - 1.0), E22 = 0.5 * (F21 * F21 + F22 * F22 - 1.0);
     double E12 = 0.5 * (F11 * F21 + F12 * F22);
     const YfTriMat *mt = tm + t->mat[e];
@@ -236,17 +246,12 @@ static double j_minus_log1p(double j) {
 }
 
 double tri_strain_potential(const YfModel *m, const YfTriMat *tm, int e0, int e1) {
-  const double *x = m->node.x, *y = m->node.y;
   const YfTris *t = &m->tri;
   double sum = 0.0;
   for (int e = e0; e < e1; e++) {
-    const int *v = t->v + 3 * e;
-    const double *xi = t->xinv + 4 * e;
-    double x1 = x[v[1]] - x[v[0]], x2 = x[v[2]] - x[v[0]];
-    double y1 = y[v[1]] - y[v[0]], y2 = y[v[2]] - y[v[0]];
-    double F11 = x1 * xi[0] + x2 * xi[2], F12 = x1 * xi[1] + x2 * xi[3];
-    double F21 = y1 * xi[0] + y2 * xi[2], F22 = y1 * xi[1] + y2 * xi[3];
-    double dc = x1 * y2 - x2 * y1, j = (dc - t->d0[e]) / t->d0[e]; /* J - 1 */
+    double F[4], dc;
+    tri_gradient(m, e, F, &dc);
+    const double F11 = F[0], F12 = F[1], F21 = F[2], F22 = F[3], j = (dc - t->d0[e]) / t->d0[e]; /* J - 1 */
     const YfTriMat *mt = tm + t->mat[e];
     double mu = 0.5 * mt->mu2, lv = mt->lamv;
     /* mu/2 (|F|^2 - 2) - mu ln J = mu/2 ((F11 - F22)^2 + (F12 + F21)^2) + mu (J - 1 - ln J) */
