@@ -19,16 +19,18 @@
  * + the energy of a 1e-8 strain everywhere (round-off), a run stops (exit 3) when
  *   - r > tol and r exceeds the largest offset a stable step can show, max(1, s^2 / (1 - s^2))
  *     times the energy given (the energy given alone above the limit), or
- *   - r > tol and r rose to a new high, by tol/10 and by a quarter, at each of GROWING checks in a row (energy from
- *     nowhere, wherever it went: a bounded offset stops setting new highs), or
+ *   - r > tol and r rose to a new high, by tol/10 and by a quarter, at each of GROWING checks in
+ *     a row (energy from nowhere, wherever it went: a bounded offset stops setting new highs), or
  *   - a dissipation is negative.
- * Dissipation beyond what the scene was given is energy from nowhere too: it is part of r.  The message names the step, the energy that grew most
- * since the last closed check and the stage that owns it, and what to change.
+ * Dissipation beyond what the scene was given is energy from nowhere too: it is part of r.  The
+ * message names the step, the energy that grew most since the last closed check and the stage
+ * that owns it, and what to change.
  * What a deck does between two runs is energy given too: a `velocity set`, a body added, gravity
- * changed; a read_restart counts as a run that ended at its step.  So a later run takes the residual of the state it starts from as the
- * one the last run ended with (the budget moves by the difference: nothing, bit for bit, when the
- * deck changed nothing), and when the scene's nodes or triangles changed, the contact energy of
- * its first step is taken as given as at step 0 (a body added where it overlaps another).
+ * changed; a read_restart counts as a run that ended at its step.  So a later run takes the
+ * residual of the state it starts from as the one the last run ended with (the budget moves by
+ * the difference: nothing, bit for bit, when the deck changed nothing), and when the scene's
+ * nodes or triangles changed, the contact energy of its first step is taken as given as at step
+ * 0 (a body added where it overlaps another).
  * `energy_check warn|off` (the one deck switch) lets a run go on against that advice.
  */
 #include <math.h>
@@ -113,8 +115,8 @@ void energy_run_begin(YfSim *s, double e_floor) {
     E.contact_pending = s->step == 0;
     E.contact_base = 0.0;
   } else if (E.have_end) {
-    /* the deck's changes since the last run (velocities set, gravity or materials changed,
-     * bodies added): energy given now, so the residual goes on from where that run left it */
+    /* the deck's changes since the last run (velocities set, gravity changed, bodies added):
+     * energy given now, so the residual goes on from where that run left it */
     double r = energy_balance(s);
     if (isfinite(r) && isfinite(E.r_end)) E.budget += r - E.r_end;
     E.contact_pending = s->model.node.n != E.nn_end || s->model.tri.n != E.nt_end;
