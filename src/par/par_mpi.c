@@ -73,6 +73,7 @@ static struct {
    * come in the slot halo; then every rank gets every node's force (forces of owned ranges). */
   int halo;                 /* 1: node ranges are contiguous (always after the partition)      */
   int nn;                   /* nodes when prepared                                             */
+  int launched;             /* started by mpirun (its pipes are the ranks' stdout and stderr)   */
   int *nlo;                 /* size + 1                                                        */
   int *scnt, *sdsp, *rcnt, *rdsp; /* slot halo: doubles to / from each rank                     */
   int *sslot, *rslot;       /* corner slot of each halo value sent / received, grouped by rank */
@@ -150,6 +151,7 @@ void par_init(int *argc, char ***argv) {
    * renamed into the series; ROMIO returns MPI_ERR_IO to every rank (a sweep of new decks,
    * 2026-11-28).  A user's own OMPI_MCA_io wins. */
   setenv("OMPI_MCA_io", "romio321", 0);
+  P.launched = getenv("OMPI_COMM_WORLD_SIZE") != NULL || getenv("PMIX_RANK") != NULL;
   /* OpenMP threads inside a rank; only the main thread calls MPI */
   MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &got);
   MPI_Comm_rank(MPI_COMM_WORLD, &P.rank);
@@ -189,6 +191,9 @@ FILE *par_stdin(FILE *in, const volatile int *stop) {
 }
 
 void par_interrupted(void) {
+  /* only under mpirun, whose pipes these are: a singleton's stdout may be the user's terminal,
+   * shared with the shell, which must not be left non-blocking */
+  if (!P.launched) return;
   for (int fd = 1; fd <= 2; fd++) {
     int fl = fcntl(fd, F_GETFL);
     if (fl >= 0) fcntl(fd, F_SETFL, fl | O_NONBLOCK);
