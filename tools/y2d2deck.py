@@ -35,7 +35,8 @@ What is translated (native syntax = the SYNTAX dict below, one place to adapt):
     D1PNAP (edge pressure) != 0               -> load ID GROUP pressure P [history H]
     kind 1 amp 0                              -> nothing (free)
   D3PNFAC time table of set s  -> history bc<s> table T1 V1 T2 V2 ...
-Not translated (listed as comments in OUT.deck): BC sets with a rotated local frame, kind 2
+Not translated (listed as comments in OUT.deck and as notes): BC sets with a rotated local frame
+(unless held in both directions or free in both, which is the same in any frame), kind 2
 (acceleration) conditions, frozen directions (kind not 1/2/3) with non-zero initial velocity,
 D1PNAT edge shear, refinement codes 1/2/4, a meshing row whose property pairs use different joint
 sets, rigid (type 2) and softening (type 4) triangles, history output /YD/YDO/, DCSIZ scales.
@@ -44,7 +45,8 @@ table's time range (native histories hold their end values); Y2D's edge pressure
 whose two nodes are in sets with non-zero D1PNAP.
 
 The .y file is parsed here with the Y2D token rules (comments, $YINCL relative to the working
-directory or the deck's directory, 1D/2D/3D array codes); run `yfdem` on the .y file itself (the
+directory or the deck's directory, 1D/2D/3D array codes, names compared over the known name's
+length: /YD/YDC/MCSTEPS is MCSTEP); run `yfdem` on the .y file itself (the
 C reader, src/y2d/y2d_read.c) for full validation with FILE:LINE messages.
 """
 import argparse
@@ -121,10 +123,48 @@ def tokens(path, depth=0):
     return out
 
 
+class Keys(dict):
+    """The keys read, looked up by Y2D's prefix rule: a name in the deck matches a known name when it
+    begins with it (compared over the known name's length, FORMAT.md 1), so /YD/YDC/MCSTEPS is MCSTEP;
+    the key read last wins, as in Y2D."""
+
+    def __init__(self):
+        dict.__init__(self)
+        self.order = []
+
+    def __setitem__(self, key, value):
+        if dict.__contains__(self, key):
+            self.order.remove(key)
+        self.order.append(key)
+        dict.__setitem__(self, key, value)
+
+    def _find(self, key):
+        grp, name = key.split('/', 1)
+        hit = None
+        for k in self.order:
+            g, n = k.split('/', 1)
+            if g == grp and n.startswith(name):
+                hit = k
+        return hit
+
+    def __contains__(self, key):
+        return self._find(key) is not None
+
+    def __getitem__(self, key):
+        hit = self._find(key)
+        if hit is None:
+            raise KeyError(key)
+        return dict.__getitem__(self, hit)
+
+    def get(self, key, default=None):
+        hit = self._find(key)
+        return default if hit is None else dict.__getitem__(self, hit)
+
+
 def parse(path):
     """dict NAME -> value (scalars) or (dims, flat list in C order [d1][d2][d3])."""
     toks = tokens(path)
-    keys, i = {}, 0
+    keys, i = Keys(), 0
 
     def num(j):
         if j >= len(toks):
@@ -350,11 +390,14 @@ def convert(src, out):
                     notes.append('BC set %d: after its table ends (t = %g) Y2D uses the factor 1.0, the '
                                  'native history holds %g' % (s, tab[-1][0], tab[-1][1]))
         L.append(wrap(SYNTAX['group_ids'].format(name=gname, ids='').rstrip(), [str(i) for i in ids]))
-        if (xx[s], xy_[s], yx[s], yy[s]) != (1, 0, 0, 1) and (xx[s], xy_[s], yx[s], yy[s]) != (1.0, 0.0, 0.0, 1.0):
+        kinds, amps = (fx[s], fy[s]), (ax[s], ay[s])
+        # held in both directions, or free in both: the same in any frame
+        any_frame = not hist and tuple(amps) == (0, 0) and tuple(kinds) in ((3, 3), (1, 1))
+        if (xx[s], xy_[s], yx[s], yy[s]) != (1, 0, 0, 1) and not any_frame:
             L.append('# NOT TRANSLATED: BC set %d uses the local frame x = (%g, %g), y = (%g, %g): kinds %d/%d, '
                      'amplitudes %g/%g' % (s, xx[s], xy_[s], yx[s], yy[s], fx[s], fy[s], ax[s], ay[s]))
+            notes.append('BC set %d (a rotated local frame) not translated: its nodes are free' % s)
             continue
-        kinds, amps = (fx[s], fy[s]), (ax[s], ay[s])
         fixed = ''.join(d for d, k, a in zip('xy', kinds, amps) if k == 3 and a == 0 and not hist)
         for d, k in zip((0, 1), kinds):
             if k not in (1, 2, 3):
