@@ -1146,7 +1146,9 @@ START_TEST(full_disk_parallel_frames) {
 END_TEST
 
 /* Ctrl-C to mpirun itself while rank 0 prints a thermo line every 10 steps: mpirun stops reading
- * the ranks' output and sends them SIGTERM, then SIGKILL a few seconds later.  Rank 0 used to
+ * the ranks' output and sends them SIGTERM, then SIGKILL after odls_base_sigkill_timeout seconds
+ * (OpenMPI's default 1 s is too short for a restart under the sanitizers: 30 s here, as README
+ * tells users of large models).  Rank 0 used to
  * block in a write to its full output pipe, never reached the step's interrupt check, and was
  * killed with no restart and no summary (8 of 8 tries, a sweep of new decks, 2026-11-28); now the
  * signal makes the ranks' stdout and stderr non-blocking, and the run stops with a restart and
@@ -1158,7 +1160,8 @@ START_TEST(interrupt_mpirun_chatty) {
              "region left box -1 -1 1e-9 1\ngroup left node region left\nfix clamp left fixed xy\ngravity 0 -9.81\n"
              "timestep auto\nthermo 10\nrun 100000000\n");
   snprintf(cmd, sizeof cmd, "cd %s && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 "
-           "timeout 120 mpirun -q --oversubscribe -np 2 %s -threads 1 -in chatty.deck -summary s.json >out.txt 2>err.txt & "
+           "timeout 120 mpirun -q --oversubscribe --mca odls_base_sigkill_timeout 30 -np 2 %s -threads 1 -in chatty.deck "
+           "-summary s.json >out.txt 2>err.txt & "
            "pid=$!; for i in $(seq 60); do [ -s out.txt ] && break; sleep 0.5; done; sleep 3; kill -INT $pid; wait $pid",
            d, MPIBIN);
   int st = system(cmd);
