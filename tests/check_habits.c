@@ -103,6 +103,19 @@ START_TEST(test_var_unused_warns) {
   free(log);
   free(err);
   free(dir);
+  /* names the deck uses only after its first run (a second run's length, an expression's v_name)
+   * are used: no warning, and the values arrive; a typo beside them is still warned about */
+  rc = yft_run_binary("a.deck", BAR "run 1\nrun ${more}\nprint \"twice $(v_extra*2)\"\n",
+                      "-var nx 4 -var more 3 -var extra 1.5 -var mroe 3", &err, &dir);
+  ck_assert_int_eq(rc, 0);
+  ck_assert_msg(strstr(err, "-var more") == NULL && strstr(err, "-var extra") == NULL,
+                "a -var used after the first run warned:\n%s", err);
+  ck_assert_msg(strstr(err, "warning: -var mroe:") != NULL, "the typo was not warned about:\n%s", err);
+  log = file_in(dir, "log.yfdem");
+  ck_assert_msg(log && strstr(log, "run 3\n") && strstr(log, "twice 3"), "late -var values not applied:\n%s", log);
+  free(log);
+  free(err);
+  free(dir);
 }
 END_TEST
 

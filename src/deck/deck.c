@@ -298,8 +298,24 @@ static DeckVar *var_find(YfDeck *d, const char *name) {
   return NULL;
 }
 
+/* Whether NAME appears as a whole word in a line of a deck source read so far (a use after the
+ * first run: ${nx}, $x, v_nx in an expression, or a `variable nx` further on). */
+static int named_in_sources(const YfDeck *d, const char *name) {
+  size_t n = strlen(name);
+  for (const DeckSource *s = d->sources; s; s = s->next)
+    for (int i = 0; i < s->n; i++)
+      for (const char *t = s->lines[i].text, *p = t; (p = strstr(p, name)) != NULL; p++) {
+        int before = p > t && (isalnum((unsigned char)p[-1]) || p[-1] == '_') &&
+                     !(p - t >= 2 && p[-2] == 'v' && p[-1] == '_' && (p - t == 2 || !isalnum((unsigned char)p[-3])));
+        int after = isalnum((unsigned char)p[n]) || p[n] == '_';
+        if (!before && !after) return 1;
+      }
+  return 0;
+}
+
 /* A -var NAME that the deck neither defines nor uses is most likely a typo (-var nz for nx): warn
- * once, before the first run, naming the deck's own variables. */
+ * once, before the first run, naming the deck's own variables.  A name that the deck's text
+ * holds as a word further on (used only after the first run) is not warned about. */
 static void check_cmdline_vars(YfDeck *d) {
   if (d->vars_checked) return;
   d->vars_checked = 1;
@@ -313,7 +329,7 @@ static void check_cmdline_vars(YfDeck *d) {
   }
   for (int i = 0; i < d->nvars; i++) {
     const DeckVar *v = &d->vars[i];
-    if (!v->cmdline || v->used) continue;
+    if (!v->cmdline || v->used || named_in_sources(d, v->name)) continue;
     const char *near = d->ndef ? yf_nearest(v->name, (const char *const *)d->defnames, d->ndef) : NULL;
     char hint[YF_NAME_MAX + 32] = "";
     if (near) snprintf(hint, sizeof hint, "; did you mean '%s'?", near);
