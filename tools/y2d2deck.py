@@ -46,10 +46,12 @@ whose two nodes are in sets with non-zero D1PNAP.
 
 The .y file is parsed here with the Y2D token rules (comments, $YINCL relative to the working
 directory or the deck's directory, 1D/2D/3D array codes, names compared over the known name's
-length: /YD/YDC/MCSTEPS is MCSTEP); run `yfdem` on the .y file itself (the
-C reader, src/y2d/y2d_read.c) for full validation with FILE:LINE messages.
+length: /YD/YDC/MCSTEPS is MCSTEP).  A key or group Y2D does not read is refused with FILE:LINE and
+the nearest key (exit 1, nothing written); run `yfdem` on the .y file itself (the C reader,
+src/y2d/y2d_read.c) for full validation of values and array sizes.
 """
 import argparse
+import difflib
 import os
 import sys
 
@@ -161,6 +163,44 @@ class Keys(dict):
         return default if hit is None else dict.__getitem__(self, hit)
 
 
+# The keys Y2D reads, by group (FORMAT.md; the same table as src/y2d/y2d_read.c's keydefs, which
+# tests/convert/run compares with this one).  A name in a deck matches a key when it begins with the
+# key's first MATCH characters (the whole key unless 'KEY:MATCH').  Any other key is refused, as
+# yfdem and Y2D refuse it: a converter that skipped it silently dropped what the deck meant.
+KNOWN = {
+    'YDC': 'MCSTEP NCSTEP DCSTEC DCTIME DCGRAY DCGRAX DCGRAZ DCSIZC DCSIZF DCSIZS DCSIZV ICOUTF ICOUTI '
+           'ICOUTP ICOUTT ICSHTF IWFAST DCURELX INITER',
+    'YDE': 'MELEM NELEM MELST NELST MELNO NELNO I2ELTO I1ELPR D2ELST I1ELCF I1ELBE D3TCS D1EMCT',
+    'YDN': 'MNODIM:5 NNODIM:5 MNOPO NNOPO D2NCI D2NCC D2NVC I1NOPR I1NOBF D1NMCT D2NFC D2NFT',
+    'YDI': 'MICOUP MISTATE DIEZON DIEDI IIECFF NICOUP D1IESL I1IECN I1IECT D2SLDIS',
+    'YDPE': 'MPROP NPROP I1PTYP D1PERO D1PELA D1PEMU D1PEKS D1PEPE D1PEPT D1PEFR D1PSEM I1PSDE I1PEFR '
+            'I1PEMB I1PEJP D1PECA D1PECL D1PERA D1PEVI I1PECN I1PECP I1PECT I1PEMN I1PNIB',
+    'YDPJ': 'MPJSET NPJSET I1PTYP D1PJFT D1PJFS D1PJGF D1PJPE D1PJCO D1PJFR I1PSDE NINTPT',
+    'YDPM': 'MPMCOM MPMCOL I2PMSET MPMROW I2PMIJ IAUTBN',
+    'YDPN': 'MPNSET NPNSET I1PNFX I1PNFY D1PNAX D1PNAY D1PNAP D1PNAT D1PNXX D1PNXY D1PNYX D1PNYY D1PNXZ '
+            'D1PNYZ D1PNZX D1PNZY D1PNZZ I1PNFZ D1PNAZ MPNFACT NPNFACT D3PNFAC D1PNAF',
+    'YDO': 'MOHYS NOHYS DOHYP I1OHYT D1OHYX D1OHYY D1OHYC D1OHYF D1OHYS D1OHYT',
+    'YDB': 'MBORH D2BCB D1BVDT',
+    'YDS': 'MSOUR D2SCS D1SVPR',
+}
+KNOWN = {g: [(k.split(':')[0], int(k.split(':')[1]) if ':' in k else len(k)) for k in v.split()]
+         for g, v in KNOWN.items()}
+
+
+def check_key(t, f, ln, grp, name):
+    """Refuse a group or key Y2D does not read, with the file, the line and the nearest name."""
+    if grp not in KNOWN:
+        near = difflib.get_close_matches(grp, KNOWN, 1)
+        raise DeckError('%s:%d: %s: unknown group /YD/%s/%s (groups: %s)' % (
+            f, ln, t, grp, ' (did you mean /YD/%s/?)' % near[0] if near else '', ' '.join(KNOWN)))
+    keys = KNOWN[grp]
+    if any(len(name) >= m and name[:m] == k[:m] for k, m in keys):
+        return
+    near = difflib.get_close_matches(name, [k for k, _ in keys], 1)
+    raise DeckError('%s:%d: %s: unknown key in /YD/%s/ (%s)' % (
+        f, ln, t, grp, 'did you mean %s?' % near[0] if near else 'keys: ' + ' '.join(k for k, _ in keys)))
+
+
 def parse(path):
     """dict NAME -> value (scalars) or (dims, flat list in C order [d1][d2][d3])."""
     toks = tokens(path)
@@ -181,6 +221,7 @@ def parse(path):
             raise DeckError('%s:%d: unexpected token %r' % (f, ln, t))
         name = t.split('/')[3] if t.count('/') >= 3 else ''
         grp = t.split('/')[2]
+        check_key(t, f, ln, grp, name)
         full = grp + '/' + name
         if len(name) >= 2 and name[1] in '123' and name[0] in 'DI':
             nd = int(name[1])
@@ -451,8 +492,9 @@ def main():
     try:
         path, _, notes = convert(a.deck, a.out)
     except (DeckError, OSError, KeyError, IndexError, ValueError) as e:
-        sys.stderr.write('error: %s: %s\n' % (a.deck, e if not isinstance(e, KeyError) else
-                                              'required key %s missing' % e))
+        msg = str(e) if not isinstance(e, KeyError) else 'required key %s missing' % e
+        # a DeckError names its file and line first (an included file's, maybe): no second name
+        sys.stderr.write('error: %s\n' % msg if isinstance(e, DeckError) else 'error: %s: %s\n' % (a.deck, msg))
         sys.exit(1)
     print('wrote %s (%d notes)' % (path, len(notes)))
 
