@@ -319,6 +319,58 @@ START_TEST(test_y2d_deck_misnamed) {
 }
 END_TEST
 
+/* MICOUP is Y2D's couple capacity: a search that finds more stops Y2D ("Ycd: to small meicoc").
+ * yfdem's list grows, so the beam with MICOUP 3 runs; it warns once, at the deck's MICOUP line,
+ * with the step and the count (it ran silently, 2026-11-28), and the run is the one of the
+ * deck's own MICOUP (the capacity changes nothing else). */
+static char *beam_with_micoup(const char *micoup, int *code, char **err) {
+  char *text = yft_slurp("tests/y2d/decks/b_beam_impact.y", 0);
+  ck_assert_ptr_nonnull(text);
+  char *m = strstr(text, "/YD/YDC/MCSTEP 15000");
+  ck_assert_ptr_nonnull(m);
+  memcpy(m, "/YD/YDC/MCSTEP    40", 20);
+  m = strstr(text, "/YD/YDI/MICOUP 27000");
+  ck_assert_ptr_nonnull(m);
+  memcpy(m + 15, micoup, 5);
+  char *dir = NULL;
+  *code = yft_run_binary("beam.y", text, "-summary s.json", err, &dir);
+  char p[600];
+  snprintf(p, sizeof p, "%s/s.json", dir);
+  char *j = yft_slurp(p, 0);
+  free(dir);
+  free(text);
+  return j;
+}
+
+START_TEST(test_couple_capacity_warned) {
+  int code;
+  char *err;
+  char *small = beam_with_micoup("3    ", &code, &err);
+  fprintf(stderr, "y2d_read: the beam with MICOUP 3: %s", err);
+  ck_assert_int_eq(code, 0);
+  int line = 0;
+  char *text = yft_slurp("tests/y2d/decks/b_beam_impact.y", 0);
+  for (char *p = text; p < strstr(text, "/YD/YDI/MICOUP"); p++) line += *p == '\n';
+  free(text);
+  char want[64];
+  snprintf(want, sizeof want, "beam.y:%d: warning: step ", line + 1);
+  ck_assert_msg(strstr(err, want) && strstr(err, "couples, more than /YD/YDI/MICOUP = 3: Y2D stops here"),
+                "no capacity warning at the MICOUP line:\n%s", err);
+  int warnings = 0;
+  for (const char *p = err; (p = strstr(p, "to small meicoc")) != NULL; p++) warnings++;
+  ck_assert_int_eq(warnings, 1);
+  free(err);
+  char *big = beam_with_micoup("27000", &code, &err);
+  ck_assert_int_eq(code, 0);
+  ck_assert_msg(!strstr(err, "meicoc"), "a capacity warning with MICOUP 27000:\n%s", err);
+  const char *h1 = strstr(small, "\"state_hash\""), *h2 = strstr(big, "\"state_hash\"");
+  ck_assert_msg(h1 && h2 && !strncmp(h1, h2, 40), "MICOUP changed the run:\n%s\n%s", small, big);
+  free(err);
+  free(small);
+  free(big);
+}
+END_TEST
+
 Suite *y2d_read_suite(void) {
   Suite *s = suite_create("y2d_read");
   TCase *tc = tcase_create("reference_decks");
@@ -331,6 +383,7 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_defaults_and_prefix);
   tcase_add_test(tc, test_include_relative_to_deck);
   tcase_add_test(tc, test_y2d_deck_misnamed);
+  tcase_add_test(tc, test_couple_capacity_warned);
   suite_add_tcase(s, tc);
   tc = tcase_create("errors");
   tcase_add_loop_test(tc, test_bad_decks, 0, (int)(sizeof bad / sizeof bad[0]));

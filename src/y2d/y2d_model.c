@@ -595,6 +595,8 @@ void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from) {
   unsigned char *meshed = yf_calloc((size_t)ne + 1, 1, "y2d meshed elements");
   y2d_setup_joints(s, r, y, meshed);
   r->contact_on = y->micoup > 0;
+  r->micoup = y->micoup;
+  r->micoup_loc = y->given[Y2D_I_MICOUP] ? y->where[Y2D_I_MICOUP] : y->end;
   y2d_setup_contact(s, r, y, meshed);
   free(meshed);
   free(pmat);
@@ -629,8 +631,26 @@ static void y2d_renumbered(YfSim *s) {
   if (s->y2d) s->y2d->nn = -1; /* node sets and loaded edges are resolved again */
 }
 
+/* Y2D stores its contact couples in a list of fixed capacity MICOUP and stops when a search
+ * finds more ("Ycd: to small meicoc", FORMAT.md 3.4, 6).  yfdem's list grows, so such a deck runs
+ * here where Y2D would have stopped: say so once, with the step and the count, so that a user
+ * comparing with Y2D, or keeping the deck runnable by it, knows.  The count is the whole list's
+ * on every rank (contact.c), so every rank decides alike and rank 0 prints. */
+static void y2d_check_couples(YfSim *s, YfY2dRun *r) {
+  if (r->micoup <= 0 || r->micoup_warned) return;
+  long n = contact_pairs(s);
+  if (n <= r->micoup) return;
+  r->micoup_warned = 1;
+  yf_warn(r->micoup_loc.file ? &r->micoup_loc : NULL,
+          "step %ld: the contact list holds %ld couples, more than /YD/YDI/MICOUP = %ld: Y2D stops here "
+          "(\"Ycd: to small meicoc\"); yfdem's list grows and the run goes on (give MICOUP >= %ld, "
+          "20-25 per triangle, to keep the deck runnable by Y2D)", s->step, n, r->micoup, n);
+}
+
 static void y2d_loads(YfSim *s) {
-  if (s->y2d) y2d_apply_loads(s); /* edge pressure and shear traction */
+  if (!s->y2d) return;
+  y2d_check_couples(s, s->y2d);
+  y2d_apply_loads(s); /* edge pressure and shear traction */
 }
 
 /* Y2D's BC sets as a boundary-condition kind (sim.h): edge loads at the gather stage, and the

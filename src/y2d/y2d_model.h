@@ -54,6 +54,9 @@ typedef struct YfY2dRun {
   int *le;
   double *lf;          /* per node: edge load of this step (2 per node) [N/m], for the work    */
   int contact_on;      /* MICOUP > 0                                                           */
+  long micoup;         /* MICOUP: Y2D's couple capacity (overflow stops Y2D, FORMAT.md 3.4, 6)       */
+  YfLoc micoup_loc;    /* where the deck gave it                                               */
+  int micoup_warned;   /* the couple list outgrew it once (warned)                              */
 } YfY2dRun;
 
 extern const YfBcKind y2d_bc_kind;
