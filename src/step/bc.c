@@ -8,9 +8,11 @@
  *
  * Order inside a step (run.c): loads are added to the nodal forces before the update; fixed and
  * prescribed-velocity components override the velocity after the free update; prescribed
- * displacements set the position after it moves.  Later items override earlier ones on the same
- * node component.  The work of loads and of constraint reactions is accumulated so that the
- * energy balance (kinetic + strain = external work - dissipation) can be checked.
+ * displacements set the position after it moves.  On a node component that several fixes
+ * prescribe, the one given last acts alone (bc_prepare finds it once a run and warns): the others
+ * skip it, so its reaction is booked once, from the free velocity to the one imposed.  The work
+ * of loads and of constraint reactions is accumulated so that the energy balance (kinetic +
+ * strain = external work - dissipation) can be checked.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -33,6 +35,10 @@ typedef struct YfBc {
   YfBcItem *item;
   unsigned char *flags; /* per node: bit 0 x prescribed, bit 1 y prescribed */
   int flags_n;
+  int *owner;           /* per node component (2 per node): the fix that prescribes it (the
+                           last given), -1 none                                            */
+  unsigned char *warned; /* per item: its overlap with a later fix was reported            */
+  int warned_n;
 } YfBc;
 
 static YfBc *bc_get(YfSim *s) {
@@ -65,6 +71,10 @@ int bc_remove(YfSim *s, const char *id, int load) {
     if (!strcmp(it->id, id) && isload == load) {
       free(it->nodes); free(it->edges); free(it->lf);
       memmove(it, it + 1, (size_t)(b->n - i - 1) * sizeof *it);
+      if (i < b->warned_n) {
+        memmove(b->warned + i, b->warned + i + 1, (size_t)(b->warned_n - i - 1));
+        b->warned_n--;
+      }
       b->n--;
       return 1;
     }
@@ -136,18 +146,58 @@ static void resolve_nodes(YfSim *s, YfBcItem *it) {
   it->lf = yf_calloc((size_t)(it->nn ? it->nn : 1) * 2, sizeof(double), "load forces");
 }
 
+/* A node component prescribed by two fixes: the later one acts.  Say so once per earlier fix
+ * (a clamped base and a pushed face that share a corner node are common; the corner then moves
+ * with the push).  Every fix used to act in turn and book its own reaction, so the supports'
+ * work was wrong by m (t1 - v)(t1 - t2) / 2 dt a step and a healthy run was stopped. */
+static void warn_overridden(YfSim *s, YfBc *b) {
+  const YfNodes *n = &s->model.node;
+  for (int i = 0; i < b->n; i++) {
+    const YfBcItem *it = &b->item[i];
+    if (it->sp.kind > BC_DISPLACEMENT || b->warned[i]) continue;
+    int cnt = 0, by = -1, first = -1;
+    for (int k = 0; k < it->nn; k++)
+      for (int c = 0; c < 2; c++) {
+        int o = b->owner[2 * it->nodes[k] + c];
+        if (!it->sp.has[c] || o == i || o < 0) continue;
+        if (!cnt) { by = o; first = it->nodes[k]; }
+        cnt++;
+        break;
+      }
+    if (!cnt) continue;
+    b->warned[i] = 1;
+    yf_warn(&it->sp.loc, "fix '%s': %d node%s of it (first: node %ld at %g %g) %s also prescribed by the later "
+            "fix '%s'%s, which acts there (on a node component in several fixes, the one given last acts)",
+            it->id, cnt, cnt == 1 ? "" : "s", (long)n->id[first], n->x0[first], n->y0[first],
+            cnt == 1 ? "is" : "are", b->item[by].id, cnt > 1 ? " or another" : "");
+  }
+}
+
 void bc_prepare(YfSim *s) {
   YfBc *b = bc_get(s);
   int nn = s->model.node.n;
   free(b->flags);
   b->flags = yf_calloc((size_t)(nn ? nn : 1), 1, "bc flags");
   b->flags_n = nn;
+  free(b->owner);
+  b->owner = yf_malloc((size_t)(nn ? nn : 1) * 2 * sizeof(int), "fix owners");
+  for (int j = 0; j < 2 * nn; j++) b->owner[j] = -1;
+  if (b->warned_n < b->n) {
+    b->warned = yf_realloc(b->warned, (size_t)b->n, "fix warnings");
+    memset(b->warned + b->warned_n, 0, (size_t)(b->n - b->warned_n));
+    b->warned_n = b->n;
+  }
   for (int i = 0; i < b->n; i++) {
     YfBcItem *it = &b->item[i];
     resolve_nodes(s, it);
     if (it->sp.kind <= BC_DISPLACEMENT)
-      for (int k = 0; k < it->nn; k++) b->flags[it->nodes[k]] |= (unsigned char)(it->sp.has[0] | (it->sp.has[1] << 1));
+      for (int k = 0; k < it->nn; k++) {
+        b->flags[it->nodes[k]] |= (unsigned char)(it->sp.has[0] | (it->sp.has[1] << 1));
+        for (int c = 0; c < 2; c++)
+          if (it->sp.has[c]) b->owner[2 * it->nodes[k] + c] = i;
+      }
   }
+  warn_overridden(s, b);
 }
 
 const YfBcSpec *bc_spec(const YfSim *s, int i, const char **id) {
@@ -256,7 +306,7 @@ void bc_constrain_velocities(YfSim *s, const double *vx_old, const double *vy_ol
       if (n->m[j] <= 0) continue;
       double *v[2] = {&n->vx[j], &n->vy[j]};
       for (int c = 0; c < 2; c++) {
-        if (!it->sp.has[c]) continue;
+        if (!it->sp.has[c] || s->bc->owner[2 * j + c] != i) continue;
         double target = it->sp.kind == BC_VELOCITY ? it->sp.a[c] * ph : 0.0;
         /* reaction R = m (v_target - v_free)/dt acting over the step at the mean velocity of the
          * two half steps (the central-difference energy measure); with mass damping the free
@@ -286,7 +336,7 @@ void bc_constrain_positions(YfSim *s, const double *x_old, const double *y_old, 
         double *x[2] = {&n->x[j], &n->y[j]}, *v[2] = {&n->vx[j], &n->vy[j]};
         const double x0[2] = {n->x0[j], n->y0[j]}, xo[2] = {x_old[j], y_old[j]};
         for (int c = 0; c < 2; c++) {
-          if (!it->sp.has[c]) continue;
+          if (!it->sp.has[c] || s->bc->owner[2 * j + c] != i) continue;
           double target = x0[c] + it->sp.a[c] * ph;
           double vnew = (target - xo[c]) / s->dt;
           double R = react(s, n->m[j], vnew - *v[c]);
@@ -318,6 +368,8 @@ void bc_free(YfSim *s) {
   }
   free(s->bc->item);
   free(s->bc->flags);
+  free(s->bc->owner);
+  free(s->bc->warned);
   free(s->bc);
   s->bc = NULL;
 }
