@@ -134,6 +134,18 @@ START_TEST(test_timestep_above_limit_refused) {
 }
 END_TEST
 
+/* Mass damping with alpha dt above 2 reverses the velocities every step instead of damping them
+ * (a body kept 99.9 % of its kinetic energy at alpha = 1e12, exit 0): refused at the run, at the
+ * damping line, with the most alpha the step allows; alpha dt = 2 itself runs. */
+START_TEST(test_damping_above_two_over_dt_refused) {
+  expect_fail(BAR "damping mass 1e12\ntimestep 1e-6\nrun 10\n", 1, "bad.deck:3: error: damping mass 1e+12: alpha dt = 1e+06 is above 2",
+              "use at most alpha = 2/dt = 2e+06 1/s");
+  YfSim *s = yft_run(BAR "damping mass 2e6\ntimestep 1e-6\nvelocity bar set 1 0\nrun 10\n");
+  ck_assert_int_eq(s->step, 10);
+  sim_free(s);
+}
+END_TEST
+
 /* A run that goes wrong stops as a numerical failure naming the step and the element, keeps the
  * frames written before it, and exits 3. */
 START_TEST(test_inverted_element_numerical_failure) {
@@ -241,6 +253,7 @@ Suite *errors_suite(void) {
   tcase_add_test(t, test_missing_include_is_io_error);
   tcase_add_test(t, test_bad_mesh_file);
   tcase_add_test(t, test_timestep_above_limit_refused);
+  tcase_add_test(t, test_damping_above_two_over_dt_refused);
   tcase_add_test(t, test_inverted_element_numerical_failure);
   tcase_add_test(t, test_never_inf_nan);
   tcase_add_test(t, test_gmsh_coincident_nodes_warned);

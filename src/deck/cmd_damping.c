@@ -12,4 +12,5 @@ void cmd_damping(YfSim *s, const YfArgs *a) {
   static const char *const kinds[] = {"mass", NULL};
   arg_choice(a, 0, "damping style", kinds);
   s->mass_damping = arg_nonneg(a, 1, "alpha");
+  s->damping_loc = a->loc;
 }

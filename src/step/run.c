@@ -654,6 +654,15 @@ void run_steps(YfSim *s, long nsteps) {
                   "timestep %.6g s is above the stable limit %.6g s (set by %s); use at most %.6g s or 'timestep auto'",
                   s->dt, limit, lim, limit);
   }
+  /* the damped update v+ = ((1 - a dt/2) v- + dt f/m) / (1 + a dt/2) forgets v- at a dt = 2 and
+   * beyond it reverses it every step: a body then keeps its speed, flipping sign, and more
+   * damping damps less (a sweep of new decks: 99.9 % of the kinetic energy left at a = 1e12) */
+  if (s->mass_damping * s->dt > 2.0)
+    yf_deck_error(s->damping_loc.file ? &s->damping_loc : NULL,
+                  "damping mass %g: alpha dt = %.4g is above 2 (dt = %.6g s): the update would reverse the "
+                  "velocities every step instead of damping them; use at most alpha = 2/dt = %.6g 1/s, "
+                  "which removes each step's velocity", s->mass_damping, s->mass_damping * s->dt, s->dt,
+                  2.0 / s->dt);
   par_run_begin(s); /* MPI: whether each rank updates its own nodes only; the ghosts it reads */
   s->threads = threads_run_begin(); /* the most threads a step may use (threads.c chooses) */
   run_energies(s);

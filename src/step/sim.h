@@ -114,6 +114,7 @@ typedef struct YfSim {
   YfLoc dt_loc;         /* where the time step was set (for the 'above the limit' error)    */
   double gx, gy;        /* gravity [m/s^2]                                                  */
   double mass_damping;  /* alpha [1/s]: force -alpha m v (dynamic relaxation), 0 = off      */
+  YfLoc damping_loc;    /* where it was set (for the 'alpha dt above 2' error)              */
   int ebal_mode;        /* energy_check: YF_EBAL_STOP (default), _WARN or _OFF (energy.h)    */
   double ebal_tol;      /* its tolerance, a fraction of the energy given (YF_EBAL_TOL)      */
 
