@@ -571,8 +571,20 @@ START_TEST(error_expressions_and_variables) {
                NULL);
   expect_error("label\n", 1, "e.deck:1: error: label: expected 1 argument, got 0", "  usage: label NAME", "  label");
   expect_error("print $(1:%s)\n", 1,
-               "e.deck:1: error: bad format '%s' in $(...) (expected one conversion like %.3f, %g, %10.4e or %d)",
-               NULL, NULL);
+               "e.deck:1: error: bad format '%s' in $(...) (expected one conversion like %.3f, %g, %10.4e or %d, "
+               "width and precision of at most 2 digits)", NULL, NULL);
+  /* a wider format was cut to a 128-byte buffer ('%300d' printed nothing of the value), and 30
+   * flags overflowed the copy that gains the 'l' (a malformed printf format) */
+  expect_error("print $(1:%300d)\n", 1, "e.deck:1: error: bad format '%300d' in $(...) (expected one conversion like %.3f, %g, %10.4e or %d, width and precision of at most 2 digits)", NULL, NULL);
+  expect_error("print $(1:%.400f)\n", 1, "e.deck:1: error: bad format '%.400f' in $(...) (expected one conversion like %.3f, %g, %10.4e or %d, width and precision of at most 2 digits)", NULL, NULL);
+  expect_error("print $(1:%000000000000000000000000000005d)\n", 1,
+               "e.deck:1: error: bad format '%000000000000000000000000000005d' in $(...) (expected one conversion like %.3f, %g, %10.4e or %d, width and precision of at most 2 digits)", NULL, NULL);
+  /* the widest allowed is whole: 1e300 has 301 digits, '.', then 99 */
+  Run r = run_child("print \"<$(1e300:%99.99f)>\"\n", NULL, NULL);
+  ck_assert_msg(r.code == 0, "stderr: %s", r.err);
+  const char *a = strchr(r.out, '<'), *z = a ? strchr(a, '>') : NULL;
+  ck_assert_msg(a && z && z - a - 1 == 301 + 1 + 99 && !strncmp(a + 1, "1000000000000000052504760255204420", 34), "%s", r.out);
+  run_free(&r);
 }
 END_TEST
 

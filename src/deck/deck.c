@@ -467,12 +467,19 @@ static char *var_text(YfDeck *d, const char *name, const YfLoc *loc, const char 
 /* A printf format for $(expr:%fmt): one conversion, nothing else.  Returns 1 for a floating
  * conversion (e f g), 2 for an integer one (d i: the value is rounded), 0 if invalid. */
 static int valid_format(const char *f) {
+  /* at most 5 flags and 2 digits each of width and precision: the widest result, %99.99f of
+   * 1e308, then fits the 512 bytes substitute() formats into (a wider one was cut short, and
+   * more flags overflowed the format copy that gains the 'l') */
   if (*f++ != '%') return 0;
-  while (*f && strchr("-+ #0", *f)) f++;
-  while (isdigit((unsigned char)*f)) f++;
+  int n = 0;
+  while (*f && strchr("-+ #0", *f)) f++, n++;
+  if (n > 5) return 0;
+  for (n = 0; isdigit((unsigned char)*f); f++) n++;
+  if (n > 2) return 0;
   if (*f == '.') {
     f++;
-    while (isdigit((unsigned char)*f)) f++;
+    for (n = 0; isdigit((unsigned char)*f); f++) n++;
+    if (n > 2) return 0;
   }
   if (f[0] && f[1]) return 0;
   if (*f && strchr("eEfFgG", *f)) return 1;
@@ -543,7 +550,8 @@ static char *substitute(YfDeck *d, const char *in, const YfLoc *loc) {
         kind = valid_format(fmt);
         if (!kind)
           fail_ctx(loc, in, col + 2 + (int)(colon - expr) + 1,
-                   "bad format '%s' in $(...) (expected one conversion like %%.3f, %%g, %%10.4e or %%d)", fmt);
+                   "bad format '%s' in $(...) (expected one conversion like %%.3f, %%g, %%10.4e or %%d, width and "
+                   "precision of at most 2 digits)", fmt);
       }
       double v;
       ExprError er;
@@ -552,7 +560,7 @@ static char *substitute(YfDeck *d, const char *in, const YfLoc *loc) {
         char ab[80];
         fail_ctx(loc, in, col + 2 + er.pos, "expression '%s': %s", abbrev(expr, ab, sizeof ab), er.msg);
       }
-      char num[128];
+      char num[512];
       if (v == 0.0) v = 0.0;
       if (kind == 2) {
         if (fabs(v) > 9.0e18) fail_ctx(loc, in, col, "value %g of $(...) is too large for an integer format", v);

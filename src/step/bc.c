@@ -132,7 +132,7 @@ static void resolve_nodes(YfSim *s, YfBcItem *it) {
     /* nodes touched: the edge ends, each edge contributing to its own two nodes */
     it->nn = 2 * it->ne;
     it->nodes = yf_malloc((size_t)(it->nn ? it->nn : 1) * sizeof(int), "load nodes");
-    memcpy(it->nodes, it->edges, (size_t)it->nn * sizeof(int));
+    if (it->nn) memcpy(it->nodes, it->edges, (size_t)it->nn * sizeof(int)); /* edges NULL when none */
   } else {
     uint64_t bit = (uint64_t)1 << it->sp.group;
     for (int i = 0; i < n->n; i++) it->nn += (n->gmask[i] & bit) != 0;
