@@ -588,6 +588,32 @@ START_TEST(error_expressions_and_variables) {
 }
 END_TEST
 
+/* A name the scene keeps is refused at its line when it does not fit (47 characters): material,
+ * history, fix and load names were cut short silently, then not found by their full name
+ * ("unknown material" listing the cut name; a sweep of new decks, 2026-11-28). */
+START_TEST(error_long_names) {
+  make_tmpdir();
+  char n48[49];
+  memset(n48, 'N', 48);
+  n48[48] = 0;
+  static const char *const fmt[] = {
+      "material %s elastic rho 1 E 1 nu 0.1 plane_strain\n", "history %s constant\n", "fix %s b fixed xy\n",
+      "load %s point node 0 1 0\n", "jointprop %s ft 1 fs 1 gf 1 pen 1\n", "region %s box 0 0 1 1\n",
+      "group %s node ids 0\n", "dump %s csv 1 out\n", "record %s 1 r.csv step\n"};
+  const char *what[] = {"name", "name", "ID", "ID", "name", "region name", "group name", "dump id", "record id"};
+  for (size_t k = 0; k < sizeof fmt / sizeof fmt[0]; k++) {
+    char deck[256], want[160];
+    int at = snprintf(deck, sizeof deck, "material m elastic rho 1 E 1 nu 0.1 plane_strain\nmesh rect b m 0 0 1 1 1 1\n");
+    snprintf(deck + at, sizeof deck - (size_t)at, fmt[k], n48);
+    Run r = run_child(deck, NULL, NULL);
+    snprintf(want, sizeof want, "e.deck:3: error: %.*s: '%s': %s longer than 47 characters", (int)strcspn(fmt[k], " "),
+             fmt[k], n48, what[k]);
+    ck_assert_msg(r.code == 1 && strstr(r.err, want), "%s: exit %d: %s", deck, r.code, r.err);
+    run_free(&r);
+  }
+}
+END_TEST
+
 START_TEST(error_includes) {
   expect_error("variable a equal 1\n\ninclude missing.deck\n", 2,
                "e.deck:3: error: include: cannot open 'missing.deck': No such file or directory", NULL, NULL);
@@ -753,6 +779,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, error_lines_after_continuation_and_include);
   tcase_add_test(tc, error_expressions_and_variables);
   tcase_add_test(tc, error_includes);
+  tcase_add_test(tc, error_long_names);
   tcase_add_test(tc, arg_helpers);
   tcase_add_exit_test(tc, exit_deck_error, 1);
   tcase_add_exit_test(tc, exit_missing_include, 2);

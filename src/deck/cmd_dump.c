@@ -69,8 +69,7 @@ static struct YfY2dRef *parse_y2dref(YfSim *s, const YfArgs *a) {
 void cmd_dump(YfSim *s, const YfArgs *a) {
   static const char *const styles[] = {"h5", "csv", "y2dref", NULL}; /* index = YF_DUMP_* */
   arg_count(a, 2, -1);
-  const char *id = arg_word(a, 0, "dump id");
-  if (strlen(id) >= YF_NAME_MAX) arg_error(a, 0, "id too long (at most %d characters)", YF_NAME_MAX - 1);
+  const char *id = arg_name(a, 0, "dump id");
   int style = arg_choice(a, 1, "style", styles);
   if (style == YF_DUMP_Y2DREF) {
     if (output_find_dump(s, id) >= 0) arg_error(a, 0, "a dump with this id exists (undump it first)");

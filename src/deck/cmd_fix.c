@@ -21,7 +21,7 @@ void cmd_fix(YfSim *s, const YfArgs *a) {
   static const char *const styles[] = {"fixed", "velocity", "displacement", NULL};
   int st = arg_choice(a, 2, "style", styles);
   int g = arg_group(s, a, 1);
-  const char *id = arg_word(a, 0, "ID");
+  const char *id = arg_name(a, 0, "ID");
   if (bc_exists(s, id)) arg_error(a, 0, "ID '%s' is already used (by another fix or load); use unfix/unload first", id);
   YfBcSpec it = {.group = g, .hist = -1, .node_id = -1, .loc = a->loc};
   if (st == 0) {

@@ -41,8 +41,7 @@ void cmd_group(YfSim *sim, const YfArgs *a) {
   enum { BY_REGION, BY_ID, BY_BODY, BY_NEAREST };
   YfModel *m = &sim->model;
   arg_count(a, 3, -1);
-  const char *name = arg_word(a, 0, "group name");
-  if (strlen(name) >= YF_NAME_MAX) arg_error(a, 0, "name longer than %d characters", YF_NAME_MAX - 1);
+  const char *name = arg_name(a, 0, "group name");
   if (model_find_body(m, name) >= 0)
     arg_error(a, 0, "is the group of body '%s', which holds exactly that body; choose another name", name);
   int style = arg_choice(a, 1, "group style", styles);

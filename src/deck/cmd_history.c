@@ -14,7 +14,7 @@
 void cmd_history(YfSim *s, const YfArgs *a) {
   arg_count(a, 2, -1);
   static const char *const kinds[] = {"constant", "ramp", "table", "sine", "file", NULL};
-  const char *name = arg_word(a, 0, "name");
+  const char *name = arg_name(a, 0, "name");
   int k = arg_choice(a, 1, "history style", kinds);
   if (sim_find_history(s, name) >= 0) arg_error(a, 0, "history already defined");
   YfHistory h;

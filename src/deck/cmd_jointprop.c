@@ -52,7 +52,7 @@ static void read_table(const YfArgs *a, int i, YfJointProp *p) {
  *           [floor y2d|none] [weibull M | normal CV] [seed S] [tangent exact|y2d] */
 void cmd_jointprop(YfSim *s, const YfArgs *a) {
   arg_count(a, 1, -1);
-  const char *name = arg_word(a, 0, "name");
+  const char *name = arg_name(a, 0, "name");
   if (joints_find_set(s, name) >= 0) arg_error(a, 0, "jointprop already defined (each name once)");
   YfJointProp p;
   joint_prop_default(&p);

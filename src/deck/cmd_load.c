@@ -12,7 +12,7 @@
  * load ID GROUP pressure P [history H]          (positive pushes into the body [Pa]) */
 void cmd_load(YfSim *s, const YfArgs *a) {
   arg_count(a, 3, 9);
-  const char *id = arg_word(a, 0, "ID");
+  const char *id = arg_name(a, 0, "ID");
   YfBcSpec it = {.hist = -1, .node_id = -1, .loc = a->loc};
   if (!strcmp(a->w[1], "point")) {
     static const char *const how[] = {"node", "at", NULL};

@@ -16,7 +16,7 @@
  * for comparison with Y2D runs (contact_pair.h). */
 void cmd_material(YfSim *s, const YfArgs *a) {
   arg_count(a, 4, -1);
-  const char *name = arg_word(a, 0, "name");
+  const char *name = arg_name(a, 0, "name");
   static const char *const styles[] = {"elastic", NULL};
   arg_choice(a, 1, "material style", styles);
   int idx = model_find_material(&s->model, name);

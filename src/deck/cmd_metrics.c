@@ -38,8 +38,7 @@ void cmd_metrics(YfSim *s, const YfArgs *a) {
   }
   case 2: {
     arg_count(a, 3, 2 + YF_METRICS_REG_SHAPES);
-    const char *name = a->w[1];
-    if (strlen(name) >= YF_NAME_MAX) arg_error(a, 1, "name longer than %d characters", YF_NAME_MAX - 1);
+    const char *name = arg_name(a, 1, "region name");
     if (metrics_region_full(name)) arg_error(a, 1, "at most %d metrics regions", YF_METRICS_REGIONS);
     int r[YF_METRICS_REG_SHAPES], nr = 0;
     for (int w = 2; w < a->n; w++) r[nr++] = region_word(a, w);

@@ -15,8 +15,7 @@ void cmd_region(YfSim *sim, const YfArgs *a) {
   static const char *const kinds[] = {"box", "circle", "polygon", NULL}; /* index = YF_REG_* */
   static const char *const sides[] = {"in", "out", NULL};
   arg_count(a, 2, -1);
-  const char *name = arg_word(a, 0, "region name");
-  if (strlen(name) >= YF_NAME_MAX) arg_error(a, 0, "name longer than %d characters", YF_NAME_MAX - 1);
+  const char *name = arg_name(a, 0, "region name");
   if (region_find(name) >= 0) arg_error(a, 0, "region already exists");
   int kind = arg_choice(a, 1, "region style", kinds);
   int n = a->n, out = 0;

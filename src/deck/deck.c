@@ -950,6 +950,14 @@ const char *arg_word(const YfArgs *a, int i, const char *what) {
            u ? "\n  usage: " : "", u ? u : "");
 }
 
+/* A name the scene stores (material, history, fix, load, jointprop, dump, record, region, group):
+ * one that does not fit YF_NAME_MAX was cut short silently and then not found by its full name. */
+const char *arg_name(const YfArgs *a, int i, const char *what) {
+  const char *w = arg_word(a, i, what);
+  if (strlen(w) >= YF_NAME_MAX) arg_error(a, i, "%s longer than %d characters", what, YF_NAME_MAX - 1);
+  return w;
+}
+
 /* A hint when someone writes an expression where a plain number is expected. */
 static const char *num_hint(const char *w) {
   if (w[0] && strpbrk(w + 1, "+-*/^()") && !strpbrk(w, "eE")) return " (write an expression as $(...))"; /* w may be "" */

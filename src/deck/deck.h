@@ -70,6 +70,8 @@ long arg_int(const YfArgs *a, int i, const char *what, long lo, long hi);
 int arg_choice(const YfArgs *a, int i, const char *what, const char *const *choices);
 /* Word i (exists, else usage error). */
 const char *arg_word(const YfArgs *a, int i, const char *what);
+/* arg_word for a name the scene keeps: refused when longer than YF_NAME_MAX - 1 characters */
+const char *arg_name(const YfArgs *a, int i, const char *what);
 /* Error naming word i: "FILE:LINE: error: CMD: WHAT 'word': message". */
 void arg_error(const YfArgs *a, int i, const char *fmt, ...) __attribute__((noreturn, format(printf, 3, 4)));
 /* An output the command will write, checked at its deck line (a missing folder is an error here,

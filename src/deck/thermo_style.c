@@ -153,8 +153,7 @@ static void update_due(const YfSim *s) {
 /* record ID N FILE K1 K2 ... | record ID off */
 void cmd_record(YfSim *s, const YfArgs *a) {
   arg_count(a, 2, -1);
-  const char *id = arg_word(a, 0, "record id");
-  if (strlen(id) >= YF_NAME_MAX) arg_error(a, 0, "id too long (at most %d characters)", YF_NAME_MAX - 1);
+  const char *id = arg_name(a, 0, "record id");
   int slot = -1;
   for (int i = 0; i < P.nrec; i++)
     if (!strcmp(P.rec[i].id, id)) slot = i;
