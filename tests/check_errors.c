@@ -146,6 +146,20 @@ START_TEST(test_damping_above_two_over_dt_refused) {
 }
 END_TEST
 
+/* A record with a quantity no one knows is an error at the run, with no file made: it left a
+ * header and half a row ("step,time,nosuchq\n0,0") behind. */
+START_TEST(test_record_bad_quantity_no_file) {
+  char *err, *dir;
+  int rc = yft_run_binary("bad.deck", BAR "timestep auto\nrecord r1 1 r.csv ke nosuchq\nrun 5\n", NULL, &err, &dir);
+  ck_assert_msg(rc == 1 && strstr(err, "bad.deck:4: error: expression 'nosuchq': unknown variable"), "exit %d: %s", rc, err);
+  char p[600];
+  snprintf(p, sizeof p, "%s/r.csv", dir);
+  ck_assert_msg(!yft_exists(p), "a half-written r.csv is left");
+  free(err);
+  free(dir);
+}
+END_TEST
+
 /* A run that goes wrong stops as a numerical failure naming the step and the element, keeps the
  * frames written before it, and exits 3. */
 START_TEST(test_inverted_element_numerical_failure) {
@@ -254,6 +268,7 @@ Suite *errors_suite(void) {
   tcase_add_test(t, test_bad_mesh_file);
   tcase_add_test(t, test_timestep_above_limit_refused);
   tcase_add_test(t, test_damping_above_two_over_dt_refused);
+  tcase_add_test(t, test_record_bad_quantity_no_file);
   tcase_add_test(t, test_inverted_element_numerical_failure);
   tcase_add_test(t, test_never_inf_nan);
   tcase_add_test(t, test_gmsh_coincident_nodes_warned);

@@ -231,7 +231,12 @@ static void adopt(YfSim *s, Record *r) {
 }
 
 static void record_row(YfSim *s, Record *r) {
-  if (!r->fp) record_open(r, NULL);
+  if (!r->fp) {
+    /* every quantity evaluates before the file is made: a mistake in one ('nosuchq') left a
+     * header and half a row behind */
+    for (int i = 0; i < r->q.n; i++) (void)value(s, &r->q, i, NULL);
+    record_open(r, NULL);
+  }
   fprintf(r->fp, "%ld,%.17g", s->step, s->time);
   for (int i = 0; i < r->q.n; i++) {
     double v = value(s, &r->q, i, NULL);
