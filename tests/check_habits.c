@@ -10,6 +10,7 @@
 #include <string.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -257,6 +258,60 @@ START_TEST(test_outputs_in_working_dir) {
 }
 END_TEST
 
+/* Files written whole (the -summary JSON, fracture_log, metrics log) go through a symbolic link
+ * and into a pipe or a device as a shell user means them: -summary /dev/stdout (a link to
+ * /proc/self/fd/1) used to replace the link by a regular file, printing nothing, and as root a
+ * device (/dev/full) became a regular file and its "no space" was never seen. */
+START_TEST(test_whole_files_through_links_and_devices) {
+  char tmpl[] = "/tmp/yft_XXXXXX";
+  char *dir = mkdtemp(tmpl);
+  ck_assert_ptr_nonnull(dir);
+  char p[600], cmd[4096];
+  snprintf(p, sizeof p, "%s/a.deck", dir);
+  FILE *f = fopen(p, "w");
+  ck_assert_ptr_nonnull(f);
+  fputs(BAR "jointprop j ft 1e6 fs 1e6 gf 10 pen 1e11\nfracture bar j\nfracture_log breaks.csv\nrun 5\n", f);
+  fclose(f);
+  const char *bin = getenv("YFDEM") ? getenv("YFDEM") : "./yfdem";
+  char abs[1024] = "";
+  if (bin[0] != '/' && getcwd(abs, sizeof abs - strlen(bin) - 2)) strcat(strcat(abs, "/"), bin);
+  /* a link to a file elsewhere; the JSON to a pipe; the fracture log through a link */
+  snprintf(cmd, sizeof cmd,
+           "cd %s && mkdir real && ln -s real/s.json s.json && ln -s real/b.csv breaks.csv && "
+           "%s -in a.deck -summary s.json -log none >/dev/null 2>err1.txt && "
+           "%s -in a.deck -summary /dev/stdout -log none 2>err2.txt | grep -c state_hash > piped.txt",
+           dir, abs[0] ? abs : bin, abs[0] ? abs : bin);
+  ck_assert_int_eq(system(cmd), 0);
+  struct stat st;
+  snprintf(p, sizeof p, "%s/s.json", dir);
+  ck_assert(lstat(p, &st) == 0 && S_ISLNK(st.st_mode));
+  snprintf(p, sizeof p, "%s/breaks.csv", dir);
+  ck_assert(lstat(p, &st) == 0 && S_ISLNK(st.st_mode));
+  char *j = file_in(dir, "real/s.json"), *b = file_in(dir, "real/b.csv"), *pi = file_in(dir, "piped.txt");
+  ck_assert_msg(j && strstr(j, "\"status\": \"ok\""), "the link's target: %s", j ? j : "(none)");
+  ck_assert_msg(b && !strncmp(b, "step,time,x,y", 13), "the fracture log's target: %s", b ? b : "(none)");
+  ck_assert_msg(pi && atoi(pi) == 1, "the JSON did not reach the pipe: %s", pi ? pi : "(none)");
+  free(j);
+  free(b);
+  free(pi);
+  /* a full device (a node of its own, as root: never the machine's /dev/full): an I/O error,
+   * exit 2, the device left a device */
+  snprintf(p, sizeof p, "%s/full", dir);
+  if (mknod(p, S_IFCHR | 0666, makedev(1, 7)) == 0) {
+    snprintf(cmd, sizeof cmd, "cd %s && %s -in a.deck -summary full -log none >/dev/null 2>err3.txt", dir,
+             abs[0] ? abs : bin);
+    int rc = system(cmd);
+    char *e = file_in(dir, "err3.txt");
+    ck_assert_msg(WIFEXITED(rc) && WEXITSTATUS(rc) == 2 && e && strstr(e, "No space left on device"), "exit %d: %s", rc,
+                  e ? e : "");
+    free(e);
+    ck_assert(lstat(p, &st) == 0 && S_ISCHR(st.st_mode));
+  }
+  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+  if (system(cmd)) {}
+}
+END_TEST
+
 Suite *habits_suite(void) {
   Suite *s = suite_create("habits");
   TCase *t = tcase_create("lammps");
@@ -268,6 +323,7 @@ Suite *habits_suite(void) {
   tcase_add_test(t, test_flushed_while_running);
   tcase_add_test(t, test_no_files_before_run);
   tcase_add_test(t, test_outputs_in_working_dir);
+  tcase_add_test(t, test_whole_files_through_links_and_devices);
   suite_add_tcase(s, t);
   return s;
 }

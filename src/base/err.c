@@ -10,6 +10,8 @@
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <unistd.h>
+#include <sys/stat.h>
 #include <string.h>
 #include "err.h"
 
@@ -293,6 +295,16 @@ int yf_can_create(const char *path) {
   /* MPI: only the writer (rank 0) writes files, so only it checks (the probe's PATH.tmp is the
    * name the real write uses: other ranks must not create or remove it) */
   if (!writer) return 1;
+  /* a link, a device, a pipe is written through as it is (wfile.h): probe it, never PATH.tmp
+   * beside it (/dev/stdout.tmp) */
+  struct stat st;
+  if (lstat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+    if (S_ISDIR(st.st_mode) || (stat(path, &st) == 0 && S_ISDIR(st.st_mode))) {
+      errno = EISDIR;
+      return 0;
+    }
+    if (stat(path, &st) == 0) return access(path, W_OK) == 0;
+  }
   size_t n = strlen(path) + 5;
   char *tmp = yf_malloc(n, "path");
   snprintf(tmp, n, "%s.tmp", path);

@@ -19,6 +19,7 @@
 #include "region.h"
 #include "run.h"
 #include "summary.h"
+#include "wfile.h"
 
 #define MAX_REG YF_METRICS_REGIONS
 #define MAX_REG_SHAPES YF_METRICS_REG_SHAPES
@@ -566,13 +567,12 @@ static void csv_num(char *buf, size_t n, double v) {
 
 static void write_log(YfSim *s) {
   if (!yf_writer()) return;
-  char tmp[1100];
-  snprintf(tmp, sizeof tmp, "%s.tmp", M.log_path);
-  FILE *f = fopen(tmp, "w");
-  if (!f) { /* runs from the exit path too: there the other outputs are still written */
-    yf_output_error("metrics log: cannot write '%s': %s", tmp, strerror(errno));
+  YfWFile w;
+  if (yf_wfile_open(&w, M.log_path) != 0) { /* runs from the exit path too: there the other outputs are still written */
+    yf_output_error("metrics log: cannot write '%s': %s", M.log_path, strerror(errno));
     return;
   }
+  FILE *f = w.f;
   fputs(log_head, f);
   if (M.earlier) fputs(M.earlier, f);
   for (long i = 0; i < M.nsmp; i++) {
@@ -589,11 +589,7 @@ static void write_log(YfSim *s) {
     fprintf(f, "%ld,%s,%s,%s,%s,%s,%s,%s,%s,%ld,%s,%s,%s,%d,%s,%ld,%s,%s,%s\n", q->step, v[0], v[1], v[2], v[3], v[4],
             v[5], v[6], v[7], q->broken, v[8], v[9], v[10], q->frags, s1, q->opened, ol[0], ol[1], ol[2]);
   }
-  int bad = ferror(f);
-  if (fclose(f) != 0 || bad || rename(tmp, M.log_path) != 0) {
-    yf_output_error("metrics log: cannot write '%s': %s", M.log_path, strerror(errno ? errno : EIO));
-    remove(tmp);
-  }
+  if (yf_wfile_close(&w, 0, 0) != 0) yf_output_error("metrics log: cannot write '%s': %s", M.log_path, strerror(errno));
 }
 
 void metrics_summary(YfSim *s) {

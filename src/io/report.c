@@ -18,6 +18,7 @@
 #include "restart.h"
 #include "run.h"
 #include "summary.h"
+#include "wfile.h"
 
 /* The order within each event is the order the run loop used to call them in. */
 static void io_observer(YfSim *s, YfEvent *ev) {
@@ -79,24 +80,19 @@ static const char *mode_name(int md) { return md == YF_JMODE_I ? "I" : md == YF_
 
 static void write_log(YfSim *s, const char *path, const YfBreak *rec, int nrec) {
   if (!yf_writer()) return;
-  char tmp[1100];
-  snprintf(tmp, sizeof tmp, "%s.tmp", path);
-  FILE *f = fopen(tmp, "w");
-  if (!f) { /* runs from the exit path too: there the other outputs are still written */
-    yf_output_error("fracture_log: cannot write '%s': %s", tmp, strerror(errno));
+  YfWFile w;
+  if (yf_wfile_open(&w, path) != 0) { /* runs from the exit path too: there the other outputs are still written */
+    yf_output_error("fracture_log: cannot write '%s': %s", path, strerror(errno));
     return;
   }
+  FILE *f = w.f;
   fprintf(f, "step,time,x,y,mode,triA,triB,length,joint\n");
   for (int i = 0; i < nrec; i++) {
     const YfBreak *b = &rec[i];
     fprintf(f, "%ld,%.17g,%.17g,%.17g,%s,%d,%d,%.17g,%d\n", b->step, b->time, b->x, b->y, mode_name(b->mode),
             s->model.tri.id[b->triA], s->model.tri.id[b->triB], b->length, b->joint);
   }
-  int bad = ferror(f);
-  if (fclose(f) != 0 || bad || rename(tmp, path) != 0) {
-    yf_output_error("fracture_log: cannot write '%s': %s", path, strerror(errno ? errno : EIO));
-    remove(tmp);
-  }
+  if (yf_wfile_close(&w, 0, 0) != 0) yf_output_error("fracture_log: cannot write '%s': %s", path, strerror(errno));
 }
 
 void joints_summary(YfSim *s) {

@@ -14,6 +14,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "summary.h"
+#include "wfile.h"
 #include "err.h"
 
 #ifndef YF_VERSION
@@ -209,18 +210,14 @@ int summary_write(const YfSim *s, const char *path, int status_code, const char 
   summary_json_string(ver, sizeof ver, YF_VERSION);
   snprintf(hash, sizeof hash, "%016llx", (unsigned long long)sim_state_hash(s));
 
-  size_t plen = strlen(path);
-  char *tmp = yf_malloc(plen + 5, "path");
-  memcpy(tmp, path, plen);
-  memcpy(tmp + plen, ".tmp", 5);
-  FILE *f = fopen(tmp, "w");
-  if (!f) {
+  YfWFile w;
+  if (yf_wfile_open(&w, path) != 0) {
     int e = errno;
-    free(tmp);
     free(xnum);
     errno = e;
     return -1;
   }
+  FILE *f = w.f;
   fprintf(f, "{\n");
   fprintf(f, "  \"version\": %s,\n", ver);
   fprintf(f, "  \"status\": \"%s\",\n", yf_status_word(code));
@@ -246,21 +243,6 @@ int summary_write(const YfSim *s, const char *path, int status_code, const char 
   }
   fprintf(f, "\n}\n");
   free(xnum);
-  int bad = ferror(f) || fflush(f) != 0 || fsync(fileno(f)) != 0;
-  int e = errno;
-  if (fclose(f) != 0 && !bad) {
-    bad = 1;
-    e = errno;
-  }
-  if (!bad && rename(tmp, path) != 0) {
-    bad = 1;
-    e = errno;
-  }
-  if (bad) remove(tmp);
-  free(tmp);
-  if (bad) {
-    errno = e;
-    return -1;
-  }
+  if (yf_wfile_close(&w, 0, 1) != 0) return -1;
   return code;
 }
