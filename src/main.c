@@ -158,6 +158,15 @@ int main(int argc, char **argv) {
       return YF_EXIT_DECK;
     }
   }
+  /* the log and the summary are outputs like the deck's: no deck output may write them */
+  if (strcmp(log_path, "none") != 0) output_claim(&g_sim, "the log (-log)", log_path, NULL, 0);
+  if (g_sim.summary_path[0]) {
+    const char *by = output_claim(&g_sim, "the summary (-summary)", g_sim.summary_path, NULL, 0);
+    if (by) {
+      fprintf(stderr, "yfdem: -summary '%s': already written by %s\n", g_sim.summary_path, by);
+      return YF_EXIT_DECK;
+    }
+  }
   if (strcmp(log_path, "none") != 0 && yf_writer()) { /* MPI: rank 0 writes the log */
     g_log_path = log_path;
     g_sim.log = fopen(log_path, "w");

@@ -614,6 +614,46 @@ START_TEST(error_long_names) {
 }
 END_TEST
 
+/* Two outputs never write one file: two records on one file interleaved their rows, a record on
+ * a dump's index or a restart's file lost one of them, and dumps named out.h5 and ./out.h5 (or
+ * c3.h5 and c3, or c2.h5 and c2_cracks.h5, whose index is c2.h5's crack index) listed each
+ * other's frames (sweeps of new decks, 2026-11-28).  Each is refused at the second line; an
+ * output turned off (record off, undump) gives its file back. */
+START_TEST(error_outputs_share_a_file) {
+  make_tmpdir();
+  static const char *const pre = "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 0.1 4 2\n";
+  static const struct {
+    const char *lines, *want;
+  } cases[] = {
+      {"record r1 1 r.csv ke\nrecord r2 5 r.csv strain\n", "e.deck:4: error: record: 'r.csv': already written by record 'r1'"},
+      {"dump d h5 5 o.h5\nrecord r 1 o.xmf ke\n", "e.deck:4: error: record: 'o.xmf': already written by dump 'd'"},
+      {"dump d h5 5 o.h5\nrecord r 1 o_000003.h5 ke\n", "e.deck:4: error: record: 'o_000003.h5': already written by dump 'd'"},
+      {"dump d csv 5 x\nrecord r 1 x_frames.csv ke\n", "e.deck:4: error: record: 'x_frames.csv': already written by dump 'd'"},
+      {"dump d1 h5 5 out.h5\ndump d2 h5 3 ./out.h5\n", "e.deck:4: error: dump: './out.h5': a file of it is already written by dump 'd1'"},
+      {"dump d1 h5 5 c3.h5\ndump d2 h5 3 c3\n", "e.deck:4: error: dump: 'c3': a file of it is already written by dump 'd1'"},
+      {"dump d1 h5 5 c2.h5\ndump d2 h5 3 c2_cracks.h5\n", "e.deck:4: error: dump: 'c2_cracks.h5': a file of it is already written by dump 'd1'"},
+      {"fracture_log x.csv\nrecord r 10 x.csv ke\n", "e.deck:4: error: record: 'x.csv': already written by fracture_log"},
+      {"fracture_log x.csv opened x.csv\n", "e.deck:3: error: fracture_log: 'x.csv': already written by fracture_log"},
+      {"restart every 100 x.csv\nrecord r 10 x.csv.a ke\n", "e.deck:4: error: record: 'x.csv.a': already written by restart every"},
+      {"metrics log m.csv\nrecord r 10 m.csv ke\n", "e.deck:4: error: record: 'm.csv': already written by metrics log"},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+    char deck[512];
+    snprintf(deck, sizeof deck, "%s%s", pre, cases[k].lines);
+    Run r = run_child(deck, NULL, NULL);
+    ck_assert_msg(r.code == 1 && strstr(r.err, cases[k].want), "%s: exit %d: %s", cases[k].lines, r.code, r.err);
+    run_free(&r);
+  }
+  /* turned off, its file is free again; a fracture_log replaced gives its file back too */
+  char deck[512];
+  snprintf(deck, sizeof deck, "%srecord r 1 a.csv ke\nrecord r off\nrecord q 1 a.csv ke\ndump d h5 5 o.h5\nundump d\n"
+           "dump e h5 5 o.h5\nfracture_log f.csv\nfracture_log g.csv\nrecord z 1 f.csv ke\n", pre);
+  Run r = run_child(deck, NULL, NULL);
+  ck_assert_msg(r.code == 0, "exit %d: %s", r.code, r.err);
+  run_free(&r);
+}
+END_TEST
+
 START_TEST(error_includes) {
   expect_error("variable a equal 1\n\ninclude missing.deck\n", 2,
                "e.deck:3: error: include: cannot open 'missing.deck': No such file or directory", NULL, NULL);
@@ -780,6 +820,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, error_expressions_and_variables);
   tcase_add_test(tc, error_includes);
   tcase_add_test(tc, error_long_names);
+  tcase_add_test(tc, error_outputs_share_a_file);
   tcase_add_test(tc, arg_helpers);
   tcase_add_exit_test(tc, exit_deck_error, 1);
   tcase_add_exit_test(tc, exit_missing_include, 2);

@@ -312,6 +312,17 @@ START_TEST(test_whole_files_through_links_and_devices) {
 }
 END_TEST
 
+/* -summary on the log's file (the default log.yfdem): refused before anything runs, exit 1. */
+START_TEST(test_summary_on_the_log_refused) {
+  char *err, *dir;
+  int rc = yft_run_binary("a.deck", BAR "run 2\n", "-summary log.yfdem", &err, &dir);
+  ck_assert_msg(rc == 1 && strstr(err, "yfdem: -summary 'log.yfdem': already written by the log (-log)"), "exit %d: %s", rc,
+                err);
+  free(err);
+  free(dir);
+}
+END_TEST
+
 Suite *habits_suite(void) {
   Suite *s = suite_create("habits");
   TCase *t = tcase_create("lammps");
@@ -324,6 +335,7 @@ Suite *habits_suite(void) {
   tcase_add_test(t, test_no_files_before_run);
   tcase_add_test(t, test_outputs_in_working_dir);
   tcase_add_test(t, test_whole_files_through_links_and_devices);
+  tcase_add_test(t, test_summary_on_the_log_refused);
   suite_add_tcase(s, t);
   return s;
 }

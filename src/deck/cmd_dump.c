@@ -108,13 +108,25 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
     arg_error(a, 3, "the file name may not contain ':' (XDMF uses it to separate file and dataset)");
   if (output_find_dump(s, id) >= 0) arg_error(a, 0, "a dump with this id exists (undump it first)");
   if (output_ndump(s) >= YF_MAX_DUMPS) arg_error(a, 0, "at most %d dumps at a time", YF_MAX_DUMPS);
-  for (int i = 0; i < output_ndump(s); i++)
-    if (strcmp(output_dump_path(s, i), path) == 0)
-      arg_error(a, 3, "already written by dump '%s'", output_dump_id(s, i));
   int k = output_add_dump(s, id, style, every, path, fields, compress);
+  char owner[YF_NAME_MAX + 16];
+  snprintf(owner, sizeof owner, "dump '%s'", id);
   if (style == YF_DUMP_H5) {
     const char *stem, *ext, *xmf;
     output_dump_files(s, k, &stem, &ext, &xmf);
+    /* its frames, its index and its crack index (STEM_cracks.xmf): no other output's */
+    char *fr = yf_malloc(strlen(stem) + 16, "path"), *cx = yf_malloc(strlen(stem) + 16, "path");
+    sprintf(fr, "%s_", stem);
+    sprintf(cx, "%s_cracks.xmf", stem);
+    const char *by = output_claim(s, owner, fr, ext, 1);
+    if (!by) by = output_claim(s, owner, xmf, NULL, 0);
+    if (!by) by = output_claim(s, owner, cx, NULL, 0);
+    free(fr);
+    free(cx);
+    if (by) {
+      output_remove_dump(s, id);
+      arg_error(a, 3, "a file of it is already written by %s", by);
+    }
     /* a missing folder: now, at this line, not at the run after the other outputs began */
     char what[256];
     snprintf(what, sizeof what, "dump %s", id);
@@ -123,6 +135,17 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
     sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN%s (index %s)%s\n", id, every, stem, ext, xmf,
                output_dump_mpio(s, k) ? "; every rank writes its rows (parallel HDF5; YFDEM_H5_MPIIO=0: gathered to rank 0)" : "");
   } else {
+    char *fr = yf_malloc(strlen(path) + 16, "path"), *ix = yf_malloc(strlen(path) + 16, "path");
+    sprintf(fr, "%s_", path);
+    sprintf(ix, "%s_frames.csv", path);
+    const char *by = output_claim(s, owner, fr, ".csv", 1);
+    if (!by) by = output_claim(s, owner, ix, NULL, 0);
+    free(fr);
+    free(ix);
+    if (by) {
+      output_remove_dump(s, id);
+      arg_error(a, 3, "a file of it is already written by %s", by);
+    }
     char what[256];
     snprintf(what, sizeof what, "dump %s", id);
     arg_writable(a, what, "%s_frames.csv", path);

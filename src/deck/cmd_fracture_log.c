@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <string.h>
 #include "deck.h"
+#include "output.h"
 #include "joint.h"
 
 /* fracture_log FILE [opened FILE2]: the break record as CSV, and optionally the opened-crack
@@ -23,5 +24,7 @@ void cmd_fracture_log(YfSim *s, const YfArgs *a) {
   }
   for (int i = 0; i < a->n; i += 2) /* a missing folder: now, not after the run */
     if (!yf_can_create(a->w[i])) yf_io_error(&a->loc, "fracture_log: cannot write '%s': %s", a->w[i], strerror(errno));
+  output_release(s, "fracture_log"); /* a later fracture_log replaces the earlier */
+  for (int i = 0; i < a->n; i += 2) arg_claim(s, a, i, "fracture_log", a->w[i], NULL, 0);
   joints_set_logs(s, a->w[0], opened);
 }

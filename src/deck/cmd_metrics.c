@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <string.h>
 #include "deck.h"
+#include "output.h"
 #include "joint.h"
 #include "metrics.h"
 #include "region.h"
@@ -67,6 +68,8 @@ void cmd_metrics(YfSim *s, const YfArgs *a) {
     arg_count(a, 2, 4);
     if (strlen(a->w[1]) >= YF_METRICS_PATH_MAX) arg_error(a, 1, "path too long");
     if (!yf_can_create(a->w[1])) yf_io_error(&a->loc, "metrics log: cannot write '%s': %s", a->w[1], strerror(errno));
+    output_release(s, "metrics log"); /* a later metrics log replaces the earlier */
+    arg_claim(s, a, 1, "metrics log", a->w[1], NULL, 0);
     metrics_set_log(a->w[1], 0);
     if (a->n > 2) {
       static const char *const ev[] = {"every", NULL};

@@ -2,7 +2,10 @@
  * (restart_every, io/restart.c).
  */
 #include <limits.h>
+#include <stdlib.h>
+#include <string.h>
 #include "deck.h"
+#include "output.h"
 #include "report.h"
 #include "restart.h"
 
@@ -14,6 +17,7 @@ void cmd_restart(YfSim *s, const YfArgs *a) {
   int k = arg_choice(a, 0, "restart keyword", w);
   if (k == 1) {
     arg_count(a, 1, 1);
+    output_release(s, "restart every");
     restart_every(s, 0, NULL);
     return;
   }
@@ -23,5 +27,17 @@ void cmd_restart(YfSim *s, const YfArgs *a) {
   if (!base[0]) arg_error(a, 2, "empty file name");
   /* a missing folder: now, at this line, not at the first restart step after frames were written */
   arg_writable(a, "restart every", "%s.a", base);
+  output_release(s, "restart every"); /* a later one replaces the earlier */
+  char *ab = yf_malloc(strlen(base) + 3, "path");
+  for (int i = 0; i < 2; i++) {
+    sprintf(ab, "%s.%c", base, 'a' + i);
+    const char *by = output_claim(s, "restart every", ab, NULL, 0);
+    if (by) {
+      free(ab);
+      output_release(s, "restart every");
+      arg_error(a, 2, "'%s.%c' is already written by %s", base, 'a' + i, by);
+    }
+  }
+  free(ab);
   restart_every(s, every, base);
 }

@@ -31,6 +31,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "deck.h"
+#include "output.h"
 #include "query.h"
 #include "deck_cmds.h"
 #include "expr.h"
@@ -1250,6 +1251,14 @@ void deck_cmd_quit(struct YfSim *sim, const YfArgs *a) {
   YfDeck *d = deck_of(sim, a);
   arg_count(a, 0, 0);
   d->quit = 1;
+}
+
+void arg_claim(struct YfSim *s, const YfArgs *a, int i, const char *owner, const char *prefix, const char *suffix,
+               int numbered) {
+  const char *by = output_claim(s, owner, prefix, suffix, numbered);
+  if (!by) return;
+  if (numbered) arg_error(a, i, "its files %sNNNNNN%s are already written by %s", prefix, suffix ? suffix : "", by);
+  arg_error(a, i, "already written by %s", by);
 }
 
 void arg_writable(const YfArgs *a, const char *what, const char *fmt, ...) {

@@ -78,6 +78,10 @@ void arg_error(const YfArgs *a, int i, const char *fmt, ...) __attribute__((nore
  * not at the run after other outputs began): the path from fmt; what names it in the message
  * ("dump d", "restart every"). */
 void arg_writable(const YfArgs *a, const char *what, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* Claim for owner ("record r1") the file prefix, or the numbered files prefix NNNNNN suffix, that
+ * an output will write (output_claim); a file another output writes is an error at word i. */
+void arg_claim(struct YfSim *s, const YfArgs *a, int i, const char *owner, const char *prefix, const char *suffix,
+               int numbered);
 
 /* Strict number parsing without a deck context: returns 1 and sets *out on success. */
 int yf_parse_double(const char *s, double *out);

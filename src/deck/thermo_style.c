@@ -26,6 +26,7 @@
 #include "par.h"
 #include "thermo_style.h"
 #include "deck.h"
+#include "output.h"
 #include "err.h"
 
 #define REPORT_MAX_WORDS 32
@@ -159,6 +160,9 @@ void cmd_record(YfSim *s, const YfArgs *a) {
     if (!strcmp(P.rec[i].id, id)) slot = i;
   if (a->n == 2 && !strcmp(a->w[1], "off")) {
     if (slot < 0) arg_error(a, 0, "no such record");
+    char owner[YF_NAME_MAX + 16];
+    snprintf(owner, sizeof owner, "record '%s'", id);
+    output_release(s, owner);
     Record *r = &P.rec[slot];
     if (r->fp) fclose(r->fp);
     words_free(&r->q);
@@ -175,6 +179,9 @@ void cmd_record(YfSim *s, const YfArgs *a) {
   if (!file[0]) arg_error(a, 2, "empty file name");
   /* a missing folder: now, at this line (the file itself is created at its first row) */
   if (!yf_can_create(file)) yf_io_error(&a->loc, "record %s: cannot write '%s': %s", id, file, strerror(errno));
+  char owner[YF_NAME_MAX + 16];
+  snprintf(owner, sizeof owner, "record '%s'", id);
+  arg_claim(s, a, 2, owner, file, NULL, 0);
   Record *r = &P.rec[P.nrec];
   memset(r, 0, sizeof *r);
   snprintf(r->id, sizeof r->id, "%s", id);

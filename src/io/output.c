@@ -51,6 +51,7 @@
  * The XDMF <Grid> text of every frame is kept in memory and the whole index is rewritten per
  * frame (about 2 kB per frame), so the index stays a plain, self-contained file.
  */
+#include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -983,12 +984,107 @@ void output_close_all(YfSim *s) {
   for (int i = 0; i < o->ndump; i++) dump_close(o->dump[i]);
 }
 
+struct YfClaim {
+  char *owner, *prefix, *suffix; /* prefix absolute and clean; suffix "" unless numbered */
+  int numbered;
+};
+
 void output_free(YfSim *s) {
   struct YfOutput *o = s->out;
   if (!o) return;
   for (int i = 0; i < o->ndump; i++) dump_free(o->dump[i]);
+  while (o->nclaim) output_release(s, o->claim[0].owner);
+  free(o->claim);
   free(o);
   s->out = NULL;
+}
+
+/* ---------------------------------------------------------------- claims */
+
+static struct YfOutput *out_get(YfSim *s) {
+  if (!s->out) {
+    s->out = yf_calloc(1, sizeof *s->out, "output");
+    s->out->next_due = LONG_MAX;
+  }
+  return s->out;
+}
+
+/* path made absolute (relative to the working directory) with '.', '..' and '//' resolved, in
+ * text only: "out.h5", "./out.h5" and "/work/x/../x/out.h5" are one name. */
+static char *clean_path(const char *path) {
+  char cwd[4096] = "";
+  if (path[0] != '/' && !getcwd(cwd, sizeof cwd)) cwd[0] = 0;
+  char *in = str_printf("%s/%s", cwd, path), *out = yf_malloc(strlen(in) + 2, "path");
+  size_t n = 0;
+  for (char *p = in; *p;) {
+    while (*p == '/') p++;
+    char *e = p;
+    while (*e && *e != '/') e++;
+    size_t len = (size_t)(e - p);
+    if (len == 0 || (len == 1 && p[0] == '.')) {
+    } else if (len == 2 && p[0] == '.' && p[1] == '.') {
+      while (n > 0 && out[n - 1] != '/') n--;
+      if (n > 0) n--;
+    } else {
+      out[n++] = '/';
+      memcpy(out + n, p, len);
+      n += len;
+    }
+    p = e;
+  }
+  if (!n) out[n++] = '/';
+  out[n] = 0;
+  free(in);
+  return out;
+}
+
+/* Whether the numbered claim a (prefix a, 6 digits, suffix) names file f. */
+static int numbered_names(const struct YfClaim *a, const char *f) {
+  size_t lp = strlen(a->prefix), ls = strlen(a->suffix), lf = strlen(f);
+  if (lf != lp + 6 + ls || strncmp(f, a->prefix, lp) || strcmp(f + lp + 6, a->suffix)) return 0;
+  for (size_t i = lp; i < lp + 6; i++)
+    if (!isdigit((unsigned char)f[i])) return 0;
+  return 1;
+}
+
+static int claims_meet(const struct YfClaim *a, const struct YfClaim *b) {
+  if (a->numbered && b->numbered) return !strcmp(a->prefix, b->prefix) && !strcmp(a->suffix, b->suffix);
+  if (a->numbered) return numbered_names(a, b->prefix);
+  if (b->numbered) return numbered_names(b, a->prefix);
+  return !strcmp(a->prefix, b->prefix);
+}
+
+const char *output_claim(YfSim *s, const char *owner, const char *prefix, const char *suffix, int numbered) {
+  struct YfOutput *o = out_get(s);
+  struct YfClaim c = {NULL, clean_path(prefix), yf_strdup(numbered && suffix ? suffix : ""), numbered};
+  for (int i = 0; i < o->nclaim; i++)
+    if (claims_meet(&o->claim[i], &c)) {
+      free(c.prefix);
+      free(c.suffix);
+      return o->claim[i].owner;
+    }
+  c.owner = yf_strdup(owner);
+  o->claim = yf_realloc(o->claim, (size_t)(o->nclaim + 1) * sizeof *o->claim, "output claims");
+  o->claim[o->nclaim++] = c;
+  return NULL;
+}
+
+void output_release(YfSim *s, const char *owner) {
+  struct YfOutput *o = s->out;
+  if (!o) return;
+  char *own = yf_strdup(owner); /* owner may be a claim's own string */
+  int k = 0;
+  for (int i = 0; i < o->nclaim; i++) {
+    if (!strcmp(o->claim[i].owner, own)) {
+      free(o->claim[i].owner);
+      free(o->claim[i].prefix);
+      free(o->claim[i].suffix);
+    } else {
+      o->claim[k++] = o->claim[i];
+    }
+  }
+  o->nclaim = k;
+  free(own);
 }
 
 long output_frames(const YfSim *s, const char *id) {
@@ -1027,11 +1123,7 @@ int output_mpio(void) {
 int output_add_dump(YfSim *s, const char *id, int style, long every, const char *path,
                     unsigned fields, int compress) {
   io_attach(s); /* dumps observe the run loop (report.c) */
-  if (!s->out) {
-    s->out = yf_calloc(1, sizeof *s->out, "output");
-    s->out->next_due = LONG_MAX;
-  }
-  struct YfOutput *o = s->out;
+  struct YfOutput *o = out_get(s);
   if (o->ndump >= YF_MAX_DUMPS || find_dump(o, id, NULL) || every < 1) return -1;
   YfDump *d = yf_calloc(1, sizeof *d, "dump");
   snprintf(d->id, sizeof d->id, "%s", id);
@@ -1073,6 +1165,9 @@ int output_remove_dump(YfSim *s, const char *id) {
   int slot;
   YfDump *d = find_dump(o, id, &slot);
   if (!d) return -1;
+  char owner[YF_NAME_MAX + 16];
+  snprintf(owner, sizeof owner, "dump '%s'", d->id);
+  output_release(s, owner);
   dump_free(d);
   for (int i = slot; i + 1 < o->ndump; i++) o->dump[i] = o->dump[i + 1];
   o->ndump--;

@@ -39,11 +39,26 @@ enum {
 
 struct YfDump;
 
+struct YfClaim;
+
 struct YfOutput {
   long next_due;   /* smallest step at which any dump is due (LONG_MAX: none) */
   int ndump;
   struct YfDump *dump[YF_MAX_DUMPS];
+  int nclaim;      /* the files outputs write, by owner (output_claim)        */
+  struct YfClaim *claim;
 };
+
+/* The files the outputs write, so that two outputs never write one file (two records on one
+ * file interleaved their rows; a record on a dump's index, or dumps named out.h5 and ./out.h5,
+ * lost one of the two).  Every command that names an output claims its files here, in one
+ * place: dumps, records, fracture_log, metrics log, restart every, -log, -summary.  A claim is
+ * PREFIX exactly, or PREFIX NNNNNN SUFFIX (any 6 digits: numbered frames); paths are compared
+ * absolute, with '.', '..' and repeated '/' resolved (links are not followed).  Returns the
+ * owner of a claim the new one meets (nothing is recorded then), or NULL when it is recorded. */
+const char *output_claim(YfSim *s, const char *owner, const char *prefix, const char *suffix, int numbered);
+/* Forget every claim of owner (undump, record ID off, a fracture_log or restart replaced). */
+void output_release(YfSim *s, const char *owner);
 
 /* Deck commands (their words: deck/cmd_dump.c, cmd_undump.c).
  *   dump ID h5 N FILE.h5 [fields F1 F2 ...] [compress]
