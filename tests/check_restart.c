@@ -187,6 +187,52 @@ START_TEST(test_restart_bitwise) {
 }
 END_TEST
 
+/* The text of summary key KEY in NAME.json (a number, null, or an object), malloc'd. */
+static char *summary_value(const char *name, const char *key) {
+  char path[256], k[96];
+  snprintf(path, sizeof path, "%s/%s.json", tmpdir, name);
+  snprintf(k, sizeof k, "\"%s\": ", key);
+  char *j = slurp(path), *p = strstr(j, k), *out;
+  ck_assert_msg(p != NULL, "%s: no key %s", name, key);
+  p += strlen(k);
+  size_t n = *p == '{' ? strcspn(p, "}") + 1 : strcspn(p, ",\n");
+  out = strndup(p, n);
+  free(j);
+  return out;
+}
+
+/* The metrics' events before a restart stay in the continued run's summary: peak_stress,
+ * stress_first_above and first_fragment_time were those of the first step after the restart (a
+ * sweep of new decks, 2026-11-28); the restart now carries them. */
+START_TEST(test_restart_keeps_metrics_events) {
+  mk_tmpdir();
+  const char *met = "metrics body beam\nmetrics peak_stress on threshold 1e5\n";
+  char tail[256];
+  snprintf(tail, sizeof tail, "%srun %d\n", met, N_FULL);
+  write_deck("full.deck", NULL, tail);
+  snprintf(tail, sizeof tail, "%srun %d\nwrite_restart half.restart\n", met, N_HALF);
+  write_deck("first.deck", NULL, tail);
+  snprintf(tail, sizeof tail, "%sread_restart half.restart\nrun %d upto\n", met, N_FULL);
+  write_deck("second.deck", NULL, tail);
+  char h_full[17], h_first[17], h_second[17];
+  expect_ok("full.deck", 2, h_full);
+  expect_ok("first.deck", 2, h_first);
+  expect_ok("second.deck", 2, h_second);
+  ck_assert_str_eq(h_second, h_full);
+  static const char *const keys[] = {"stress_first_above", "first_fragment_time", "peak_stress"};
+  for (int i = 0; i < 3; i++) {
+    char *a = summary_value("full.deck", keys[i]), *b = summary_value("second.deck", keys[i]), *f = summary_value("first.deck", keys[i]);
+    fprintf(stderr, "restart: %s: uninterrupted %s, continued %s\n", keys[i], a, b);
+    ck_assert_msg(!strcmp(a, b), "%s: continued %s, uninterrupted %s", keys[i], b, a);
+    if (i < 2) ck_assert_msg(!strcmp(a, f), "%s: the event is not before the restart (%s)", keys[i], f); /* a real test */
+    free(a);
+    free(b);
+    free(f);
+  }
+  rm_tmpdir();
+}
+END_TEST
+
 /* restart every N FILE: FILE.a and FILE.b alternate; read_restart FILE takes the newer. */
 START_TEST(test_restart_periodic) {
   mk_tmpdir();
@@ -922,6 +968,7 @@ Suite *restart_suite(void) {
   TCase *tc = tcase_create("restart");
   tcase_set_timeout(tc, 300);
   tcase_add_test(tc, test_restart_bitwise);
+  tcase_add_test(tc, test_restart_keeps_metrics_events);
   tcase_add_test(tc, test_restart_periodic);
   tcase_add_test(tc, test_restart_in_process);
   tcase_add_test(tc, test_restart_dumps_continue);

@@ -93,6 +93,27 @@ void metrics_reset(void) {
   M.until = INFINITY;
 }
 
+void metrics_state_save(double d[METRICS_STATE_ND], long l[METRICS_STATE_NL]) {
+  const double dd[METRICS_STATE_ND] = {M.peak_val, M.peak_time, M.above_val, M.above_time, M.first_frag_time};
+  const long ll[METRICS_STATE_NL] = {M.peak_step, M.peak_tri, M.above_found, M.above_step, M.above_tri, M.last_nbroken};
+  memcpy(d, dd, sizeof dd);
+  memcpy(l, ll, sizeof ll);
+}
+
+void metrics_state_load(const double d[METRICS_STATE_ND], const long l[METRICS_STATE_NL]) {
+  M.peak_val = d[0];
+  M.peak_time = d[1];
+  M.above_val = d[2];
+  M.above_time = d[3];
+  M.first_frag_time = d[4];
+  M.peak_step = l[0];
+  M.peak_tri = (int)l[1];
+  M.above_found = (int)l[2];
+  M.above_step = l[3];
+  M.above_tri = (int)l[4];
+  M.last_nbroken = l[5];
+}
+
 static const char log_head[] = "step,time,kinetic,strain,external_work,damping,joint_dissipated,contact,friction,"
                                "broken,crack_I,crack_II,crack_mixed,fragments,sigma1_max,opened,opened_I,opened_II,"
                                "opened_mixed\n";

@@ -57,5 +57,11 @@ void metrics_step(YfSim *s);
 void metrics_summary(YfSim *s);
 /* Forget everything (sim_free). */
 void metrics_reset(void);
+/* What a restart carries of the metrics (restart.c): the events before it that the summary reports
+ * (peak_stress, stress_first_above, first_fragment_time) and the broken-joint count they were
+ * last checked at.  A continued run reported the first step after the restart instead. */
+enum { METRICS_STATE_ND = 5, METRICS_STATE_NL = 6 };
+void metrics_state_save(double d[METRICS_STATE_ND], long l[METRICS_STATE_NL]);
+void metrics_state_load(const double d[METRICS_STATE_ND], const long l[METRICS_STATE_NL]);
 
 #endif

@@ -40,6 +40,7 @@
 #include "joint.h"
 #include "run.h"
 #include "energy.h"
+#include "metrics.h"
 
 /* 2: the Coulomb friction law's memory is s = F_t / sqrt(k_t) (contact_pair.h), no longer F_t.
  * A version 1 file is read when none of its Coulomb couples holds friction memory (the rest of
@@ -302,6 +303,15 @@ static void write_all(W *w, YfSim *s) {
     }
     gclose(g);
   }
+
+  /* the metrics' events before this step (an optional group: restarts without it read) */
+  double md[METRICS_STATE_ND];
+  long ml[METRICS_STATE_NL];
+  metrics_state_save(md, ml);
+  g = group(w, "metrics");
+  put(w, g, "d", H5T_NATIVE_DOUBLE, METRICS_STATE_ND, md);
+  put(w, g, "l", H5T_NATIVE_LONG, METRICS_STATE_NL, ml);
+  gclose(g);
 
   YfContactState cs;
   if (contact_state_save(s, &cs)) {
@@ -627,6 +637,15 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
     H5Gclose(g);
     contact_state_load(s, &st);
     free(st.ij); free(st.g); free(st.alive); free(st.fcn);
+  }
+  if (H5Lexists(r.file, "metrics", H5P_DEFAULT) > 0) {
+    double md[METRICS_STATE_ND];
+    long ml[METRICS_STATE_NL];
+    g = ropen(&r, "metrics");
+    get(&r, g, "d", H5T_NATIVE_DOUBLE, METRICS_STATE_ND, md);
+    get(&r, g, "l", H5T_NATIVE_LONG, METRICS_STATE_NL, ml);
+    H5Gclose(g);
+    metrics_state_load(md, ml);
   }
   H5Fclose(r.file);
 
