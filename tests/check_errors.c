@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include "yftest.h"
@@ -160,6 +161,54 @@ START_TEST(test_record_bad_quantity_no_file) {
 }
 END_TEST
 
+/* An input that is a directory, or a device without end, is an I/O error (exit 2) at its line:
+ * a directory read as an empty history, table or deck gave the wrong cause ("at least two points
+ * needed", "MNODIM is required"), and /dev/zero grew until the kernel killed the process; an
+ * output that is a directory is refused without a PATH.tmp left beside it. */
+START_TEST(test_inputs_that_are_not_files) {
+  static const struct {
+    const char *line, *want;
+  } cases[] = {
+      {"history h file adir\n", "bad.deck:3: error: history: cannot open 'adir': Is a directory"},
+      {"nodes adir\n", "bad.deck:3: error: nodes: cannot open"},
+      {"jointprop j ft 1 fs 1 gf 1 pen 1 law table adir\n", "bad.deck:3: error: jointprop: cannot open softening table"},
+      {"read_y2d adir\n", "bad.deck:3: error: cannot open Y2D deck 'adir': Is a directory"},
+      {"include adir\n", "bad.deck:3: error: include: cannot open"},
+      {"history h file /dev/zero\n", "bad.deck:3: error: history: cannot open '/dev/zero': File too large"},
+      {"include /dev/zero\n", "bad.deck:3: error: include: cannot open '/dev/zero': File too large"},
+      {"timestep 1e-6\nwrite_y2d adir steps 10\n", "bad.deck:4: error: write_y2d: cannot write 'adir': Is a directory"},
+  };
+  /* adir: a directory beside the deck */
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+    char tmpl[] = "/tmp/yfe_dir_XXXXXX", p[600], cmd[1600];
+    char *d = mkdtemp(tmpl);
+    ck_assert_ptr_nonnull(d);
+    snprintf(p, sizeof p, "%s/adir", d);
+    ck_assert_int_eq(mkdir(p, 0755), 0);
+    snprintf(p, sizeof p, "%s/bad.deck", d);
+    FILE *f = fopen(p, "w");
+    ck_assert_ptr_nonnull(f);
+    fprintf(f, "%s%s", BAR, cases[k].line);
+    fclose(f);
+    const char *bin = getenv("YFDEM") ? getenv("YFDEM") : "./yfdem";
+    char abs[1024] = "";
+    if (bin[0] != '/' && getcwd(abs, sizeof abs - strlen(bin) - 2)) strcat(strcat(abs, "/"), bin);
+    snprintf(cmd, sizeof cmd, "cd %s && ulimit -v 4000000 && %s -in bad.deck -log none >/dev/null 2>err.txt", d,
+             abs[0] ? abs : bin);
+    int rc = system(cmd);
+    snprintf(p, sizeof p, "%s/err.txt", d);
+    char *e = slurp(p);
+    ck_assert_msg(WIFEXITED(rc) && WEXITSTATUS(rc) == 2 && e && strstr(e, cases[k].want), "%s: exit %d: %s", cases[k].line,
+                  WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, e ? e : "");
+    free(e);
+    snprintf(p, sizeof p, "%s/adir.tmp", d);
+    ck_assert_msg(!yft_exists(p), "%s: adir.tmp left", cases[k].line);
+    snprintf(cmd, sizeof cmd, "rm -rf %s", d);
+    if (system(cmd)) {}
+  }
+}
+END_TEST
+
 /* A run that goes wrong stops as a numerical failure naming the step and the element, keeps the
  * frames written before it, and exits 3. */
 START_TEST(test_inverted_element_numerical_failure) {
@@ -269,6 +318,7 @@ Suite *errors_suite(void) {
   tcase_add_test(t, test_timestep_above_limit_refused);
   tcase_add_test(t, test_damping_above_two_over_dt_refused);
   tcase_add_test(t, test_record_bad_quantity_no_file);
+  tcase_add_test(t, test_inputs_that_are_not_files);
   tcase_add_test(t, test_inverted_element_numerical_failure);
   tcase_add_test(t, test_never_inf_nan);
   tcase_add_test(t, test_gmsh_coincident_nodes_warned);

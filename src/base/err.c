@@ -214,8 +214,39 @@ char *yf_strdup(const char *s) {
   return p;
 }
 
+/* Input read from something other than a file (a pipe, a device) stops here: /dev/zero grew
+ * until the kernel killed the process (a sweep of bad input, 2026-11-28). */
+#define YF_READ_STREAM_MAX ((size_t)256 << 20)
+
+FILE *yf_open_input(const char *path, const char *mode) {
+  FILE *f = fopen(path, mode);
+  if (!f) return NULL;
+  struct stat st;
+  if (fstat(fileno(f), &st) != 0 || S_ISREG(st.st_mode)) return f;
+  if (S_ISDIR(st.st_mode)) { /* fopen opens a directory, and reading it fails without a word */
+    fclose(f);
+    errno = EISDIR;
+    return NULL;
+  }
+  /* a pipe or a device: its bytes, up to the limit, into an unnamed file the caller reads */
+  FILE *t = tmpfile();
+  char buf[65536];
+  size_t n = 0, r;
+  while (t && (r = fread(buf, 1, sizeof buf, f)) > 0 && (n += r) <= YF_READ_STREAM_MAX)
+    if (fwrite(buf, 1, r, t) != r) break;
+  int err = !t ? errno : n > YF_READ_STREAM_MAX ? EFBIG : ferror(f) || ferror(t) ? (errno ? errno : EIO) : 0;
+  fclose(f);
+  if (err) {
+    if (t) fclose(t);
+    errno = err;
+    return NULL;
+  }
+  rewind(t);
+  return t;
+}
+
 char *yf_read_file(const char *path, size_t *len, const char *what) {
-  FILE *f = fopen(path, "rb");
+  FILE *f = yf_open_input(path, "rb");
   if (!f) return NULL;
   size_t cap = 1 << 16, n = 0;
   char *t = yf_malloc(cap, what);

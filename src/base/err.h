@@ -91,6 +91,9 @@ char *yf_strdup(const char *s);
  * set if it cannot be opened or read.  what names it for an allocation failure.  A UTF-8
  * byte-order mark at its start is left out. */
 char *yf_read_file(const char *path, size_t *len, const char *what);
+/* fopen of an input file for reading: a directory is refused (EISDIR); a pipe or a device is read
+ * up to 256 MiB into an unnamed file returned in its place (beyond: EFBIG); NULL with errno. */
+FILE *yf_open_input(const char *path, const char *mode);
 /* Of CSV rows that each begin with a step ("STEP,..."), text from its start: the length of the
  * leading rows whose step is below step (a log continued after a restart keeps these, and writes
  * the rest again). */

@@ -1,6 +1,7 @@
 /* cmd_history.c: the `history` deck command (a row of commands.def): reads its words and calls
  * the simulation's own settings (sim.h).
  */
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 #include "deck.h"
@@ -45,8 +46,8 @@ void cmd_history(YfSim *s, const YfArgs *a) {
   } else {
     arg_count(a, 3, 3);
     char *path = deck_resolve_path(a, a->w[2]);
-    FILE *fp = fopen(path, "r");
-    if (!fp) { YfLoc l = a->loc; free(path); yf_io_error(&l, "history: cannot open '%s'", a->w[2]); }
+    FILE *fp = yf_open_input(path, "r");
+    if (!fp) { YfLoc l = a->loc; free(path); yf_io_error(&l, "history: cannot open '%s': %s", a->w[2], strerror(errno)); }
     h.kind = YF_HIST_TABLE;
     char *line = NULL; /* whole lines, however long: a long comment must not split a line in two */
     size_t lcap = 0;

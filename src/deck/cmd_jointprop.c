@@ -1,6 +1,7 @@
 /* cmd_jointprop.c: the `jointprop` deck command (a row of commands.def): reads the words (and a
  * softening table file) into a YfJointProp and adds a joint set (joints_add_set, joint.h).
  */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,8 +12,8 @@
  * the first one, so the file may hold Pa or already normalised values; openings in any unit. */
 static void read_table(const YfArgs *a, int i, YfJointProp *p) {
   char *path = deck_resolve_path(a, a->w[i]);
-  FILE *fp = fopen(path, "r");
-  if (!fp) yf_io_error(&a->loc, "jointprop: cannot open softening table '%s'", path);
+  FILE *fp = yf_open_input(path, "r");
+  if (!fp) yf_io_error(&a->loc, "jointprop: cannot open softening table '%s': %s", path, strerror(errno));
   double w[YF_JOINT_TAB_MAX], sv[YF_JOINT_TAB_MAX];
   int n = 0, line = 0;
   char *buf = NULL; /* whole lines, however long: a long comment must not split a line in two */

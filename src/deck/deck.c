@@ -719,7 +719,7 @@ static DeckSource *source_from_stream(YfDeck *d, FILE *fp, const char *name, con
 static DeckSource *source_load(YfDeck *d, const char *path, const YfLoc *from, const char *cmd) {
   for (DeckSource *s = d->sources; s; s = s->next)
     if (!strcmp(s->name, path)) return s;
-  FILE *fp = fopen(path, "rb");
+  FILE *fp = yf_open_input(path, "rb");
   if (!fp) {
     if (cmd) yf_io_error(from, "%s: cannot open '%s': %s", cmd, path, strerror(errno));
     yf_io_error(from, "cannot open deck '%s': %s", path, strerror(errno));

@@ -47,7 +47,7 @@ void deck_read_rows(YfModel *m, const YfArgs *a, int want, YfRowFn fn, const cha
   arg_count(a, 1, 2);
   const char *bname = a->n > 1 ? a->w[1] : "inline";
   char *path = deck_resolve_path(a, arg_word(a, 0, "file"));
-  FILE *fp = fopen(path, "r");
+  FILE *fp = yf_open_input(path, "r");
   if (!fp) yf_io_error(&a->loc, "%s: cannot open '%s': %s", a->cmd, path, strerror(errno));
   char *line = NULL;
   size_t cap = 0;

@@ -790,7 +790,7 @@ static void do_include(Rd *r) {
   char *name = yf_strdup(t);
   if (r->depth >= MAX_DEPTH)
     yf_deck_error(&iloc, "$YINCL %s: include files nested deeper than %d", name, MAX_DEPTH - 1);
-  FILE *fp = fopen(name, "r");
+  FILE *fp = yf_open_input(name, "r");
   char *used = yf_strdup(name);
   if (!fp && name[0] != '/') {
     int e1 = errno;
@@ -798,7 +798,7 @@ static void do_include(Rd *r) {
     size_t n = strlen(dir) + strlen(name) + 2;
     char *alt = yf_malloc(n, "path");
     snprintf(alt, n, "%s/%s", dir, name);
-    fp = fopen(alt, "r");
+    fp = yf_open_input(alt, "r");
     if (!fp)
       yf_io_error(&iloc, "$YINCL %s: cannot open it relative to the working directory (%s) nor "
                   "as %s (%s)", name, strerror(e1), alt, strerror(errno));
@@ -1380,7 +1380,7 @@ int y2d_read(const char *path, YfY2d *out, const YfLoc *from) {
     if (kd->type == KI) *(long *)((char *)out + kd->off) = (long)kd->def;
     else if (kd->type == KR) *(double *)((char *)out + kd->off) = kd->def;
   }
-  FILE *fp = fopen(path, "r");
+  FILE *fp = yf_open_input(path, "r");
   if (!fp) yf_io_error(from, "cannot open Y2D deck '%s': %s", path, strerror(errno));
   Rd r;
   memset(&r, 0, sizeof r);

@@ -36,6 +36,7 @@
 #include "run.h"
 #include "y2d_model.h"
 #include "y2d_write.h"
+#include "wfile.h"
 
 /* One node's boundary condition as a Y2D BC set: kind per direction (1 force, 3 velocity),
  * amplitude, edge pressure and shear [Pa], history of the amplitudes (-1: factor 1). */
@@ -390,14 +391,14 @@ void y2d_write(YfSim *s, const char *path, long steps, long every, const YfLoc *
   }
 
   /* ---- write ---- */
-  size_t plen = strlen(path) + 8;
-  char *tmp = yf_malloc(plen, "path");
-  snprintf(tmp, plen, "%s.tmp", path);
-  /* MPI: rank 0 writes the file; the others format it into /dev/null (the same path, so the
-   * same errors), then every rank waits for the file (a deck may read it next) */
+  /* MPI: rank 0 writes the file (whole, wfile.h: PATH.tmp renamed into place); the others
+   * format it into /dev/null (the same path, so the same errors), then every rank waits for the
+   * file (a deck may read it next) */
   const int w = yf_writer();
-  FILE *f = fopen(w ? tmp : "/dev/null", "w");
-  if (!f) yf_io_error(loc, "write_y2d: cannot write '%s': %s", tmp, strerror(errno));
+  YfWFile wf;
+  if (yf_wfile_open(&wf, w ? path : "/dev/null") != 0)
+    yf_io_error(loc, "write_y2d: cannot write '%s': %s", path, strerror(errno));
+  FILE *f = wf.f;
   fprintf(f, "/* written by yfdem write_y2d from %s line %d */\n", loc && loc->file ? loc->file : "?", loc ? loc->line : 0);
   fprintf(f, "/* %d nodes, %d triangles, %d element properties, %d BC sets%s */\n", nn, nt, np, nset,
           nrow ? ", joints inserted by Y2D at step 0" : "");
@@ -513,13 +514,11 @@ void y2d_write(YfSim *s, const char *path, long steps, long every, const YfLoc *
       }
   }
   fprintf(f, "$YDOIT\n$YSTOP\n");
-  int bad = ferror(f);
-  if (fclose(f) != 0 || bad) yf_io_error(loc, "write_y2d: cannot write '%s': %s", tmp, strerror(errno));
-  if (w && rename(tmp, path) != 0) yf_io_error(loc, "write_y2d: cannot rename '%s' to '%s': %s", tmp, path, strerror(errno));
+  if (yf_wfile_close(&wf, 0, 0) != 0) yf_io_error(loc, "write_y2d: cannot write '%s': %s", path, strerror(errno));
   (void)par_any(0); /* MPI: the file is whole before any rank goes on */
   sim_printf(s, "write_y2d: %s: %d nodes, %d triangles, %d properties, %d BC sets, %d joint set(s), dt %.6g s, %ld steps, "
              "output every %ld steps\n", path, nn, nt, np, nset, njs, dt, steps, icoutf);
-  free(tmp); free(ik); free(sc); free(col); free(icol); free(knot);
+  free(ik); free(sc); free(col); free(icol); free(knot);
   free(nx0); free(ngm); free(tv); free(tprop); free(pbody); free(pmat); free(bset); free(jmap); free(jsrc);
   free(zuse); free(ouse); free(nobf); free(nbc); free(chist); free(ehist); free(sets); free(nset_of);
 }
