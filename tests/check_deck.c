@@ -654,6 +654,22 @@ START_TEST(error_outputs_share_a_file) {
 }
 END_TEST
 
+/* A history file's rows are two numbers: a third column was dropped silently (the nodes,
+ * triangles and table readers refuse one); a bad row names the file and its line. */
+START_TEST(error_history_file_rows) {
+  make_tmpdir();
+  write_file("three.hist", "# t v\n0 0\n1 2 99\n");
+  Run r = run_child("history h file three.hist\n", NULL, NULL);
+  ck_assert_msg(r.code == 1 && strstr(r.err, "three.hist:3: error: history file: '99' after 't v'"), "exit %d: %s", r.code,
+                r.err);
+  run_free(&r);
+  write_file("two.hist", "# t v\n0 0   # start\n1,2\n");
+  r = run_child("history h file two.hist\n", NULL, NULL);
+  ck_assert_msg(r.code == 0, "exit %d: %s", r.code, r.err);
+  run_free(&r);
+}
+END_TEST
+
 START_TEST(error_includes) {
   expect_error("variable a equal 1\n\ninclude missing.deck\n", 2,
                "e.deck:3: error: include: cannot open 'missing.deck': No such file or directory", NULL, NULL);
@@ -821,6 +837,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, error_includes);
   tcase_add_test(tc, error_long_names);
   tcase_add_test(tc, error_outputs_share_a_file);
+  tcase_add_test(tc, error_history_file_rows);
   tcase_add_test(tc, arg_helpers);
   tcase_add_exit_test(tc, exit_deck_error, 1);
   tcase_add_exit_test(tc, exit_missing_include, 2);

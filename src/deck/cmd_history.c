@@ -59,11 +59,15 @@ void cmd_history(YfSim *s, const YfArgs *a) {
       if (c) *c = 0;
       char *t1 = strtok(line, " \t\r\n,"), *t2 = t1 ? strtok(NULL, " \t\r\n,") : NULL;
       if (!t1) continue;
+      char *t3 = t2 ? strtok(NULL, " \t\r\n,") : NULL; /* a third column was dropped silently */
       double tv, vv;
-      if (!t2 || !yf_parse_double(t1, &tv) || !yf_parse_double(t2, &vv)) {
+      if (!t2 || t3 || !yf_parse_double(t1, &tv) || !yf_parse_double(t2, &vv)) {
         YfLoc l = {path, ln};
+        char extra[64];
+        snprintf(extra, sizeof extra, "%s", t3 ? t3 : "");
         fclose(fp);
         free(line);
+        if (extra[0]) yf_deck_error(&l, "history file: '%s' after 't v' (two numbers a row; comments start with '#')", extra);
         yf_deck_error(&l, "history file: expected two numbers 't v'");
       }
       if (h.npts == cap) {
