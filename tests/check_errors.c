@@ -209,6 +209,16 @@ START_TEST(test_inputs_that_are_not_files) {
 }
 END_TEST
 
+/* read_restart after a run of the deck is refused (it replaced the state reached and broke the
+ * outputs' series: frames of the interrupted run dropped from the index, an off-cadence frame
+ * listed); before the first run it continues the deck. */
+START_TEST(test_read_restart_after_run_refused) {
+  expect_fail(BAR "timestep auto\nrun 5\nread_restart x.restart\nrun 10 upto\n", 1,
+              "bad.deck:5: error: read_restart: 'x.restart': read_restart after a run (or a read_restart) of this deck",
+              "put it before the first run command");
+}
+END_TEST
+
 /* A run that goes wrong stops as a numerical failure naming the step and the element, keeps the
  * frames written before it, and exits 3. */
 START_TEST(test_inverted_element_numerical_failure) {
@@ -319,6 +329,7 @@ Suite *errors_suite(void) {
   tcase_add_test(t, test_damping_above_two_over_dt_refused);
   tcase_add_test(t, test_record_bad_quantity_no_file);
   tcase_add_test(t, test_inputs_that_are_not_files);
+  tcase_add_test(t, test_read_restart_after_run_refused);
   tcase_add_test(t, test_inverted_element_numerical_failure);
   tcase_add_test(t, test_never_inf_nan);
   tcase_add_test(t, test_gmsh_coincident_nodes_warned);

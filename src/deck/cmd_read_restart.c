@@ -18,6 +18,12 @@ void cmd_read_restart(YfSim *s, const YfArgs *a) {
    * interrupt), so that is where FILE is looked for first; a deck run from elsewhere may keep
    * its restart beside itself, so the deck's directory is the second place. */
   const char *w = arg_word(a, 0, "FILE");
+  /* a restart continues a deck from its start: after a run (or a restart read) it would replace
+   * the state reached and the series the outputs began (frames of the earlier run were dropped
+   * from the index and an off-cadence frame listed; a sweep of new decks, 2026-11-28) */
+  if (s->step > 0 || s->model.prepared)
+    arg_error(a, 0, "read_restart after a run (or a read_restart) of this deck: put it before the first run "
+                    "command, which then continues with 'run N upto'");
   char *here = restart_pick_file(w), *p = NULL, *there = NULL;
   if (!here) {
     p = deck_resolve_path(a, w);
