@@ -670,6 +670,30 @@ START_TEST(error_history_file_rows) {
 }
 END_TEST
 
+/* Masses, the kinetic energy and the stable limit exist once a run has prepared the scene: asked
+ * for before, they read 0 silently ('timestep $(0.5*dt_limit)' then failed as "dt '0'"); now an
+ * error says so, and after 'run 0' they are known. */
+START_TEST(error_quantities_before_run) {
+  make_tmpdir();
+  static const char *const pre = "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 1 2 2\n"
+                                 "velocity b set 2 0\n";
+  static const char *const q[] = {"ke", "dt_limit", "mass_b"};
+  for (int k = 0; k < 3; k++) {
+    char deck[512], want[160];
+    snprintf(deck, sizeof deck, "%sprint \"$(%s)\"\n", pre, q[k]);
+    snprintf(want, sizeof want, "e.deck:4: error: expression '%s': '%s' is known once a run has prepared the scene", q[k], q[k]);
+    Run r = run_child(deck, NULL, NULL);
+    ck_assert_msg(r.code == 1 && strstr(r.err, want), "%s: exit %d: %s", q[k], r.code, r.err);
+    run_free(&r);
+  }
+  char deck[512];
+  snprintf(deck, sizeof deck, "%stimestep auto\nrun 0\nprint \"ke $(ke) mass $(mass_b) ok $(dt_limit > 0)\"\n", pre);
+  Run r = run_child(deck, NULL, NULL);
+  ck_assert_msg(r.code == 0 && strstr(r.out, "ke 2000 mass 1000 ok 1"), "exit %d: %s%s", r.code, r.out, r.err);
+  run_free(&r);
+}
+END_TEST
+
 START_TEST(error_includes) {
   expect_error("variable a equal 1\n\ninclude missing.deck\n", 2,
                "e.deck:3: error: include: cannot open 'missing.deck': No such file or directory", NULL, NULL);
@@ -838,6 +862,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, error_long_names);
   tcase_add_test(tc, error_outputs_share_a_file);
   tcase_add_test(tc, error_history_file_rows);
+  tcase_add_test(tc, error_quantities_before_run);
   tcase_add_test(tc, arg_helpers);
   tcase_add_exit_test(tc, exit_deck_error, 1);
   tcase_add_exit_test(tc, exit_missing_include, 2);

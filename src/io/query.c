@@ -49,6 +49,13 @@ static int group_reduce(YfSim *s, const char *what, const char *g, double *val, 
 
 int sim_query(YfSim *s, const char *name, double *val, char *err, size_t errlen) {
   static const char *const red[] = {"ux", "uy", "vx", "vy", "x", "y", "fx", "fy", "mass", NULL};
+  /* masses (so the kinetic energy) and the stable limit exist once a run has prepared the scene:
+   * before, they read 0 silently ('timestep $(0.5*dt_limit)' became 0) */
+  if (!s->model.prepared && (!strcmp(name, "ke") || !strcmp(name, "dt_limit") || !strncmp(name, "mass_", 5))) {
+    snprintf(err, errlen, "'%s' is known once a run has prepared the scene (masses and the stable limit are computed "
+             "then): put 'timestep auto' and 'run 0' before this line", name);
+    return -1;
+  }
   for (int i = 0; red[i]; i++) {
     size_t L = strlen(red[i]);
     if (!strncmp(name, red[i], L) && name[L] == '_' && name[L + 1]) return group_reduce(s, red[i], name + L + 1, val, err, errlen);
