@@ -463,8 +463,9 @@ static void stage_elements(YfSim *s) {
       }
       if (R.blk_badJ[b] <= 0)
         yf_numeric_error(s->step + 1, "triangle %d (material %s) inverted: J = %.6g (area ratio current/initial); "
-                         "the time step (%.6g s, stable limit %.6g s set by %s) may be too large or the body is "
-                         "crushed beyond what the law allows",
+                         "the time step (%.6g s, stable limit %.6g s of the undeformed mesh, set by %s) may be too "
+                         "large for the mesh as compressed (its limit is lower: try a smaller 'timestep auto "
+                         "safety'), or the body is crushed beyond what the law allows",
                          m->tri.id[e], m->mat[m->tri.mat[e]].name, R.blk_badJ[b], s->dt, s->dt_limit, s->dt_limiter);
       /* a non-finite stress is an overflow of a growing instability: say what limits the step */
       yf_numeric_error(s->step + 1, "triangle %d (material %s): stress is not finite (NaN or inf): the motion "
