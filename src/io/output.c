@@ -66,6 +66,7 @@
 #include <mpi.h> /* parallel HDF5 (H5Pset_fapl_mpio): ./yfdem_mpi only */
 #endif
 #include "output.h"
+#include "wfile.h"
 #include "h5quiet.h"
 #include "par.h"
 #include "report.h"
@@ -753,14 +754,16 @@ static void csv_frame(YfSim *s, YfDump *d) {
     d->created = 1;
     free(ip);
   }
-  FILE *f = fopen(path, "w");
-  if (!f) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, path, strerror(errno));
+  /* whole or not at all (PATH.tmp renamed, wfile.h), as h5 frames: on a full disk a frame cut
+   * mid-row was left under its own name */
+  YfWFile w;
+  if (yf_wfile_open(&w, path) != 0) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, path, strerror(errno));
+  FILE *f = w.f;
   fprintf(f, "id,x,y,ux,uy,vx,vy\n");
   for (int i = 0; i < nd->n; i++)
     fprintf(f, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", nd->id[i], nd->x[i], nd->y[i],
             nd->x[i] - nd->x0[i], nd->y[i] - nd->y0[i], nd->vx[i], nd->vy[i]);
-  int bad = ferror(f);
-  if (fclose(f) != 0 || bad) yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, path, strerror(errno));
+  if (yf_wfile_close(&w, 0, 0) != 0) yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, path, strerror(errno));
   const char *base = strrchr(path, '/');
   fprintf(d->csv_index, "%ld,%ld,%.17g,%s\n", d->nframe, s->step, s->time, base ? base + 1 : path);
   if (fflush(d->csv_index) != 0)
