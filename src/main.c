@@ -89,6 +89,15 @@ static void on_signal(int sig) {
   g_sim.interrupted = sig;
 }
 
+/* Whether w is one of the command-line options (a value that is one was an option forgotten). */
+static int is_option(const char *w) {
+  static const char *const opts[] = {"-in", "-var", "-log", "-summary", "-threads", "-echo", "-h", "-help", "--help",
+                                     "-version", "--version", NULL};
+  for (int k = 0; opts[k]; k++)
+    if (!strcmp(w, opts[k])) return 1;
+  return 0;
+}
+
 int main(int argc, char **argv) {
   par_init(&argc, &argv); /* ./yfdem_mpi: MPI ranks (a no-op in ./yfdem) */
   /* HDF5's own exit handler closes every file still open, also one whose H5Fclose failed (a full
@@ -129,6 +138,10 @@ int main(int argc, char **argv) {
     } else if (!strcmp(o, "-var") && i + 2 < argc) {
       deck_set_var(g_deck, argv[i + 1], argv[i + 2]);
       i += 2;
+    } else if ((!strcmp(o, "-log") || !strcmp(o, "-summary")) && i + 1 < argc && is_option(argv[i + 1])) {
+      /* '-log -in deck' made a log file named '-in' and read the deck from stdin */
+      fprintf(stderr, "yfdem: %s '%s': expected a file name after %s, not an option\n", o, argv[i + 1], o);
+      return YF_EXIT_DECK;
     } else if (!strcmp(o, "-log") && i + 1 < argc) {
       log_path = argv[++i];
     } else if (!strcmp(o, "-echo")) {

@@ -320,6 +320,12 @@ START_TEST(test_summary_on_the_log_refused) {
                 err);
   free(err);
   free(dir);
+  /* an option where a file name belongs ('-log -in deck' made a log named '-in') */
+  rc = yft_run_binary("a.deck", BAR "run 2\n", "-log -summary s.json", &err, &dir);
+  ck_assert_msg(rc == 1 && strstr(err, "yfdem: -log '-summary': expected a file name after -log, not an option"),
+                "exit %d: %s", rc, err);
+  free(err);
+  free(dir);
 }
 END_TEST
 
