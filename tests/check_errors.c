@@ -180,21 +180,13 @@ START_TEST(test_inputs_that_are_not_files) {
   };
   /* adir: a directory beside the deck */
   for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
-    char tmpl[] = "/tmp/yfe_dir_XXXXXX", p[600], cmd[1600];
-    char *d = mkdtemp(tmpl);
-    ck_assert_ptr_nonnull(d);
+    char deck[512], p[600], cmd[1600];
+    snprintf(deck, sizeof deck, "%s%s", BAR, cases[k].line);
+    char *d = yft_deck_dir("bad.deck", deck);
     snprintf(p, sizeof p, "%s/adir", d);
     ck_assert_int_eq(mkdir(p, 0755), 0);
-    snprintf(p, sizeof p, "%s/bad.deck", d);
-    FILE *f = fopen(p, "w");
-    ck_assert_ptr_nonnull(f);
-    fprintf(f, "%s%s", BAR, cases[k].line);
-    fclose(f);
-    const char *bin = getenv("YFDEM") ? getenv("YFDEM") : "./yfdem";
-    char abs[1024] = "";
-    if (bin[0] != '/' && getcwd(abs, sizeof abs - strlen(bin) - 2)) strcat(strcat(abs, "/"), bin);
     snprintf(cmd, sizeof cmd, "cd %s && ulimit -v 4000000 && %s -in bad.deck -log none >/dev/null 2>err.txt", d,
-             abs[0] ? abs : bin);
+             yft_binary());
     int rc = system(cmd);
     snprintf(p, sizeof p, "%s/err.txt", d);
     char *e = slurp(p);
@@ -205,6 +197,7 @@ START_TEST(test_inputs_that_are_not_files) {
     ck_assert_msg(!yft_exists(p), "%s: adir.tmp left", cases[k].line);
     snprintf(cmd, sizeof cmd, "rm -rf %s", d);
     if (system(cmd)) {}
+    free(d);
   }
 }
 END_TEST

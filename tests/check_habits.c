@@ -125,19 +125,9 @@ END_TEST
  * that runs, prints, then starts a run far too long to finish (no thermo lines) has its lines in
  * both files while it is still running; SIGTERM then stops it (exit 130). */
 START_TEST(test_flushed_while_running) {
-  char tmpl[] = "/tmp/yft_XXXXXX";
-  char *dir = mkdtemp(tmpl);
-  ck_assert_ptr_nonnull(dir);
-  char p[600], cmd[2048];
-  snprintf(p, sizeof p, "%s/a.deck", dir);
-  FILE *f = fopen(p, "w");
-  ck_assert_ptr_nonnull(f);
-  fputs(BAR "thermo 5\nrun 10\nprint \"after the run\"\nthermo 0\nrun 1000000000\n", f);
-  fclose(f);
-  const char *bin = getenv("YFDEM") ? getenv("YFDEM") : "./yfdem";
-  char abs[1024] = "";
-  if (bin[0] != '/' && getcwd(abs, sizeof abs - strlen(bin) - 2)) strcat(strcat(abs, "/"), bin);
-  snprintf(cmd, sizeof cmd, "cd %s && exec %s -in a.deck > out.txt 2> err.txt", dir, abs[0] ? abs : bin);
+  char *dir = yft_deck_dir("a.deck", BAR "thermo 5\nrun 10\nprint \"after the run\"\nthermo 0\nrun 1000000000\n");
+  char cmd[2048];
+  snprintf(cmd, sizeof cmd, "cd %s && exec %s -in a.deck > out.txt 2> err.txt", dir, yft_binary());
   pid_t pid = fork();
   ck_assert(pid >= 0);
   if (pid == 0) {
@@ -172,6 +162,7 @@ START_TEST(test_flushed_while_running) {
   free(log);
   snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
   if (system(cmd)) {}
+  free(dir);
 }
 END_TEST
 
@@ -263,24 +254,16 @@ END_TEST
  * /proc/self/fd/1) used to replace the link by a regular file, printing nothing, and as root a
  * device (/dev/full) became a regular file and its "no space" was never seen. */
 START_TEST(test_whole_files_through_links_and_devices) {
-  char tmpl[] = "/tmp/yft_XXXXXX";
-  char *dir = mkdtemp(tmpl);
-  ck_assert_ptr_nonnull(dir);
+  char *dir = yft_deck_dir("a.deck", BAR "jointprop j ft 1e6 fs 1e6 gf 10 pen 1e11\nfracture bar j\nfracture_log breaks.csv\n"
+                                         "run 5\n");
   char p[600], cmd[4096];
-  snprintf(p, sizeof p, "%s/a.deck", dir);
-  FILE *f = fopen(p, "w");
-  ck_assert_ptr_nonnull(f);
-  fputs(BAR "jointprop j ft 1e6 fs 1e6 gf 10 pen 1e11\nfracture bar j\nfracture_log breaks.csv\nrun 5\n", f);
-  fclose(f);
-  const char *bin = getenv("YFDEM") ? getenv("YFDEM") : "./yfdem";
-  char abs[1024] = "";
-  if (bin[0] != '/' && getcwd(abs, sizeof abs - strlen(bin) - 2)) strcat(strcat(abs, "/"), bin);
+  const char *bin = yft_binary();
   /* a link to a file elsewhere; the JSON to a pipe; the fracture log through a link */
   snprintf(cmd, sizeof cmd,
            "cd %s && mkdir real && ln -s real/s.json s.json && ln -s real/b.csv breaks.csv && "
            "%s -in a.deck -summary s.json -log none >/dev/null 2>err1.txt && "
            "%s -in a.deck -summary /dev/stdout -log none 2>err2.txt | grep -c state_hash > piped.txt",
-           dir, abs[0] ? abs : bin, abs[0] ? abs : bin);
+           dir, bin, bin);
   ck_assert_int_eq(system(cmd), 0);
   struct stat st;
   snprintf(p, sizeof p, "%s/s.json", dir);
@@ -298,8 +281,7 @@ START_TEST(test_whole_files_through_links_and_devices) {
    * exit 2, the device left a device */
   snprintf(p, sizeof p, "%s/full", dir);
   if (mknod(p, S_IFCHR | 0666, makedev(1, 7)) == 0) {
-    snprintf(cmd, sizeof cmd, "cd %s && %s -in a.deck -summary full -log none >/dev/null 2>err3.txt", dir,
-             abs[0] ? abs : bin);
+    snprintf(cmd, sizeof cmd, "cd %s && %s -in a.deck -summary full -log none >/dev/null 2>err3.txt", dir, bin);
     int rc = system(cmd);
     char *e = file_in(dir, "err3.txt");
     ck_assert_msg(WIFEXITED(rc) && WEXITSTATUS(rc) == 2 && e && strstr(e, "No space left on device"), "exit %d: %s", rc,
@@ -309,6 +291,7 @@ START_TEST(test_whole_files_through_links_and_devices) {
   }
   snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
   if (system(cmd)) {}
+  free(dir);
 }
 END_TEST
 

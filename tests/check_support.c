@@ -64,24 +64,33 @@ int yft_exists(const char *path) {
   return stat(path, &st) == 0;
 }
 
-int yft_run_binary(const char *name, const char *deck_text, const char *extra_args, char **err, char **dirout) {
+const char *yft_binary(void) {
+  static char abs[1024];
+  const char *bin = getenv("YFDEM") ? getenv("YFDEM") : "./yfdem";
+  if (bin[0] == '/' || !getcwd(abs, sizeof abs - strlen(bin) - 2)) return bin;
+  strcat(abs, "/");
+  strcat(abs, bin);
+  return abs;
+}
+
+char *yft_deck_dir(const char *name, const char *deck_text) {
   char tmpl[] = "/tmp/yft_XXXXXX";
   char *dir = mkdtemp(tmpl);
   ck_assert_ptr_nonnull(dir);
-  char path[512], errpath[512], cmd[4096];
+  char path[512];
   snprintf(path, sizeof path, "%s/%s", dir, name);
-  snprintf(errpath, sizeof errpath, "%s/stderr.txt", dir);
   FILE *fp = fopen(path, "w");
   ck_assert_ptr_nonnull(fp);
   fputs(deck_text, fp);
   fclose(fp);
-  const char *bin = getenv("YFDEM") ? getenv("YFDEM") : "./yfdem";
-  char abs[1024];
-  if (bin[0] != '/' && getcwd(abs, sizeof abs - strlen(bin) - 2)) {
-    strcat(abs, "/");
-    strcat(abs, bin);
-    bin = abs;
-  }
+  return strdup(dir);
+}
+
+int yft_run_binary(const char *name, const char *deck_text, const char *extra_args, char **err, char **dirout) {
+  char *dir = yft_deck_dir(name, deck_text);
+  char errpath[512], cmd[4096];
+  snprintf(errpath, sizeof errpath, "%s/stderr.txt", dir);
+  const char *bin = yft_binary();
   snprintf(cmd, sizeof cmd, "cd %s && OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} %s -in %s %s >/dev/null 2>%s", dir, bin,
            name, extra_args ? extra_args : "", errpath);
   int st = system(cmd);
@@ -96,7 +105,8 @@ int yft_run_binary(const char *name, const char *deck_text, const char *extra_ar
     }
     *err = buf;
   }
-  if (dirout) *dirout = strdup(dir);
+  if (dirout) *dirout = dir;
+  else free(dir);
   return code;
 }
 

@@ -17,6 +17,10 @@ YfSim *yft_run_deck(const char *path, const char *const *vars);
  * a temporary file named NAME in a fresh temporary directory; returns the exit code, and the
  * captured stderr in err (caller frees).  *dir receives the temporary directory (caller frees). */
 int yft_run_binary(const char *name, const char *deck_text, const char *extra_args, char **err, char **dir);
+/* The yfdem binary's absolute path ($YFDEM, default ./yfdem). */
+const char *yft_binary(void);
+/* A fresh temporary directory (malloc'd path) holding deck NAME with deck_text. */
+char *yft_deck_dir(const char *name, const char *deck_text);
 /* Run fn(arg) in a child process (its stdout silenced, its stderr captured into msg); returns
  * the child's exit code (0 when fn returns). */
 int yft_child_run(void (*fn)(void *), void *arg, char *msg, size_t n);

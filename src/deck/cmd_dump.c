@@ -63,6 +63,25 @@ static struct YfY2dRef *parse_y2dref(YfSim *s, const YfArgs *a) {
   return r;
 }
 
+/* The files a dump writes, claimed for it (output_claim): frames STEM_NNNNNN EXT, the index
+ * (index, or NULL) and STEM SIDE (its crack index, or a csv dump's index).  A file another
+ * output writes: the dump is taken back and the line refused. */
+static void claim_files(YfSim *s, const YfArgs *a, const char *id, const char *owner, const char *stem, const char *ext,
+                        const char *index, const char *side) {
+  char *fr = yf_malloc(strlen(stem) + 2, "path"), *sd = yf_malloc(strlen(stem) + strlen(side) + 1, "path");
+  sprintf(fr, "%s_", stem);
+  sprintf(sd, "%s%s", stem, side);
+  const char *by = output_claim(s, owner, fr, ext, 1);
+  if (!by && index) by = output_claim(s, owner, index, NULL, 0);
+  if (!by) by = output_claim(s, owner, sd, NULL, 0);
+  free(fr);
+  free(sd);
+  if (by) {
+    output_remove_dump(s, id);
+    arg_error(a, 3, "a file of it is already written by %s", by);
+  }
+}
+
 /* dump ID h5 N FILE.h5 [fields F1 F2 ...] [compress]
  * dump ID csv N PREFIX
  * dump ID y2dref DIR ... */
@@ -115,18 +134,7 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
     const char *stem, *ext, *xmf;
     output_dump_files(s, k, &stem, &ext, &xmf);
     /* its frames, its index and its crack index (STEM_cracks.xmf): no other output's */
-    char *fr = yf_malloc(strlen(stem) + 16, "path"), *cx = yf_malloc(strlen(stem) + 16, "path");
-    sprintf(fr, "%s_", stem);
-    sprintf(cx, "%s_cracks.xmf", stem);
-    const char *by = output_claim(s, owner, fr, ext, 1);
-    if (!by) by = output_claim(s, owner, xmf, NULL, 0);
-    if (!by) by = output_claim(s, owner, cx, NULL, 0);
-    free(fr);
-    free(cx);
-    if (by) {
-      output_remove_dump(s, id);
-      arg_error(a, 3, "a file of it is already written by %s", by);
-    }
+    claim_files(s, a, id, owner, stem, ext, xmf, "_cracks.xmf");
     /* a missing folder: now, at this line, not at the run after the other outputs began */
     char what[256];
     snprintf(what, sizeof what, "dump %s", id);
@@ -135,17 +143,7 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
     sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN%s (index %s)%s\n", id, every, stem, ext, xmf,
                output_dump_mpio(s, k) ? "; every rank writes its rows (parallel HDF5; YFDEM_H5_MPIIO=0: gathered to rank 0)" : "");
   } else {
-    char *fr = yf_malloc(strlen(path) + 16, "path"), *ix = yf_malloc(strlen(path) + 16, "path");
-    sprintf(fr, "%s_", path);
-    sprintf(ix, "%s_frames.csv", path);
-    const char *by = output_claim(s, owner, fr, ".csv", 1);
-    if (!by) by = output_claim(s, owner, ix, NULL, 0);
-    free(fr);
-    free(ix);
-    if (by) {
-      output_remove_dump(s, id);
-      arg_error(a, 3, "a file of it is already written by %s", by);
-    }
+    claim_files(s, a, id, owner, path, ".csv", NULL, "_frames.csv");
     char what[256];
     snprintf(what, sizeof what, "dump %s", id);
     arg_writable(a, what, "%s_frames.csv", path);
