@@ -212,6 +212,19 @@ START_TEST(test_read_restart_after_run_refused) {
 }
 END_TEST
 
+/* Out-of-range sizes at the line that gives them: cells doubles cannot tell apart (0.5 m cells at
+ * 1e15 m) or whose areas underflow (a 1e-300 m box) gave zero-area triangles found only at the
+ * run, with no line; a density so small every limit underflows was called "no triangles". */
+START_TEST(test_sizes_beyond_doubles) {
+  expect_fail(MAT "mesh rect b m 1e15 0 1000000000000001 1 2 2\nrun 1\n", 1,
+              "bad.deck:2: error: mesh: '2': cells of 0.5 x 0.5 m, 1e+15 m from the origin: too small for doubles", NULL);
+  expect_fail(MAT "mesh rect b m 0 0 1e-300 1e-300 2 2\nrun 1\n", 1,
+              "bad.deck:2: error: mesh: '2': cells of 5e-301 x 5e-301 m: their areas underflow a double", NULL);
+  expect_fail("material m elastic rho 1e-300 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 1 2 2\ntimestep auto\nrun 1\n", 1,
+              "no triangle: every limit is beyond a double's range (density, moduli or size)", NULL);
+}
+END_TEST
+
 /* A run that goes wrong stops as a numerical failure naming the step and the element, keeps the
  * frames written before it, and exits 3. */
 START_TEST(test_inverted_element_numerical_failure) {
@@ -323,6 +336,7 @@ Suite *errors_suite(void) {
   tcase_add_test(t, test_record_bad_quantity_no_file);
   tcase_add_test(t, test_inputs_that_are_not_files);
   tcase_add_test(t, test_read_restart_after_run_refused);
+  tcase_add_test(t, test_sizes_beyond_doubles);
   tcase_add_test(t, test_inverted_element_numerical_failure);
   tcase_add_test(t, test_never_inf_nan);
   tcase_add_test(t, test_gmsh_coincident_nodes_warned);

@@ -28,6 +28,15 @@ static void cmd_mesh_rect(YfModel *m, const YfArgs *a) {
   r.x0 = x0, r.y0 = y0, r.x1 = x1, r.y1 = y1;
   r.nx = arg_int(a, 7, "nx", 1, 100000000);
   r.ny = arg_int(a, 8, "ny", 1, 100000000);
+  /* cells whose corners doubles cannot tell apart (x0 = 1e20 with 8 km cells), or whose areas
+   * underflow (a 1e-300 m box), gave zero-area triangles found only at the run, with no line */
+  double dx = (x1 - x0) / (double)r.nx, dy = (y1 - y0) / (double)r.ny;
+  double far = fmax(fmax(fabs(x0), fabs(x1)), fmax(fabs(y0), fabs(y1)));
+  if (!(fmin(dx, dy) > 1e-12 * far))
+    arg_error(a, 7, "cells of %g x %g m, %g m from the origin: too small for doubles (16 digits) to tell their "
+              "corners apart; move the mesh nearer the origin or use fewer cells", dx, dy, far);
+  if (!(dx * dy > 1e-280))
+    arg_error(a, 7, "cells of %g x %g m: their areas underflow a double; use larger units", dx, dy);
   if (a->n > 9) {
     if (strcmp(a->w[9], "pattern") != 0) arg_error(a, 9, "expected the keyword 'pattern'");
     arg_count(a, 11, 11);

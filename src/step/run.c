@@ -130,6 +130,8 @@ double run_stable_dt(YfSim *s, char *limiter, size_t n) {
   if (limiter) {
     if (which >= 0)
       snprintf(limiter, n, "triangle %d (material %s)", m->tri.id[which], m->mat[m->tri.mat[which]].name);
+    else if (nt > 0) /* rho 1e-300, or a 1e-160 m mesh: every limit underflows (it said "no triangles") */
+      snprintf(limiter, n, "no triangle: every limit is beyond a double's range (density, moduli or size)");
     else
       snprintf(limiter, n, "nothing (no triangles)");
   }
