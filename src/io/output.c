@@ -981,6 +981,18 @@ static void dump_free(YfDump *d) {
   free(d);
 }
 
+int output_flush_indexes(YfSim *s, char *err, size_t nerr) {
+  struct YfOutput *o = s->out;
+  for (int i = 0; o && i < o->ndump; i++) {
+    YfDump *d = o->dump[i];
+    if (!d->xmf_pending) continue;
+    if (xmf_try(d, err, nerr)) return -1;
+    d->xmf_pending = 0;
+    d->xmf_done = yf_now();
+  }
+  return 0;
+}
+
 void output_close_all(YfSim *s) {
   struct YfOutput *o = s->out;
   if (!o) return;

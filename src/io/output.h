@@ -57,6 +57,11 @@ struct YfOutput {
  * absolute, with '.', '..' and repeated '/' resolved (links are not followed).  Returns the
  * owner of a claim the new one meets (nothing is recorded then), or NULL when it is recorded. */
 const char *output_claim(YfSim *s, const char *owner, const char *prefix, const char *suffix, int numbered);
+/* Write every index that lags its frames (a long series rewrites its index only now and then):
+ * restart_write calls it, so every frame before a restart's step is listed and a continuation
+ * after SIGKILL has no hole before its restart (it numbered its frames after the last listed one
+ * and overwrote frames already written).  0, or -1 with the message in err. */
+int output_flush_indexes(YfSim *s, char *err, size_t nerr);
 /* Forget every claim of owner (undump, record ID off, a fracture_log or restart replaced). */
 void output_release(YfSim *s, const char *owner);
 

@@ -41,6 +41,7 @@
 #include "run.h"
 #include "energy.h"
 #include "metrics.h"
+#include "output.h"
 
 /* 2: the Coulomb friction law's memory is s = F_t / sqrt(k_t) (contact_pair.h), no longer F_t.
  * A version 1 file is read when none of its Coulomb couples holds friction memory (the rest of
@@ -344,6 +345,11 @@ int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
   par_need_all(s); /* MPI: every rank is here; rank 0 needs what owners hold (stresses, joints) */
   contact_par_whole(s); /* MPI: and the couples with their friction memory */
   if (!yf_writer()) return 0; /* under MPI rank 0 writes the (replicated) state */
+  char ferr[3 * 4096];
+  if (output_flush_indexes(s, ferr, sizeof ferr) != 0) {
+    if (err) snprintf(err, nerr, "%s", ferr);
+    return -1;
+  }
   yf_h5_quiet();
   size_t L = strlen(path);
   char *tmp = yf_malloc(L + 8, "restart path");
