@@ -570,6 +570,11 @@ START_TEST(error_expressions_and_variables) {
   expect_error("if 1 \"print x\"\n", 1, "e.deck:1: error: if: 'print x': expected 'then' after the condition", NULL,
                NULL);
   expect_error("label\n", 1, "e.deck:1: error: label: expected 1 argument, got 0", "  usage: label NAME", "  label");
+  /* a branch with no command did nothing without a word */
+  expect_error("if \"1\" then\n", 1, "e.deck:1: error: if: no command after 'then'", NULL, NULL);
+  expect_error("if \"0\" then \"print a\" else\n", 1, "e.deck:1: error: if: no command after 'else'", NULL, NULL);
+  expect_error("if \"0\" then \"print a\" elif \"1\" then\n", 1, "e.deck:1: error: if: no command after the 'elif' condition",
+               NULL, NULL);
   expect_error("print $(1:%s)\n", 1,
                "e.deck:1: error: bad format '%s' in $(...) (expected one conversion like %.3f, %g, %10.4e or %d, "
                "width and precision of at most 2 digits)", NULL, NULL);

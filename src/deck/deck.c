@@ -1209,12 +1209,15 @@ void deck_cmd_if(struct YfSim *sim, const YfArgs *a) {
   int i = 2, from = -1, to = -1;
   int start = i;
   while (i < a->n && strcmp(a->w[i], "elif") && strcmp(a->w[i], "else")) i++;
+  /* a branch with no command did nothing without a word */
+  if (i == start) arg_fail(a, i, NULL, "no command after 'then'");
   if (condition(d, a, 0)) from = start, to = i;
   while (i < a->n) {
     if (!strcmp(a->w[i], "else")) {
       for (int j = i + 1; j < a->n; j++)
         if (!strcmp(a->w[j], "elif") || !strcmp(a->w[j], "else"))
           arg_fail(a, j, NULL, "the 'else' branch must come last");
+      if (i + 1 == a->n) arg_fail(a, a->n, NULL, "no command after 'else'");
       if (from < 0) from = i + 1, to = a->n;
       break;
     }
@@ -1225,6 +1228,7 @@ void deck_cmd_if(struct YfSim *sim, const YfArgs *a) {
     if (i < a->n && !strcmp(a->w[i], "then")) i++;
     start = i;
     while (i < a->n && strcmp(a->w[i], "elif") && strcmp(a->w[i], "else")) i++;
+    if (i == start) arg_fail(a, i, NULL, "no command after the 'elif' condition");
     if (from < 0 && condition(d, a, ci)) from = start, to = i;
   }
   /* each command is one (quoted) word: `if c then print big` would run `print` and `big` */
