@@ -70,6 +70,7 @@
 #include "h5quiet.h"
 #include "par.h"
 #include "report.h"
+#include "restart.h"
 #include "contact.h"
 #include "joint.h"
 #include "err.h"
@@ -1138,6 +1139,7 @@ int output_mpio(void) {
 int output_add_dump(YfSim *s, const char *id, int style, long every, const char *path,
                     unsigned fields, int compress) {
   io_attach(s); /* dumps observe the run loop (report.c) */
+  restart_before_write(output_flush_indexes); /* a restart lists every frame before its step */
   struct YfOutput *o = out_get(s);
   if (o->ndump >= YF_MAX_DUMPS || find_dump(o, id, NULL) || every < 1) return -1;
   YfDump *d = yf_calloc(1, sizeof *d, "dump");

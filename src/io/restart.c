@@ -41,7 +41,6 @@
 #include "run.h"
 #include "energy.h"
 #include "metrics.h"
-#include "output.h"
 
 /* 2: the Coulomb friction law's memory is s = F_t / sqrt(k_t) (contact_pair.h), no longer F_t.
  * A version 1 file is read when none of its Coulomb couples holds friction memory (the rest of
@@ -336,6 +335,9 @@ static void write_all(W *w, YfSim *s) {
   gclose(g);
 }
 
+static int (*before_write)(YfSim *s, char *err, size_t nerr);
+void restart_before_write(int (*fn)(YfSim *s, char *err, size_t nerr)) { before_write = fn; }
+
 int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
   if (err && nerr) err[0] = 0;
   if (!s->model.prepared) {
@@ -346,7 +348,7 @@ int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
   contact_par_whole(s); /* MPI: and the couples with their friction memory */
   if (!yf_writer()) return 0; /* under MPI rank 0 writes the (replicated) state */
   char ferr[3 * 4096];
-  if (output_flush_indexes(s, ferr, sizeof ferr) != 0) {
+  if (before_write && before_write(s, ferr, sizeof ferr) != 0) {
     if (err) snprintf(err, nerr, "%s", ferr);
     return -1;
   }

@@ -38,6 +38,10 @@
 /* Write a restart of the current state to path (atomically).  Returns 0, or -1 with a message
  * in err. Needs a prepared model (after a run or read_restart). */
 int restart_write(YfSim *s, const char *path, char *err, size_t nerr);
+/* What restart_write calls first (output.c registers the writing of the dumps' lagging indexes,
+ * so that every frame before a restart's step is listed; restart.c knows nothing of the dumps):
+ * 0, or -1 with the message in err, which stops the write. */
+void restart_before_write(int (*fn)(YfSim *s, char *err, size_t nerr));
 /* Read a restart into a scene built by the deck (see above); errors exit (deck / I/O). */
 void restart_read(YfSim *s, const char *path, const YfLoc *loc);
 /* The file read_restart PATH reads (PATH, else the newer valid of PATH.a / PATH.b; malloc'd), or
