@@ -11,6 +11,7 @@ void cmd_timestep(YfSim *s, const YfArgs *a) {
   arg_count(a, 1, 3);
   if (!strcmp(a->w[0], "auto")) {
     s->dt_auto = 1;
+    s->dt_loc = a->loc; /* the line that auto's refusals name */
     if (a->n > 1) {
       if (strcmp(a->w[1], "safety")) arg_error(a, 1, "expected 'safety S'");
       arg_count(a, 3, 3);

@@ -301,11 +301,16 @@ double tri_omega_max(const YfModel *m, const YfTriMat *tm, int e) {
     if (fabs(lnew - lmax) <= 1e-13 * lnew) { lmax = lnew; break; }
     lmax = lnew;
   }
-  return sqrt(3.0 * lmax / mt->rho);
+  double w = sqrt(3.0 * lmax / mt->rho);
+  /* rho 1e-300: the quotient overflows though omega does not (1e156 rad/s); the split form is
+   * used only then, so every finite limit keeps its bits */
+  if (!isfinite(w) && isfinite(lmax)) w = sqrt(3.0 * lmax) / sqrt(mt->rho);
+  return w;
 }
 
 double tri_dt_of_omega(double w, const YfTriMat *mt) {
   if (w < 0) return 0.0; /* degenerate triangle */
+  if (isnan(w) || isinf(w)) return 0.0; /* beyond a double: no step is stable enough */
   if (!(w > 0)) return INFINITY;
   double mu = 0.5 * mt->mu2, lam = 2.0 * mt->lamv; /* small-strain Lame of the law */
   /* Viscous term: damping ratio of the highest mode xi = w k / (2 (lam + 2 mu)); central

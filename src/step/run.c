@@ -639,6 +639,11 @@ void run_steps(YfSim *s, long nsteps) {
   snprintf(s->dt_limiter, sizeof s->dt_limiter, "%s", lim);
   if (s->dt_auto) {
     s->dt = s->dt_safety * limit;
+    /* E 1e307: omega_max is beyond a double, the limit 0; a step of 0 s would run without moving */
+    if (!(s->dt > 0))
+      yf_deck_error(s->dt_loc.file ? &s->dt_loc : NULL, "timestep auto: the stable limit %.6g s (set by %s) is "
+                    "zero in doubles: the scene's moduli, density or sizes are beyond a double's range; use other units",
+                    limit, lim);
     sim_printf(s, "timestep auto: dt = %.6g s = %.3g x stable limit %.6g s (set by %s)\n", s->dt, s->dt_safety, limit, lim);
   } else if (!(s->dt > 0)) {
     yf_deck_error(NULL, "run: no time step set (use 'timestep DT' or 'timestep auto')");
