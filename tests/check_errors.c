@@ -224,6 +224,9 @@ START_TEST(test_sizes_beyond_doubles) {
    * so any explicit step ran: strain energy from nothing, "ok") */
   expect_fail("material m elastic rho 1e-300 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 1 2 2\ntimestep 1e-6\nrun 1\n", 1,
               "bad.deck:3: error: timestep 1e-06 s is above the stable limit 1.00569e-155 s (set by triangle 1", NULL);
+  /* an inline triangle whose area underflows (1e-160 m legs) was found only at the run */
+  expect_fail(MAT "node 1 0 0\nnode 2 1e-160 0\nnode 3 0 1e-160\ntriangle 1 1 2 3 m\ntimestep auto\nrun 1\n", 1,
+              "bad.deck:5: error: triangle: triangle 1 has zero area (nodes 1 2 3 are collinear, or the area", NULL);
   /* E 1e307: omega_max itself overflows; auto gave dt = 0 and ran */
   expect_fail("material m elastic rho 1000 E 1e307 nu 0.25 plane_stress\nmesh rect b m 0 0 1 1 2 2\ntimestep auto\nrun 1\n", 1,
               "bad.deck:3: error: timestep auto: the stable limit 0 s (set by triangle 1 (material m)) is zero in doubles", NULL);

@@ -537,13 +537,10 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
             continue;
           }
           if (tag <= 0 || tag > INT_MAX) msh_fail(r, line, "element tag %ld is not in 1..%d", tag, INT_MAX);
-          double ax = nx[v[1]] - nx[v[0]], ay = ny[v[1]] - ny[v[0]];
-          double bx = nx[v[2]] - nx[v[0]], by = ny[v[2]] - ny[v[0]];
-          double cx = nx[v[2]] - nx[v[1]], cy = ny[v[2]] - ny[v[1]];
-          double d = ax * by - bx * ay;
-          double l2 = fmax(ax * ax + ay * ay, fmax(bx * bx + by * by, cx * cx + cy * cy));
-          if (!(fabs(d) > 1e-12 * l2))
-            msh_fail(r, line, "triangle %ld has zero area (nodes %ld %ld %ld)", tag, nt[0], nt[1], nt[2]);
+          double d;
+          if (mesh_tri_degenerate(nx[v[0]], ny[v[0]], nx[v[1]], ny[v[1]], nx[v[2]], ny[v[2]], &d))
+            msh_fail(r, line, "triangle %ld has zero area (nodes %ld %ld %ld; area %g m^2 after scale)", tag,
+                     nt[0], nt[1], nt[2], 0.5 * fabs(d));
           if (d < 0) { /* clockwise in the file: swap two corners */
             int s = v[1];
             v[1] = v[2];

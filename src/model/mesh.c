@@ -323,6 +323,14 @@ void mesh_inline_node(YfModel *m, long id, double x, double y, const char *bname
   idmap_put(&inl.node, id, k);
 }
 
+int mesh_tri_degenerate(double x0, double y0, double x1, double y1, double x2, double y2, double *d2) {
+  double ax = x1 - x0, ay = y1 - y0, bx = x2 - x0, by = y2 - y0, cx = x2 - x1, cy = y2 - y1;
+  double d = ax * by - bx * ay;
+  double l2 = fmax(ax * ax + ay * ay, fmax(bx * bx + by * by, cx * cx + cy * cy));
+  *d2 = d;
+  return !(fabs(d) > 1e-12 * l2) || !(fabs(d) > 1e-280);
+}
+
 void mesh_inline_tri(YfModel *m, long id, const long nid[3], int mat, const char *bname,
                            const YfLoc *loc, const char *cmd) {
   inline_bind(m);
@@ -342,14 +350,10 @@ void mesh_inline_tri(YfModel *m, long id, const long nid[3], int mat, const char
   if (nid[0] == nid[1] || nid[1] == nid[2] || nid[0] == nid[2])
     yf_deck_error(loc, "%s: triangle %ld repeats a node (%ld %ld %ld)", cmd, id, nid[0], nid[1], nid[2]);
   const double *X = m->node.x0, *Y = m->node.y0;
-  double ax = X[v[1]] - X[v[0]], ay = Y[v[1]] - Y[v[0]];
-  double bx = X[v[2]] - X[v[0]], by = Y[v[2]] - Y[v[0]];
-  double cx = X[v[2]] - X[v[1]], cy = Y[v[2]] - Y[v[1]];
-  double d = ax * by - bx * ay;
-  double l2 = fmax(ax * ax + ay * ay, fmax(bx * bx + by * by, cx * cx + cy * cy));
-  if (fabs(d) <= 1e-12 * l2)
-    yf_deck_error(loc, "%s: triangle %ld has zero area (nodes %ld %ld %ld are collinear)", cmd, id,
-                  nid[0], nid[1], nid[2]);
+  double d;
+  if (mesh_tri_degenerate(X[v[0]], Y[v[0]], X[v[1]], Y[v[1]], X[v[2]], Y[v[2]], &d))
+    yf_deck_error(loc, "%s: triangle %ld has zero area (nodes %ld %ld %ld are collinear, or the area %g m^2 is "
+                  "below what doubles hold: use larger units)", cmd, id, nid[0], nid[1], nid[2], 0.5 * fabs(d));
   if (d < 0)
     yf_deck_error(loc, "%s: triangle %ld is clockwise; list its nodes counter-clockwise "
                   "(e.g. %ld %ld %ld)", cmd, id, nid[0], nid[2], nid[1]);

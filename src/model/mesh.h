@@ -35,6 +35,10 @@ int mesh_rect(YfModel *m, const YfRectSpec *spec, const YfLoc *loc);
  * range, a repeated id, an unknown node, a node of another body, a clockwise or flat triangle. */
 void mesh_inline_node(YfModel *m, long id, double x, double y, const char *bname, const YfLoc *loc,
                       const char *cmd);
+/* Twice the signed area of the triangle (x0,y0) (x1,y1) (x2,y2) [m^2] in *d2; returns 1 when the
+ * triangle is degenerate: its area is zero against its longest edge (collinear corners), or
+ * below 1e-280 m^2, where the step's products underflow (1e-160 m corners). */
+int mesh_tri_degenerate(double x0, double y0, double x1, double y1, double x2, double y2, double *d2);
 void mesh_inline_tri(YfModel *m, long id, const long nid[3], int mat, const char *bname, const YfLoc *loc,
                      const char *cmd);
 
