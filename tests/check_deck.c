@@ -23,6 +23,8 @@
 #include "deck.h"
 #include "expr.h"
 #include "sim.h"
+#include "summary.h"
+#include "yftest.h"
 
 /* ------------------------------------------------------------------ helpers */
 
@@ -102,7 +104,7 @@ static Run run_child(const char *text, const char *var_name, const char *var_val
   if (pid == 0) {
     if (chdir(tdir) || !freopen(out, "w", stdout) || !freopen(err, "w", stderr)) _exit(99);
     YfSim sim;
-    memset(&sim, 0, sizeof sim);
+    sim_init(&sim);
     YfDeck *d = deck_new(&sim);
     if (var_name) deck_set_var(d, var_name, var_value);
     deck_run_file(d, "e.deck", NULL);
@@ -834,6 +836,82 @@ END_TEST
 START_TEST(exit_missing_include) { run_text_stream("include /nonexistent/yf_no_such_file.deck\n"); }
 END_TEST
 
+/* Line endings: a deck and every table it reads (history, nodes, triangles, a Gmsh mesh) give the
+ * same scene with LF, CRLF and CR-alone (classic Mac) ends.  A CR alone was dropped, so the deck
+ * became one line of run-together words ("plane_stressmesh"), and a table one long row. */
+static void write_eol(const char *path, const char *text, const char *eol) {
+  FILE *f = fopen(path, "w");
+  ck_assert_ptr_nonnull(f);
+  for (const char *c = text; *c; c++)
+    if (*c == '\n') fputs(eol, f);
+    else fputc(*c, f);
+  fclose(f);
+}
+
+START_TEST(line_endings_any) {
+  static const char *eols[] = {"\n", "\r\n", "\r"};
+  const char *deck = "# a block of inline triangles and a Gmsh body\n"
+                     "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                     "nodes n.txt blk\ntriangles t.txt blk\n"
+                     "mesh gmsh g m.msh material m\n"
+                     "history h file h.txt\n"
+                     "load push point at 3 1 0 -100 history h\n"
+                     "timestep auto\nrun 20\n";
+  char *msh = yft_slurp("decks/meshes/square4.msh", 0);
+  ck_assert_ptr_nonnull(msh);
+  uint64_t hash[3];
+  int nt[3];
+  for (int k = 0; k < 3; k++) {
+    char tmpl[] = "/tmp/yft_eol_XXXXXX", p[512];
+    char *dir = mkdtemp(tmpl);
+    ck_assert_ptr_nonnull(dir);
+    snprintf(p, sizeof p, "%s/n.txt", dir);
+    write_eol(p, "# id x y\n1 2 0\n2 3 0\n3 3 1\n4 2 1\n", eols[k]);
+    snprintf(p, sizeof p, "%s/t.txt", dir);
+    write_eol(p, "1 1 2 3 m\n2 1 3 4 m\n", eols[k]);
+    snprintf(p, sizeof p, "%s/h.txt", dir);
+    write_eol(p, "0 0\n1e-4 1 # ramp\n1 1\n", eols[k]);
+    snprintf(p, sizeof p, "%s/m.msh", dir);
+    write_eol(p, msh, eols[k]);
+    snprintf(p, sizeof p, "%s/e.deck", dir);
+    write_eol(p, deck, eols[k]);
+    YfSim *s = yft_run_deck(p, NULL);
+    hash[k] = sim_state_hash(s);
+    nt[k] = s->model.tri.n;
+    ck_assert_msg(s->step == 20, "ending %d: %ld steps", k, s->step);
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    ck_assert_int_eq(system(cmd), 0);
+  }
+  free(msh);
+  /* a .y deck's messages name the line in any of them (a CR alone counted no line: 'line 1') */
+  char *y = yft_slurp("tests/y2d/decks/a_elastic_block.y", 0);
+  ck_assert_ptr_nonnull(y);
+  char *at = strstr(y, "/YD/YDC/DCSTEC ");
+  ck_assert_ptr_nonnull(at);
+  memcpy(at + 15, "abc    ", 7);
+  int line = 1;
+  for (const char *c = y; c < at; c++) line += *c == '\n';
+  for (int k = 0; k < 3; k++) {
+    make_tmpdir();
+    char p[600], want[64];
+    snprintf(p, sizeof p, "%s/bad.y", tdir);
+    write_eol(p, y, eols[k]);
+    Run r = run_child("read_y2d bad.y\n", NULL, NULL);
+    snprintf(want, sizeof want, "bad.y:%d: error: /YD/YDC/DCSTEC: 'abc", line);
+    ck_assert_msg(r.code == 1 && strstr(r.err, want), "ending %d: exit %d: %s", k, r.code, r.err);
+    run_free(&r);
+  }
+  free(y);
+  ck_assert_int_eq(nt[0], 2 + 4);
+  for (int k = 1; k < 3; k++) {
+    ck_assert_int_eq(nt[k], nt[0]);
+    ck_assert_msg(hash[k] == hash[0], "ending %d: state hash %016llx, LF %016llx", k, (unsigned long long)hash[k],
+                  (unsigned long long)hash[0]);
+  }
+}
+END_TEST
+
 Suite *deck_suite(void) {
   Suite *s = suite_create("deck");
   TCase *tc = tcase_create("expressions");
@@ -869,6 +947,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, error_history_file_rows);
   tcase_add_test(tc, error_quantities_before_run);
   tcase_add_test(tc, arg_helpers);
+  tcase_add_test(tc, line_endings_any);
   tcase_add_exit_test(tc, exit_deck_error, 1);
   tcase_add_exit_test(tc, exit_missing_include, 2);
   suite_add_tcase(s, tc);

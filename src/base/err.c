@@ -356,3 +356,26 @@ const char *yf_fmt_g(char *buf, size_t n, double v) {
   else snprintf(buf, n, "%.6g", v);
   return buf;
 }
+
+long yf_getline(char **line, size_t *cap, FILE *fp) {
+  size_t n = 0;
+  int c;
+  while ((c = getc(fp)) != EOF) {
+    if (n + 2 >= *cap) {
+      size_t nc = *cap ? 2 * *cap : 256;
+      *line = yf_realloc(*line, nc, "input line");
+      *cap = nc;
+    }
+    (*line)[n++] = (char)c;
+    if (c == '\n') break;
+    if (c == '\r') {
+      int d = getc(fp);
+      if (d == '\n') (*line)[n++] = '\n';
+      else if (d != EOF) ungetc(d, fp);
+      break;
+    }
+  }
+  if (!n) return -1;
+  (*line)[n] = 0;
+  return (long)n;
+}

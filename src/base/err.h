@@ -94,6 +94,9 @@ char *yf_read_file(const char *path, size_t *len, const char *what);
 /* fopen of an input file for reading: a directory is refused (EISDIR); a pipe or a device is read
  * up to 256 MiB into an unnamed file returned in its place (beyond: EFBIG); NULL with errno. */
 FILE *yf_open_input(const char *path, const char *mode);
+/* getline that also ends a line at a CR alone (classic Mac text; CRLF stays one end, its CR kept
+ * for the caller's tokenizer): a CR-only table read as one long row.  Returns the length or -1. */
+long yf_getline(char **line, size_t *cap, FILE *fp);
 /* Of CSV rows that each begin with a step ("STEP,..."), text from its start: the length of the
  * leading rows whose step is below step (a log continued after a restart keeps these, and writes
  * the rest again). */

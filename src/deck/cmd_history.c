@@ -52,7 +52,7 @@ void cmd_history(YfSim *s, const YfArgs *a) {
     char *line = NULL; /* whole lines, however long: a long comment must not split a line in two */
     size_t lcap = 0;
     int cap = 0, ln = 0;
-    while (getline(&line, &lcap, fp) >= 0) {
+    while (yf_getline(&line, &lcap, fp) >= 0) {
       ln++;
       if (ln == 1) yf_skip_bom(line);
       char *c = strchr(line, '#');

@@ -18,7 +18,7 @@ static void read_table(const YfArgs *a, int i, YfJointProp *p) {
   int n = 0, line = 0;
   char *buf = NULL; /* whole lines, however long: a long comment must not split a line in two */
   size_t cap = 0;
-  while (getline(&buf, &cap, fp) >= 0) {
+  while (yf_getline(&buf, &cap, fp) >= 0) {
     line++;
     if (line == 1) yf_skip_bom(buf);
     char *h = strchr(buf, '#');

@@ -596,6 +596,8 @@ static void parse_lines(DeckSource *s, const char *text, size_t len) {
   int line = 1, start = 1, in_s = 0, in_d = 0, in_t = 0, cap = 0;
   for (size_t i = 0; i <= len; i++) {
     char c = i < len ? text[i] : '\n';
+    /* a CR alone ends a line (classic Mac text); CRLF is one end: its CR is dropped below */
+    if (c == '\r' && (i + 1 >= len || text[i + 1] != '\n')) c = '\n';
     if (i == len && !cur.n && !in_t) break;
     if (i < len && c == 0) { /* a NUL would silently cut the line short: say where it is */
       YfLoc l = {s->name, line};
@@ -654,7 +656,7 @@ static void parse_lines(DeckSource *s, const char *text, size_t len) {
     if (c == '\'' && !in_d) in_s = !in_s;
     else if (c == '"' && !in_s) in_d = !in_d;
     if (c == '#' && !in_s && !in_d) { /* comment to the end of the line */
-      while (i + 1 < len && text[i + 1] != '\n') i++;
+      while (i + 1 < len && text[i + 1] != '\n' && text[i + 1] != '\r') i++;
       continue;
     }
     buf_putc(&cur, c);

@@ -53,7 +53,7 @@ void deck_read_rows(YfModel *m, const YfArgs *a, int want, YfRowFn fn, const cha
   size_t cap = 0;
   YfLoc loc = {path, 0};
   int rows = 0;
-  while (getline(&line, &cap, fp) >= 0) {
+  while (yf_getline(&line, &cap, fp) >= 0) {
     loc.line++;
     if (loc.line == 1) yf_skip_bom(line);
     char *hash = strchr(line, '#');

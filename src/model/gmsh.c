@@ -188,6 +188,9 @@ static void unsupported(Msh *r, int line, long type, int dim, long etag) {
 static char *slurp(const char *path, const YfLoc *from, size_t *len) {
   char *buf = yf_read_file(path, len, "mesh file");
   if (!buf) yf_io_error(from, "mesh gmsh: cannot open '%s': %s", path, strerror(errno));
+  /* a CR alone ends a line (classic Mac text), as in every text yfdem reads; CRLF is left */
+  for (size_t i = 0; i < *len; i++)
+    if (buf[i] == '\r' && (i + 1 >= *len || buf[i + 1] != '\n')) buf[i] = '\n';
   return buf;
 }
 

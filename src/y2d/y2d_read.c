@@ -339,6 +339,16 @@ static void push_file(Rd *r, FILE *fp, const char *name) {
   s->line = 1;
 }
 
+/* 1 when c ends a line: a LF, or a CR alone (classic Mac text; the CR of a CRLF is not counted,
+ * its LF is), so that messages name the right line whatever the file's line ends. */
+static int ends_line(FILE *fp, int c) {
+  if (c == '\n') return 1;
+  if (c != '\r') return 0;
+  int d = getc(fp);
+  if (d != EOF) ungetc(d, fp);
+  return d != '\n';
+}
+
 /* Next whitespace-separated token, or NULL at the end of the outermost file.  The end of an
  * included file returns transparently to the including one (as the anchor). */
 static const char *next_tok(Rd *r) {
@@ -346,7 +356,7 @@ static const char *next_tok(Rd *r) {
     Src *s = &r->src[r->depth - 1];
     int c;
     while ((c = getc(s->fp)) != EOF && isspace(c))
-      if (c == '\n') s->line++;
+      if (ends_line(s->fp, c)) s->line++;
     if (c == EOF) {
       fclose(s->fp);
       r->depth--;
@@ -366,7 +376,7 @@ static const char *next_tok(Rd *r) {
       r->tok[n++] = (char)c;
     } while ((c = getc(s->fp)) != EOF && !isspace(c));
     r->tok[n] = 0;
-    if (c == '\n') s->line++;
+    if (ends_line(s->fp, c)) s->line++;
     if (c == EOF && !r->glued_warned) {
       r->glued_warned = 1;
       yf_warn(&r->loc, "'%s' ends the file without a trailing newline: the anchor loses this "
@@ -507,7 +517,7 @@ static void note_value_line(Rd *r, int k, long m) {
   Src *s = &r->src[r->depth - 1];
   int c;
   while ((c = getc(s->fp)) != EOF && isspace(c))
-    if (c == '\n') s->line++;
+    if (ends_line(s->fp, c)) s->line++;
   if (c != EOF) ungetc(c, s->fp);
   if (y->nvline && y->vline[y->nvline - 1].key == k && y->vline[y->nvline - 1].line == s->line &&
       y->vline[y->nvline - 1].file == s->file)
