@@ -912,6 +912,26 @@ START_TEST(line_endings_any) {
 }
 END_TEST
 
+/* A variable named as a built-in (time, pi, ke, ux_G...) hides it from bare expressions: the
+ * deck says so once, at the first line that reads it bare; v_NAME says the variable is meant and
+ * is quiet.  'variable pi equal 3' made $(2*pi) read 6 without a word. */
+START_TEST(variable_hiding_builtin_warned) {
+  make_tmpdir();
+  Run r = run_child("variable pi equal 3\nvariable tm equal 2\nprint \"$(v_pi) $(v_tm) $(tm)\"\n"
+                    "print \"$(2*pi)\"\nprint \"$(pi)\"\n", NULL, NULL);
+  ck_assert_msg(r.code == 0 && strstr(r.out, "3 2 2\n6\n3\n"), "exit %d: %s%s", r.code, r.out, r.err);
+  const char *w = "e.deck:4: warning: 'pi' in an expression reads your variable 'pi', which hides the built-in 'pi'";
+  const char *at = strstr(r.err, w);
+  ck_assert_msg(at && !strstr(at + strlen(w), "warning"), "one warning at line 4 expected: %s", r.err);
+  run_free(&r);
+  r = run_child("variable ux_b equal 7\nmaterial m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                "mesh rect b m 0 0 1 1 2 2\nprint \"$(ux_b)\"\n", NULL, NULL);
+  ck_assert_msg(r.code == 0 && strstr(r.err, "e.deck:4: warning: 'ux_b' in an expression reads your variable"),
+                "exit %d: %s", r.code, r.err);
+  run_free(&r);
+}
+END_TEST
+
 Suite *deck_suite(void) {
   Suite *s = suite_create("deck");
   TCase *tc = tcase_create("expressions");
@@ -948,6 +968,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, error_quantities_before_run);
   tcase_add_test(tc, arg_helpers);
   tcase_add_test(tc, line_endings_any);
+  tcase_add_test(tc, variable_hiding_builtin_warned);
   tcase_add_exit_test(tc, exit_deck_error, 1);
   tcase_add_exit_test(tc, exit_missing_include, 2);
   suite_add_tcase(s, tc);

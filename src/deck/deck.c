@@ -75,6 +75,7 @@ typedef struct {
   char **vals;  /* index: the values                                       */
   int nvals, which;
   long cur, hi; /* loop: current and last value                            */
+  int shadow_warned; /* read bare where a built-in of its name exists: warned */
 } DeckVar;
 
 struct YfDeck {
@@ -416,9 +417,31 @@ static int var_number(YfDeck *d, DeckVar *v, double *val, char *err, size_t errl
   return 1;
 }
 
-static int lookup_cb(void *ctx, const char *name, double *val, char *err, size_t errlen) {
+/* 1 when a bare name in an expression has a meaning of its own besides a variable's */
+static int builtin_name(const char *name) {
+  static const char *const own[] = {"step", "time", "dt", "pi", "PI", NULL};
+  for (int i = 0; own[i]; i++)
+    if (!strcmp(name, own[i])) return 1;
+  return sim_query_known(name) != 0;
+}
+
+static int lookup_cb(void *ctx, const char *written, double *val, char *err, size_t errlen) {
   YfDeck *d = ctx;
+  int prefixed = !strncmp(written, "v_", 2) && written[2]; /* v_X: the variable X (LAMMPS spelling) */
+  const char *name = prefixed ? written + 2 : written;
   DeckVar *v = var_find(d, name);
+  if (v && !prefixed && !v->shadow_warned && builtin_name(name)) {
+    /* 'variable time equal 0.01' then $(time): the variable wins, silently (pi read 3) */
+    v->shadow_warned = 1;
+    YfLoc l = {0};
+    if (d->depth > 0) {
+      const DeckFrame *f = &d->stack[d->depth - 1];
+      l.file = f->src->name;
+      l.line = f->pos > 0 ? f->src->lines[f->pos - 1].line : 0;
+    }
+    yf_warn(l.file ? &l : NULL, "'%s' in an expression reads your variable '%s', which hides the built-in '%s'; "
+            "write v_%s to say you mean the variable, or rename the variable to read the built-in", name, name, name, name);
+  }
   if (v) return var_number(d, v, val, err, errlen);
   if (d->sim) { /* simulation state */
     if (!strcmp(name, "step")) { *val = (double)d->sim->step; return 1; }

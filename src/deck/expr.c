@@ -176,7 +176,7 @@ static double parse_name(Parser *P) {
   double v = 0.0;
   char err[sizeof P->e->msg - 64];
   err[0] = 0;
-  int r = P->lookup ? P->lookup(P->ctx, var, &v, err, sizeof err) : 0;
+  int r = P->lookup ? P->lookup(P->ctx, name, &v, err, sizeof err) : 0; /* as written: v_X or X */
   if (r > 0) return chk(P, at, v, var);
   if (r < 0) fail_at(P, at, "%s", err);
   if (var == name && (!strcmp(name, "pi") || !strcmp(name, "PI"))) return M_PI;

@@ -30,7 +30,8 @@ typedef struct {
 } ExprError;
 
 /* Name lookup: return 1 and set *val if name is known, 0 if unknown, -1 on an error while
- * evaluating it (then write the reason into err). */
+ * evaluating it (then write the reason into err).  name is as written: a LAMMPS-style v_X is
+ * passed whole, so the lookup can tell "the variable X" from a bare X. */
 typedef int (*ExprLookupFn)(void *ctx, const char *name, double *val, char *err, size_t errlen);
 
 /* Evaluate s.  Returns 1 and sets *out on success; 0 and fills *e on failure. */

@@ -47,8 +47,35 @@ static int group_reduce(YfSim *s, const char *what, const char *g, double *val, 
   return 1;
 }
 
+/* The keywords sim_query answers besides the group reductions, in the order of its switch. */
+enum { Q_KE, Q_STRAIN, Q_EXT_WORK, Q_GRAVITY_WORK, Q_EXT, Q_DISS, Q_BALANCE, Q_DAMPING, Q_JOINT_DISSIPATED,
+       Q_CONTACT_ENERGY, Q_FRICTION, Q_BROKEN, Q_PAIRS, Q_NTRI, Q_NNODES, Q_DT_LIMIT, Q_CRACK_LENGTH };
+static const char *const keywords[] = {"ke", "strain", "ext_work", "gravity_work", "ext", "diss", "balance",
+                                       "damping", "joint_dissipated", "contact_energy", "friction", "broken",
+                                       "pairs", "ntri", "nnodes", "dt_limit", "crack_length", NULL};
+static const char *const red[] = {"ux", "uy", "vx", "vy", "x", "y", "fx", "fy", "mass", NULL};
+
+static int keyword(const char *name) {
+  for (int i = 0; keywords[i]; i++)
+    if (!strcmp(name, keywords[i])) return i;
+  return -1;
+}
+
+/* the reduction of NAME_GROUP (its index in red), or -1 */
+static int reduction(const char *name) {
+  for (int i = 0; red[i]; i++) {
+    size_t L = strlen(red[i]);
+    if (!strncmp(name, red[i], L) && name[L] == '_' && name[L + 1]) return i;
+  }
+  return -1;
+}
+
+int sim_query_known(const char *name) {
+  if (keyword(name) >= 0) return 1;
+  return reduction(name) >= 0 ? 2 : 0;
+}
+
 int sim_query(YfSim *s, const char *name, double *val, char *err, size_t errlen) {
-  static const char *const red[] = {"ux", "uy", "vx", "vy", "x", "y", "fx", "fy", "mass", NULL};
   /* masses (so the kinetic energy) and the stable limit exist once a run has prepared the scene:
    * before, they read 0 silently ('timestep $(0.5*dt_limit)' became 0) */
   if (!s->model.prepared && (!strcmp(name, "ke") || !strcmp(name, "dt_limit") || !strncmp(name, "mass_", 5))) {
@@ -56,34 +83,34 @@ int sim_query(YfSim *s, const char *name, double *val, char *err, size_t errlen)
              "then): put 'timestep auto' and 'run 0' before this line", name);
     return -1;
   }
-  for (int i = 0; red[i]; i++) {
-    size_t L = strlen(red[i]);
-    if (!strncmp(name, red[i], L) && name[L] == '_' && name[L + 1]) return group_reduce(s, red[i], name + L + 1, val, err, errlen);
-  }
-  int energy = !strcmp(name, "ke") || !strcmp(name, "strain") || !strcmp(name, "gravity_work") ||
-               !strcmp(name, "ext") || !strcmp(name, "balance");
-  if (energy && s->model.prepared) run_energies_whole(s); /* (what reads a result reads a whole state) */
-  if (!strcmp(name, "ke")) *val = s->energy.kinetic;
-  else if (!strcmp(name, "strain")) *val = s->energy.strain;
-  else if (!strcmp(name, "ext_work")) *val = s->energy.external_work;
-  else if (!strcmp(name, "gravity_work")) *val = s->gravity_work;
-  else if (!strcmp(name, "ext")) *val = energy_external(s);
-  else if (!strcmp(name, "diss")) *val = s->energy.damping + s->energy.joint_dissipated + s->energy.friction;
-  else if (!strcmp(name, "balance")) *val = energy_balance(s);
-  else if (!strcmp(name, "damping")) *val = s->energy.damping;
-  else if (!strcmp(name, "joint_dissipated")) *val = s->energy.joint_dissipated;
-  else if (!strcmp(name, "contact_energy")) *val = s->energy.contact;
-  else if (!strcmp(name, "friction")) *val = s->energy.friction;
-  else if (!strcmp(name, "broken")) *val = (double)joints_broken(s);
-  else if (!strcmp(name, "pairs")) *val = (double)contact_pairs(s);
-  else if (!strcmp(name, "ntri")) *val = s->model.tri.n;
-  else if (!strcmp(name, "nnodes")) *val = s->model.node.n;
-  else if (!strcmp(name, "dt_limit")) *val = s->dt_limit;
-  else if (!strcmp(name, "crack_length")) { /* broken joints' length so far [m] */
+  int r = reduction(name);
+  if (r >= 0) return group_reduce(s, red[r], name + strlen(red[r]) + 1, val, err, errlen);
+  int k = keyword(name);
+  if (k < 0) return 0;
+  if ((k == Q_KE || k == Q_STRAIN || k == Q_GRAVITY_WORK || k == Q_EXT || k == Q_BALANCE) && s->model.prepared)
+    run_energies_whole(s); /* (what reads a result reads a whole state) */
+  switch (k) {
+  case Q_KE: *val = s->energy.kinetic; break;
+  case Q_STRAIN: *val = s->energy.strain; break;
+  case Q_EXT_WORK: *val = s->energy.external_work; break;
+  case Q_GRAVITY_WORK: *val = s->gravity_work; break;
+  case Q_EXT: *val = energy_external(s); break;
+  case Q_DISS: *val = s->energy.damping + s->energy.joint_dissipated + s->energy.friction; break;
+  case Q_BALANCE: *val = energy_balance(s); break;
+  case Q_DAMPING: *val = s->energy.damping; break;
+  case Q_JOINT_DISSIPATED: *val = s->energy.joint_dissipated; break;
+  case Q_CONTACT_ENERGY: *val = s->energy.contact; break;
+  case Q_FRICTION: *val = s->energy.friction; break;
+  case Q_BROKEN: *val = (double)joints_broken(s); break;
+  case Q_PAIRS: *val = (double)contact_pairs(s); break;
+  case Q_NTRI: *val = s->model.tri.n; break;
+  case Q_NNODES: *val = s->model.node.n; break;
+  case Q_DT_LIMIT: *val = s->dt_limit; break;
+  default: { /* Q_CRACK_LENGTH: broken joints' length so far [m] */
     double L = 0.0;
     for (int i = 0; s->joints && i < s->joints->nrec; i++) L += s->joints->rec[i].length;
     *val = L;
   }
-  else return 0;
+  }
   return 1;
 }
