@@ -643,6 +643,9 @@ START_TEST(error_outputs_share_a_file) {
       {"fracture_log x.csv opened x.csv\n", "e.deck:3: error: fracture_log: 'x.csv': already written by fracture_log"},
       {"restart every 100 x.csv\nrecord r 10 x.csv.a ke\n", "e.deck:4: error: record: 'x.csv.a': already written by restart every"},
       {"metrics log m.csv\nrecord r 10 m.csv ke\n", "e.deck:4: error: record: 'm.csv': already written by metrics log"},
+      /* a y2dref dump's files in its DIR: two such dumps on one DIR interleaved their rows */
+      {"dump y1 y2dref ref summary 5\ndump y2 y2dref ./ref/ summary 2\n", "e.deck:4: error: dump: './ref/': a file it writes there is already written by dump 'y1'"},
+      {"dump y1 y2dref . corners 3\nrecord r 1 corners_0000007.csv ke\n", "e.deck:4: error: record: 'corners_0000007.csv': already written by dump 'y1'"},
   };
   for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
     char deck[512];
@@ -654,7 +657,8 @@ START_TEST(error_outputs_share_a_file) {
   /* turned off, its file is free again; a fracture_log replaced gives its file back too */
   char deck[512];
   snprintf(deck, sizeof deck, "%srecord r 1 a.csv ke\nrecord r off\nrecord q 1 a.csv ke\ndump d h5 5 o.h5\nundump d\n"
-           "dump e h5 5 o.h5\nfracture_log f.csv\nfracture_log g.csv\nrecord z 1 f.csv ke\n", pre);
+           "dump e h5 5 o.h5\nfracture_log f.csv\nfracture_log g.csv\nrecord z 1 f.csv ke\n"
+           "dump y y2dref ref\ndump h h5 5 ref/o.h5\nundump y\ndump y2 y2dref ref\n", pre);
   Run r = run_child(deck, NULL, NULL);
   ck_assert_msg(r.code == 0, "exit %d: %s", r.code, r.err);
   run_free(&r);

@@ -71,7 +71,7 @@ static void claim_files(YfSim *s, const YfArgs *a, const char *id, const char *o
   char *fr = yf_malloc(strlen(stem) + 2, "path"), *sd = yf_malloc(strlen(stem) + strlen(side) + 1, "path");
   sprintf(fr, "%s_", stem);
   sprintf(sd, "%s%s", stem, side);
-  const char *by = output_claim(s, owner, fr, ext, 1);
+  const char *by = output_claim(s, owner, fr, ext, 6);
   if (!by && index) by = output_claim(s, owner, index, NULL, 0);
   if (!by) by = output_claim(s, owner, sd, NULL, 0);
   free(fr);
@@ -95,6 +95,20 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
     if (output_ndump(s) >= YF_MAX_DUMPS) arg_error(a, 0, "at most %d dumps at a time", YF_MAX_DUMPS);
     struct YfY2dRef *r = parse_y2dref(s, a);
     output_add_y2dref(s, id, r);
+    char owner[YF_NAME_MAX + 16];
+    snprintf(owner, sizeof owner, "dump '%s'", id);
+    /* the files it writes in DIR: two y2dref dumps on one DIR interleaved their rows */
+    static const char *const files[] = {Y2DREF_SUMMARY, Y2DREF_PROBES, Y2DREF_BROKEN, Y2DREF_CORNERS, NULL};
+    const char *by = NULL;
+    for (int i = 0; files[i] && !by; i++) {
+      char f[4096];
+      snprintf(f, sizeof f, "%s/%s", y2dref_dir(r), files[i]);
+      by = files[i + 1] ? output_claim(s, owner, f, NULL, 0) : output_claim(s, owner, f, ".csv", 7);
+    }
+    if (by) {
+      output_remove_dump(s, id);
+      arg_error(a, 2, "a file it writes there is already written by %s", by);
+    }
     sim_printf(s, "dump %s: Y2D reference CSV files in %s\n", id, y2dref_dir(r));
     return;
   }

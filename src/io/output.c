@@ -1054,17 +1054,18 @@ static char *clean_path(const char *path) {
   return out;
 }
 
-/* Whether the numbered claim a (prefix a, 6 digits, suffix) names file f. */
+/* Whether the numbered claim a (prefix, a->numbered digits, suffix) names file f. */
 static int numbered_names(const struct YfClaim *a, const char *f) {
-  size_t lp = strlen(a->prefix), ls = strlen(a->suffix), lf = strlen(f);
-  if (lf != lp + 6 + ls || strncmp(f, a->prefix, lp) || strcmp(f + lp + 6, a->suffix)) return 0;
-  for (size_t i = lp; i < lp + 6; i++)
+  size_t lp = strlen(a->prefix), ls = strlen(a->suffix), lf = strlen(f), nd = (size_t)a->numbered;
+  if (lf != lp + nd + ls || strncmp(f, a->prefix, lp) || strcmp(f + lp + nd, a->suffix)) return 0;
+  for (size_t i = lp; i < lp + nd; i++)
     if (!isdigit((unsigned char)f[i])) return 0;
   return 1;
 }
 
 static int claims_meet(const struct YfClaim *a, const struct YfClaim *b) {
-  if (a->numbered && b->numbered) return !strcmp(a->prefix, b->prefix) && !strcmp(a->suffix, b->suffix);
+  if (a->numbered && b->numbered)
+    return a->numbered == b->numbered && !strcmp(a->prefix, b->prefix) && !strcmp(a->suffix, b->suffix);
   if (a->numbered) return numbered_names(a, b->prefix);
   if (b->numbered) return numbered_names(b, a->prefix);
   return !strcmp(a->prefix, b->prefix);

@@ -53,7 +53,8 @@ struct YfOutput {
  * file interleaved their rows; a record on a dump's index, or dumps named out.h5 and ./out.h5,
  * lost one of the two).  Every command that names an output claims its files here, in one
  * place: dumps, records, fracture_log, metrics log, restart every, -log, -summary.  A claim is
- * PREFIX exactly, or PREFIX NNNNNN SUFFIX (any 6 digits: numbered frames); paths are compared
+ * PREFIX exactly, or PREFIX, `numbered` digits, SUFFIX (numbered frames: 6 digits for a dump's,
+ * 7 for a y2dref dump's corners files); paths are compared
  * absolute, with '.', '..' and repeated '/' resolved (links are not followed).  Returns the
  * owner of a claim the new one meets (nothing is recorded then), or NULL when it is recorded. */
 const char *output_claim(YfSim *s, const char *owner, const char *prefix, const char *suffix, int numbered);

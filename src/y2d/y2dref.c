@@ -85,16 +85,16 @@ static void mkdir_p(const char *dir) {
 
 static void open_files(YfSim *s, YfY2dRef *r) {
   mkdir_p(r->dir);
-  if (r->sum_every) r->fsum = open_csv(r, "summary.csv", "step,time,kinetic,elastic,px,py,nbroken,ncouples\n");
+  if (r->sum_every) r->fsum = open_csv(r, Y2DREF_SUMMARY, "step,time,kinetic,elastic,px,py,nbroken,ncouples\n");
   if (r->probe_every) {
-    r->fprobe = open_csv(r, "probes.csv", "step,time");
+    r->fprobe = open_csv(r, Y2DREF_PROBES, "step,time");
     for (int k = 0; k < r->nprobe && !r->created; k++) {
       long e = r->probe[2 * k], c = r->probe[2 * k + 1];
       fprintf(r->fprobe, ",ux_%ld_%ld,uy_%ld_%ld,vx_%ld_%ld,vy_%ld_%ld", e, c, e, c, e, c, e, c);
     }
     if (!r->created) fputc('\n', r->fprobe);
   }
-  r->fbroken = open_csv(r, "broken.csv", "step,elemA,elemB,nodeP,nodeQ\n");
+  r->fbroken = open_csv(r, Y2DREF_BROKEN, "step,elemA,elemB,nodeP,nodeQ\n");
   fflush(r->fbroken);
   (void)s;
   r->opened = 1;
@@ -108,7 +108,7 @@ static void check_write(FILE *f, const YfY2dRef *r, const char *name) {
 
 static void write_corners(YfSim *s, YfY2dRef *r) {
   char path[4096];
-  snprintf(path, sizeof path, "%s/corners_%07ld.csv", r->dir, s->step);
+  snprintf(path, sizeof path, "%s/" Y2DREF_CORNERS "%07ld.csv", r->dir, s->step);
   FILE *f = fopen(path, "w");
   if (!f) yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, strerror(errno));
   fputs("elem,corner,node,ux,uy,vx,vy\n", f);

@@ -18,6 +18,13 @@
 
 struct YfY2dRef;
 
+/* The names of the files in DIR (what the deck claims for the dump, cmd_dump.c): corners files are
+ * Y2DREF_CORNERS, 7 digits of the step, ".csv". */
+#define Y2DREF_SUMMARY "summary.csv"
+#define Y2DREF_PROBES "probes.csv"
+#define Y2DREF_BROKEN "broken.csv"
+#define Y2DREF_CORNERS "corners_"
+
 /* A dump into directory dir (the words of `dump ID y2dref` are read in deck/cmd_dump.c), then
  * its corner-table steps, summary and probe periods and probes (input element, corner 0..2);
  * the adders return how many there are now. */
