@@ -658,7 +658,7 @@ START_TEST(error_outputs_share_a_file) {
   char deck[512];
   snprintf(deck, sizeof deck, "%srecord r 1 a.csv ke\nrecord r off\nrecord q 1 a.csv ke\ndump d h5 5 o.h5\nundump d\n"
            "dump e h5 5 o.h5\nfracture_log f.csv\nfracture_log g.csv\nrecord z 1 f.csv ke\n"
-           "dump y y2dref ref\ndump h h5 5 ref/o.h5\nundump y\ndump y2 y2dref ref\n", pre);
+           "dump y y2dref .\ndump h h5 5 o2.h5\nundump y\ndump y2 y2dref .\n", pre);
   Run r = run_child(deck, NULL, NULL);
   ck_assert_msg(r.code == 0, "exit %d: %s", r.code, r.err);
   run_free(&r);
