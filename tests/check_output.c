@@ -825,6 +825,56 @@ START_TEST(test_state_hash) {
 }
 END_TEST
 
+/* undump, then dump again on the same file: the new dump continues the series (frames before its
+ * first step kept, numbered on), as a run continued from a restart does.  It began again at frame
+ * 0 and wrote over the earlier frames, and the index listed only the new ones. */
+START_TEST(test_dump_again_continues_series) {
+  const char *deck = "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 0.2 10 2\n"
+                     "velocity b set 1 0\ntimestep 1e-5\ndump d h5 10 out.h5\ndump c csv 10 fr\nrun 30\n"
+                     "undump d\nundump c\nrun 15\ndump d h5 10 ./out.h5 fields u\ndump c csv 10 fr\nrun 30\n";
+  char *err, *dir;
+  int rc = yft_run_binary("again.deck", deck, "-log none", &err, &dir);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  char p[600];
+  snprintf(p, sizeof p, "%s/out.xmf", dir);
+  char *x = yft_slurp(p, 1);
+  snprintf(p, sizeof p, "%s/fr_frames.csv", dir);
+  char *c = yft_slurp(p, 1);
+  /* the steps the index lists, in order: 0 10 20 30 from the first dump, 45 (the new dump's
+   * first, at its run's start) 50 60 70 from the second */
+  static const long want[] = {0, 10, 20, 30, 45, 50, 60, 70};
+  const char *q = x;
+  for (int k = 0; k < 8; k++) {
+    char name[64];
+    snprintf(name, sizeof name, "Name=\"frame_%06d\"", k);
+    q = strstr(q, name);
+    ck_assert_msg(q, "out.xmf lacks frame %d: %s", k, x);
+    const char *st = strstr(q, "<Information Name=\"step\" Value=\"");
+    ck_assert_ptr_nonnull(st);
+    ck_assert_int_eq(strtol(st + strlen("<Information Name=\"step\" Value=\""), NULL, 10), want[k]);
+    char row[64];
+    snprintf(row, sizeof row, "\n%d,%ld,", k, want[k]);
+    ck_assert_msg(strstr(c, row), "fr_frames.csv lacks row %s: %s", row + 1, c);
+  }
+  ck_assert_ptr_null(strstr(x, "frame_000008"));
+  /* the first dump's frame 0 is still its own (all fields), the new frames have only u */
+  snprintf(p, sizeof p, "%s/out_000000.h5", dir);
+  hid_t f = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+  ck_assert_int_ge(f, 0);
+  ck_assert_int_gt(H5Lexists(f, "/v", H5P_DEFAULT), 0);
+  H5Fclose(f);
+  snprintf(p, sizeof p, "%s/out_000004.h5", dir);
+  f = H5Fopen(p, H5F_ACC_RDONLY, H5P_DEFAULT);
+  ck_assert_int_ge(f, 0);
+  ck_assert_int_eq(H5Lexists(f, "/v", H5P_DEFAULT), 0);
+  H5Fclose(f);
+  free(x);
+  free(c);
+  free(err);
+  free(dir);
+}
+END_TEST
+
 Suite *output_suite(void) {
   Suite *su = suite_create("output");
   TCase *tc = tcase_create("h5");
@@ -835,6 +885,7 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_csv);
   tcase_add_test(tc, test_deck_dump);
   tcase_add_test(tc, test_long_series_index);
+  tcase_add_test(tc, test_dump_again_continues_series);
   tcase_add_test(tc, test_deck_dump_errors);
   tcase_add_test(tc, test_io_error);
   tcase_add_test(tc, test_kill_midway);

@@ -99,6 +99,8 @@ typedef struct YfDump {
   int created;        /* csv index created in this process (a later open appends)      */
   long nframe;        /* frames written (including those of a continued series)        */
   int adopted;        /* a continued run looked for the earlier run's series (dump_adopt) */
+  int again;          /* on the file of a dump undumped earlier in this process: continues its
+                         series as a restarted run does (it wrote over its frames from 0) */
   long first;         /* number of this process's first frame (> 0: a continued series) */
   long last_step;     /* step of the last frame (LONG_MIN: none)                       */
   YfText grids;       /* XDMF <Grid> elements of the frames so far (STEM.xmf)          */
@@ -867,16 +869,17 @@ static void dump_adopt(YfSim *s, YfDump *d) {
   long kept = d->style == YF_DUMP_H5 ? h5_adopt(s, d) : d->style == YF_DUMP_CSV ? csv_adopt(s, d) : 0;
   if (!kept) return;
   d->nframe = d->first = kept;
-  sim_printf(s, "dump %s: continuing the series of the earlier run: its %ld frame%s before step %ld kept, "
-             "the next is frame %ld\n", d->id, kept, kept == 1 ? "" : "s", s->step, kept);
+  sim_printf(s, "dump %s: continuing the series of the earlier %s: its %ld frame%s before step %ld kept, "
+             "the next is frame %ld\n", d->id, d->again ? "dump on this file" : "run", kept, kept == 1 ? "" : "s",
+             s->step, kept);
 }
 
 /* ---------------------------------------------------------------- frames */
 
-/* The first frame of a dump in a run continued by read_restart: the series of the earlier run
- * it continues is adopted (once, at the step the run continues from). */
+/* The first frame of a dump in a run continued by read_restart, or of a dump on the file of one
+ * undumped earlier: the series it continues is adopted (once, at the step it begins). */
 static int continuing(const YfSim *s, const YfDump *d) {
-  return s->restored && !d->adopted && d->nframe == 0 && d->last_step == LONG_MIN;
+  return (s->restored || d->again) && !d->adopted && d->nframe == 0 && d->last_step == LONG_MIN;
 }
 
 static void write_frame(YfSim *s, YfDump *d) {
@@ -909,7 +912,7 @@ void output_run_begin(YfSim *s) {
      * step no dump is due on (an interrupt at step 997 with frames every 500), but its series
      * is adopted now, at the step it continues from (frames of the earlier run from this step
      * on, such as the interrupt's own, leave the index). */
-    if (continuing(s, d) && s->step % d->every != 0) {
+    if (continuing(s, d) && !d->again && s->step % d->every != 0) { /* (a dump again is new: it writes) */
       d->adopted = 1;
       dump_adopt(s, d);
       continue;
@@ -1011,6 +1014,9 @@ void output_free(YfSim *s) {
   for (int i = 0; i < o->ndump; i++) dump_free(o->dump[i]);
   while (o->nclaim) output_release(s, o->claim[0].owner);
   free(o->claim);
+  for (int i = 0; i < o->npast; i++) free(o->past[i]);
+  free(o->past);
+  free(o->past_style);
   free(o);
   s->out = NULL;
 }
@@ -1173,6 +1179,9 @@ int output_add_dump(YfSim *s, const char *id, int style, long every, const char 
     d->cur_tmp = yf_malloc(d->curcap, "dump file name");
     d->cur[0] = d->cur_tmp[0] = 0;
   }
+  char *cp = clean_path(path);
+  for (int i = 0; i < o->npast; i++) d->again |= o->past_style[i] == style && !strcmp(o->past[i], cp);
+  free(cp);
   o->dump[o->ndump++] = d;
   update_next_due(s);
   return o->ndump - 1;
@@ -1186,6 +1195,12 @@ int output_remove_dump(YfSim *s, const char *id) {
   char owner[YF_NAME_MAX + 16];
   snprintf(owner, sizeof owner, "dump '%s'", d->id);
   output_release(s, owner);
+  if (d->nframe > 0 && d->style != YF_DUMP_Y2DREF) {
+    o->past = yf_realloc(o->past, (size_t)(o->npast + 1) * sizeof *o->past, "undumped files");
+    o->past_style = yf_realloc(o->past_style, (size_t)(o->npast + 1) * sizeof *o->past_style, "undumped files");
+    o->past_style[o->npast] = d->style;
+    o->past[o->npast++] = clean_path(d->path);
+  }
   dump_free(d);
   for (int i = slot; i + 1 < o->ndump; i++) o->dump[i] = o->dump[i + 1];
   o->ndump--;

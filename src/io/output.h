@@ -47,6 +47,9 @@ struct YfOutput {
   struct YfDump *dump[YF_MAX_DUMPS];
   int nclaim;      /* the files outputs write, by owner (output_claim)        */
   struct YfClaim *claim;
+  int npast;       /* dumps undumped in this process: style and clean path,   */
+  int *past_style; /* so that a dump again on the same file continues their  */
+  char **past;     /* series instead of writing over its frames              */
 };
 
 /* The files the outputs write, so that two outputs never write one file (two records on one
