@@ -371,6 +371,28 @@ START_TEST(test_couple_capacity_warned) {
 }
 END_TEST
 
+/* Y2D moves no node of mass <= 1e-10 (ALGORITHMS 7, 9): in tonnes and millimetres with 0.1 mm
+ * cells every node is such a node, and with an initial velocity of 1000 mm/s none moves in Y2D,
+ * its velocity kept.  yfdem moved them all (ux 1e-4 mm after 100 steps), with native mass damping
+ * too. */
+START_TEST(test_massless_nodes_stay) {
+  static const char *const decks[] = {"read_y2d tests/y2d/lowmass.y\nrun\n",
+                                      "read_y2d tests/y2d/lowmass.y\ndamping mass 10\nrun\n"};
+  for (int k = 0; k < 2; k++) {
+    YfSim *s = yft_run(decks[k]);
+    ck_assert_int_eq(s->step, 100);
+    const YfNodes *n = &s->model.node;
+    ck_assert_int_gt(n->n, 0);
+    for (int i = 0; i < n->n; i++) {
+      ck_assert_msg(n->m[i] > 0 && n->m[i] < 1e-10, "node %d mass %g", i, n->m[i]);
+      ck_assert_msg(n->x[i] == n->x0[i] && n->y[i] == n->y0[i], "deck %d: node %d moved by (%g, %g)", k, i,
+                    n->x[i] - n->x0[i], n->y[i] - n->y0[i]);
+      ck_assert_msg(n->vx[i] == 1000.0, "deck %d: node %d vx %g, its initial 1000 kept in Y2D", k, i, n->vx[i]);
+    }
+  }
+}
+END_TEST
+
 Suite *y2d_read_suite(void) {
   Suite *s = suite_create("y2d_read");
   TCase *tc = tcase_create("reference_decks");
@@ -384,6 +406,7 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_include_relative_to_deck);
   tcase_add_test(tc, test_y2d_deck_misnamed);
   tcase_add_test(tc, test_couple_capacity_warned);
+  tcase_add_test(tc, test_massless_nodes_stay);
   suite_add_tcase(s, tc);
   tc = tcase_create("errors");
   tcase_add_loop_test(tc, test_bad_decks, 0, (int)(sizeof bad / sizeof bad[0]));

@@ -299,6 +299,7 @@ static double update_range(const YfY2dRun *r, YfNodes *n, const YfSim *s, int i0
     const double dt = s->dt, *vx = n->vx, *vy = n->vy;
     double *x = n->x, *y = n->y;
     for (int j = i0; j < i1; j++) {
+      if (set[j] >= 0 && !(ms[j] > 1e-10)) continue; /* Y2D moves no node of mass <= 1e-10 (ALGORITHMS 7, 9) */
       x[j] += dt * vx[j];
       y[j] += dt * vy[j];
     }
@@ -671,8 +672,24 @@ static void y2d_mark_nodes(YfSim *s, unsigned char *mark) {
   }
 }
 
+/* With native mass damping the run loop moves every node after the update (run.c, old positions
+ * in xo, yo): a Y2D node of mass <= 1e-10 goes back, as Y2D moves none (ALGORITHMS 7, 9: a deck in
+ * tonnes and millimetres with fine cells has such nodes everywhere).  Without damping the update
+ * itself leaves them (update_range). */
+static void y2d_hold_massless(YfSim *s, const double *xo, const double *yo, const double *vxo, const double *vyo) {
+  YfY2dRun *r = s->y2d;
+  if (!r || !xo || !(s->mass_damping > 0)) return;
+  YfNodes *n = &s->model.node;
+  for (int i = 0; i < n->n && i < r->nn; i++)
+    if (r->set[i] >= 0 && !(n->m[i] > 1e-10)) {
+      n->x[i] = xo[i];
+      n->y[i] = yo[i];
+    }
+  (void)vxo, (void)vyo;
+}
+
 const YfBcKind y2d_bc_kind = {.name = "y2d", .loads = y2d_loads, .integrate = y2d_update_velocities,
-                              .mark_nodes = y2d_mark_nodes,
+                              .constrain_positions = y2d_hold_massless, .mark_nodes = y2d_mark_nodes,
                               .renumbered = y2d_renumbered, .scene_built = y2d_release_deck,
                               .free = y2d_model_free};
 
