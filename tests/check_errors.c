@@ -294,6 +294,26 @@ START_TEST(test_never_inf_nan) {
   free(log);
   free(err);
   free(dir);
+  /* Y2D decks with a contact penalty D1PEPE of 1e308 (it printed "is inf x the stable limit 0 s")
+   * and a viscosity D1PEKS of 1e300 ("stable limit inf s"): both warn, run and stop as they blow up */
+  char *y = slurp("tests/y2d/decks/a_elastic_block.y");
+  ck_assert_ptr_nonnull(y);
+  static const struct { const char *key, *val; } huge[] = {
+      {"/YD/YDPE/D1PEPE 2\n", "1e308 1e308\n"}, {"/YD/YDPE/D1PEKS 2\n", "1e300 1e300\n"}};
+  for (int k = 0; k < 2; k++) {
+    char *at = strstr(y, huge[k].key);
+    ck_assert_ptr_nonnull(at);
+    at += strlen(huge[k].key);
+    const char *eol = strchr(at, '\n') + 1;
+    char *deck = malloc(strlen(y) + 64);
+    sprintf(deck, "%.*s%s%s", (int)(at - y), y, huge[k].val, eol);
+    rc = yft_run_binary("huge.y", deck, "-log none", &err, NULL);
+    ck_assert_msg(rc == 3 && strstr(err, "warning: the Y2D deck's time step"), "%s: exit %d: %s", huge[k].val, rc, err);
+    ck_assert_msg(!has_inf_nan(err), "%s: stderr holds inf or nan: %s", huge[k].val, err);
+    free(err);
+    free(deck);
+  }
+  free(y);
 }
 END_TEST
 

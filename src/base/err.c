@@ -4,6 +4,7 @@
  * message is kept for the summary JSON.  The cleanup hook runs at most once, so a failure inside
  * cleanup cannot loop.
  */
+#include <ctype.h>
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -13,6 +14,7 @@
 #include <unistd.h>
 #include <sys/stat.h>
 #include <string.h>
+#include <strings.h>
 #include "err.h"
 
 static char last_msg[2048];
@@ -98,6 +100,32 @@ static void finish(int code) {
   exit(code);
 }
 
+/* The net under "never print inf or nan": in a composed message's first line (later lines echo
+ * the deck line under a caret, which must stay as typed), a word inf, infinity or nan that printf
+ * made of a non-finite number, outside quotes (a name or a word quoted from the deck stays), is
+ * spelled out.  Each site should say better what a non-finite value means; this catches the ones
+ * that do not (D1PEKS 1e300 printed "stable limit inf s"). */
+static void spell_nonfinite(char *msg, size_t cap) {
+  static const struct { const char *word, *say; } w[] = {
+      {"infinity", "beyond the range of a double"}, {"inf", "beyond the range of a double"},
+      {"nan", "not a number"}, {NULL, NULL}};
+  int quoted = 0;
+  for (size_t i = 0; msg[i] && msg[i] != '\n'; i++) {
+    if (msg[i] == '\'' || msg[i] == '"') { quoted = !quoted; continue; }
+    if (quoted || (i > 0 && (isalnum((unsigned char)msg[i - 1]) || msg[i - 1] == '_' || msg[i - 1] == '.'))) continue;
+    for (int k = 0; w[k].word; k++) {
+      size_t L = strlen(w[k].word);
+      if (strncasecmp(msg + i, w[k].word, L) || isalnum((unsigned char)msg[i + L]) || msg[i + L] == '_') continue;
+      size_t S = strlen(w[k].say), rest = strlen(msg + i + L);
+      if (i + S + rest + 1 > cap) return; /* no room: leave the rest as it is */
+      memmove(msg + i + S, msg + i + L, rest + 1);
+      memcpy(msg + i, w[k].say, S);
+      i += S - 1;
+      break;
+    }
+  }
+}
+
 void yf_output_error(const char *fmt, ...) {
   char msg[2048];
   int k = snprintf(msg, sizeof msg, "error: ");
@@ -105,6 +133,7 @@ void yf_output_error(const char *fmt, ...) {
   va_start(ap, fmt);
   vsnprintf(msg + k, sizeof msg - (size_t)k, fmt, ap);
   va_end(ap);
+  spell_nonfinite(msg, sizeof msg);
   if (!in_cleanup) {
     snprintf(last_msg, sizeof last_msg, "%s", msg);
     finish(YF_EXIT_IO);
@@ -126,6 +155,7 @@ static void compose(const YfLoc *loc, const char *kind, const char *fmt, va_list
     k = snprintf(last_msg, sizeof last_msg, "%s: ", kind);
   if (k < 0) k = 0;
   if ((size_t)k < sizeof last_msg) vsnprintf(last_msg + k, sizeof last_msg - (size_t)k, fmt, ap);
+  spell_nonfinite(last_msg, sizeof last_msg);
 }
 
 void yf_deck_error(const YfLoc *loc, const char *fmt, ...) {
@@ -150,6 +180,7 @@ void yf_numeric_error(long step, const char *fmt, ...) {
   va_start(ap, fmt);
   if (k > 0 && (size_t)k < sizeof last_msg) vsnprintf(last_msg + k, sizeof last_msg - (size_t)k, fmt, ap);
   va_end(ap);
+  spell_nonfinite(last_msg, sizeof last_msg);
   finish(YF_EXIT_NUMERIC);
 }
 
@@ -158,6 +189,7 @@ void yf_exit_with(int code, const char *fmt, ...) {
   va_start(ap, fmt);
   vsnprintf(last_msg, sizeof last_msg, fmt, ap);
   va_end(ap);
+  spell_nonfinite(last_msg, sizeof last_msg);
   finish(code);
 }
 
@@ -170,6 +202,7 @@ void yf_warn(const YfLoc *loc, const char *fmt, ...) {
   va_start(ap, fmt);
   if (k > 0 && (size_t)k < sizeof buf) vsnprintf(buf + k, sizeof buf - (size_t)k, fmt, ap);
   va_end(ap);
+  spell_nonfinite(buf, sizeof buf);
   if (writer) {
     fprintf(stderr, "%s\n", buf);
     fflush(stderr);

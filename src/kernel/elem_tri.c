@@ -316,7 +316,15 @@ double tri_dt_of_omega(double w, const YfTriMat *mt) {
   /* Viscous term: damping ratio of the highest mode xi = w k / (2 (lam + 2 mu)); central
    * differences are stable for dt <= (2/w)(sqrt(1 + xi^2) - xi). */
   double xi = w * mt->k / (2.0 * (lam + 2.0 * mu));
-  return 2.0 / w * (sqrt(1.0 + xi * xi) - xi);
+  return 2.0 / w * tri_visc_factor(xi);
+}
+
+double tri_visc_factor(double xi) {
+  double r = sqrt(1.0 + xi * xi) - xi;
+  /* xi above 1e154 (D1PEKS 1e300): xi^2 overflows and the difference is inf - inf; the same
+   * number as 1 / (sqrt(1 + xi^2) + xi), used only then, so every finite limit keeps its bits */
+  if (!(r > 0) || !isfinite(r)) r = isfinite(xi) ? 1.0 / (hypot(1.0, xi) + xi) : 0.0;
+  return r;
 }
 
 double tri_stable_dt(const YfModel *m, const YfTriMat *tm, int e) {

@@ -42,5 +42,8 @@ double tri_stable_dt(const YfModel *m, const YfTriMat *tm, int e);
  * and the stable step for that omega with material mt's viscosity [s]. */
 double tri_omega_max(const YfModel *m, const YfTriMat *tm, int e);
 double tri_dt_of_omega(double w, const YfTriMat *mt);
+/* sqrt(1 + xi^2) - xi: the viscous reduction of the stable step at damping ratio xi (finite and
+ * positive for any finite xi). */
+double tri_visc_factor(double xi);
 
 #endif

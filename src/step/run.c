@@ -161,7 +161,7 @@ double run_stable_dt(YfSim *s, char *limiter, size_t n) {
       /* stiffness-proportional viscosity acts on the triangle's share of the mode only:
        * xi = xi_T omega_T / omega with xi_T = omega_T k / (2 (lambda + 2 mu)) */
       double xi = M > 0 ? wt2 * mt->k / (2.0 * M * om) : 0.0;
-      double d = 2.0 / om * (sqrt(1.0 + xi * xi) - xi);
+      double d = 2.0 / om * tri_visc_factor(xi);
       if (d < best) { best = d; bi = i; }
     }
     if (bi >= 0 && limiter) {
@@ -470,7 +470,7 @@ static void stage_elements(YfSim *s) {
                          "safety'), or the body is crushed beyond what the law allows",
                          m->tri.id[e], m->mat[m->tri.mat[e]].name, R.blk_badJ[b], s->dt, s->dt_limit, s->dt_limiter);
       /* a non-finite stress is an overflow of a growing instability: say what limits the step */
-      yf_numeric_error(s->step + 1, "triangle %d (material %s): stress is not finite (NaN or inf): the motion "
+      yf_numeric_error(s->step + 1, "triangle %d (material %s): stress is not finite (not a number, or beyond a double): the motion "
                        "blew up (time step %.6g s, stable limit %.6g s set by %s)", m->tri.id[e],
                        m->mat[m->tri.mat[e]].name, s->dt, s->dt_limit, s->dt_limiter);
     }
@@ -642,11 +642,19 @@ void run_steps(YfSim *s, long nsteps) {
     /* E 1e307: omega_max is beyond a double, the limit 0; a step of 0 s would run without moving */
     if (!(s->dt > 0))
       yf_deck_error(s->dt_loc.file ? &s->dt_loc : NULL, "timestep auto: the stable limit %.6g s (set by %s) is "
-                    "zero in doubles: the scene's moduli, density or sizes are beyond a double's range; use other units",
+                    "zero in doubles: the scene's moduli, viscosity, density or sizes are beyond a double's range; use other units",
                     limit, lim);
     sim_printf(s, "timestep auto: dt = %.6g s = %.3g x stable limit %.6g s (set by %s)\n", s->dt, s->dt_safety, limit, lim);
   } else if (!(s->dt > 0)) {
     yf_deck_error(NULL, "run: no time step set (use 'timestep DT' or 'timestep auto')");
+  } else if (s->dt > limit && !(limit > 0) && energy_dt_above_limit_ok(s)) {
+    yf_warn(s->dt_loc.file ? &s->dt_loc : NULL,
+            "the %s time step %.6g s is above every step doubles can tell stable: the stable limit (set by %s) is 0 "
+            "in doubles (moduli, viscosity, penalties, density or sizes beyond a double's range); running it as asked: %s",
+            s->y2d ? "Y2D deck's" : "deck's", s->dt, lim,
+            s->ebal_mode == YF_EBAL_STOP ? "the energy check stops the run if it diverges"
+            : s->ebal_mode == YF_EBAL_WARN ? "the energy check warns if it diverges (energy_check warn)"
+                                           : "nothing checks whether it diverges (energy_check off)");
   } else if (s->dt > limit && energy_dt_above_limit_ok(s)) {
     /* Y2D never checks dt and its decks choose it by experience (ALGORITHMS.md 10); a native deck
      * that said energy_check warn|off takes stability over: warn only, the energy check (unless
