@@ -517,6 +517,31 @@ START_TEST(test_overlapping_fixes) {
 }
 END_TEST
 
+/* Dissipation beyond the energy given, above the limit: shared deck b at DCSTEC 1.75e-7 s (1.58 x
+ * the printed limit; 1e-7 is its own) stays bounded because the triangles' viscosity takes the
+ * energy the step makes as it comes: 431 J/m dissipated of 337.5 given (74 at its own step), a
+ * balance of +353 J/m, and it ended "ok".  Now it stops with exit 3 once the dissipation passes
+ * the energy given; at its own step the deck runs (test_y2d_regress). */
+START_TEST(test_dissipation_beyond_given_stops) {
+  char *b = yft_slurp("tests/y2d/decks/b_beam_impact.y", 0);
+  ck_assert_ptr_nonnull(b);
+  char *dt = strstr(b, "/YD/YDC/DCSTEC "), *mc = strstr(b, "/YD/YDC/MCSTEP ");
+  ck_assert(dt && mc && mc < dt);
+  char *deck = malloc(strlen(b) + 64);
+  int k = sprintf(deck, "%.*s/YD/YDC/MCSTEP 3000\n", (int)(mc - b), b);
+  const char *after_mc = strchr(mc, '\n') + 1;
+  k += sprintf(deck + k, "%.*s/YD/YDC/DCSTEC 1.75e-07\n", (int)(dt - after_mc), after_mc);
+  strcpy(deck + k, strchr(dt, '\n') + 1);
+  char *err;
+  int rc = yft_run_binary("b175.y", deck, "-log none", &err, NULL);
+  fprintf(stderr, "energy: deck b at 1.75e-7 s: exit %d: %.300s\n", rc, err);
+  ck_assert_msg(rc == 3 && strstr(err, "more was dissipated than the scene was given"), "exit %d: %s", rc, err);
+  free(err);
+  free(deck);
+  free(b);
+}
+END_TEST
+
 Suite *energy_suite(void) {
   Suite *s = suite_create("energy");
   TCase *tc = tcase_create("energy");
@@ -535,6 +560,7 @@ Suite *energy_suite(void) {
   tcase_add_test(tc, test_gravity_work_reported);
   tcase_add_test(tc, test_finite_strain_energy);
   tcase_add_test(tc, test_overlapping_fixes);
+  tcase_add_test(tc, test_dissipation_beyond_given_stops);
   suite_add_tcase(s, tc);
   return s;
 }

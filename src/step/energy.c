@@ -21,6 +21,10 @@
  *     times the energy given (the energy given alone above the limit), or
  *   - r > tol and r rose to a new high, by tol/10 and by a quarter, at each of GROWING checks in
  *     a row (energy from nowhere, wherever it went: a bounded offset stops setting new highs), or
+ *   - r > tol and more was dissipated (damping, fracture, friction) than the largest offset a
+ *     stable step can show, and than the energy given: above the limit that is the energy given
+ *     alone, and a step whose energy from nowhere the viscosity took as it came ended "ok" with a
+ *     balance of the whole energy given (a Y2D deck at 1.6 x its limit), or
  *   - a dissipation is negative.
  * Dissipation beyond what the scene was given is energy from nowhere too: it is part of r.  The
  * message names the step, the energy that grew most since the last closed check and the stage
@@ -201,15 +205,16 @@ void energy_check(YfSim *s) {
   int grew = -1;
   if (!finite) {
     snprintf(what, sizeof what, "the energies are not finite (the motion blew up)");
-  } else if (r > tol && (r > hard || E.streak + higher >= GROWING)) {
+  } else if (r > tol && (r > hard || diss > fmax(hard, given + tol) || E.streak + higher >= GROWING)) {
     double best = -INFINITY;
     for (int i = 0; i < NT; i++)
       if (t[i] - E.last[i] > best) { best = t[i] - E.last[i]; grew = i; }
     snprintf(what, sizeof what, "energy balance not closed: %.6g J/m appeared from nowhere (kinetic %.6g + stored "
              "%.6g + dissipated %.6g - given %.6g J/m), %s; since step %ld the %s grew most (+%.6g J/m)", r,
              t[T_KIN], t[T_STRAIN] + t[T_JOINT] + t[T_CONTACT], diss, given,
-             r > hard ? (diss > scale ? "more than a stable step can show, and more was dissipated than given"
-                                      : "more than a stable step can show") : "still growing at every check",
+             diss > fmax(hard, given + tol) ? (r > hard ? "more than a stable step can show, and more was dissipated than given"
+                                                        : "more was dissipated than the scene was given")
+             : r > hard ? "more than a stable step can show" : "still growing at every check",
              E.last_step, term_name[grew], best);
   } else {
     for (int i = T_DAMP; i < NT && grew < 0; i++)
