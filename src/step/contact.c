@@ -62,8 +62,7 @@ typedef struct {
 
 typedef struct {
   double pmax;  /* largest pen_n among the side's participating triangles [Pa] */
-  int body0;    /* body of the first triangle seen (-1: none)                 */
-  int multi;    /* more than one body on this side                            */
+  int any;      /* the side holds a participating triangle                    */
 } Side;
 
 typedef struct YfContact {
@@ -87,6 +86,8 @@ typedef struct YfContact {
   double *cx, *cy, *cr;  /* per item: centroid and radius [m]                   */
   int nmat;
   double *mpn, *mpt, *mmu; /* per material: pen_n, pen_t [Pa], friction         */
+  int impact_warned;       /* contact_check_impact said it once                    */
+  double first_travel;     /* >= 0: the next setup's travel counter, no forced search */
   int *mlaw;               /* per material: friction law YF_FRIC_* (contact_pair.h) */
   int *jpart, *jidx;     /* joined skip: 3 per triangle, partner triangle and joint (-1 none) */
   const unsigned char *jstate;
@@ -138,6 +139,7 @@ static YfContact *get(YfSim *s) {
     YfContact *C = yf_calloc(1, sizeof *C, "contact state");
     C->buffer_auto = 1;
     C->par_min = PAR_MIN_DEF;
+    C->first_travel = -1.0;
     contact_pairs_init(&C->pairs);
     contact_pairs_init(&C->fresh);
     contact_search_work_init(&C->work);
@@ -215,6 +217,11 @@ void contact_enable_all(YfSim *s, double buffer) {
   C->joined_skip = 0;
   C->search_every = 0;
   C->dirty = 1;
+}
+
+void contact_set_first_travel(YfSim *s, double d) {
+  YF_ASSERT(d >= 0.0);
+  get(s)->first_travel = d;
 }
 
 void contact_set_participation(YfSim *s, const unsigned char *tri_flag, int n) {
@@ -369,9 +376,9 @@ int contact_node_stiffness(YfSim *s, double *K, int *tof, double *pof) {
   if (!active(C) || !C->ma) return 0;
   const YfModel *m = &s->model;
   Side A[MAX_RULES], B[MAX_RULES];
-  for (int r = 0; r < C->nrule; r++) A[r] = B[r] = (Side){0.0, -1, 0};
+  for (int r = 0; r < C->nrule; r++) A[r] = B[r] = (Side){0.0, 0};
   for (int k = 0; k < C->nitem; k++) {
-    int t = C->item[k], b = m->tri.body[t];
+    int t = C->item[k];
     double p = C->mpn[m->tri.mat[t]];
     for (int r = 0; r < C->nrule; r++)
       for (int side = 0; side < 2; side++) {
@@ -379,8 +386,7 @@ int contact_node_stiffness(YfSim *s, double *K, int *tof, double *pof) {
         if (!(mk >> r & 1)) continue;
         Side *q = side ? &B[r] : &A[r];
         if (p > q->pmax) q->pmax = p;
-        if (q->body0 < 0) q->body0 = b;
-        else if (q->body0 != b) q->multi = 1;
+        q->any = 1;
       }
   }
   unsigned char *jointed = yf_calloc((size_t)m->tri.n + 1, 1, "contact jointed");
@@ -393,13 +399,16 @@ int contact_node_stiffness(YfSim *s, double *K, int *tof, double *pof) {
     int meets = jointed[t] || m->body[b].fracture;
     double pm = 0.0;
     for (int r = 0; r < C->nrule; r++) {
+      /* a rule whose other side holds any triangle: another body's, or this body's own (contact
+       * self of a body that folds onto itself: a U whose arms close met its own contact penalty at
+       * 9 x the limit of its triangles, which alone set the step) */
       if (C->ma[t] >> r & 1) {
         if (B[r].pmax > pm) pm = B[r].pmax;
-        if (B[r].multi || (B[r].body0 >= 0 && B[r].body0 != b)) meets = 1;
+        if (B[r].any) meets = 1;
       }
       if (C->mb[t] >> r & 1) {
         if (A[r].pmax > pm) pm = A[r].pmax;
-        if (A[r].multi || (A[r].body0 >= 0 && A[r].body0 != b)) meets = 1;
+        if (A[r].any) meets = 1;
       }
     }
     double p = C->mpn[m->tri.mat[t]];
@@ -425,6 +434,36 @@ int contact_node_stiffness(YfSim *s, double *K, int *tof, double *pof) {
   free(jointed);
   free(kmax);
   return any;
+}
+
+void contact_check_impact(YfSim *s, const YfLoc *loc) {
+  YfContact *C = s->contact;
+  if (!active(C) || !C->nitem) return;
+  const YfModel *m = &s->model;
+  /* the fastest participating node: the most a partner can close at */
+  double vmax = 0.0;
+  for (int k = 0; k < C->nitem; k++) {
+    const int *v = m->tri.v + 3 * C->item[k];
+    for (int c = 0; c < 3; c++) vmax = fmax(vmax, hypot(m->node.vx[v[c]], m->node.vy[v[c]]));
+  }
+  double worst = 0.0, pen = INFINITY;
+  int tw = -1;
+  for (int k = 0; k < C->nitem; k++) {
+    int t = C->item[k];
+    const int *v = m->tri.v + 3 * t;
+    double vt = 0.0;
+    for (int c = 0; c < 3; c++) vt = fmax(vt, hypot(m->node.vx[v[c]], m->node.vy[v[c]]));
+    double q = m->mat[m->tri.mat[t]].rho * (vt + vmax) * (vt + vmax);
+    if (q > worst) { worst = q; tw = t; }
+    pen = fmin(pen, C->mpn[m->tri.mat[t]]);
+  }
+  if (tw < 0 || !(worst > pen) || !(pen > 0) || C->impact_warned) return;
+  C->impact_warned = 1;
+  yf_warn(loc ? loc : &C->rule[0].loc, "contact: an impact can press up to rho v^2 = %.3g Pa (triangle %d, material %s, closing at up to %.3g "
+          "m/s), above the contact penalty pen_n = %.3g Pa: the penalty cannot stop such a body within a triangle's "
+          "depth, and it can pass through another (tunnelling); give pen_n above rho v^2 (it lowers the stable step), "
+          "or 'contact surface all'", worst, m->tri.id[tw], m->mat[m->tri.mat[tw]].name,
+          sqrt(worst / m->mat[m->tri.mat[tw]].rho), pen);
 }
 
 void contact_prepare(YfSim *s) {
@@ -545,8 +584,9 @@ void contact_prepare(YfSim *s) {
 
   /* the first step after a (re)setup searches; couples of the old list that still pass keep
    * their friction memory through the merge (triangle indices do not change) */
-  contact_trigger_init(&C->trig, C->buffer, 1e15);
-  C->force_search = 1;
+  contact_trigger_init(&C->trig, C->buffer, C->first_travel >= 0 ? C->first_travel : 1e15);
+  C->force_search = !(C->first_travel >= 0);
+  C->first_travel = -1.0;
   C->prep_ntri = nt;
   C->prep_nn = nn;
   C->dirty = 0;
@@ -1375,6 +1415,10 @@ void contact_step(YfSim *s) {
     search(s, C);
     C->force_search = 0;
     searched = 1;
+  }
+  if (!searched && C->nsearch == 0) { /* a first search delayed by Y2D's DIEDI: no couples yet */
+    yf_stage_time[YF_ST_DETECT] += yf_now() - t0;
+    return;
   }
   /* MPI, divided update: the triangles this rank's couples read, their corners as ghosts */
   const int *item = C->item;

@@ -52,6 +52,13 @@
 
 void contact_prepare(YfSim *s);
 void contact_step(YfSim *s);
+/* Warn (at loc) when the fastest participating bodies can press harder than the contact penalty
+ * can push back: rho (v_t + v_max)^2 > pen_n, v_t a triangle's fastest node, v_max the fastest
+ * participating node, pen_n the lowest of the participating materials'.  Penalty contact stops a
+ * body within a triangle's depth only below that (kinetic energy per volume rho v^2 / 2 against
+ * the penalty's p / 2 at full depth); above it a block at 500 m/s passed through a fixed wall
+ * four cells thick, "ok". */
+void contact_check_impact(YfSim *s, const YfLoc *loc);
 /* The contact penalty's part of the stable time step (run_stable_dt combines it with the
  * triangles and joints at every node).  For every participating triangle e that can touch a
  * triangle of another body (or belongs to a fracturing body: its own fragments), the stiffest
@@ -110,6 +117,10 @@ void contact_enable_all(YfSim *s, double buffer);
  * made by joint meshing are flagged).  tri_flag[t] != 0 for triangle index t = 0..n-1
  * (copied; triangles added later do not take part); NULL = every triangle (IWFAST = 0). */
 void contact_set_participation(YfSim *s, const unsigned char *tri_flag, int n);
+/* The first setup's travel counter starts at d [m] (>= 0) instead of searching at the first step
+ * (Y2D's DIEDI without joint meshing): the first search is made when the travel reaches the
+ * buffer.  Later setups search at their first step, as by default. */
+void contact_set_first_travel(YfSim *s, double d);
 /* Keep couples of triangles that share a node (1, Y2D) or drop them (0, native default). */
 void contact_set_keep_shared(YfSim *s, int keep);
 /* Fewer pairs than this: the force stage runs on one thread (default 2048); also lowers the
