@@ -4,7 +4,8 @@
  * line's ExtWork), damping, joint_dissipated, friction, diss (the three), contact_energy, balance
  * (the energy check's residual, energy.c), broken, pairs, ntri, nnodes, dt_limit.  Group reductions, NAME_GROUP with GROUP a group or
  * body name: ux_G, uy_G (mean displacement [m]), vx_G, vy_G (mean velocity [m/s]), x_G, y_G
- * (mean position [m]), fx_G, fy_G (sum of nodal forces [N/m]), mass_G [kg/m].  Means are plain
+ * (mean position [m]), fx_G, fy_G (sum of nodal forces with gravity's m g [N/m]: on held nodes
+ * at rest, minus the supports' reaction), mass_G [kg/m].  Means are plain
  * averages over the group's nodes (copies of a node in a fracturing body count separately).
  */
 #include <string.h>
@@ -34,8 +35,11 @@ static int group_reduce(YfSim *s, const char *what, const char *g, double *val, 
     else if (!strcmp(what, "vy")) sum += nd->vy[i];
     else if (!strcmp(what, "x")) sum += nd->x[i];
     else if (!strcmp(what, "y")) sum += nd->y[i];
-    else if (!strcmp(what, "fx")) sum += nd->fx[i];
-    else if (!strcmp(what, "fy")) sum += nd->fy[i];
+    /* gravity is the body force of the update, not in f: added, so that a support's sum is its
+     * reaction (LAMMPS's fix gravity adds to f too); a hanging block's top nodes read 359.7 of
+     * its 392.4 N/m weight */
+    else if (!strcmp(what, "fx")) sum += nd->fx[i] + nd->m[i] * s->gx;
+    else if (!strcmp(what, "fy")) sum += nd->fy[i] + nd->m[i] * s->gy;
     else if (!strcmp(what, "mass")) sum += nd->m[i];
   }
   if (!cnt) {
