@@ -13,6 +13,7 @@
 #include <string.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include "contact.h"
 #include "y2d_read.h"
 #include "yftest.h"
 
@@ -393,6 +394,92 @@ START_TEST(test_massless_nodes_stay) {
 }
 END_TEST
 
+/* Write text to dir/name. */
+static void put_file(const char *dir, const char *name, const char *text) {
+  char p[600];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  FILE *f = fopen(p, "w");
+  ck_assert_ptr_nonnull(f);
+  fputs(text, f);
+  fclose(f);
+}
+
+/* `yfdem DECK.y` computes nothing when the deck stops at $YSTOP before any $YDOIT, as Y2D
+ * (FORMAT.md 1.2): a $YDOIT commented out ran all its steps, and a $YSTOP before the data was
+ * the error "MNODIM is required".  A key commented out on purpose is quiet; one after a '*' '/'
+ * glued to a word (the comment did not end there) is warned. */
+START_TEST(test_ystop_and_comments_as_y2d) {
+  char *tiny = yft_slurp("tests/y2d/tiny.y", 0);
+  ck_assert_ptr_nonnull(tiny);
+  char *at = strstr(tiny, "$YDOIT");
+  ck_assert_ptr_nonnull(at);
+  size_t n = strlen(tiny);
+  char *nodoit = malloc(n + 64), *first = malloc(n + 64), *glued = malloc(n + 64);
+  sprintf(nodoit, "%.*s/* $YDOIT */\n$YSTOP\n", (int)(at - tiny), tiny);
+  sprintf(first, "/* a deck that ends at once */\n$YSTOP\n%s", tiny);
+  sprintf(glued, "/* note*/\n/YD/YDC/MCSTEP 7\n*/\n%s", tiny);
+  char *dir = yft_deck_dir("nodoit.y", nodoit);
+  put_file(dir, "first.y", first);
+  put_file(dir, "glued.y", glued);
+  static const char *const files[] = {"nodoit.y", "first.y"};
+  for (int k = 0; k < 2; k++) {
+    char cmd[1200], ep[700];
+    snprintf(ep, sizeof ep, "%s/err.txt", dir);
+    snprintf(cmd, sizeof cmd, "cd %s && %s -log none -summary s.json %s > /dev/null 2> err.txt", dir, yft_binary(), files[k]);
+    int st = system(cmd);
+    char *err = yft_slurp(ep, 1);
+    snprintf(ep, sizeof ep, "%s/s.json", dir);
+    char *js = yft_slurp(ep, 1);
+    ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) == 0, "%s: exit %d: %s", files[k], WEXITSTATUS(st), err);
+    ck_assert_msg(strstr(err, "warning: nothing is computed: the deck has no $YDOIT before its $YSTOP"), "%s: %s",
+                  files[k], err);
+    ck_assert_msg(!strstr(err, "inside the comment"), "%s: %s", files[k], err);
+    ck_assert_msg(strstr(js, "\"steps\": 0,"), "%s: %s", files[k], js);
+    free(err);
+    free(js);
+  }
+  char cmd[1200], ep[700];
+  snprintf(cmd, sizeof cmd, "cd %s && %s -log none glued.y > /dev/null 2> err.txt", dir, yft_binary());
+  ck_assert_int_ne(system(cmd), -1);
+  snprintf(ep, sizeof ep, "%s/err.txt", dir);
+  char *err = yft_slurp(ep, 1);
+  ck_assert_msg(strstr(err, "warning: '/YD/YDC/MCSTEP' is inside the comment opened at glued.y:"), "%s", err);
+  free(err);
+  free(dir);
+  free(nodoit);
+  free(first);
+  free(glued);
+  free(tiny);
+}
+END_TEST
+
+/* DIEDI: the travel counter starts there without joint meshing (ALGORITHMS 5), so with DIEDI 0
+ * the first search waits until the bodies have moved DIEZON (1.5 mm: a travel of 2 dt |v|_max = 1 um a step
+ * for deck a's block at 2 m/s, step 1500).  yfdem read DIEDI and searched at the first step whatever it was. */
+START_TEST(test_diedi_delays_first_search) {
+  char *a = yft_slurp(DECKS "a_elastic_block.y", 0);
+  ck_assert_ptr_nonnull(a);
+  char *dz = strstr(a, "/YD/YDI/DIEZON");
+  ck_assert_ptr_nonnull(dz);
+  char *deck = malloc(strlen(a) + 64);
+  sprintf(deck, "%.*s/YD/YDI/DIEDI 0\n%s", (int)(dz - a), a, dz);
+  char *dir = yft_deck_dir("a0.y", deck);
+  long searches[2];
+  for (int k = 0; k < 2; k++) {
+    char nd[800];
+    snprintf(nd, sizeof nd, "read_y2d %s/%s\nrun 100\n", k ? dir : "tests/y2d/decks", k ? "a0.y" : "a_elastic_block.y");
+    YfSim *s = yft_run(nd);
+    ck_assert_int_eq(s->step, 100);
+    searches[k] = contact_searches(s);
+  }
+  ck_assert_msg(searches[0] >= 1 && searches[1] == 0, "searches in 100 steps: DIEDI default %ld, DIEDI 0 %ld",
+                searches[0], searches[1]);
+  free(dir);
+  free(deck);
+  free(a);
+}
+END_TEST
+
 Suite *y2d_read_suite(void) {
   Suite *s = suite_create("y2d_read");
   TCase *tc = tcase_create("reference_decks");
@@ -407,6 +494,8 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_y2d_deck_misnamed);
   tcase_add_test(tc, test_couple_capacity_warned);
   tcase_add_test(tc, test_massless_nodes_stay);
+  tcase_add_test(tc, test_ystop_and_comments_as_y2d);
+  tcase_add_test(tc, test_diedi_delays_first_search);
   suite_add_tcase(s, tc);
   tc = tcase_create("errors");
   tcase_add_loop_test(tc, test_bad_decks, 0, (int)(sizeof bad / sizeof bad[0]));

@@ -285,7 +285,7 @@ START_TEST(test_warnings) {
   char deck[4096];
   const char *p = strstr(bc_scene, "contact self rock\n");
   ck_assert(p != NULL);
-  snprintf(deck, sizeof deck, "%.*scontact self rock\ncontact joined skip\n%s", (int)(p - bc_scene), bc_scene,
+  snprintf(deck, sizeof deck, "%.*scontact self rock\ncontact joined skip\ncontact search every\n%s", (int)(p - bc_scene), bc_scene,
            p + strlen("contact self rock\n"));
   char *q = strstr(deck, " tangent y2d");
   ck_assert(q != NULL);
@@ -302,12 +302,19 @@ START_TEST(test_warnings) {
   ck_assert_msg(code == 0, "exit %d: %s", code, err);
   static const char *const want[] = {"e/(h + 1e-10 m), this one as e/h", "'contact joined skip' has no Y2D equivalent",
                                      "contact rule(s) are widened to all pairs",
-                                     "load 'press' is a traction of fixed direction (0, -3e+06) Pa; Y2D's edge loads"};
-  for (int i = 0; i < 4; i++)
+                                     "load 'press' is a traction of fixed direction (0, -3e+06) Pa; Y2D's edge loads",
+                                     "'contact search every' has no Y2D equivalent"};
+  for (int i = 0; i < 5; i++)
     ck_assert_msg(strstr(err, "warn.deck:") && strstr(err, want[i]), "no warning '%s' in: %s", want[i], err);
   char path[1200];
   snprintf(path, sizeof path, "%s/scene.y", dir);
   ck_assert(yft_exists(path));
+  /* search every is written as the buffer, a search by travel (DIEZON 0 searched every step with
+   * no buffer: fewer couples, another friction energy) */
+  char *y = yft_slurp(path, 0);
+  const char *dz = y ? strstr(y, "/YD/YDI/DIEZON ") : NULL;
+  ck_assert_msg(dz && strtod(dz + 15, NULL) > 0, "DIEZON of search every: %.40s", dz ? dz : "(none)");
+  free(y);
   free(err);
   free(dir);
   char cwd[512];

@@ -127,6 +127,8 @@ typedef struct YfSim {
   struct YfContact *contact;
   struct YfY2dRun *y2d;   /* non-NULL after read_y2d (owned by y2d_model.c; the step never
                              reads it: Y2D's BC sets are a boundary-condition kind)          */
+  const char *y2d_program; /* the .y deck run as `yfdem DECK.y` (NULL: a native deck runs): an
+                             interrupt's advice is a native deck that continues it            */
   int dt_warn_only;       /* 1: a time step above the stable limit is a warning (Y2D decks
                              choose it by experience, ALGORITHMS.md 10), 0: an error          */
   const YfBcKind *bc_kind[YF_MAX_BC_KINDS];

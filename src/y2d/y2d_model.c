@@ -468,12 +468,22 @@ static void y2d_setup_contact(YfSim *s, YfY2dRun *r, const YfY2d *y, const unsig
   contact_enable_all(s, y->diezon);
   contact_set_participation(s, flag, m->tri.n);
   free(flag);
+  /* the travel counter starts at DIEDI (1e15: the first step searches), or at 2 DIEZON after
+   * joint meshing (ALGORITHMS 5): a deck with DIEDI below DIEZON and no meshing first searches
+   * once its bodies have moved DIEZON */
+  int any_meshed = 0;
+  for (int e = 0; e < r->ntri && !any_meshed; e++) any_meshed = meshed[e];
+  if (!any_meshed && y->diedi < y->diezon) contact_set_first_travel(s, y->diedi);
 }
 
-void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from) {
+static int load(YfSim *s, const char *path, double volfac, const YfLoc *from, int program) {
   if (s->y2d) yf_deck_error(from, "read_y2d: a Y2D deck (%s) was already read; one per simulation", s->y2d->path);
   YfY2d *y = yf_calloc(1, sizeof *y, "y2d deck");
-  y2d_read(path, y, from);
+  if (program ? y2d_read_program(path, y, from) : y2d_read(path, y, from)) { /* nothing to compute */
+    y2d_free(y);
+    free(y);
+    return 0;
+  }
   unsupported_checks(y);
   YfModel *m = &s->model;
   YfY2dRun *r = yf_calloc(1, sizeof *r, "y2d run");
@@ -607,6 +617,7 @@ void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from) {
   r->setof = yf_malloc((size_t)(nn + 1) * sizeof(int), "y2d input node sets");
   for (int i = 0; i < nn; i++) r->setof[i] = y->i1nopr[i];
   resolve(s, r);
+  return 1;
 }
 
 void y2d_release_deck(YfSim *s) {
@@ -695,8 +706,11 @@ const YfBcKind y2d_bc_kind = {.name = "y2d", .loads = y2d_loads, .integrate = y2
 
 int y2d_nprop(const YfSim *s) { return s->y2d && s->y2d->deck ? (int)deck_of(s->y2d)->nprop : 0; }
 
+void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from) { load(s, path, volfac, from, 0); }
+
 void y2d_run_file(YfSim *s, const char *path) {
-  y2d_load(s, path, 0.5, NULL);
+  if (!load(s, path, 0.5, NULL, 1)) return; /* $YSTOP before any $YDOIT: Y2D computes nothing */
+  s->y2d_program = s->y2d->path;
   long n = s->last_step - s->step;
   run_steps(s, n > 0 ? n : 0);
 }

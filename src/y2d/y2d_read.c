@@ -316,6 +316,7 @@ typedef struct {
   YfLoc loc;           /* where the current token starts                                */
   int glued_warned;
   int last_key;        /* last key read (for stray-token hints)                          */
+  int program;         /* read as `yfdem DECK.y` reads it (y2d_read_program)             */
   long last_n;         /* entries it read along its long dimension                       */
   int bore_warned;
 } Rd;
@@ -763,7 +764,9 @@ static void skip_comment(Rd *r) {
                             "must be its own token)" : "");
     if (!strncmp(t, "*/", 2)) break;
     if (strstr(t, "*/")) glued = 1;
-    if (!swallowed[0] && (!strncmp(t, "/YD/", 4) || !strncmp(t, "$Y", 2))) {
+    /* a key or control word after a terminator glued to a word: the comment meant to end there; one
+     * inside a comment that no glued terminator precedes is commented out on purpose (quiet) */
+    if (glued && !swallowed[0] && (!strncmp(t, "/YD/", 4) || !strncmp(t, "$Y", 2))) {
       snprintf(swallowed, sizeof swallowed, "%.100s", t);
       sw_loc = r->loc;
     }
@@ -854,7 +857,10 @@ static void read_tokens(Rd *r) {
       return;
     } else if (!strcmp(t, "$YSTOP")) {
       y->end = r->loc;
-      yf_warn(&r->loc, "$YSTOP before any $YDOIT: the anchor would stop without computing");
+      y->ystop = 1;
+      if (!r->program)
+        yf_warn(&r->loc, "$YSTOP before any $YDOIT: Y2D would stop here without computing (read_y2d takes the "
+                "scene as read)");
       return;
     } else if (!strcmp(t, "$YINCL")) {
       do_include(r);
@@ -879,8 +885,9 @@ static void read_tokens(Rd *r) {
   }
   /* end of input without $YDOIT/$YSTOP */
   y->end = r->loc;
-  yf_warn(&y->end, "the deck ends without $YDOIT: the anchor would not compute anything; end "
-          "it with $YDOIT and $YSTOP");
+  if (!r->program)
+    yf_warn(&y->end, "the deck ends without $YDOIT: Y2D would not compute anything (read_y2d takes the scene "
+            "as read); end it with $YDOIT and $YSTOP");
 }
 
 /* ------------------------------------------------------------------ checks after reading */
@@ -1382,7 +1389,11 @@ int y2d_is_y_file(const char *path) {
   return n > 2 && !strcmp(path + n - 2, ".y");
 }
 
-int y2d_read(const char *path, YfY2d *out, const YfLoc *from) {
+static int read_deck(const char *path, YfY2d *out, const YfLoc *from, int program);
+int y2d_read(const char *path, YfY2d *out, const YfLoc *from) { return read_deck(path, out, from, 0); }
+int y2d_read_program(const char *path, YfY2d *out, const YfLoc *from) { return read_deck(path, out, from, 1); }
+
+static int read_deck(const char *path, YfY2d *out, const YfLoc *from, int program) {
   memset(out, 0, sizeof *out);
   for (int k = 0; k < Y2D_NKEYS; k++) {
     const KeyDef *kd = &keydefs[k];
@@ -1395,6 +1406,7 @@ int y2d_read(const char *path, YfY2d *out, const YfLoc *from) {
   Rd r;
   memset(&r, 0, sizeof r);
   r.y = out;
+  r.program = program;
   r.last_key = -1;
   push_file(&r, fp, path);
   r.loc.file = out->files[0];
@@ -1402,6 +1414,11 @@ int y2d_read(const char *path, YfY2d *out, const YfLoc *from) {
   read_tokens(&r);
   while (r.depth > 0) fclose(r.src[--r.depth].fp);
   free(r.tok);
+  if (program && !out->has_ydoit) {
+    yf_warn(&out->end, "nothing is computed: the deck has no $YDOIT before %s, and Y2D reads it and stops "
+            "without computing; put $YDOIT before $YSTOP to run it", out->ystop ? "its $YSTOP" : "its end");
+    return 1;
+  }
   /* arrays never given: allocate at capacity with their defaults */
   for (int k = 0; k < Y2D_NKEYS; k++) {
     const KeyDef *kd = &keydefs[k];

@@ -87,6 +87,7 @@ typedef struct {
   long nread[Y2D_NKEYS];   /* arrays: entries read along the long dimension (1D: n; 2D: n2;
                               D3PNFAC: table points n3); scalars: 1                        */
   int has_ydoit;           /* 1: the deck ends its (only) section with $YDOIT              */
+  int ystop;               /* 1: reading stopped at a $YSTOP before any $YDOIT              */
   YfLoc end;               /* where reading stopped ($YDOIT, $YSTOP or end of file)        */
   /* Where the values of arrays are, for messages about one value (a negative density on the
    * line after its key): one entry per line an array's values start on (key k, value ordinal m
@@ -198,6 +199,10 @@ typedef struct {
  * On return every array of a key whose capacity is > 0 is allocated and holds defaults where the
  * deck gave nothing; D2NCC is a copy of D2NCI when not given.  Returns 0. */
 int y2d_read(const char *path, YfY2d *out, const YfLoc *from);
+/* The same, read as the Y2D program reads it (yfdem DECK.y): a deck that stops at $YSTOP before
+ * any $YDOIT, or ends without one, computes nothing in Y2D (FORMAT.md 1.2): then returns 1 after
+ * a warning, without checking the keys (a $YSTOP before the data is a quiet end), else 0. */
+int y2d_read_program(const char *path, YfY2d *out, const YfLoc *from);
 void y2d_free(YfY2d *y);
 /* Free the arrays only (set to NULL); scalars, given/where and the file names (which YfLoc
  * places of messages point at) stay valid until y2d_free. */

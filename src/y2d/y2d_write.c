@@ -360,6 +360,10 @@ void y2d_write(YfSim *s, const char *path, long steps, long every, const YfLoc *
     yf_warn(loc, "write_y2d: Y2D's contact acts between every pair of participating triangles; the scene's %d "
             "contact rule(s) are widened to all pairs (pairs no rule takes, such as two triangles of one unjointed "
             "body, are evaluated too)", ce.nrule);
+  if (con && ce.search_every) /* DIEZON 0 searched every step with no buffer: fewer couples, other friction */
+    yf_warn(loc, "write_y2d: 'contact search every' has no Y2D equivalent: Y2D searches when the travel reaches "
+            "DIEZON and keeps the couples within DIEZON; written DIEZON = the buffer %g m (a search by travel: "
+            "couples and their friction memory can differ; 'contact ... search travel' runs the same in both)", ce.buffer);
   if (con && ce.joined_skip)
     yf_warn(loc, "write_y2d: 'contact joined skip' has no Y2D equivalent: Y2D evaluates couples of joined "
             "triangles too (joined keep)");
@@ -424,7 +428,7 @@ void y2d_write(YfSim *s, const char *path, long steps, long every, const YfLoc *
   put_i(f, "/YD/YDN/I1NOBF", nn, nobf);
   if (con)
     fprintf(f, "/YD/YDI/MICOUP %ld\n/YD/YDI/MISTATE 6\n/YD/YDI/DIEZON %.17g\n", 25L * melem + 1000,
-            ce.search_every ? 0.0 : ce.buffer);
+            ce.buffer);
   else
     fprintf(f, "/YD/YDI/MICOUP 0\n");
   /* element properties */
