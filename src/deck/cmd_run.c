@@ -19,7 +19,11 @@ void cmd_run(YfSim *s, const YfArgs *a) {
     if (a->n == 2) { /* upto: N is the step to reach (a deck continued from a restart) */
       static const char *const w[] = {"upto", NULL};
       arg_choice(a, 1, "run option", w);
-      n = n > s->step ? n - s->step : 0;
+      /* past the step to reach (as LAMMPS refuses it): a wrong restart file, or N meant as a count */
+      if (n < s->step)
+        arg_error(a, 0, "run %ld upto: the scene is at step %ld already, past it (is the restart the one meant? "
+                  "'run N' without upto runs N more steps)", n, s->step);
+      n -= s->step;
     }
   }
   /* the common deck mistakes, reported at the run line (run_steps has no deck place) */

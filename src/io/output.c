@@ -914,7 +914,9 @@ void output_run_begin(YfSim *s) {
      * on, such as the interrupt's own, leave the index). */
     if (continuing(s, d) && !d->again && s->step % d->every != 0) { /* (a dump again is new: it writes) */
       d->adopted = 1;
-      dump_adopt(s, d);
+      /* MPI: the writer alone adopts, as in write_frame (a csv index is rewritten: the other ranks
+       * truncated it while rank 0 read it, and the series began again at frame 0) */
+      if (yf_writer() || d->mpio) dump_adopt(s, d);
       continue;
     }
     write_frame(s, d);

@@ -630,6 +630,7 @@ static void step_once(YfSim *s) {
 void run_steps(YfSim *s, long nsteps) {
   run_prepare(s);
   check_range(s);
+  contact_check_impact(s, NULL);
   char lim[96];
   double limit = run_stable_dt(s, lim, sizeof lim);
   if (s->dt_auto && !isfinite(limit))
@@ -725,6 +726,10 @@ void run_steps(YfSim *s, long nsteps) {
       sim_notify(s, &iev);
       const char *rp = iev.restart_path, *why = iev.why;
       s->wall_s += yf_now() - R.t_wall0;
+      if (rp[0] && s->y2d_program) /* a .y deck has no run command: a native deck of three lines continues it */
+        yf_exit_with(YF_EXIT_INTERRUPT, "interrupted at step %ld (time %.6g s): restart written to '%s', frames so far "
+                     "kept; to continue, run a deck of the three lines 'read_y2d %s', 'read_restart %s' and "
+                     "'run %ld upto'", s->step, s->time, rp, s->y2d_program, rp, s->run_end_step);
       if (rp[0])
         yf_exit_with(YF_EXIT_INTERRUPT, "interrupted at step %ld (time %.6g s): restart written to '%s', frames so far "
                      "kept; to continue, put 'read_restart %s' before the run command of the deck and make it "
