@@ -52,7 +52,9 @@ src/y2d/y2d_read.c) for full validation of values and array sizes.
 """
 import argparse
 import difflib
+import math
 import os
+import re
 import sys
 
 # ---------------------------------------------------------------------------------------------
@@ -74,8 +76,9 @@ SYNTAX = {
     'load_pressure': 'load {id} {group} pressure {p!r}{hist}',
     'history':   'history {name} table {pairs}',
     'hist_opt':  ' history {name}',
-    'jointprop': 'jointprop {name} ft {ft!r} fs {fs!r} gf {gf!r} pen {pen!r} law munjiza{mc} '
+    'jointprop': 'jointprop {name} ft {ft!r}{fs} gf {gf!r} pen {pen!r} law munjiza{mc} '
                  'damage reversible floor y2d tangent y2d',
+    'jointprop_fs': ' fs {fs!r}',                           # left out when D1PJFS <= 0 < D1PJCO
     'mohr_coulomb': ' cohesion {co!r} friction {fr!r}',   # written when D1PJCO > 0
     'group_tris': 'group {name} tri id {ids}',
     'fracture':  'fracture {body} {jp} group {group}',
@@ -201,6 +204,21 @@ def check_key(t, f, ln, grp, name):
         f, ln, t, grp, 'did you mean %s?' % near[0] if near else 'keys: ' + ' '.join(k for k, _ in keys)))
 
 
+def number(t):
+    """A token as yfdem's C reader takes it (src/y2d/y2d_read.c): an integer is [+-]digits, a real
+    any finite C double strtod reads whole (hexadecimal 0x1.8p-3 included) that begins with a digit,
+    a sign or a point; None when it is neither."""
+    if re.fullmatch(r'[+-]?[0-9]+', t):
+        return int(t)
+    if not t or t[0] not in '0123456789+-.' or '_' in t:
+        return None
+    try:
+        v = float.fromhex(t) if re.fullmatch(r'[+-]?0[xX].*', t) else float(t)
+    except ValueError:
+        return None
+    return v if math.isfinite(v) else None
+
+
 def parse(path):
     """dict NAME -> value (scalars) or (dims, flat list in C order [d1][d2][d3])."""
     toks = tokens(path)
@@ -210,10 +228,10 @@ def parse(path):
         if j >= len(toks):
             raise DeckError('%s: unexpected end of the deck' % path)
         t, f, ln = toks[j]
-        try:
-            return float(t) if any(c in t for c in '.eE') else int(t)
-        except ValueError:
+        v = number(t)
+        if v is None:
             raise DeckError('%s:%d: %r is not a number' % (f, ln, t))
+        return v
 
     while i < len(toks):
         t, f, ln = toks[i]
@@ -347,7 +365,10 @@ def convert(src, out):
             mc = SYNTAX['mohr_coulomb'].format(co=float(co[j]), fr=float(fr[j])) if float(co[j]) > 0 else ''
             if float(co[j]) <= 0 and float(fr[j]) != 0:
                 notes.append('joint set %d: friction %g without cohesion (D1PJCO = 0) not translated' % (j, fr[j]))
-            L.append(SYNTAX['jointprop'].format(name='j%d' % j, ft=float(ft[j]), fs=float(fs[j]), gf=float(gf[j]),
+            # D1PJFS <= 0 with cohesion: Y2D starts from the cohesion as shear strength, as the native
+            # jointprop does without fs (fs must be > 0 there)
+            fsw = '' if float(fs[j]) <= 0 and float(co[j]) > 0 else SYNTAX['jointprop_fs'].format(fs=float(fs[j]))
+            L.append(SYNTAX['jointprop'].format(name='j%d' % j, ft=float(ft[j]), fs=fsw, gf=float(gf[j]),
                                                 pen=float(pen[j]), mc=mc))
         for r, row in enumerate(rows):
             k, code = row[0], row[1]
@@ -378,9 +399,13 @@ def convert(src, out):
         part = [e for e in range(ne) if iwfast == 0 or meshed[e] or any(nobf[v] == 1 for v in elto[e][:3])]
         L.append('# contact (Y2D MICOUP %d, buffer DIEZON, IWFAST %d: %d of %d triangles take part)'
                  % (g('YDI/MICOUP'), iwfast, len(part), ne))
-        L.append(wrap(SYNTAX['group_tris'].format(name='contact_tris', ids='').rstrip(), [str(e) for e in part]))
-        L.append(SYNTAX['contact_self'].format(group='contact_tris'))
-        L.append(SYNTAX['contact'].format(buffer=float(g('YDI/DIEZON', 0.0))))
+        if part:
+            L.append(wrap(SYNTAX['group_tris'].format(name='contact_tris', ids='').rstrip(), [str(e) for e in part]))
+            L.append(SYNTAX['contact_self'].format(group='contact_tris'))
+            L.append(SYNTAX['contact'].format(buffer=float(g('YDI/DIEZON', 0.0))))
+        else:
+            notes.append('MICOUP > 0 but no triangle takes part in contact (IWFAST %d, no I1NOBF flag, no joints): '
+                         'no contact written' % iwfast)
         L.append('')
 
     # ---- initial velocities
@@ -471,7 +496,10 @@ def convert(src, out):
     dt = float(g('YDC/DCSTEC', 0.0))
     nsteps = int(g('YDC/MCSTEP', 0)) - int(g('YDC/NCSTEP', 0))
     L.append(SYNTAX['timestep'].format(dt=dt))
-    L.append(SYNTAX['thermo'].format(n=int(g('YDC/ICSHTF', 100))))
+    icshtf = int(g('YDC/ICSHTF', 100))
+    if not 0 < icshtf <= 2000000000:
+        notes.append('ICSHTF %d: no progress lines in Y2D; written as thermo 0 (start and end only)' % icshtf)
+    L.append(SYNTAX['thermo'].format(n=icshtf if 0 < icshtf <= 2000000000 else 0))
     icoutf = int(g('YDC/ICOUTF', 10))
     if 0 < icoutf <= nsteps:
         L.append(SYNTAX['dump'].format(n=icoutf, file=base + '.h5'))
