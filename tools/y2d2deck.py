@@ -300,6 +300,40 @@ def wrap(head, items):
     return '\n'.join(lines)
 
 
+def native_table(tab, shift):
+    """Y2D's time factor of one set as a native `history table`: (pairs, exact).  pairs is None when
+    the factor is 1.0 at every time.  Y2D (ALGORITHMS 7, src/y2d/y2d_model.c set_factor) interpolates
+    in the first interval [t_i, t_i+1] with t_i+1 > t_i that holds t, and uses 1.0 outside every
+    interval; a native table holds its end values and needs increasing times.  So intervals of zero
+    length (a table padded by repeating its last point) are dropped, a jump at a repeated time gets a
+    point one ulp later, and a point of value 1.0 one ulp before the first time and one after the
+    last: the same factor at every double time.  Times are shifted by -shift (DCTIME).  exact is
+    False when times decrease (intervals that go back in time are dropped)."""
+    pts = [(float(t) - shift, float(v)) for t, v in tab]
+    exact = all(pts[i + 1][0] >= pts[i][0] for i in range(len(pts) - 1))
+    out = []
+    for (ta, va), (tb, vb) in zip(pts, pts[1:]):
+        if not tb > ta or (out and ta < out[-1][0]):
+            continue
+        if not out:
+            out.append((ta, va))
+        elif va != out[-1][1]:
+            # a jump at ta: Y2D's factor at ta is the earlier interval's end, just after it this one's
+            up = math.nextafter(ta, math.inf)
+            if up < tb:
+                out.append((up, va))
+        out.append((tb, vb))
+    if not out:
+        return None, exact
+    if out[0][1] != 1.0:
+        out.insert(0, (math.nextafter(out[0][0], -math.inf), 1.0))
+    if out[-1][1] != 1.0:
+        out.append((math.nextafter(out[-1][0], math.inf), 1.0))
+    if all(v == 1.0 for _, v in out):
+        return None, exact
+    return out, exact
+
+
 def convert(src, out):
     K = parse(src)
     g = lambda k, d=0: K.get(k, d)
@@ -432,6 +466,10 @@ def convert(src, out):
     xx, xy_, yx, yy = pn('D1PNXX', 1.0), pn('D1PNXY', 0.0), pn('D1PNYX', 0.0), pn('D1PNYY', 1.0)
     nopr = arr1(K, 'YDN/I1NOPR', nn, -1)
     npts = g('YDPN/NPNFACT', 0)
+    t0 = float(g('YDC/DCTIME', 0.0))
+    if t0 != 0.0:
+        notes.append('DCTIME %r: the native run starts at t = 0, so every time table is shifted by -%r (native '
+                     'time = Y2D time - DCTIME; thermo and summary times are the native ones)' % (t0, t0))
     tables = {}
     if 'YDPN/D3PNFAC' in K and npts > 0:
         (d1, d2, d3), flat = K['YDPN/D3PNFAC']
@@ -447,14 +485,14 @@ def convert(src, out):
         gname = 'bc%d' % s
         hist = ''
         if s in tables:
-            tab = tables[s]
-            if any(v != 1.0 for t, v in tab):
-                L.append(SYNTAX['history'].format(name=gname, pairs=' '.join('%r %r' % (float(t), float(v)) for t, v in tab)))
+            tab, exact = native_table(tables[s], t0)
+            if not exact:
+                notes.append('BC set %d: its time table has decreasing times; written with the intervals that '
+                             'increase' % s)
+            if tab:
+                L.append(wrap(SYNTAX['history'].format(name=gname, pairs='').rstrip(),
+                              ['%r %r' % (t, v) for t, v in tab]))
                 hist = SYNTAX['hist_opt'].format(name=gname)
-                t_end = float(g('YDC/DCTIME', 0.0)) + (int(g('YDC/MCSTEP', 0)) - int(g('YDC/NCSTEP', 0))) * float(g('YDC/DCSTEC', 0.0))
-                if float(tab[-1][1]) != 1.0 and float(tab[-1][0]) < t_end:
-                    notes.append('BC set %d: after its table ends (t = %g) Y2D uses the factor 1.0, the '
-                                 'native history holds %g' % (s, tab[-1][0], tab[-1][1]))
         L.append(wrap(SYNTAX['group_ids'].format(name=gname, ids='').rstrip(), [str(i) for i in ids]))
         kinds, amps = (fx[s], fy[s]), (ax[s], ay[s])
         # held in both directions, or free in both: the same in any frame
