@@ -455,10 +455,30 @@ def convert(src, out):
             L.append(SYNTAX['velocity'].format(group='v%d' % k, vx=v[0], vy=v[1]))
         L.append('')
 
+    # ---- the nodes after joint insertion: a meshed triangle gets its own copy of each corner, the
+    # node itself stays while an unmeshed triangle uses it.  Y2D treats every copy as a node of the
+    # set (full point force, its own lumped mass rho A0/3); the native `load point` shares one force
+    # among the copies.  masses[n]: the lumped mass of each copy of n (Y2D: rho d0/6 per corner).
+    rho_e = [float(rho[p]) if 0 <= p < nprop else 0.0 for p in elpr]
+    copies = {n: [] for n in used}
+    own = {}
+    for e in range(ne):
+        a, b, c = elto[e][:3]
+        d0 = (float(xy[b][0]) - float(xy[a][0])) * (float(xy[c][1]) - float(xy[a][1])) - \
+             (float(xy[c][0]) - float(xy[a][0])) * (float(xy[b][1]) - float(xy[a][1]))
+        for v in (a, b, c):
+            if meshed[e]:
+                copies[v].append(rho_e[e] * d0 / 6.0)
+            else:
+                own[v] = own.get(v, 0.0) + rho_e[e] * d0 / 6.0
+    for v, m in own.items():
+        copies[v].append(m)
+
     # ---- gravity and BC sets
     if float(g('YDC/DCGRAY', 0.0)) != 0.0:
         L.append(SYNTAX['gravity'].format(gy=float(g('YDC/DCGRAY'))))
-        notes.append('gravity: Y2D applies it to nodes of BC kinds 1 and 2 only')
+        notes.append('gravity acts on every node; Y2D lets it act on BC kinds 1 and 2 only, the others are held '
+             'or driven by a fix, which overrides it')
     nset = g('YDPN/NPNSET')
     pn = lambda name, d: arr1(K, 'YDPN/' + name, nset, d)
     fx, fy, ax, ay = pn('I1PNFX', -1), pn('I1PNFY', -1), pn('D1PNAX', 1.0), pn('D1PNAY', 1.0)
@@ -469,7 +489,7 @@ def convert(src, out):
     t0 = float(g('YDC/DCTIME', 0.0))
     if t0 != 0.0:
         notes.append('DCTIME %r: the native run starts at t = 0, so every time table is shifted by -%r (native '
-                     'time = Y2D time - DCTIME; thermo and summary times are the native ones)' % (t0, t0))
+             'time = Y2D time - DCTIME; thermo and summary times are the native ones)' % (t0, t0))
     tables = {}
     if 'YDPN/D3PNFAC' in K and npts > 0:
         (d1, d2, d3), flat = K['YDPN/D3PNFAC']
@@ -477,6 +497,7 @@ def convert(src, out):
             for s in range(min(d2, nset)):
                 tables[s] = [(flat[(0 * d2 + s) * d3 + p], flat[(1 * d2 + s) * d3 + p]) for p in range(npts)]
     L.append('# boundary conditions: one group per Y2D BC set (node ids)')
+    hist_of = {}      # set -> native table (tuple of (t, v)), None = factor 1.0 throughout
     for s in range(nset):
         ids = [i for n in range(nn) if nopr[n] == s for i in ids_of_node[n]]
         nodes_s = [n for n in range(nn) if nopr[n] == s and ids_of_node[n]]
@@ -484,48 +505,79 @@ def convert(src, out):
             continue
         gname = 'bc%d' % s
         hist = ''
+        hist_of[s] = None
         if s in tables:
             tab, exact = native_table(tables[s], t0)
             if not exact:
                 notes.append('BC set %d: its time table has decreasing times; written with the intervals that '
-                             'increase' % s)
+                     'increase' % s)
             if tab:
                 L.append(wrap(SYNTAX['history'].format(name=gname, pairs='').rstrip(),
                               ['%r %r' % (t, v) for t, v in tab]))
                 hist = SYNTAX['hist_opt'].format(name=gname)
+                hist_of[s] = tuple(tab)
         L.append(wrap(SYNTAX['group_ids'].format(name=gname, ids='').rstrip(), [str(i) for i in ids]))
-        kinds, amps = (fx[s], fy[s]), (ax[s], ay[s])
-        # held in both directions, or free in both: the same in any frame
-        any_frame = not hist and tuple(amps) == (0, 0) and tuple(kinds) in ((3, 3), (1, 1))
+        kinds, amps = (fx[s], fy[s]), (float(ax[s]), float(ay[s]))
+        frozen = [k not in (1, 2, 3) for k in kinds]
+        # held in both directions, free in both, or frozen in both: the same in any frame
+        any_frame = (not hist and amps == (0.0, 0.0) and tuple(kinds) in ((3, 3), (1, 1))) or all(frozen)
         if (xx[s], xy_[s], yx[s], yy[s]) != (1, 0, 0, 1) and not any_frame:
             L.append('# NOT TRANSLATED: BC set %d uses the local frame x = (%g, %g), y = (%g, %g): kinds %d/%d, '
                      'amplitudes %g/%g' % (s, xx[s], xy_[s], yx[s], yy[s], fx[s], fy[s], ax[s], ay[s]))
             notes.append('BC set %d (a rotated local frame) not translated: its nodes are free' % s)
             continue
         fixed = ''.join(d for d, k, a in zip('xy', kinds, amps) if k == 3 and a == 0 and not hist)
-        for d, k in zip((0, 1), kinds):
-            if k not in (1, 2, 3):
-                if all(float(vel[n][d]) == 0.0 for n in nodes_s):
-                    fixed += 'xy'[d]
-                else:
-                    L.append('# NOT TRANSLATED: BC set %d: %s kind %d freezes the initial velocity' % (s, 'xy'[d], k))
-            if k == 2:
-                L.append('# NOT TRANSLATED: BC set %d: %s kind 2 (acceleration %g)' % (s, 'xy'[d], amps[d]))
+        # kinds other than 1, 2, 3 freeze the velocity at its initial value (forces ignored): held
+        # when it is 0, else a prescribed velocity, one fix per distinct initial velocity
+        if any(frozen):
+            vfro = {}
+            for n in nodes_s:
+                vfro.setdefault(tuple(float(vel[n][d]) if frozen[d] else None for d in (0, 1)), []).extend(ids_of_node[n])
+            if all(v in (0.0, None) for key in vfro for v in key):
+                fixed += ''.join(d for d, f in zip('xy', frozen) if f)
+            else:
+                for k, (key, fids) in enumerate(sorted(vfro.items(), key=lambda kv: min(kv[1]))):
+                    zname = '%s_z%d' % (gname, k)
+                    L.append(wrap(SYNTAX['group_ids'].format(name=zname, ids='').rstrip(), [str(i) for i in fids]))
+                    L.append(SYNTAX['fix_vel'].format(id=zname, group=zname, hist='',
+                                                      vx='NULL' if key[0] is None else repr(key[0]),
+                                                      vy='NULL' if key[1] is None else repr(key[1])))
+                notes.append('BC set %d: kinds %d/%d freeze the initial velocity: a prescribed velocity per distinct '
+                     'initial velocity' % (s, kinds[0], kinds[1]))
         fixed = ''.join(sorted(set(fixed)))
         if fixed:
             L.append(SYNTAX['fix_fixed'].format(id='%s_fix' % gname, group=gname, dirs=fixed))
-        vparts = [('%r' % float(a)) if (k == 3 and (a != 0 or hist)) else 'NULL' for k, a in zip(kinds, amps)]
+        vparts = [('%r' % a) if (k == 3 and (a != 0 or hist)) else 'NULL' for k, a in zip(kinds, amps)]
         if vparts != ['NULL', 'NULL']:
             L.append(SYNTAX['fix_vel'].format(id='%s_vel' % gname, group=gname, vx=vparts[0], vy=vparts[1], hist=hist))
-        fpart = [float(a) if k == 1 else 0.0 for k, a in zip(kinds, amps)]
-        if fpart != [0.0, 0.0]:
-            for n in nodes_s:
-                L.append(SYNTAX['load_point'].format(id='%s_f%d' % (gname, n), node=ids_of_node[n][0],
-                                                     fx=fpart[0], fy=fpart[1], hist=hist))
+        # kind 1: the force A on every copy of the node; kind 2: the acceleration A, a force m A on a
+        # copy of mass m.  `load point` gives each of the node's c copies 1/c of the force: write c A
+        # (kind 1) and A times the copies' total mass (kind 2, exact when the copies' masses are equal)
+        for n in nodes_s:
+            cm = copies[n]
+            f = [0.0, 0.0]
+            for d in (0, 1):
+                if kinds[d] == 1:
+                    f[d] = amps[d] * len(cm) if len(cm) > 1 else amps[d]
+                elif kinds[d] == 2:
+                    f[d] = amps[d] * sum(cm)
+            if f == [0.0, 0.0]:
+                continue
+            if 2 in kinds and max(cm) - min(cm) > 1e-12 * max(abs(x) for x in cm):
+                notes.append('BC set %d: node %d: kind 2 (acceleration) on %d copies of different masses (%g..%g): '
+                     'written as the force A m shared equally, not A m per copy' % (s, n, len(cm), min(cm), max(cm)))
+            L.append(SYNTAX['load_point'].format(id='%s_f%d' % (gname, n), node=ids_of_node[n][0],
+                                                 fx=f[0], fy=f[1], hist=hist))
+        if 2 in kinds:
+            notes.append('BC set %d: kind 2 (acceleration) written as point forces A m (m: the lumped node mass '
+                 'rho A0/3 summed over the node\'s triangles)' % s)
+        if any(k == 1 and a != 0 for k, a in zip(kinds, amps)) and any(len(copies[n]) > 1 for n in nodes_s):
+            notes.append('BC set %d: a point force on a node with c copies (joint insertion) is written as c F: '
+                 '`load point` shares it, Y2D gives every copy F' % s)
         if float(ap[s]) != 0.0:
             L.append(SYNTAX['load_pressure'].format(id='%s_p' % gname, group=gname, p=float(ap[s]), hist=hist))
             notes.append('BC set %d: Y2D pressure acts on edges whose two nodes have non-zero D1PNAP, '
-                         'positive into the body; check the native sign convention' % s)
+                 'positive into the body; check the native sign convention' % s)
         if float(at[s]) != 0.0:
             L.append('# NOT TRANSLATED: BC set %d: edge shear traction D1PNAT = %g' % (s, at[s]))
     L.append('')
