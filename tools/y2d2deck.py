@@ -81,6 +81,7 @@ SYNTAX = {
     'jointprop_fs': ' fs {fs!r}',                           # left out when D1PJFS <= 0 < D1PJCO
     'mohr_coulomb': ' cohesion {co!r} friction {fr!r}',   # written when D1PJCO > 0
     'group_tris': 'group {name} tri id {ids}',
+    'group_union': 'group {name} union {groups}',
     'fracture':  'fracture {body} {jp} group {group}',
     'contact_self': 'contact self {group}',
     'contact':   'contact buffer {buffer!r} joined keep surface all search travel shared keep',
@@ -334,6 +335,86 @@ def native_table(tab, shift):
     return out, exact
 
 
+def pressure_loads(L, note, diff, ne, elto, meshed, nopr, nset, ap, hist_of, ids_of_node):
+    """Y2D's edge pressure (ALGORITHMS 2.5): every triangle edge whose two end nodes are in sets with
+    D1PNAP != 0, with the consistent load of a pressure varying linearly from p_j to p_k.  The native
+    `load GROUP pressure P` loads, with a constant P, the outer boundary edges whose two nodes are in
+    GROUP.  Exact: an outer edge whose two nodes are in sets of the same pressure and time table (the
+    sets of one (P, table) class go into one group), and an interior edge between two unjointed
+    triangles (Y2D's two loads cancel).  Not expressible: an outer edge between sets of different
+    pressures (a linear variation; written, when its own group can hold it alone, as two halves of
+    the pressures: the same resultant, not the same distribution) and an interior edge of jointed
+    triangles (Y2D pushes each triangle's copy: it opens the joints; not written)."""
+    loaded = lambda n: 0 <= nopr[n] < nset and nopr[n] in hist_of and float(ap[nopr[n]]) != 0.0
+    cls = {}
+    for s in sorted(hist_of):
+        if float(ap[s]) != 0.0:
+            cls.setdefault((float(ap[s]), hist_of[s]), []).append(s)
+    if not cls:
+        return
+    key_of = {s: key for key, ss in cls.items() for s in ss}
+    tris_of = {}
+    for e in range(ne):
+        for j in range(3):
+            a, b = elto[e][j], elto[e][(j + 1) % 3]
+            tris_of.setdefault(frozenset((a, b)), []).append(e)
+    outer = [k for k, es in tris_of.items() if len(es) == 1]
+    same, mixed, inner = {}, {}, []
+    for e in range(ne):
+        for j in range(3):
+            a, b = elto[e][j], elto[e][(j + 1) % 3]
+            if not (loaded(a) and loaded(b)):
+                continue
+            others = [o for o in tris_of[frozenset((a, b))] if o != e]
+            if others:
+                if meshed[e] or any(meshed[o] for o in others):
+                    inner.append((min(e, *others), a, b))
+                continue
+            ka, kb = key_of[nopr[a]], key_of[nopr[b]]
+            if ka == kb:
+                same[ka] = same.get(ka, 0) + 1
+            else:
+                mixed.setdefault(tuple(sorted((ka, kb), key=repr)), []).append((a, b))
+    L.append('# edge pressure (D1PNAP): one load per (pressure, time table), on the outer edges whose two '
+             'nodes carry it')
+    gname = {}
+    for k, (key, ss) in enumerate(cls.items()):
+        if len(ss) == 1:
+            gname[key] = 'bc%d' % ss[0]
+        else:
+            gname[key] = 'pr%d' % k
+            if key in same:
+                L.append(SYNTAX['group_union'].format(name=gname[key], groups=' '.join('bc%d' % s for s in ss)))
+                note('BC sets %s: the same pressure and time table, loaded as one group (edges between them '
+                     'included)' % ' '.join(map(str, ss)))
+        if key in same:
+            hist = SYNTAX['hist_opt'].format(name='bc%d' % ss[0]) if key[1] else ''
+            L.append(SYNTAX['load_pressure'].format(id='%s_p' % gname[key], group=gname[key], p=key[0], hist=hist))
+    outer_set = set(outer)
+    for k, ((ka, kb), edges) in enumerate(mixed.items()):
+        nodes = {n for ed in edges for n in ed}
+        hit = {o for o in outer_set if o <= nodes}
+        what = '%d outer edge(s) between BC sets of pressures %r and %r (first: nodes %d %d) carry a linearly ' \
+               'varying pressure' % (len(edges), ka[0], kb[0], edges[0][0], edges[0][1])
+        if hit != {frozenset(ed) for ed in edges}:
+            diff(what + ': not translated (unloaded)')
+            continue
+        name = 'prm%d' % k
+        L.append(wrap(SYNTAX['group_ids'].format(name=name, ids='').rstrip(),
+                      [str(i) for n in sorted(nodes) for i in ids_of_node[n]]))
+        for h, key in (('a', ka), ('b', kb)):
+            hist = SYNTAX['hist_opt'].format(name='bc%d' % cls[key][0]) if key[1] else ''
+            L.append(SYNTAX['load_pressure'].format(id='%s_%s' % (name, h), group=name, p=key[0] / 2, hist=hist))
+        diff(what + ': written as the mean pressure (p_j + p_k)/2 (the same resultant, not the same '
+             'distribution: each end node is off by n (p_j - p_k)/12)')
+    inner = sorted({(e, frozenset((a, b))): (e, a, b) for e, a, b in inner}.values())
+    if inner:
+        diff('%d interior edge(s) of jointed triangles (first: element %d, nodes %d %d) have both end nodes in '
+             'pressure sets: Y2D loads them (it pushes the triangles\' own copies apart), the native pressure '
+             'loads the outer boundary only: not translated' % (len(inner), inner[0][0], inner[0][1], inner[0][2]))
+    L.append('')
+
+
 def convert(src, out):
     K = parse(src)
     g = lambda k, d=0: K.get(k, d)
@@ -343,7 +424,13 @@ def convert(src, out):
     xy = get2(K, 'YDN/D2NCI')
     vel = get2(K, 'YDN/D2NVC') if 'YDN/D2NVC' in K else [[0.0, 0.0]] * nn
     vel = [vel[n] if n < len(vel) else [0.0, 0.0] for n in range(nn)]
-    notes, L = [], [SYNTAX['header'].format(src=src), '']
+    L = [SYNTAX['header'].format(src=src), '']
+    # notes: (text, changes the physics).  diff(): the converted deck does not run the physics of
+    # `yfdem DECK.y` (a warning, counted, exit 3 unless accepted); note(): an exact translation
+    # worth a word (listed in OUT.deck only)
+    notes = []
+    note = lambda text: notes.append((text, False))
+    diff = lambda text: notes.append((text, True))
 
     # ---- materials
     pe = lambda name, d: arr1(K, 'YDPE/' + name, nprop, d)
@@ -352,7 +439,7 @@ def convert(src, out):
     L.append('# materials: Y2D element properties (Lame constants as given)')
     for p in range(nprop):
         if ptyp[p] != 1:
-            notes.append('property %d has type %d (%s): written as elastic' %
+            diff('property %d has type %d (%s): written as elastic' %
                          (p, ptyp[p], {2: 'rigid', 4: 'softening'}.get(ptyp[p], '?')))
         L.append(SYNTAX['material'].format(name='p%d' % p, rho=float(rho[p]), lam=float(lam[p]),
                                            mu=float(mu[p]), visc=float(ks[p]), pen_n=float(pen_n[p]),
@@ -380,12 +467,14 @@ def convert(src, out):
     L.append(SYNTAX['triangles'].format(file='%s.tris' % base, body=body))
     unused = [n for n in range(nn) if not ids_of_node[n]]
     if unused:
-        notes.append('%d node(s) used by no triangle were dropped (first: %d)' % (len(unused), unused[0]))
+        note('%d node(s) used by no triangle were dropped (first: %d; massless, Y2D never moves them)'
+             % (len(unused), unused[0]))
     L.append('')
 
     # ---- joints: each meshing row of code 3 gets joints on the edges of its triangles, with the
     # joint set I2PMIJ gives its property pair
     meshed = [False] * ne
+    row_of = {}       # meshed element -> its meshing row
     if 'YDPJ/NPJSET' in K and rows:
         npj = g('YDPJ/NPJSET')
         pj = lambda name: arr1(K, 'YDPJ/' + name, npj, 0.0)
@@ -398,7 +487,7 @@ def convert(src, out):
         for j in range(npj):
             mc = SYNTAX['mohr_coulomb'].format(co=float(co[j]), fr=float(fr[j])) if float(co[j]) > 0 else ''
             if float(co[j]) <= 0 and float(fr[j]) != 0:
-                notes.append('joint set %d: friction %g without cohesion (D1PJCO = 0) not translated' % (j, fr[j]))
+                note('joint set %d: friction %g without cohesion (D1PJCO = 0): Y2D ignores it too' % (j, fr[j]))
             # D1PJFS <= 0 with cohesion: Y2D starts from the cohesion as shear strength, as the native
             # jointprop does without fs (fs must be > 0 there)
             fsw = '' if float(fs[j]) <= 0 and float(co[j]) > 0 else SYNTAX['jointprop_fs'].format(fs=float(fs[j]))
@@ -410,19 +499,31 @@ def convert(src, out):
             if k <= 0 or '3' not in str(code):
                 continue
             if any(c in str(code) for c in '124'):
-                notes.append('meshing row %d: code %d has refinement/detach digits (1, 2, 4) that are '
+                diff('meshing row %d: code %d has refinement/detach digits (1, 2, 4) that are '
                              'not translated' % (r, code))
             sets = {pair_set.get((a, b)) for a in props for b in props}
             if len(sets) != 1 or None in sets:
-                notes.append('meshing row %d: its property pairs use joint sets %s; written with the set of '
+                diff('meshing row %d: its property pairs use joint sets %s; written with the set of '
                              'its first property' % (r, sorted(x for x in sets if x is not None)))
             jset = pair_set.get((props[0], props[0]), 0)
             tris = [e for e in range(ne) if elpr[e] in props]
             for e in tris:
                 meshed[e] = True
+                row_of[e] = r
             L.append(wrap(SYNTAX['group_tris'].format(name='row%d' % r, ids='').rstrip(), [str(e) for e in tris]))
             L.append(SYNTAX['fracture'].format(body=body, jp='j%d' % jset, group='row%d' % r))
         L.append('')
+        # Y2D joins only the triangles of one row: an edge between a row and a triangle outside it
+        # (unmeshed, or of another row) separates the two (its joint is neutralised, ALGORITHMS 4.1);
+        # `fracture` puts a joint on every internal edge with a side in its zone
+        sides = {}
+        for e in range(ne):
+            for j in range(3):
+                sides.setdefault(frozenset((elto[e][j], elto[e][(j + 1) % 3])), []).append(e)
+        apart = [(es[0], es[1]) for es in sides.values() if len(es) == 2 and row_of.get(es[0]) != row_of.get(es[1])]
+        if apart:
+            diff('%d edge(s) between a meshed row and a triangle outside it (first: elements %d, %d): Y2D leaves '
+                 'them unjoined (separate bodies), the native fracture joins them by joints' % (len(apart), *apart[0]))
 
     # ---- contact: every participating triangle against every other, couples sharing a node kept
     # (Y2D's MICOUP); with IWFAST > 0 only triangles with a corner flagged in I1NOBF take part, and
@@ -438,8 +539,8 @@ def convert(src, out):
             L.append(SYNTAX['contact_self'].format(group='contact_tris'))
             L.append(SYNTAX['contact'].format(buffer=float(g('YDI/DIEZON', 0.0))))
         else:
-            notes.append('MICOUP > 0 but no triangle takes part in contact (IWFAST %d, no I1NOBF flag, no joints): '
-                         'no contact written' % iwfast)
+            note('MICOUP > 0 but no triangle takes part in contact (IWFAST %d, no I1NOBF flag, no joints): '
+                 'no contact written' % iwfast)
         L.append('')
 
     # ---- initial velocities
@@ -477,7 +578,7 @@ def convert(src, out):
     # ---- gravity and BC sets
     if float(g('YDC/DCGRAY', 0.0)) != 0.0:
         L.append(SYNTAX['gravity'].format(gy=float(g('YDC/DCGRAY'))))
-        notes.append('gravity acts on every node; Y2D lets it act on BC kinds 1 and 2 only, the others are held '
+        note('gravity acts on every node; Y2D lets it act on BC kinds 1 and 2 only, the others are held '
              'or driven by a fix, which overrides it')
     nset = g('YDPN/NPNSET')
     pn = lambda name, d: arr1(K, 'YDPN/' + name, nset, d)
@@ -488,7 +589,7 @@ def convert(src, out):
     npts = g('YDPN/NPNFACT', 0)
     t0 = float(g('YDC/DCTIME', 0.0))
     if t0 != 0.0:
-        notes.append('DCTIME %r: the native run starts at t = 0, so every time table is shifted by -%r (native '
+        note('DCTIME %r: the native run starts at t = 0, so every time table is shifted by -%r (native '
              'time = Y2D time - DCTIME; thermo and summary times are the native ones)' % (t0, t0))
     tables = {}
     if 'YDPN/D3PNFAC' in K and npts > 0:
@@ -509,7 +610,7 @@ def convert(src, out):
         if s in tables:
             tab, exact = native_table(tables[s], t0)
             if not exact:
-                notes.append('BC set %d: its time table has decreasing times; written with the intervals that '
+                diff('BC set %d: its time table has decreasing times; written with the intervals that '
                      'increase' % s)
             if tab:
                 L.append(wrap(SYNTAX['history'].format(name=gname, pairs='').rstrip(),
@@ -524,7 +625,7 @@ def convert(src, out):
         if (xx[s], xy_[s], yx[s], yy[s]) != (1, 0, 0, 1) and not any_frame:
             L.append('# NOT TRANSLATED: BC set %d uses the local frame x = (%g, %g), y = (%g, %g): kinds %d/%d, '
                      'amplitudes %g/%g' % (s, xx[s], xy_[s], yx[s], yy[s], fx[s], fy[s], ax[s], ay[s]))
-            notes.append('BC set %d (a rotated local frame) not translated: its nodes are free' % s)
+            diff('BC set %d (a rotated local frame) not translated: its nodes are free' % s)
             continue
         fixed = ''.join(d for d, k, a in zip('xy', kinds, amps) if k == 3 and a == 0 and not hist)
         # kinds other than 1, 2, 3 freeze the velocity at its initial value (forces ignored): held
@@ -542,7 +643,7 @@ def convert(src, out):
                     L.append(SYNTAX['fix_vel'].format(id=zname, group=zname, hist='',
                                                       vx='NULL' if key[0] is None else repr(key[0]),
                                                       vy='NULL' if key[1] is None else repr(key[1])))
-                notes.append('BC set %d: kinds %d/%d freeze the initial velocity: a prescribed velocity per distinct '
+                note('BC set %d: kinds %d/%d freeze the initial velocity: a prescribed velocity per distinct '
                      'initial velocity' % (s, kinds[0], kinds[1]))
         fixed = ''.join(sorted(set(fixed)))
         if fixed:
@@ -564,23 +665,22 @@ def convert(src, out):
             if f == [0.0, 0.0]:
                 continue
             if 2 in kinds and max(cm) - min(cm) > 1e-12 * max(abs(x) for x in cm):
-                notes.append('BC set %d: node %d: kind 2 (acceleration) on %d copies of different masses (%g..%g): '
+                diff('BC set %d: node %d: kind 2 (acceleration) on %d copies of different masses (%g..%g): '
                      'written as the force A m shared equally, not A m per copy' % (s, n, len(cm), min(cm), max(cm)))
             L.append(SYNTAX['load_point'].format(id='%s_f%d' % (gname, n), node=ids_of_node[n][0],
                                                  fx=f[0], fy=f[1], hist=hist))
         if 2 in kinds:
-            notes.append('BC set %d: kind 2 (acceleration) written as point forces A m (m: the lumped node mass '
+            note('BC set %d: kind 2 (acceleration) written as point forces A m (m: the lumped node mass '
                  'rho A0/3 summed over the node\'s triangles)' % s)
         if any(k == 1 and a != 0 for k, a in zip(kinds, amps)) and any(len(copies[n]) > 1 for n in nodes_s):
-            notes.append('BC set %d: a point force on a node with c copies (joint insertion) is written as c F: '
+            note('BC set %d: a point force on a node with c copies (joint insertion) is written as c F: '
                  '`load point` shares it, Y2D gives every copy F' % s)
-        if float(ap[s]) != 0.0:
-            L.append(SYNTAX['load_pressure'].format(id='%s_p' % gname, group=gname, p=float(ap[s]), hist=hist))
-            notes.append('BC set %d: Y2D pressure acts on edges whose two nodes have non-zero D1PNAP, '
-                 'positive into the body; check the native sign convention' % s)
         if float(at[s]) != 0.0:
-            L.append('# NOT TRANSLATED: BC set %d: edge shear traction D1PNAT = %g' % (s, at[s]))
+            L.append('# NOT TRANSLATED: BC set %d: edge shear traction D1PNAT = %r' % (s, float(at[s])))
+            diff('BC set %d: edge shear traction D1PNAT %r not translated (the native traction has a fixed '
+                 'direction, Y2D\'s follows the edge)' % (s, float(at[s])))
     L.append('')
+    pressure_loads(L, note, diff, ne, elto, meshed, nopr, nset, ap, hist_of, ids_of_node)
 
     # ---- run control
     dt = float(g('YDC/DCSTEC', 0.0))
@@ -588,33 +688,52 @@ def convert(src, out):
     L.append(SYNTAX['timestep'].format(dt=dt))
     icshtf = int(g('YDC/ICSHTF', 100))
     if not 0 < icshtf <= 2000000000:
-        notes.append('ICSHTF %d: no progress lines in Y2D; written as thermo 0 (start and end only)' % icshtf)
+        note('ICSHTF %d: no progress lines in Y2D; written as thermo 0 (start and end only)' % icshtf)
     L.append(SYNTAX['thermo'].format(n=icshtf if 0 < icshtf <= 2000000000 else 0))
     icoutf = int(g('YDC/ICOUTF', 10))
     if 0 < icoutf <= nsteps:
         L.append(SYNTAX['dump'].format(n=icoutf, file=base + '.h5'))
     L.append(SYNTAX['run'].format(n=max(nsteps, 0)))
     if 'YDO/NOHYS' in K:
-        notes.append('history output /YD/YDO/ not translated')
-    head = ['# NOTES (not translated or different semantics):'] + ['#   ' + n for n in notes]
+        note('history output /YD/YDO/ not translated (output only)')
+    head = ['# NOTES: DIFFERS = the converted deck does not run the physics of the .y there; note = an exact '
+            'translation'] + ['#   %s %s' % ('DIFFERS:' if d else 'note:', t) for t, d in notes]
     with open(out + '.deck', 'w') as f:
         f.write('\n'.join(L[:1] + head + L[1:]) + '\n')
-    return out + '.deck', 1, notes
+    return out + '.deck', notes
+
+
+EXIT_ERROR, EXIT_DIFFERS = 1, 3
 
 
 def main():
-    ap = argparse.ArgumentParser(description='Y2D .y deck -> yfdem deck (see the docstring)')
+    ap = argparse.ArgumentParser(
+        description='Y2D .y deck -> yfdem deck (see the docstring).  Exit status: 0 the converted deck runs '
+                    'the physics of `yfdem DECK.y`; 1 error (no OUT.deck written); 2 bad usage; %d written, but '
+                    'the deck does not run the same physics (each difference is a warning on stderr and a '
+                    'DIFFERS note in OUT.deck); 0 for that too with --allow-differences.' % EXIT_DIFFERS)
     ap.add_argument('deck')
     ap.add_argument('out', help='output base name: OUT.deck, OUT.nodes, OUT.tris')
+    ap.add_argument('--allow-differences', action='store_true',
+                    help='exit 0 although the converted deck does not run the same physics (the warnings stay)')
     a = ap.parse_args()
     try:
-        path, _, notes = convert(a.deck, a.out)
+        path, notes = convert(a.deck, a.out)
     except (DeckError, OSError, KeyError, IndexError, ValueError) as e:
         msg = str(e) if not isinstance(e, KeyError) else 'required key %s missing' % e
         # a DeckError names its file and line first (an included file's, maybe): no second name
         sys.stderr.write('error: %s\n' % msg if isinstance(e, DeckError) else 'error: %s: %s\n' % (a.deck, msg))
-        sys.exit(1)
-    print('wrote %s (%d notes)' % (path, len(notes)))
+        sys.exit(EXIT_ERROR)
+    ndiff = sum(1 for _, d in notes if d)
+    for t, d in notes:
+        if d:
+            sys.stderr.write('warning: %s: %s\n' % (a.deck, t))
+    print('wrote %s (%d difference%s of physics, %d note%s)' % (path, ndiff, '' if ndiff == 1 else 's',
+                                                            len(notes) - ndiff, '' if len(notes) - ndiff == 1 else 's'))
+    if ndiff and not a.allow_differences:
+        sys.stderr.write('%s: the converted deck does not run the physics of %s (%d difference%s above; '
+                         '--allow-differences accepts them)\n' % (path, a.deck, ndiff, '' if ndiff == 1 else 's'))
+        sys.exit(EXIT_DIFFERS)
 
 
 if __name__ == '__main__':
