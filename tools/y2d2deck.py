@@ -1,48 +1,76 @@
 #!/usr/bin/env python3
 """Convert a Y2D input deck (.y) into an equivalent, readable yfdem deck.
 
-usage: y2d2deck.py DECK.y OUT
+usage: y2d2deck.py [--allow-differences] DECK.y OUT
   writes OUT.deck plus OUT.nodes (rows "id x y") and OUT.tris (rows "id n1 n2 n3 material"): the
   Y2D nodes and elements in input order, ids = the Y2D indices (0-based), one body 'y2d', so the
   converted deck sums forces in the order `yfdem DECK.y` does and results compare by id.
 
+Exit status: 0 the converted deck runs the physics of `yfdem DECK.y`; 1 error (a key Y2D does not
+read, a value that is not a number, a file: no OUT.deck written); 2 bad usage; 3 the deck is written
+but does not run the same physics: each difference is a line "warning: DECK: ..." on stderr and a
+"DIFFERS:" note at the top of OUT.deck (stdout: "wrote OUT.deck (N differences of physics, M
+notes)").  --allow-differences accepts them: exit 0, the warnings stay.  Notes of exact
+translations (written in OUT.deck only) do not count.
+
 The converted deck runs the physics of `yfdem DECK.y` (tests/convert/run compares the final
-energies, broken joints and contact pairs of the four shared decks: within 1e-11 of the energy
-scale, not bitwise, since the native velocity update is not Y2D's BC-set update).
+energies, broken joints and contact pairs of the four shared decks and of the small decks in
+tests/convert/decks: within 1e-11 of the energy scale, not bitwise, since the native velocity update
+is not Y2D's BC-set update).
 
 What is translated (native syntax = the SYNTAX dict below, one place to adapt):
   DCSTEC                     -> timestep DT
   MCSTEP - NCSTEP            -> run N
-  ICSHTF / ICOUTF            -> thermo N / dump ID h5 N FILE
-  DCGRAY                     -> gravity 0 G  (note: Y2D applies gravity to BC kinds 1 and 2 only)
+  DCTIME (start time)        -> no native start time: every time table is shifted by -DCTIME (the
+                                native time is the Y2D time - DCTIME; thermo/summary times too)
+  ICSHTF / ICOUTF            -> thermo N (ICSHTF <= 0: thermo 0) / dump ID h5 N FILE
+  DCGRAY                     -> gravity 0 G  (Y2D applies it to BC kinds 1 and 2 only; the nodes of
+                                the other kinds are held or driven by a fix, which overrides it)
   /YD/YDPE/ property p       -> material p<p> elastic rho R lambda L mu M visc K volfac 0.5
                                 pen_n PE pen_t PT friction FR friction_law y2d  (Y2D's law uses
                                 lambda/2: volfac 0.5; Y2D's contact friction, not the native Coulomb)
-  joint set j (/YD/YDPJ/)    -> jointprop j<j> ft fs gf pen law munjiza [cohesion C friction MU]
+  joint set j (/YD/YDPJ/)    -> jointprop j<j> ft [fs] gf pen law munjiza [cohesion C friction MU]
                                 damage reversible floor y2d tangent y2d  (Y2D's law: no damage
-                                memory, 2 o_p floor, unit tangent e/(h + 1e-10 m))
+                                memory, 2 o_p floor, unit tangent e/(h + 1e-10 m)); fs left out when
+                                D1PJFS <= 0 < D1PJCO (both then start from the cohesion)
   meshing row r of code 3    -> group row<r> tri id ... (the triangles of its properties) and
                                 fracture y2d j<s> group row<r>, s = the I2PMIJ set of its properties
   MICOUP > 0                 -> group contact_tris tri id ... (every triangle, or with IWFAST > 0
                                 those with a corner flagged in I1NOBF and those of jointed rows),
                                 contact self contact_tris, contact buffer DIEZON joined keep
-                                surface all search travel shared keep
+                                surface all search travel shared keep; nothing when no triangle
+                                takes part
   D2NVC                      -> velocity GROUP set VX VY, one group per distinct initial velocity
   BC sets (/YD/YDPN/, global frame only):
     kind 3 (velocity) amp 0 in x and y        -> fix ID GROUP fixed xy   (x or y alone likewise)
     kind 3 amp v                              -> fix ID GROUP velocity VX|NULL VY|NULL [history H]
-    kind 1 (force) amp F != 0                 -> load ID point node N FX FY [history H] per node
-    D1PNAP (edge pressure) != 0               -> load ID GROUP pressure P [history H]
+    other kinds (-1, 0, ...: frozen velocity) -> fixed when the nodes' initial velocity is 0 there,
+                                                 else fix ID bc<s>_z<k> velocity V.. per distinct
+                                                 initial velocity
+    kind 1 (force) amp F != 0                 -> load ID point node N FX FY [history H] per node, F
+                                                 times the node's copies c (joint insertion: Y2D
+                                                 gives each copy F, `load point` shares F among them)
+    kind 2 (acceleration) amp A != 0          -> the same point load with A m, m = the node's lumped
+                                                 mass rho A0/3 summed over its triangles (exact when
+                                                 its copies have equal masses, else a difference)
+    D1PNAP (edge pressure) != 0               -> load ID GROUP pressure P [history H], one per
+                                                 (pressure, table) class: GROUP = its set, or the
+                                                 union of its sets (group pr<k> union bc<a> bc<b>)
     kind 1 amp 0                              -> nothing (free)
-  D3PNFAC time table of set s  -> history bc<s> table T1 V1 T2 V2 ...
-Not translated (listed as comments in OUT.deck and as notes): BC sets with a rotated local frame
-(unless held in both directions or free in both, which is the same in any frame), kind 2
-(acceleration) conditions, frozen directions (kind not 1/2/3) with non-zero initial velocity,
-D1PNAT edge shear, refinement codes 1/2/4, a meshing row whose property pairs use different joint
-sets, rigid (type 2) and softening (type 4) triangles, history output /YD/YDO/, DCSIZ scales.
-Differences of semantics the converted deck keeps as notes: Y2D time factors are 1.0 outside a
-table's time range (native histories hold their end values); Y2D's edge pressure acts on edges
-whose two nodes are in sets with non-zero D1PNAP.
+  D3PNFAC time table of set s  -> history bc<s> table T1 V1 T2 V2 ... with Y2D's factor at every
+                                time: 1.0 before the first and after the last time (points of value
+                                1.0 one ulp outside), zero-length intervals (a padded table) dropped,
+                                a jump at a repeated time one ulp wide
+Differences (warnings, exit 3): BC sets with a rotated local frame (unless held, free or frozen in
+both directions, the same in any frame), kind 2 on copies of different masses, D1PNAT edge shear
+(the native traction keeps its direction), edge pressure on an outer edge between sets of different
+pressures or tables (Y2D: linear variation; written as the mean of the two when a group can hold
+that edge alone: the same resultant), edge pressure on interior edges of jointed triangles (Y2D
+pushes each triangle's copy: not written), an edge between a meshed row and a triangle outside it
+(Y2D: separate bodies; `fracture` joins them), refinement codes 1/2/4, a meshing row whose
+property pairs use different joint sets, rigid (type 2) and softening (type 4) triangles, time
+tables with decreasing times.  Notes only (no effect on the physics): history output /YD/YDO/,
+DCSIZ scales, nodes used by no triangle (massless), joint friction without cohesion (Y2D ignores it).
 
 The .y file is parsed here with the Y2D token rules (comments, $YINCL relative to the working
 directory or the deck's directory, 1D/2D/3D array codes, names compared over the known name's
