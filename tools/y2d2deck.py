@@ -725,7 +725,7 @@ def convert(src, out):
     if 'YDO/NOHYS' in K:
         note('history output /YD/YDO/ not translated (output only)')
     head = ['# NOTES: DIFFERS = the converted deck does not run the physics of the .y there; note = an exact '
-            'translation'] + ['#   %s %s' % ('DIFFERS:' if d else 'note:', t) for t, d in notes]
+            'translation'] + ['#   %s %s' % ('DIFFERS:' if d else 'note:', t) for t, d in notes] if notes else []
     with open(out + '.deck', 'w') as f:
         f.write('\n'.join(L[:1] + head + L[1:]) + '\n')
     return out + '.deck', notes
