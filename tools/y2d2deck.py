@@ -69,8 +69,10 @@ that edge alone: the same resultant), edge pressure on interior edges of jointed
 pushes each triangle's copy: not written), an edge between a meshed row and a triangle outside it
 (Y2D: separate bodies; `fracture` joins them), refinement codes 1/2/4, a meshing row whose
 property pairs use different joint sets, rigid (type 2) and softening (type 4) triangles, time
-tables with decreasing times.  Notes only (no effect on the physics): history output /YD/YDO/,
-DCSIZ scales, nodes used by no triangle (massless), joint friction without cohesion (Y2D ignores it).
+tables with decreasing times.  Not translated, no effect on the physics: history output /YD/YDO/
+(a note), DCSIZ scales (output scales of the book Y), nodes used by no triangle (massless, a note),
+joint friction without cohesion (Y2D ignores it too, a note).  Native decks hold at most 64 groups
+and bodies: a .y with very many BC sets or distinct velocities gives a deck yfdem refuses.
 
 The .y file is parsed here with the Y2D token rules (comments, $YINCL relative to the working
 directory or the deck's directory, 1D/2D/3D array codes, names compared over the known name's
