@@ -1,48 +1,78 @@
 #!/usr/bin/env python3
 """Convert a Y2D input deck (.y) into an equivalent, readable yfdem deck.
 
-usage: y2d2deck.py DECK.y OUT
+usage: y2d2deck.py [--allow-differences] DECK.y OUT
   writes OUT.deck plus OUT.nodes (rows "id x y") and OUT.tris (rows "id n1 n2 n3 material"): the
   Y2D nodes and elements in input order, ids = the Y2D indices (0-based), one body 'y2d', so the
   converted deck sums forces in the order `yfdem DECK.y` does and results compare by id.
 
+Exit status: 0 the converted deck runs the physics of `yfdem DECK.y`; 1 error (a key Y2D does not
+read, a value that is not a number, a file: no OUT.deck written); 2 bad usage; 3 the deck is written
+but does not run the same physics: each difference is a line "warning: DECK: ..." on stderr and a
+"DIFFERS:" note at the top of OUT.deck (stdout: "wrote OUT.deck (N differences of physics, M
+notes)").  --allow-differences accepts them: exit 0, the warnings stay.  Notes of exact
+translations (written in OUT.deck only) do not count.
+
 The converted deck runs the physics of `yfdem DECK.y` (tests/convert/run compares the final
-energies, broken joints and contact pairs of the four shared decks: within 1e-11 of the energy
-scale, not bitwise, since the native velocity update is not Y2D's BC-set update).
+energies, broken joints and contact pairs of the four shared decks and of the small decks in
+tests/convert/decks: within 1e-11 of the energy scale, not bitwise, since the native velocity update
+is not Y2D's BC-set update).
 
 What is translated (native syntax = the SYNTAX dict below, one place to adapt):
   DCSTEC                     -> timestep DT
   MCSTEP - NCSTEP            -> run N
-  ICSHTF / ICOUTF            -> thermo N / dump ID h5 N FILE
-  DCGRAY                     -> gravity 0 G  (note: Y2D applies gravity to BC kinds 1 and 2 only)
+  DCTIME (start time)        -> no native start time: every time table is shifted by -DCTIME (the
+                                native time is the Y2D time - DCTIME; thermo/summary times too)
+  ICSHTF / ICOUTF            -> thermo N (ICSHTF <= 0: thermo 0) / dump ID h5 N FILE
+  DCGRAY                     -> gravity 0 G  (Y2D applies it to BC kinds 1 and 2 only; the nodes of
+                                the other kinds are held or driven by a fix, which overrides it)
   /YD/YDPE/ property p       -> material p<p> elastic rho R lambda L mu M visc K volfac 0.5
                                 pen_n PE pen_t PT friction FR friction_law y2d  (Y2D's law uses
                                 lambda/2: volfac 0.5; Y2D's contact friction, not the native Coulomb)
-  joint set j (/YD/YDPJ/)    -> jointprop j<j> ft fs gf pen law munjiza [cohesion C friction MU]
+  joint set j (/YD/YDPJ/)    -> jointprop j<j> ft [fs] gf pen law munjiza [cohesion C friction MU]
                                 damage reversible floor y2d tangent y2d  (Y2D's law: no damage
-                                memory, 2 o_p floor, unit tangent e/(h + 1e-10 m))
+                                memory, 2 o_p floor, unit tangent e/(h + 1e-10 m)); fs left out when
+                                D1PJFS <= 0 < D1PJCO (both then start from the cohesion)
   meshing row r of code 3    -> group row<r> tri id ... (the triangles of its properties) and
                                 fracture y2d j<s> group row<r>, s = the I2PMIJ set of its properties
   MICOUP > 0                 -> group contact_tris tri id ... (every triangle, or with IWFAST > 0
                                 those with a corner flagged in I1NOBF and those of jointed rows),
                                 contact self contact_tris, contact buffer DIEZON joined keep
-                                surface all search travel shared keep
+                                surface all search travel shared keep; nothing when no triangle
+                                takes part
   D2NVC                      -> velocity GROUP set VX VY, one group per distinct initial velocity
   BC sets (/YD/YDPN/, global frame only):
     kind 3 (velocity) amp 0 in x and y        -> fix ID GROUP fixed xy   (x or y alone likewise)
     kind 3 amp v                              -> fix ID GROUP velocity VX|NULL VY|NULL [history H]
-    kind 1 (force) amp F != 0                 -> load ID point node N FX FY [history H] per node
-    D1PNAP (edge pressure) != 0               -> load ID GROUP pressure P [history H]
+    other kinds (-1, 0, ...: frozen velocity) -> fixed when the nodes' initial velocity is 0 there,
+                                                 else fix ID bc<s>_z<k> velocity V.. per distinct
+                                                 initial velocity
+    kind 1 (force) amp F != 0                 -> load ID point node N FX FY [history H] per node, F
+                                                 times the node's copies c (joint insertion: Y2D
+                                                 gives each copy F, `load point` shares F among them)
+    kind 2 (acceleration) amp A != 0          -> the same point load with A m, m = the node's lumped
+                                                 mass rho A0/3 summed over its triangles (exact when
+                                                 its copies have equal masses, else a difference)
+    D1PNAP (edge pressure) != 0               -> load ID GROUP pressure P [history H], one per
+                                                 (pressure, table) class: GROUP = its set, or the
+                                                 union of its sets (group pr<k> union bc<a> bc<b>)
     kind 1 amp 0                              -> nothing (free)
-  D3PNFAC time table of set s  -> history bc<s> table T1 V1 T2 V2 ...
-Not translated (listed as comments in OUT.deck and as notes): BC sets with a rotated local frame
-(unless held in both directions or free in both, which is the same in any frame), kind 2
-(acceleration) conditions, frozen directions (kind not 1/2/3) with non-zero initial velocity,
-D1PNAT edge shear, refinement codes 1/2/4, a meshing row whose property pairs use different joint
-sets, rigid (type 2) and softening (type 4) triangles, history output /YD/YDO/, DCSIZ scales.
-Differences of semantics the converted deck keeps as notes: Y2D time factors are 1.0 outside a
-table's time range (native histories hold their end values); Y2D's edge pressure acts on edges
-whose two nodes are in sets with non-zero D1PNAP.
+  D3PNFAC time table of set s  -> history bc<s> table T1 V1 T2 V2 ... with Y2D's factor at every
+                                time: 1.0 before the first and after the last time (points of value
+                                1.0 one ulp outside), zero-length intervals (a padded table) dropped,
+                                a jump at a repeated time one ulp wide
+Differences (warnings, exit 3): BC sets with a rotated local frame (unless held, free or frozen in
+both directions, the same in any frame), kind 2 on copies of different masses, D1PNAT edge shear
+(the native traction keeps its direction), edge pressure on an outer edge between sets of different
+pressures or tables (Y2D: linear variation; written as the mean of the two when a group can hold
+that edge alone: the same resultant), edge pressure on interior edges of jointed triangles (Y2D
+pushes each triangle's copy: not written), an edge between a meshed row and a triangle outside it
+(Y2D: separate bodies; `fracture` joins them), refinement codes 1/2/4, a meshing row whose
+property pairs use different joint sets, rigid (type 2) and softening (type 4) triangles, time
+tables with decreasing times.  Not translated, no effect on the physics: history output /YD/YDO/
+(a note), DCSIZ scales (output scales of the book Y), nodes used by no triangle (massless, a note),
+joint friction without cohesion (Y2D ignores it too, a note).  Native decks hold at most 64 groups
+and bodies: a .y with very many BC sets or distinct velocities gives a deck yfdem refuses.
 
 The .y file is parsed here with the Y2D token rules (comments, $YINCL relative to the working
 directory or the deck's directory, 1D/2D/3D array codes, names compared over the known name's
@@ -52,7 +82,9 @@ src/y2d/y2d_read.c) for full validation of values and array sizes.
 """
 import argparse
 import difflib
+import math
 import os
+import re
 import sys
 
 # ---------------------------------------------------------------------------------------------
@@ -74,10 +106,12 @@ SYNTAX = {
     'load_pressure': 'load {id} {group} pressure {p!r}{hist}',
     'history':   'history {name} table {pairs}',
     'hist_opt':  ' history {name}',
-    'jointprop': 'jointprop {name} ft {ft!r} fs {fs!r} gf {gf!r} pen {pen!r} law munjiza{mc} '
+    'jointprop': 'jointprop {name} ft {ft!r}{fs} gf {gf!r} pen {pen!r} law munjiza{mc} '
                  'damage reversible floor y2d tangent y2d',
+    'jointprop_fs': ' fs {fs!r}',                           # left out when D1PJFS <= 0 < D1PJCO
     'mohr_coulomb': ' cohesion {co!r} friction {fr!r}',   # written when D1PJCO > 0
     'group_tris': 'group {name} tri id {ids}',
+    'group_union': 'group {name} union {groups}',
     'fracture':  'fracture {body} {jp} group {group}',
     'contact_self': 'contact self {group}',
     'contact':   'contact buffer {buffer!r} joined keep surface all search travel shared keep',
@@ -201,6 +235,21 @@ def check_key(t, f, ln, grp, name):
         f, ln, t, grp, 'did you mean %s?' % near[0] if near else 'keys: ' + ' '.join(k for k, _ in keys)))
 
 
+def number(t):
+    """A token as yfdem's C reader takes it (src/y2d/y2d_read.c): an integer is [+-]digits, a real
+    any finite C double strtod reads whole (hexadecimal 0x1.8p-3 included) that begins with a digit,
+    a sign or a point; None when it is neither."""
+    if re.fullmatch(r'[+-]?[0-9]+', t):
+        return int(t)
+    if not t or t[0] not in '0123456789+-.' or '_' in t:
+        return None
+    try:
+        v = float.fromhex(t) if re.fullmatch(r'[+-]?0[xX].*', t) else float(t)
+    except ValueError:
+        return None
+    return v if math.isfinite(v) else None
+
+
 def parse(path):
     """dict NAME -> value (scalars) or (dims, flat list in C order [d1][d2][d3])."""
     toks = tokens(path)
@@ -210,10 +259,10 @@ def parse(path):
         if j >= len(toks):
             raise DeckError('%s: unexpected end of the deck' % path)
         t, f, ln = toks[j]
-        try:
-            return float(t) if any(c in t for c in '.eE') else int(t)
-        except ValueError:
+        v = number(t)
+        if v is None:
             raise DeckError('%s:%d: %r is not a number' % (f, ln, t))
+        return v
 
     while i < len(toks):
         t, f, ln = toks[i]
@@ -282,6 +331,120 @@ def wrap(head, items):
     return '\n'.join(lines)
 
 
+def native_table(tab, shift):
+    """Y2D's time factor of one set as a native `history table`: (pairs, exact).  pairs is None when
+    the factor is 1.0 at every time.  Y2D (ALGORITHMS 7, src/y2d/y2d_model.c set_factor) interpolates
+    in the first interval [t_i, t_i+1] with t_i+1 > t_i that holds t, and uses 1.0 outside every
+    interval; a native table holds its end values and needs increasing times.  So intervals of zero
+    length (a table padded by repeating its last point) are dropped, a jump at a repeated time gets a
+    point one ulp later, and a point of value 1.0 one ulp before the first time and one after the
+    last: the same factor at every double time.  Times are shifted by -shift (DCTIME).  exact is
+    False when times decrease (intervals that go back in time are dropped)."""
+    pts = [(float(t) - shift, float(v)) for t, v in tab]
+    exact = all(pts[i + 1][0] >= pts[i][0] for i in range(len(pts) - 1))
+    out = []
+    for (ta, va), (tb, vb) in zip(pts, pts[1:]):
+        if not tb > ta or (out and ta < out[-1][0]):
+            continue
+        if not out:
+            out.append((ta, va))
+        elif va != out[-1][1]:
+            # a jump at ta: Y2D's factor at ta is the earlier interval's end, just after it this one's
+            up = math.nextafter(ta, math.inf)
+            if up < tb:
+                out.append((up, va))
+        out.append((tb, vb))
+    if not out:
+        return None, exact
+    if out[0][1] != 1.0:
+        out.insert(0, (math.nextafter(out[0][0], -math.inf), 1.0))
+    if out[-1][1] != 1.0:
+        out.append((math.nextafter(out[-1][0], math.inf), 1.0))
+    if all(v == 1.0 for _, v in out):
+        return None, exact
+    return out, exact
+
+
+def pressure_loads(L, note, diff, ne, elto, meshed, nopr, nset, ap, hist_of, ids_of_node):
+    """Y2D's edge pressure (ALGORITHMS 2.5): every triangle edge whose two end nodes are in sets with
+    D1PNAP != 0, with the consistent load of a pressure varying linearly from p_j to p_k.  The native
+    `load GROUP pressure P` loads, with a constant P, the outer boundary edges whose two nodes are in
+    GROUP.  Exact: an outer edge whose two nodes are in sets of the same pressure and time table (the
+    sets of one (P, table) class go into one group), and an interior edge between two unjointed
+    triangles (Y2D's two loads cancel).  Not expressible: an outer edge between sets of different
+    pressures (a linear variation; written, when its own group can hold it alone, as two halves of
+    the pressures: the same resultant, not the same distribution) and an interior edge of jointed
+    triangles (Y2D pushes each triangle's copy: it opens the joints; not written)."""
+    loaded = lambda n: 0 <= nopr[n] < nset and nopr[n] in hist_of and float(ap[nopr[n]]) != 0.0
+    cls = {}
+    for s in sorted(hist_of):
+        if float(ap[s]) != 0.0:
+            cls.setdefault((float(ap[s]), hist_of[s]), []).append(s)
+    if not cls:
+        return
+    key_of = {s: key for key, ss in cls.items() for s in ss}
+    tris_of = {}
+    for e in range(ne):
+        for j in range(3):
+            a, b = elto[e][j], elto[e][(j + 1) % 3]
+            tris_of.setdefault(frozenset((a, b)), []).append(e)
+    outer = [k for k, es in tris_of.items() if len(es) == 1]
+    same, mixed, inner = {}, {}, []
+    for e in range(ne):
+        for j in range(3):
+            a, b = elto[e][j], elto[e][(j + 1) % 3]
+            if not (loaded(a) and loaded(b)):
+                continue
+            others = [o for o in tris_of[frozenset((a, b))] if o != e]
+            if others:
+                if meshed[e] or any(meshed[o] for o in others):
+                    inner.append((min(e, *others), a, b))
+                continue
+            ka, kb = key_of[nopr[a]], key_of[nopr[b]]
+            if ka == kb:
+                same[ka] = same.get(ka, 0) + 1
+            else:
+                mixed.setdefault(tuple(sorted((ka, kb), key=repr)), []).append((a, b))
+    L.append('# edge pressure (D1PNAP): one load per (pressure, time table), on the outer edges whose two '
+             'nodes carry it')
+    gname = {}
+    for k, (key, ss) in enumerate(cls.items()):
+        if len(ss) == 1:
+            gname[key] = 'bc%d' % ss[0]
+        else:
+            gname[key] = 'pr%d' % k
+            if key in same:
+                L.append(SYNTAX['group_union'].format(name=gname[key], groups=' '.join('bc%d' % s for s in ss)))
+                note('BC sets %s: the same pressure and time table, loaded as one group (edges between them '
+                     'included)' % ' '.join(map(str, ss)))
+        if key in same:
+            hist = SYNTAX['hist_opt'].format(name='bc%d' % ss[0]) if key[1] else ''
+            L.append(SYNTAX['load_pressure'].format(id='%s_p' % gname[key], group=gname[key], p=key[0], hist=hist))
+    outer_set = set(outer)
+    for k, ((ka, kb), edges) in enumerate(mixed.items()):
+        nodes = {n for ed in edges for n in ed}
+        hit = {o for o in outer_set if o <= nodes}
+        what = '%d outer edge(s) between BC sets of pressures %r and %r (first: nodes %d %d) carry a linearly ' \
+               'varying pressure' % (len(edges), ka[0], kb[0], edges[0][0], edges[0][1])
+        if hit != {frozenset(ed) for ed in edges}:
+            diff(what + ': not translated (unloaded)')
+            continue
+        name = 'prm%d' % k
+        L.append(wrap(SYNTAX['group_ids'].format(name=name, ids='').rstrip(),
+                      [str(i) for n in sorted(nodes) for i in ids_of_node[n]]))
+        for h, key in (('a', ka), ('b', kb)):
+            hist = SYNTAX['hist_opt'].format(name='bc%d' % cls[key][0]) if key[1] else ''
+            L.append(SYNTAX['load_pressure'].format(id='%s_%s' % (name, h), group=name, p=key[0] / 2, hist=hist))
+        diff(what + ': written as the mean pressure (p_j + p_k)/2 (the same resultant, not the same '
+             'distribution: each end node is off by n (p_j - p_k)/12)')
+    inner = sorted({(e, frozenset((a, b))): (e, a, b) for e, a, b in inner}.values())
+    if inner:
+        diff('%d interior edge(s) of jointed triangles (first: element %d, nodes %d %d) have both end nodes in '
+             'pressure sets: Y2D loads them (it pushes the triangles\' own copies apart), the native pressure '
+             'loads the outer boundary only: not translated' % (len(inner), inner[0][0], inner[0][1], inner[0][2]))
+    L.append('')
+
+
 def convert(src, out):
     K = parse(src)
     g = lambda k, d=0: K.get(k, d)
@@ -291,7 +454,13 @@ def convert(src, out):
     xy = get2(K, 'YDN/D2NCI')
     vel = get2(K, 'YDN/D2NVC') if 'YDN/D2NVC' in K else [[0.0, 0.0]] * nn
     vel = [vel[n] if n < len(vel) else [0.0, 0.0] for n in range(nn)]
-    notes, L = [], [SYNTAX['header'].format(src=src), '']
+    L = [SYNTAX['header'].format(src=src), '']
+    # notes: (text, changes the physics).  diff(): the converted deck does not run the physics of
+    # `yfdem DECK.y` (a warning, counted, exit 3 unless accepted); note(): an exact translation
+    # worth a word (listed in OUT.deck only)
+    notes = []
+    note = lambda text: notes.append((text, False))
+    diff = lambda text: notes.append((text, True))
 
     # ---- materials
     pe = lambda name, d: arr1(K, 'YDPE/' + name, nprop, d)
@@ -300,7 +469,7 @@ def convert(src, out):
     L.append('# materials: Y2D element properties (Lame constants as given)')
     for p in range(nprop):
         if ptyp[p] != 1:
-            notes.append('property %d has type %d (%s): written as elastic' %
+            diff('property %d has type %d (%s): written as elastic' %
                          (p, ptyp[p], {2: 'rigid', 4: 'softening'}.get(ptyp[p], '?')))
         L.append(SYNTAX['material'].format(name='p%d' % p, rho=float(rho[p]), lam=float(lam[p]),
                                            mu=float(mu[p]), visc=float(ks[p]), pen_n=float(pen_n[p]),
@@ -328,12 +497,14 @@ def convert(src, out):
     L.append(SYNTAX['triangles'].format(file='%s.tris' % base, body=body))
     unused = [n for n in range(nn) if not ids_of_node[n]]
     if unused:
-        notes.append('%d node(s) used by no triangle were dropped (first: %d)' % (len(unused), unused[0]))
+        note('%d node(s) used by no triangle were dropped (first: %d; massless, Y2D never moves them)'
+             % (len(unused), unused[0]))
     L.append('')
 
     # ---- joints: each meshing row of code 3 gets joints on the edges of its triangles, with the
     # joint set I2PMIJ gives its property pair
     meshed = [False] * ne
+    row_of = {}       # meshed element -> its meshing row
     if 'YDPJ/NPJSET' in K and rows:
         npj = g('YDPJ/NPJSET')
         pj = lambda name: arr1(K, 'YDPJ/' + name, npj, 0.0)
@@ -346,8 +517,11 @@ def convert(src, out):
         for j in range(npj):
             mc = SYNTAX['mohr_coulomb'].format(co=float(co[j]), fr=float(fr[j])) if float(co[j]) > 0 else ''
             if float(co[j]) <= 0 and float(fr[j]) != 0:
-                notes.append('joint set %d: friction %g without cohesion (D1PJCO = 0) not translated' % (j, fr[j]))
-            L.append(SYNTAX['jointprop'].format(name='j%d' % j, ft=float(ft[j]), fs=float(fs[j]), gf=float(gf[j]),
+                note('joint set %d: friction %g without cohesion (D1PJCO = 0): Y2D ignores it too' % (j, fr[j]))
+            # D1PJFS <= 0 with cohesion: Y2D starts from the cohesion as shear strength, as the native
+            # jointprop does without fs (fs must be > 0 there)
+            fsw = '' if float(fs[j]) <= 0 and float(co[j]) > 0 else SYNTAX['jointprop_fs'].format(fs=float(fs[j]))
+            L.append(SYNTAX['jointprop'].format(name='j%d' % j, ft=float(ft[j]), fs=fsw, gf=float(gf[j]),
                                                 pen=float(pen[j]), mc=mc))
         for r, row in enumerate(rows):
             k, code = row[0], row[1]
@@ -355,19 +529,31 @@ def convert(src, out):
             if k <= 0 or '3' not in str(code):
                 continue
             if any(c in str(code) for c in '124'):
-                notes.append('meshing row %d: code %d has refinement/detach digits (1, 2, 4) that are '
+                diff('meshing row %d: code %d has refinement/detach digits (1, 2, 4) that are '
                              'not translated' % (r, code))
             sets = {pair_set.get((a, b)) for a in props for b in props}
             if len(sets) != 1 or None in sets:
-                notes.append('meshing row %d: its property pairs use joint sets %s; written with the set of '
+                diff('meshing row %d: its property pairs use joint sets %s; written with the set of '
                              'its first property' % (r, sorted(x for x in sets if x is not None)))
             jset = pair_set.get((props[0], props[0]), 0)
             tris = [e for e in range(ne) if elpr[e] in props]
             for e in tris:
                 meshed[e] = True
+                row_of[e] = r
             L.append(wrap(SYNTAX['group_tris'].format(name='row%d' % r, ids='').rstrip(), [str(e) for e in tris]))
             L.append(SYNTAX['fracture'].format(body=body, jp='j%d' % jset, group='row%d' % r))
         L.append('')
+        # Y2D joins only the triangles of one row: an edge between a row and a triangle outside it
+        # (unmeshed, or of another row) separates the two (its joint is neutralised, ALGORITHMS 4.1);
+        # `fracture` puts a joint on every internal edge with a side in its zone
+        sides = {}
+        for e in range(ne):
+            for j in range(3):
+                sides.setdefault(frozenset((elto[e][j], elto[e][(j + 1) % 3])), []).append(e)
+        apart = [(es[0], es[1]) for es in sides.values() if len(es) == 2 and row_of.get(es[0]) != row_of.get(es[1])]
+        if apart:
+            diff('%d edge(s) between a meshed row and a triangle outside it (first: elements %d, %d): Y2D leaves '
+                 'them unjoined (separate bodies), the native fracture joins them by joints' % (len(apart), *apart[0]))
 
     # ---- contact: every participating triangle against every other, couples sharing a node kept
     # (Y2D's MICOUP); with IWFAST > 0 only triangles with a corner flagged in I1NOBF take part, and
@@ -378,9 +564,13 @@ def convert(src, out):
         part = [e for e in range(ne) if iwfast == 0 or meshed[e] or any(nobf[v] == 1 for v in elto[e][:3])]
         L.append('# contact (Y2D MICOUP %d, buffer DIEZON, IWFAST %d: %d of %d triangles take part)'
                  % (g('YDI/MICOUP'), iwfast, len(part), ne))
-        L.append(wrap(SYNTAX['group_tris'].format(name='contact_tris', ids='').rstrip(), [str(e) for e in part]))
-        L.append(SYNTAX['contact_self'].format(group='contact_tris'))
-        L.append(SYNTAX['contact'].format(buffer=float(g('YDI/DIEZON', 0.0))))
+        if part:
+            L.append(wrap(SYNTAX['group_tris'].format(name='contact_tris', ids='').rstrip(), [str(e) for e in part]))
+            L.append(SYNTAX['contact_self'].format(group='contact_tris'))
+            L.append(SYNTAX['contact'].format(buffer=float(g('YDI/DIEZON', 0.0))))
+        else:
+            note('MICOUP > 0 but no triangle takes part in contact (IWFAST %d, no I1NOBF flag, no joints): '
+                 'no contact written' % iwfast)
         L.append('')
 
     # ---- initial velocities
@@ -396,10 +586,30 @@ def convert(src, out):
             L.append(SYNTAX['velocity'].format(group='v%d' % k, vx=v[0], vy=v[1]))
         L.append('')
 
+    # ---- the nodes after joint insertion: a meshed triangle gets its own copy of each corner, the
+    # node itself stays while an unmeshed triangle uses it.  Y2D treats every copy as a node of the
+    # set (full point force, its own lumped mass rho A0/3); the native `load point` shares one force
+    # among the copies.  masses[n]: the lumped mass of each copy of n (Y2D: rho d0/6 per corner).
+    rho_e = [float(rho[p]) if 0 <= p < nprop else 0.0 for p in elpr]
+    copies = {n: [] for n in used}
+    own = {}
+    for e in range(ne):
+        a, b, c = elto[e][:3]
+        d0 = (float(xy[b][0]) - float(xy[a][0])) * (float(xy[c][1]) - float(xy[a][1])) - \
+             (float(xy[c][0]) - float(xy[a][0])) * (float(xy[b][1]) - float(xy[a][1]))
+        for v in (a, b, c):
+            if meshed[e]:
+                copies[v].append(rho_e[e] * d0 / 6.0)
+            else:
+                own[v] = own.get(v, 0.0) + rho_e[e] * d0 / 6.0
+    for v, m in own.items():
+        copies[v].append(m)
+
     # ---- gravity and BC sets
     if float(g('YDC/DCGRAY', 0.0)) != 0.0:
         L.append(SYNTAX['gravity'].format(gy=float(g('YDC/DCGRAY'))))
-        notes.append('gravity: Y2D applies it to nodes of BC kinds 1 and 2 only')
+        note('gravity acts on every node; Y2D lets it act on BC kinds 1 and 2 only, the others are held '
+             'or driven by a fix, which overrides it')
     nset = g('YDPN/NPNSET')
     pn = lambda name, d: arr1(K, 'YDPN/' + name, nset, d)
     fx, fy, ax, ay = pn('I1PNFX', -1), pn('I1PNFY', -1), pn('D1PNAX', 1.0), pn('D1PNAY', 1.0)
@@ -407,6 +617,10 @@ def convert(src, out):
     xx, xy_, yx, yy = pn('D1PNXX', 1.0), pn('D1PNXY', 0.0), pn('D1PNYX', 0.0), pn('D1PNYY', 1.0)
     nopr = arr1(K, 'YDN/I1NOPR', nn, -1)
     npts = g('YDPN/NPNFACT', 0)
+    t0 = float(g('YDC/DCTIME', 0.0))
+    if t0 != 0.0:
+        note('DCTIME %r: the native run starts at t = 0, so every time table is shifted by -%r (native '
+             'time = Y2D time - DCTIME; thermo and summary times are the native ones)' % (t0, t0))
     tables = {}
     if 'YDPN/D3PNFAC' in K and npts > 0:
         (d1, d2, d3), flat = K['YDPN/D3PNFAC']
@@ -414,6 +628,7 @@ def convert(src, out):
             for s in range(min(d2, nset)):
                 tables[s] = [(flat[(0 * d2 + s) * d3 + p], flat[(1 * d2 + s) * d3 + p]) for p in range(npts)]
     L.append('# boundary conditions: one group per Y2D BC set (node ids)')
+    hist_of = {}      # set -> native table (tuple of (t, v)), None = factor 1.0 throughout
     for s in range(nset):
         ids = [i for n in range(nn) if nopr[n] == s for i in ids_of_node[n]]
         nodes_s = [n for n in range(nn) if nopr[n] == s and ids_of_node[n]]
@@ -421,82 +636,134 @@ def convert(src, out):
             continue
         gname = 'bc%d' % s
         hist = ''
+        hist_of[s] = None
         if s in tables:
-            tab = tables[s]
-            if any(v != 1.0 for t, v in tab):
-                L.append(SYNTAX['history'].format(name=gname, pairs=' '.join('%r %r' % (float(t), float(v)) for t, v in tab)))
+            tab, exact = native_table(tables[s], t0)
+            if not exact:
+                diff('BC set %d: its time table has decreasing times; written with the intervals that '
+                     'increase' % s)
+            if tab:
+                L.append(wrap(SYNTAX['history'].format(name=gname, pairs='').rstrip(),
+                              ['%r %r' % (t, v) for t, v in tab]))
                 hist = SYNTAX['hist_opt'].format(name=gname)
-                t_end = float(g('YDC/DCTIME', 0.0)) + (int(g('YDC/MCSTEP', 0)) - int(g('YDC/NCSTEP', 0))) * float(g('YDC/DCSTEC', 0.0))
-                if float(tab[-1][1]) != 1.0 and float(tab[-1][0]) < t_end:
-                    notes.append('BC set %d: after its table ends (t = %g) Y2D uses the factor 1.0, the '
-                                 'native history holds %g' % (s, tab[-1][0], tab[-1][1]))
+                hist_of[s] = tuple(tab)
         L.append(wrap(SYNTAX['group_ids'].format(name=gname, ids='').rstrip(), [str(i) for i in ids]))
-        kinds, amps = (fx[s], fy[s]), (ax[s], ay[s])
-        # held in both directions, or free in both: the same in any frame
-        any_frame = not hist and tuple(amps) == (0, 0) and tuple(kinds) in ((3, 3), (1, 1))
+        kinds, amps = (fx[s], fy[s]), (float(ax[s]), float(ay[s]))
+        frozen = [k not in (1, 2, 3) for k in kinds]
+        # held in both directions, free in both, or frozen in both: the same in any frame
+        any_frame = (not hist and amps == (0.0, 0.0) and tuple(kinds) in ((3, 3), (1, 1))) or all(frozen)
         if (xx[s], xy_[s], yx[s], yy[s]) != (1, 0, 0, 1) and not any_frame:
             L.append('# NOT TRANSLATED: BC set %d uses the local frame x = (%g, %g), y = (%g, %g): kinds %d/%d, '
                      'amplitudes %g/%g' % (s, xx[s], xy_[s], yx[s], yy[s], fx[s], fy[s], ax[s], ay[s]))
-            notes.append('BC set %d (a rotated local frame) not translated: its nodes are free' % s)
+            diff('BC set %d (a rotated local frame) not translated: its nodes are free' % s)
             continue
         fixed = ''.join(d for d, k, a in zip('xy', kinds, amps) if k == 3 and a == 0 and not hist)
-        for d, k in zip((0, 1), kinds):
-            if k not in (1, 2, 3):
-                if all(float(vel[n][d]) == 0.0 for n in nodes_s):
-                    fixed += 'xy'[d]
-                else:
-                    L.append('# NOT TRANSLATED: BC set %d: %s kind %d freezes the initial velocity' % (s, 'xy'[d], k))
-            if k == 2:
-                L.append('# NOT TRANSLATED: BC set %d: %s kind 2 (acceleration %g)' % (s, 'xy'[d], amps[d]))
+        # kinds other than 1, 2, 3 freeze the velocity at its initial value (forces ignored): held
+        # when it is 0, else a prescribed velocity, one fix per distinct initial velocity
+        if any(frozen):
+            vfro = {}
+            for n in nodes_s:
+                vfro.setdefault(tuple(float(vel[n][d]) if frozen[d] else None for d in (0, 1)), []).extend(ids_of_node[n])
+            if all(v in (0.0, None) for key in vfro for v in key):
+                fixed += ''.join(d for d, f in zip('xy', frozen) if f)
+            else:
+                for k, (key, fids) in enumerate(sorted(vfro.items(), key=lambda kv: min(kv[1]))):
+                    zname = '%s_z%d' % (gname, k)
+                    L.append(wrap(SYNTAX['group_ids'].format(name=zname, ids='').rstrip(), [str(i) for i in fids]))
+                    L.append(SYNTAX['fix_vel'].format(id=zname, group=zname, hist='',
+                                                      vx='NULL' if key[0] is None else repr(key[0]),
+                                                      vy='NULL' if key[1] is None else repr(key[1])))
+                note('BC set %d: kinds %d/%d freeze the initial velocity: a prescribed velocity per distinct '
+                     'initial velocity' % (s, kinds[0], kinds[1]))
         fixed = ''.join(sorted(set(fixed)))
         if fixed:
             L.append(SYNTAX['fix_fixed'].format(id='%s_fix' % gname, group=gname, dirs=fixed))
-        vparts = [('%r' % float(a)) if (k == 3 and (a != 0 or hist)) else 'NULL' for k, a in zip(kinds, amps)]
+        vparts = [('%r' % a) if (k == 3 and (a != 0 or hist)) else 'NULL' for k, a in zip(kinds, amps)]
         if vparts != ['NULL', 'NULL']:
             L.append(SYNTAX['fix_vel'].format(id='%s_vel' % gname, group=gname, vx=vparts[0], vy=vparts[1], hist=hist))
-        fpart = [float(a) if k == 1 else 0.0 for k, a in zip(kinds, amps)]
-        if fpart != [0.0, 0.0]:
-            for n in nodes_s:
-                L.append(SYNTAX['load_point'].format(id='%s_f%d' % (gname, n), node=ids_of_node[n][0],
-                                                     fx=fpart[0], fy=fpart[1], hist=hist))
-        if float(ap[s]) != 0.0:
-            L.append(SYNTAX['load_pressure'].format(id='%s_p' % gname, group=gname, p=float(ap[s]), hist=hist))
-            notes.append('BC set %d: Y2D pressure acts on edges whose two nodes have non-zero D1PNAP, '
-                         'positive into the body; check the native sign convention' % s)
+        # kind 1: the force A on every copy of the node; kind 2: the acceleration A, a force m A on a
+        # copy of mass m.  `load point` gives each of the node's c copies 1/c of the force: write c A
+        # (kind 1) and A times the copies' total mass (kind 2, exact when the copies' masses are equal)
+        for n in nodes_s:
+            cm = copies[n]
+            f = [0.0, 0.0]
+            for d in (0, 1):
+                if kinds[d] == 1:
+                    f[d] = amps[d] * len(cm) if len(cm) > 1 else amps[d]
+                elif kinds[d] == 2:
+                    f[d] = amps[d] * sum(cm)
+            if f == [0.0, 0.0]:
+                continue
+            if 2 in kinds and max(cm) - min(cm) > 1e-12 * max(abs(x) for x in cm):
+                diff('BC set %d: node %d: kind 2 (acceleration) on %d copies of different masses (%g..%g): '
+                     'written as the force A m shared equally, not A m per copy' % (s, n, len(cm), min(cm), max(cm)))
+            L.append(SYNTAX['load_point'].format(id='%s_f%d' % (gname, n), node=ids_of_node[n][0],
+                                                 fx=f[0], fy=f[1], hist=hist))
+        if 2 in kinds:
+            note('BC set %d: kind 2 (acceleration) written as point forces A m (m: the lumped node mass '
+                 'rho A0/3 summed over the node\'s triangles)' % s)
+        if any(k == 1 and a != 0 for k, a in zip(kinds, amps)) and any(len(copies[n]) > 1 for n in nodes_s):
+            note('BC set %d: a point force on a node with c copies (joint insertion) is written as c F: '
+                 '`load point` shares it, Y2D gives every copy F' % s)
         if float(at[s]) != 0.0:
-            L.append('# NOT TRANSLATED: BC set %d: edge shear traction D1PNAT = %g' % (s, at[s]))
+            L.append('# NOT TRANSLATED: BC set %d: edge shear traction D1PNAT = %r' % (s, float(at[s])))
+            diff('BC set %d: edge shear traction D1PNAT %r not translated (the native traction has a fixed '
+                 'direction, Y2D\'s follows the edge)' % (s, float(at[s])))
     L.append('')
+    pressure_loads(L, note, diff, ne, elto, meshed, nopr, nset, ap, hist_of, ids_of_node)
 
     # ---- run control
     dt = float(g('YDC/DCSTEC', 0.0))
     nsteps = int(g('YDC/MCSTEP', 0)) - int(g('YDC/NCSTEP', 0))
     L.append(SYNTAX['timestep'].format(dt=dt))
-    L.append(SYNTAX['thermo'].format(n=int(g('YDC/ICSHTF', 100))))
+    icshtf = int(g('YDC/ICSHTF', 100))
+    if not 0 < icshtf <= 2000000000:
+        note('ICSHTF %d: no progress lines in Y2D; written as thermo 0 (start and end only)' % icshtf)
+    L.append(SYNTAX['thermo'].format(n=icshtf if 0 < icshtf <= 2000000000 else 0))
     icoutf = int(g('YDC/ICOUTF', 10))
     if 0 < icoutf <= nsteps:
         L.append(SYNTAX['dump'].format(n=icoutf, file=base + '.h5'))
     L.append(SYNTAX['run'].format(n=max(nsteps, 0)))
     if 'YDO/NOHYS' in K:
-        notes.append('history output /YD/YDO/ not translated')
-    head = ['# NOTES (not translated or different semantics):'] + ['#   ' + n for n in notes]
+        note('history output /YD/YDO/ not translated (output only)')
+    head = ['# NOTES: DIFFERS = the converted deck does not run the physics of the .y there; note = an exact '
+            'translation'] + ['#   %s %s' % ('DIFFERS:' if d else 'note:', t) for t, d in notes] if notes else []
     with open(out + '.deck', 'w') as f:
         f.write('\n'.join(L[:1] + head + L[1:]) + '\n')
-    return out + '.deck', 1, notes
+    return out + '.deck', notes
+
+
+EXIT_ERROR, EXIT_DIFFERS = 1, 3
 
 
 def main():
-    ap = argparse.ArgumentParser(description='Y2D .y deck -> yfdem deck (see the docstring)')
+    ap = argparse.ArgumentParser(
+        description='Y2D .y deck -> yfdem deck (see the docstring).  Exit status: 0 the converted deck runs '
+                    'the physics of `yfdem DECK.y`; 1 error (no OUT.deck written); 2 bad usage; %d written, but '
+                    'the deck does not run the same physics (each difference is a warning on stderr and a '
+                    'DIFFERS note in OUT.deck); 0 for that too with --allow-differences.' % EXIT_DIFFERS)
     ap.add_argument('deck')
     ap.add_argument('out', help='output base name: OUT.deck, OUT.nodes, OUT.tris')
+    ap.add_argument('--allow-differences', action='store_true',
+                    help='exit 0 although the converted deck does not run the same physics (the warnings stay)')
     a = ap.parse_args()
     try:
-        path, _, notes = convert(a.deck, a.out)
+        path, notes = convert(a.deck, a.out)
     except (DeckError, OSError, KeyError, IndexError, ValueError) as e:
         msg = str(e) if not isinstance(e, KeyError) else 'required key %s missing' % e
         # a DeckError names its file and line first (an included file's, maybe): no second name
         sys.stderr.write('error: %s\n' % msg if isinstance(e, DeckError) else 'error: %s: %s\n' % (a.deck, msg))
-        sys.exit(1)
-    print('wrote %s (%d notes)' % (path, len(notes)))
+        sys.exit(EXIT_ERROR)
+    ndiff = sum(1 for _, d in notes if d)
+    for t, d in notes:
+        if d:
+            sys.stderr.write('warning: %s: %s\n' % (a.deck, t))
+    print('wrote %s (%d difference%s of physics, %d note%s)' % (path, ndiff, '' if ndiff == 1 else 's',
+                                                            len(notes) - ndiff, '' if len(notes) - ndiff == 1 else 's'))
+    if ndiff and not a.allow_differences:
+        sys.stderr.write('%s: the converted deck does not run the physics of %s (%d difference%s above; '
+                         '--allow-differences accepts them)\n' % (path, a.deck, ndiff, '' if ndiff == 1 else 's'))
+        sys.exit(EXIT_DIFFERS)
 
 
 if __name__ == '__main__':
