@@ -132,6 +132,15 @@ END_TEST
 /* A time step above the stable limit is refused, naming the limit and what sets it. */
 START_TEST(test_timestep_above_limit_refused) {
   expect_fail(BAR "timestep 1e-3\nrun 10\n", 1, "bad.deck:3: error: timestep", "stable limit");
+  /* 'above_limit warn' (what a deck converted from Y2D says: Y2D never checks dt) warns and runs,
+   * and the energy check stops the run it makes diverge; a later timestep line says it anew */
+  char *err;
+  int rc = yft_run_binary("w.deck", BAR "timestep 1e-3 above_limit warn\nrun 200\n", "-log none", &err, NULL);
+  ck_assert_msg(rc == 3 && strstr(err, "w.deck:3: warning: the deck's time step 0.001 s is") &&
+                strstr(err, "error: numerical failure"), "exit %d: %s", rc, err);
+  free(err);
+  expect_fail(BAR "timestep 1e-3 above_limit warn\ntimestep 1e-3\nrun 10\n", 1, "bad.deck:4: error: timestep", "stable limit");
+  expect_fail(BAR "timestep 1e-3 above_limit stop\nrun 10\n", 1, "bad.deck:3: error: timestep: above_limit 'stop'", NULL);
 }
 END_TEST
 

@@ -19,7 +19,8 @@ tests/convert/decks: within 1e-11 of the energy scale, not bitwise, since the na
 is not Y2D's BC-set update).
 
 What is translated (native syntax = the SYNTAX dict below, one place to adapt):
-  DCSTEC                     -> timestep DT
+  DCSTEC                     -> timestep DT above_limit warn (a step above yfdem's
+                                limit warns, as for `yfdem DECK.y`; the energy check still stops a divergence)
   MCSTEP - NCSTEP            -> run N
   DCTIME (start time)        -> no native start time: every time table is shifted by -DCTIME (the
                                 native time is the Y2D time - DCTIME; thermo/summary times too)
@@ -96,7 +97,7 @@ SYNTAX = {
     'triangles': 'triangles {file} {body}',
     'material':  'material {name} elastic rho {rho!r} lambda {lam!r} mu {mu!r} visc {visc!r} '
                  'volfac 0.5 pen_n {pen_n!r} pen_t {pen_t!r} friction {fric!r} friction_law y2d',
-    'timestep':  'timestep {dt!r}',
+    'timestep':  'timestep {dt!r} above_limit warn',   # as `yfdem DECK.y`: Y2D never checks dt
     'gravity':   'gravity 0 {gy!r}',
     'group_ids': 'group {name} node id {ids}',
     'velocity':  'velocity {group} set {vx!r} {vy!r}',

@@ -6,9 +6,10 @@
 #include "deck.h"
 #include "sim.h"
 
-/* timestep DT | timestep auto [safety S] */
+/* timestep DT [above_limit warn] | timestep auto [safety S] */
 void cmd_timestep(YfSim *s, const YfArgs *a) {
   arg_count(a, 1, 3);
+  s->dt_warn_only = s->y2d != NULL; /* each timestep line says it anew (a Y2D deck's own rule stays) */
   if (!strcmp(a->w[0], "auto")) {
     s->dt_auto = 1;
     s->dt_loc = a->loc; /* the line that auto's refusals name */
@@ -19,7 +20,13 @@ void cmd_timestep(YfSim *s, const YfArgs *a) {
       if (s->dt_safety > 1.0) arg_error(a, 2, "a safety factor above 1 exceeds the stable limit");
     }
   } else {
-    arg_count(a, 1, 1);
+    if (a->n > 1) { /* the rule of Y2D decks, for a deck converted from one (y2d2deck.py) */
+      arg_count(a, 3, 3);
+      static const char *const kw[] = {"above_limit", NULL}, *const how[] = {"warn", NULL};
+      arg_choice(a, 1, "keyword", kw);
+      arg_choice(a, 2, "above_limit", how);
+      s->dt_warn_only = 1;
+    }
     s->dt_auto = 0;
     s->dt = arg_pos(a, 0, "dt");
     s->dt_loc = a->loc;
