@@ -1221,6 +1221,41 @@ START_TEST(interrupt_all_ranks) {
 }
 END_TEST
 
+/* A signal to one rank outside a run stops every rank: in a deck's endless label/jump loop, and
+ * while rank 0 still reads a deck from a pipe held open.  The signalled rank stopped alone and the
+ * others waited in their next collective, so the job never ended (killed by timeout, exit 124). */
+START_TEST(interrupt_outside_run) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), cmd[4 * PATH_MAX];
+  write_file(d, "loop.deck", "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 0.1 10 2\n"
+                             "variable i equal 0\nlabel L\nvariable j equal $(v_i+1)\njump SELF L\n");
+  static const char *const how[] = {"-in loop.deck", "< <(cat loop.deck; sleep 100)"};
+  for (int k = 0; k < 2; k++) {
+    /* the last rank to start (rank 2, as mpirun starts them in order): not the one reading stdin */
+    snprintf(cmd, sizeof cmd, "cd %s && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_WAIT_POLICY=passive "
+             "OMP_NUM_THREADS=1 timeout 90 mpirun -q --oversubscribe -np 3 %s -log none %s >out.txt 2>err.txt & pid=$!; "
+             "q=; for i in $(seq 120); do n=0; for p in $(pgrep -x \"$(basename %s | cut -c1-15)\" | sort -n); do "
+             "[ \"$(readlink /proc/$p/cwd)\" = \"%s\" ] && q=$p && n=$((n+1)); done; [ $n -ge 3 ] && break; sleep 0.5; done; "
+             "sleep 3; t0=$(date +%%s); kill -TERM $q; wait $pid; rc=$?; echo $(( $(date +%%s) - t0 )) > secs.txt; exit $rc",
+             d, MPIBIN, how[k], MPIBIN, d);
+    char *bash = malloc(strlen(cmd) + 64);
+    sprintf(bash, "bash -c '%s'", cmd); /* < <(...) is bash's (cmd holds no single quote) */
+    int st = system(bash);
+    free(bash);
+    char path[PATH_MAX + 32];
+    snprintf(path, sizeof path, "%s/secs.txt", d);
+    char *secs = yft_slurp(path, 1);
+    ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) == YF_EXIT_INTERRUPT, "%s: exit %d (124: the job never ended), %s s",
+                  how[k], WIFEXITED(st) ? WEXITSTATUS(st) : -1, secs);
+    ck_assert_msg(atoi(secs) <= 30, "%s: %s s after the signal", how[k], secs);
+    fprintf(stderr, "check_mpi: SIGTERM to one of 3 ranks outside a run (%s): every rank ended, exit 130, %d s\n",
+            k ? "deck on a pipe" : "deck loop", atoi(secs));
+    free(secs);
+  }
+  drop_dir(d);
+}
+END_TEST
+
 Suite *mpi_suite(void) {
   Suite *s = suite_create("mpi");
   TCase *t = tcase_create("mpi");
@@ -1244,6 +1279,7 @@ Suite *mpi_suite(void) {
   tcase_add_test(t, output_error_ranks);
   tcase_add_test(t, interrupt_all_ranks);
   tcase_add_test(t, interrupt_mpirun_chatty);
+  tcase_add_test(t, interrupt_outside_run);
   tcase_add_test(t, full_disk_parallel_frames);
   suite_add_tcase(s, t);
   return s;

@@ -30,8 +30,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include "deck.h"
 #include "output.h"
+#include "par.h"
 #include "query.h"
 #include "deck_cmds.h"
 #include "expr.h"
@@ -39,6 +41,8 @@
 
 #define DECK_INCLUDE_MAX 32  /* nesting depth of include (recursive includes end here) */
 #define DECK_EVAL_MAX 64     /* nesting depth of equal-style variables referring to each other */
+#define DECK_EVAL_WORK 1000000 /* equal-style evaluations for one expression (a work bound)      */
+#define DECK_LINE_MAX (16 << 20) /* bytes of a line after substitution                          */
 #define DECK_NEST_MAX 64     /* nesting depth of commands run by `if` and of $(...) inside $(...):
                               * each level is a few stack frames, so a deck (or a variable that
                               * runs itself) cannot overflow the stack */
@@ -89,6 +93,7 @@ struct YfDeck {
   char **defnames; /* names the deck's variable commands define, in order  */
   int ndef, capdef, vars_checked;
   int eval_depth;
+  int eval_count;  /* equal-style evaluations of the current top-level expression */
   int exec_depth;  /* commands running inside other commands (if), see DECK_NEST_MAX */
   int subst_depth; /* $(...) being substituted inside $(...)                    */
 };
@@ -220,6 +225,7 @@ int yf_parse_long(const char *s, long *out) {
   double d;
   if (!yf_parse_double(s, &d)) return 0;
   if (d != floor(d) || fabs(d) > 9007199254740992.0) return 0;
+  if (d == 0.0 && strcspn(s, "123456789") < strcspn(s, "eE")) return 0; /* 1e-400: not 0 */
   if (out) *out = (long)d;
   return 1;
 }
@@ -393,6 +399,15 @@ static int var_number(YfDeck *d, DeckVar *v, double *val, char *err, size_t errl
                             "(does it refer to itself?)", v->name, DECK_EVAL_MAX);
       return -1;
     }
+    /* a chain of variables each reading the one before twice is 2^depth evaluations: 60 such
+     * lines spun for ever, deaf to a signal (checked between commands) */
+    if (d->eval_depth == 0) d->eval_count = 0;
+    if (++d->eval_count > DECK_EVAL_WORK) {
+      snprintf(err, errlen, "variable '%s': more than %d evaluations of equal-style variables for one expression "
+               "(variables that each read the one before more than once double the work at every level: store "
+               "a value once with 'variable NAME equal $(EXPR)')", v->name, DECK_EVAL_WORK);
+      return -1;
+    }
     ExprError e;
     d->eval_depth++;
     int ok = eval_quiet(d, v->text, val, &e);
@@ -516,6 +531,11 @@ static char *substitute(YfDeck *d, const char *in, const YfLoc *loc) {
   Buf b = {0};
   int in_s = 0, in_d = 0;
   for (const char *p = in; *p; p++) {
+    /* string variables that each hold the one before four times grew to gigabytes, and the run
+     * ended as "out of memory" with no line */
+    if (b.n > DECK_LINE_MAX)
+      fail_ctx(loc, in, (int)(p - in), "the line grows beyond %d MiB as its variables are substituted (variables "
+               "that each hold the one before several times?)", DECK_LINE_MAX >> 20);
     if (*p == '\'' && !in_d) in_s = !in_s;
     else if (*p == '"' && !in_s) in_d = !in_d;
     if (*p != '$' || in_s) {
@@ -781,7 +801,15 @@ static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
   if (d->exec_depth >= DECK_NEST_MAX)
     fail_ctx(loc, text, -1, "commands nested deeper than %d levels (an 'if' runs an 'if' that runs an "
              "'if' ...; does a variable run itself?)", DECK_NEST_MAX);
-  if (d->sim && d->sim->interrupted) deck_interrupted(d, loc);
+  if (d->sim) {
+    /* MPI: a signal to one rank stops every rank before the same line (a rank that stopped alone
+     * left the others waiting in the next collective: a job that never ended) */
+    int sig = (int)par_max((double)d->sim->interrupted);
+    if (sig) {
+      d->sim->interrupted = sig;
+      deck_interrupted(d, loc);
+    }
+  }
   char *line = substitute(d, text, loc);
   char **w;
   int *cols, errcol;
@@ -995,6 +1023,20 @@ double arg_num(const YfArgs *a, int i, const char *what) {
   const char *w = arg_word(a, i, what);
   double v;
   if (!yf_parse_double(w, &v)) arg_fail(a, i, what, "not a finite number%s", num_hint(w));
+  if (v == 0.0) { /* 1e-400 became 0 ("E must be > 0" of a positive number; thermo 1e-400 ran as 0) */
+    size_t m = strcspn(w, "eE");
+    if (strcspn(w, "123456789") < m)
+      arg_fail(a, i, what, "underflows to 0 in doubles (the smallest is 4.9e-324): use other units");
+  }
+  return v;
+}
+
+double arg_coord(const YfArgs *a, int i, const char *what) {
+  double v = arg_num(a, i, what);
+  /* a point's distances to the nodes are squared: beyond the nodes' own range they overflowed
+   * ('group g node nearest 1e200 0' found no node) */
+  if (!(fabs(v) <= YF_RANGE_MAX))
+    arg_fail(a, i, what, "%g m is beyond +-%g m, the range the arithmetic holds (nodes lie within it)", v, YF_RANGE_MAX);
   return v;
 }
 
@@ -1288,6 +1330,13 @@ void arg_claim(struct YfSim *s, const YfArgs *a, int i, const char *owner, const
   if (!by) return;
   if (numbered) arg_error(a, i, "its files %sNNNNNN%s are already written by %s", prefix, suffix ? suffix : "", by);
   arg_error(a, i, "already written by %s", by);
+}
+
+void arg_regular(const YfArgs *a, int i, const char *path) {
+  struct stat st;
+  if (!stat(path, &st) && !S_ISREG(st.st_mode))
+    arg_error(a, i, "'%s' is not a regular file: a restart is written whole to a temporary file and renamed over "
+              "it, which would replace it (write_restart onto a device replaced the device)", path);
 }
 
 void arg_writable(const YfArgs *a, const char *what, const char *fmt, ...) {

@@ -181,7 +181,21 @@ FILE *par_stdin(FILE *in, const volatile int *stop) {
     yf_interruptible(0);
     if (*stop) n = -1;
   }
-  MPI_Bcast(&n, 1, MPI_LONG, 0, MPI_COMM_WORLD);
+  /* the other ranks wait for the deck without blocking, so that a signal to one of them ends the
+   * job while rank 0 still reads a pipe held open (it waited in MPI_Bcast, and the job never
+   * ended) */
+  MPI_Request req;
+  MPI_Ibcast(&n, 1, MPI_LONG, 0, MPI_COMM_WORLD, &req);
+  for (int done = 0;;) {
+    MPI_Test(&req, &done, MPI_STATUS_IGNORE);
+    if (done) break;
+    if (*stop) { /* alone (rank 0 still reads): no agreed exit to make, so abort the job */
+      fprintf(stderr, "interrupted while waiting for the deck (rank %d): nothing was run\n", P.rank);
+      fflush(stderr);
+      MPI_Abort(MPI_COMM_WORLD, YF_EXIT_INTERRUPT);
+    }
+    usleep(2000);
+  }
   if (n < 0) yf_exit_with(YF_EXIT_INTERRUPT, "interrupted while reading the deck: nothing was run");
   if (P.rank != 0) buf = yf_malloc((size_t)n + 1, "deck from stdin");
   MPI_Bcast(buf, (int)n, MPI_CHAR, 0, MPI_COMM_WORLD);
