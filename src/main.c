@@ -98,6 +98,13 @@ static int is_option(const char *w) {
   return 0;
 }
 
+/* An output option on a file another output writes, or on the deck itself. */
+static int refuse_claim(const char *opt, const char *path, const char *by) {
+  int input = !strncmp(by, "the deck being read", 19);
+  fprintf(stderr, "yfdem: %s '%s': %s%s\n", opt, path, input ? "that is " : "already written by ", by);
+  return YF_EXIT_DECK;
+}
+
 int main(int argc, char **argv) {
   par_init(&argc, &argv); /* ./yfdem_mpi: MPI ranks (a no-op in ./yfdem) */
   /* HDF5's own exit handler closes every file still open, also one whose H5Fclose failed (a full
@@ -147,6 +154,12 @@ int main(int argc, char **argv) {
     } else if (!strcmp(o, "-echo")) {
       echo = 1;
     } else if (!strcmp(o, "-summary") && i + 1 < argc) {
+      /* an empty name was ignored, a long one cut short: the summary went nowhere, or elsewhere */
+      if (!argv[i + 1][0] || strlen(argv[i + 1]) >= sizeof g_sim.summary_path) {
+        fprintf(stderr, "yfdem: -summary '%.60s%s': %s\n", argv[i + 1], strlen(argv[i + 1]) > 60 ? "..." : "",
+                argv[i + 1][0] ? "a path longer than 1023 characters" : "an empty file name");
+        return YF_EXIT_DECK;
+      }
       snprintf(g_sim.summary_path, sizeof g_sim.summary_path, "%s", argv[++i]);
       if (!yf_can_create(g_sim.summary_path)) { /* now, not after the run */
         g_sim.summary_path[0] = 0;
@@ -171,13 +184,19 @@ int main(int argc, char **argv) {
       return YF_EXIT_DECK;
     }
   }
-  /* the log and the summary are outputs like the deck's: no deck output may write them */
-  if (strcmp(log_path, "none") != 0) output_claim(&g_sim, "the log (-log)", log_path, NULL, 0);
+  /* the deck read is no output's ('-log my.deck' emptied the deck before it was read); the log
+   * and the summary are outputs like the deck's: no deck output may write them */
+  if (in) output_claim(&g_sim, "the deck being read (-in)", in, NULL, 0);
+  if (strcmp(log_path, "none") != 0) {
+    const char *by = output_claim(&g_sim, "the log (-log)", log_path, NULL, 0);
+    if (by) {
+      return refuse_claim("-log", log_path, by);
+    }
+  }
   if (g_sim.summary_path[0]) {
     const char *by = output_claim(&g_sim, "the summary (-summary)", g_sim.summary_path, NULL, 0);
     if (by) {
-      fprintf(stderr, "yfdem: -summary '%s': already written by %s\n", g_sim.summary_path, by);
-      return YF_EXIT_DECK;
+      return refuse_claim("-summary", g_sim.summary_path, by);
     }
   }
   if (strcmp(log_path, "none") != 0 && yf_writer()) { /* MPI: rank 0 writes the log */

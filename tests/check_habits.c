@@ -312,6 +312,164 @@ START_TEST(test_summary_on_the_log_refused) {
 }
 END_TEST
 
+/* Run the binary on an existing deck dir with extra args; stderr in *err. */
+static int run_in_dir(const char *dir, const char *deck, const char *args, char **err) {
+  char cmd[4096];
+  snprintf(cmd, sizeof cmd, "cd %s && OMP_NUM_THREADS=1 %s -in %s %s >/dev/null 2>stderr.txt", dir, yft_binary(), deck, args);
+  int st = system(cmd);
+  *err = file_in(dir, "stderr.txt");
+  return WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+}
+
+/* Outputs that wrote over files they do not own: -log or -summary naming the deck itself (the
+ * deck emptied before it was read, or overwritten by the JSON), write_restart over the log,
+ * write_y2d over a dump's index, write_restart onto a fifo (renamed over it), an empty or a
+ * too long -summary (ignored, or cut short and written elsewhere).  Each is refused at once,
+ * with nothing lost; write_restart twice to one file writes it twice. */
+START_TEST(test_outputs_never_overwrite_inputs) {
+  char *err, *dir;
+  int rc = yft_run_binary("a.deck", BAR "run 2\n", "-log a.deck", &err, &dir);
+  ck_assert_msg(rc == 1 && strstr(err, "yfdem: -log 'a.deck': that is the deck being read (-in)"), "exit %d: %s", rc, err);
+  char *deck = file_in(dir, "a.deck");
+  ck_assert_msg(strstr(deck, "run 2"), "the deck was damaged: '%s'", deck);
+  free(deck);
+  free(err);
+  rc = run_in_dir(dir, "a.deck", "-summary ./a.deck", &err);
+  ck_assert_msg(rc == 1 && strstr(err, "yfdem: -summary './a.deck': that is the deck being read (-in)"), "exit %d: %s", rc, err);
+  free(err);
+  rc = run_in_dir(dir, "a.deck", "-summary ''", &err);
+  ck_assert_msg(rc == 1 && strstr(err, "an empty file name"), "exit %d: %s", rc, err);
+  free(err);
+  char longp[1200];
+  memset(longp, 'x', 1100);
+  longp[1100] = 0;
+  char args[1300];
+  snprintf(args, sizeof args, "-summary %s", longp);
+  rc = run_in_dir(dir, "a.deck", args, &err);
+  ck_assert_msg(rc == 1 && strstr(err, "a path longer than 1023 characters"), "exit %d: %s", rc, err);
+  free(err);
+  free(dir);
+  static const struct { const char *lines, *want; } cases[] = {
+      {"run 2\nwrite_restart log.yfdem\n", "b.deck:10: error: write_restart: 'log.yfdem': already written by the log (-log)"},
+      {"dump d h5 1 wy.h5\nrun 2\nwrite_y2d wy.xmf steps 10\n", "b.deck:11: error: write_y2d: 'wy.xmf': already written by dump 'd'"},
+      {"run 2\nwrite_restart ff\n", "b.deck:10: error: write_restart: 'ff': 'ff' is not a regular file"},
+  };
+  for (int k = 0; k < 3; k++) {
+    char text[1024];
+    snprintf(text, sizeof text, "%s%s", BAR, cases[k].lines);
+    char *d2 = yft_deck_dir("b.deck", text), cmd[700];
+    snprintf(cmd, sizeof cmd, "mkfifo %s/ff", d2);
+    ck_assert_int_eq(system(cmd), 0);
+    rc = run_in_dir(d2, "b.deck", "", &err);
+    ck_assert_msg(rc == 1 && strstr(err, cases[k].want), "case %d: exit %d: %s", k, rc, err);
+    char *log = file_in(d2, "log.yfdem");
+    ck_assert_msg(strstr(log, "material m elastic"), "case %d: the log is not the log: %.80s", k, log);
+    struct stat st;
+    snprintf(cmd, sizeof cmd, "%s/ff", d2);
+    ck_assert(stat(cmd, &st) == 0 && S_ISFIFO(st.st_mode));
+    free(log);
+    free(err);
+    snprintf(cmd, sizeof cmd, "rm -rf %s", d2);
+    if (system(cmd)) {}
+    free(d2);
+  }
+  rc = yft_run_binary("c.deck", BAR "run 2\nwrite_restart r.h5\nrun 2\nwrite_restart r.h5\n", "", &err, &dir);
+  ck_assert_msg(rc == 0, "write_restart twice: exit %d: %s", rc, err);
+  free(err);
+  free(dir);
+}
+END_TEST
+
+/* Runaway decks end with a deck error at their line, quickly: 60 equal-style variables that each
+ * read the one before twice (2^59 evaluations: it spun for ever, deaf to SIGTERM), string
+ * variables that each hold the one before four times (gigabytes, then "out of memory" with no
+ * line), a Weibull modulus whose scale overflows (GSL aborted, exit 134), a point at 1e200 m (the
+ * squared distances overflowed: no node), a number that underflows to 0 ('E 1e-400': "must be >
+ * 0"; thermo 1e-400 ran as 0). */
+START_TEST(test_runaway_decks_stop_at_their_line) {
+  char chain[8192] = "variable v0 equal 1\n";
+  for (int k = 1; k < 60; k++) {
+    char l[64];
+    snprintf(l, sizeof l, "variable v%d equal v_v%d+v_v%d\n", k, k - 1, k - 1);
+    strcat(chain, l);
+  }
+  strcat(chain, "print \"$(v_v59)\"\n");
+  char strs[4096] = "variable s0 string abcdefghijklmnopqrstuvwxyz0123456789\n";
+  for (int k = 1; k < 20; k++) {
+    char l[96];
+    snprintf(l, sizeof l, "variable s%d string ${s%d}${s%d}${s%d}${s%d}\n", k, k - 1, k - 1, k - 1, k - 1);
+    strcat(strs, l);
+  }
+  static char weib[512];
+  snprintf(weib, sizeof weib, "%s", BAR "jointprop cj ft 3e6 fs 3e6 gf 100 pen 1e11 law munjiza_gf weibull 0.005 seed 7\n");
+  const struct { const char *deck, *want; } cases[] = {
+      {chain, "more than 1000000 evaluations of equal-style variables"},
+      {strs, "the line grows beyond 16 MiB as its variables are substituted"},
+      {weib, "a.deck:9: error: jointprop: '0.005': a Weibull modulus below 0.01"},
+      {BAR "group g node nearest 1e200 0\n", "a.deck:9: error: group: x '1e200': 1e+200 m is beyond +-1e+100 m"},
+      {BAR "load L point at 0 1e200 1 0\n", "a.deck:9: error: load: y '1e200': 1e+200 m is beyond +-1e+100 m"},
+      {"material m elastic rho 1000 E 1e-400 nu 0.25 plane_stress\n", "a.deck:1: error: material: E '1e-400': underflows to 0"},
+      {BAR "thermo 1e-400\n", "a.deck:9: error: thermo"},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+    char *err;
+    time_t t0 = time(NULL);
+    int rc = yft_run_binary("a.deck", cases[k].deck, "-log none", &err, NULL);
+    ck_assert_msg(rc == 1 && strstr(err, cases[k].want), "case %zu: exit %d: %.600s", k, rc, err);
+    ck_assert_msg(time(NULL) - t0 < 60, "case %zu took %ld s", k, (long)(time(NULL) - t0));
+    free(err);
+  }
+}
+END_TEST
+
+/* A record row is written whole or not at all: a quantity that fails at step 1 (1/(step-1)) left
+ * "1,1.89e-05" with no value and no newline. */
+START_TEST(test_record_row_whole) {
+  char *err, *dir;
+  int rc = yft_run_binary("a.deck", BAR "record r 1 rr.csv \"1/(step-1)\"\nrun 2\n", "-log none", &err, &dir);
+  ck_assert_msg(rc == 1, "exit %d: %s", rc, err);
+  char *csv = file_in(dir, "rr.csv");
+  size_t n = strlen(csv);
+  ck_assert_msg(n > 0 && csv[n - 1] == '\n' && !strstr(csv, "\n1,"), "rr.csv: '%s'", csv);
+  free(csv);
+  free(err);
+  free(dir);
+}
+END_TEST
+
+/* Every -summary key is there when nothing ran (null where unknown): model_bytes_per_element and
+ * dt_limit were left out, so scripts that index them failed. */
+START_TEST(test_summary_keys_without_run) {
+  char *err, *dir;
+  int rc = yft_run_binary("a.deck", "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n", "-summary s.json", &err, &dir);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  char *js = file_in(dir, "s.json");
+  ck_assert_msg(strstr(js, "\"model_bytes_per_element\": null") && strstr(js, "\"dt_limit\": null"), "%s", js);
+  free(js);
+  free(err);
+  free(dir);
+}
+END_TEST
+
+/* The metrics log is written with each restart, so that after a SIGKILL it holds the rows the
+ * continuation keeps (it was written only at the end: lost, and the continued log silently began
+ * at the restart's step). */
+START_TEST(test_metrics_log_survives_kill) {
+  char *dir = yft_deck_dir("k.deck", BAR "metrics log met.csv every 10\nrun 50\nwrite_restart r.h5\nrun 100000000\n");
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "cd %s && (OMP_NUM_THREADS=1 %s -in k.deck -log none >/dev/null 2>&1 & p=$!; "
+           "for i in $(seq 600); do [ -f r.h5 ] && break; sleep 0.1; done; sleep 0.5; kill -9 $p; wait $p; true)",
+           dir, yft_binary());
+  ck_assert_int_eq(system(cmd), 0);
+  char *met = file_in(dir, "met.csv");
+  ck_assert_msg(strstr(met, "\n10,") && strstr(met, "\n50,"), "met.csv after SIGKILL: %.600s", met);
+  free(met);
+  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+  if (system(cmd)) {}
+  free(dir);
+}
+END_TEST
+
 Suite *habits_suite(void) {
   Suite *s = suite_create("habits");
   TCase *t = tcase_create("lammps");
@@ -325,6 +483,11 @@ Suite *habits_suite(void) {
   tcase_add_test(t, test_outputs_in_working_dir);
   tcase_add_test(t, test_whole_files_through_links_and_devices);
   tcase_add_test(t, test_summary_on_the_log_refused);
+  tcase_add_test(t, test_outputs_never_overwrite_inputs);
+  tcase_add_test(t, test_runaway_decks_stop_at_their_line);
+  tcase_add_test(t, test_record_row_whole);
+  tcase_add_test(t, test_summary_keys_without_run);
+  tcase_add_test(t, test_metrics_log_survives_kill);
   suite_add_tcase(s, t);
   return s;
 }

@@ -875,6 +875,33 @@ START_TEST(test_dump_again_continues_series) {
 }
 END_TEST
 
+/* A frame file name whose escaped form passes 1023 bytes (230 '&', each "&amp;" in the index) is
+ * listed whole: the index named a file cut short, which did not exist. */
+START_TEST(test_index_long_escaped_name) {
+  char name[256], deck[1024];
+  memset(name, '&', 230);
+  strcpy(name + 230, ".h5");
+  snprintf(deck, sizeof deck, "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 0.2 4 2\n"
+           "timestep auto\ndump d h5 1 '%s'\nrun 1\n", name);
+  char *err, *dir;
+  int rc = yft_run_binary("n.deck", deck, "-log none", &err, &dir);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  char p[1200], want[1300];
+  memset(name + 230, 0, 1);
+  snprintf(p, sizeof p, "%s/%s.xmf", dir, name);
+  char *x = yft_slurp(p, 1);
+  size_t k = 0;
+  for (int i = 0; i < 230; i++) k += (size_t)snprintf(want + k, sizeof want - k, "&amp;");
+  snprintf(want + k, sizeof want - k, "_000001.h5:/");
+  ck_assert_msg(strstr(x, want) != NULL, "the index does not name frame 1 whole: %.300s", x);
+  snprintf(p, sizeof p, "%s/%s_000001.h5", dir, name);
+  ck_assert(yft_exists(p));
+  free(x);
+  free(err);
+  free(dir);
+}
+END_TEST
+
 Suite *output_suite(void) {
   Suite *su = suite_create("output");
   TCase *tc = tcase_create("h5");
@@ -886,6 +913,7 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_deck_dump);
   tcase_add_test(tc, test_long_series_index);
   tcase_add_test(tc, test_dump_again_continues_series);
+  tcase_add_test(tc, test_index_long_escaped_name);
   tcase_add_test(tc, test_deck_dump_errors);
   tcase_add_test(tc, test_io_error);
   tcase_add_test(tc, test_kill_midway);

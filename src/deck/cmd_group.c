@@ -96,7 +96,7 @@ void cmd_group(YfSim *sim, const YfArgs *a) {
     } else {
       if (style != S_NODE) arg_error(a, 1, "'nearest' selects a node: use 'group NAME node nearest X Y'");
       arg_count(a, 5, 5);
-      double px = arg_num(a, 3, "x"), py = arg_num(a, 4, "y");
+      double px = arg_coord(a, 3, "x"), py = arg_coord(a, 4, "y");
       group_select_nearest(m, px, py, ns);
     }
   }

@@ -102,6 +102,10 @@ void cmd_jointprop(YfSim *s, const YfArgs *a) {
       if (het != YF_HET_NONE) arg_error(a, i, "give one of weibull M or normal CV");
       het = k == 9 ? YF_HET_WEIBULL : YF_HET_NORMAL;
       het_par = arg_pos(a, i + 1, k == 9 ? "Weibull modulus" : "coefficient of variation");
+      /* the mean-1 scale is 1 / Gamma(1 + 1/M): beyond a double below M = 1/171 (GSL aborted) */
+      if (k == 9 && het_par < 0.01)
+        arg_error(a, i + 1, "a Weibull modulus below 0.01 spreads the strengths beyond what doubles hold (its mean-1 "
+                  "scale 1/Gamma(1 + 1/M) underflows); concrete and rock have 5-20");
       break;
     case 11: seed = (unsigned long)arg_int(a, i + 1, "seed", 0, 4294967295L); break;
     case 12: {

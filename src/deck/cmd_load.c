@@ -24,8 +24,8 @@ void cmd_load(YfSim *s, const YfArgs *a) {
       it.node_id = (int)arg_int(a, 3, "node id", 0, 2147483647L);
       i = 4;
     } else {
-      it.px = arg_num(a, 3, "x");
-      it.py = arg_num(a, 4, "y");
+      it.px = arg_coord(a, 3, "x");
+      it.py = arg_coord(a, 4, "y");
       i = 5;
     }
     it.has[0] = it.has[1] = 1;

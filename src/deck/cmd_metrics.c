@@ -7,6 +7,7 @@
 #include "output.h"
 #include "joint.h"
 #include "metrics.h"
+#include "restart.h"
 #include "region.h"
 #include "report.h"
 
@@ -71,6 +72,7 @@ void cmd_metrics(YfSim *s, const YfArgs *a) {
     output_release(s, "metrics log"); /* a later metrics log replaces the earlier */
     arg_claim(s, a, 1, "metrics log", a->w[1], NULL, 0);
     metrics_set_log(a->w[1], 0);
+    restart_before_write(metrics_flush_log); /* a restart's log holds the rows before it */
     if (a->n > 2) {
       static const char *const ev[] = {"every", NULL};
       arg_choice(a, 2, "option", ev);

@@ -31,6 +31,7 @@ void cmd_restart(YfSim *s, const YfArgs *a) {
   char *ab = yf_malloc(strlen(base) + 3, "path");
   for (int i = 0; i < 2; i++) {
     sprintf(ab, "%s.%c", base, 'a' + i);
+    arg_regular(a, 2, ab);
     const char *by = output_claim(s, "restart every", ab, NULL, 0);
     if (by) {
       free(ab);

@@ -15,7 +15,7 @@ void cmd_run(YfSim *s, const YfArgs *a) {
     n = s->last_step - s->step;
     if (n < 0) n = 0;
   } else {
-    n = arg_int(a, 0, "N", 0, 2000000000L);
+    n = arg_int(a, 0, "N", 0, 1000000000000000L); /* a .y deck's MCSTEP may pass 2^31 */
     if (a->n == 2) { /* upto: N is the step to reach (a deck continued from a restart) */
       static const char *const w[] = {"upto", NULL};
       arg_choice(a, 1, "run option", w);

@@ -61,6 +61,8 @@ double deck_eval(YfDeck *d, const char *expr, const YfLoc *loc);
 void arg_count(const YfArgs *a, int min, int max);
 /* Strict number: whole word must be a finite number ("3.0x", "nan", "inf", "" are errors). */
 double arg_num(const YfArgs *a, int i, const char *what);
+/* arg_num of a point's coordinate [m], within +-YF_RANGE_MAX (where nodes lie). */
+double arg_coord(const YfArgs *a, int i, const char *what);
 /* Number that must be > 0 / >= 0. */
 double arg_pos(const YfArgs *a, int i, const char *what);
 double arg_nonneg(const YfArgs *a, int i, const char *what);
@@ -80,6 +82,9 @@ void arg_error(const YfArgs *a, int i, const char *fmt, ...) __attribute__((nore
 void arg_writable(const YfArgs *a, const char *what, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 /* Claim for owner ("record r1") the file prefix, or the numbered files prefix NNNNNN suffix, that
  * an output will write (output_claim); a file another output writes is an error at word i. */
+/* Deck error at word i when path exists and is not a regular file (a directory, a device, a pipe):
+ * for outputs written whole to PATH.tmp and renamed (restarts). */
+void arg_regular(const YfArgs *a, int i, const char *path);
 void arg_claim(struct YfSim *s, const YfArgs *a, int i, const char *owner, const char *prefix, const char *suffix,
                int numbered);
 

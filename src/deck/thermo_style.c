@@ -244,11 +244,12 @@ static void record_row(YfSim *s, Record *r) {
     for (int i = 0; i < r->q.n; i++) (void)value(s, &r->q, i, NULL);
     record_open(r, NULL);
   }
+  /* the row's values first, then the row: a quantity failing mid-run (1/(step-1) at step 1) left
+   * a row cut after its time */
+  double vals[REPORT_MAX_WORDS];
+  for (int i = 0; i < r->q.n; i++) vals[i] = value(s, &r->q, i, NULL);
   fprintf(r->fp, "%ld,%.17g", s->step, s->time);
-  for (int i = 0; i < r->q.n; i++) {
-    double v = value(s, &r->q, i, NULL);
-    fprintf(r->fp, ",%.17g", v == 0.0 ? 0.0 : v);
-  }
+  for (int i = 0; i < r->q.n; i++) fprintf(r->fp, ",%.17g", vals[i] == 0.0 ? 0.0 : vals[i]);
   fputc('\n', r->fp);
   if (fflush(r->fp) != 0 || ferror(r->fp))
     yf_io_error(&r->q.loc, "record %s: cannot write '%s': %s", r->id, r->path, strerror(errno));

@@ -50,6 +50,9 @@ void metrics_set_peak(int on);                  /* track the max principal stres
 void metrics_set_threshold(double s);           /* stress_first_above threshold [Pa] */
 void metrics_set_until(double t);               /* peak_stress over times <= t [s] */
 void metrics_set_log(const char *path, long every); /* every <= 0: keep the period (default 100) */
+/* The log so far, written whole now (a restart is about to be written: after a SIGKILL the log
+ * then holds every row the continuation keeps; it was written only at the end, and was lost). */
+int metrics_flush_log(YfSim *s, char *err, size_t nerr);
 
 /* After every completed step (run.c); a few compares when nothing is due. */
 void metrics_step(YfSim *s);

@@ -395,7 +395,8 @@ static void xmf_attr(YfText *t, const char *fname, const char *name, const char 
  * Xdmf3ReaderS ("unrecognized array type"). */
 static void xmf_add_frame(YfDump *d, double time, long step, int n, int nt, int with_fc, int ncrack,
                           const double *at) {
-  char fname[1024], p[32], dn2[48], dt3[48], dt1[48];
+  /* a file name is at most 255 bytes, each escaped to at most 6 (1024 cut 230 '&' short) */
+  char fname[6 * 256 + 8], p[32], dn2[48], dt3[48], dt1[48];
   const char *base = strrchr(d->cur, '/');
   xml_escape(fname, sizeof fname, base ? base + 1 : d->cur);
   snprintf(dn2, sizeof dn2, "%d 2", n);

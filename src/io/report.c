@@ -53,7 +53,9 @@ void io_attach(YfSim *s) { sim_observe(s, io_observer); }
  * the exit path too, so it must not fail. */
 void run_summary_update(YfSim *s) {
   summary_set_counts(joints_count(s), joints_broken(s), contact_pairs(s));
+  /* every key is always there (scripts index them): null when there is no scene or no limit */
   if (s->model.tri.n > 0) summary_add_number("model_bytes_per_element", run_model_bytes(s) / s->model.tri.n);
+  else summary_add_raw("model_bytes_per_element", "null");
   struct rusage ru;
   if (!getrusage(RUSAGE_SELF, &ru)) summary_add_number("peak_rss_mb", ru.ru_maxrss / 1024.0);
   char buf[512];
@@ -67,6 +69,7 @@ void run_summary_update(YfSim *s) {
   summary_add_number("gravity_work", s->gravity_work); /* not in energy.external_work (loads, supports) */
   summary_add_number("dt", s->dt);
   if (isfinite(s->dt_limit) && s->dt_limit > 0) summary_add_number("dt_limit", s->dt_limit);
+  else summary_add_raw("dt_limit", "null");
   joints_summary(s);
   metrics_summary(s);
 }

@@ -335,8 +335,18 @@ static void write_all(W *w, YfSim *s) {
   gclose(g);
 }
 
-static int (*before_write)(YfSim *s, char *err, size_t nerr);
-void restart_before_write(int (*fn)(YfSim *s, char *err, size_t nerr)) { before_write = fn; }
+enum { BEFORE_MAX = 4 };
+static int (*before_write[BEFORE_MAX])(YfSim *s, char *err, size_t nerr);
+void restart_before_write(int (*fn)(YfSim *s, char *err, size_t nerr)) {
+  for (int i = 0; i < BEFORE_MAX; i++) {
+    if (before_write[i] == fn) return;
+    if (!before_write[i]) {
+      before_write[i] = fn;
+      return;
+    }
+  }
+  YF_ASSERT(!"too many restart_before_write hooks");
+}
 
 int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
   if (err && nerr) err[0] = 0;
@@ -348,10 +358,11 @@ int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
   contact_par_whole(s); /* MPI: and the couples with their friction memory */
   if (!yf_writer()) return 0; /* under MPI rank 0 writes the (replicated) state */
   char ferr[3 * 4096];
-  if (before_write && before_write(s, ferr, sizeof ferr) != 0) {
-    if (err) snprintf(err, nerr, "%s", ferr);
-    return -1;
-  }
+  for (int i = 0; i < BEFORE_MAX && before_write[i]; i++)
+    if (before_write[i](s, ferr, sizeof ferr) != 0) {
+      if (err) snprintf(err, nerr, "%s", ferr);
+      return -1;
+    }
   yf_h5_quiet();
   size_t L = strlen(path);
   char *tmp = yf_malloc(L + 8, "restart path");
