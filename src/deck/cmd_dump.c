@@ -149,6 +149,10 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
     output_dump_files(s, k, &stem, &ext, &xmf);
     /* its frames, its index and its crack index (STEM_cracks.xmf): no other output's */
     claim_files(s, a, id, owner, stem, ext, xmf, "_cracks.xmf");
+    unsigned before = output_dump_earlier_fields(s, k);
+    if (before && before != (fields & YF_FIELD_ALL))
+      yf_warn(&a->loc, "dump %s: it continues the series of the dump undumped on %s, whose frames hold other fields; "
+              "ParaView colours a series only by the fields every frame has: write these to another file", id, a->w[3]);
     /* a missing folder: now, at this line, not at the run after the other outputs began */
     char what[256];
     snprintf(what, sizeof what, "dump %s", id);

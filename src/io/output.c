@@ -101,6 +101,7 @@ typedef struct YfDump {
   int adopted;        /* a continued run looked for the earlier run's series (dump_adopt) */
   int again;          /* on the file of a dump undumped earlier in this process: continues its
                          series as a restarted run does (it wrote over its frames from 0) */
+  unsigned again_fields; /* that dump's fields                                         */
   long first;         /* number of this process's first frame (> 0: a continued series) */
   long last_step;     /* step of the last frame (LONG_MIN: none)                       */
   YfText grids;       /* XDMF <Grid> elements of the frames so far (STEM.xmf)          */
@@ -1020,6 +1021,7 @@ void output_free(YfSim *s) {
   for (int i = 0; i < o->npast; i++) free(o->past[i]);
   free(o->past);
   free(o->past_style);
+  free(o->past_fields);
   free(o);
   s->out = NULL;
 }
@@ -1183,11 +1185,20 @@ int output_add_dump(YfSim *s, const char *id, int style, long every, const char 
     d->cur[0] = d->cur_tmp[0] = 0;
   }
   char *cp = clean_path(path);
-  for (int i = 0; i < o->npast; i++) d->again |= o->past_style[i] == style && !strcmp(o->past[i], cp);
+  for (int i = 0; i < o->npast; i++)
+    if (o->past_style[i] == style && !strcmp(o->past[i], cp)) {
+      d->again = 1;
+      d->again_fields = o->past_fields[i];
+    }
   free(cp);
   o->dump[o->ndump++] = d;
   update_next_due(s);
   return o->ndump - 1;
+}
+
+unsigned output_dump_earlier_fields(const YfSim *s, int k) {
+  const YfDump *d = s->out && k >= 0 && k < s->out->ndump ? s->out->dump[k] : NULL;
+  return d && d->again ? d->again_fields : 0;
 }
 
 int output_remove_dump(YfSim *s, const char *id) {
@@ -1201,7 +1212,9 @@ int output_remove_dump(YfSim *s, const char *id) {
   if (d->nframe > 0 && d->style != YF_DUMP_Y2DREF) {
     o->past = yf_realloc(o->past, (size_t)(o->npast + 1) * sizeof *o->past, "undumped files");
     o->past_style = yf_realloc(o->past_style, (size_t)(o->npast + 1) * sizeof *o->past_style, "undumped files");
+    o->past_fields = yf_realloc(o->past_fields, (size_t)(o->npast + 1) * sizeof *o->past_fields, "undumped files");
     o->past_style[o->npast] = d->style;
+    o->past_fields[o->npast] = d->fields;
     o->past[o->npast++] = clean_path(d->path);
   }
   dump_free(d);

@@ -47,9 +47,10 @@ struct YfOutput {
   struct YfDump *dump[YF_MAX_DUMPS];
   int nclaim;      /* the files outputs write, by owner (output_claim)        */
   struct YfClaim *claim;
-  int npast;       /* dumps undumped in this process: style and clean path,   */
-  int *past_style; /* so that a dump again on the same file continues their  */
-  char **past;     /* series instead of writing over its frames              */
+  int npast;       /* dumps undumped in this process: style, fields and clean */
+  int *past_style; /* path, so that a dump again on the same file continues  */
+  unsigned *past_fields; /* their series instead of writing over its frames   */
+  char **past;
 };
 
 /* The files the outputs write, so that two outputs never write one file (two records on one
@@ -61,6 +62,9 @@ struct YfOutput {
  * absolute, with '.', '..' and repeated '/' resolved (links are not followed).  Returns the
  * owner of a claim the new one meets (nothing is recorded then), or NULL when it is recorded. */
 const char *output_claim(YfSim *s, const char *owner, const char *prefix, const char *suffix, int numbered);
+/* The fields of the earlier dump whose series dump k continues (it was undumped, and k names its
+ * file again), or 0 when k starts its own series. */
+unsigned output_dump_earlier_fields(const YfSim *s, int k);
 /* Write every index that lags its frames (a long series rewrites its index only now and then):
  * restart_write calls it, so every frame before a restart's step is listed and a continuation
  * after SIGKILL has no hole before its restart (it numbered its frames after the last listed one
