@@ -61,7 +61,8 @@ void contact_step(YfSim *s);
 void contact_check_impact(YfSim *s, const YfLoc *loc);
 /* The contact penalty's part of the stable time step (run_stable_dt combines it with the
  * triangles and joints at every node).  For every participating triangle e that can touch a
- * triangle of another body (or belongs to a fracturing body: its own fragments), the stiffest
+ * triangle of another body, or its own body's under a self rule (a fracturing body's fragments, a
+ * body that folds onto itself), the stiffest
  * contact it can meet is a flat penetration of one of its edges: force per node
  * k = 1.5 p L_e / h_e (ALGORITHMS 6.3 with P = delta / h), L_e its longest edge, h_e = 2 A_e / L_e
  * its smallest height, p = min(its pen_n, the largest pen_n it can meet).  Each corner i of e gets
