@@ -69,8 +69,9 @@ void contact_check_impact(YfSim *s, const YfLoc *loc);
  * 2 k added to K[i] [Pa]: the Gershgorin row sum of the node pressed against an equal target node
  * (alone, a node of mass m is then stable for dt <= sqrt(2 m / k), the two-mass bound).  tof[i],
  * pof[i]: the triangle giving node i's largest share and its penalty (for the message), where
- * tof[i] < 0 on entry or a larger share is found.  Self-contact of a body that cannot break is
- * left out (it only acts when the body folds onto itself).  Returns 0 without contact. */
+ * tof[i] < 0 on entry or a larger share is found.  Self-contact of a body that cannot break
+ * counts too: it acts only when the body folds onto itself, but then at the full penalty (left
+ * out, a U closing on itself blew up at the default safety).  Returns 0 without contact. */
 int contact_node_stiffness(YfSim *s, double *K, int *tof, double *pof);
 /* Live couples in the list (Y2D's ncouples). */
 long contact_pairs(const YfSim *s);
