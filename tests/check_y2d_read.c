@@ -247,7 +247,8 @@ static const struct {
   {"short_array.y", 1, 10, "/YD/YDE/I1ELPR: expected 2 values, found 1 before '/YD/YDE/I2ELTO'"},
   {"real_for_int.y", 1, 2, "/YD/YDC/MCSTEP: '4e3' is not an integer"},
   {"array_before_cap.y", 1, 4, "/YD/YDE/I1ELPR: read before its capacity /YD/YDE/MELEM"},
-  {"bad_set_index.y", 1, 18, "/YD/YDN/I1NOPR: node 2 has BC set 5, outside 0..NPNSET-1"},
+  /* a set given out of range freezes its node (FORMAT.md 6, test_frozen_set); one not given is a mistake */
+  {"set_list_short.y", 1, 18, "/YD/YDN/I1NOPR: node 3 has no BC set (not given: the list is shorter than NNOPO = 4"},
   {"missing_required.y", 1, 34, "/YD/YDN/D2NCI is required"},
   {"unterminated_comment.y", 1, 35, "unterminated comment"},
   {"comment_too_long.y", 1, 1, "longer than 100 tokens"},
@@ -480,6 +481,39 @@ START_TEST(test_diedi_delays_first_search) {
 }
 END_TEST
 
+/* A BC set index outside 0..NPNSET-1 freezes its node, as Y2D never moves it (FORMAT.md 6): it
+ * was refused as an error.  The deck a's block with its corner node 0 given set 7 runs, warns
+ * once, and that node stays put while the block flies. */
+START_TEST(test_frozen_set) {
+  char *a = yft_slurp(DECKS "a_elastic_block.y", 0);
+  ck_assert_ptr_nonnull(a);
+  char *at = strstr(a, "/YD/YDN/I1NOPR ");
+  ck_assert_ptr_nonnull(at);
+  char *v = strchr(at, '\n') + 1; /* the first value on the next line */
+  while (*v == ' ') v++;
+  ck_assert(*v == '0' || *v == '1');
+  char *deck = strdup(a);
+  deck[v - a] = '7';
+  char *dir = yft_deck_dir("f.y", deck);
+  char nd[700];
+  snprintf(nd, sizeof nd, "read_y2d %s/f.y\nrun 200\n", dir);
+  YfSim *s = yft_run(nd);
+  ck_assert_int_eq(s->step, 200);
+  const YfNodes *n = &s->model.node;
+  int found = 0;
+  for (int i = 0; i < n->n; i++)
+    if (n->id[i] == 0) {
+      found++;
+      ck_assert_msg(n->x[i] == n->x0[i] && n->y[i] == n->y0[i], "node 0 moved by (%g, %g)", n->x[i] - n->x0[i],
+                    n->y[i] - n->y0[i]);
+    }
+  ck_assert_int_ge(found, 1);
+  free(dir);
+  free(deck);
+  free(a);
+}
+END_TEST
+
 Suite *y2d_read_suite(void) {
   Suite *s = suite_create("y2d_read");
   TCase *tc = tcase_create("reference_decks");
@@ -496,6 +530,7 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_massless_nodes_stay);
   tcase_add_test(tc, test_ystop_and_comments_as_y2d);
   tcase_add_test(tc, test_diedi_delays_first_search);
+  tcase_add_test(tc, test_frozen_set);
   suite_add_tcase(s, tc);
   tc = tcase_create("errors");
   tcase_add_loop_test(tc, test_bad_decks, 0, (int)(sizeof bad / sizeof bad[0]));

@@ -26,6 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "y2d_model.h"
+
 #include "par.h"
 #include "yfvec.h"
 #include "y2d_read.h"
@@ -34,6 +35,10 @@
 #include "joint.h"
 #include "run.h"
 #include "partition.h"
+
+/* r->set of a deck node whose BC set is outside 0..NPNSET-1: Y2D never moves it (-1: a node of
+ * native commands, no set) */
+#define Y2D_FROZEN (-2)
 
 static YfY2d *deck_of(const YfY2dRun *r) { return (YfY2d *)r->deck; }
 
@@ -87,7 +92,7 @@ static void resolve(YfSim *s, YfY2dRun *r) {
     int in = n->id[i];
     int mine = (n->gmask[i] & r->gbit) && in >= 0 && in < r->nnode;
     r->set[i] = mine ? r->setof[in] : -1;
-    if (r->set[i] >= r->nset) r->set[i] = -1;
+    if (mine && (r->set[i] < 0 || r->set[i] >= r->nset)) r->set[i] = Y2D_FROZEN; /* never moved (FORMAT.md 6) */
   }
   /* triangle edges whose two end nodes both carry a pressure or both a shear traction (counted,
    * then listed: scenes without edge loads keep no per-node load array) */
@@ -257,7 +262,7 @@ static inline void update_node(const YfY2dRun *r, YfNodes *n, const YfSim *s, in
     vxo[i] = n->vx[i];
     vyo[i] = n->vy[i];
   }
-  if (b < 0 && m > 1e-300) {
+  if (b == -1 && m > 1e-300) { /* a native node; Y2D_FROZEN keeps its velocity and place */
     double ax, ay;
     yf_div2(n->fx[i], m, n->fy[i], m, &ax, &ay);
     n->vx[i] = n->vx[i] + s->dt * (ax + s->gx);
@@ -299,7 +304,8 @@ static double update_range(const YfY2dRun *r, YfNodes *n, const YfSim *s, int i0
     const double dt = s->dt, *vx = n->vx, *vy = n->vy;
     double *x = n->x, *y = n->y;
     for (int j = i0; j < i1; j++) {
-      if (set[j] >= 0 && !(ms[j] > 1e-10)) continue; /* Y2D moves no node of mass <= 1e-10 (ALGORITHMS 7, 9) */
+      /* Y2D moves no node of mass <= 1e-10 (ALGORITHMS 7, 9), nor one of a set out of range */
+      if (set[j] == Y2D_FROZEN || (set[j] >= 0 && !(ms[j] > 1e-10))) continue;
       x[j] += dt * vx[j];
       y[j] += dt * vy[j];
     }
@@ -692,7 +698,7 @@ static void y2d_hold_massless(YfSim *s, const double *xo, const double *yo, cons
   if (!r || !xo || !(s->mass_damping > 0)) return;
   YfNodes *n = &s->model.node;
   for (int i = 0; i < n->n && i < r->nn; i++)
-    if (r->set[i] >= 0 && !(n->m[i] > 1e-10)) {
+    if (r->set[i] == Y2D_FROZEN || (r->set[i] >= 0 && !(n->m[i] > 1e-10))) {
       n->x[i] = xo[i];
       n->y[i] = yo[i];
     }

@@ -1270,15 +1270,24 @@ static void check_deck(YfY2d *y) {
                 "of 1 unit acts on every node of the set", s, "xy"[d], keydefs[ak[d]].name);
     }
   }
+  /* a set outside 0..NPNSET-1 given in the list freezes its node (FORMAT.md 6: Y2D never moves
+   * it), an idiom: warned once; one the list leaves out (shorter than NNOPO) is a mistake */
+  long nfrozen = 0, n0 = -1;
   for (long n = 0; n < y->nnopo; n++) {
     int s = y->i1nopr[n];
-    if (s < 0 || s >= y->npnset) {
-      YfLoc nl = value_loc(y, Y2D_N_I1NOPR, n); /* a scan of the value lines: on error only */
-      yf_deck_error(&nl, "%s: node %ld has BC set %d%s, outside 0..NPNSET-1 = 0..%ld (the anchor "
-                    "would never move this node)", keydefs[Y2D_N_I1NOPR].full, n, s,
-                    n >= y->nread[Y2D_N_I1NOPR] ? " (not given: the list is shorter than NNOPO)"
-                                                : "", y->npnset - 1);
+    if (s >= 0 && s < y->npnset) continue;
+    if (n >= y->nread[Y2D_N_I1NOPR]) {
+      YfLoc nl = value_loc(y, Y2D_N_I1NOPR, n);
+      yf_deck_error(&nl, "%s: node %ld has no BC set (not given: the list is shorter than NNOPO = %ld; the "
+                    "anchor would never move this node)", keydefs[Y2D_N_I1NOPR].full, n, y->nnopo);
     }
+    if (!nfrozen++) n0 = n;
+  }
+  if (nfrozen) {
+    YfLoc nl = value_loc(y, Y2D_N_I1NOPR, n0);
+    yf_warn(&nl, "%s: %ld node%s (first: node %ld, set %d) %s a BC set outside 0..NPNSET-1 = 0..%ld: frozen, as "
+            "Y2D never moves such a node", keydefs[Y2D_N_I1NOPR].full, nfrozen, nfrozen == 1 ? "" : "s", n0,
+            y->i1nopr[n0], nfrozen == 1 ? "has" : "have", y->npnset - 1);
   }
 
   /* ---- time tables ---- */
