@@ -776,14 +776,7 @@ START_TEST(test_restart_on_frame_step) {
 END_TEST
 
 /* A deck is a plain text file the test writes (no scene). */
-static void write_text(const char *name, const char *text) {
-  char path[256];
-  snprintf(path, sizeof path, "%s/%s", tmpdir, name);
-  FILE *f = fopen(path, "w");
-  ck_assert_ptr_nonnull(f);
-  fputs(text, f);
-  fclose(f);
-}
+static void write_text(const char *name, const char *text) { yft_put_file(tmpdir, name, text); }
 
 static int summary_says(const char *name, const char *status) {
   char path[256], want[64];

@@ -73,16 +73,20 @@ const char *yft_binary(void) {
   return abs;
 }
 
+void yft_put_file(const char *dir, const char *name, const char *text) {
+  char path[1024];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  FILE *fp = fopen(path, "w");
+  ck_assert_ptr_nonnull(fp);
+  fputs(text, fp);
+  fclose(fp);
+}
+
 char *yft_deck_dir(const char *name, const char *deck_text) {
   char tmpl[] = "/tmp/yft_XXXXXX";
   char *dir = mkdtemp(tmpl);
   ck_assert_ptr_nonnull(dir);
-  char path[512];
-  snprintf(path, sizeof path, "%s/%s", dir, name);
-  FILE *fp = fopen(path, "w");
-  ck_assert_ptr_nonnull(fp);
-  fputs(deck_text, fp);
-  fclose(fp);
+  yft_put_file(dir, name, deck_text);
   return strdup(dir);
 }
 

@@ -395,16 +395,6 @@ START_TEST(test_massless_nodes_stay) {
 }
 END_TEST
 
-/* Write text to dir/name. */
-static void put_file(const char *dir, const char *name, const char *text) {
-  char p[600];
-  snprintf(p, sizeof p, "%s/%s", dir, name);
-  FILE *f = fopen(p, "w");
-  ck_assert_ptr_nonnull(f);
-  fputs(text, f);
-  fclose(f);
-}
-
 /* `yfdem DECK.y` computes nothing when the deck stops at $YSTOP before any $YDOIT, as Y2D
  * (FORMAT.md 1.2): a $YDOIT commented out ran all its steps, and a $YSTOP before the data was
  * the error "MNODIM is required".  A key commented out on purpose is quiet; one after a '*' '/'
@@ -420,8 +410,8 @@ START_TEST(test_ystop_and_comments_as_y2d) {
   sprintf(first, "/* a deck that ends at once */\n$YSTOP\n%s", tiny);
   sprintf(glued, "/* note*/\n/YD/YDC/MCSTEP 7\n*/\n%s", tiny);
   char *dir = yft_deck_dir("nodoit.y", nodoit);
-  put_file(dir, "first.y", first);
-  put_file(dir, "glued.y", glued);
+  yft_put_file(dir, "first.y", first);
+  yft_put_file(dir, "glued.y", glued);
   static const char *const files[] = {"nodoit.y", "first.y"};
   for (int k = 0; k < 2; k++) {
     char cmd[1200], ep[700];
@@ -454,14 +444,20 @@ START_TEST(test_ystop_and_comments_as_y2d) {
 }
 END_TEST
 
+/* Shared deck a's text (free it), with *at at the first occurrence of key in it. */
+static char *deck_a_at(const char *key, char **at) {
+  char *a = yft_slurp(DECKS "a_elastic_block.y", 0);
+  ck_assert_ptr_nonnull(a);
+  *at = strstr(a, key);
+  ck_assert_msg(*at != NULL, "deck a has no %s", key);
+  return a;
+}
+
 /* DIEDI: the travel counter starts there without joint meshing (ALGORITHMS 5), so with DIEDI 0
  * the first search waits until the bodies have moved DIEZON (1.5 mm: a travel of 2 dt |v|_max = 1 um a step
  * for deck a's block at 2 m/s, step 1500).  yfdem read DIEDI and searched at the first step whatever it was. */
 START_TEST(test_diedi_delays_first_search) {
-  char *a = yft_slurp(DECKS "a_elastic_block.y", 0);
-  ck_assert_ptr_nonnull(a);
-  char *dz = strstr(a, "/YD/YDI/DIEZON");
-  ck_assert_ptr_nonnull(dz);
+  char *dz, *a = deck_a_at("/YD/YDI/DIEZON", &dz);
   char *deck = malloc(strlen(a) + 64);
   sprintf(deck, "%.*s/YD/YDI/DIEDI 0\n%s", (int)(dz - a), a, dz);
   char *dir = yft_deck_dir("a0.y", deck);
@@ -485,10 +481,7 @@ END_TEST
  * was refused as an error.  The deck a's block with its corner node 0 given set 7 runs, warns
  * once, and that node stays put while the block flies. */
 START_TEST(test_frozen_set) {
-  char *a = yft_slurp(DECKS "a_elastic_block.y", 0);
-  ck_assert_ptr_nonnull(a);
-  char *at = strstr(a, "/YD/YDN/I1NOPR ");
-  ck_assert_ptr_nonnull(at);
+  char *at, *a = deck_a_at("/YD/YDN/I1NOPR ", &at);
   char *v = strchr(at, '\n') + 1; /* the first value on the next line */
   while (*v == ' ') v++;
   ck_assert(*v == '0' || *v == '1');
