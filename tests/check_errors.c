@@ -262,6 +262,26 @@ START_TEST(test_inverted_element_numerical_failure) {
   free(x);
   free(err);
   free(dir);
+  /* the summary's energies are the failing step's, whatever the thermo interval (they were the
+   * last thermo step's, next to this step's external work) */
+  char kin[2][64];
+  for (int k = 0; k < 2; k++) {
+    char d2[512]; /* a bar pulled at 1.9 x its stable step, no energy check: a triangle inverts at step 8 */
+    snprintf(d2, sizeof d2, "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 0.1 20 2\n"
+             "region r box 0.99 -1 2 1\ngroup r node region r\nfix p r velocity 1 0\nenergy_check off\n"
+             "timestep 6e-5\nthermo %d\nrun 20000\n", k ? 1 : 1000);
+    rc = yft_run_binary("bad.deck", d2, "-summary s.json", &err, &dir);
+    ck_assert_int_eq(rc, 3);
+    snprintf(p, sizeof p, "%s/s.json", dir);
+    char *js = slurp(p);
+    const char *kp = strstr(js, "\"kinetic\": ");
+    ck_assert_ptr_nonnull(kp);
+    snprintf(kin[k], sizeof kin[k], "%.*s", (int)strcspn(kp + 11, ","), kp + 11);
+    free(js);
+    free(err);
+    free(dir);
+  }
+  ck_assert_msg(!strcmp(kin[0], kin[1]), "kinetic energy at the failure: %s (thermo 1000), %s (thermo 1)", kin[0], kin[1]);
 }
 END_TEST
 

@@ -446,6 +446,9 @@ static void stage_elements(YfSim *s) {
     if (R.blk_bad[b] >= 0) {
       int e = R.blk_bad[b];
       par_need_all(s); /* MPI: every node, for the diagnosis (every rank is here: blk_bad is shared) */
+      /* the summary's energies are the failing step's (they were the last thermo step's, next to
+       * this step's external work) */
+      run_energies_whole(s);
       if (node_out_of_range(&m->node) >= 0) { /* not an inversion: the motion left the arithmetic */
         static const char *const none[] = {""};
         thermo_nonfinite(s, NULL, none, 0);
