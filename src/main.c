@@ -84,6 +84,7 @@ static void on_signal(int sig) {
   if (g_sim.interrupted) {
     static const char m[] = "yfdem: interrupted again: stopping at once (the summary is not written)\n";
     if (write(2, m, sizeof m - 1) < 0) {}
+    yf_tmp_drop(); /* the file being written, half done (a restart's .tmp was left behind) */
     _exit(YF_EXIT_INTERRUPT);
   }
   g_sim.interrupted = sig;

@@ -412,3 +412,18 @@ long yf_getline(char **line, size_t *cap, FILE *fp) {
   (*line)[n] = 0;
   return (long)n;
 }
+
+static char tmp_path[4096];
+static volatile sig_atomic_t tmp_set;
+
+void yf_tmp_live(const char *path) {
+  tmp_set = 0;
+  if (!path || strlen(path) >= sizeof tmp_path) return;
+  memcpy(tmp_path, path, strlen(path) + 1);
+  tmp_set = 1;
+}
+
+void yf_tmp_drop(void) {
+  if (tmp_set) unlink(tmp_path);
+  tmp_set = 0;
+}

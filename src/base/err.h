@@ -75,6 +75,11 @@ int yf_exiting(void);
 /* v as "%.6g", or "inf", "-inf", "nan" spelled out as what they mean ("beyond the range of a
  * double", "not a number"): messages never print inf or nan. */
 const char *yf_fmt_g(char *buf, size_t n, double v);
+/* The temporary file being written now (PATH.tmp, renamed over PATH when whole), NULL when none:
+ * a second Ctrl-C, which stops at once, removes it (yf_tmp_drop, async-signal-safe) instead of
+ * leaving a half-written .tmp beside the outputs.  Writes are one at a time: one slot. */
+void yf_tmp_live(const char *path);
+void yf_tmp_drop(void);
 
 /* Last error message (for the summary's "reason"); "" when none. */
 const char *yf_last_message(void);

@@ -26,6 +26,7 @@ int yf_wfile_open(YfWFile *w, const char *path) {
   memcpy(w->tmp, path, n);
   memcpy(w->tmp + n, ".tmp", 5);
   w->f = fopen(w->tmp, "w");
+  if (w->f) yf_tmp_live(w->tmp);
   if (!w->f) {
     int e = errno;
     free(w->tmp);
@@ -45,6 +46,7 @@ int yf_wfile_close(YfWFile *w, int bad, int sync) {
   w->f = NULL;
   if (!bad && w->tmp && rename(w->tmp, w->path) != 0) bad = 1, e = errno;
   if (bad && w->tmp) remove(w->tmp);
+  if (w->tmp) yf_tmp_live(NULL);
   free(w->tmp);
   w->tmp = NULL;
   if (bad) errno = e;

@@ -304,6 +304,7 @@ static void h5_open(YfDump *d) {
   }
 #endif
   /* Default (earliest) file format: the widest range of readers, ParaView's bundled HDF5 too. */
+  if (yf_writer()) yf_tmp_live(d->cur_tmp); /* a second Ctrl-C removes it */
   d->file = H5Fcreate(d->cur_tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
   if (d->file < 0) h5_fail(d, "create file"); /* before any other call: it clears the error stack */
   H5Pclose(fapl);
@@ -316,6 +317,7 @@ static void h5_close(YfDump *d) {
   if (!d->mpio) H5Fclose(d->file); /* a parallel file's close would wait for every rank (h5_fail) */
   d->file = -1;
   if (d->cur_tmp) unlink(d->cur_tmp);
+  yf_tmp_live(NULL);
 }
 
 /* Write the current topology to /mesh of the frame file. */
@@ -492,6 +494,7 @@ static int index_try(YfDump *d, const char *path, const char *tmp, const char *s
     snprintf(msg, nmsg, "dump %s: cannot create '%s': %s", d->id, tmp, strerror(errno));
     return -1;
   }
+  yf_tmp_live(tmp); /* a second Ctrl-C removes it */
 #ifdef __linux__
   (void)fallocate(fd, 0, 0, (off_t)(plen[0] + plen[1] + plen[2])); /* an optimisation only */
 #endif
@@ -506,10 +509,13 @@ static int index_try(YfDump *d, const char *path, const char *tmp, const char *s
   if (close(fd) != 0 && !err) err = errno;
   if (err) {
     unlink(tmp);
+    yf_tmp_live(NULL);
     snprintf(msg, nmsg, "dump %s: cannot write '%s': %s", d->id, tmp, strerror(err));
     return -1;
   }
-  if (rename(tmp, path) != 0) {
+  int rc = rename(tmp, path);
+  yf_tmp_live(NULL);
+  if (rc != 0) {
     snprintf(msg, nmsg, "dump %s: cannot rename '%s' to '%s': %s", d->id, tmp, path, strerror(errno));
     return -1;
   }
@@ -741,6 +747,7 @@ static void h5_frame(YfSim *s, YfDump *d) {
   if (rename(d->cur_tmp, d->cur) != 0)
     yf_io_error(NULL, "dump %s: cannot rename '%s' to '%s': %s", d->id, d->cur_tmp, d->cur,
                 strerror(errno));
+  yf_tmp_live(NULL);
   const double at[2] = {n ? nd->x[0] : 0.0, n ? nd->y[0] : 0.0};
   xmf_add_frame(d, s->time, s->step, n, nt, fc != NULL, ncrack, at);
   xmf_write(d);

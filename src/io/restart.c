@@ -369,9 +369,11 @@ int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
   snprintf(tmp, L + 8, "%s.tmp", path);
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
   H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18);
+  yf_tmp_live(tmp); /* a second Ctrl-C removes it */
   W w = {H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl), 0, ""};
   H5Pclose(fapl);
   if (w.file < 0) {
+    yf_tmp_live(NULL);
     if (err) snprintf(err, nerr, "cannot create '%s' (%s)", tmp, errno ? strerror(errno) : "HDF5 error");
     unlink(tmp); /* a full disk may leave it empty */
     free(tmp);
@@ -395,6 +397,7 @@ int restart_write(YfSim *s, const char *path, char *err, size_t nerr) {
     w.bad = 1;
     snprintf(w.what, sizeof w.what, "rename to '%s': %s", path, strerror(errno));
   }
+  yf_tmp_live(NULL);
   if (w.bad) {
     if (err) snprintf(err, nerr, "cannot write restart '%s' (%s)", path, w.what);
     unlink(tmp);
