@@ -905,6 +905,38 @@ START_TEST(test_index_long_escaped_name) {
 }
 END_TEST
 
+/* The contact force field fc stays in a series once a frame had it (contact off after a run
+ * dropped it from the later frames, so ParaView could not colour the series by it), and 'fields
+ * fc' without contact writes zeros (it wrote no field at all). */
+START_TEST(test_fc_in_every_frame_after) {
+  static const char *const base = "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress pen_n 1e10\n"
+                                  "mesh rect a m 0 0 1 0.2 4 2\nmesh rect b m 0 0.25 1 0.45 4 2\n"
+                                  "timestep auto\n";
+  char deck[1024], *err, *dir, p[700];
+  snprintf(deck, sizeof deck, "%sdump d h5 5 o.h5\ncontact pair a b\nrun 10\ncontact off\nrun 10\n", base);
+  int rc = yft_run_binary("fc.deck", deck, "-log none", &err, &dir);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  snprintf(p, sizeof p, "%s/o.xmf", dir);
+  char *x = yft_slurp(p, 1);
+  int frames = 0, fcs = 0;
+  for (const char *q = x; (q = strstr(q, "<Grid Name=\"frame_")); q++) frames++;
+  for (const char *q = x; (q = strstr(q, "Name=\"fc\"")); q++) fcs++;
+  ck_assert_msg(frames == 5 && fcs == 5, "%d frames, %d with fc", frames, fcs);
+  free(x);
+  free(err);
+  free(dir);
+  snprintf(deck, sizeof deck, "%sdump d h5 5 o.h5 fields u fc\nrun 10\n", base);
+  rc = yft_run_binary("fc2.deck", deck, "-log none", &err, &dir);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  snprintf(p, sizeof p, "%s/o.xmf", dir);
+  x = yft_slurp(p, 1);
+  ck_assert_msg(strstr(x, "Name=\"fc\""), "fields fc without contact: no fc in %.300s", x);
+  free(x);
+  free(err);
+  free(dir);
+}
+END_TEST
+
 Suite *output_suite(void) {
   Suite *su = suite_create("output");
   TCase *tc = tcase_create("h5");
@@ -917,6 +949,7 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_long_series_index);
   tcase_add_test(tc, test_dump_again_continues_series);
   tcase_add_test(tc, test_index_long_escaped_name);
+  tcase_add_test(tc, test_fc_in_every_frame_after);
   tcase_add_test(tc, test_deck_dump_errors);
   tcase_add_test(tc, test_io_error);
   tcase_add_test(tc, test_kill_midway);

@@ -102,6 +102,7 @@ typedef struct YfDump {
   int again;          /* on the file of a dump undumped earlier in this process: continues its
                          series as a restarted run does (it wrote over its frames from 0) */
   unsigned again_fields; /* that dump's fields                                         */
+  int had_fc, fc_asked; /* a frame had the contact force / the deck's fields named fc    */
   long first;         /* number of this process's first frame (> 0: a continued series) */
   long last_step;     /* step of the last frame (LONG_MIN: none)                       */
   YfText grids;       /* XDMF <Grid> elements of the frames so far (STEM.xmf)          */
@@ -721,8 +722,17 @@ static void h5_frame(YfSim *s, YfDump *d) {
     }
     h5_put_rows(d, g, "sigma1", H5T_NATIVE_DOUBLE, 1, dt1, b, ROWS_TRI);
   }
-  /* contact force per node: only while contact is on (else the field would be all zeros) */
+  /* contact force per node: while contact is on (else the field would be all zeros), and zeros
+   * once a frame of the series had it, or when the deck's `fields` asked for it: ParaView colours
+   * a series only by a field every frame has (contact off after a run dropped fc from the rest,
+   * and 'fields fc' without contact wrote nothing) */
   const double *fc = (d->fields & YF_FIELD_FC) ? contact_node_forces(s) : NULL;
+  if (!fc && (d->fields & YF_FIELD_FC) && (d->had_fc || d->fc_asked)) {
+    double *z = scratch(d, 2 * (size_t)n);
+    memset(z, 0, 2 * (size_t)n * sizeof *z);
+    fc = z;
+  }
+  if (fc) d->had_fc = 1;
   if (fc) h5_put_rows(d, g, "fc", H5T_NATIVE_DOUBLE, 2, dn2, fc, ROWS_NODE);
   int ncrack = h5_cracks(s, d);
   /* Complete and closed, then renamed, then indexed: the .xmf never names a partial file. */
@@ -1171,6 +1181,7 @@ int output_add_dump(YfSim *s, const char *id, int style, long every, const char 
   d->file = -1;
   d->last_step = LONG_MIN;
   d->mpio = style == YF_DUMP_H5 && !compress && output_mpio();
+  d->fc_asked = (fields & YF_FIELD_ALL) != YF_FIELD_ALL && (fields & YF_FIELD_FC);
   if (style == YF_DUMP_H5) {
     const char *base = strrchr(path, '/');
     size_t l = strlen(path);
