@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include "bc.h"
 #include "commands.h"
@@ -185,9 +186,18 @@ int main(int argc, char **argv) {
       return YF_EXIT_DECK;
     }
   }
-  /* the deck read is no output's ('-log my.deck' emptied the deck before it was read); the log
-   * and the summary are outputs like the deck's: no deck output may write them */
+  /* the deck read is no output's ('-log my.deck' emptied the deck before it was read): by name,
+   * and by the file itself (a link to it, or the file on stdin); the log and the summary are
+   * outputs like the deck's: no deck output may write them */
   if (in) output_claim(&g_sim, "the deck being read (-in)", in, NULL, 0);
+  struct stat dst;
+  int have_deck = in ? stat(in, &dst) == 0 : fstat(0, &dst) == 0 && S_ISREG(dst.st_mode);
+  const char *outs[2] = {strcmp(log_path, "none") ? log_path : NULL, g_sim.summary_path[0] ? g_sim.summary_path : NULL};
+  for (int k = 0; k < 2 && have_deck; k++) {
+    struct stat ost;
+    if (outs[k] && stat(outs[k], &ost) == 0 && ost.st_dev == dst.st_dev && ost.st_ino == dst.st_ino)
+      return refuse_claim(k ? "-summary" : "-log", outs[k], in ? "the deck being read (-in)" : "the deck being read (stdin)");
+  }
   if (strcmp(log_path, "none") != 0) {
     const char *by = output_claim(&g_sim, "the log (-log)", log_path, NULL, 0);
     if (by) {

@@ -853,7 +853,7 @@ static void write_eol(const char *path, const char *text, const char *eol) {
 }
 
 START_TEST(line_endings_any) {
-  static const char *eols[] = {"\n", "\r\n", "\r"};
+  static const char *eols[] = {"\n", "\r\n", "\r", "\r\r\n"}; /* the last: a text converted twice */
   const char *deck = "# a block of inline triangles and a Gmsh body\n"
                      "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
                      "nodes n.txt blk\ntriangles t.txt blk\n"
@@ -863,9 +863,9 @@ START_TEST(line_endings_any) {
                      "timestep auto\nrun 20\n";
   char *msh = yft_slurp("decks/meshes/square4.msh", 0);
   ck_assert_ptr_nonnull(msh);
-  uint64_t hash[3];
-  int nt[3];
-  for (int k = 0; k < 3; k++) {
+  uint64_t hash[4];
+  int nt[4];
+  for (int k = 0; k < 4; k++) {
     char tmpl[] = "/tmp/yft_eol_XXXXXX", p[512];
     char *dir = mkdtemp(tmpl);
     ck_assert_ptr_nonnull(dir);
@@ -896,7 +896,7 @@ START_TEST(line_endings_any) {
   memcpy(at + 15, "abc    ", 7);
   int line = 1;
   for (const char *c = y; c < at; c++) line += *c == '\n';
-  for (int k = 0; k < 3; k++) {
+  for (int k = 0; k < 4; k++) {
     make_tmpdir();
     char p[600], want[64];
     snprintf(p, sizeof p, "%s/bad.y", tdir);
@@ -908,7 +908,7 @@ START_TEST(line_endings_any) {
   }
   free(y);
   ck_assert_int_eq(nt[0], 2 + 4);
-  for (int k = 1; k < 3; k++) {
+  for (int k = 1; k < 4; k++) {
     ck_assert_int_eq(nt[k], nt[0]);
     ck_assert_msg(hash[k] == hash[0], "ending %d: state hash %016llx, LF %016llx", k, (unsigned long long)hash[k],
                   (unsigned long long)hash[0]);
@@ -932,6 +932,11 @@ START_TEST(variable_hiding_builtin_warned) {
                 "mesh rect b m 0 0 1 1 2 2\nprint \"$(ux_b)\"\n", NULL, NULL);
   ck_assert_msg(r.code == 0 && strstr(r.err, "e.deck:4: warning: 'ux_b' in an expression reads your variable"),
                 "exit %d: %s", r.code, r.err);
+  run_free(&r);
+  /* x_c of a centre point, with no group or body c: hides nothing, quiet */
+  r = run_child("variable x_c equal 0.5\nvariable fx_total equal 2\nmaterial m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                "mesh rect b m 0 0 1 1 2 2\nprint \"$(x_c*fx_total)\"\n", NULL, NULL);
+  ck_assert_msg(r.code == 0 && strstr(r.out, "1\n") && !strstr(r.err, "warning"), "exit %d: %s%s", r.code, r.out, r.err);
   run_free(&r);
 }
 END_TEST

@@ -343,6 +343,19 @@ START_TEST(test_never_inf_nan) {
     free(deck);
   }
   free(y);
+  /* names are not numbers: a folder 'inf' and a body 'inf' are printed as they are */
+  char *d2 = yft_deck_dir("x.deck", "");
+  char cmd[800];
+  snprintf(cmd, sizeof cmd, "mkdir %s/inf", d2);
+  ck_assert_int_eq(system(cmd), 0);
+  yft_put_file(d2, "inf/nan.deck", MAT "mesh rect inf m 0 0 1 1 2 2\nfix f nothere fixed xy\n");
+  snprintf(cmd, sizeof cmd, "cd %s && %s -in inf/nan.deck -log none 2> err.txt", d2, yft_binary());
+  rc = system(cmd);
+  snprintf(cmd, sizeof cmd, "%s/err.txt", d2);
+  err = slurp(cmd);
+  ck_assert_msg(strstr(err, "inf/nan.deck:3: error: fix: 'nothere': unknown group (defined groups: inf)"), "%s", err);
+  free(err);
+  free(d2);
 }
 END_TEST
 

@@ -337,6 +337,21 @@ START_TEST(test_outputs_never_overwrite_inputs) {
   rc = run_in_dir(dir, "a.deck", "-summary ./a.deck", &err);
   ck_assert_msg(rc == 1 && strstr(err, "yfdem: -summary './a.deck': that is the deck being read (-in)"), "exit %d: %s", rc, err);
   free(err);
+  /* the deck through a link, or on stdin: the same file */
+  char cmd0[700];
+  snprintf(cmd0, sizeof cmd0, "ln -s a.deck %s/link.deck", dir);
+  ck_assert_int_eq(system(cmd0), 0);
+  rc = run_in_dir(dir, "link.deck", "-log a.deck", &err);
+  ck_assert_msg(rc == 1 && strstr(err, "yfdem: -log 'a.deck': that is the deck being read (-in)"), "exit %d: %s", rc, err);
+  free(err);
+  snprintf(cmd0, sizeof cmd0, "cd %s && %s -log a.deck < a.deck >/dev/null 2>stderr.txt", dir, yft_binary());
+  rc = system(cmd0);
+  err = file_in(dir, "stderr.txt");
+  ck_assert_msg(WIFEXITED(rc) && WEXITSTATUS(rc) == 1 && strstr(err, "that is the deck being read (stdin)"), "%s", err);
+  free(err);
+  deck = file_in(dir, "a.deck");
+  ck_assert_msg(strstr(deck, "run 2"), "the deck was damaged: '%s'", deck);
+  free(deck);
   rc = run_in_dir(dir, "a.deck", "-summary ''", &err);
   ck_assert_msg(rc == 1 && strstr(err, "an empty file name"), "exit %d: %s", rc, err);
   free(err);

@@ -925,6 +925,13 @@ START_TEST(test_fc_in_every_frame_after) {
   free(x);
   free(err);
   free(dir);
+  /* contact given after the series began: the frames before lack fc (said once) */
+  snprintf(deck, sizeof deck, "%sdump d h5 5 o.h5\nrun 10\ncontact pair a b\nrun 10\n", base);
+  rc = yft_run_binary("fc3.deck", deck, "-log none", &err, &dir);
+  ck_assert_msg(rc == 0 && strstr(err, "warning: dump d: the contact force fc begins at frame 3 (step 15)"), "exit %d: %s",
+                rc, err);
+  free(err);
+  free(dir);
   snprintf(deck, sizeof deck, "%sdump d h5 5 o.h5 fields u fc\nrun 10\n", base);
   rc = yft_run_binary("fc2.deck", deck, "-log none", &err, &dir);
   ck_assert_msg(rc == 0, "exit %d: %s", rc, err);

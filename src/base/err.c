@@ -101,21 +101,25 @@ static void finish(int code) {
 }
 
 /* The net under "never print inf or nan": in a composed message's first line (later lines echo
- * the deck line under a caret, which must stay as typed), a word inf, infinity or nan that printf
- * made of a non-finite number, outside quotes (a name or a word quoted from the deck stays), is
- * spelled out.  Each site should say better what a non-finite value means; this catches the ones
+ * the deck line under a caret, which must stay as typed), a word inf or nan that printf made of a
+ * non-finite number, outside quotes (a name or a word quoted from the deck stays), is spelled
+ * out.  Each site should say better what a non-finite value means; this catches the ones
  * that do not (D1PEKS 1e300 printed "stable limit inf s"). */
 static void spell_nonfinite(char *msg, size_t cap) {
+  /* printf's words only: inf and nan in lower case, a word of their own (not 'inf/run.deck',
+   * 'nan-test', 'Infinity' or 'NaN', which are names) */
   static const struct { const char *word, *say; } w[] = {
-      {"infinity", "beyond the range of a double"}, {"inf", "beyond the range of a double"},
-      {"nan", "not a number"}, {NULL, NULL}};
+      {"inf", "beyond the range of a double"}, {"nan", "not a number"}, {NULL, NULL}};
   int quoted = 0;
   for (size_t i = 0; msg[i] && msg[i] != '\n'; i++) {
     if (msg[i] == '\'' || msg[i] == '"') { quoted = !quoted; continue; }
-    if (quoted || (i > 0 && (isalnum((unsigned char)msg[i - 1]) || msg[i - 1] == '_' || msg[i - 1] == '.'))) continue;
+    if (quoted || (i > 0 && !strchr(" (=[", msg[i - 1]) && !(msg[i - 1] == '-' && (i < 2 || msg[i - 2] == ' '))))
+      continue;
+    if (i >= 2 && msg[i - 1] == ' ' && (msg[i - 2] == ',' || msg[i - 2] == ':')) continue; /* a list of names */
     for (int k = 0; w[k].word; k++) {
       size_t L = strlen(w[k].word);
-      if (strncasecmp(msg + i, w[k].word, L) || isalnum((unsigned char)msg[i + L]) || msg[i + L] == '_') continue;
+      char next = msg[i + L];
+      if (strncmp(msg + i, w[k].word, L) || !(next == 0 || next == '\n' || strchr(" ),];x", next))) continue;
       size_t S = strlen(w[k].say), rest = strlen(msg + i + L);
       if (i + S + rest + 1 > cap) return; /* no room: leave the rest as it is */
       memmove(msg + i + S, msg + i + L, rest + 1);
@@ -401,8 +405,9 @@ long yf_getline(char **line, size_t *cap, FILE *fp) {
     }
     (*line)[n++] = (char)c;
     if (c == '\n') break;
-    if (c == '\r') {
-      int d = getc(fp);
+    if (c == '\r') { /* CRs before a LF are one end with it (CRLF, CR CR LF) */
+      int d;
+      while ((d = getc(fp)) == '\r') {}
       if (d == '\n') (*line)[n++] = '\n';
       else if (d != EOF) ungetc(d, fp);
       break;

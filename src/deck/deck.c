@@ -433,11 +433,11 @@ static int var_number(YfDeck *d, DeckVar *v, double *val, char *err, size_t errl
 }
 
 /* 1 when a bare name in an expression has a meaning of its own besides a variable's */
-static int builtin_name(const char *name) {
+static int builtin_name(YfDeck *d, const char *name) {
   static const char *const own[] = {"step", "time", "dt", "pi", "PI", NULL};
   for (int i = 0; own[i]; i++)
     if (!strcmp(name, own[i])) return 1;
-  return sim_query_known(name) != 0;
+  return d->sim && sim_query_known(d->sim, name) != 0;
 }
 
 static int lookup_cb(void *ctx, const char *written, double *val, char *err, size_t errlen) {
@@ -445,7 +445,7 @@ static int lookup_cb(void *ctx, const char *written, double *val, char *err, siz
   int prefixed = !strncmp(written, "v_", 2) && written[2]; /* v_X: the variable X (LAMMPS spelling) */
   const char *name = prefixed ? written + 2 : written;
   DeckVar *v = var_find(d, name);
-  if (v && !prefixed && !v->shadow_warned && builtin_name(name)) {
+  if (v && !prefixed && !v->shadow_warned && builtin_name(d, name)) {
     /* 'variable time equal 0.01' then $(time): the variable wins, silently (pi read 3) */
     v->shadow_warned = 1;
     YfLoc l = {0};
@@ -639,8 +639,13 @@ static void parse_lines(DeckSource *s, const char *text, size_t len) {
   int line = 1, start = 1, in_s = 0, in_d = 0, in_t = 0, cap = 0;
   for (size_t i = 0; i <= len; i++) {
     char c = i < len ? text[i] : '\n';
-    /* a CR alone ends a line (classic Mac text); CRLF is one end: its CR is dropped below */
-    if (c == '\r' && (i + 1 >= len || text[i + 1] != '\n')) c = '\n';
+    /* a CR alone ends a line (classic Mac text); CRs before a LF (CRLF, or the CR CR LF of a
+     * text converted twice) are one end with it: they are dropped below */
+    if (c == '\r') {
+      size_t k = i;
+      while (k < len && text[k] == '\r') k++;
+      if (k >= len || text[k] != '\n') c = '\n';
+    }
     if (i == len && !cur.n && !in_t) break;
     if (i < len && c == 0) { /* a NUL would silently cut the line short: say where it is */
       YfLoc l = {s->name, line};

@@ -732,6 +732,10 @@ static void h5_frame(YfSim *s, YfDump *d) {
     memset(z, 0, 2 * (size_t)n * sizeof *z);
     fc = z;
   }
+  if (fc && !d->had_fc && d->nframe > 0) /* contact given after the series began (it is not known before) */
+    yf_warn(NULL, "dump %s: the contact force fc begins at frame %ld (step %ld): the frames before have none, and "
+            "ParaView colours the series by fc only from here; 'dump ... fields ... fc' writes it (zeros) from the "
+            "first frame", d->id, d->nframe, s->step);
   if (fc) d->had_fc = 1;
   if (fc) h5_put_rows(d, g, "fc", H5T_NATIVE_DOUBLE, 2, dn2, fc, ROWS_NODE);
   int ncrack = h5_cracks(s, d);

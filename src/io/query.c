@@ -74,9 +74,11 @@ static int reduction(const char *name) {
   return -1;
 }
 
-int sim_query_known(const char *name) {
+int sim_query_known(YfSim *s, const char *name) {
   if (keyword(name) >= 0) return 1;
-  return reduction(name) >= 0 ? 2 : 0;
+  int r = reduction(name);
+  /* x_c is a reduction only when a group or body c exists (a centre's x_c is a common name) */
+  return r >= 0 && model_group(&s->model, name + strlen(red[r]) + 1, 0) >= 0 ? 2 : 0;
 }
 
 int sim_query(YfSim *s, const char *name, double *val, char *err, size_t errlen) {

@@ -8,8 +8,9 @@
 /* 1 and *val when name is a known quantity, 0 when unknown, -1 on error (message in err). */
 int sim_query(YfSim *s, const char *name, double *val, char *err, size_t errlen);
 
-/* 1 when name is a keyword sim_query answers (ke, dt_limit, ...), 2 a group reduction (ux_G, ...),
- * else 0: the deck warns when a variable of that name hides it from bare expressions. */
-int sim_query_known(const char *name);
+/* 1 when name is a keyword sim_query answers (ke, dt_limit, ...), 2 a group reduction of a group
+ * or body that exists (ux_G, ...), else 0: the deck warns when a variable of that name hides it
+ * from bare expressions. */
+int sim_query_known(YfSim *s, const char *name);
 
 #endif

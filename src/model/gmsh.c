@@ -190,7 +190,11 @@ static char *slurp(const char *path, const YfLoc *from, size_t *len) {
   if (!buf) yf_io_error(from, "mesh gmsh: cannot open '%s': %s", path, strerror(errno));
   /* a CR alone ends a line (classic Mac text), as in every text yfdem reads; CRLF is left */
   for (size_t i = 0; i < *len; i++)
-    if (buf[i] == '\r' && (i + 1 >= *len || buf[i + 1] != '\n')) buf[i] = '\n';
+    if (buf[i] == '\r') { /* CRs before a LF (CRLF, CR CR LF) stay blanks */
+      size_t k = i;
+      while (k < *len && buf[k] == '\r') k++;
+      if (k >= *len || buf[k] != '\n') buf[i] = '\n';
+    }
   return buf;
 }
 

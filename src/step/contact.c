@@ -438,32 +438,30 @@ int contact_node_stiffness(YfSim *s, double *K, int *tof, double *pof) {
 
 void contact_check_impact(YfSim *s, const YfLoc *loc) {
   YfContact *C = s->contact;
-  if (!active(C) || !C->nitem) return;
+  if (!active(C) || !C->nitem || C->impact_warned) return;
   const YfModel *m = &s->model;
-  /* the fastest participating node: the most a partner can close at */
-  double vmax = 0.0;
-  for (int k = 0; k < C->nitem; k++) {
-    const int *v = m->tri.v + 3 * C->item[k];
-    for (int c = 0; c < 3; c++) vmax = fmax(vmax, hypot(m->node.vx[v[c]], m->node.vy[v[c]]));
-  }
-  double worst = 0.0, pen = INFINITY;
+  /* the most two participating nodes can close at: the spread of their velocities (a body, or
+   * two, moving as one closes at nothing) */
+  double vx0 = INFINITY, vx1 = -INFINITY, vy0 = INFINITY, vy1 = -INFINITY, rho = 0.0, pen = INFINITY;
   int tw = -1;
   for (int k = 0; k < C->nitem; k++) {
-    int t = C->item[k];
-    const int *v = m->tri.v + 3 * t;
-    double vt = 0.0;
-    for (int c = 0; c < 3; c++) vt = fmax(vt, hypot(m->node.vx[v[c]], m->node.vy[v[c]]));
-    double q = m->mat[m->tri.mat[t]].rho * (vt + vmax) * (vt + vmax);
-    if (q > worst) { worst = q; tw = t; }
+    const int t = C->item[k], *v = m->tri.v + 3 * t;
+    for (int c = 0; c < 3; c++) {
+      vx0 = fmin(vx0, m->node.vx[v[c]]), vx1 = fmax(vx1, m->node.vx[v[c]]);
+      vy0 = fmin(vy0, m->node.vy[v[c]]), vy1 = fmax(vy1, m->node.vy[v[c]]);
+    }
+    const double r = m->mat[m->tri.mat[t]].rho;
+    if (r > rho) rho = r, tw = t;
     pen = fmin(pen, C->mpn[m->tri.mat[t]]);
   }
-  if (tw < 0 || !(worst > pen) || !(pen > 0) || C->impact_warned) return;
+  const double vrel = hypot(vx1 - vx0, vy1 - vy0), worst = rho * vrel * vrel;
+  if (tw < 0 || !(worst > pen) || !(pen > 0)) return;
   C->impact_warned = 1;
-  yf_warn(loc ? loc : &C->rule[0].loc, "contact: an impact can press up to rho v^2 = %.3g Pa (triangle %d, material %s, closing at up to %.3g "
-          "m/s), above the contact penalty pen_n = %.3g Pa: the penalty cannot stop such a body within a triangle's "
-          "depth, and it can pass through another (tunnelling); give pen_n above rho v^2 (it lowers the stable step), "
-          "or 'contact surface all'", worst, m->tri.id[tw], m->mat[m->tri.mat[tw]].name,
-          sqrt(worst / m->mat[m->tri.mat[tw]].rho), pen);
+  yf_warn(loc ? loc : &C->rule[0].loc,
+          "contact: an impact can press up to rho v^2 = %.3g Pa (material %s, bodies closing at up to %.3g m/s), above "
+          "the contact penalty pen_n = %.3g Pa: the penalty cannot stop such a body within a triangle's depth, and it "
+          "can pass through another (tunnelling); give pen_n above rho v^2 (it lowers the stable step), or 'contact "
+          "surface all'", worst, m->mat[m->tri.mat[tw]].name, vrel, pen);
 }
 
 void contact_prepare(YfSim *s) {

@@ -52,9 +52,9 @@
 
 void contact_prepare(YfSim *s);
 void contact_step(YfSim *s);
-/* Warn (at loc) when the fastest participating bodies can press harder than the contact penalty
- * can push back: rho (v_t + v_max)^2 > pen_n, v_t a triangle's fastest node, v_max the fastest
- * participating node, pen_n the lowest of the participating materials'.  Penalty contact stops a
+/* Warn (at loc) when participating bodies can press harder than the contact penalty can push
+ * back: rho v^2 > pen_n, v the spread of the participating nodes' velocities (the most two can
+ * close at), rho the densest and pen_n the lowest of the participating materials'.  Penalty contact stops a
  * body within a triangle's depth only below that (kinetic energy per volume rho v^2 / 2 against
  * the penalty's p / 2 at full depth); above it a block at 500 m/s passed through a fixed wall
  * four cells thick, "ok". */

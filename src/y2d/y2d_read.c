@@ -347,7 +347,7 @@ static int ends_line(FILE *fp, int c) {
   if (c != '\r') return 0;
   int d = getc(fp);
   if (d != EOF) ungetc(d, fp);
-  return d != '\n';
+  return d != '\n' && d != '\r'; /* CR CR LF: the last CR's LF counts, once */
 }
 
 /* Next whitespace-separated token, or NULL at the end of the outermost file.  The end of an
