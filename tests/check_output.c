@@ -925,6 +925,20 @@ START_TEST(test_fc_in_every_frame_after) {
   free(x);
   free(err);
   free(dir);
+  /* undump, contact off, dump again on the file: the continued series keeps fc (zeros) */
+  snprintf(deck, sizeof deck, "%sdump d h5 5 o.h5\ncontact pair a b\nrun 10\ncontact off\nundump d\n"
+           "dump d h5 5 o.h5\nrun 10\n", base);
+  rc = yft_run_binary("fc4.deck", deck, "-log none", &err, &dir);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  snprintf(p, sizeof p, "%s/o.xmf", dir);
+  x = yft_slurp(p, 1);
+  frames = fcs = 0;
+  for (const char *q = x; (q = strstr(q, "<Grid Name=\"frame_")); q++) frames++;
+  for (const char *q = x; (q = strstr(q, "Name=\"fc\"")); q++) fcs++;
+  ck_assert_msg(frames == 5 && fcs == 5, "dump again: %d frames, %d with fc", frames, fcs);
+  free(x);
+  free(err);
+  free(dir);
   /* contact given after the series began: the frames before lack fc (said once) */
   snprintf(deck, sizeof deck, "%sdump d h5 5 o.h5\nrun 10\ncontact pair a b\nrun 10\n", base);
   rc = yft_run_binary("fc3.deck", deck, "-log none", &err, &dir);

@@ -487,6 +487,18 @@ START_TEST(test_frozen_set) {
   ck_assert(*v == '0' || *v == '1');
   char *deck = strdup(a);
   deck[v - a] = '7';
+  /* node 0 at rest: frozen, said once; given a velocity, the warning says Y2D keeps it */
+  char *err, *vel = strstr(deck, "/YD/YDN/D2NVC 21 2 440\n0.0 0.0");
+  ck_assert_ptr_nonnull(vel);
+  for (int k = 0; k < 2; k++) {
+    if (k) memcpy(vel + strlen("/YD/YDN/D2NVC 21 2 440\n"), "1.0 0.0", 7);
+    int rc = yft_run_binary("fz.y", deck, "-log none", &err, NULL);
+    ck_assert_msg(k || rc == 0, "exit %d: %s", rc, err); /* with a velocity the energy check may stop it */
+    ck_assert_msg(strstr(err, "frozen, as Y2D never moves such a node") &&
+                  !strstr(err, "one has an initial velocity") == !k, "%s", err);
+    free(err);
+  }
+  memcpy(vel + strlen("/YD/YDN/D2NVC 21 2 440\n"), "0.0 0.0", 7);
   char *dir = yft_deck_dir("f.y", deck);
   char nd[700];
   snprintf(nd, sizeof nd, "read_y2d %s/f.y\nrun 200\n", dir);

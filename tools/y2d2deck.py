@@ -129,6 +129,9 @@ class DeckError(Exception):
     pass
 
 
+CONTROL = {}  # deck path -> the control word that ended its reading ($YDOIT or $YSTOP)
+
+
 def tokens(path, depth=0):
     """(token, file, line) with comments removed and $YINCL expanded (Y2D rules)."""
     if depth >= 10:
@@ -153,6 +156,22 @@ def tokens(path, depth=0):
             out += tokens(cand, depth + 1)
             i += 1
         elif t in ('$YDOIT', '$YSTOP'):
+            if depth == 0:
+                CONTROL[path] = {'ydoit': t == '$YDOIT', 'ystop': t == '$YSTOP'}
+                # after $YDOIT only comments and $YSTOP (a second input section: refused, as by yfdem)
+                k = i + 1
+                while t == '$YDOIT' and k < len(raw):
+                    u, uln = raw[k]
+                    if u.startswith('/*'):
+                        k += 1
+                        while k < len(raw) and not raw[k][0].startswith('*/'):
+                            k += 1
+                    elif u == '$YSTOP':
+                        break
+                    else:
+                        raise DeckError("%s:%d: '%s' after $YDOIT: multiple input sections (continuing a run with "
+                                        "changed keys) are not supported, as by yfdem" % (path, uln, u))
+                    k += 1
             break
         else:
             out.append((t, path, ln))
@@ -712,6 +731,38 @@ def convert(src, out):
                  'direction, Y2D\'s follows the edge)' % (s, float(at[s])))
     L.append('')
     pressure_loads(L, note, diff, ne, elto, meshed, nopr, nset, ap, hist_of, ids_of_node)
+
+    # ---- nodes Y2D never moves: a BC set outside 0..NPNSET-1 (FORMAT.md 6), or a lumped mass of
+    # 1e-10 or less (ALGORITHMS 7, 9: tonnes and millimetres with fine cells).  Held in place
+    # natively: the same while they stand still; Y2D keeps a velocity they start with (in its
+    # kinetic energy and viscous term), a fix sets it to 0
+    still, partly = [], []
+    for n in used:
+        light = [m <= 1e-10 for m in copies.get(n, [])]
+        if not (0 <= nopr[n] < nset) or (light and all(light)):
+            still.append(n)
+        elif any(light):
+            partly.append(n)
+    if still:
+        L.append('# nodes Y2D never moves (a BC set outside 0..NPNSET-1, or mass <= 1e-10)')
+        L.append(wrap(SYNTAX['group_ids'].format(name='still', ids='').rstrip(), [str(n) for n in still]))
+        L.append(SYNTAX['fix_fixed'].format(id='still_fix', group='still', dirs='xy'))
+        L.append('')
+        note('%d node(s) Y2D never moves (first: %d) are held by a fix' % (len(still), still[0]))
+        moving = [n for n in still if (float(vel[n][0]), float(vel[n][1])) != (0.0, 0.0)]
+        if moving:
+            diff('%d node(s) Y2D never moves start with a velocity (first: node %d): Y2D keeps it in its kinetic '
+                 'energy and viscous term, the native fix sets it to 0' % (len(moving), moving[0]))
+    if partly:
+        diff('%d node(s) have copies of mass <= 1e-10 beside heavier ones (first: node %d): Y2D moves only the '
+             'heavier copies, the native deck moves them all' % (len(partly), partly[0]))
+    diedi = float(g('YDI/DIEDI', 1e15))
+    if g('YDI/MICOUP') > 0 and not any(meshed) and diedi < float(g('YDI/DIEZON', 0.0)):
+        diff('DIEDI %r below DIEZON: Y2D makes its first contact search only once the bodies have moved '
+             'DIEZON - DIEDI; the native deck searches at the first step' % diedi)
+    if not CONTROL.get(src, {}).get('ydoit'):
+        diff('the deck has no $YDOIT before %s: Y2D (and yfdem DECK.y) compute nothing; the converted deck runs'
+             % ('its $YSTOP' if CONTROL.get(src, {}).get('ystop') else 'its end'))
 
     # ---- run control
     dt = float(g('YDC/DCSTEC', 0.0))

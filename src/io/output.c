@@ -1043,6 +1043,7 @@ void output_free(YfSim *s) {
   free(o->past);
   free(o->past_style);
   free(o->past_fields);
+  free(o->past_fc);
   free(o);
   s->out = NULL;
 }
@@ -1211,6 +1212,7 @@ int output_add_dump(YfSim *s, const char *id, int style, long every, const char 
     if (o->past_style[i] == style && !strcmp(o->past[i], cp)) {
       d->again = 1;
       d->again_fields = o->past_fields[i];
+      d->had_fc = o->past_fc[i]; /* fc stays in the series (zeros after contact off) */
     }
   free(cp);
   o->dump[o->ndump++] = d;
@@ -1235,6 +1237,8 @@ int output_remove_dump(YfSim *s, const char *id) {
     o->past = yf_realloc(o->past, (size_t)(o->npast + 1) * sizeof *o->past, "undumped files");
     o->past_style = yf_realloc(o->past_style, (size_t)(o->npast + 1) * sizeof *o->past_style, "undumped files");
     o->past_fields = yf_realloc(o->past_fields, (size_t)(o->npast + 1) * sizeof *o->past_fields, "undumped files");
+    o->past_fc = yf_realloc(o->past_fc, (size_t)(o->npast + 1) * sizeof *o->past_fc, "undumped files");
+    o->past_fc[o->npast] = d->had_fc;
     o->past_style[o->npast] = d->style;
     o->past_fields[o->npast] = d->fields;
     o->past[o->npast++] = clean_path(d->path);

@@ -50,6 +50,7 @@ struct YfOutput {
   int npast;       /* dumps undumped in this process: style, fields and clean */
   int *past_style; /* path, so that a dump again on the same file continues  */
   unsigned *past_fields; /* their series instead of writing over its frames   */
+  int *past_fc;    /* ... and whether that series had the contact force fc   */
   char **past;
 };
 

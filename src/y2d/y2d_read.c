@@ -1272,7 +1272,7 @@ static void check_deck(YfY2d *y) {
   }
   /* a set outside 0..NPNSET-1 given in the list freezes its node (FORMAT.md 6: Y2D never moves
    * it), an idiom: warned once; one the list leaves out (shorter than NNOPO) is a mistake */
-  long nfrozen = 0, n0 = -1;
+  long nfrozen = 0, n0 = -1, nmoving = 0; /* nmoving: 1 + the first frozen node with a velocity */
   for (long n = 0; n < y->nnopo; n++) {
     int s = y->i1nopr[n];
     if (s >= 0 && s < y->npnset) continue;
@@ -1282,12 +1282,16 @@ static void check_deck(YfY2d *y) {
                     "anchor would never move this node)", keydefs[Y2D_N_I1NOPR].full, n, y->nnopo);
     }
     if (!nfrozen++) n0 = n;
+    if (nmoving == 0 && (y->d2nvc[2 * n] != 0.0 || y->d2nvc[2 * n + 1] != 0.0)) nmoving = n + 1;
   }
   if (nfrozen) {
     YfLoc nl = value_loc(y, Y2D_N_I1NOPR, n0);
     yf_warn(&nl, "%s: %ld node%s (first: node %ld, set %d) %s a BC set outside 0..NPNSET-1 = 0..%ld: frozen, as "
-            "Y2D never moves such a node", keydefs[Y2D_N_I1NOPR].full, nfrozen, nfrozen == 1 ? "" : "s", n0,
-            y->i1nopr[n0], nfrozen == 1 ? "has" : "have", y->npnset - 1);
+            "Y2D never moves such a node%s", keydefs[Y2D_N_I1NOPR].full, nfrozen, nfrozen == 1 ? "" : "s", n0,
+            y->i1nopr[n0], nfrozen == 1 ? "has" : "have", y->npnset - 1,
+            nmoving ? "; one has an initial velocity (D2NVC), which Y2D keeps in the kinetic energy and the viscous term "
+                      "while the node stays put: the energy balance books that as energy from nowhere and may stop the "
+                      "run (give it velocity 0, or 'energy_check warn' in a deck that reads this one)" : "");
   }
 
   /* ---- time tables ---- */
