@@ -335,7 +335,8 @@ void contact_search(YfSearchWork *w, int n, const int *tri, const double *cx, co
   contact_pairs_reserve(out, total);
 #pragma omp parallel for schedule(static, 1) num_threads(nthr_used) if (nthr_used > 1)
   for (int t = 0; t < nthr_used; t++)
-    memcpy(out->ij + 2 * (size_t)off[t], w->buf[t].ij, (size_t)w->buf[t].n * 2 * sizeof *out->ij);
+    if (w->buf[t].n) /* an empty list may have no array (memcpy of NULL: undefined, UBSan) */
+      memcpy(out->ij + 2 * (size_t)off[t], w->buf[t].ij, (size_t)w->buf[t].n * 2 * sizeof *out->ij);
   out->n = total;
   w->tested = tested;
 }
