@@ -118,8 +118,9 @@ static void spell_nonfinite(char *msg, size_t cap) {
     if (i >= 2 && msg[i - 1] == ' ' && (msg[i - 2] == ',' || msg[i - 2] == ':')) continue; /* a list of names */
     for (int k = 0; w[k].word; k++) {
       size_t L = strlen(w[k].word);
+      if (strncmp(msg + i, w[k].word, L)) continue; /* (stops at the end: msg[i + L] is then inside) */
       char next = msg[i + L];
-      if (strncmp(msg + i, w[k].word, L) || !(next == 0 || next == '\n' || strchr(" ),];x", next))) continue;
+      if (!(next == 0 || next == '\n' || strchr(" ),];x", next))) continue;
       size_t S = strlen(w[k].say), rest = strlen(msg + i + L);
       if (i + S + rest + 1 > cap) return; /* no room: leave the rest as it is */
       memmove(msg + i + S, msg + i + L, rest + 1);
