@@ -221,8 +221,6 @@ void run_prepare(YfSim *s) {
     R.vxo = yf_realloc(R.vxo, (size_t)R.cap_nodes * sizeof(double), "old velocities");
     R.vyo = yf_realloc(R.vyo, (size_t)R.cap_nodes * sizeof(double), "old velocities");
   }
-  for (int k = 0; k < s->nbc_kind; k++) /* the scene is built: input copies may go */
-    if (s->bc_kind[k]->scene_built) s->bc_kind[k]->scene_built(s);
 }
 
 /* Kinetic energy of nodes i0..i1-1 (g == NULL), or gravity's work on their displacements (g:

@@ -68,7 +68,6 @@ typedef struct YfBcKind {
    * whole and updates them).  NULL: none. */
   void (*mark_nodes)(struct YfSim *s, unsigned char *mark);
   void (*renumbered)(struct YfSim *s);     /* nodes and triangles renumbered (partition.c) */
-  void (*scene_built)(struct YfSim *s);    /* end of run_prepare: input copies may go */
   void (*free)(struct YfSim *s);
 } YfBcKind;
 #define YF_MAX_BC_KINDS 4

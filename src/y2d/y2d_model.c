@@ -619,15 +619,15 @@ static int load(YfSim *s, const char *path, double volfac, const YfLoc *from, in
   free(pmat);
   free(pbody);
   /* the BC set of each input node is all resolve() needs of the deck later (copies made by
-   * joint insertion, partition renumbering): y2d_release_deck can then free the deck's arrays */
+   * joint insertion, partition renumbering) */
   r->setof = yf_malloc((size_t)(nn + 1) * sizeof(int), "y2d input node sets");
   for (int i = 0; i < nn; i++) r->setof[i] = y->i1nopr[i];
   resolve(s, r);
+  /* The scene now holds everything: the deck's capacity-sized arrays (MNOPO, MELEM... wide, a
+   * third of the peak memory at 1e5 triangles while they lived until the first run's set-up)
+   * go before the run builds its own. */
+  y2d_free_arrays(y);
   return 1;
-}
-
-void y2d_release_deck(YfSim *s) {
-  if (s->y2d && s->y2d->deck) y2d_free_arrays(deck_of(s->y2d));
 }
 
 void y2d_model_free(YfSim *s) {
@@ -707,7 +707,7 @@ static void y2d_hold_massless(YfSim *s, const double *xo, const double *yo, cons
 
 const YfBcKind y2d_bc_kind = {.name = "y2d", .loads = y2d_loads, .integrate = y2d_update_velocities,
                               .constrain_positions = y2d_hold_massless, .mark_nodes = y2d_mark_nodes,
-                              .renumbered = y2d_renumbered, .scene_built = y2d_release_deck,
+                              .renumbered = y2d_renumbered,
                               .free = y2d_model_free};
 
 int y2d_nprop(const YfSim *s) { return s->y2d && s->y2d->deck ? (int)deck_of(s->y2d)->nprop : 0; }

@@ -26,7 +26,7 @@ enum { Y2D_KIND_FORCE = 1, Y2D_KIND_ACCEL = 2, Y2D_KIND_VELOCITY = 3 };
 typedef struct YfY2dRun {
   char *path;          /* the .y file                                                        */
   void *deck;          /* the YfY2d as read (owned; YfLoc file names of messages point here);
-                          its arrays are freed at the first run (y2d_release_deck)           */
+                          its arrays are freed once the scene is built from them             */
   double volfac;       /* factor of the volumetric term: 0.5 book Y2D, 1 Y-Geo family          */
   int tri0, ntri;      /* triangles tri0 .. tri0+ntri-1 are the input elements 0..ntri-1       */
   int node0, nnode;    /* at read: nodes node0 .. node0+nnode-1 are the input nodes 0..nnode-1
@@ -74,10 +74,6 @@ void y2d_run_file(YfSim *s, const char *path);
  * for messages, may be NULL).  volfac: 0.5 (book Y2D) or 1 (Y-Geo family decks). */
 void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from);
 void y2d_model_free(YfSim *s);
-/* Free the deck's arrays (allocated at its capacities MELEM, MNOPO...: often several times the
- * model) once the scene no longer needs them: run.c calls it when the first run is prepared.
- * The deck's scalars and file names stay (messages point at them). */
-void y2d_release_deck(YfSim *s);
 /* Deck command: read_y2d FILE [volfac 0.5|1] */
 /* Properties (materials) of the deck read. */
 int y2d_nprop(const YfSim *s);

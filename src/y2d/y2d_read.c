@@ -1455,14 +1455,14 @@ void y2d_free_arrays(YfY2d *y) {
     free(*pp);
     *pp = NULL;
   }
+  free(y->vline); /* only the checks after reading place values on their lines */
+  y->vline = NULL;
+  y->nvline = y->capvline = 0;
 }
 
 void y2d_free(YfY2d *y) {
   if (!y) return;
   y2d_free_arrays(y);
-  free(y->vline);
-  y->vline = NULL;
-  y->nvline = y->capvline = 0;
   for (int i = 0; i < y->nfiles; i++) free(y->files[i]);
   free(y->files);
   y->files = NULL;
