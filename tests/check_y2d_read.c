@@ -519,6 +519,61 @@ START_TEST(test_frozen_set) {
 }
 END_TEST
 
+/* A message about one value of an array names the line that value is on.  The lines were noted
+ * one entry per line (100 MB for a generated deck at 1e6 triangles); they are now runs of lines
+ * of equal width, so lines of other widths must still come out right: deck a's I1NOPR (440
+ * values) is rewritten with lines of 20, 20, 7, 3, 20, 1 values..., and the frozen-set warning
+ * (value_loc of the first frozen node) must name the line of the node set to 7, whether it is a
+ * line's first value, its last, or inside a run of lines of one width. */
+START_TEST(test_value_lines) {
+  static const int width[] = {20, 20, 7, 3, 20, 1, 1, 1, 5, 20, 20, 20};
+  static const long at[] = {0, 19, 20, 39, 40, 46, 47, 49, 50, 69, 70, 71, 72, 77, 100, 300, 439};
+  char *key, *a = deck_a_at("/YD/YDN/I1NOPR 440\n", &key);
+  char *vals = key + strlen("/YD/YDN/I1NOPR 440\n"), *end = strstr(vals, "/YD/");
+  ck_assert_ptr_nonnull(end);
+  int line0 = 1; /* the line of the first value */
+  for (const char *c = a; c < vals; c++) line0 += *c == '\n';
+  char *ms = strstr(a, "/YD/YDC/MCSTEP 4000\n");
+  ck_assert_ptr_nonnull(ms);
+  for (size_t t = 0; t < sizeof at / sizeof at[0]; t++) {
+    /* the deck: 1 step, and I1NOPR's values (those of deck a) laid out by width[] */
+    size_t cap = strlen(a) + 4096, n = 0;
+    char *deck = malloc(cap);
+    n += (size_t)snprintf(deck + n, cap - n, "%.*s/YD/YDC/MCSTEP 1\n%.*s", (int)(ms - a), a,
+                          (int)(vals - ms - strlen("/YD/YDC/MCSTEP 4000\n")), ms + strlen("/YD/YDC/MCSTEP 4000\n"));
+    const char *v = vals;
+    long k = 0, want = -1;
+    int line = line0, w = 0, col = 0;
+    while (k < 440) {
+      char *e;
+      long x = strtol(v, &e, 10);
+      ck_assert(e > v);
+      v = e;
+      if (k == at[t]) {
+        x = 7;
+        want = line;
+      }
+      n += (size_t)snprintf(deck + n, cap - n, "%s%ld", col ? " " : "", x);
+      k++;
+      if (++col == width[w % (int)(sizeof width / sizeof width[0])] || k == 440) {
+        n += (size_t)snprintf(deck + n, cap - n, "\n");
+        line++, w++, col = 0;
+      }
+    }
+    n += (size_t)snprintf(deck + n, cap - n, "%s", end);
+    char *err, needle[64];
+    int rc = yft_run_binary("vl.y", deck, "-log none", &err, NULL);
+    ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+    snprintf(needle, sizeof needle, "vl.y:%ld: warning: ", want);
+    char *wl = strstr(err, needle);
+    ck_assert_msg(wl && strstr(wl, "frozen, as Y2D never moves such a node"), "node %ld on line %ld: %s", at[t], want, err);
+    free(err);
+    free(deck);
+  }
+  free(a);
+}
+END_TEST
+
 Suite *y2d_read_suite(void) {
   Suite *s = suite_create("y2d_read");
   TCase *tc = tcase_create("reference_decks");
@@ -536,6 +591,7 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_ystop_and_comments_as_y2d);
   tcase_add_test(tc, test_diedi_delays_first_search);
   tcase_add_test(tc, test_frozen_set);
+  tcase_add_test(tc, test_value_lines);
   suite_add_tcase(s, tc);
   tc = tcase_create("errors");
   tcase_add_loop_test(tc, test_bad_decks, 0, (int)(sizeof bad / sizeof bad[0]));

@@ -510,8 +510,10 @@ static const char *dimname(int k, int d) {
 }
 
 /* KEY n v1..vn | KEY code n1 n2 values | KEY code n1 n2 n3 values (FORMAT.md 1.3). */
-/* Before value m of array key k is read: note its line when it differs from the previous one's
- * (peeks at the next token's line: blank space and newlines before it are skipped). */
+/* Before value m of array key k is read: note its line (peeks at the next token's line: blank
+ * space and newlines before it are skipped).  Lines that follow each other with the same number
+ * of values make one run (a generated deck's 4 million lines of coordinates: one entry, where an
+ * entry per line took 100 MB at 1e6 triangles). */
 static void note_value_line(Rd *r, int k, long m) {
   YfY2d *y = r->y;
   if (r->depth <= 0) return;
@@ -520,17 +522,25 @@ static void note_value_line(Rd *r, int k, long m) {
   while ((c = getc(s->fp)) != EOF && isspace(c))
     if (ends_line(s->fp, c)) s->line++;
   if (c != EOF) ungetc(c, s->fp);
-  if (y->nvline && y->vline[y->nvline - 1].key == k && y->vline[y->nvline - 1].line == s->line &&
-      y->vline[y->nvline - 1].file == s->file)
-    return;
+  if (y->nvline) {
+    YfValueLines *e = &y->vline[y->nvline - 1];
+    if (e->key == k && e->file == s->file) {
+      long on_last = m - (e->m + e->per * (e->nlines - 1)); /* values before m on its last line */
+      if (s->line == e->line + e->nlines - 1) { /* one more on the run's last line (which may be longer) */
+        if (e->nlines == 1) e->per = on_last + 1;
+        return;
+      }
+      if (s->line == e->line + e->nlines && on_last == e->per) { /* the next line, the last exactly full */
+        e->nlines++;
+        return;
+      }
+    }
+  }
   if (y->nvline == y->capvline) {
     y->capvline = y->capvline ? 2 * y->capvline : 64;
     y->vline = yf_realloc(y->vline, (size_t)y->capvline * sizeof *y->vline, "y2d value lines");
   }
-  y->vline[y->nvline].key = k;
-  y->vline[y->nvline].file = s->file;
-  y->vline[y->nvline].line = s->line;
-  y->vline[y->nvline++].m = m;
+  y->vline[y->nvline++] = (YfValueLines){.key = k, .file = s->file, .line = s->line, .nlines = 1, .m = m, .per = 1};
 }
 
 static void read_array(Rd *r, int k, const YfLoc *kloc) {
@@ -898,11 +908,14 @@ static YfLoc loc_of(const YfY2d *y, int k) { return y->given[k] ? y->where[k] : 
  * when unknown). */
 static YfLoc value_loc(const YfY2d *y, int k, long m) {
   YfLoc l = loc_of(y, k);
-  for (long i = 0; i < y->nvline; i++)
-    if (y->vline[i].key == k && y->vline[i].m <= m) {
-      l.file = y->files[y->vline[i].file];
-      l.line = y->vline[i].line;
+  for (long i = 0; i < y->nvline; i++) {
+    const YfValueLines *e = &y->vline[i];
+    if (e->key == k && e->m <= m) {
+      long d = (m - e->m) / e->per;
+      l.file = y->files[e->file];
+      l.line = e->line + (int)(d < e->nlines - 1 ? d : e->nlines - 1);
     }
+  }
   return l;
 }
 

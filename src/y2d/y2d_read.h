@@ -78,6 +78,9 @@ enum {
 /* Full name of a key, e.g. "/YD/YDC/MCSTEP" (for messages that name a key). */
 const char *y2d_key_name(int key);
 
+/* A run of lines holding values of one array key (see YfY2d.vline). */
+typedef struct { int key, file, line, nlines; long m, per; } YfValueLines;
+
 typedef struct {
   /* ---- bookkeeping ---- */
   char **files;            /* names of the deck and of included files (owned; YfLoc.file points here) */
@@ -90,9 +93,9 @@ typedef struct {
   int ystop;               /* 1: reading stopped at a $YSTOP before any $YDOIT              */
   YfLoc end;               /* where reading stopped ($YDOIT, $YSTOP or end of file)        */
   /* Where the values of arrays are, for messages about one value (a negative density on the
-   * line after its key): one entry per line an array's values start on (key k, value ordinal m
-   * from which they are on file:line); a few per key, at most one per line of the deck. */
-  struct { int key, file, line; long m; } *vline;
+   * line after its key): runs of lines of one key (value ordinals m, m+1... from file:line on,
+   * per values a line over nlines lines, the last possibly longer); a few per key. */
+  YfValueLines *vline;
   long nvline, capvline;
 
   /* ---- /YD/YDC/ control ---- */
