@@ -556,6 +556,13 @@ static int load(YfSim *s, const char *path, double volfac, const YfLoc *from, in
     for (int c = 0; c < 3; c++) m->node.gmask[r->node0 + v[c]] |= m->tri.gmask[m->tri.n - 1];
   }
   free(nbody);
+  /* the node states are in the scene: their MNOPO-wide arrays go before joint insertion, the
+   * set-up's peak (216 MB of 1.37 GB at 1e6 triangles); the rest of the deck goes at the end */
+  double **states[] = {&y->d2nci, &y->d2ncc, &y->d2nvc, &y->d2elst};
+  for (size_t k = 0; k < sizeof states / sizeof states[0]; k++) {
+    free(*states[k]);
+    *states[k] = NULL;
+  }
 
   /* control */
   s->dt = y->dcstec;
