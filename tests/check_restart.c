@@ -351,6 +351,27 @@ START_TEST(test_restart_dumps_continue) {
 }
 END_TEST
 
+/* A run continued by read_restart whose dump asks for other fields than the series it continues
+ * gives frames ParaView colours only by the fields all of them have: said, as for a dump on the
+ * file of one undumped (it was said only there).  The same fields say nothing. */
+START_TEST(test_restart_dump_other_fields) {
+  mk_tmpdir();
+  write_deck("first.deck", NULL, "dump d h5 50 p.h5 fields u v\nrun 200\nwrite_restart half.restart\n");
+  write_deck("same.deck", NULL, "dump d h5 50 p.h5 fields v u\nread_restart half.restart\nrun 300 upto\n");
+  write_deck("other.deck", NULL, "dump d h5 50 p.h5 fields u stress\nread_restart half.restart\nrun 300 upto\n");
+  char h[17];
+  const char *deck[2] = {"same.deck", "other.deck"};
+  for (int k = 0; k < 2; k++) {
+    expect_ok("first.deck", 1, h);
+    expect_ok(deck[k], 1, h);
+    char *e = err_of(deck[k]);
+    ck_assert_msg(!strstr(e, "whose frames hold other fields") == !k, "%s: %s", deck[k], e);
+    free(e);
+  }
+  rm_tmpdir();
+}
+END_TEST
+
 /* A record file (LAMMPS's fix print) continues as the dumps do: a run continued from a restart
  * keeps the earlier run's rows before the restart step, drops those the earlier run wrote at or
  * after it (here its second run's start row at 220 and the rows to 260), writes no row at its own
@@ -971,6 +992,7 @@ Suite *restart_suite(void) {
   tcase_add_test(tc, test_restart_periodic);
   tcase_add_test(tc, test_restart_in_process);
   tcase_add_test(tc, test_restart_dumps_continue);
+  tcase_add_test(tc, test_restart_dump_other_fields);
   tcase_add_test(tc, test_restart_record_continues);
   tcase_add_test(tc, test_restart_paths);
   tcase_add_test(tc, test_restart_refusals);

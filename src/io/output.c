@@ -851,11 +851,41 @@ static long index_adopt(YfSim *s, const char *path, const char *frame_tag, YfTex
   return kept;
 }
 
+/* The fields of the last frame adopted from an earlier run's index (the Attribute names of
+ * d->grids' last Grid), against this dump's: a run continued by read_restart whose dump asks for
+ * other fields gives a series ParaView colours only by the fields every frame has (as a dump on
+ * the file of one undumped: cmd_dump warns of that), so it is said; an earlier fc stays in the
+ * series (zeros while contact is off). */
+static void adopted_fields(YfDump *d) {
+  const char *last = NULL, *t = d->grids.s;
+  for (const char *q = t; (q = strstr(q, "<Grid Name=\"frame_")); q++) last = q;
+  if (!last) return;
+  unsigned had = 0;
+  static const char tag[] = "<Attribute Name=\"";
+  for (const char *q = last; (q = strstr(q, tag)); q++) {
+    const char *nm = q + sizeof tag - 1, *e = strchr(nm, '"');
+    if (!e) break;
+    size_t l = (size_t)(e - nm);
+    for (int k = 0; output_field_names[k] && k < 9; k++) {
+      size_t kl = strlen(output_field_names[k]);
+      /* the stress is written as stress_xx, stress_yy, stress_xy */
+      if ((l == kl || (k == 3 && l == kl + 3)) && !strncmp(nm, output_field_names[k], kl)) had |= 1u << k;
+    }
+  }
+  if (had & YF_FIELD_FC) d->had_fc = 1;
+  unsigned want = d->fields & (YF_FIELD_ALL & ~(unsigned)YF_FIELD_FC);
+  if ((had & ~(unsigned)YF_FIELD_FC) != want)
+    yf_warn(NULL, "dump %s: it continues the series in %s, whose frames hold other fields than this dump's; ParaView "
+            "colours a series only by the fields every frame has: give this dump the earlier fields, or write "
+            "to another file", d->id, d->xmf);
+}
+
 /* The mesh index and, when the earlier run wrote one, the crack index: a crack index that does
  * not match the mesh index frame for frame is started again. */
 static long h5_adopt(YfSim *s, YfDump *d) {
   long kept = index_adopt(s, d->xmf, "<Grid Name=\"frame_", &d->grids);
   if (kept && index_adopt(s, d->cxmf, "<Grid Name=\"cracks_", &d->cgrids) != kept) d->cgrids.len = 0;
+  if (kept) adopted_fields(d);
   return kept;
 }
 
