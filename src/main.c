@@ -143,6 +143,11 @@ int main(int argc, char **argv) {
       printf("yfdem %s\n", YF_VERSION);
       return 0;
     } else if (!strcmp(o, "-in") && i + 1 < argc) {
+      if (in) { /* 'yfdem a.y -in b.deck' ran b.deck alone, a.y not even looked at */
+        fprintf(stderr, "yfdem: -in '%s': the deck is already '%s'; give one deck (a native deck can read_y2d a .y "
+                "deck, or include another)\n", argv[i + 1], in);
+        return YF_EXIT_DECK;
+      }
       in = argv[++i];
     } else if (!strcmp(o, "-var") && i + 2 < argc) {
       deck_set_var(g_deck, argv[i + 1], argv[i + 2]);
@@ -179,7 +184,12 @@ int main(int argc, char **argv) {
       } else {
         threads_set((int)n);
       }
-    } else if (o[0] != '-' && !in) {
+    } else if (o[0] != '-') {
+      if (in) {
+        fprintf(stderr, "yfdem: '%s': the deck is already '%s'; give one deck (a native deck can read_y2d a .y "
+                "deck, or include another)\n", o, in);
+        return YF_EXIT_DECK;
+      }
       in = o;
     } else {
       fprintf(stderr, "yfdem: unknown or incomplete option '%s' (try yfdem -h)\n", o);

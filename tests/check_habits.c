@@ -309,6 +309,39 @@ START_TEST(test_summary_on_the_log_refused) {
                 "exit %d: %s", rc, err);
   free(err);
   free(dir);
+  /* two decks: 'yfdem a.y -in b.deck' ran b.deck alone and never looked at a.y (nor said it was missing) */
+  const char *second[] = {"-in other.deck", "other.y"};
+  for (int k = 0; k < 2; k++) {
+    rc = yft_run_binary("a.deck", BAR "run 2\n", second[k], &err, &dir);
+    ck_assert_msg(rc == 1 && strstr(err, "the deck is already") && strstr(err, "give one deck"), "%s: exit %d: %s",
+                  second[k], rc, err);
+    free(err);
+    free(dir);
+  }
+}
+END_TEST
+
+/* Standard output that cannot be written: 'yfdem deck | head -1' was killed by SIGPIPE (exit 141)
+ * with no summary, and stdout on a full disk ran on to "ok" with every thermo line lost.  Both
+ * are an output error now: exit 2, the summary written with status io_error. */
+START_TEST(test_stdout_unwritable) {
+  char *dir = yft_deck_dir("p.deck", BAR "thermo 1\nrun 3000\n");
+  const char *how[2] = {"| head -1 >/dev/null", ">/dev/full"};
+  for (int k = 0; k < 2; k++) {
+    char cmd[4096];
+    snprintf(cmd, sizeof cmd, "cd %s && rm -f s.json && bash -c 'OMP_NUM_THREADS=1 %s -in p.deck -log none -summary s.json "
+             "2>err.txt %s; echo ${PIPESTATUS[0]} > rc.txt'", dir, yft_binary(), how[k]);
+    ck_assert_int_eq(system(cmd), 0);
+    char *rc = file_in(dir, "rc.txt"), *j = file_in(dir, "s.json"), *e = file_in(dir, "err.txt");
+    ck_assert_msg(rc && atoi(rc) == 2 && e && strstr(e, "cannot write to standard output"), "%s: exit %s: %s", how[k],
+                  rc ? rc : "?", e ? e : "");
+    ck_assert_msg(j && strstr(j, "\"status\": \"io_error\""), "%s: summary %s", how[k], j ? j : "missing");
+    free(rc); free(j); free(e);
+  }
+  char cmd[600];
+  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+  if (system(cmd)) {}
+  free(dir);
 }
 END_TEST
 
@@ -516,6 +549,7 @@ Suite *habits_suite(void) {
   tcase_add_test(t, test_outputs_in_working_dir);
   tcase_add_test(t, test_whole_files_through_links_and_devices);
   tcase_add_test(t, test_summary_on_the_log_refused);
+  tcase_add_test(t, test_stdout_unwritable);
   tcase_add_test(t, test_outputs_never_overwrite_inputs);
   tcase_add_test(t, test_runaway_decks_stop_at_their_line);
   tcase_add_test(t, test_record_row_whole);

@@ -54,6 +54,9 @@ static void install(int restart) {
 void yf_catch_signals(void (*handler)(int sig)) {
   sig_handler = handler;
   install(1);
+  /* a closed pipe on stdout ('yfdem deck | head') is a write error sim_printf reports (exit 2,
+   * with the summary), not a signal that kills the run before it can write anything */
+  signal(SIGPIPE, SIG_IGN);
 }
 void yf_interruptible(int on) { install(!on); }
 

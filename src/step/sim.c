@@ -2,6 +2,7 @@
  * loop: boundary-condition kinds and observers (sim.h).  The commands that set its fields
  * (history, gravity, damping, thermo, timestep) are in deck/cmd_*.c.
  */
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -30,13 +31,24 @@ void sim_notify(YfSim *s, YfEvent *ev) {
 
 void sim_printf(YfSim *s, const char *fmt, ...) {
   if (!yf_writer()) return;
+  static int stdout_lost; /* standard output failed once: the exit that follows prints nothing more there */
   va_list ap;
-  va_start(ap, fmt);
-  vfprintf(stdout, fmt, ap);
-  va_end(ap);
-  /* thermo lines and messages reach the screen and the log at once, also when stdout is a file or
-   * a pipe (nohup, a batch queue), where the C library would hold them in a 4 KB buffer */
-  fflush(stdout);
+  if (!stdout_lost) {
+    va_start(ap, fmt);
+    vfprintf(stdout, fmt, ap);
+    va_end(ap);
+    /* thermo lines and messages reach the screen and the log at once, also when stdout is a file
+     * or a pipe (nohup, a batch queue), where the C library would hold them in a 4 KB buffer */
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+      /* 'yfdem ... | head' (SIGPIPE is ignored: yf_catch_signals) or a full disk: an output
+       * that cannot be written stops the run with exit 2 and its summary (it was killed by
+       * SIGPIPE with no summary, or ran on to "ok" printing into nothing) */
+      int e = errno;
+      stdout_lost = 1;
+      clearerr(stdout);
+      yf_output_error("cannot write to standard output: %s (its reader has ended, or its disk is full)", strerror(e));
+    }
+  }
   if (s && s->log) {
     va_start(ap, fmt);
     vfprintf(s->log, fmt, ap);
@@ -53,11 +65,20 @@ int sim_find_history(const YfSim *s, const char *name) {
 
 double history_value(const YfHistory *h, double t) {
   switch (h->kind) {
-  case YF_HIST_RAMP:
+  case YF_HIST_RAMP: {
     if (t <= h->t0) return 0.0;
     if (t >= h->t1) return 1.0;
-    return (t - h->t0) / (h->t1 - h->t0);
-  case YF_HIST_SINE: return sin(2.0 * M_PI * t / h->t0);
+    double f = (t - h->t0) / (h->t1 - h->t0);
+    /* a span beyond a double (ramp -1e308 1e308) made the factor 0: halves keep it, and the
+     * bits of every finite span */
+    return isfinite(h->t1 - h->t0) ? f : (0.5 * t - 0.5 * h->t0) / (0.5 * h->t1 - 0.5 * h->t0);
+  }
+  case YF_HIST_SINE: {
+    double ph = 2.0 * M_PI * t / h->t0;
+    /* a period so short that 2 pi t / T overflows (sine 4.9e-324) gave sin(inf), a NaN load:
+     * the phase of t within its period instead (the same bits wherever the first is finite) */
+    return sin(isfinite(ph) ? ph : 2.0 * M_PI * (fmod(t, h->t0) / h->t0));
+  }
   case YF_HIST_TABLE: {
     /* piecewise linear, end values held outside the table (unlike Y2D's factor 1: say so in docs) */
     if (t <= h->t[0]) return h->v[0];
@@ -68,7 +89,10 @@ double history_value(const YfHistory *h, double t) {
       if (h->t[mid] <= t) lo = mid; else hi = mid;
     }
     double w = (t - h->t[lo]) / (h->t[hi] - h->t[lo]);
-    return h->v[lo] + w * (h->v[hi] - h->v[lo]);
+    if (!isfinite(h->t[hi] - h->t[lo])) w = (0.5 * t - 0.5 * h->t[lo]) / (0.5 * h->t[hi] - 0.5 * h->t[lo]);
+    double v = h->v[lo] + w * (h->v[hi] - h->v[lo]);
+    /* values of opposite sign near the range of a double: their difference overflows */
+    return isfinite(v) ? v : (1.0 - w) * h->v[lo] + w * h->v[hi];
   }
   default: return 1.0;
   }
