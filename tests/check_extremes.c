@@ -27,6 +27,7 @@
 #include <string.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include "query.h"
 #include "run.h"
 #include "yftest.h"
 
@@ -521,6 +522,83 @@ START_TEST(test_long_run_energy_drift) {
 }
 END_TEST
 
+/* A bar clamped at x = 0, its end group r at x = 1 (loads and fixes act there). */
+#define BAR_END "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 0.2 10 2\n" \
+  "region l box -1 -1 1e-9 1\ngroup l node region l\nfix c l fixed xy\nregion r box 0.9999 -1 2 2\n" \
+  "group r node region r\ntimestep auto\n"
+
+static double qv(YfSim *s, const char *name) {
+  double v;
+  char err[256];
+  err[0] = 0;
+  ck_assert_msg(sim_query(s, name, &v, err, sizeof err) == 1, "%s: %s", name, err);
+  return v;
+}
+
+/* Histories at the ends of a double: a ramp from -1e308 to 1e308 spans more than a double holds
+ * and gave the factor 0 (no load, "ok"); it is the ramp of -1e300..1e300, 0.5 at t ~ 0, to the
+ * bit.  A sine of period 4.9e-324 gave sin(inf), a NaN load, and a failure blamed on a node: it
+ * now gives finite values (its phase is taken within the period), and the run ends. */
+START_TEST(test_history_extremes) {
+  double u[2];
+  const char *span[2] = {"-1e300 1e300", "-1e308 1e308"};
+  for (int k = 0; k < 2; k++) {
+    char deck[1024];
+    snprintf(deck, sizeof deck, BAR_END "history h ramp %s\nload p r traction 0 1e5 history h\nrun 20\n", span[k]);
+    YfSim *s = yft_run(deck);
+    u[k] = qv(s, "uy_r");
+    sim_free(s); /* (its regions are the process's) */
+  }
+  ck_assert_msg(u[0] > 1e-5 && u[1] == u[0], "uy_r %g with the wide ramp, %g with the narrower", u[1], u[0]);
+  YfSim *s = yft_run(BAR_END "history h sine 4.9e-324\nload p r traction 0 1e5 history h\nrun 20\n");
+  ck_assert_int_eq(s->step, 20);
+  ck_assert(isfinite(qv(s, "uy_r")) && isfinite(qv(s, "ext_work")));
+}
+END_TEST
+
+/* What a failing run wrote: the frames listed are those of the steps before the failure, and no
+ * frame holds a non-finite or out-of-range number; a record row of a quantity read from a
+ * failed state is the run's numerical failure (exit 3), not a deck error (exit 1).  Before, the
+ * frame of the failing step was written and listed (positions of 3e290 m), a NaN load's with
+ * "-nan", and a 'record ... ke' row ended the run as "expression 'ke': ke gives a non-finite
+ * result" (exit 1).  A load whose force overflows is named as the cause. */
+START_TEST(test_failure_writes_no_bad_frame) {
+  static const struct { const char *tail, *want; } c[] = {
+      {"load p point at 1 0.2 0 1e300\ndump c csv 1 n\nrun 200\n", "node 33 (body b)"},
+      {"load p point at 1 0.2 0 1e300\nrecord q 1 q.csv ke\nrun 200\n", "node 33 (body b)"},
+      {"history h table 0 10 1 10\nload p r traction 0 1e308 history h\ndump c csv 1 n\nrun 20\n",
+       "load 'p': its force is beyond the range of a double"}};
+  for (int k = 0; k < 3; k++) {
+    char deck[1024], *err, *dir;
+    snprintf(deck, sizeof deck, BAR_END "%s", c[k].tail);
+    int rc = yft_run_binary("f.deck", deck, "-log none", &err, &dir);
+    ck_assert_msg(rc == 3 && strstr(err, "numerical failure at step 1: ") && strstr(err, c[k].want), "case %d: exit %d: %s",
+                  k, rc, err);
+    char path[512];
+    snprintf(path, sizeof path, "%s/n_frames.csv", dir);
+    char *idx = yft_slurp(path, 1);
+    ck_assert_msg(!strstr(idx, "n_000001"), "case %d: the failing step's frame is listed:\n%s", k, idx);
+    snprintf(path, sizeof path, "%s/n_000001.csv", dir);
+    ck_assert_msg(!yft_exists(path), "case %d: the failing step's frame was written", k);
+    free(idx);
+    free(err);
+    free(dir);
+  }
+}
+END_TEST
+
+/* A step below the resolution of the time: 'timestep 1e-300' after a run of 3e-4 s left the time
+ * where it was for the whole run, which ended "ok"; it is refused at its line. */
+START_TEST(test_step_below_time_resolution) {
+  char *err, *dir;
+  int rc = yft_run_binary("t.deck", BAR_END "run 10\ntimestep 1e-300\nrun 10\n", "-log none", &err, &dir);
+  ck_assert_msg(rc == 1 && strstr(err, "t.deck:10: error: timestep 1e-300 s is below the resolution of the time"),
+                "exit %d: %s", rc, err);
+  free(err);
+  free(dir);
+}
+END_TEST
+
 Suite *extremes_suite(void) {
   Suite *su = suite_create("extremes");
   TCase *tc = tcase_create("extremes");
@@ -537,6 +615,9 @@ Suite *extremes_suite(void) {
   tcase_add_test(tc, test_units_do_not_matter);
   tcase_add_test(tc, test_penalty_range);
   tcase_add_test(tc, test_long_run_energy_drift);
+  tcase_add_test(tc, test_history_extremes);
+  tcase_add_test(tc, test_failure_writes_no_bad_frame);
+  tcase_add_test(tc, test_step_below_time_resolution);
   suite_add_tcase(su, tc);
   return su;
 }

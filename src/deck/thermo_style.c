@@ -26,6 +26,7 @@
 #include "par.h"
 #include "thermo_style.h"
 #include "deck.h"
+#include "run.h"
 #include "output.h"
 #include "err.h"
 
@@ -271,6 +272,9 @@ static void record_step(YfSim *s, int force) {
   int due = 0;
   for (int i = 0; i < P.nrec; i++) due |= P.rec[i].last_step != s->step && (force || s->step % P.rec[i].every == 0);
   if (due) par_need_all(s); /* MPI: the rows read any node (every rank is here); rank 0 writes them */
+  /* a state gone non-finite is the run's numerical failure, named by its node (a row of 'ke' was a
+   * deck error "ke gives a non-finite result", exit 1) */
+  if (due) run_check_nodes(s, 0, s->model.node.n);
   for (int i = 0; i < P.nrec; i++) {
     Record *r = &P.rec[i];
     if (r->last_step != s->step && (force || s->step % r->every == 0)) {

@@ -655,6 +655,7 @@ static void h5_frame(YfSim *s, YfDump *d) {
   const YfNodes *nd = &m->node;
   int n = nd->n, nt = m->tri.n;
   frame_rows(s, d);
+  if (d->mpio) run_check_nodes(s, (int)W.lo[ROWS_NODE][0], (int)W.lo[ROWS_NODE][1]); /* the rows this rank writes */
   /* parallel: every rank opens the file rank 0 names (rank 0 alone adopted an earlier series) */
   if (d->mpio) d->nframe = par_bcast_long(d->nframe);
   snprintf(d->cur, d->curcap, "%s_%06ld%s", d->stem, d->nframe, d->ext);
@@ -939,6 +940,9 @@ static void write_frame(YfSim *s, YfDump *d) {
   /* MPI: every rank is here, in the same order (a collective).  A parallel h5 frame is written
    * by every rank from what it owns; otherwise what owners hold is gathered for rank 0. */
   if (!d->mpio) par_need_all(s);
+  /* no frame holds a non-finite number: the failure is said now (a NaN load wrote and listed the
+   * frame of its step before the next step's element check stopped the run) */
+  if (!d->mpio) run_check_nodes(s, 0, s->model.node.n);
   if (!yf_writer() && !d->mpio) { /* an MPI rank other than 0: the same bookkeeping, no file */
     d->nframe++;
     d->last_step = s->step;

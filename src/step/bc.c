@@ -37,7 +37,8 @@ typedef struct YfBc {
   int flags_n;
   int *owner;           /* per node component (2 per node): the fix that prescribes it (the
                            last given), -1 none                                            */
-  unsigned char *warned; /* per item: its overlap with a later fix was reported            */
+  unsigned char *warned; /* per item: its overlap with a later fix (bit 0), a jump at a run's
+                            start (bit 1) was reported                                       */
   int warned_n;
 } YfBc;
 
@@ -154,7 +155,7 @@ static void warn_overridden(YfSim *s, YfBc *b) {
   const YfNodes *n = &s->model.node;
   for (int i = 0; i < b->n; i++) {
     const YfBcItem *it = &b->item[i];
-    if (it->sp.kind > BC_DISPLACEMENT || b->warned[i]) continue;
+    if (it->sp.kind > BC_DISPLACEMENT || b->warned[i] & 1) continue;
     int cnt = 0, by = -1, first = -1;
     for (int k = 0; k < it->nn; k++)
       for (int c = 0; c < 2; c++) {
@@ -165,11 +166,48 @@ static void warn_overridden(YfSim *s, YfBc *b) {
         break;
       }
     if (!cnt) continue;
-    b->warned[i] = 1;
+    b->warned[i] |= 1;
     yf_warn(&it->sp.loc, "fix '%s': %d node%s of it (first: node %ld at %g %g) %s also prescribed by the later "
             "fix '%s'%s, which acts there (on a node component in several fixes, the one given last acts)",
             it->id, cnt, cnt == 1 ? "" : "s", (long)n->id[first], n->x0[first], n->y0[first],
             cnt == 1 ? "is" : "are", b->item[by].id, cnt > 1 ? " or another" : "");
+  }
+}
+
+/* A displacement fix whose nodes are not where it puts them at the run's start (one added after a
+ * run, when the body has moved or sagged) moves them there in the first step: a shock whose
+ * strain energy no force did work for, which the energy check then stops as energy from nowhere
+ * ("still growing"), with advice about the time step.  Say so at the start, once per fix. */
+static double factor(const YfSim *s, int hist, double t);
+static void warn_jumps(YfSim *s, YfBc *b) {
+  const YfNodes *n = &s->model.node;
+  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+  for (int j = 0; j < n->n; j++) {
+    lo[0] = fmin(lo[0], n->x0[j]); hi[0] = fmax(hi[0], n->x0[j]);
+    lo[1] = fmin(lo[1], n->y0[j]); hi[1] = fmax(hi[1], n->y0[j]);
+  }
+  double size = n->n ? fmax(hi[0] - lo[0], hi[1] - lo[1]) : 0.0;
+  for (int i = 0; i < b->n; i++) {
+    const YfBcItem *it = &b->item[i];
+    if (it->sp.kind != BC_DISPLACEMENT || b->warned[i] & 2) continue;
+    double ph = factor(s, it->sp.hist, s->time), gap = 0.0;
+    int at = -1;
+    for (int k = 0; k < it->nn; k++) {
+      int j = it->nodes[k];
+      const double x[2] = {n->x[j], n->y[j]}, x0[2] = {n->x0[j], n->y0[j]};
+      for (int c = 0; c < 2; c++) {
+        if (!it->sp.has[c] || b->owner[2 * j + c] != i) continue;
+        double d = fabs(x0[c] + it->sp.a[c] * ph - x[c]);
+        if (d > gap) { gap = d; at = j; }
+      }
+    }
+    /* round-off of positions is 1e-16 of the scene; 1e-9 of it is a jump */
+    if (at < 0 || !(gap > 1e-9 * size)) continue;
+    b->warned[i] |= 2;
+    yf_warn(&it->sp.loc, "fix '%s': at the run's start (time %.6g s) its nodes are up to %.3g m from where it puts "
+            "them (node %ld): they jump there in the first step, a shock the energy balance cannot count as work "
+            "(the energy check may stop the run); give the fix a history that starts from where they are, or "
+            "fix them before they move", it->id, s->time, gap, (long)n->id[at]);
   }
 }
 
@@ -198,6 +236,7 @@ void bc_prepare(YfSim *s) {
       }
   }
   warn_overridden(s, b);
+  warn_jumps(s, b);
 }
 
 const YfBcSpec *bc_spec(const YfSim *s, int i, const char **id) {
@@ -255,6 +294,11 @@ void bc_apply_loads(YfSim *s) {
       n->fx[it->nodes[k]] += it->lf[2 * k];
       n->fy[it->nodes[k]] += it->lf[2 * k + 1];
     }
+    /* the load's own overflow (an amplitude near a double's range times its history) is named
+     * here, not later as a node gone out of range */
+    if (it->nn && !(isfinite(it->lf[0]) && isfinite(it->lf[1])))
+      yf_numeric_error(s->step + 1, "load '%s': its force is beyond the range of a double at time %.6g s (amplitude "
+                       "%.6g x history factor %.6g)", it->id, s->time, fmax(fabs(it->sp.a[0]), fabs(it->sp.a[1])), ph);
   }
 }
 

@@ -256,6 +256,7 @@ static double *blocks(double **p, int *cap, int n) {
  * be whole: a writer alone, between runs). */
 enum { E_NBLK = 4096 }; /* nodes per block (as the Y2D update's Y2D_UBLOCK: one node split serves both) */
 static struct { double *ke, *st; int cke, cst; } E;
+static int g_booked_zero(const YfSim *s) { return s->g_booked[0] == 0 && s->g_booked[1] == 0; }
 static void energies(YfSim *s, int dist) {
   YfModel *m = &s->model;
   const YfNodes *n = &m->node;
@@ -263,7 +264,18 @@ static void energies(YfSim *s, int dist) {
   double *bk = blocks(&E.ke, &E.cke, nbn);
   s->energy.kinetic = node_blocks(n, NULL, bk, nbn, dist);
   const double g[2] = {s->gx, s->gy};
-  s->gravity_work = s->gx == 0 && s->gy == 0 ? 0.0 : node_blocks(n, g, bk, nbn, dist);
+  if (s->g_booked_set && (s->g_booked[0] != g[0] || s->g_booked[1] != g[1])) {
+    /* gravity changed since its work was last booked (a deck's 'gravity' between runs): the
+     * work done so far stays, and the new g's works from this state on (the work is a function
+     * of the state for one g only; the summary lost 3.7e7 J/m at 'gravity 0 0' after a run) */
+    double before = g_booked_zero(s) ? 0.0 : node_blocks(n, s->g_booked, bk, nbn, dist);
+    double after = s->gx == 0 && s->gy == 0 ? 0.0 : node_blocks(n, g, bk, nbn, dist);
+    s->gravity_base += before - after;
+  }
+  s->g_booked[0] = g[0];
+  s->g_booked[1] = g[1];
+  s->g_booked_set = 1;
+  s->gravity_work = s->gravity_base + (s->gx == 0 && s->gy == 0 ? 0.0 : node_blocks(n, g, bk, nbn, dist));
   double strain = 0.0;
   if (R.tm) {
     const int nt = m->tri.n, nbt = (nt + BLOCK - 1) / BLOCK;
@@ -317,14 +329,15 @@ static void thermo_header(YfSim *s) {
              "Dissipated", "Balance", "Broken", "Pairs", "Wall");
 }
 
-/* The first node whose position or velocity is non-finite or beyond YF_RANGE_MAX, or -1. */
-static int node_out_of_range(const YfNodes *n) {
-  for (int i = 0; i < n->n; i++)
+/* The first node of i0..i1-1 whose position or velocity is non-finite or beyond YF_RANGE_MAX, or -1. */
+static int nodes_out_of_range(const YfNodes *n, int i0, int i1) {
+  for (int i = i0; i < i1; i++)
     if (!(fabs(n->x[i]) <= YF_RANGE_MAX && fabs(n->y[i]) <= YF_RANGE_MAX && fabs(n->vx[i]) <= YF_RANGE_MAX &&
           fabs(n->vy[i]) <= YF_RANGE_MAX))
       return i;
   return -1;
 }
+static int node_out_of_range(const YfNodes *n) { return nodes_out_of_range(n, 0, n->n); }
 
 /* Before a run: every position and velocity within the range the arithmetic holds (the commands
  * check what they set; this covers every other way in: .y decks, files, earlier runs). */
@@ -340,10 +353,9 @@ static void check_range(YfSim *s) {
                 s->model.body[n->body[i]].name, a[0], a[1], a[2], a[3], YF_RANGE_MAX);
 }
 
-/* A thermo value that is not finite: the run failed; say why instead of printing inf or nan. */
-static void thermo_nonfinite(YfSim *s, const double *v, const char *const *names, int nv) {
+void run_check_nodes(YfSim *s, int i0, int i1) {
   const YfNodes *n = &s->model.node;
-  int i = node_out_of_range(n);
+  int i = nodes_out_of_range(n, i0, i1);
   if (i >= 0) {
     char a[4][32];
     const double w[4] = {n->x[i], n->y[i], n->vx[i], n->vy[i]};
@@ -353,6 +365,11 @@ static void thermo_nonfinite(YfSim *s, const double *v, const char *const *names
                      s->model.body[n->body[i]].name, a[0], a[1], a[2], a[3], YF_RANGE_MAX, s->dt, s->dt_limit,
                      s->dt_limiter);
   }
+}
+
+/* A thermo value that is not finite: the run failed; say why instead of printing inf or nan. */
+static void thermo_nonfinite(YfSim *s, const double *v, const char *const *names, int nv) {
+  run_check_nodes(s, 0, s->model.node.n);
   for (int k = 0; k < nv; k++)
     if (!isfinite(v[k]))
       yf_numeric_error(s->step, "the %s overflows the range of a double (the masses, moduli or velocities "
@@ -363,6 +380,7 @@ static void thermo_line(YfSim *s) {
   /* MPI: the energies are summed where the state is (a collective); a custom line's group
    * quantities and expressions read any node, so they have the whole state gathered first */
   if (s->thermo_custom) par_need_all(s);
+  if (s->thermo_custom) run_check_nodes(s, 0, s->model.node.n); /* its expressions read the state */
   run_energies(s);
   double ext = energy_external(s);
   double diss = s->energy.damping + s->energy.joint_dissipated + s->energy.friction;
@@ -672,6 +690,12 @@ void run_steps(YfSim *s, long nsteps) {
                   "timestep %.6g s is above the stable limit %.6g s (set by %s); use at most %.6g s or 'timestep auto'",
                   s->dt, limit, lim, limit);
   }
+  /* time is a double: a step below its resolution at the current time leaves it where it is
+   * ('timestep 1e-300' after a run: the time stood still and the run ended "ok") */
+  if (s->time + s->dt == s->time)
+    yf_deck_error(s->dt_loc.file ? &s->dt_loc : NULL, "timestep %.6g s is below the resolution of the time %.6g s "
+                  "(a double's): the time would not advance; use a step above %.3g s", s->dt, s->time,
+                  nextafter(fabs(s->time), INFINITY) - fabs(s->time));
   /* the damped update v+ = ((1 - a dt/2) v- + dt f/m) / (1 + a dt/2) forgets v- at a dt = 2 and
    * beyond it reverses it every step: a body then keeps its speed, flipping sign, and more
    * damping damps less (a sweep of new decks: 99.9 % of the kinetic energy left at a = 1e12) */

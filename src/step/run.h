@@ -13,6 +13,10 @@ void run_steps(YfSim *s, long n);
  * rank alone, from a whole state (a writer after par_need_all, a deck expression between runs). */
 void run_energies(YfSim *s);
 void run_energies_whole(YfSim *s);
+/* A numerical failure (exit 3) naming the first node of i0..i1-1 whose position or velocity is not
+ * finite or beyond YF_RANGE_MAX: the writers of frames and rows call it first, so no file holds
+ * a non-finite number. */
+void run_check_nodes(YfSim *s, int i0, int i1);
 /* Stable time step of the prepared model and what limits it. */
 double run_stable_dt(YfSim *s, char *limiter, size_t n);
 /* Bytes held by the model's arrays (for the benchmark's bytes per element). */
