@@ -441,6 +441,65 @@ START_TEST(test_gravity_work_reported) {
 }
 END_TEST
 
+/* Gravity changed between runs: the work done under the first stays booked.  The falling block
+ * of 10 m/s^2 for 1000 steps, then 'gravity 0 0' or 'gravity 0 -20' and 500 more: at the second
+ * run's start gravity_work is the first run's to the bit, and with g = 0 it stays there; with
+ * -20 it grows by m 20 dy from then on (the balance closes).  Before, gravity_work was
+ * sum m g (x - x0) with the new g alone: 0 after 'gravity 0 0' (5e-4 J/m lost from the summary,
+ * 3.7e7 J/m in a user's scene), and twice the first run's work at once with -20. */
+static double qe(YfSim *s, const char *name) {
+  double v = NAN;
+  char err[256] = "";
+  ck_assert_msg(sim_query(s, name, &v, err, sizeof err) == 1, "%s: %s", name, err);
+  return v;
+}
+
+START_TEST(test_gravity_changed_between_runs) {
+  const char *g2[2] = {"0 0", "0 -20"};
+  for (int k = 0; k < 2; k++) {
+    char deck[1024];
+    snprintf(deck, sizeof deck, "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 0.1 0.1 2 2\n"
+             "gravity 0 -10\ntimestep 1e-6\nrun 1000\ngravity %s\nrun 0\n", g2[k]);
+    YfSim *s = yft_run(deck);
+    double w1 = 5e-4; /* 0.5 m g^2 t^2 of 10 kg/m falling 1 ms */
+    double w = qe(s, "gravity_work");
+    ck_assert_msg(fabs(w - w1) < 2e-3 * w1, "gravity %s: gravity_work %g at the second run's start, not %g", g2[k], w, w1);
+    run_steps(s, 500);
+    double w2 = qe(s, "gravity_work"), bal = qe(s, "balance");
+    fprintf(stderr, "energy: gravity 0 -10 then %s: gravity_work %.9g, then %.9g; balance %.3g\n", g2[k], w, w2, bal);
+    if (k == 0) ck_assert(w2 == w);
+    else ck_assert_msg(w2 > w + 1e-3, "gravity_work %g after the -20 run", w2); /* 10 kg/m x 20 x ~1.5e-5 m more */
+    ck_assert_double_lt(fabs(bal), 2e-3 * w2);
+    sim_free(s);
+  }
+}
+END_TEST
+
+/* A displacement fix added after a run, on nodes that have moved (a cantilever sagging under
+ * gravity, then its tip held at its start): the nodes jump in the first step, a shock whose
+ * energy no force did work for, and the energy check stopped the run as "still growing" with
+ * advice about the time step.  The run's start says so; a fix given from the start, whose
+ * history starts at 0, says nothing. */
+START_TEST(test_displacement_jump_warned) {
+  static const char *const base = "material m elastic rho 1000 E 1e9 nu 0.3 plane_stress\nmesh rect a m 0 0 1 0.1 20 4\n"
+                                  "region l box -1 -1 1e-9 1\ngroup l node region l\nregion r box 0.999999 -1 2 1\n"
+                                  "group r node region r\nfix cl l fixed xy\ntimestep auto safety 0.5\n";
+  static const struct { const char *tail; int warn; } c[] = {
+      {"gravity 0 -9.81\nrun 300\nfix pr r displacement 0 0\nenergy_check warn\nrun 10\n", 1},
+      {"history h ramp 0 1e-3\nfix pr r displacement 1e-5 NULL history h\nrun 300\n", 0}};
+  for (int k = 0; k < 2; k++) {
+    char deck[2048], *err, *dir;
+    snprintf(deck, sizeof deck, "%s%s", base, c[k].tail);
+    int rc = yft_run_binary("j.deck", deck, "-log none", &err, &dir);
+    ck_assert_msg(rc == 0, "case %d: exit %d: %s", k, rc, err);
+    ck_assert_msg(!strstr(err, "they jump there in the first step") == !c[k].warn, "case %d: %s", k, err);
+    if (c[k].warn) ck_assert_msg(strstr(err, "j.deck:11: warning: fix 'pr': at the run's start"), "%s", err);
+    free(err);
+    free(dir);
+  }
+}
+END_TEST
+
 /* The strain energy is the law's own potential (elem_tri.c tri_strain_potential), so a slow
  * stretch far beyond small strain keeps the balance closed.  Before, the energy was Y2D's secant
  * A_c/2 T:E, above the work of the law's stresses by 4/3 of the strain (relative, uniaxial): a
@@ -559,6 +618,8 @@ Suite *energy_suite(void) {
   tcase_add_test(tc, test_y2d_at_rest_runs);
   tcase_add_test(tc, test_gravity_work_reported);
   tcase_add_test(tc, test_finite_strain_energy);
+  tcase_add_test(tc, test_gravity_changed_between_runs);
+  tcase_add_test(tc, test_displacement_jump_warned);
   tcase_add_test(tc, test_overlapping_fixes);
   tcase_add_test(tc, test_dissipation_beyond_given_stops);
   suite_add_tcase(s, tc);

@@ -24,6 +24,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -244,6 +245,9 @@ static void write_all(W *w, YfSim *s) {
   put_d(w, g, "elem_steps", s->elem_steps);
   put_d(w, g, "wall_s", s->wall_s);
   put_d(w, g, "e_budget", energy_get_budget());
+  /* gravity's work before the gravity changed, and the gravity booked since (run.c energies) */
+  const double gb[3] = {s->gravity_base, s->g_booked[0], s->g_booked[1]};
+  put(w, g, "gravity_base", H5T_NATIVE_DOUBLE, 3, gb);
   gclose(g);
 
   g = group(w, "nodes");
@@ -518,7 +522,11 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   double en[7];
   get(&r, g, "energy", H5T_NATIVE_DOUBLE, 7, en);
   double elem_steps = get_d(&r, g, "elem_steps"), wall_s = get_d(&r, g, "wall_s"), budget = get_d(&r, g, "e_budget");
+  double gb[3] = {0.0, 0.0, 0.0}; /* restarts before 2026-11-28 have none: no gravity changed */
+  int has_gb = H5Lexists(g, "gravity_base", H5P_DEFAULT) > 0;
+  if (has_gb) get(&r, g, "gravity_base", H5T_NATIVE_DOUBLE, 3, gb);
   H5Gclose(g);
+  if (!(isfinite(gb[0]) && isfinite(gb[1]) && isfinite(gb[2]))) rfail(&r, "gravity_base out of range");
   if (step < 0 || !(dt > 0) || time != time) rfail(&r, "step, time or dt out of range");
 
   g = ropen(&r, "nodes");
@@ -683,6 +691,10 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   e->joint_dissipated = en[4]; e->contact = en[5]; e->friction = en[6];
   s->elem_steps = elem_steps;
   s->wall_s = wall_s;
+  s->gravity_base = gb[0];
+  s->g_booked[0] = gb[1];
+  s->g_booked[1] = gb[2];
+  s->g_booked_set = has_gb; /* a gravity given before read_restart other than the booked one is a change */
   /* the energies of this state (the file holds those last evaluated), as the residual the deck's
    * changes before the next run are measured from (energy.c) */
   run_energies_whole(s);

@@ -141,6 +141,10 @@ typedef struct YfSim {
   YfEnergy energy;
   double joint_stored;  /* intact joints' stored energy [J/m], part of energy.strain (run_energies) */
   double gravity_work;  /* work of gravity on the nodes' displacements [J/m] (run_energies)      */
+  double gravity_base;  /* ... of the gravities before a change between runs [J/m]: gravity_work is
+                           this + sum m g . (x - x0) for the g of g_booked                          */
+  double g_booked[2];   /* the gravity gravity_work was last computed with [m/s^2]                */
+  int g_booked_set;     /* g_booked holds one (0: the next evaluation takes the current g)       */
   long thermo_every;    /* thermo line every N steps (0: only at start and end of a run)    */
   YfThermoFn thermo_custom; /* NULL: the default thermo line                               */
   double wall_s;        /* wall time spent in runs [s]                                      */
