@@ -6,7 +6,7 @@
  * refers to each frame's file by its bare name, a writer killed by SIGKILL at random moments
  * leaves every frame its .xmf lists readable and exact, the summary has the standard keys in
  * order and never contains NaN, the state hash sees a single flipped bit, and on a full disk a
- * y2dref dump's files are left whole (to their last complete row).
+ * y2dref dump's files and a record's file are left whole (to their last complete row).
  */
 #include <check.h>
 #include <errno.h>
@@ -1037,6 +1037,33 @@ START_TEST(test_y2dref_full_disk) {
 }
 END_TEST
 
+/* A record on a full disk: exit 2 with the cause, and the file ends at its last complete row
+ * (each row as many columns as the header, the last ended by its newline): a row cut mid-number
+ * was left at its end (a tester's full disk, 2026-11-28). */
+START_TEST(test_record_full_disk) {
+  mk_tmpdir();
+  static const int kb[] = {8, 12, 16, 20, 24};
+  const int n = (int)(sizeof kb / sizeof *kb);
+  run_small_disks("material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 0.2 10 2\n"
+                  "velocity b set 1 0\ntimestep auto\nthermo 100000\nrecord q 1 r.csv ke strain\nrun 2000\n",
+                  kb, n);
+  for (int i = 0; i < n; i++) {
+    char *e, cmd[1024];
+    int code = small_disk_result(kb[i], &e);
+    ck_assert_msg(code == YF_EXIT_IO, "%d KB: exit %d: %s", kb[i], code, e);
+    ck_assert_msg(strstr(e, "record q: cannot write 'r.csv'") &&
+                  (strstr(e, "No space left on device") || strstr(e, "File too large")), "%d KB: %s", kb[i], e);
+    free(e);
+    snprintf(cmd, sizeof cmd,
+             "cd %s/o%d && [ -s r.csv ] && [ \"$(tail -c 1 r.csv | od -An -c | tr -d ' ')\" = '\\n' ] && "
+             "head -n 1 r.csv | grep -qx 'step,time,ke,strain' && awk -F, 'NF != 4 { exit 1 }' r.csv",
+             tmpdir, kb[i]);
+    ck_assert_msg(system(cmd) == 0, "%d KB: r.csv does not end at a complete row", kb[i]);
+  }
+  rm_tmpdir();
+}
+END_TEST
+
 Suite *output_suite(void) {
   Suite *su = suite_create("output");
   TCase *tc = tcase_create("h5");
@@ -1057,6 +1084,7 @@ Suite *output_suite(void) {
   tc = tcase_create("full disk");
   tcase_set_timeout(tc, 120);
   tcase_add_test(tc, test_y2dref_full_disk);
+  tcase_add_test(tc, test_record_full_disk);
   suite_add_tcase(su, tc);
   tc = tcase_create("summary");
   tcase_add_test(tc, test_summary_keys);
