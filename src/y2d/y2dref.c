@@ -104,6 +104,42 @@ static void mkdir_p(const char *dir) {
   free(p);
 }
 
+int y2dref_dir_check(const char *dir) {
+  if (!yf_writer()) return 0; /* MPI: rank 0 alone makes the folder and writes the files */
+  char *p = yf_strdup(dir);
+  size_t n = strlen(p);
+  int rc = 0, missing = 0;
+  /* each folder on the way, as mkdir_p makes them: one that is there must be a folder; the first
+   * one missing is made and removed again (the only sure test that it can be made, also as root or
+   * on a read-only disk), and nothing is left behind by a deck that then fails */
+  for (size_t i = 1; i <= n && !rc && !missing; i++) {
+    if ((p[i] != '/' && p[i] != 0) || p[i - 1] == '/') continue;
+    char c = p[i];
+    p[i] = 0;
+    struct stat st;
+    if (stat(p, &st) == 0) {
+      if (!S_ISDIR(st.st_mode)) errno = ENOTDIR, rc = 1;
+    } else if (errno != ENOENT) {
+      rc = 1;
+    } else if (mkdir(p, 0777) != 0) {
+      rc = 1;
+    } else {
+      rmdir(p);
+      missing = 1;
+    }
+    p[i] = c;
+  }
+  if (!rc && !missing) { /* there already: its files can be written in it */
+    char f[4096];
+    snprintf(f, sizeof f, "%s/%s", dir, Y2DREF_SUMMARY);
+    if (!yf_can_create(f)) rc = 2;
+  }
+  int e = errno;
+  free(p);
+  errno = e;
+  return rc;
+}
+
 static void open_files(YfSim *s, YfY2dRef *r) {
   mkdir_p(r->dir);
   if (r->sum_every) {
