@@ -5,7 +5,8 @@
  * file carries the topology of its own frame, the .xmf lists exactly the frames written and
  * refers to each frame's file by its bare name, a writer killed by SIGKILL at random moments
  * leaves every frame its .xmf lists readable and exact, the summary has the standard keys in
- * order and never contains NaN, and the state hash sees a single flipped bit.
+ * order and never contains NaN, the state hash sees a single flipped bit, and on a full disk a
+ * y2dref dump's files and a record's file are left whole (to their last complete row).
  */
 #include <check.h>
 #include <errno.h>
@@ -958,6 +959,111 @@ START_TEST(test_fc_in_every_frame_after) {
 }
 END_TEST
 
+/* ---------------------------------------------------------------- full disk, files whole */
+
+/* Deck text d.deck in tmpdir run at each of nkb sizes of disk: a tmpfs of KB kilobytes in a mount
+ * namespace of its own (`unshare -rm`, as check_restart.c's test_full_disk), else a file size
+ * limit (RLIMIT_FSIZE in 512-byte blocks, SIGXFSZ ignored: writes fail with EFBIG).  Each run's
+ * files, its exit code (code) and its stderr (err.txt) land in tmpdir/oKB. */
+static void run_small_disks(const char *deck, const int *kb, int nkb) {
+  char cmd[2048];
+  yft_put_file(tmpdir, "d.deck", deck);
+  snprintf(cmd, sizeof cmd, "unshare -rm sh -c 'mkdir -p %s/t && mount -t tmpfs -o size=64k tmpfs %s/t' 2>/dev/null",
+           tmpdir, tmpdir);
+  int tmpfs = system(cmd) == 0;
+  for (int i = 0; i < nkb; i++) {
+    char out[128];
+    snprintf(out, sizeof out, "%s/o%d", tmpdir, kb[i]);
+    ck_assert_int_eq(mkdir(out, 0755), 0);
+    if (tmpfs)
+      snprintf(cmd, sizeof cmd,
+               "cd %s && unshare -rm sh -c 'mkdir -p t && mount -t tmpfs -o size=%dk tmpfs t && cd t && "
+               "OMP_NUM_THREADS=1 %s -in ../d.deck >/dev/null 2>../o%d/err.txt; echo $? > ../o%d/code; cp -a . ../o%d/'",
+               tmpdir, kb[i], yft_binary(), kb[i], kb[i], kb[i]);
+    else
+      snprintf(cmd, sizeof cmd,
+               "cd %s && sh -c 'ulimit -f %d; trap \"\" XFSZ; OMP_NUM_THREADS=1 exec %s -in ../d.deck >/dev/null "
+               "2>err.txt'; echo $? > code",
+               out, 2 * kb[i], yft_binary());
+    ck_assert_int_eq(system(cmd), 0);
+  }
+}
+
+/* The exit code and stderr of the run at KB kilobytes (run_small_disks); *err: caller frees. */
+static int small_disk_result(int kb, char **err) {
+  char path[256];
+  snprintf(path, sizeof path, "%s/o%d/code", tmpdir, kb);
+  char *c = slurp(path);
+  int code = atoi(c);
+  free(c);
+  snprintf(path, sizeof path, "%s/o%d/err.txt", tmpdir, kb);
+  *err = slurp(path);
+  return code;
+}
+
+/* A y2dref dump on a full disk: exit 2 with the cause, and every file it leaves is whole: each
+ * corner table its header and a row for each corner of the 40 triangles, each of summary.csv,
+ * probes.csv and broken.csv its header and whole rows, no NAME.tmp.  A corner table cut at 4096
+ * bytes mid-row was left under its own name, and the tables of rows ended mid-row or empty (their
+ * headers still in stdio's buffer) (a tester's full disk, 2026-11-28). */
+START_TEST(test_y2dref_full_disk) {
+  mk_tmpdir();
+  static const int kb[] = {12, 16, 20, 24, 28, 36, 44, 60};
+  const int n = (int)(sizeof kb / sizeof *kb);
+  run_small_disks("material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 0.2 10 2\n"
+                  "velocity b set 1 0\ntimestep auto\nthermo 1000\n"
+                  "dump r y2dref ref corners 1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17,18,19,20 summary 1 probes 1 1:0 3:2\n"
+                  "run 20\n",
+                  kb, n);
+  for (int i = 0; i < n; i++) {
+    char *e, cmd[1024];
+    int code = small_disk_result(kb[i], &e);
+    ck_assert_msg(code == YF_EXIT_IO, "%d KB: exit %d: %s", kb[i], code, e);
+    ck_assert_msg(strstr(e, "error: dump y2dref: cannot write 'ref/") &&
+                  (strstr(e, "No space left on device") || strstr(e, "File too large")), "%d KB: %s", kb[i], e);
+    free(e);
+    snprintf(cmd, sizeof cmd, "ls -R %s/o%d | grep -q '\\.tmp$'", tmpdir, kb[i]);
+    ck_assert_msg(system(cmd) != 0, "%d KB: a NAME.tmp is left", kb[i]);
+    snprintf(cmd, sizeof cmd,
+             "cd %s/o%d/ref 2>/dev/null || exit 0; for f in *.csv; do [ -e \"$f\" ] || continue; "
+             "[ -s \"$f\" ] && [ \"$(tail -c 1 \"$f\" | od -An -c | tr -d ' ')\" = '\\n' ] || { echo \"$f\"; exit 1; }; "
+             "case \"$f\" in corners_*) [ \"$(wc -l < \"$f\")\" = 121 ] || { echo \"$f\"; exit 1; };; "
+             "summary.csv) head -n 1 \"$f\" | grep -q '^step,time,kinetic' || { echo \"$f\"; exit 1; };; "
+             "probes.csv) head -n 1 \"$f\" | grep -q '^step,time,ux_1_0' || { echo \"$f\"; exit 1; };; esac; done",
+             tmpdir, kb[i]);
+    ck_assert_msg(system(cmd) == 0, "%d KB: a file of the y2dref dump is not whole", kb[i]);
+  }
+  rm_tmpdir();
+}
+END_TEST
+
+/* A record on a full disk: exit 2 with the cause, and the file ends at its last complete row
+ * (each row as many columns as the header, the last ended by its newline): a row cut mid-number
+ * was left at its end (a tester's full disk, 2026-11-28). */
+START_TEST(test_record_full_disk) {
+  mk_tmpdir();
+  static const int kb[] = {8, 12, 16, 20, 24};
+  const int n = (int)(sizeof kb / sizeof *kb);
+  run_small_disks("material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 0.2 10 2\n"
+                  "velocity b set 1 0\ntimestep auto\nthermo 100000\nrecord q 1 r.csv ke strain\nrun 2000\n",
+                  kb, n);
+  for (int i = 0; i < n; i++) {
+    char *e, cmd[1024];
+    int code = small_disk_result(kb[i], &e);
+    ck_assert_msg(code == YF_EXIT_IO, "%d KB: exit %d: %s", kb[i], code, e);
+    ck_assert_msg(strstr(e, "record q: cannot write 'r.csv'") &&
+                  (strstr(e, "No space left on device") || strstr(e, "File too large")), "%d KB: %s", kb[i], e);
+    free(e);
+    snprintf(cmd, sizeof cmd,
+             "cd %s/o%d && [ -s r.csv ] && [ \"$(tail -c 1 r.csv | od -An -c | tr -d ' ')\" = '\\n' ] && "
+             "head -n 1 r.csv | grep -qx 'step,time,ke,strain' && awk -F, 'NF != 4 { exit 1 }' r.csv",
+             tmpdir, kb[i]);
+    ck_assert_msg(system(cmd) == 0, "%d KB: r.csv does not end at a complete row", kb[i]);
+  }
+  rm_tmpdir();
+}
+END_TEST
+
 Suite *output_suite(void) {
   Suite *su = suite_create("output");
   TCase *tc = tcase_create("h5");
@@ -974,6 +1080,11 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_deck_dump_errors);
   tcase_add_test(tc, test_io_error);
   tcase_add_test(tc, test_kill_midway);
+  suite_add_tcase(su, tc);
+  tc = tcase_create("full disk");
+  tcase_set_timeout(tc, 120);
+  tcase_add_test(tc, test_y2dref_full_disk);
+  tcase_add_test(tc, test_record_full_disk);
   suite_add_tcase(su, tc);
   tc = tcase_create("summary");
   tcase_add_test(tc, test_summary_keys);

@@ -951,7 +951,7 @@ END_TEST
  * the run ended with exit 0.  A deck command's output is checked at its line (the message names
  * it), so no other output of the deck is written first: until issue 19 the dumps, record and
  * restart every failed only at the run (the other dump's first frame written) or at their first
- * restart step. */
+ * restart step; a y2dref dump's folder until 2026-11-28. */
 START_TEST(test_outputs_unwritable) {
   static const char *const cases[][3] = {
       {"fracture_log no_dir/b.csv\n", "", "o.deck:5: error: fracture_log: cannot write 'no_dir/b.csv'"},
@@ -964,6 +964,11 @@ START_TEST(test_outputs_unwritable) {
       {"record r 5 no_dir/r.csv ke\n", "", "o.deck:5: error: record r: cannot write 'no_dir/r.csv'"},
       {"write_restart no_dir/r.restart\n", "", "o.deck:5: error: write_restart: cannot create 'no_dir/r.restart"},
       {"restart every 5 no_dir/r\n", "", "o.deck:5: error: restart every: cannot write 'no_dir/r.a'"},
+      /* a y2dref dump's folder (made at its first frame): one that cannot be made failed at the
+       * run, with no deck line (a tester's /etc/passwd/x, 2026-11-28) */
+      {"dump y y2dref o.deck/ref corners 5 summary 5 probes 5 1:0\n", "",
+       "o.deck:5: error: dump y: cannot create directory 'o.deck/ref': Not a directory"},
+      {"dump y y2dref o.deck summary 5\n", "", "o.deck:5: error: dump y: cannot create directory 'o.deck': Not a directory"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
     char deck[1024], *err, *dir;

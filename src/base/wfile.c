@@ -1,5 +1,8 @@
-/* wfile.c: files written whole at once, renamed into place unless special (see wfile.h). */
+/* wfile.c: files written whole at once, renamed into place unless special, and files that grow by
+ * whole rows (see wfile.h). */
 #include <errno.h>
+#include <fcntl.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -51,4 +54,65 @@ int yf_wfile_close(YfWFile *w, int bad, int sync) {
   w->tmp = NULL;
   if (bad) errno = e;
   return bad ? -1 : 0;
+}
+
+int yf_rows_open(YfRows *r, const char *path, int append) {
+  r->end = -1;
+  r->fd = open(path, O_WRONLY | O_CREAT | O_CLOEXEC | (append ? O_APPEND : O_TRUNC), 0666);
+  if (r->fd < 0) return -1;
+  struct stat st;
+  /* only a regular file can be cut back; its rows start where it ends now */
+  if (fstat(r->fd, &st) == 0 && S_ISREG(st.st_mode)) r->end = (long long)st.st_size;
+  return 0;
+}
+
+void yf_rows_printf(YfRows *r, const char *fmt, ...) {
+  for (;;) {
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(r->row ? r->row + r->len : NULL, r->row ? r->cap - r->len : 0, fmt, ap);
+    va_end(ap);
+    if (n < 0) return;
+    if (r->row && r->len + (size_t)n < r->cap) {
+      r->len += (size_t)n;
+      return;
+    }
+    size_t cap = r->cap ? r->cap : 256;
+    while (cap <= r->len + (size_t)n) cap *= 2;
+    r->row = yf_realloc(r->row, cap, "output row");
+    r->cap = cap;
+  }
+}
+
+int yf_rows_end(YfRows *r) {
+  size_t done = 0;
+  int e = 0;
+  while (done < r->len) {
+    ssize_t k = write(r->fd, r->row + done, r->len - done);
+    if (k < 0 && errno == EINTR) continue;
+    if (k <= 0) {
+      e = k < 0 ? errno : EIO;
+      break;
+    }
+    done += (size_t)k;
+  }
+  if (!e && r->end >= 0) r->end += (long long)r->len;
+  r->len = 0;
+  if (!e) return 0;
+  /* the part that went in is taken out again: the file ends at its last complete row */
+  if (done && r->end >= 0 && ftruncate(r->fd, (off_t)r->end) == 0) lseek(r->fd, (off_t)r->end, SEEK_SET);
+  errno = e;
+  return -1;
+}
+
+int yf_rows_close(YfRows *r) {
+  int rc = 0;
+  if (r->fd >= 0 && close(r->fd) != 0) rc = -1;
+  r->fd = -1;
+  int e = errno;
+  free(r->row);
+  r->row = NULL;
+  r->len = r->cap = 0;
+  errno = e;
+  return rc;
 }

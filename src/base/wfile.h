@@ -1,4 +1,6 @@
-/* wfile.h: a file written whole at once (the summary, the fracture log, the metrics log).
+/* wfile.h: a file written whole at once (the summary, the fracture log, the metrics log), and a
+ * file that grows by whole rows (YfRows: the record files, the y2dref dump's summary, probes and
+ * broken tables).
  *
  * A regular file (or a new one) is written as PATH.tmp and renamed over PATH when complete, so a
  * reader never sees half of it and a failed write leaves the old file.  Anything else that exists
@@ -20,4 +22,27 @@ int yf_wfile_open(YfWFile *w, const char *path);
 /* Flush (and fsync when sync), close and rename; bad: the caller saw a write fail.  0, or -1
  * with errno set (the .tmp removed). */
 int yf_wfile_close(YfWFile *w, int bad, int sync);
+
+/* A CSV file that grows by whole rows.  A row is gathered in memory (yf_rows_printf) and handed to
+ * the file in one go (yf_rows_end); a row that does not go in whole (a full disk) is cut off again
+ * (ftruncate to the length before it), so the file always ends at its last complete row.  stdio's
+ * buffer is not used: after a failed fflush it keeps the unwritten tail and writes it again at
+ * fclose, after the cut.  On a pipe or a terminal nothing can be cut (as stdio). */
+typedef struct {
+  int fd;        /* -1: not open                                                   */
+  long long end; /* the file's length after its last complete row (-1: not a file) */
+  char *row;     /* the row being gathered                                         */
+  size_t len, cap;
+} YfRows;
+
+/* Open PATH for rows: append (its rows kept) or truncate.  0, or -1 with errno set.  r starts
+ * zeroed or closed; a row gathered before the open (a header) is kept for the first yf_rows_end. */
+int yf_rows_open(YfRows *r, const char *path, int append);
+/* Add text to the row being gathered (a row may be several calls, a line or several lines). */
+void yf_rows_printf(YfRows *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* Write the gathered row whole: 0, or -1 with errno set and the file cut back to its last
+ * complete row.  The row is emptied either way. */
+int yf_rows_end(YfRows *r);
+/* Close (a gathered row not ended is dropped); 0, or -1 with errno set. */
+int yf_rows_close(YfRows *r);
 #endif

@@ -109,6 +109,15 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
       output_remove_dump(s, id);
       arg_error(a, 2, "a file it writes there is already written by %s", by);
     }
+    /* a folder that cannot be made: now, at this line, as the h5 and csv dumps' (arg_writable),
+     * not at the run's first frame after the other outputs began */
+    int bad = y2dref_dir_check(y2dref_dir(r));
+    if (bad) {
+      int e = errno;
+      output_remove_dump(s, id); /* r goes with it: the folder's name from the deck's word */
+      yf_io_error(&a->loc, "dump %s: cannot %s '%s': %s", id, bad == 1 ? "create directory" : "write in directory",
+                  a->w[2], strerror(e));
+    }
     sim_printf(s, "dump %s: Y2D reference CSV files in %s\n", id, y2dref_dir(r));
     return;
   }

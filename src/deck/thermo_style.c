@@ -11,8 +11,11 @@
  * thermo_style line's place.
  *
  * record ID N FILE K1 K2 ... writes "step,time,K1,K2,..." rows to FILE every N steps of a run and
- * at its start, flushed per row, so a plot can follow a long run; the file is created at its first
- * row (a deck that fails before run leaves none).  Keywords as for thermo_style (the default
+ * at its start, each row handed to the file as it is written, so a plot can follow a long run; the
+ * file is created at its first row (a deck that fails before run leaves none).  It is always whole:
+ * its header (and the rows a continued run keeps) go in as FILE.tmp renamed over FILE, and a row
+ * that does not fit (a full disk) is cut off again (YfRows, wfile.h), so the file ends at its last
+ * complete row (one cut mid-number was left at its end, 2026-11-28).  Keywords as for thermo_style (the default
  * columns other than step and time need a thermo line's energies: use ke, strain, ... which the
  * queries compute).  Nothing here runs inside the step loop's numerics: rows are due at most once
  * per step, and the step checks a single integer when none is.
@@ -29,6 +32,7 @@
 #include "run.h"
 #include "output.h"
 #include "err.h"
+#include "wfile.h"
 
 #define REPORT_MAX_WORDS 32
 #define REPORT_MAX_RECORDS 8
@@ -45,7 +49,7 @@ typedef struct {
   long every;
   Words q;
   char *path; /* the CSV file, in the working directory as dumps are */
-  FILE *fp;
+  YfRows out; /* fd -1 until its first row */
   long last_step;
   int adopted; /* a run continued by read_restart took up this file's earlier rows (adopt) */
 } Record;
@@ -165,7 +169,7 @@ void cmd_record(YfSim *s, const YfArgs *a) {
     snprintf(owner, sizeof owner, "record '%s'", id);
     output_release(s, owner);
     Record *r = &P.rec[slot];
-    if (r->fp) fclose(r->fp);
+    if (r->out.fd >= 0) yf_rows_close(&r->out);
     words_free(&r->q);
     free(r->path);
     P.rec[slot] = P.rec[--P.nrec];
@@ -185,6 +189,7 @@ void cmd_record(YfSim *s, const YfArgs *a) {
   arg_claim(s, a, 2, owner, file, NULL, 0);
   Record *r = &P.rec[P.nrec];
   memset(r, 0, sizeof *r);
+  r->out.fd = -1;
   snprintf(r->id, sizeof r->id, "%s", id);
   r->every = every;
   r->last_step = LONG_MIN;
@@ -210,12 +215,19 @@ static char *record_head(const Record *r) {
 }
 
 static void record_open(Record *r, const char *keep) {
-  r->fp = fopen(r->path, "w");
-  if (!r->fp) yf_io_error(&r->q.loc, "record %s: cannot create '%s': %s", r->id, r->path, strerror(errno));
+  /* whole or not at all: a full disk leaves the earlier file (and its rows a continued run keeps)
+   * rather than a header cut short */
+  YfWFile w;
+  if (yf_wfile_open(&w, r->path) != 0)
+    yf_io_error(&r->q.loc, "record %s: cannot create '%s': %s", r->id, r->path, strerror(errno));
   char *h = record_head(r);
-  fputs(h, r->fp);
+  fputs(h, w.f);
   free(h);
-  if (keep) fputs(keep, r->fp);
+  if (keep) fputs(keep, w.f);
+  if (yf_wfile_close(&w, 0, 0) != 0)
+    yf_io_error(&r->q.loc, "record %s: cannot write '%s': %s", r->id, r->path, strerror(errno));
+  if (yf_rows_open(&r->out, r->path, 1) != 0)
+    yf_io_error(&r->q.loc, "record %s: cannot create '%s': %s", r->id, r->path, strerror(errno));
 }
 
 /* A run continued by read_restart continues each record's file as the dumps continue their
@@ -239,7 +251,7 @@ static void adopt(YfSim *s, Record *r) {
 }
 
 static void record_row(YfSim *s, Record *r) {
-  if (!r->fp) {
+  if (r->out.fd < 0) {
     /* every quantity evaluates before the file is made: a mistake in one ('nosuchq') left a
      * header and half a row behind */
     for (int i = 0; i < r->q.n; i++) (void)value(s, &r->q, i, NULL);
@@ -249,10 +261,11 @@ static void record_row(YfSim *s, Record *r) {
    * a row cut after its time */
   double vals[REPORT_MAX_WORDS];
   for (int i = 0; i < r->q.n; i++) vals[i] = value(s, &r->q, i, NULL);
-  fprintf(r->fp, "%ld,%.17g", s->step, s->time);
-  for (int i = 0; i < r->q.n; i++) fprintf(r->fp, ",%.17g", vals[i] == 0.0 ? 0.0 : vals[i]);
-  fputc('\n', r->fp);
-  if (fflush(r->fp) != 0 || ferror(r->fp))
+  yf_rows_printf(&r->out, "%ld,%.17g", s->step, s->time);
+  for (int i = 0; i < r->q.n; i++) yf_rows_printf(&r->out, ",%.17g", vals[i] == 0.0 ? 0.0 : vals[i]);
+  yf_rows_printf(&r->out, "\n");
+  /* whole or not at all: on a full disk the file ends at the row before */
+  if (yf_rows_end(&r->out) != 0)
     yf_io_error(&r->q.loc, "record %s: cannot write '%s': %s", r->id, r->path, strerror(errno));
   r->last_step = s->step;
 }
@@ -287,10 +300,7 @@ static void record_step(YfSim *s, int force) {
 
 static void record_close(void) {
   for (int i = 0; i < P.nrec; i++)
-    if (P.rec[i].fp) {
-      fclose(P.rec[i].fp);
-      P.rec[i].fp = NULL;
-    }
+    if (P.rec[i].out.fd >= 0) yf_rows_close(&P.rec[i].out);
 }
 
 static void reset(void) {

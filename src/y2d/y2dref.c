@@ -2,8 +2,11 @@
  *
  * The dump is registered in output.c with a period of one step; y2dref_frame decides what is due
  * (a corner table at a listed step, a summary or probe row every K steps, new joint failures) and
- * costs a few integer compares on the other steps.  Summary and probe rows are flushed as they are
- * written, so an interrupted run leaves complete rows.  Energies follow README section 3: kinetic
+ * costs a few integer compares on the other steps.  Every file is left whole, also on a full disk:
+ * a corner table is written as NAME.tmp and renamed (wfile.h), and summary, probe and broken rows
+ * go into their files a row at a time, a row that does not fit cut off again (YfRows, wfile.h), so
+ * an interrupted or failed run leaves complete rows (a corner table cut at 4096 bytes mid-row, and
+ * tables ended mid-row, were left behind, 2026-11-28).  Energies follow README section 3: kinetic
  * = sum m |v|^2 / 2 with the half-step velocities, elastic = sum A_c/2 T:E of the triangle law
  * without the viscous part (run_energies).  Units: SI (J/m, kg m/s per m).
  */
@@ -13,6 +16,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#include <unistd.h>
 #include "y2dref.h"
 #include "contact.h"
 #include "err.h"
@@ -21,6 +25,7 @@
 #include "run.h"
 #include "y2d_model.h"
 #include "partition.h"
+#include "wfile.h"
 
 typedef struct YfY2dRef {
   char *dir;
@@ -29,7 +34,7 @@ typedef struct YfY2dRef {
   long sum_every, probe_every;
   int nprobe;
   long *probe;    /* 2 per probe: input element, corner */
-  FILE *fsum, *fprobe, *fbroken;
+  YfRows fsum, fprobe, fbroken; /* fd -1: not open */
   int opened;          /* files open                                              */
   int created;         /* files created by this dump (a reopen appends)            */
   long nbroken_written;
@@ -40,6 +45,7 @@ const char *y2dref_dir(const YfY2dRef *r) { return r->dir; }
 YfY2dRef *y2dref_new(const char *dir) {
   YfY2dRef *r = yf_calloc(1, sizeof *r, "y2dref dump");
   r->dir = yf_strdup(dir);
+  r->fsum.fd = r->fprobe.fd = r->fbroken.fd = -1;
   return r;
 }
 
@@ -61,14 +67,29 @@ int y2dref_add_probe(YfY2dRef *r, long elem, long corner) {
 int y2dref_nprobe(const YfY2dRef *r) { return r->nprobe; }
 int y2dref_ncorner_steps(const YfY2dRef *r) { return r->ncsteps; }
 
-/* Create (first time, with its header) or reopen for appending (after y2dref_close) a CSV file. */
-static FILE *open_csv(const YfY2dRef *r, const char *name, const char *header) {
+/* A row (or rows) gathered in w goes into file NAME of the dump whole, or the run ends (exit 2). */
+static void check_write(YfRows *w, const YfY2dRef *r, const char *name) {
+  if (yf_rows_end(w) != 0) yf_io_error(NULL, "dump y2dref: cannot write '%s/%s': %s", r->dir, name, strerror(errno));
+}
+
+/* Create (first time, with its header gathered in w by the caller: w->row) or reopen for
+ * appending (after y2dref_close) a CSV file. */
+static void open_csv(YfY2dRef *r, YfRows *w, const char *name) {
   char path[4096];
   snprintf(path, sizeof path, "%s/%s", r->dir, name);
-  FILE *f = fopen(path, r->created ? "a" : "w");
-  if (!f) yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, strerror(errno));
-  if (!r->created) fputs(header, f);
-  return f;
+  if (yf_rows_open(w, path, r->created) != 0)
+    yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, strerror(errno));
+  if (r->created) { /* reopened: its header is there */
+    w->len = 0;
+    return;
+  }
+  if (yf_rows_end(w) != 0) {
+    /* not even its header: no file rather than an empty one */
+    int e = errno;
+    if (w->end >= 0) unlink(path);
+    errno = e;
+    yf_io_error(NULL, "dump y2dref: cannot write '%s': %s", path, strerror(errno));
+  }
 }
 
 static void mkdir_p(const char *dir) {
@@ -83,34 +104,71 @@ static void mkdir_p(const char *dir) {
   free(p);
 }
 
+int y2dref_dir_check(const char *dir) {
+  if (!yf_writer()) return 0; /* MPI: rank 0 alone makes the folder and writes the files */
+  char *p = yf_strdup(dir);
+  size_t n = strlen(p);
+  int rc = 0, missing = 0;
+  /* each folder on the way, as mkdir_p makes them: one that is there must be a folder; the first
+   * one missing is made and removed again (the only sure test that it can be made, also as root or
+   * on a read-only disk), and nothing is left behind by a deck that then fails */
+  for (size_t i = 1; i <= n && !rc && !missing; i++) {
+    if ((p[i] != '/' && p[i] != 0) || p[i - 1] == '/') continue;
+    char c = p[i];
+    p[i] = 0;
+    struct stat st;
+    if (stat(p, &st) == 0) {
+      if (!S_ISDIR(st.st_mode)) errno = ENOTDIR, rc = 1;
+    } else if (errno != ENOENT) {
+      rc = 1;
+    } else if (mkdir(p, 0777) != 0) {
+      rc = 1;
+    } else {
+      rmdir(p);
+      missing = 1;
+    }
+    p[i] = c;
+  }
+  if (!rc && !missing) { /* there already: its files can be written in it */
+    char f[4096];
+    snprintf(f, sizeof f, "%s/%s", dir, Y2DREF_SUMMARY);
+    if (!yf_can_create(f)) rc = 2;
+  }
+  int e = errno;
+  free(p);
+  errno = e;
+  return rc;
+}
+
 static void open_files(YfSim *s, YfY2dRef *r) {
   mkdir_p(r->dir);
-  if (r->sum_every) r->fsum = open_csv(r, Y2DREF_SUMMARY, "step,time,kinetic,elastic,px,py,nbroken,ncouples\n");
-  if (r->probe_every) {
-    r->fprobe = open_csv(r, Y2DREF_PROBES, "step,time");
-    for (int k = 0; k < r->nprobe && !r->created; k++) {
-      long e = r->probe[2 * k], c = r->probe[2 * k + 1];
-      fprintf(r->fprobe, ",ux_%ld_%ld,uy_%ld_%ld,vx_%ld_%ld,vy_%ld_%ld", e, c, e, c, e, c, e, c);
-    }
-    if (!r->created) fputc('\n', r->fprobe);
+  if (r->sum_every) {
+    yf_rows_printf(&r->fsum, "step,time,kinetic,elastic,px,py,nbroken,ncouples\n");
+    open_csv(r, &r->fsum, Y2DREF_SUMMARY);
   }
-  r->fbroken = open_csv(r, Y2DREF_BROKEN, "step,elemA,elemB,nodeP,nodeQ\n");
-  fflush(r->fbroken);
+  if (r->probe_every) {
+    yf_rows_printf(&r->fprobe, "step,time");
+    for (int k = 0; k < r->nprobe; k++) {
+      long e = r->probe[2 * k], c = r->probe[2 * k + 1];
+      yf_rows_printf(&r->fprobe, ",ux_%ld_%ld,uy_%ld_%ld,vx_%ld_%ld,vy_%ld_%ld", e, c, e, c, e, c, e, c);
+    }
+    yf_rows_printf(&r->fprobe, "\n");
+    open_csv(r, &r->fprobe, Y2DREF_PROBES);
+  }
+  yf_rows_printf(&r->fbroken, "step,elemA,elemB,nodeP,nodeQ\n");
+  open_csv(r, &r->fbroken, Y2DREF_BROKEN);
   (void)s;
   r->opened = 1;
   r->created = 1;
 }
 
-static void check_write(FILE *f, const YfY2dRef *r, const char *name) {
-  if (fflush(f) != 0 || ferror(f))
-    yf_io_error(NULL, "dump y2dref: cannot write '%s/%s': %s", r->dir, name, strerror(errno));
-}
-
 static void write_corners(YfSim *s, YfY2dRef *r) {
   char path[4096];
   snprintf(path, sizeof path, "%s/" Y2DREF_CORNERS "%07ld.csv", r->dir, s->step);
-  FILE *f = fopen(path, "w");
-  if (!f) yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, strerror(errno));
+  /* whole or not at all (PATH.tmp renamed, wfile.h), as the csv dump's frames */
+  YfWFile w;
+  if (yf_wfile_open(&w, path) != 0) yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, strerror(errno));
+  FILE *f = w.f;
   fputs("elem,corner,node,ux,uy,vx,vy\n", f);
   const YfNodes *n = &s->model.node;
   const YfTris *t = &s->model.tri;
@@ -123,8 +181,7 @@ static void write_corners(YfSim *s, YfY2dRef *r) {
       fprintf(f, "%d,%d,%d,%.16e,%.16e,%.16e,%.16e\n", t->id[e], c, y2d_input_node(s, i), n->x[i] - n->x0[i],
               n->y[i] - n->y0[i], n->vx[i], n->vy[i]);
     }
-  int bad = ferror(f);
-  if (fclose(f) != 0 || bad) yf_io_error(NULL, "dump y2dref: cannot write '%s': %s", path, strerror(errno));
+  if (yf_wfile_close(&w, 0, 0) != 0) yf_io_error(NULL, "dump y2dref: cannot write '%s': %s", path, strerror(errno));
 }
 
 static void write_summary(YfSim *s, YfY2dRef *r) {
@@ -139,21 +196,21 @@ static void write_summary(YfSim *s, YfY2dRef *r) {
     px += n->m[i] * n->vx[i];
     py += n->m[i] * n->vy[i];
   }
-  fprintf(r->fsum, "%ld,%.16e,%.16e,%.16e,%.16e,%.16e,%ld,%ld\n", s->step, s->time, s->energy.kinetic,
+  yf_rows_printf(&r->fsum, "%ld,%.16e,%.16e,%.16e,%.16e,%.16e,%ld,%ld\n", s->step, s->time, s->energy.kinetic,
           elastic, px, py, joints_broken(s), contact_pairs(s));
-  check_write(r->fsum, r, "summary.csv");
+  check_write(&r->fsum, r, Y2DREF_SUMMARY);
 }
 
 static void write_probes(YfSim *s, YfY2dRef *r) {
   const YfNodes *n = &s->model.node;
-  fprintf(r->fprobe, "%ld,%.16e", s->step, s->time);
+  yf_rows_printf(&r->fprobe, "%ld,%.16e", s->step, s->time);
   for (int k = 0; k < r->nprobe; k++) {
     int t = y2d_tri_of_elem(s, r->probe[2 * k]);
     int i = s->model.tri.v[3 * t + r->probe[2 * k + 1]];
-    fprintf(r->fprobe, ",%.16e,%.16e,%.16e,%.16e", n->x[i] - n->x0[i], n->y[i] - n->y0[i], n->vx[i], n->vy[i]);
+    yf_rows_printf(&r->fprobe, ",%.16e,%.16e,%.16e,%.16e", n->x[i] - n->x0[i], n->y[i] - n->y0[i], n->vx[i], n->vy[i]);
   }
-  fputc('\n', r->fprobe);
-  check_write(r->fprobe, r, "probes.csv");
+  yf_rows_printf(&r->fprobe, "\n");
+  check_write(&r->fprobe, r, Y2DREF_PROBES);
 }
 
 /* New joint failures since the last frame, in the order joint.c recorded them. */
@@ -166,11 +223,11 @@ static void write_breaks(YfSim *s, YfY2dRef *r) {
     int ea = s->model.tri.id[b[k].triA], eb = s->model.tri.id[b[k].triB];
     /* the shared edge: slots 0, 1 are A's copies of its start and end nodes */
     int p = y2d_input_node(s, J->node[4 * b[k].joint]), q = y2d_input_node(s, J->node[4 * b[k].joint + 1]);
-    fprintf(r->fbroken, "%ld,%d,%d,%d,%d\n", b[k].step, ea < eb ? ea : eb, ea < eb ? eb : ea, p < q ? p : q,
+    yf_rows_printf(&r->fbroken, "%ld,%d,%d,%d,%d\n", b[k].step, ea < eb ? ea : eb, ea < eb ? eb : ea, p < q ? p : q,
             p < q ? q : p);
   }
   r->nbroken_written = nb;
-  check_write(r->fbroken, r, "broken.csv");
+  check_write(&r->fbroken, r, Y2DREF_BROKEN); /* this frame's failures go in together */
 }
 
 void y2dref_frame(YfSim *s, YfY2dRef *r) {
@@ -187,20 +244,19 @@ void y2dref_frame(YfSim *s, YfY2dRef *r) {
 
 void y2dref_close(YfY2dRef *r) {
   if (!r) return;
-  FILE **f[3] = {&r->fsum, &r->fprobe, &r->fbroken};
+  YfRows *f[3] = {&r->fsum, &r->fprobe, &r->fbroken};
   for (int k = 0; k < 3; k++)
-    if (*f[k]) {
-      int bad = ferror(*f[k]);
-      if (fclose(*f[k]) != 0) bad = 1;
-      *f[k] = NULL;
-      if (bad) yf_output_error("dump y2dref: cannot write a file of '%s': %s", r->dir, strerror(errno ? errno : EIO));
-    }
+    if (f[k]->fd >= 0 && yf_rows_close(f[k]) != 0)
+      yf_output_error("dump y2dref: cannot write a file of '%s': %s", r->dir, strerror(errno ? errno : EIO));
   r->opened = 0;
 }
 
 void y2dref_free(YfY2dRef *r) {
   if (!r) return;
   y2dref_close(r);
+  free(r->fsum.row); /* a header gathered for a file that never opened */
+  free(r->fprobe.row);
+  free(r->fbroken.row);
   free(r->dir);
   free(r->csteps);
   free(r->probe);

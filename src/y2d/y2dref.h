@@ -35,6 +35,11 @@ void y2dref_set_probe_every(struct YfY2dRef *r, long every);
 int y2dref_add_probe(struct YfY2dRef *r, long elem, long corner);
 int y2dref_nprobe(const struct YfY2dRef *r);
 int y2dref_ncorner_steps(const struct YfY2dRef *r);
+/* Whether directory dir can be made (as the first frame makes it) or, when it is there, written in:
+ * 0 yes, 1 it cannot be made (a file on its path, no permission), 2 it is there but cannot be
+ * written in; errno set when not 0.  Checked at the dump's deck line, so that the deck's line
+ * names the fault before the run and before any other output is written.  Nothing is left behind. */
+int y2dref_dir_check(const char *dir);
 /* Directory written by the dump. */
 const char *y2dref_dir(const struct YfY2dRef *r);
 /* After each completed step (and at the start of a run): write what is due at s->step. */
