@@ -377,11 +377,20 @@ static DeckVar *var_new(YfDeck *d, const char *name, int style) {
   return v;
 }
 
-static int valid_name(const char *s) {
-  if (!isalpha((unsigned char)*s) && *s != '_') return 0;
-  for (s++; *s; s++)
-    if (!isalnum((unsigned char)*s) && *s != '_') return 0;
-  return 1;
+/* What is wrong with s as a variable name, NULL when nothing.  The length is the one expressions
+ * read as v_NAME (expr.h): a longer name worked in ${NAME} and failed in $(v_NAME). */
+static const char *name_fault(const char *s) {
+  static char why[96];
+  const char *p = s;
+  if (!isalpha((unsigned char)*p) && *p != '_') return "letters, digits and '_' only, not starting with a digit";
+  for (p++; *p; p++)
+    if (!isalnum((unsigned char)*p) && *p != '_') return "letters, digits and '_' only, not starting with a digit";
+  if (p - s > EXPR_VAR_NAME_MAX) {
+    snprintf(why, sizeof why, "%d characters: a variable name has at most %d (the longest an expression reads "
+             "as v_NAME)", (int)(p - s), EXPR_VAR_NAME_MAX);
+    return why;
+  }
+  return NULL;
 }
 
 static int lookup_cb(void *ctx, const char *name, double *val, char *err, size_t errlen);
@@ -906,8 +915,8 @@ void deck_free(YfDeck *d) {
 }
 
 void deck_set_var(YfDeck *d, const char *name, const char *value) {
-  if (!valid_name(name))
-    yf_deck_error(NULL, "-var: bad variable name '%s' (letters, digits and '_', not starting with a digit)", name);
+  const char *why = name_fault(name);
+  if (why) yf_deck_error(NULL, "-var: bad variable name '%.60s%s' (%s)", name, strlen(name) > 60 ? "..." : "", why);
   DeckVar *v = var_new(d, name, VAR_INDEX);
   v->cmdline = 1;
   v->vals = yf_malloc(sizeof *v->vals, "variable values");
@@ -1109,8 +1118,8 @@ void deck_cmd_variable(struct YfSim *sim, const YfArgs *a) {
   YfDeck *d = deck_of(sim, a);
   arg_count(a, 2, -1);
   const char *name = a->w[0];
-  if (!valid_name(name))
-    arg_fail(a, 0, "name", "letters, digits and '_' only, not starting with a digit");
+  const char *why = name_fault(name);
+  if (why) arg_fail(a, 0, "name", "%s", why);
   int style = arg_choice(a, 1, "style", var_styles);
   DeckVar *old = var_find(d, name);
   int known = 0;
