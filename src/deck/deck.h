@@ -10,6 +10,7 @@
 #define YF_DECK_H
 #include <stdio.h>
 #include "err.h"
+#include "strictnum.h" /* yf_parse_double, yf_parse_long: the deck's number rules */
 
 struct YfSim;
 
@@ -88,9 +89,6 @@ void arg_regular(const YfArgs *a, int i, const char *path);
 void arg_claim(struct YfSim *s, const YfArgs *a, int i, const char *owner, const char *prefix, const char *suffix,
                int numbered);
 
-/* Strict number parsing without a deck context: returns 1 and sets *out on success. */
-int yf_parse_double(const char *s, double *out);
-int yf_parse_long(const char *s, long *out);
 
 
 #endif
