@@ -1304,6 +1304,27 @@ void arg_regular(const YfArgs *a, int i, const char *path) {
               "it, which would replace it (write_restart onto a device replaced the device)", path);
 }
 
+/* The files were hidden or named by their endings alone: `dump d h5 10 .` wrote ._000000.h5 and
+ * ..xmf, `dump d csv 10 /tmp/` /tmp/_000000.csv, and a directory's name put them beside it. */
+void arg_file_stem(const YfArgs *a, int i, const char *stem, const char *made) {
+  const char *slash = strrchr(stem, '/'), *last = slash ? slash + 1 : stem;
+  const char *word = a->w[i];
+  size_t wl = strlen(word);
+  struct stat st;
+  char why[160];
+  if (!*last && wl && word[wl - 1] == '/')
+    snprintf(why, sizeof why, "it ends in '/'");
+  else if (!*last)
+    snprintf(why, sizeof why, "there is nothing before the extension");
+  else if (!strcmp(last, ".") || !strcmp(last, "..") || (!stat(stem, &st) && S_ISDIR(st.st_mode)))
+    snprintf(why, sizeof why, "'%s' is a directory", stem);
+  else
+    return;
+  /* the suggestion: a name inside the folder meant */
+  arg_error(a, i, "no file name: %s, and its files would be named like '%s'; give one, as in '%s%sout'", why, made,
+            stem, *last ? "/" : "");
+}
+
 void arg_writable(const YfArgs *a, const char *what, const char *fmt, ...) {
   char path[4096];
   va_list ap;

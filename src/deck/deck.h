@@ -86,6 +86,11 @@ void arg_writable(const YfArgs *a, const char *what, const char *fmt, ...) __att
 /* Deck error at word i when path exists and is not a regular file (a directory, a device, a pipe):
  * for outputs written whole to PATH.tmp and renamed (restarts). */
 void arg_regular(const YfArgs *a, int i, const char *path);
+/* Deck error at word i when stem, the start of the names of files an output makes by adding its
+ * endings (a dump's PREFIX or FILE.h5 without its extension, restart every's FILE), names no file:
+ * it ends in '/' (or is only an extension), its last part is '.' or '..', or it is a directory.
+ * made: the first file it would write, for the message. */
+void arg_file_stem(const YfArgs *a, int i, const char *stem, const char *made);
 void arg_claim(struct YfSim *s, const YfArgs *a, int i, const char *owner, const char *prefix, const char *suffix,
                int numbered);
 
