@@ -425,7 +425,8 @@ START_TEST(test_material_constants) {
   static const struct {
     const char *words, *want, *at;
   } bad[] = {
-      {"lambda -1e9 mu 1e9", "'-1e9': lambda must be above -mu = -1e+09: the in-plane bulk modulus lambda + mu must be positive", "-1e9"},
+      {"lambda -1e9 mu 1e9", "'-1e9': lambda must be above -mu = -1e+09: the in-plane bulk modulus lambda + mu must be positive",
+       "-1e9"},
       {"mu 1e9 lambda -2e9", "'-2e9': lambda must be above -mu = -1e+09", "-2e9"},
       {"lambda -0.6e9 mu 1e9 volfac 1", "'-0.6e9': lambda must be above -mu/2 with volfac 1 = -5e+08", "-0.6e9"},
       {"E 1e9 nu 0.3 plane_stress lambda 1 mu 1", "'lambda': give either E, nu or lambda, mu, not both", "lambda"},
