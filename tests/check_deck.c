@@ -621,6 +621,38 @@ START_TEST(error_long_names) {
 }
 END_TEST
 
+/* A variable name is at most 125 characters, the longest an expression reads as v_NAME: a name of
+ * 200 was accepted by `variable`, worked as ${NAME} and failed in $(NAME) and $(v_NAME) as "name
+ * too long".  A name at the limit works in all three; one beyond is refused where it is defined
+ * (the variable line, or -var) with the limit. */
+START_TEST(error_long_variable_names) {
+  make_tmpdir();
+  char name[201], deck[1200], want[400];
+  memset(name, 'v', 200);
+  name[125] = 0;
+  snprintf(deck, sizeof deck, "variable %s equal 7\nprint \"${%s} $(%s) $(v_%s)\"\n", name, name, name, name);
+  Run r = run_child(deck, NULL, NULL);
+  ck_assert_msg(r.code == 0 && !strcmp(r.out, "7 7 7\n"), "exit %d: out '%s' err %s", r.code, r.out, r.err);
+  run_free(&r);
+  static const int len[] = {126, 200};
+  for (int k = 0; k < 2; k++) {
+    memset(name, 'v', 200);
+    name[len[k]] = 0;
+    snprintf(deck, sizeof deck, "variable %s equal 7\nprint \"${%s}\"\n", name, name);
+    r = run_child(deck, NULL, NULL);
+    snprintf(want, sizeof want, "e.deck:1: error: variable: name '%s': %d characters: a variable name has at most 125 "
+             "(the longest an expression reads as v_NAME)", name, len[k]);
+    ck_assert_msg(r.code == 1 && !strcmp(line_of(r.err, 0), want), "exit %d: %s", r.code, r.err);
+    ck_assert_str_eq(line_of(r.err, 2), "           ^");
+    run_free(&r);
+    r = run_child("print \"${x}\"\n", name, "3");
+    ck_assert_msg(r.code == 1 && strstr(r.err, "-var: bad variable name") &&
+                  strstr(r.err, "characters: a variable name has at most 125"), "exit %d: %s", r.code, r.err);
+    run_free(&r);
+  }
+}
+END_TEST
+
 /* Two outputs never write one file: two records on one file interleaved their rows, a record on
  * a dump's index or a restart's file lost one of them, and dumps named out.h5 and ./out.h5 (or
  * c3.h5 and c3, or c2.h5 and c2_cracks.h5, whose index is c2.h5's crack index) listed each
@@ -990,6 +1022,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, error_expressions_and_variables);
   tcase_add_test(tc, error_includes);
   tcase_add_test(tc, error_long_names);
+  tcase_add_test(tc, error_long_variable_names);
   tcase_add_test(tc, error_outputs_share_a_file);
   tcase_add_test(tc, error_history_file_rows);
   tcase_add_test(tc, error_quantities_before_run);

@@ -389,6 +389,66 @@ START_TEST(test_gmsh_coincident_nodes_warned) {
 }
 END_TEST
 
+/* The word under the caret of the first error in err ("" when there is none): the context line
+ * above the caret line holds the deck line, both indented alike. */
+static const char *caret_word(const char *err, char *buf, size_t n) {
+  buf[0] = 0;
+  const char *ctx = strchr(err, '\n');
+  const char *car = ctx ? strchr(ctx + 1, '\n') : NULL;
+  if (!car) return buf;
+  ctx++, car++;
+  size_t col = strcspn(car, "^\n");
+  if (car[col] != '^' || col >= (size_t)(car - ctx)) return buf;
+  size_t w = strcspn(ctx + col, " \n");
+  snprintf(buf, n, "%.*s", (int)w, ctx + col);
+  return buf;
+}
+
+/* material's elastic constants: lambda, mu is any pair of positive in-plane bulk modulus
+ * (lambda > -mu), the range E > 0, nu in (-1, 0.5) covers ('lambda -0.5e9' was refused as
+ * "give both lambda and mu": a negative lambda stood for "not given"), and each refusal points
+ * at the word at fault (a conflict of E, nu and lambda, mu put the caret under 'rho'). */
+START_TEST(test_material_constants) {
+  static const char *const ok[] = {
+      "material m elastic rho 1000 lambda -0.5e9 mu 1e9 plane_strain\n", /* E 1e9 nu -0.5 plane_strain */
+      "material m elastic rho 1000 lambda -0.99e9 mu 1e9\n",              /* E 4e7 nu -0.98 plane_stress */
+      "material m elastic rho 1000 lambda 0 mu 1e9\n",
+      "material m elastic rho 1000 E 1e9 nu -0.2 plane_strain\n",
+  };
+  for (size_t k = 0; k < sizeof ok / sizeof ok[0]; k++) {
+    char deck[512], *err;
+    snprintf(deck, sizeof deck, "%smesh rect b m 0 0 1 1 2 2\ntimestep auto\nrun 2\n", ok[k]);
+    int rc = yft_run_binary("ok.deck", deck, "-log none", &err, NULL);
+    ck_assert_msg(rc == 0, "%s: exit %d: %s", ok[k], rc, err);
+    free(err);
+  }
+  static const struct {
+    const char *words, *want, *at;
+  } bad[] = {
+      {"lambda -1e9 mu 1e9", "'-1e9': lambda must be above -mu = -1e+09: the in-plane bulk modulus lambda + mu must be positive",
+       "-1e9"},
+      {"mu 1e9 lambda -2e9", "'-2e9': lambda must be above -mu = -1e+09", "-2e9"},
+      {"lambda -0.6e9 mu 1e9 volfac 1", "'-0.6e9': lambda must be above -mu/2 with volfac 1 = -5e+08", "-0.6e9"},
+      {"E 1e9 nu 0.3 plane_stress lambda 1 mu 1", "'lambda': give either E, nu or lambda, mu, not both", "lambda"},
+      {"lambda 1 mu 1 nu 0.3 E 1e9 plane_stress", "'nu': give either E, nu or lambda, mu, not both", "nu"},
+      {"lambda 1e9", "'lambda': missing 'mu'", "lambda"},
+      {"mu 1e9", "'mu': missing 'lambda'", "mu"},
+      {"nu 0.2 plane_strain", "'nu': missing 'E'", "nu"},
+      {"E 1e9 nu 0.2 plane_strain visc 1 damping 0.1", "'damping': give either visc or damping, not both", "damping"},
+  };
+  for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+    char deck[512], *err, want[300], w[64];
+    snprintf(deck, sizeof deck, "material m elastic rho 1000 %s\n", bad[k].words);
+    int rc = yft_run_binary("bad.deck", deck, "-log none", &err, NULL);
+    snprintf(want, sizeof want, "bad.deck:1: error: material: %s", bad[k].want);
+    ck_assert_msg(rc == 1 && strstr(err, want), "%s: exit %d, want '%s': %s", bad[k].words, rc, want, err);
+    ck_assert_msg(!strcmp(caret_word(err, w, sizeof w), bad[k].at), "%s: caret under '%s', not '%s': %s", bad[k].words, w,
+                  bad[k].at, err);
+    free(err);
+  }
+}
+END_TEST
+
 Suite *errors_suite(void) {
   Suite *s = suite_create("errors");
   TCase *t = tcase_create("deck");
@@ -410,6 +470,7 @@ Suite *errors_suite(void) {
   tcase_add_test(t, test_inverted_element_numerical_failure);
   tcase_add_test(t, test_never_inf_nan);
   tcase_add_test(t, test_gmsh_coincident_nodes_warned);
+  tcase_add_test(t, test_material_constants);
   suite_add_tcase(s, t);
   return s;
 }

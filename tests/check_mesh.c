@@ -519,6 +519,11 @@ START_TEST(test_gmsh_malformed) {
   bad_msh("trunc.msh", "4 2 3 5\n", NULL, 40, "unexpected end of file");
   bad_msh("trunc2.msh", "1 0 0\n", NULL, 23, "unexpected end of file");
   bad_msh("num.msh", "0.5 0.5 0\n", "0.5 0.5x 0\n", 29, "expected a number for a node y, found '0.5x'");
+  /* the deck's number rules (strictnum.h): strtod read hex coordinates the deck refuses */
+  bad_msh("hex.msh", "0.5 0.5 0\n", "0x1p-1 0.5 0\n", 29,
+          "expected a number for a node x, found '0x1p-1' (a finite decimal number: digits, an optional '.' and exponent");
+  bad_msh("hexz.msh", "0.5 0.5 0\n", "0.5 0.5 0X0P0\n", 29, "expected a number for a node z, found '0X0P0'");
+  bad_msh("inf.msh", "0.5 0.5 0\n", "0.5 infinity 0\n", 29, "expected a number for a node y, found 'infinity'");
   bad_msh("tag.msh", "5 4 1 5\n", "5 4 1 9\n", 40, "node 9 of element 5 is not defined in $Nodes");
   bad_msh("count.msh", "2 5 1 5\n", "2 6 1 5\n", 17, "the blocks hold 5 nodes but the header declares 6");
   bad_msh("count2.msh", "3 5 1 5\n", "3 4 1 5\n", 38, "element block 3 declares 2 elements");

@@ -9,6 +9,7 @@
  * y2dref dump's files and a record's file are left whole (to their last complete row).
  */
 #include <check.h>
+#include <dirent.h>
 #include <errno.h>
 #include <math.h>
 #include <signal.h>
@@ -527,6 +528,71 @@ START_TEST(test_deck_dump_errors) {
     ck_assert(!yft_exists(p));
     snprintf(p, sizeof p, "rm -rf '%s'", dir);
     ck_assert_int_eq(system(p), 0);
+    free(err);
+    free(dir);
+  }
+}
+END_TEST
+
+/* The entries of directory path other than those listed (NULL-ended), as "a b " ("" when none). */
+static void other_entries(const char *path, const char *const *keep, char *out, size_t n) {
+  out[0] = 0;
+  DIR *d = opendir(path);
+  ck_assert_ptr_nonnull(d);
+  for (struct dirent *e; (e = readdir(d));) {
+    int k = !strcmp(e->d_name, ".") || !strcmp(e->d_name, "..");
+    for (int i = 0; keep[i] && !k; i++) k = !strcmp(e->d_name, keep[i]);
+    if (!k) snprintf(out + strlen(out), n - strlen(out), "%s ", e->d_name);
+  }
+  closedir(d);
+}
+
+/* A file prefix that names no file is refused at its line, nothing written: `dump d h5 10 .` wrote
+ * ._000000.h5 and ..xmf (hidden), `dump d csv 10 /tmp/` /tmp/_000000.csv, a directory's name put
+ * the files beside it, and `restart every 5 .` wrote ..a and ..b.  A name inside the folder works. */
+START_TEST(test_dump_prefix_names_a_file) {
+  static const struct {
+    const char *line, *want;
+  } bad[] = {
+      {"dump d h5 10 .", "dump: '.': no file name: '.' is a directory, and its files would be named like '._000000.h5'; "
+                         "give one, as in './out'"},
+      {"dump d h5 10 sub/", "dump: 'sub/': no file name: it ends in '/', and its files would be named like "
+                            "'sub/_000000.h5'; give one, as in 'sub/out'"},
+      {"dump d h5 10 sub", "dump: 'sub': no file name: 'sub' is a directory, and its files would be named like "
+                           "'sub_000000.h5'; give one, as in 'sub/out'"},
+      {"dump d h5 10 sub/.h5", "dump: 'sub/.h5': no file name: there is nothing before the extension"},
+      {"dump d csv 10 .", "dump: '.': no file name: '.' is a directory, and its files would be named like '._000000.csv'"},
+      {"dump d csv 10 sub/", "dump: 'sub/': no file name: it ends in '/'"},
+      {"restart every 5 .", "restart: '.': no file name: '.' is a directory, and its files would be named like '..a'"},
+      {"restart every 5 sub/", "restart: 'sub/': no file name: it ends in '/', and its files would be named like 'sub/.a'"},
+  };
+  static const char *const keep[] = {"bad.deck", "err.txt", "sub", NULL}, *const none[] = {NULL};
+  for (size_t k = 0; k <= sizeof bad / sizeof bad[0]; k++) {
+    int ok = k == sizeof bad / sizeof bad[0]; /* last: a name in sub works */
+    char deck[512], p[700], cmd[1600], left[400];
+    snprintf(deck, sizeof deck, "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect bar m 0 0 1 0.1 4 2\n"
+             "timestep auto\n%s\nrun 10\n", ok ? "dump d h5 10 sub/out.h5" : bad[k].line);
+    char *dir = yft_deck_dir("bad.deck", deck);
+    snprintf(p, sizeof p, "%s/sub", dir);
+    ck_assert_int_eq(mkdir(p, 0755), 0);
+    snprintf(cmd, sizeof cmd, "cd %s && %s -in bad.deck -log none >/dev/null 2>err.txt", dir, yft_binary());
+    int st = system(cmd), rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    snprintf(p, sizeof p, "%s/err.txt", dir);
+    char *err = yft_slurp(p, 1), want[400];
+    if (ok) {
+      snprintf(p, sizeof p, "%s/sub/out.xmf", dir);
+      ck_assert_msg(rc == 0 && yft_exists(p), "sub/out.h5: exit %d: %s", rc, err);
+    } else {
+      snprintf(want, sizeof want, "bad.deck:4: error: %s", bad[k].want);
+      ck_assert_msg(rc == YF_EXIT_DECK && strstr(err, want), "%s: exit %d, want '%s': %s", bad[k].line, rc, want, err);
+      other_entries(dir, keep, left, sizeof left);
+      ck_assert_msg(!left[0], "%s: left %s", bad[k].line, left);
+      snprintf(p, sizeof p, "%s/sub", dir);
+      other_entries(p, none, left, sizeof left);
+      ck_assert_msg(!left[0], "%s: left in sub: %s", bad[k].line, left);
+    }
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    ck_assert_int_eq(system(cmd), 0);
     free(err);
     free(dir);
   }
@@ -1078,6 +1144,7 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_index_long_escaped_name);
   tcase_add_test(tc, test_fc_in_every_frame_after);
   tcase_add_test(tc, test_deck_dump_errors);
+  tcase_add_test(tc, test_dump_prefix_names_a_file);
   tcase_add_test(tc, test_io_error);
   tcase_add_test(tc, test_kill_midway);
   suite_add_tcase(su, tc);

@@ -574,6 +574,34 @@ START_TEST(test_value_lines) {
 }
 END_TEST
 
+/* The memory cap counts all the arrays of a .y deck, not each alone: with YFDEM_MEM_MAX=1e9, deck a
+ * with MPROP 15e6 (13 property arrays of at most 120 MB, 1.26 GB in all) or MNOPO 20e6 (5 node
+ * arrays of at most 320 MB, 1.12 GB) is refused at the capacity's line, before anything is
+ * allocated.  Each array passed the per-array check, and MPROP 2147483648 was an OOM kill. */
+START_TEST(test_capacity_memory_total) {
+  static const struct {
+    const char *key, *value, *want;
+  } c[] = {{"/YD/YDPE/MPROP 2\n", "/YD/YDPE/MPROP 15000000\n", "/YD/YDPE/MPROP = 15000000 (it sizes 13 arrays"},
+           {"/YD/YDN/MNOPO 3384\n", "/YD/YDN/MNOPO 20000000\n", "/YD/YDN/MNOPO = 20000000 (it sizes 5 arrays"}};
+  setenv("YFDEM_MEM_MAX", "1e9", 1);
+  for (size_t k = 0; k < sizeof c / sizeof c[0]; k++) {
+    char *at, *a = deck_a_at(c[k].key, &at);
+    int line = 1;
+    for (const char *p = a; p < at; p++) line += *p == '\n';
+    char *deck = malloc(strlen(a) + 64), *err, want[200];
+    sprintf(deck, "%.*s%s%s", (int)(at - a), a, c[k].value, at + strlen(c[k].key));
+    int rc = yft_run_binary("cap.y", deck, "-log none", &err, NULL);
+    snprintf(want, sizeof want, "cap.y:%d: error: %s", line, c[k].want);
+    ck_assert_msg(rc == 1 && strstr(err, want) && strstr(err, "more than the 1 GB available (YFDEM_MEM_MAX)"),
+                  "%s: exit %d, want '%s': %s", c[k].value, rc, want, err);
+    free(err);
+    free(deck);
+    free(a);
+  }
+  unsetenv("YFDEM_MEM_MAX");
+}
+END_TEST
+
 Suite *y2d_read_suite(void) {
   Suite *s = suite_create("y2d_read");
   TCase *tc = tcase_create("reference_decks");
@@ -592,6 +620,7 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_diedi_delays_first_search);
   tcase_add_test(tc, test_frozen_set);
   tcase_add_test(tc, test_value_lines);
+  tcase_add_test(tc, test_capacity_memory_total);
   suite_add_tcase(s, tc);
   tc = tcase_create("errors");
   tcase_add_loop_test(tc, test_bad_decks, 0, (int)(sizeof bad / sizeof bad[0]));

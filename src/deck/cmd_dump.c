@@ -145,6 +145,14 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
     }
   }
   if (!path[0]) arg_error(a, 3, "empty file name");
+  /* the names of its files are the stem and their endings: the stem must name a file */
+  size_t sl = style == YF_DUMP_H5 ? output_h5_stem_len(path) : strlen(path);
+  char *fstem = yf_malloc(sl + 1, "path"), *made = yf_malloc(sl + 32, "path");
+  snprintf(fstem, sl + 1, "%s", path);
+  snprintf(made, sl + 32, "%s_000000%s", fstem, style == YF_DUMP_CSV ? ".csv" : path[sl] ? path + sl : ".h5");
+  arg_file_stem(a, 3, fstem, made);
+  free(fstem);
+  free(made);
   const char *base = strrchr(path, '/');
   if (style == YF_DUMP_H5 && strchr(base ? base + 1 : path, ':'))
     arg_error(a, 3, "the file name may not contain ':' (XDMF uses it to separate file and dataset)");

@@ -25,6 +25,10 @@ void cmd_restart(YfSim *s, const YfArgs *a) {
   long every = arg_int(a, 1, "N (steps)", 1, LONG_MAX);
   const char *base = arg_word(a, 2, "FILE"); /* an output: relative to the working directory */
   if (!base[0]) arg_error(a, 2, "empty file name");
+  char *made = yf_malloc(strlen(base) + 3, "path");
+  sprintf(made, "%s.a", base);
+  arg_file_stem(a, 2, base, made); /* FILE.a and FILE.b: "." made the hidden ..a and ..b */
+  free(made);
   /* a missing folder: now, at this line, not at the first restart step after frames were written */
   arg_writable(a, "restart every", "%s.a", base);
   output_release(s, "restart every"); /* a later one replaces the earlier */

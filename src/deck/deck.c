@@ -181,55 +181,6 @@ static void fail_ctx(const YfLoc *loc, const char *line, int col, const char *fm
   yf_deck_error(loc, "%s\n%s\n%s", msg, ctx, caret);
 }
 
-/* ------------------------------------------------------------------ strict numbers */
-
-int yf_parse_double(const char *s, double *out) {
-  if (!s) return 0;
-  const char *p = s;
-  if (*p == '+' || *p == '-') p++;
-  int digits = 0;
-  while (isdigit((unsigned char)*p)) p++, digits++;
-  if (*p == '.') {
-    p++;
-    while (isdigit((unsigned char)*p)) p++, digits++;
-  }
-  if (!digits) return 0; /* "", ".", "nan", "inf", "e5" */
-  if (*p == 'e' || *p == 'E') {
-    p++;
-    if (*p == '+' || *p == '-') p++;
-    if (!isdigit((unsigned char)*p)) return 0;
-    while (isdigit((unsigned char)*p)) p++;
-  }
-  if (*p) return 0; /* trailing junk: "3.0x", "1 " */
-  errno = 0;
-  double v = strtod(s, NULL);
-  if (!isfinite(v)) return 0; /* overflow: "1e999" (underflow to 0 or a subnormal is accepted) */
-  if (out) *out = v;
-  return 1;
-}
-
-int yf_parse_long(const char *s, long *out) {
-  if (!s) return 0;
-  const char *p = s;
-  if (*p == '+' || *p == '-') p++;
-  if (!*p) return 0;
-  while (isdigit((unsigned char)*p)) p++;
-  if (!*p) { /* plain integer: full long range */
-    errno = 0;
-    long v = strtol(s, NULL, 10);
-    if (errno == ERANGE) return 0;
-    if (out) *out = v;
-    return 1;
-  }
-  /* "1e6", "2.0": a number whose value is an exact integer (within 2^53, where doubles are exact) */
-  double d;
-  if (!yf_parse_double(s, &d)) return 0;
-  if (d != floor(d) || fabs(d) > 9007199254740992.0) return 0;
-  if (d == 0.0 && strcspn(s, "123456789") < strcspn(s, "eE")) return 0; /* 1e-400: not 0 */
-  if (out) *out = (long)d;
-  return 1;
-}
-
 /* ------------------------------------------------------------------ words */
 
 /* Split line into words.  A word starting with ", ' or """ runs to the matching quote (which is
@@ -377,11 +328,20 @@ static DeckVar *var_new(YfDeck *d, const char *name, int style) {
   return v;
 }
 
-static int valid_name(const char *s) {
-  if (!isalpha((unsigned char)*s) && *s != '_') return 0;
-  for (s++; *s; s++)
-    if (!isalnum((unsigned char)*s) && *s != '_') return 0;
-  return 1;
+/* What is wrong with s as a variable name, NULL when nothing.  The length is the one expressions
+ * read as v_NAME (expr.h): a longer name worked in ${NAME} and failed in $(v_NAME). */
+static const char *name_fault(const char *s) {
+  static char why[96];
+  const char *p = s;
+  if (!isalpha((unsigned char)*p) && *p != '_') return "letters, digits and '_' only, not starting with a digit";
+  for (p++; *p; p++)
+    if (!isalnum((unsigned char)*p) && *p != '_') return "letters, digits and '_' only, not starting with a digit";
+  if (p - s > EXPR_VAR_NAME_MAX) {
+    snprintf(why, sizeof why, "%d characters: a variable name has at most %d (the longest an expression reads "
+             "as v_NAME)", (int)(p - s), EXPR_VAR_NAME_MAX);
+    return why;
+  }
+  return NULL;
 }
 
 static int lookup_cb(void *ctx, const char *name, double *val, char *err, size_t errlen);
@@ -906,8 +866,8 @@ void deck_free(YfDeck *d) {
 }
 
 void deck_set_var(YfDeck *d, const char *name, const char *value) {
-  if (!valid_name(name))
-    yf_deck_error(NULL, "-var: bad variable name '%s' (letters, digits and '_', not starting with a digit)", name);
+  const char *why = name_fault(name);
+  if (why) yf_deck_error(NULL, "-var: bad variable name '%.60s%s' (%s)", name, strlen(name) > 60 ? "..." : "", why);
   DeckVar *v = var_new(d, name, VAR_INDEX);
   v->cmdline = 1;
   v->vals = yf_malloc(sizeof *v->vals, "variable values");
@@ -1109,8 +1069,8 @@ void deck_cmd_variable(struct YfSim *sim, const YfArgs *a) {
   YfDeck *d = deck_of(sim, a);
   arg_count(a, 2, -1);
   const char *name = a->w[0];
-  if (!valid_name(name))
-    arg_fail(a, 0, "name", "letters, digits and '_' only, not starting with a digit");
+  const char *why = name_fault(name);
+  if (why) arg_fail(a, 0, "name", "%s", why);
   int style = arg_choice(a, 1, "style", var_styles);
   DeckVar *old = var_find(d, name);
   int known = 0;
@@ -1342,6 +1302,27 @@ void arg_regular(const YfArgs *a, int i, const char *path) {
   if (!stat(path, &st) && !S_ISREG(st.st_mode))
     arg_error(a, i, "'%s' is not a regular file: a restart is written whole to a temporary file and renamed over "
               "it, which would replace it (write_restart onto a device replaced the device)", path);
+}
+
+/* The files were hidden or named by their endings alone: `dump d h5 10 .` wrote ._000000.h5 and
+ * ..xmf, `dump d csv 10 /tmp/` /tmp/_000000.csv, and a directory's name put them beside it. */
+void arg_file_stem(const YfArgs *a, int i, const char *stem, const char *made) {
+  const char *slash = strrchr(stem, '/'), *last = slash ? slash + 1 : stem;
+  const char *word = a->w[i];
+  size_t wl = strlen(word);
+  struct stat st;
+  char why[160];
+  if (!*last && wl && word[wl - 1] == '/')
+    snprintf(why, sizeof why, "it ends in '/'");
+  else if (!*last)
+    snprintf(why, sizeof why, "there is nothing before the extension");
+  else if (!strcmp(last, ".") || !strcmp(last, "..") || (!stat(stem, &st) && S_ISDIR(st.st_mode)))
+    snprintf(why, sizeof why, "'%s' is a directory", stem);
+  else
+    return;
+  /* the suggestion: a name inside the folder meant */
+  arg_error(a, i, "no file name: %s, and its files would be named like '%s'; give one, as in '%s%sout'", why, made,
+            stem, *last ? "/" : "");
 }
 
 void arg_writable(const YfArgs *a, const char *what, const char *fmt, ...) {

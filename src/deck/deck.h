@@ -10,6 +10,7 @@
 #define YF_DECK_H
 #include <stdio.h>
 #include "err.h"
+#include "strictnum.h" /* yf_parse_double, yf_parse_long: the deck's number rules */
 
 struct YfSim;
 
@@ -85,12 +86,14 @@ void arg_writable(const YfArgs *a, const char *what, const char *fmt, ...) __att
 /* Deck error at word i when path exists and is not a regular file (a directory, a device, a pipe):
  * for outputs written whole to PATH.tmp and renamed (restarts). */
 void arg_regular(const YfArgs *a, int i, const char *path);
+/* Deck error at word i when stem, the start of the names of files an output makes by adding its
+ * endings (a dump's PREFIX or FILE.h5 without its extension, restart every's FILE), names no file:
+ * it ends in '/' (or is only an extension), its last part is '.' or '..', or it is a directory.
+ * made: the first file it would write, for the message. */
+void arg_file_stem(const YfArgs *a, int i, const char *stem, const char *made);
 void arg_claim(struct YfSim *s, const YfArgs *a, int i, const char *owner, const char *prefix, const char *suffix,
                int numbered);
 
-/* Strict number parsing without a deck context: returns 1 and sets *out on success. */
-int yf_parse_double(const char *s, double *out);
-int yf_parse_long(const char *s, long *out);
 
 
 #endif

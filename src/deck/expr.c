@@ -15,7 +15,6 @@
 #include <string.h>
 #include "expr.h"
 
-#define EXPR_NAME_MAX 128
 #define EXPR_MAX_ARGS 16
 /* Nesting of parentheses, function calls, unary signs and '^' exponents: each level is a few
  * stack frames of this recursive parser, so an absurd nesting (a 40 KB line of '(' or '-') would
@@ -144,7 +143,7 @@ static double parse_name(Parser *P) {
   char name[EXPR_NAME_MAX];
   size_t len = 0;
   while (isalnum((unsigned char)*P->p) || *P->p == '_') {
-    if (len + 1 >= sizeof name) fail_at(P, at, "name too long");
+    if (len + 1 >= sizeof name) fail_at(P, at, "name longer than %d characters", EXPR_NAME_MAX - 1);
     name[len++] = *P->p++;
   }
   name[len] = 0;

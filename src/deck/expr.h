@@ -24,6 +24,12 @@
 #define YF_EXPR_H
 #include <stddef.h>
 
+/* The longest name an expression reads (127 characters, a buffer of 128 with its NUL): a variable
+ * name must leave room for the "v_" of the LAMMPS spelling, so deck.c refuses longer ones where
+ * they are defined (they worked in ${NAME} and failed only in $(v_NAME)). */
+#define EXPR_NAME_MAX 128
+#define EXPR_VAR_NAME_MAX (EXPR_NAME_MAX - 1 - 2)
+
 typedef struct {
   char msg[512]; /* what went wrong, e.g. "missing ')'"             */
   int pos;       /* 0-based character offset in the expression text */

@@ -1222,15 +1222,9 @@ int output_add_dump(YfSim *s, const char *id, int style, long every, const char 
   d->mpio = style == YF_DUMP_H5 && !compress && output_mpio();
   d->fc_asked = (fields & YF_FIELD_ALL) != YF_FIELD_ALL && (fields & YF_FIELD_FC);
   if (style == YF_DUMP_H5) {
-    const char *base = strrchr(path, '/');
-    size_t l = strlen(path);
-    const char *dot = strrchr(base ? base + 1 : path, '.');
-    if (dot && (strcmp(dot, ".h5") == 0 || strcmp(dot, ".hdf5") == 0 || strcmp(dot, ".hdf") == 0))
-      l -= strlen(dot);
-    else
-      dot = ".h5";
+    size_t l = output_h5_stem_len(path);
     d->stem = str_printf("%.*s", (int)l, path);
-    d->ext = yf_strdup(dot);
+    d->ext = yf_strdup(path[l] ? path + l : ".h5");
     d->xmf = str_printf("%s.xmf", d->stem);
     d->xmf_tmp = str_printf("%s.tmp", d->xmf);
     d->cxmf = str_printf("%s_cracks.xmf", d->stem);
@@ -1297,6 +1291,14 @@ const char *output_dump_path(const YfSim *s, int k) { return s->out->dump[k]->pa
 int output_find_dump(const YfSim *s, const char *id) {
   int slot;
   return find_dump(s->out, id, &slot) ? slot : -1;
+}
+
+size_t output_h5_stem_len(const char *path) {
+  const char *base = strrchr(path, '/');
+  const char *dot = strrchr(base ? base + 1 : path, '.');
+  size_t l = strlen(path);
+  if (dot && (strcmp(dot, ".h5") == 0 || strcmp(dot, ".hdf5") == 0 || strcmp(dot, ".hdf") == 0)) l -= strlen(dot);
+  return l;
 }
 
 void output_dump_files(const YfSim *s, int k, const char **stem, const char **ext, const char **xmf) {

@@ -96,6 +96,9 @@ int output_find_dump(const YfSim *s, const char *id);
 const char *output_dump_id(const YfSim *s, int k);
 const char *output_dump_path(const YfSim *s, int k);
 void output_dump_files(const YfSim *s, int k, const char **stem, const char **ext, const char **xmf);
+/* The length of an h5 dump's stem in its FILE: FILE without a .h5, .hdf5 or .hdf extension (the
+ * whole of FILE when it has none: the frames then get ".h5"). */
+size_t output_h5_stem_len(const char *path);
 /* Close and forget dump id; returns 0, or -1 when there is no such dump. */
 int output_remove_dump(YfSim *s, const char *id);
 

@@ -32,6 +32,7 @@
 #include <string.h>
 #include "memcap.h"
 #include "mesh.h"
+#include "strictnum.h"
 
 typedef struct {
   const char *fname;
@@ -129,13 +130,14 @@ static long msh_long(Msh *r, const char *what) {
   return v;
 }
 
+/* A real of the file, by the deck's rules (strictnum.h): strtod also took hex ("0x1p-1"), "inf"
+ * and "nan" in a node's coordinates, numbers the deck refuses. */
 static double msh_double(Msh *r, const char *what) {
   msh_need(r, what);
-  char *end;
-  errno = 0;
-  double v = strtod(r->tok, &end);
-  if (end == r->tok || *end != '\0' || !isfinite(v))
-    msh_fail(r, r->tokline, "expected a number for %s, found '%s'", what, r->tok);
+  double v;
+  if (!yf_parse_double(r->tok, &v))
+    msh_fail(r, r->tokline, "expected a number for %s, found '%s' (a finite decimal number: digits, an optional "
+             "'.' and exponent, as in the deck)", what, r->tok);
   return v;
 }
 
@@ -280,9 +282,8 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       char ver[sizeof r->tok];
       memcpy(ver, r->tok, sizeof ver);
       int vline = r->tokline;
-      char *end;
-      double v = strtod(ver, &end);
-      if (end == ver || *end != '\0' || fabs(v - 4.1) > 1e-9)
+      double v;
+      if (!yf_parse_double(ver, &v) || fabs(v - 4.1) > 1e-9)
         msh_fail(r, vline, "MSH version %s is not supported: yfdem reads MSH 4.1 ASCII (save with "
                  "gmsh -format msh41, or Mesh.MshFileVersion = 4.1)", ver);
       long ft = msh_long(r, "the file type");

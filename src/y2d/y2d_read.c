@@ -473,22 +473,52 @@ static int ndims(int type) {
 }
 static int is_int_type(int type) { return type == KI || type == KI1 || type == KI2; }
 
-/* (Re)allocate the storage of array key k at its capacity, filled with the default. */
-static void alloc_array(YfY2d *y, int k) {
+/* Bytes of array key k at the capacities read so far (0 for a key that is not stored). */
+static double array_bytes(const YfY2d *y, int k) {
   const KeyDef *kd = &keydefs[k];
-  if (kd->off == NOFF) return;
-  long n = 1;
+  if (kd->off == NOFF || !ndims(kd->type)) return 0.0;
   double bytes = is_int_type(kd->type) ? (double)sizeof(int) : (double)sizeof(double);
   for (int d = 0; d < ndims(kd->type); d++) {
     long c = dim_cap(y, k, d);
     bytes *= c > 0 ? (double)c : 0.0;
-    if (bytes > yf_mem_cap()) { /* a capacity such as MNOPO 1e12: refuse before allocating */
-      int ck = kd->cap[d]; /* the capacity key: the error points at its line */
-      YfLoc l = ck >= 0 && y->given[ck] ? y->where[ck] : y->given[k] ? y->where[k] : y->end;
-      char what[160];
-      snprintf(what, sizeof what, "%s (at the capacity %s = %ld)", kd->full, ck >= 0 ? keydefs[ck].full : "fixed", c);
-      yf_mem_check(&l, bytes, what);
-    }
+  }
+  return bytes;
+}
+
+/* Capacity key k (MNOPO, MPROP...) has just been given: refuse it at its line when all the
+ * arrays of the deck, at the capacities given so far, need more memory than the cap.  The sum
+ * matters, not each array: MPROP 2147483648 sizes 13 arrays that each fit in 32 GB and together
+ * need 180 GB, and every array is allocated at its capacity (those never given at the end).
+ * Checked here, once per capacity, so that alloc_array never meets a size that overflows. */
+static void check_capacity_memory(const YfY2d *y, int k, const YfLoc *kloc) {
+  double total = 0.0;
+  int nsized = 0, nall = 0;
+  for (int a = 0; a < Y2D_NKEYS; a++) {
+    double b = array_bytes(y, a);
+    if (!(b > 0)) continue;
+    total += b;
+    nall++;
+    for (int d = 0; d < 3; d++)
+      if (keydefs[a].cap[d] == k) {
+        nsized++;
+        break;
+      }
+  }
+  if (!nsized || !(total > yf_mem_cap())) return;
+  char what[240];
+  snprintf(what, sizeof what, "%s = %ld (it sizes %d array%s; with the arrays sized by the capacities before it, "
+           "%d in all)", keydefs[k].full, scalar_long(y, k), nsized, nsized == 1 ? "" : "s", nall);
+  yf_mem_check(kloc, total, what);
+}
+
+/* (Re)allocate the storage of array key k at its capacity, filled with the default.  Its size
+ * fits: check_capacity_memory refused every capacity that would make all arrays too big. */
+static void alloc_array(YfY2d *y, int k) {
+  const KeyDef *kd = &keydefs[k];
+  if (kd->off == NOFF) return;
+  long n = 1;
+  for (int d = 0; d < ndims(kd->type); d++) {
+    long c = dim_cap(y, k, d);
     n *= c > 0 ? c : 0;
   }
   void **pp = (void **)((char *)y + kd->off);
@@ -666,6 +696,7 @@ static void read_key(Rd *r, int k, const YfLoc *kloc) {
         long *p = (long *)((char *)y + kd->off);
         check_cap_change(r, k, *p, v, kloc);
         *p = v;
+        check_capacity_memory(y, k, kloc);
       }
     } else {
       double v = read_real(r, k, kloc, "its value", -1, 0);
