@@ -218,6 +218,11 @@ START_TEST(test_read_restart_after_run_refused) {
   expect_fail(BAR "timestep auto\nrun 5\nread_restart x.restart\nrun 10 upto\n", 1,
               "bad.deck:5: error: read_restart: 'x.restart': read_restart after a run (or a read_restart) of this deck",
               "put it before the first run command");
+  /* 'run 0' is a run: after it (and a body added) a restart was read over the new scene, and the
+   * continuation differed from the uninterrupted run */
+  expect_fail(BAR "timestep auto\nrun 0\nmesh rect c m 2 0 3 1 4 4\nread_restart x.restart\nrun 10 upto\n", 1,
+              "bad.deck:6: error: read_restart: 'x.restart': read_restart after a run (or a read_restart) of this deck",
+              NULL);
 }
 END_TEST
 

@@ -26,8 +26,10 @@
 #include "commands.h"
 #include "mesh.h"
 #include "model.h"
+#include "query.h"
 #include "region.h"
 #include "sim.h"
+#include "yftest.h"
 
 /* ------------------------------------------------------------------ helpers */
 
@@ -871,6 +873,28 @@ START_TEST(test_edge_sort_matches_qsort) {
 }
 END_TEST
 
+/* An inline triangle added after a partitioned run names its nodes by the ids they were given:
+ * the partition renumbered the nodes and the id map kept the old indices ('triangle 4 2 6 5'
+ * read as clockwise, or took other nodes).  The same scene with 1 part and with 2 moves alike. */
+START_TEST(test_inline_after_partition) {
+  double ke[2], ux[2];
+  for (int p = 0; p < 2; p++) {
+    char deck[1024];
+    snprintf(deck, sizeof deck, "material m elastic rho 2000 E 1e9 nu 0.25 plane_stress\nnode 1 0 0\nnode 2 1 0\n"
+             "node 3 2 0\nnode 4 0 1\nnode 5 1 1\nnode 6 2 1\ntriangle 1 1 2 5 m\ntriangle 2 1 5 4 m\n"
+             "triangle 3 2 3 6 m\npartition metis parts %d\ntimestep 1e-6\nrun 0\ntriangle 4 2 6 5 m\n"
+             "group tip node nearest 2 1\nvelocity tip set 1 0\nrun 200\n", p + 1);
+    YfSim *s = yft_run(deck);
+    char err[256] = "";
+    ck_assert_msg(sim_query(s, "ke", &ke[p], err, sizeof err) == 1 && sim_query(s, "ux_tip", &ux[p], err, sizeof err) == 1,
+                  "%s", err);
+    sim_free(s);
+  }
+  ck_assert_msg(fabs(ke[1] - ke[0]) <= 1e-12 * ke[0] && fabs(ux[1] - ux[0]) <= 1e-12 * fabs(ux[0]),
+                "parts 1: ke %.17g ux %.17g; parts 2: ke %.17g ux %.17g", ke[0], ux[0], ke[1], ux[1]);
+}
+END_TEST
+
 Suite *mesh_suite(void) {
   Suite *s = suite_create("mesh");
   TCase *tc = tcase_create("rect");
@@ -893,6 +917,7 @@ Suite *mesh_suite(void) {
   tc = tcase_create("inline");
   tcase_add_test(tc, test_inline_commands);
   tcase_add_test(tc, test_inline_files);
+  tcase_add_test(tc, test_inline_after_partition);
   suite_add_tcase(s, tc);
   tc = tcase_create("sets");
   tcase_add_test(tc, test_region_box_circle_polygon);

@@ -21,7 +21,9 @@ void cmd_read_restart(YfSim *s, const YfArgs *a) {
   /* a restart continues a deck from its start: after a run (or a restart read) it would replace
    * the state reached and the series the outputs began (frames of the earlier run were dropped
    * from the index and an off-cadence frame listed; a sweep of new decks, 2026-11-28) */
-  if (s->step > 0 || s->model.prepared)
+  /* ('run 0' counts: after it and a body added, a restart was read over the new scene, and the
+   * continuation differed from the uninterrupted run) */
+  if (s->step > 0 || s->model.prepared || s->runs_begun > 0 || s->restored)
     arg_error(a, 0, "read_restart after a run (or a read_restart) of this deck: put it before the first run "
                     "command, which then continues with 'run N upto'");
   char *here = restart_pick_file(w), *p = NULL, *there = NULL;

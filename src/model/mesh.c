@@ -282,6 +282,16 @@ void mesh_reset(void) {
   memset(&inl, 0, sizeof inl);
 }
 
+void mesh_renumbered(const YfModel *m, const int *tnew, const int *nnew) {
+  if (inl.owner != m) return;
+  /* the inline ids name the same nodes and triangles at their new indices (a 'triangle' after a
+   * partitioned run took its corners from the old numbering: "clockwise", or other nodes) */
+  for (size_t i = 0; i < inl.node.cap; i++)
+    if (inl.node.val[i] >= 0) inl.node.val[i] = nnew[inl.node.val[i]];
+  for (size_t i = 0; i < inl.tri.cap; i++)
+    if (inl.tri.val[i] >= 0) inl.tri.val[i] = tnew[inl.tri.val[i]];
+}
+
 static void inline_bind(const YfModel *m) {
   /* a different model, or a new one at the same address (it has fewer bodies than we made) */
   if (inl.owner != m || m->nbody < inl.nbody) {

@@ -90,6 +90,9 @@ int mesh_next_node_id(const YfModel *m);
 int mesh_next_tri_id(const YfModel *m);
 /* Root of a node's copy chain (node.parent followed to its fixed point). */
 int mesh_node_root(const YfModel *m, int i);
+/* The nodes and triangles of m were renumbered (old index i is now nnew[i], tnew[i]): the inline
+ * id maps follow. */
+void mesh_renumbered(const YfModel *m, const int *tnew, const int *nnew);
 /* Forget the inline node/triangle id maps (a new simulation in the same process, tests). */
 void mesh_reset(void);
 

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "partition.h"
+#include "mesh.h"
 #include "contact.h"
 #include "err.h"
 #include "joint.h"
@@ -249,6 +250,7 @@ void partition_apply(YfSim *s) {
 
   renumber_joints(s, tnew, nnew);
   contact_renumber_tris(s, tnew, nt);
+  mesh_renumbered(m, tnew, nnew);
   for (int i = 0; i < s->nbc_kind; i++) /* node sets and loaded edges are resolved again */
     if (s->bc_kind[i]->renumbered) s->bc_kind[i]->renumbered(s);
 
