@@ -5,6 +5,7 @@
  *   yfdem old_model.y            (a Y2D input deck, run to its own last step)
  */
 #include <errno.h>
+#include <fcntl.h>
 #include <hdf5.h>
 #include <signal.h>
 #include <stdio.h>
@@ -119,6 +120,19 @@ int main(int argc, char **argv) {
   io_attach(&g_sim); /* dumps, metrics and restarts (and the interrupt restart) observe the run loop */
   const char *in = NULL, *log_path = "log.yfdem"; /* as LAMMPS writes log.lammps */
   int echo = 0;
+  /* MPI: every rank reads the same command line; rank 0 alone prints its help or what is wrong
+   * with it (an error came once per rank, -h 3 times over on 3 ranks) */
+  int saved_fd[2] = {-1, -1};
+  if (!yf_writer()) {
+    fflush(stdout);
+    fflush(stderr);
+    int dn = open("/dev/null", O_WRONLY);
+    for (int k = 0; k < 2 && dn >= 0; k++) {
+      saved_fd[k] = dup(k + 1);
+      dup2(dn, k + 1);
+    }
+    if (dn >= 0) close(dn);
+  }
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     if (!strcmp(o, "-h") || !strcmp(o, "-help") || !strcmp(o, "--help")) {
@@ -196,6 +210,11 @@ int main(int argc, char **argv) {
       return YF_EXIT_DECK;
     }
   }
+  for (int k = 0; k < 2; k++)
+    if (saved_fd[k] >= 0) {
+      dup2(saved_fd[k], k + 1);
+      close(saved_fd[k]);
+    }
   /* the deck read is no output's ('-log my.deck' emptied the deck before it was read): by name,
    * and by the file itself (a link to it, or the file on stdin); the log and the summary are
    * outputs like the deck's: no deck output may write them */

@@ -1181,6 +1181,69 @@ START_TEST(interrupt_mpirun_chatty) {
 }
 END_TEST
 
+/* Ctrl-C to mpirun where a deck spends its time between runs, and while a deck on stdin is still
+ * arriving (a sweep of new decks, 2026-11-28):
+ * - a loop of 100-step runs with a print after each: rank 0 waits on its output pipe, which
+ *   mpirun has stopped reading, so the interrupt was met before a deck line, outside any run,
+ *   and the job ended with no restart (every try); the state the last run left is now written;
+ * - a deck piped in slowly: mpirun closes rank 0's stdin at the Ctrl-C, which read as the deck's
+ *   end, and the part read so far ran to "ok"; now nothing runs ("interrupted while reading the
+ *   deck", as ./yfdem says). */
+START_TEST(interrupt_mpirun_outside_runs) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), cmd[4 * PATH_MAX], path[PATH_MAX + 32];
+  write_file(d, "loop.deck", "material m elastic rho 2000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 1 20 20\n"
+             "velocity b set 1 0\ntimestep auto\nvariable i loop 100000\nlabel top\nrun 100\nprint \"i=${i} ke=$(ke)\"\n"
+             "next i\njump SELF top\n");
+  snprintf(cmd, sizeof cmd, "cd %s && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 "
+           "timeout 120 mpirun -q --oversubscribe --mca odls_base_sigkill_timeout 10 -np 2 %s -threads 1 -in loop.deck "
+           "-summary s.json >out.txt 2>err.txt & "
+           "pid=$!; for i in $(seq 60); do [ -s out.txt ] && break; sleep 0.5; done; sleep 3; kill -INT $(pgrep -P $pid -x mpirun); wait $pid",
+           d, MPIBIN);
+  int st = system(cmd);
+  ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) != 124, "mpirun did not end (timeout)");
+  snprintf(path, sizeof path, "%s/err.txt", d);
+  char *e = yft_slurp(path, 1);
+  snprintf(path, sizeof path, "%s/yfdem_interrupt.restart", d);
+  ck_assert_msg(yft_exists(path), "no restart written at the interrupt: %s", e);
+  free(e);
+  snprintf(path, sizeof path, "%s/s.json", d);
+  char *j = yft_slurp(path, 1);
+  ck_assert_msg(strstr(j, "\"status\": \"interrupted\""), "summary: %s", j);
+  free(j);
+  write_file(d, "part1.deck", "material m elastic rho 2000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 1 4 4\n"
+             "timestep auto\nprint \"part 1 ran\"\nrun 10\n");
+  write_file(d, "part2.deck", "print \"part 2 ran\"\nrun 10\n");
+  /* (the pipeline's mpirun is a child of this shell's subshell: find it by the working directory) */
+  snprintf(cmd, sizeof cmd, "cd %s && rm -f s.json && ( (cat part1.deck; sleep 8; cat part2.deck) | OMPI_ALLOW_RUN_AS_ROOT=1 "
+           "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 timeout 120 mpirun -q --oversubscribe -np 2 %s -threads 1 "
+           "-summary s.json >out2.txt 2>err2.txt & sleep 3; for p in $(pgrep -x mpirun); do "
+           "[ \"$(readlink /proc/$p/cwd)\" = \"$(pwd -P)\" ] && kill -INT $p; done; wait )", d, MPIBIN);
+  ck_assert_int_eq(system(cmd), 0);
+  ck_assert_int_eq(count_in(d, "out2.txt", "part 1 ran"), 0);
+  snprintf(path, sizeof path, "%s/s.json", d);
+  j = yft_slurp(path, 1);
+  ck_assert_msg(strstr(j, "\"status\": \"interrupted\""), "summary after Ctrl-C while the deck arrived: %s", j);
+  free(j);
+  drop_dir(d);
+}
+END_TEST
+
+/* The command line is every rank's: an error in it, -h or -version, came once per rank. */
+START_TEST(command_line_once) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), cmd[4 * PATH_MAX];
+  snprintf(cmd, sizeof cmd, "cd %s && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 60 mpirun -q "
+           "--oversubscribe -np 3 %s -threads 0 >out.txt 2>err.txt; OMPI_ALLOW_RUN_AS_ROOT=1 "
+           "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 60 mpirun -q --oversubscribe -np 3 %s -version >>out.txt 2>>err.txt",
+           d, MPIBIN, MPIBIN);
+  if (system(cmd)) {}
+  ck_assert_int_eq(count_in(d, "err.txt", "-threads '0': expected a whole number"), 1);
+  ck_assert_int_eq(count_in(d, "out.txt", "yfdem "), 1);
+  drop_dir(d);
+}
+END_TEST
+
 /* SIGTERM to one rank only (a signal reaching the ranks at different steps): the flag is
  * OR-reduced every step, so every rank stops at the same step, rank 0 writes the restart and says
  * so once, and mpirun exits 4; the restart continued on 3 ranks gives the bits of an
@@ -1279,6 +1342,8 @@ Suite *mpi_suite(void) {
   tcase_add_test(t, output_error_ranks);
   tcase_add_test(t, interrupt_all_ranks);
   tcase_add_test(t, interrupt_mpirun_chatty);
+  tcase_add_test(t, interrupt_mpirun_outside_runs);
+  tcase_add_test(t, command_line_once);
   tcase_add_test(t, interrupt_outside_run);
   tcase_add_test(t, full_disk_parallel_frames);
   suite_add_tcase(s, t);

@@ -698,6 +698,17 @@ static void deck_interrupted(YfDeck *d, const YfLoc *loc) __attribute__((noretur
 static void deck_interrupted(YfDeck *d, const YfLoc *loc) {
   int sig = d->sim ? d->sim->interrupted : 0;
   const char *name = sig == SIGTERM ? "SIGTERM" : "SIGINT";
+  if (loc && loc->file && d->sim && d->sim->runs_begun > 0) {
+    /* between runs (a loop of short runs spends its time there under mpirun, whose ranks wait on
+     * their output once it stops reading): the state the last run left is kept, as a run's own
+     * interrupt keeps its step's (the progress of a loop of 100-step runs was lost every time) */
+    YfEvent iev = {.kind = YF_EV_INTERRUPT, .restart_path = ""};
+    sim_notify(d->sim, &iev);
+    if (iev.restart_path[0])
+      yf_exit_with(YF_EXIT_INTERRUPT, "%s:%d: interrupted (%s) before this line ran, at step %ld: restart of that "
+                   "state written to '%s', files written so far kept; to go on from it, put 'read_restart %s' before "
+                   "the deck's next run", loc->file, loc->line, name, d->sim->step, iev.restart_path, iev.restart_path);
+  }
   if (loc && loc->file)
     yf_exit_with(YF_EXIT_INTERRUPT, "%s:%d: interrupted (%s) before this line ran, at step %ld: files written so far "
                  "are closed", loc->file, loc->line, name, d->sim ? d->sim->step : 0L);

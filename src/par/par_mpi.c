@@ -166,20 +166,34 @@ void par_init(int *argc, char ***argv) {
 
 int par_size(void) { return P.size; }
 
+static volatile sig_atomic_t got_cont;
+static void on_cont(int sig) { (void)sig; got_cont = 1; }
+
 FILE *par_stdin(FILE *in, const volatile int *stop) {
   /* mpirun gives stdin to rank 0 only: it reads the deck and sends it to every rank */
   long n = 0;
   char *buf = NULL;
   if (P.rank == 0) {
+    /* Ctrl-C to mpirun closes rank 0's stdin, which read as the deck's end: the part read so far
+     * ran and ended "ok" (a sweep of new decks).  mpirun sends its ranks SIGCONT at once on a
+     * Ctrl-C (SIGTERM only a second later): seen while the deck is read, or just after its end,
+     * it is that interrupt. */
+    struct sigaction sa, old;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_cont;
+    sigemptyset(&sa.sa_mask);
+    if (P.launched) sigaction(SIGCONT, &sa, &old);
     size_t cap = 1 << 16, k;
     buf = yf_malloc(cap, "deck from stdin");
     yf_interruptible(1); /* a pipe or a terminal may block here: a signal ends the read (EINTR) */
-    while (!*stop && (k = fread(buf + n, 1, cap - (size_t)n, in)) > 0) {
+    while (!*stop && !got_cont && (k = fread(buf + n, 1, cap - (size_t)n, in)) > 0) {
       n += (long)k;
       if ((size_t)n == cap) buf = yf_realloc(buf, cap *= 2, "deck from stdin");
     }
     yf_interruptible(0);
-    if (*stop) n = -1;
+    for (int w = 0; P.launched && w < 50 && !*stop && !got_cont; w++) usleep(2000); /* 0.1 s for the SIGCONT */
+    if (P.launched) sigaction(SIGCONT, &old, NULL);
+    if (*stop || got_cont) n = -1;
   }
   /* the other ranks wait for the deck without blocking, so that a signal to one of them ends the
    * job while rank 0 still reads a pipe held open (it waited in MPI_Bcast, and the job never

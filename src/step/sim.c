@@ -46,7 +46,10 @@ void sim_printf(YfSim *s, const char *fmt, ...) {
       int e = errno;
       stdout_lost = 1;
       clearerr(stdout);
-      yf_output_error("cannot write to standard output: %s (its reader has ended, or its disk is full)", strerror(e));
+      /* EAGAIN: an MPI rank's output made non-blocking by an interrupt (par_interrupted: mpirun has
+       * stopped reading it); what it would print is dropped and the interrupt ends the run */
+      if (e != EAGAIN && e != EWOULDBLOCK)
+        yf_output_error("cannot write to standard output: %s (its reader has ended, or its disk is full)", strerror(e));
     }
   }
   if (s && s->log) {
