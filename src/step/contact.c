@@ -457,11 +457,13 @@ void contact_check_impact(YfSim *s, const YfLoc *loc) {
   const double vrel = hypot(vx1 - vx0, vy1 - vy0), worst = rho * vrel * vrel;
   if (tw < 0 || !(worst > pen) || !(pen > 0)) return;
   C->impact_warned = 1;
+  char when[64] = "";
+  if (s->run_end_step > 0 && s->step > 0) snprintf(when, sizeof when, " (at step %ld)", s->step);
   yf_warn(loc ? loc : &C->rule[0].loc,
-          "contact: an impact can press up to rho v^2 = %.3g Pa (material %s, bodies closing at up to %.3g m/s), above "
+          "contact%s: an impact can press up to rho v^2 = %.3g Pa (material %s, bodies closing at up to %.3g m/s), above "
           "the contact penalty pen_n = %.3g Pa: the penalty cannot stop such a body within a triangle's depth, and it "
           "can pass through another (tunnelling); give pen_n above rho v^2 (it lowers the stable step), or 'contact "
-          "surface all'", worst, m->mat[m->tri.mat[tw]].name, vrel, pen);
+          "surface all'", when, worst, m->mat[m->tri.mat[tw]].name, vrel, pen);
 }
 
 void contact_prepare(YfSim *s) {

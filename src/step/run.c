@@ -727,11 +727,16 @@ void run_steps(YfSim *s, long nsteps) {
   thermo_header(s);
   thermo_line(s);
   int tty = s->progress && isatty(2) && yf_writer();
+  long searches0 = contact_searches(s);
   for (long k = 0; k < nsteps; k++) {
     threads_step_begin();
     double ts = yf_now();
     step_once(s);
     if (k == 0) energy_first_step(s); /* the start state's contact energy belongs to the budget */
+    if (contact_searches(s) != searches0) { /* speeds gained in the run (gravity, loads) can tunnel too */
+      searches0 = contact_searches(s);
+      if (par_size() == 1) contact_check_impact(s, NULL);
+    }
     par_balance(s); /* MPI: after a contact search, move the ranks' borders if their work is uneven */
     double t0 = yf_now();
     threads_after_step(t0 - ts); /* the next step's thread count (same bits on any) */
