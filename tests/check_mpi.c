@@ -1165,7 +1165,7 @@ START_TEST(interrupt_mpirun_chatty) {
   snprintf(cmd, sizeof cmd, "cd %s && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 "
            "timeout 120 mpirun -q --oversubscribe --mca odls_base_sigkill_timeout 10 -np 2 %s -threads 1 -in chatty.deck "
            "-summary s.json >out.txt 2>err.txt & "
-           "pid=$!; for i in $(seq 60); do [ -s out.txt ] && break; sleep 0.5; done; sleep 3; kill -INT $(pgrep -P $pid -x mpirun); wait $pid",
+           "pid=$!; for i in $(seq 120); do grep -q Step out.txt 2>/dev/null && break; sleep 0.5; done; sleep 3; kill -INT $(pgrep -P $pid -x mpirun); wait $pid",
            d, MPIBIN);
   int st = system(cmd);
   fprintf(stderr, "check_mpi: Ctrl-C to mpirun with a thermo line every 10 steps: mpirun exit %d\n",
@@ -1198,7 +1198,7 @@ START_TEST(interrupt_mpirun_outside_runs) {
   snprintf(cmd, sizeof cmd, "cd %s && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 "
            "timeout 120 mpirun -q --oversubscribe --mca odls_base_sigkill_timeout 10 -np 2 %s -threads 1 -in loop.deck "
            "-summary s.json >out.txt 2>err.txt & "
-           "pid=$!; for i in $(seq 60); do [ -s out.txt ] && break; sleep 0.5; done; sleep 3; kill -INT $(pgrep -P $pid -x mpirun); wait $pid",
+           "pid=$!; for i in $(seq 120); do grep -q Step out.txt 2>/dev/null && break; sleep 0.5; done; sleep 3; kill -INT $(pgrep -P $pid -x mpirun); wait $pid",
            d, MPIBIN);
   int st = system(cmd);
   ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) != 124, "mpirun did not end (timeout)");
