@@ -920,6 +920,12 @@ static long csv_adopt(YfSim *s, YfDump *d) {
 }
 
 static void dump_adopt(YfSim *s, YfDump *d) {
+  if (d->style == YF_DUMP_Y2DREF) { /* its growing tables, as the series of the other styles */
+    if (y2dref_continue(s, d->y2d))
+      sim_printf(s, "dump %s: continuing the tables of the earlier run in %s: their rows before step %ld kept\n",
+                 d->id, d->path, s->step);
+    return;
+  }
   long kept = d->style == YF_DUMP_H5 ? h5_adopt(s, d) : d->style == YF_DUMP_CSV ? csv_adopt(s, d) : 0;
   if (!kept) return;
   d->nframe = d->first = kept;
