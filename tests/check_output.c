@@ -6,7 +6,8 @@
  * refers to each frame's file by its bare name, a writer killed by SIGKILL at random moments
  * leaves every frame its .xmf lists readable and exact, the summary has the standard keys in
  * order and never contains NaN, the state hash sees a single flipped bit, and on a full disk a
- * y2dref dump's files and a record's file are left whole (to their last complete row).
+ * y2dref dump's files, a record's file and a csv dump's index are left whole (to their last
+ * complete row).
  */
 #include <check.h>
 #include <dirent.h>
@@ -1130,6 +1131,43 @@ START_TEST(test_record_full_disk) {
 }
 END_TEST
 
+/* A csv dump on a full disk: exit 2 with the cause, and its index PREFIX_frames.csv ends at its
+ * last complete row (its header, then rows of 4 fields, the last ended by its newline), as a
+ * record's file.  Written through stdio, the index ended mid-row when the disk filled while its
+ * row went in (the unwritten tail of the failed fflush).  The index row is long (a long prefix) and
+ * the disk sizes span more than a page of index rows, so at some sizes the index is what fills
+ * the disk, not a frame: that is asserted, or the test would prove nothing. */
+START_TEST(test_csv_index_full_disk) {
+  mk_tmpdir();
+  static int kb[25];
+  const int n = (int)(sizeof kb / sizeof *kb);
+  for (int i = 0; i < n; i++) kb[i] = 64 + 4 * i;
+  char prefix[201], deck[1024];
+  memset(prefix, 'c', 200);
+  prefix[200] = 0;
+  snprintf(deck, sizeof deck, "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 0.2 2 1\n"
+           "velocity b set 1 0\ntimestep auto\nthermo 100000\ndump c csv 1 %s\nrun 2000\n", prefix);
+  run_small_disks(deck, kb, n);
+  int index_full = 0;
+  for (int i = 0; i < n; i++) {
+    char *e, cmd[1024];
+    int code = small_disk_result(kb[i], &e);
+    ck_assert_msg(code == YF_EXIT_IO, "%d KB: exit %d: %.200s", kb[i], code, e);
+    ck_assert_msg(strstr(e, "error: dump c: cannot write '") &&
+                  (strstr(e, "No space left on device") || strstr(e, "File too large")), "%d KB: %.200s", kb[i], e);
+    index_full += strstr(e, "_frames.csv': ") != NULL;
+    free(e);
+    snprintf(cmd, sizeof cmd,
+             "cd %s/o%d && f=%s_frames.csv && [ -s $f ] && [ \"$(tail -c 1 $f | od -An -c | tr -d ' ')\" = '\\n' ] && "
+             "head -n 1 $f | grep -qx 'frame,step,time,file' && awk -F, 'NF != 4 { exit 1 }' $f",
+             tmpdir, kb[i], prefix);
+    ck_assert_msg(system(cmd) == 0, "%d KB: PREFIX_frames.csv does not end at a complete row", kb[i]);
+  }
+  ck_assert_msg(index_full > 0, "no disk size filled up on the index");
+  rm_tmpdir();
+}
+END_TEST
+
 Suite *output_suite(void) {
   Suite *su = suite_create("output");
   TCase *tc = tcase_create("h5");
@@ -1152,6 +1190,7 @@ Suite *output_suite(void) {
   tcase_set_timeout(tc, 120);
   tcase_add_test(tc, test_y2dref_full_disk);
   tcase_add_test(tc, test_record_full_disk);
+  tcase_add_test(tc, test_csv_index_full_disk);
   suite_add_tcase(su, tc);
   tc = tcase_create("summary");
   tcase_add_test(tc, test_summary_keys);

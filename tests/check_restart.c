@@ -5,7 +5,7 @@
  *     upto gives the same state_hash (bitwise), with 1 and 2 threads; the same through the
  *     periodic FILE.a / FILE.b pair, and in-process (write and read in one test process);
  *   - the dumps and record files of a continued run continue the earlier run's series (index,
- *     frames and rows equal the uninterrupted run's);
+ *     frames and rows equal the uninterrupted run's; a y2dref dump's tables too);
  *   - restarts and fracture logs are written to the working directory; read_restart looks there,
  *     then beside the deck;
  *   - a restart read by a deck that builds another scene is refused (deck error, exit 1), a
@@ -402,6 +402,51 @@ START_TEST(test_restart_record_continues) {
   cont = slurp(path);
   ck_assert_msg(!strncmp(cont, "step,time,ke\n240,", 17), "r.csv: %.100s", cont);
   free(cont);
+  rm_tmpdir();
+}
+END_TEST
+
+/* A y2dref dump's tables continue as the record files do: a run continued from a restart keeps
+ * the rows of steps before the restart step (summary, probes, broken joints), drops those the
+ * earlier run wrote at or after it (its second run went on to 260), writes its own, and every
+ * file of the folder equals the uninterrupted run's byte for byte; the corner tables, one file per
+ * step, too (250 was written by the earlier run past its restart and is written again).  Until
+ * 2026-11-28 the continued run began the tables afresh at its restart step: the rows before it
+ * were lost (9 lines of 13 in a tester's summary). */
+START_TEST(test_restart_y2dref_continues) {
+  mk_tmpdir();
+  const char *dump = "corners 100,220,250,280 summary 40 probes 20 3:0 50:2\n";
+  char tail[512];
+  snprintf(tail, sizeof tail, "dump r y2dref full %srun 300\n", dump);
+  write_deck("full.deck", NULL, tail);
+  snprintf(tail, sizeof tail, "dump r y2dref part %srun 220\nwrite_restart y.restart\nrun 260 upto\n", dump);
+  write_deck("first.deck", NULL, tail);
+  snprintf(tail, sizeof tail, "dump r y2dref part %sread_restart y.restart\nrun 300 upto\n", dump);
+  write_deck("second.deck", NULL, tail);
+  char h[17], hf[17];
+  expect_ok("full.deck", 2, hf);
+  expect_ok("first.deck", 2, h);
+  expect_ok("second.deck", 1, h);
+  ck_assert_str_eq(h, hf);
+  const char *files[] = {"summary.csv", "probes.csv", "broken.csv", "corners_0000100.csv", "corners_0000220.csv",
+                         "corners_0000250.csv", "corners_0000280.csv"};
+  for (int k = 0; k < 7; k++) {
+    char pf[256], pp[256];
+    snprintf(pf, sizeof pf, "%s/full/%s", tmpdir, files[k]);
+    snprintf(pp, sizeof pp, "%s/part/%s", tmpdir, files[k]);
+    char *full = slurp(pf), *cont = slurp(pp);
+    if (k == 0) /* 7 rows to 280 after the header; the earlier run's 240 row written again */
+      ck_assert_msg(strstr(full, "\n40,") && strstr(full, "\n200,") && strstr(full, "\n280,"), "summary: %.200s", full);
+    if (k == 2) { /* joints broke on both sides of the restart step */
+      const char *first = strchr(full, '\n') + 1, *last = strrchr(full, '\n');
+      while (last > full && last[-1] != '\n') last--;
+      ck_assert_msg(*first && atol(first) < 220 && atol(last) > 220, "broken.csv: %.200s", full);
+    }
+    ck_assert_msg(!strcmp(cont, full), "part/%s differs from the uninterrupted run's (%zu bytes, %zu):\n%.300s",
+                  files[k], strlen(cont), strlen(full), cont);
+    free(full);
+    free(cont);
+  }
   rm_tmpdir();
 }
 END_TEST
@@ -999,6 +1044,7 @@ Suite *restart_suite(void) {
   tcase_add_test(tc, test_restart_dumps_continue);
   tcase_add_test(tc, test_restart_dump_other_fields);
   tcase_add_test(tc, test_restart_record_continues);
+  tcase_add_test(tc, test_restart_y2dref_continues);
   tcase_add_test(tc, test_restart_paths);
   tcase_add_test(tc, test_restart_refusals);
   tcase_add_test(tc, test_restart_old_friction_memory);

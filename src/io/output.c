@@ -46,7 +46,9 @@
  * bit (the files differ in layout only).  YFDEM_H5_MPIIO=0: rank 0 writes, after a gather.
  *
  * csv dumps.  PREFIX_NNNNNN.csv (node id, x, y, ux, uy, vx, vy) per frame plus PREFIX_frames.csv
- * (frame, step, time, file) for scripts.
+ * (frame, step, time, file) for scripts.  The index grows by whole rows (YfRows, wfile.h), as a
+ * record's file: on a full disk it ends at its last complete row (through stdio it ended mid-row,
+ * the unwritten tail of a failed fflush, 2026-11-28).
  *
  * The XDMF <Grid> text of every frame is kept in memory and the whole index is rewritten per
  * frame (about 2 kB per frame), so the index stays a plain, self-contained file.
@@ -113,7 +115,7 @@ typedef struct YfDump {
   long xmf_writes;    /* index rewrites so far                                         */
   double *buf;        /* scratch for interleaved / derived arrays                      */
   size_t bufcap;
-  FILE *csv_index;    /* PREFIX_frames.csv                                             */
+  YfRows csv_index;   /* PREFIX_frames.csv (fd -1: not open)                            */
   struct YfY2dRef *y2d; /* y2dref style                                                */
 } YfDump;
 
@@ -773,11 +775,20 @@ static void h5_frame(YfSim *s, YfDump *d) {
 static void csv_frame(YfSim *s, YfDump *d) {
   const YfNodes *nd = &s->model.node;
   char *path = str_printf("%s_%06ld.csv", d->path, d->nframe);
-  if (!d->csv_index) {
+  if (d->csv_index.fd < 0) {
     char *ip = str_printf("%s_frames.csv", d->path);
-    d->csv_index = fopen(ip, d->created ? "a" : "w");
-    if (!d->csv_index) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, strerror(errno));
-    if (!d->created) fprintf(d->csv_index, "frame,step,time,file\n");
+    if (yf_rows_open(&d->csv_index, ip, d->created) != 0)
+      yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, strerror(errno));
+    if (!d->created) {
+      yf_rows_printf(&d->csv_index, "frame,step,time,file\n");
+      if (yf_rows_end(&d->csv_index) != 0) {
+        /* not even its header: no index rather than an empty one */
+        int e = errno;
+        if (d->csv_index.end >= 0) unlink(ip);
+        errno = e;
+        yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, ip, strerror(errno));
+      }
+    }
     d->created = 1;
     free(ip);
   }
@@ -792,8 +803,9 @@ static void csv_frame(YfSim *s, YfDump *d) {
             nd->x[i] - nd->x0[i], nd->y[i] - nd->y0[i], nd->vx[i], nd->vy[i]);
   if (yf_wfile_close(&w, 0, 0) != 0) yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, path, strerror(errno));
   const char *base = strrchr(path, '/');
-  fprintf(d->csv_index, "%ld,%ld,%.17g,%s\n", d->nframe, s->step, s->time, base ? base + 1 : path);
-  if (fflush(d->csv_index) != 0)
+  /* whole or not at all: on a full disk the index ends at the row before */
+  yf_rows_printf(&d->csv_index, "%ld,%ld,%.17g,%s\n", d->nframe, s->step, s->time, base ? base + 1 : path);
+  if (yf_rows_end(&d->csv_index) != 0)
     yf_io_error(NULL, "dump %s: cannot write '%s_frames.csv': %s", d->id, d->path, strerror(errno));
   free(path);
 }
@@ -909,9 +921,14 @@ static long csv_adopt(YfSim *s, YfDump *d) {
     }
   }
   if (kept) {
-    d->csv_index = fopen(ip, "w");
-    if (!d->csv_index) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, strerror(errno));
-    fwrite(t, 1, (size_t)(keep_end - t), d->csv_index);
+    /* the kept rows go in whole (PATH.tmp renamed, wfile.h): a full disk leaves the earlier index,
+     * not one cut short; the new rows are appended (csv_frame) */
+    YfWFile w;
+    if (yf_wfile_open(&w, ip) != 0) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, strerror(errno));
+    fwrite(t, 1, (size_t)(keep_end - t), w.f);
+    if (yf_wfile_close(&w, 0, 0) != 0) yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, ip, strerror(errno));
+    if (yf_rows_open(&d->csv_index, ip, 1) != 0)
+      yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, strerror(errno));
     d->created = 1;
   }
   free(t);
@@ -920,6 +937,12 @@ static long csv_adopt(YfSim *s, YfDump *d) {
 }
 
 static void dump_adopt(YfSim *s, YfDump *d) {
+  if (d->style == YF_DUMP_Y2DREF) { /* its growing tables, as the series of the other styles */
+    if (y2dref_continue(s, d->y2d))
+      sim_printf(s, "dump %s: continuing the tables of the earlier run in %s: their rows before step %ld kept\n",
+                 d->id, d->path, s->step);
+    return;
+  }
   long kept = d->style == YF_DUMP_H5 ? h5_adopt(s, d) : d->style == YF_DUMP_CSV ? csv_adopt(s, d) : 0;
   if (!kept) return;
   d->nframe = d->first = kept;
@@ -1018,10 +1041,8 @@ static void dump_close(YfDump *d) {
     xmf_flush(d);
   }
   if (d->style == YF_DUMP_Y2DREF) y2dref_close(d->y2d);
-  if (d->csv_index) {
-    int bad = ferror(d->csv_index);
-    if (fclose(d->csv_index) != 0) bad = 1;
-    d->csv_index = NULL;
+  if (d->csv_index.fd >= 0) {
+    int bad = yf_rows_close(&d->csv_index) != 0;
     if (bad) yf_output_error("dump %s: cannot write '%s_frames.csv': %s", d->id, d->path, strerror(errno ? errno : EIO));
   }
 }
@@ -1218,6 +1239,7 @@ int output_add_dump(YfSim *s, const char *id, int style, long every, const char 
   d->compress = compress;
   d->path = yf_strdup(path);
   d->file = -1;
+  d->csv_index.fd = -1;
   d->last_step = LONG_MIN;
   d->mpio = style == YF_DUMP_H5 && !compress && output_mpio();
   d->fc_asked = (fields & YF_FIELD_ALL) != YF_FIELD_ALL && (fields & YF_FIELD_FC);

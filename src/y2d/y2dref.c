@@ -6,9 +6,12 @@
  * a corner table is written as NAME.tmp and renamed (wfile.h), and summary, probe and broken rows
  * go into their files a row at a time, a row that does not fit cut off again (YfRows, wfile.h), so
  * an interrupted or failed run leaves complete rows (a corner table cut at 4096 bytes mid-row, and
- * tables ended mid-row, were left behind, 2026-11-28).  Energies follow README section 3: kinetic
- * = sum m |v|^2 / 2 with the half-step velocities, elastic = sum A_c/2 T:E of the triangle law
- * without the viscous part (run_energies).  Units: SI (J/m, kg m/s per m).
+ * tables ended mid-row, were left behind, 2026-11-28).  A run continued by read_restart continues
+ * the tables as the other dumps continue their series (y2dref_continue), so its folder equals the
+ * uninterrupted run's (the tables began afresh at the restart step, their earlier rows lost,
+ * 2026-11-28).  Energies follow README section 3: kinetic = sum m |v|^2 / 2 with the half-step
+ * velocities, elastic = sum A_c/2 T:E of the triangle law without the viscous part
+ * (run_energies).  Units: SI (J/m, kg m/s per m).
  */
 #include <errno.h>
 #include <stdio.h>
@@ -37,6 +40,8 @@ typedef struct YfY2dRef {
   YfRows fsum, fprobe, fbroken; /* fd -1: not open */
   int opened;          /* files open                                              */
   int created;         /* files created by this dump (a reopen appends)            */
+  long cont_step;      /* while y2dref_continue opens the files: the step a run continued by
+                          read_restart continues from (else -1)                    */
   long nbroken_written;
 } YfY2dRef;
 
@@ -46,6 +51,7 @@ YfY2dRef *y2dref_new(const char *dir) {
   YfY2dRef *r = yf_calloc(1, sizeof *r, "y2dref dump");
   r->dir = yf_strdup(dir);
   r->fsum.fd = r->fprobe.fd = r->fbroken.fd = -1;
+  r->cont_step = -1;
   return r;
 }
 
@@ -72,16 +78,44 @@ static void check_write(YfRows *w, const YfY2dRef *r, const char *name) {
   if (yf_rows_end(w) != 0) yf_io_error(NULL, "dump y2dref: cannot write '%s/%s': %s", r->dir, name, strerror(errno));
 }
 
+/* In a run continued by read_restart (r->cont_step >= 0), the table the earlier run left at PATH,
+ * when it begins with this table's header (gathered in w), is taken up: its rows of steps before
+ * r->cont_step stay, the later ones (written before an interrupt, past the restart) go, and the
+ * rows this run writes follow.  The kept part goes in as PATH.tmp renamed over PATH (wfile.h), so a
+ * full disk leaves the earlier table, not a cut one.  1 if taken up; 0 if the table is missing or
+ * another (its header differs: other probes), to be begun afresh. */
+static int adopt_csv(YfY2dRef *r, YfRows *w, const char *path) {
+  size_t len;
+  char *t = r->cont_step >= 0 ? yf_read_file(path, &len, "y2dref table") : NULL;
+  if (!t) return 0;
+  if (len < w->len || memcmp(t, w->row, w->len) != 0) {
+    free(t);
+    return 0;
+  }
+  char *keep = t + w->len;
+  keep[yf_rows_before(keep, r->cont_step)] = 0;
+  YfWFile f;
+  if (yf_wfile_open(&f, path) != 0) yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, strerror(errno));
+  fwrite(w->row, 1, w->len, f.f);
+  fputs(keep, f.f);
+  free(t);
+  if (yf_wfile_close(&f, 0, 0) != 0) yf_io_error(NULL, "dump y2dref: cannot write '%s': %s", path, strerror(errno));
+  if (yf_rows_open(w, path, 1) != 0) yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, strerror(errno));
+  w->len = 0; /* the header is there */
+  return 1;
+}
+
 /* Create (first time, with its header gathered in w by the caller: w->row) or reopen for
- * appending (after y2dref_close) a CSV file. */
-static void open_csv(YfY2dRef *r, YfRows *w, const char *name) {
+ * appending (after y2dref_close) a CSV file; 1 if it took up the earlier run's table (adopt_csv). */
+static int open_csv(YfY2dRef *r, YfRows *w, const char *name) {
   char path[4096];
   snprintf(path, sizeof path, "%s/%s", r->dir, name);
+  if (!r->created && adopt_csv(r, w, path)) return 1;
   if (yf_rows_open(w, path, r->created) != 0)
     yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, strerror(errno));
   if (r->created) { /* reopened: its header is there */
     w->len = 0;
-    return;
+    return 0;
   }
   if (yf_rows_end(w) != 0) {
     /* not even its header: no file rather than an empty one */
@@ -90,6 +124,7 @@ static void open_csv(YfY2dRef *r, YfRows *w, const char *name) {
     errno = e;
     yf_io_error(NULL, "dump y2dref: cannot write '%s': %s", path, strerror(errno));
   }
+  return 0;
 }
 
 static void mkdir_p(const char *dir) {
@@ -140,11 +175,14 @@ int y2dref_dir_check(const char *dir) {
   return rc;
 }
 
-static void open_files(YfSim *s, YfY2dRef *r) {
+/* The files opened (created, reopened or, in a continued run, taken up); how many tables were
+ * taken up from an earlier run. */
+static int open_files(YfSim *s, YfY2dRef *r) {
+  int adopted = 0;
   mkdir_p(r->dir);
   if (r->sum_every) {
     yf_rows_printf(&r->fsum, "step,time,kinetic,elastic,px,py,nbroken,ncouples\n");
-    open_csv(r, &r->fsum, Y2DREF_SUMMARY);
+    adopted += open_csv(r, &r->fsum, Y2DREF_SUMMARY);
   }
   if (r->probe_every) {
     yf_rows_printf(&r->fprobe, "step,time");
@@ -153,13 +191,30 @@ static void open_files(YfSim *s, YfY2dRef *r) {
       yf_rows_printf(&r->fprobe, ",ux_%ld_%ld,uy_%ld_%ld,vx_%ld_%ld,vy_%ld_%ld", e, c, e, c, e, c, e, c);
     }
     yf_rows_printf(&r->fprobe, "\n");
-    open_csv(r, &r->fprobe, Y2DREF_PROBES);
+    adopted += open_csv(r, &r->fprobe, Y2DREF_PROBES);
   }
   yf_rows_printf(&r->fbroken, "step,elemA,elemB,nodeP,nodeQ\n");
-  open_csv(r, &r->fbroken, Y2DREF_BROKEN);
-  (void)s;
+  if (open_csv(r, &r->fbroken, Y2DREF_BROKEN)) {
+    /* its rows of failures before the restart step are there: the failures the restart holds
+     * from that step on are this run's to write (else every failure it holds is written, as by a
+     * dump begun after joints broke) */
+    adopted++;
+    int nb = 0;
+    const YfBreak *b = joints_breaks(s, &nb);
+    r->nbroken_written = 0;
+    while (r->nbroken_written < nb && b[r->nbroken_written].step < r->cont_step) r->nbroken_written++;
+  }
   r->opened = 1;
   r->created = 1;
+  return adopted;
+}
+
+int y2dref_continue(YfSim *s, YfY2dRef *r) {
+  if (r->opened || r->created) return 0;
+  r->cont_step = s->step;
+  int n = open_files(s, r);
+  r->cont_step = -1;
+  return n;
 }
 
 static void write_corners(YfSim *s, YfY2dRef *r) {
