@@ -70,10 +70,13 @@ that edge alone: the same resultant), edge pressure on interior edges of jointed
 pushes each triangle's copy: not written), an edge between a meshed row and a triangle outside it
 (Y2D: separate bodies; `fracture` joins them), refinement codes 1/2/4, a meshing row whose
 property pairs use different joint sets, rigid (type 2) and softening (type 4) triangles, time
-tables with decreasing times.  Not translated, no effect on the physics: history output /YD/YDO/
-(a note), DCSIZ scales (output scales of the book Y), nodes used by no triangle (massless, a note),
-joint friction without cohesion (Y2D ignores it too, a note).  Native decks hold at most 64 groups
-and bodies: a .y with very many BC sets or distinct velocities gives a deck yfdem refuses.
+tables with decreasing times, /YD/YDN/D2NCC (current coordinates) other than D2NCI at a node of a
+triangle (`yfdem DECK.y` starts the nodes there, pre-strained; a native node has one position, its
+reference: written at D2NCI, the largest difference named).  Not translated, no effect on the
+physics: history output /YD/YDO/ (a note), DCSIZ scales (output scales of the book Y), nodes used
+by no triangle (massless, a note), joint friction without cohesion (Y2D ignores it too, a note).
+Native decks hold at most 64 groups and bodies: a .y with very many BC sets or distinct velocities
+gives a deck yfdem refuses.
 
 The .y file is parsed here with the Y2D token rules (comments, $YINCL relative to the working
 directory or the deck's directory, 1D/2D/3D array codes, names compared over the known name's
@@ -515,6 +518,21 @@ def convert(src, out):
     L.append('# mesh: the Y2D nodes and elements in input order, ids = Y2D indices (0-based)')
     L.append(SYNTAX['nodes'].format(file='%s.nodes' % base, body=body))
     L.append(SYNTAX['triangles'].format(file='%s.tris' % base, body=body))
+    # D2NCC: the nodes' current coordinates (yfdem DECK.y starts each node there, with D2NCI as its
+    # reference: a pre-strained body).  A native node has one position, its reference: not expressible
+    if 'YDN/D2NCC' in K:
+        xc = get2(K, 'YDN/D2NCC')
+        worst, wn = 0.0, -1
+        for n in used:
+            d = max(abs(float(xc[n][c]) - float(xy[n][c])) for c in (0, 1)) if n < len(xc) else 0.0
+            if d > worst:
+                worst, wn = d, n
+        if wn >= 0:
+            moved = sum(1 for n in used if n < len(xc) and (float(xc[n][0]), float(xc[n][1])) !=
+                        (float(xy[n][0]), float(xy[n][1])))
+            diff('/YD/YDN/D2NCC (current coordinates) differs from D2NCI (reference) at %d node(s), by up to %r m '
+                 '(node %d): yfdem DECK.y starts them there, pre-strained; a native deck has no current position '
+                 'apart from the reference one: written at D2NCI, unstrained' % (moved, worst, wn))
     unused = [n for n in range(nn) if not ids_of_node[n]]
     if unused:
         note('%d node(s) used by no triangle were dropped (first: %d; massless, Y2D never moves them)'
