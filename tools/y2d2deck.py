@@ -78,8 +78,10 @@ by no triangle (massless, a note), joint friction without cohesion (Y2D ignores 
 Native decks hold at most 64 groups and bodies: a .y with very many BC sets or distinct velocities
 gives a deck yfdem refuses.
 
-The .y file is parsed here with the Y2D token rules (comments, $YINCL relative to the working
-directory or the deck's directory, 1D/2D/3D array codes, names compared over the known name's
+The .y file is parsed here with the Y2D token rules as yfdem's reader applies them (comments;
+$YINCL relative to the working directory or the including file's directory; $YDOIT and $YSTOP
+honoured at any include depth, after $YDOIT only comments and $YSTOP, in the including files too;
+1D/2D/3D array codes, names compared over the known name's
 length: /YD/YDC/MCSTEPS is MCSTEP).  A key or group Y2D does not read is refused with FILE:LINE and
 the nearest key (exit 1, nothing written); run `yfdem` on the .y file itself (the C reader,
 src/y2d/y2d_read.c) for full validation of values and array sizes.
@@ -135,50 +137,91 @@ class DeckError(Exception):
 CONTROL = {}  # deck path -> the control word that ended its reading ($YDOIT or $YSTOP)
 
 
-def tokens(path, depth=0):
-    """(token, file, line) with comments removed and $YINCL expanded (Y2D rules)."""
-    if depth >= 10:
-        raise DeckError('%s: $YINCL nested deeper than 9' % path)
+INCL_MAX = 10      # include files nested deeper than 9: refused
+
+
+class _Src:
+    """The token stream of a .y deck and the files it includes, read as yfdem's reader reads it: a
+    stack of files, the next token taken from the innermost, a file's end returning to the file that
+    included it (so a comment, $YDOIT or $YSTOP count wherever they stand)."""
+
+    def __init__(self, path):
+        self.stack = []
+        self.push(path)
+
+    def push(self, path):
+        if len(self.stack) >= INCL_MAX:
+            raise DeckError('%s: $YINCL nested deeper than %d' % (path, INCL_MAX - 1))
+        with open(path) as f:
+            raw = [(t, path, ln) for ln, line in enumerate(f, 1) for t in line.split()]
+        self.stack.append([raw, 0])
+
+    def next(self):
+        while self.stack:
+            raw, i = self.stack[-1]
+            if i < len(raw):
+                self.stack[-1][1] += 1
+                return raw[i]
+            self.stack.pop()
+        return None
+
+    def skip_comment(self, opener):
+        """Skip the comment opened by token opener (t, file, line): it ends at the first token that
+        begins with '*/'."""
+        t, f, ln = opener
+        while True:
+            u = self.next()
+            if u is None:
+                raise DeckError("%s:%d: unterminated comment '%s': no token beginning with '*/' before the end "
+                                "of the input" % (f, ln, t[:70]))
+            if u[0].startswith('*/'):
+                return
+
+
+def tokens(path):
+    """(token, file, line) with comments removed and $YINCL expanded (Y2D rules, as
+    src/y2d/y2d_read.c reads them).  $YDOIT or $YSTOP ends the reading at any include depth; after $YDOIT only comments and $YSTOP may follow,
+    in the including files too (a second input section: refused, as by yfdem).  CONTROL[path] says
+    which of the two ended the reading."""
+    src = _Src(path)
     out = []
-    with open(path) as f:
-        raw = [(t, ln) for ln, line in enumerate(f, 1) for t in line.split()]
-    i = 0
-    while i < len(raw):
-        t, ln = raw[i]
+    CONTROL[path] = {'ydoit': False, 'ystop': False}
+    while True:
+        tok = src.next()
+        if tok is None:
+            break
+        t, f, ln = tok
         if t.startswith('/*'):
-            i += 1
-            while i < len(raw) and not raw[i][0].startswith('*/'):
-                i += 1
-            if i >= len(raw):
-                raise DeckError('%s:%d: unterminated comment' % (path, ln))
+            src.skip_comment(tok)
         elif t == '$YINCL':
-            if i + 1 >= len(raw):
-                raise DeckError('%s:%d: $YINCL without a file name' % (path, ln))
-            name = raw[i + 1][0]
-            cand = name if os.path.exists(name) else os.path.join(os.path.dirname(path), name)
-            out += tokens(cand, depth + 1)
-            i += 1
-        elif t in ('$YDOIT', '$YSTOP'):
-            if depth == 0:
-                CONTROL[path] = {'ydoit': t == '$YDOIT', 'ystop': t == '$YSTOP'}
-                # after $YDOIT only comments and $YSTOP (a second input section: refused, as by yfdem)
-                k = i + 1
-                while t == '$YDOIT' and k < len(raw):
-                    u, uln = raw[k]
-                    if u.startswith('/*'):
-                        k += 1
-                        while k < len(raw) and not raw[k][0].startswith('*/'):
-                            k += 1
-                    elif u == '$YSTOP':
-                        break
-                    else:
-                        raise DeckError("%s:%d: '%s' after $YDOIT: multiple input sections (continuing a run with "
-                                        "changed keys) are not supported, as by yfdem" % (path, uln, u))
-                    k += 1
+            nxt = src.next()
+            if nxt is None or nxt[0].startswith('/YD/') or nxt[0].startswith('$Y'):
+                raise DeckError('%s:%d: $YINCL without a file name' % (f, ln))
+            name = nxt[0]
+            cand = name
+            if not os.path.exists(name) and not name.startswith('/'):
+                cand = os.path.join(os.path.dirname(f), name)
+            if not os.path.exists(cand):
+                raise DeckError('%s:%d: $YINCL %s: cannot open it relative to the working directory nor as %s'
+                                % (f, ln, name, cand))
+            src.push(cand)
+        elif t == '$YSTOP':
+            CONTROL[path]['ystop'] = True
+            break
+        elif t == '$YDOIT':
+            CONTROL[path]['ydoit'] = True
+            while True:
+                u = src.next()
+                if u is None or u[0] == '$YSTOP':
+                    break
+                if u[0].startswith('/*'):
+                    src.skip_comment(u)
+                    continue
+                raise DeckError("%s:%d: '%s' after $YDOIT (at %s:%d): multiple input sections (continuing a run "
+                                "with changed keys) are not supported, as by yfdem" % (u[1], u[2], u[0], f, ln))
             break
         else:
-            out.append((t, path, ln))
-        i += 1
+            out.append(tok)
     return out
 
 
