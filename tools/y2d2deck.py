@@ -78,13 +78,14 @@ by no triangle (massless, a note), joint friction without cohesion (Y2D ignores 
 Native decks hold at most 64 groups and bodies: a .y with very many BC sets or distinct velocities
 gives a deck yfdem refuses.
 
-The .y file is parsed here with the Y2D token rules as yfdem's reader applies them (comments;
-$YINCL relative to the working directory or the including file's directory; $YDOIT and $YSTOP
+The .y file is parsed here with the Y2D token rules as yfdem's reader applies them (comments of at
+most 100 tokens after '/*', the terminator its own token beginning with '*/', none inside a value
+list; $YINCL relative to the working directory or the including file's directory; $YDOIT and $YSTOP
 honoured at any include depth, after $YDOIT only comments and $YSTOP, in the including files too;
-1D/2D/3D array codes, names compared over the known name's
-length: /YD/YDC/MCSTEPS is MCSTEP).  A key or group Y2D does not read is refused with FILE:LINE and
-the nearest key (exit 1, nothing written); run `yfdem` on the .y file itself (the C reader,
-src/y2d/y2d_read.c) for full validation of values and array sizes.
+1D/2D/3D array codes, names compared over the known name's length: /YD/YDC/MCSTEPS is MCSTEP).
+A key or group Y2D does not read is refused with FILE:LINE and the nearest key (exit 1, nothing
+written), and so are a comment inside a value list and one longer than 100 tokens; run `yfdem` on
+the .y file itself (the C reader, src/y2d/y2d_read.c) for full validation of values and array sizes.
 """
 import argparse
 import difflib
@@ -137,6 +138,7 @@ class DeckError(Exception):
 CONTROL = {}  # deck path -> the control word that ended its reading ($YDOIT or $YSTOP)
 
 
+COMMENT_MAX = 100  # tokens after a comment's opener, its terminator included (src/y2d/y2d_read.c)
 INCL_MAX = 10      # include files nested deeper than 9: refused
 
 
@@ -167,20 +169,23 @@ class _Src:
 
     def skip_comment(self, opener):
         """Skip the comment opened by token opener (t, file, line): it ends at the first token that
-        begins with '*/'."""
+        begins with '*/', at most COMMENT_MAX tokens after the opener (yfdem's reader)."""
         t, f, ln = opener
-        while True:
+        for n in range(1, COMMENT_MAX + 1):
             u = self.next()
             if u is None:
                 raise DeckError("%s:%d: unterminated comment '%s': no token beginning with '*/' before the end "
                                 "of the input" % (f, ln, t[:70]))
             if u[0].startswith('*/'):
                 return
+        raise DeckError("%s:%d: comment '%s' longer than %d tokens (the anchor stops with \"too long comment\"; "
+                        "yfdem refuses it)" % (f, ln, t[:70], COMMENT_MAX))
 
 
 def tokens(path):
-    """(token, file, line) with comments removed and $YINCL expanded (Y2D rules, as
-    src/y2d/y2d_read.c reads them).  $YDOIT or $YSTOP ends the reading at any include depth; after $YDOIT only comments and $YSTOP may follow,
+    """(token, file, line) with $YINCL expanded (Y2D rules, as src/y2d/y2d_read.c reads them); a
+    comment becomes one token '/*' (a value list that meets it is refused, as by yfdem).  $YDOIT or
+    $YSTOP ends the reading at any include depth; after $YDOIT only comments and $YSTOP may follow,
     in the including files too (a second input section: refused, as by yfdem).  CONTROL[path] says
     which of the two ended the reading."""
     src = _Src(path)
@@ -193,6 +198,7 @@ def tokens(path):
         t, f, ln = tok
         if t.startswith('/*'):
             src.skip_comment(tok)
+            out.append(('/*', f, ln))
         elif t == '$YINCL':
             nxt = src.next()
             if nxt is None or nxt[0].startswith('/YD/') or nxt[0].startswith('$Y'):
@@ -321,9 +327,18 @@ def parse(path):
     toks = tokens(path)
     keys, i = Keys(), 0
 
-    def num(j):
-        if j >= len(toks):
-            raise DeckError('%s: unexpected end of the deck' % path)
+    def num(j, key=None, want=-1, got=0, what='value'):
+        """The number at token j, of key key = (token, file, line): want values of which got are read
+        (want < 0: a single item, what it is).  A comment there is refused, as by yfdem."""
+        if j >= len(toks) or toks[j][0] == '/*':
+            where = 'the end of the input' if j >= len(toks) else \
+                "'/*' at %s:%d (comments cannot appear inside a value list)" % toks[j][1:]
+            kt, kf, kln = key if key else (toks[j - 1] if j else ('', path, 0))
+            if j >= len(toks) and not key:
+                raise DeckError('%s: unexpected end of the deck' % path)
+            if want < 0:
+                raise DeckError('%s:%d: %s: missing %s before %s' % (kf, kln, kt, what, where))
+            raise DeckError('%s:%d: %s: expected %d %s, found %d before %s' % (kf, kln, kt, want, what, got, where))
         t, f, ln = toks[j]
         v = number(t)
         if v is None:
@@ -332,6 +347,9 @@ def parse(path):
 
     while i < len(toks):
         t, f, ln = toks[i]
+        if t == '/*':
+            i += 1
+            continue
         if not t.startswith('/YD/'):
             raise DeckError('%s:%d: unexpected token %r' % (f, ln, t))
         name = t.split('/')[3] if t.count('/') >= 3 else ''
@@ -341,17 +359,17 @@ def parse(path):
         if len(name) >= 2 and name[1] in '123' and name[0] in 'DI':
             nd = int(name[1])
             if nd == 1:
-                n = num(i + 1)
-                vals = [num(i + 2 + k) for k in range(n)]
+                n = num(i + 1, toks[i], what='count')
+                vals = [num(i + 2 + k, toks[i], n, k, 'values') for k in range(n)]
                 keys[full] = ((n,), vals)
                 i += 2 + n
                 continue
-            code = str(num(i + 1))
-            dims = [num(i + 2 + d) for d in range(nd)]
+            code = str(num(i + 1, toks[i], what='code'))
+            dims = [num(i + 2 + d, toks[i], what='dimension %d' % (d + 1)) for d in range(nd)]
             tot = 1
             for d in dims:
                 tot *= d
-            flat = [num(i + 2 + nd + k) for k in range(tot)]
+            flat = [num(i + 2 + nd + k, toks[i], tot, k, 'values') for k in range(tot)]
             order = [0, 1] if (nd == 2 and code == '12') else [1, 0] if nd == 2 else \
                 [int(c) - 1 for c in code]
             arr = [0] * tot
@@ -368,7 +386,7 @@ def parse(path):
             keys[full] = (tuple(dims), arr)
             i += 2 + nd + tot
         else:
-            keys[full] = num(i + 1)
+            keys[full] = num(i + 1, toks[i])
             i += 2
     return keys
 
