@@ -4,7 +4,9 @@
 usage: y2d2deck.py [--allow-differences] DECK.y OUT
   writes OUT.deck plus OUT.nodes (rows "id x y") and OUT.tris (rows "id n1 n2 n3 material"): the
   Y2D nodes and elements in input order, ids = the Y2D indices (0-based), one body 'y2d', so the
-  converted deck sums forces in the order `yfdem DECK.y` does and results compare by id.
+  converted deck sums forces in the order `yfdem DECK.y` does and results compare by id.  OUT.deck
+  names its files in quotes ('...', or "..." when the name holds a single quote), so OUT may hold
+  spaces, '#' and '$'; an OUT with both a single quote and a '$' or '"' cannot be quoted: exit 1.
 
 Exit status: 0 the converted deck runs the physics of `yfdem DECK.y`; 1 error (a key Y2D does not
 read, a value that is not a number, a file: no OUT.deck written); 2 bad usage; 3 the deck is written
@@ -529,7 +531,26 @@ def pressure_loads(L, note, diff, ne, elto, meshed, nopr, nset, ap, hist_of, ids
     L.append('')
 
 
+def deck_word(name):
+    """name as one word of the native deck (README, The deck): in single quotes, where a space, '#'
+    (a comment outside quotes) and '$' (substitution outside single quotes) are plain characters; in
+    double quotes when it holds a single quote ('#' is plain there too, '$' is not).  A name with a
+    single quote and a '$' or a double quote, or with a line break, cannot be written: DeckError."""
+    if '\n' in name or '\r' in name:
+        raise DeckError('%r: a file name with a line break cannot be written in a native deck' % name)
+    if "'" not in name:
+        return "'%s'" % name
+    if '"' not in name and '$' not in name:
+        return '"%s"' % name
+    raise DeckError("%r: a file name holding a single quote and a '$' or '\"' cannot be quoted in a native deck "
+                    "(a '$' is substituted inside double quotes, a single-quoted word ends at the next '); "
+                    "choose another OUT" % name)
+
+
 def convert(src, out):
+    base = os.path.basename(out)
+    for name in (base + '.nodes', base + '.tris', base + '.h5'):
+        deck_word(name)   # refused before anything is written
     K = parse(src)
     g = lambda k, d=0: K.get(k, d)
     ne, nn, nprop = g('YDE/NELEM'), g('YDN/NNOPO'), g('YDPE/NPROP')
@@ -567,7 +588,6 @@ def convert(src, out):
     ids_of_node = {n: [] for n in range(nn)}
     for n in used:
         ids_of_node[n].append(n)
-    base = os.path.basename(out)
     body = 'y2d'
     with open('%s.nodes' % out, 'w') as f:
         for n in used:
@@ -577,8 +597,8 @@ def convert(src, out):
             v = elto[e]
             f.write('%d %d %d %d p%d\n' % (e, v[0], v[1], v[2], elpr[e]))
     L.append('# mesh: the Y2D nodes and elements in input order, ids = Y2D indices (0-based)')
-    L.append(SYNTAX['nodes'].format(file='%s.nodes' % base, body=body))
-    L.append(SYNTAX['triangles'].format(file='%s.tris' % base, body=body))
+    L.append(SYNTAX['nodes'].format(file=deck_word('%s.nodes' % base), body=body))
+    L.append(SYNTAX['triangles'].format(file=deck_word('%s.tris' % base), body=body))
     # D2NCC: the nodes' current coordinates (yfdem DECK.y starts each node there, with D2NCI as its
     # reference: a pre-strained body).  A native node has one position, its reference: not expressible
     if 'YDN/D2NCC' in K:
@@ -853,7 +873,7 @@ def convert(src, out):
     L.append(SYNTAX['thermo'].format(n=icshtf if 0 < icshtf <= 2000000000 else 0))
     icoutf = int(g('YDC/ICOUTF', 10))
     if 0 < icoutf <= nsteps:
-        L.append(SYNTAX['dump'].format(n=icoutf, file=base + '.h5'))
+        L.append(SYNTAX['dump'].format(n=icoutf, file=deck_word(base + '.h5')))
     L.append(SYNTAX['run'].format(n=max(nsteps, 0)))
     if 'YDO/NOHYS' in K:
         note('history output /YD/YDO/ not translated (output only)')
