@@ -4,7 +4,9 @@
 usage: y2d2deck.py [--allow-differences] DECK.y OUT
   writes OUT.deck plus OUT.nodes (rows "id x y") and OUT.tris (rows "id n1 n2 n3 material"): the
   Y2D nodes and elements in input order, ids = the Y2D indices (0-based), one body 'y2d', so the
-  converted deck sums forces in the order `yfdem DECK.y` does and results compare by id.
+  converted deck sums forces in the order `yfdem DECK.y` does and results compare by id.  OUT.deck
+  names its files in quotes ('...', or "..." when the name holds a single quote), so OUT may hold
+  spaces, '#' and '$'; an OUT with both a single quote and a '$' or '"' cannot be quoted: exit 1.
 
 Exit status: 0 the converted deck runs the physics of `yfdem DECK.y`; 1 error (a key Y2D does not
 read, a value that is not a number, a file: no OUT.deck written); 2 bad usage; 3 the deck is written
@@ -70,16 +72,22 @@ that edge alone: the same resultant), edge pressure on interior edges of jointed
 pushes each triangle's copy: not written), an edge between a meshed row and a triangle outside it
 (Y2D: separate bodies; `fracture` joins them), refinement codes 1/2/4, a meshing row whose
 property pairs use different joint sets, rigid (type 2) and softening (type 4) triangles, time
-tables with decreasing times.  Not translated, no effect on the physics: history output /YD/YDO/
-(a note), DCSIZ scales (output scales of the book Y), nodes used by no triangle (massless, a note),
-joint friction without cohesion (Y2D ignores it too, a note).  Native decks hold at most 64 groups
-and bodies: a .y with very many BC sets or distinct velocities gives a deck yfdem refuses.
+tables with decreasing times, /YD/YDN/D2NCC (current coordinates) other than D2NCI at a node of a
+triangle (`yfdem DECK.y` starts the nodes there, pre-strained; a native node has one position, its
+reference: written at D2NCI, the largest difference named).  Not translated, no effect on the
+physics: history output /YD/YDO/ (a note), DCSIZ scales (output scales of the book Y), nodes used
+by no triangle (massless, a note), joint friction without cohesion (Y2D ignores it too, a note).
+Native decks hold at most 64 groups and bodies: a .y with very many BC sets or distinct velocities
+gives a deck yfdem refuses.
 
-The .y file is parsed here with the Y2D token rules (comments, $YINCL relative to the working
-directory or the deck's directory, 1D/2D/3D array codes, names compared over the known name's
-length: /YD/YDC/MCSTEPS is MCSTEP).  A key or group Y2D does not read is refused with FILE:LINE and
-the nearest key (exit 1, nothing written); run `yfdem` on the .y file itself (the C reader,
-src/y2d/y2d_read.c) for full validation of values and array sizes.
+The .y file is parsed here with the Y2D token rules as yfdem's reader applies them (comments of at
+most 100 tokens after '/*', the terminator its own token beginning with '*/', none inside a value
+list; $YINCL relative to the working directory or the including file's directory; $YDOIT and $YSTOP
+honoured at any include depth, after $YDOIT only comments and $YSTOP, in the including files too;
+1D/2D/3D array codes, names compared over the known name's length: /YD/YDC/MCSTEPS is MCSTEP).
+A key or group Y2D does not read is refused with FILE:LINE and the nearest key (exit 1, nothing
+written), and so are a comment inside a value list and one longer than 100 tokens; run `yfdem` on
+the .y file itself (the C reader, src/y2d/y2d_read.c) for full validation of values and array sizes.
 """
 import argparse
 import difflib
@@ -132,50 +140,96 @@ class DeckError(Exception):
 CONTROL = {}  # deck path -> the control word that ended its reading ($YDOIT or $YSTOP)
 
 
-def tokens(path, depth=0):
-    """(token, file, line) with comments removed and $YINCL expanded (Y2D rules)."""
-    if depth >= 10:
-        raise DeckError('%s: $YINCL nested deeper than 9' % path)
+COMMENT_MAX = 100  # tokens after a comment's opener, its terminator included (src/y2d/y2d_read.c)
+INCL_MAX = 10      # include files nested deeper than 9: refused
+
+
+class _Src:
+    """The token stream of a .y deck and the files it includes, read as yfdem's reader reads it: a
+    stack of files, the next token taken from the innermost, a file's end returning to the file that
+    included it (so a comment, $YDOIT or $YSTOP count wherever they stand)."""
+
+    def __init__(self, path):
+        self.stack = []
+        self.push(path)
+
+    def push(self, path):
+        if len(self.stack) >= INCL_MAX:
+            raise DeckError('%s: $YINCL nested deeper than %d' % (path, INCL_MAX - 1))
+        with open(path) as f:
+            raw = [(t, path, ln) for ln, line in enumerate(f, 1) for t in line.split()]
+        self.stack.append([raw, 0])
+
+    def next(self):
+        while self.stack:
+            raw, i = self.stack[-1]
+            if i < len(raw):
+                self.stack[-1][1] += 1
+                return raw[i]
+            self.stack.pop()
+        return None
+
+    def skip_comment(self, opener):
+        """Skip the comment opened by token opener (t, file, line): it ends at the first token that
+        begins with '*/', at most COMMENT_MAX tokens after the opener (yfdem's reader)."""
+        t, f, ln = opener
+        for n in range(1, COMMENT_MAX + 1):
+            u = self.next()
+            if u is None:
+                raise DeckError("%s:%d: unterminated comment '%s': no token beginning with '*/' before the end "
+                                "of the input" % (f, ln, t[:70]))
+            if u[0].startswith('*/'):
+                return
+        raise DeckError("%s:%d: comment '%s' longer than %d tokens (the anchor stops with \"too long comment\"; "
+                        "yfdem refuses it)" % (f, ln, t[:70], COMMENT_MAX))
+
+
+def tokens(path):
+    """(token, file, line) with $YINCL expanded (Y2D rules, as src/y2d/y2d_read.c reads them); a
+    comment becomes one token '/*' (a value list that meets it is refused, as by yfdem).  $YDOIT or
+    $YSTOP ends the reading at any include depth; after $YDOIT only comments and $YSTOP may follow,
+    in the including files too (a second input section: refused, as by yfdem).  CONTROL[path] says
+    which of the two ended the reading."""
+    src = _Src(path)
     out = []
-    with open(path) as f:
-        raw = [(t, ln) for ln, line in enumerate(f, 1) for t in line.split()]
-    i = 0
-    while i < len(raw):
-        t, ln = raw[i]
+    CONTROL[path] = {'ydoit': False, 'ystop': False}
+    while True:
+        tok = src.next()
+        if tok is None:
+            break
+        t, f, ln = tok
         if t.startswith('/*'):
-            i += 1
-            while i < len(raw) and not raw[i][0].startswith('*/'):
-                i += 1
-            if i >= len(raw):
-                raise DeckError('%s:%d: unterminated comment' % (path, ln))
+            src.skip_comment(tok)
+            out.append(('/*', f, ln))
         elif t == '$YINCL':
-            if i + 1 >= len(raw):
-                raise DeckError('%s:%d: $YINCL without a file name' % (path, ln))
-            name = raw[i + 1][0]
-            cand = name if os.path.exists(name) else os.path.join(os.path.dirname(path), name)
-            out += tokens(cand, depth + 1)
-            i += 1
-        elif t in ('$YDOIT', '$YSTOP'):
-            if depth == 0:
-                CONTROL[path] = {'ydoit': t == '$YDOIT', 'ystop': t == '$YSTOP'}
-                # after $YDOIT only comments and $YSTOP (a second input section: refused, as by yfdem)
-                k = i + 1
-                while t == '$YDOIT' and k < len(raw):
-                    u, uln = raw[k]
-                    if u.startswith('/*'):
-                        k += 1
-                        while k < len(raw) and not raw[k][0].startswith('*/'):
-                            k += 1
-                    elif u == '$YSTOP':
-                        break
-                    else:
-                        raise DeckError("%s:%d: '%s' after $YDOIT: multiple input sections (continuing a run with "
-                                        "changed keys) are not supported, as by yfdem" % (path, uln, u))
-                    k += 1
+            nxt = src.next()
+            if nxt is None or nxt[0].startswith('/YD/') or nxt[0].startswith('$Y'):
+                raise DeckError('%s:%d: $YINCL without a file name' % (f, ln))
+            name = nxt[0]
+            cand = name
+            if not os.path.exists(name) and not name.startswith('/'):
+                cand = os.path.join(os.path.dirname(f), name)
+            if not os.path.exists(cand):
+                raise DeckError('%s:%d: $YINCL %s: cannot open it relative to the working directory nor as %s'
+                                % (f, ln, name, cand))
+            src.push(cand)
+        elif t == '$YSTOP':
+            CONTROL[path]['ystop'] = True
+            break
+        elif t == '$YDOIT':
+            CONTROL[path]['ydoit'] = True
+            while True:
+                u = src.next()
+                if u is None or u[0] == '$YSTOP':
+                    break
+                if u[0].startswith('/*'):
+                    src.skip_comment(u)
+                    continue
+                raise DeckError("%s:%d: '%s' after $YDOIT (at %s:%d): multiple input sections (continuing a run "
+                                "with changed keys) are not supported, as by yfdem" % (u[1], u[2], u[0], f, ln))
             break
         else:
-            out.append((t, path, ln))
-        i += 1
+            out.append(tok)
     return out
 
 
@@ -275,9 +329,18 @@ def parse(path):
     toks = tokens(path)
     keys, i = Keys(), 0
 
-    def num(j):
-        if j >= len(toks):
-            raise DeckError('%s: unexpected end of the deck' % path)
+    def num(j, key=None, want=-1, got=0, what='value'):
+        """The number at token j, of key key = (token, file, line): want values of which got are read
+        (want < 0: a single item, what it is).  A comment there is refused, as by yfdem."""
+        if j >= len(toks) or toks[j][0] == '/*':
+            where = 'the end of the input' if j >= len(toks) else \
+                "'/*' at %s:%d (comments cannot appear inside a value list)" % toks[j][1:]
+            kt, kf, kln = key if key else (toks[j - 1] if j else ('', path, 0))
+            if j >= len(toks) and not key:
+                raise DeckError('%s: unexpected end of the deck' % path)
+            if want < 0:
+                raise DeckError('%s:%d: %s: missing %s before %s' % (kf, kln, kt, what, where))
+            raise DeckError('%s:%d: %s: expected %d %s, found %d before %s' % (kf, kln, kt, want, what, got, where))
         t, f, ln = toks[j]
         v = number(t)
         if v is None:
@@ -286,6 +349,9 @@ def parse(path):
 
     while i < len(toks):
         t, f, ln = toks[i]
+        if t == '/*':
+            i += 1
+            continue
         if not t.startswith('/YD/'):
             raise DeckError('%s:%d: unexpected token %r' % (f, ln, t))
         name = t.split('/')[3] if t.count('/') >= 3 else ''
@@ -295,17 +361,17 @@ def parse(path):
         if len(name) >= 2 and name[1] in '123' and name[0] in 'DI':
             nd = int(name[1])
             if nd == 1:
-                n = num(i + 1)
-                vals = [num(i + 2 + k) for k in range(n)]
+                n = num(i + 1, toks[i], what='count')
+                vals = [num(i + 2 + k, toks[i], n, k, 'values') for k in range(n)]
                 keys[full] = ((n,), vals)
                 i += 2 + n
                 continue
-            code = str(num(i + 1))
-            dims = [num(i + 2 + d) for d in range(nd)]
+            code = str(num(i + 1, toks[i], what='code'))
+            dims = [num(i + 2 + d, toks[i], what='dimension %d' % (d + 1)) for d in range(nd)]
             tot = 1
             for d in dims:
                 tot *= d
-            flat = [num(i + 2 + nd + k) for k in range(tot)]
+            flat = [num(i + 2 + nd + k, toks[i], tot, k, 'values') for k in range(tot)]
             order = [0, 1] if (nd == 2 and code == '12') else [1, 0] if nd == 2 else \
                 [int(c) - 1 for c in code]
             arr = [0] * tot
@@ -322,7 +388,7 @@ def parse(path):
             keys[full] = (tuple(dims), arr)
             i += 2 + nd + tot
         else:
-            keys[full] = num(i + 1)
+            keys[full] = num(i + 1, toks[i])
             i += 2
     return keys
 
@@ -465,7 +531,26 @@ def pressure_loads(L, note, diff, ne, elto, meshed, nopr, nset, ap, hist_of, ids
     L.append('')
 
 
+def deck_word(name):
+    """name as one word of the native deck (README, The deck): in single quotes, where a space, '#'
+    (a comment outside quotes) and '$' (substitution outside single quotes) are plain characters; in
+    double quotes when it holds a single quote ('#' is plain there too, '$' is not).  A name with a
+    single quote and a '$' or a double quote, or with a line break, cannot be written: DeckError."""
+    if '\n' in name or '\r' in name:
+        raise DeckError('%r: a file name with a line break cannot be written in a native deck' % name)
+    if "'" not in name:
+        return "'%s'" % name
+    if '"' not in name and '$' not in name:
+        return '"%s"' % name
+    raise DeckError("%r: a file name holding a single quote and a '$' or '\"' cannot be quoted in a native deck "
+                    "(a '$' is substituted inside double quotes, a single-quoted word ends at the next '); "
+                    "choose another OUT" % name)
+
+
 def convert(src, out):
+    base = os.path.basename(out)
+    for name in (base + '.nodes', base + '.tris', base + '.h5'):
+        deck_word(name)   # refused before anything is written
     K = parse(src)
     g = lambda k, d=0: K.get(k, d)
     ne, nn, nprop = g('YDE/NELEM'), g('YDN/NNOPO'), g('YDPE/NPROP')
@@ -503,7 +588,6 @@ def convert(src, out):
     ids_of_node = {n: [] for n in range(nn)}
     for n in used:
         ids_of_node[n].append(n)
-    base = os.path.basename(out)
     body = 'y2d'
     with open('%s.nodes' % out, 'w') as f:
         for n in used:
@@ -513,8 +597,23 @@ def convert(src, out):
             v = elto[e]
             f.write('%d %d %d %d p%d\n' % (e, v[0], v[1], v[2], elpr[e]))
     L.append('# mesh: the Y2D nodes and elements in input order, ids = Y2D indices (0-based)')
-    L.append(SYNTAX['nodes'].format(file='%s.nodes' % base, body=body))
-    L.append(SYNTAX['triangles'].format(file='%s.tris' % base, body=body))
+    L.append(SYNTAX['nodes'].format(file=deck_word('%s.nodes' % base), body=body))
+    L.append(SYNTAX['triangles'].format(file=deck_word('%s.tris' % base), body=body))
+    # D2NCC: the nodes' current coordinates (yfdem DECK.y starts each node there, with D2NCI as its
+    # reference: a pre-strained body).  A native node has one position, its reference: not expressible
+    if 'YDN/D2NCC' in K:
+        xc = get2(K, 'YDN/D2NCC')
+        worst, wn = 0.0, -1
+        for n in used:
+            d = max(abs(float(xc[n][c]) - float(xy[n][c])) for c in (0, 1)) if n < len(xc) else 0.0
+            if d > worst:
+                worst, wn = d, n
+        if wn >= 0:
+            moved = sum(1 for n in used if n < len(xc) and (float(xc[n][0]), float(xc[n][1])) !=
+                        (float(xy[n][0]), float(xy[n][1])))
+            diff('/YD/YDN/D2NCC (current coordinates) differs from D2NCI (reference) at %d node(s), by up to %r m '
+                 '(node %d): yfdem DECK.y starts them there, pre-strained; a native deck has no current position '
+                 'apart from the reference one: written at D2NCI, unstrained' % (moved, worst, wn))
     unused = [n for n in range(nn) if not ids_of_node[n]]
     if unused:
         note('%d node(s) used by no triangle were dropped (first: %d; massless, Y2D never moves them)'
@@ -774,7 +873,7 @@ def convert(src, out):
     L.append(SYNTAX['thermo'].format(n=icshtf if 0 < icshtf <= 2000000000 else 0))
     icoutf = int(g('YDC/ICOUTF', 10))
     if 0 < icoutf <= nsteps:
-        L.append(SYNTAX['dump'].format(n=icoutf, file=base + '.h5'))
+        L.append(SYNTAX['dump'].format(n=icoutf, file=deck_word(base + '.h5')))
     L.append(SYNTAX['run'].format(n=max(nsteps, 0)))
     if 'YDO/NOHYS' in K:
         note('history output /YD/YDO/ not translated (output only)')

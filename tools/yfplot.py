@@ -16,7 +16,8 @@ pieces connected through shared nodes and joints not yet broken at the frame's t
       --min-damage draws only opened cracks of damage >= Z (the frame's /joint_damage), --layout
       puts the panels side by side (row) instead of stacked
   yfplot.py stress STEM --time T [--body N] -o out.png
-      max principal stress contours [MPa] at the frame nearest to T (elastic variant, figure 7)
+      max principal stress contours [MPa] at the frame nearest to T (figure 7 with the elastic
+      variant); the title says which run it is: elastic (no joints) or fracturing (joints, broken)
   yfplot.py history LOG.csv -o out.png
       energies (kinetic, strain, external work, damping, joint dissipation, contact) and crack
       length by mode against time
@@ -63,6 +64,8 @@ def read_frame(path):
         for k in ("sigma1", "stress", "u", "joint_damage"):
             if k in f:
                 d[k] = f[k][()]
+        if "cracks/state" in f:  # 1 opened, 2 broken (a scene with joints only)
+            d["crack_state"] = f["cracks/state"][()]
     return d
 
 
@@ -250,6 +253,15 @@ def cmd_cracks(a):
     print("yfplot: wrote", a.o)
 
 
+def run_kind(fr):
+    """What the frame's run is, from the frame itself: a scene with joints (a frame holds
+    /joint_damage then) fractures; one without is elastic."""
+    if "joint_damage" not in fr:
+        return "elastic run (no joints)"
+    nb = int(np.sum(fr["crack_state"] == 2)) if "crack_state" in fr else 0
+    return "fracturing run (%d joints, %d broken)" % (len(fr["joint_damage"]), nb)
+
+
 def cmd_stress(a):
     fr = nearest_frame(a.stem, a.time)
     if "sigma1" not in fr:
@@ -267,7 +279,7 @@ def cmd_stress(a):
         ax.plot([x], [y], "k*", ms=12, label="crack of the fracturing run")
         ax.legend(loc="upper right", fontsize=8)
     ax.set_aspect("equal")
-    ax.set_title(a.title or "elastic variant: max principal stress at t = %.3g ms" % (float(fr["time"]) * 1e3))
+    ax.set_title(a.title or "%s: max principal stress at t = %.3g ms" % (run_kind(fr), float(fr["time"]) * 1e3))
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     fig.tight_layout()
