@@ -549,8 +549,10 @@ static void other_entries(const char *path, const char *const *keep, char *out, 
 }
 
 /* A file prefix that names no file is refused at its line, nothing written: `dump d h5 10 .` wrote
- * ._000000.h5 and ..xmf (hidden), `dump d csv 10 /tmp/` /tmp/_000000.csv, a directory's name put
- * the files beside it, and `restart every 5 .` wrote ..a and ..b.  A name inside the folder works. */
+ * ._000000.h5 and ..xmf (hidden), `dump d csv 10 /tmp/` /tmp/_000000.csv, and `restart every 5 .`
+ * wrote ..a and ..b.  A name inside the folder works, and so does a stem that is a folder's name
+ * (sub.h5 beside sub/: the README's y2dref folder 'out' beside an h5 dump 'out.h5' was refused
+ * on the deck's second run, once the first had made the folder). */
 START_TEST(test_dump_prefix_names_a_file) {
   static const struct {
     const char *line, *want;
@@ -559,8 +561,6 @@ START_TEST(test_dump_prefix_names_a_file) {
                          "give one, as in './out'"},
       {"dump d h5 10 sub/", "dump: 'sub/': no file name: it ends in '/', and its files would be named like "
                             "'sub/_000000.h5'; give one, as in 'sub/out'"},
-      {"dump d h5 10 sub", "dump: 'sub': no file name: 'sub' is a directory, and its files would be named like "
-                           "'sub_000000.h5'; give one, as in 'sub/out'"},
       {"dump d h5 10 sub/.h5", "dump: 'sub/.h5': no file name: there is nothing before the extension"},
       {"dump d csv 10 .", "dump: '.': no file name: '.' is a directory, and its files would be named like '._000000.csv'"},
       {"dump d csv 10 sub/", "dump: 'sub/': no file name: it ends in '/'"},
@@ -568,11 +568,12 @@ START_TEST(test_dump_prefix_names_a_file) {
       {"restart every 5 sub/", "restart: 'sub/': no file name: it ends in '/', and its files would be named like 'sub/.a'"},
   };
   static const char *const keep[] = {"bad.deck", "err.txt", "sub", NULL}, *const none[] = {NULL};
-  for (size_t k = 0; k <= sizeof bad / sizeof bad[0]; k++) {
-    int ok = k == sizeof bad / sizeof bad[0]; /* last: a name in sub works */
+  const size_t nbad = sizeof bad / sizeof bad[0];
+  for (size_t k = 0; k < nbad + 2; k++) {
+    int ok = k >= nbad; /* last two: a name in sub, and sub.h5 beside sub, work */
     char deck[512], p[700], cmd[1600], left[400];
     snprintf(deck, sizeof deck, "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect bar m 0 0 1 0.1 4 2\n"
-             "timestep auto\n%s\nrun 10\n", ok ? "dump d h5 10 sub/out.h5" : bad[k].line);
+             "timestep auto\n%s\nrun 10\n", !ok ? bad[k].line : k == nbad ? "dump d h5 10 sub/out.h5" : "dump d h5 10 sub.h5");
     char *dir = yft_deck_dir("bad.deck", deck);
     snprintf(p, sizeof p, "%s/sub", dir);
     ck_assert_int_eq(mkdir(p, 0755), 0);
@@ -581,8 +582,8 @@ START_TEST(test_dump_prefix_names_a_file) {
     snprintf(p, sizeof p, "%s/err.txt", dir);
     char *err = yft_slurp(p, 1), want[400];
     if (ok) {
-      snprintf(p, sizeof p, "%s/sub/out.xmf", dir);
-      ck_assert_msg(rc == 0 && yft_exists(p), "sub/out.h5: exit %d: %s", rc, err);
+      snprintf(p, sizeof p, "%s/%s", dir, k == nbad ? "sub/out.xmf" : "sub.xmf");
+      ck_assert_msg(rc == 0 && yft_exists(p), "%s: exit %d: %s", p, rc, err);
     } else {
       snprintf(want, sizeof want, "bad.deck:4: error: %s", bad[k].want);
       ck_assert_msg(rc == YF_EXIT_DECK && strstr(err, want), "%s: exit %d, want '%s': %s", bad[k].line, rc, want, err);

@@ -706,8 +706,10 @@ static void deck_interrupted(YfDeck *d, const YfLoc *loc) {
     sim_notify(d->sim, &iev);
     if (iev.restart_path[0])
       yf_exit_with(YF_EXIT_INTERRUPT, "%s:%d: interrupted (%s) before this line ran, at step %ld: restart of that "
-                   "state written to '%s', files written so far kept; to go on from it, put 'read_restart %s' before "
-                   "the deck's next run", loc->file, loc->line, name, d->sim->step, iev.restart_path, iev.restart_path);
+                   "state written to '%s', files written so far kept; to go on from it, run a deck of the commands "
+                   "that build the scene, then 'read_restart %s' and the commands from this line on (without the "
+                   "runs before it: read_restart comes before any run)", loc->file, loc->line, name, d->sim->step,
+                   iev.restart_path, iev.restart_path);
   }
   if (loc && loc->file)
     yf_exit_with(YF_EXIT_INTERRUPT, "%s:%d: interrupted (%s) before this line ran, at step %ld: files written so far "
@@ -1316,18 +1318,19 @@ void arg_regular(const YfArgs *a, int i, const char *path) {
 }
 
 /* The files were hidden or named by their endings alone: `dump d h5 10 .` wrote ._000000.h5 and
- * ..xmf, `dump d csv 10 /tmp/` /tmp/_000000.csv, and a directory's name put them beside it. */
+ * ..xmf, `dump d csv 10 /tmp/` /tmp/_000000.csv.  A folder of the stem's name is no reason: its
+ * files go beside it (out_000000.h5 beside a y2dref dump's folder out/, the README's example;
+ * refusing that made a deck fail on its second run). */
 void arg_file_stem(const YfArgs *a, int i, const char *stem, const char *made) {
   const char *slash = strrchr(stem, '/'), *last = slash ? slash + 1 : stem;
   const char *word = a->w[i];
   size_t wl = strlen(word);
-  struct stat st;
   char why[160];
   if (!*last && wl && word[wl - 1] == '/')
     snprintf(why, sizeof why, "it ends in '/'");
   else if (!*last)
     snprintf(why, sizeof why, "there is nothing before the extension");
-  else if (!strcmp(last, ".") || !strcmp(last, "..") || (!stat(stem, &st) && S_ISDIR(st.st_mode)))
+  else if (!strcmp(last, ".") || !strcmp(last, ".."))
     snprintf(why, sizeof why, "'%s' is a directory", stem);
   else
     return;

@@ -47,8 +47,10 @@ void sim_printf(YfSim *s, const char *fmt, ...) {
       stdout_lost = 1;
       clearerr(stdout);
       /* EAGAIN: an MPI rank's output made non-blocking by an interrupt (par_interrupted: mpirun has
-       * stopped reading it); what it would print is dropped and the interrupt ends the run */
-      if (e != EAGAIN && e != EWOULDBLOCK)
+       * stopped reading it); what it would print is dropped and the interrupt ends the run.
+       * EBADF: no standard output at all ('>&-', a daemon): none was asked for; the log and the
+       * summary hold the run (this ran to exit 0 before, and still does). */
+      if (e != EAGAIN && e != EWOULDBLOCK && e != EBADF)
         yf_output_error("cannot write to standard output: %s (its reader has ended, or its disk is full)", strerror(e));
     }
   }
