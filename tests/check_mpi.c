@@ -1145,6 +1145,37 @@ START_TEST(full_disk_parallel_frames) {
 }
 END_TEST
 
+/* mpirun on 2 ranks over deck NAME in dir d (summary s.json), with Ctrl-C to mpirun itself 3 s
+ * after the run's thermo header is out (not before: on a loaded machine the ranks may take
+ * seconds to reach the run, and an interrupt before any run leaves nothing to restart); T = 10 s
+ * (odls_base_sigkill_timeout) for the ranks to write the restart.  Returns system()'s status,
+ * after asserting that mpirun ended before its timeout. */
+static int ctrl_c_mpirun(const char *d, const char *name) {
+  char cmd[4 * PATH_MAX];
+  snprintf(cmd, sizeof cmd, "cd %s && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 "
+           "timeout 120 mpirun -q --oversubscribe --mca odls_base_sigkill_timeout 10 -np 2 %s -threads 1 -in %s "
+           "-summary s.json >out.txt 2>err.txt & "
+           "pid=$!; for i in $(seq 120); do grep -q Step out.txt 2>/dev/null && break; sleep 0.5; done; sleep 3; "
+           "kill -INT $(pgrep -P $pid -x mpirun); wait $pid", d, MPIBIN, name);
+  int st = system(cmd);
+  ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) != 124, "mpirun did not end (timeout)");
+  return st;
+}
+
+/* The interrupt's restart and the summary "interrupted" in dir d (err.txt in the message). */
+static void assert_interrupt_kept(const char *d) {
+  char path[PATH_MAX + 32];
+  snprintf(path, sizeof path, "%s/err.txt", d);
+  char *e = yft_slurp(path, 1);
+  snprintf(path, sizeof path, "%s/yfdem_interrupt.restart", d);
+  ck_assert_msg(yft_exists(path), "no restart written at the interrupt: %s", e);
+  free(e);
+  snprintf(path, sizeof path, "%s/s.json", d);
+  char *j = yft_slurp(path, 1);
+  ck_assert_msg(strstr(j, "\"status\": \"interrupted\""), "summary: %s", j);
+  free(j);
+}
+
 /* Ctrl-C to mpirun itself while rank 0 prints a thermo line every 10 steps.  OpenMPI 4.1's mpirun,
  * on SIGINT, stops reading the ranks' output and sends them SIGCONT at once, SIGTERM after
  * odls_base_sigkill_timeout seconds (T, 1 s by default) and SIGKILL after 2T (strace, 2026-11-28):
@@ -1158,25 +1189,14 @@ END_TEST
  * 2026-11-28: no restart). */
 START_TEST(interrupt_mpirun_chatty) {
   if (!mpi_ready()) return;
-  char *d = workdir(), cmd[4 * PATH_MAX], path[PATH_MAX + 32];
+  char *d = workdir();
   write_file(d, "chatty.deck", "material m elastic rho 2000 E 1e9 nu 0.25 plane_stress\nmesh rect plate m 0 0 1.0 0.2 20 4\n"
              "region left box -1 -1 1e-9 1\ngroup left node region left\nfix clamp left fixed xy\ngravity 0 -9.81\n"
              "timestep auto\nthermo 10\nrun 100000000\n");
-  snprintf(cmd, sizeof cmd, "cd %s && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 "
-           "timeout 120 mpirun -q --oversubscribe --mca odls_base_sigkill_timeout 10 -np 2 %s -threads 1 -in chatty.deck "
-           "-summary s.json >out.txt 2>err.txt & "
-           "pid=$!; for i in $(seq 120); do grep -q Step out.txt 2>/dev/null && break; sleep 0.5; done; sleep 3; kill -INT $(pgrep -P $pid -x mpirun); wait $pid",
-           d, MPIBIN);
-  int st = system(cmd);
+  int st = ctrl_c_mpirun(d, "chatty.deck");
   fprintf(stderr, "check_mpi: Ctrl-C to mpirun with a thermo line every 10 steps: mpirun exit %d\n",
           WIFEXITED(st) ? WEXITSTATUS(st) : -1);
-  ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) != 124, "mpirun did not end (timeout)");
-  snprintf(path, sizeof path, "%s/yfdem_interrupt.restart", d);
-  ck_assert_msg(yft_exists(path), "no restart written at the interrupt");
-  snprintf(path, sizeof path, "%s/s.json", d);
-  char *j = yft_slurp(path, 1);
-  ck_assert_msg(strstr(j, "\"status\": \"interrupted\""), "summary: %s", j);
-  free(j);
+  assert_interrupt_kept(d);
   drop_dir(d);
 }
 END_TEST
@@ -1195,22 +1215,9 @@ START_TEST(interrupt_mpirun_outside_runs) {
   write_file(d, "loop.deck", "material m elastic rho 2000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 1 20 20\n"
              "velocity b set 1 0\ntimestep auto\nvariable i loop 100000\nlabel top\nrun 100\nprint \"i=${i} ke=$(ke)\"\n"
              "next i\njump SELF top\n");
-  snprintf(cmd, sizeof cmd, "cd %s && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 "
-           "timeout 120 mpirun -q --oversubscribe --mca odls_base_sigkill_timeout 10 -np 2 %s -threads 1 -in loop.deck "
-           "-summary s.json >out.txt 2>err.txt & "
-           "pid=$!; for i in $(seq 120); do grep -q Step out.txt 2>/dev/null && break; sleep 0.5; done; sleep 3; kill -INT $(pgrep -P $pid -x mpirun); wait $pid",
-           d, MPIBIN);
-  int st = system(cmd);
-  ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) != 124, "mpirun did not end (timeout)");
-  snprintf(path, sizeof path, "%s/err.txt", d);
-  char *e = yft_slurp(path, 1);
-  snprintf(path, sizeof path, "%s/yfdem_interrupt.restart", d);
-  ck_assert_msg(yft_exists(path), "no restart written at the interrupt: %s", e);
-  free(e);
-  snprintf(path, sizeof path, "%s/s.json", d);
-  char *j = yft_slurp(path, 1);
-  ck_assert_msg(strstr(j, "\"status\": \"interrupted\""), "summary: %s", j);
-  free(j);
+  ctrl_c_mpirun(d, "loop.deck");
+  assert_interrupt_kept(d);
+  char *j;
   write_file(d, "part1.deck", "material m elastic rho 2000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 1 4 4\n"
              "timestep auto\nprint \"part 1 ran\"\nrun 10\n");
   write_file(d, "part2.deck", "print \"part 2 ran\"\nrun 10\n");
