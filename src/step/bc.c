@@ -206,8 +206,10 @@ static void warn_jumps(YfSim *s, YfBc *b) {
     b->warned[i] |= 2;
     yf_warn(&it->sp.loc, "fix '%s': at the run's start (time %.6g s) its nodes are up to %.3g m from where it puts "
             "them (node %ld): they jump there in the first step, a shock the energy balance cannot count as work "
-            "(the energy check may stop the run); give the fix a history that starts from where they are, or "
-            "fix them before they move", it->id, s->time, gap, (long)n->id[at]);
+            "(the energy check may stop the run); a history cannot help (it scales the displacement from the "
+            "reference position); to hold them where they are, use 'unfix %s' then 'fix %s %s velocity %s %s', or "
+            "add the fix before the run that moves them", it->id, s->time, gap, (long)n->id[at], it->id, it->id,
+            s->model.group[it->sp.group].name, it->sp.has[0] ? "0" : "NULL", it->sp.has[1] ? "0" : "NULL");
   }
 }
 
