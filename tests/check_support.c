@@ -11,11 +11,20 @@
 #include "yftest.h"
 
 static YfSim t_sim;
+/* the last in-process run's deck and simulation, freed by the next run (sim_free leaves the deck,
+ * and a second sim_free is harmless), so a test that runs several decks leaks nothing */
+static YfDeck *t_deck;
 
-YfSim *yft_run(const char *deck_text) {
+static YfDeck *new_deck(void) {
+  deck_free(t_deck);
+  sim_free(&t_sim); /* what the last in-process run left, when its test did not free it */
   sim_init(&t_sim);
   t_sim.progress = 0;
-  YfDeck *d = deck_new(&t_sim);
+  return t_deck = deck_new(&t_sim);
+}
+
+YfSim *yft_run(const char *deck_text) {
+  YfDeck *d = new_deck();
   FILE *fp = fmemopen((void *)deck_text, strlen(deck_text), "r");
   fflush(stdout);
   int saved = dup(1);
@@ -31,9 +40,7 @@ YfSim *yft_run(const char *deck_text) {
 }
 
 YfSim *yft_run_deck(const char *path, const char *const *vars) {
-  sim_init(&t_sim);
-  t_sim.progress = 0;
-  YfDeck *d = deck_new(&t_sim);
+  YfDeck *d = new_deck();
   for (int i = 0; vars && vars[i]; i += 2) deck_set_var(d, vars[i], vars[i + 1]);
   fflush(stdout);
   int saved = dup(1);

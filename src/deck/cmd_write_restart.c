@@ -4,6 +4,7 @@
 #include <string.h>
 #include "deck.h"
 #include "output.h"
+#include "report.h"
 #include "restart.h"
 #include "run.h"
 
@@ -12,6 +13,7 @@ void cmd_write_restart(YfSim *s, const YfArgs *a) {
   arg_count(a, 1, 1);
   if (!s->model.tri.n) arg_error(a, 0, "the scene has no triangles: nothing to write");
   run_prepare(s); /* a restart before the first run holds the prepared initial state */
+  io_attach(s);   /* the restart and output state it makes are freed with the simulation (report.c) */
   const char *p = arg_word(a, 0, "FILE"); /* an output: relative to the working directory */
   arg_regular(a, 0, p);
   const char *by = output_claim(s, "write_restart", p, NULL, 0); /* it wrote over the log, a dump's index... */

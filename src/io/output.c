@@ -1109,6 +1109,7 @@ static struct YfOutput *out_get(YfSim *s) {
   if (!s->out) {
     s->out = yf_calloc(1, sizeof *s->out, "output");
     s->out->next_due = LONG_MAX;
+    io_attach(s); /* whatever made it (write_restart too), the observer frees it with the simulation */
   }
   return s->out;
 }

@@ -168,6 +168,7 @@ void sim_add_bc_kind(YfSim *s, const YfBcKind *k);
 void sim_observe(YfSim *s, YfObserverFn fn);
 /* Hand an event record to every observer. */
 void sim_notify(YfSim *s, YfEvent *ev);
+/* Free everything the simulation holds and zero it (a second call frees nothing). */
 void sim_free(YfSim *s);
 int sim_find_history(const YfSim *s, const char *name);
 double history_value(const YfHistory *h, double t);

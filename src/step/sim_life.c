@@ -34,4 +34,5 @@ void sim_free(YfSim *s) {
   model_free(&s->model);
   region_reset();
   mesh_reset();
+  memset(s, 0, sizeof *s); /* a second sim_free (or one of a never-initialised, zeroed YfSim) frees nothing */
 }

@@ -852,13 +852,13 @@ static void do_include(Rd *r) {
     size_t n = strlen(dir) + strlen(name) + 2;
     char *alt = yf_malloc(n, "path");
     snprintf(alt, n, "%s/%s", dir, name);
+    free(dir); /* before the error below, which exits */
     fp = yf_open_input(alt, "r");
     if (!fp)
       yf_io_error(&iloc, "$YINCL %s: cannot open it relative to the working directory (%s) nor "
                   "as %s (%s)", name, strerror(e1), alt, strerror(errno));
     free(used);
     used = alt;
-    free(dir);
   } else if (!fp) {
     yf_io_error(&iloc, "$YINCL %s: cannot open: %s", name, strerror(errno));
   }
