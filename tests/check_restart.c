@@ -373,14 +373,14 @@ START_TEST(test_restart_dump_other_fields) {
 END_TEST
 
 /* A record file (LAMMPS's fix print) continues as the dumps do: a run continued from a restart
- * keeps the earlier run's rows before the restart step, drops those the earlier run wrote at or
- * after it (here its second run's start row at 220 and the rows to 260), writes no row at its own
- * start when none is due (220 is not a multiple of 40), and the file equals the uninterrupted
- * run's.  Until 2026-11-28 the continued run began the file afresh at its restart step (the rows
- * 0-200 lost) with a row at 220 the uninterrupted run never wrote. */
+ * keeps the earlier run's rows up to the restart step (written between two runs: its second run's
+ * start row at 220 too), drops those the earlier run wrote after it (the rows to 260), and the
+ * file equals the uninterrupted deck's, whose second run began with the row at 220.  Until
+ * 2026-11-28 the continued run began the file afresh at its restart step (the rows 0-200 lost);
+ * until 2026-11-29 it took the restart for one written within a run, and wrote no row at 220. */
 START_TEST(test_restart_record_continues) {
   mk_tmpdir();
-  write_deck("full.deck", NULL, "record r 40 r_full.csv ke broken pairs\nrun 300\n");
+  write_deck("full.deck", NULL, "record r 40 r_full.csv ke broken pairs\nrun 220\nrun 80\n");
   write_deck("first.deck", NULL, "record r 40 r.csv ke broken pairs\nrun 220\nwrite_restart rec.restart\nrun 260 upto\n");
   write_deck("second.deck", NULL, "record r 40 r.csv ke broken pairs\nread_restart rec.restart\nrun 300 upto\n");
   char h[17], hf[17];
@@ -393,14 +393,15 @@ START_TEST(test_restart_record_continues) {
   char *full = slurp(path);
   snprintf(path, sizeof path, "%s/r.csv", tmpdir);
   char *cont = slurp(path);
-  ck_assert_msg(strstr(full, "\n0,") && strstr(full, "\n280,") && !strstr(full, "\n220,"), "r_full.csv: %.200s", full);
+  ck_assert_msg(strstr(full, "\n0,") && strstr(full, "\n280,") && strstr(full, "\n220,"), "r_full.csv: %.200s", full);
   ck_assert_msg(!strcmp(cont, full), "the continued r.csv differs from the uninterrupted run's:\n%.300s", cont);
   free(full); free(cont);
-  /* a file with another header (another record's) is begun afresh, not adopted */
+  /* a file with another header (another record's) is begun afresh, not adopted: its first row
+   * is the run's start row */
   write_deck("other.deck", NULL, "record r 40 r.csv ke\nread_restart rec.restart\nrun 300 upto\n");
   expect_ok("other.deck", 1, h);
   cont = slurp(path);
-  ck_assert_msg(!strncmp(cont, "step,time,ke\n240,", 17), "r.csv: %.100s", cont);
+  ck_assert_msg(!strncmp(cont, "step,time,ke\n220,", 17), "r.csv: %.100s", cont);
   free(cont);
   rm_tmpdir();
 }
@@ -750,12 +751,18 @@ static int same_outputs(const char *a, const char *b) {
       const char *nm = de->d_name;
       size_t L = strlen(nm);
       if (nm[0] == '.' || strstr(nm, ".deck") || (L > 4 && (!strcmp(nm + L - 4, ".err") || !strcmp(nm + L - 5, ".json"))) ||
-          !strcmp(nm, YF_RESTART_DEFAULT) || !strcmp(nm, "log.yfdem") || !strcmp(nm, "frame.restart"))
+          !strcmp(nm, YF_RESTART_DEFAULT) || !strcmp(nm, "log.yfdem") || (L > 8 && !strcmp(nm + L - 8, ".restart")) ||
+          !strcmp(nm, "rest.fifo"))
         continue; /* log.yfdem echoes each run's own deck and timings, as log.lammps does */
       char pa[300], pb[300];
       snprintf(pa, sizeof pa, "%s/%s", a, nm);
       snprintf(pb, sizeof pb, "%s/%s", b, nm);
       ck_assert_msg(yft_exists(side ? pa : pb), "%s is written by only one of the two runs", nm);
+      struct stat st;
+      if (stat(pb, &st) == 0 && S_ISDIR(st.st_mode)) { /* a y2dref dump's folder: its files likewise */
+        if (side == 1) compared += same_outputs(pa, pb);
+        continue;
+      }
       if (side == 1) {
         ck_assert_msg(same_file(pa, pb), "%s of the continued run differs from the uninterrupted run's", nm);
         compared++;
@@ -837,6 +844,151 @@ START_TEST(test_restart_on_frame_step) {
   ck_assert_str_eq(h, hf);
   snprintf(tmpdir, sizeof tmpdir, "%s", base);
   ck_assert_int_ge(same_outputs(a, b), 10); /* frames 0-2 (h5, csv), indexes and logs */
+  rm_tmpdir();
+}
+END_TEST
+
+/* ---------------------------------------------------------------- restarts written between runs */
+
+static void write_text(const char *name, const char *text);
+
+/* Every output kind: OUT and a y2dref dump (summary, probes, corner tables at 410 and 600). */
+static const char OUT_Y[] = "dump y y2dref yr corners 100,410,600 summary 40 probes 20 3:0 50:2\n";
+
+/* The thermo table of a run's start and end, as the last table of tmpdir/NAME's log prints it,
+ * less the Wall column (wall-clock time) (malloc'd). */
+static char *last_thermo(const char *dir) {
+  char path[256];
+  snprintf(path, sizeof path, "%s/log.yfdem", dir);
+  char *t = slurp(path), *h = NULL, *out = calloc(1, strlen(t) + 1), *o = out;
+  ck_assert_ptr_nonnull(out);
+  for (char *p = t; (p = strstr(p, "      Step ")); p++) h = p;
+  ck_assert_msg(h != NULL, "%s: no thermo table", path);
+  for (char *p = strchr(h, '\n') + 1, *nl; (nl = strchr(p, '\n')) && !strncmp(p, "  ", 2); p = nl + 1) {
+    char *w = nl;
+    while (w > p && w[-1] != ' ') w--; /* the last column: Wall */
+    memcpy(o, p, (size_t)(w - p));
+    o += w - p;
+    *o++ = '\n';
+  }
+  free(t);
+  return out;
+}
+
+/* A restart written between two runs (write_restart), continued by a deck of the scene, read_restart
+ * and the rest: every file equals the uninterrupted deck's, whose second run began with a frame in
+ * every dump and a record row (at 410, a step none is due on; the stresses of that frame are
+ * recomputed there) or, at 600, where the first run's last step wrote them, with none.  Until
+ * 2026-11-29 the continued run wrote neither (it took the restart for one written within a run):
+ * its frames after 410 were numbered one lower, the h5 and csv indexes and the record lacked the
+ * row of 410.  The thermo table of the run is the uninterrupted second run's (Wall aside). */
+START_TEST(test_restart_between_runs_continues) {
+  static const int at[2] = {410, 600};
+  for (int k = 0; k < 2; k++) {
+    char base[24], a[40], b[40], tail[768], h[17], hf[17];
+    two_dirs(base, a, b);
+    snprintf(tmpdir, sizeof tmpdir, "%s", a);
+    snprintf(tail, sizeof tail, "%s%srun %d\nwrite_restart between.restart\n", OUT, OUT_Y, at[k]);
+    write_deck("first.deck", NULL, tail);
+    expect_ok("first.deck", 2, h);
+    snprintf(tail, sizeof tail, "%s%sread_restart between.restart\nrun %d\n", OUT, OUT_Y, 800 - at[k]);
+    write_deck("cont.deck", NULL, tail);
+    expect_ok("cont.deck", 1, h);
+    snprintf(tmpdir, sizeof tmpdir, "%s", b);
+    snprintf(tail, sizeof tail, "%s%srun %d\nrun %d\n", OUT, OUT_Y, at[k], 800 - at[k]);
+    write_deck("full.deck", NULL, tail);
+    expect_ok("full.deck", 2, hf);
+    ck_assert_str_eq(h, hf);
+    snprintf(tmpdir, sizeof tmpdir, "%s", base);
+    char *ta = last_thermo(a), *tb = last_thermo(b);
+    ck_assert_msg(!strcmp(ta, tb), "restart at %d: the continued run's thermo table differs:\n%s\nuninterrupted:\n%s",
+                  at[k], ta, tb);
+    free(ta);
+    free(tb);
+    /* frames (h5, csv: 0, 300, 410, 600 or 0, 300, 600), indexes, logs, record, y2dref tables */
+    ck_assert_int_ge(same_outputs(a, b), 19);
+    rm_tmpdir();
+  }
+}
+END_TEST
+
+/* The same after an interrupt between runs: SIGINT while the deck waits on an include (a FIFO the
+ * test holds open: the interrupt lands after the first run, before the next line, every time).
+ * The restart of the state the first run left is continued as its message says (the scene,
+ * read_restart, the commands from the interrupted line on) and every file equals the uninterrupted
+ * deck's.  Until 2026-11-29 the interrupt also wrote a frame of its step in every dump, which the
+ * continued run dropped, and wrote none at its start: the frames after it were numbered one lower. */
+START_TEST(test_interrupt_between_runs_continues) {
+  char base[24], a[40], b[40], tail[768], h[17], hf[17], fifo[96];
+  two_dirs(base, a, b);
+  snprintf(tmpdir, sizeof tmpdir, "%s", a);
+  snprintf(fifo, sizeof fifo, "%s/rest.fifo", a);
+  ck_assert_int_eq(mkfifo(fifo, 0644), 0);
+  snprintf(tail, sizeof tail, "%s%srun 410\ninclude rest.fifo\nrun 390\n", OUT, OUT_Y);
+  write_deck("first.deck", NULL, tail);
+  pid_t pid = spawn("first.deck", 2);
+  int fd = open(fifo, O_WRONLY); /* returns once the deck's include opened it: the first run is done */
+  ck_assert_int_ge(fd, 0);
+  kill(pid, SIGINT);
+  usleep(200000);
+  close(fd); /* the include reads its end, and the interrupt stops the deck there */
+  int code = wait_code(pid);
+  char *e = err_of("first.deck");
+  ck_assert_msg(code == YF_EXIT_INTERRUPT && strstr(e, "at step 410") && strstr(e, "read_restart " YF_RESTART_DEFAULT),
+                "exit %d: %s", code, e);
+  free(e);
+  unlink(fifo);
+  snprintf(tail, sizeof tail, "%s%sread_restart " YF_RESTART_DEFAULT "\nrun 390\n", OUT, OUT_Y);
+  write_deck("cont.deck", NULL, tail);
+  expect_ok("cont.deck", 1, h);
+  snprintf(tmpdir, sizeof tmpdir, "%s", b);
+  snprintf(tail, sizeof tail, "%s%srun 410\nrun 390\n", OUT, OUT_Y);
+  write_deck("full.deck", NULL, tail);
+  expect_ok("full.deck", 2, hf);
+  ck_assert_str_eq(h, hf);
+  snprintf(tmpdir, sizeof tmpdir, "%s", base);
+  ck_assert_int_ge(same_outputs(a, b), 20);
+  rm_tmpdir();
+}
+END_TEST
+
+/* Between runs under timestep auto the uninterrupted deck's next run computes its dt anew, from
+ * the state reached: here the one joint of a two-triangle bar, whose penalty sets the first run's
+ * limit, breaks, and the second run's dt is the triangles' (9 x larger).  The continued run does
+ * the same and lands on the same bits (until 2026-11-29 it kept the restart's dt: another
+ * state).  And a restart written before the first run (dt not yet set under timestep auto) reads
+ * (it was refused: "dt out of range"). */
+START_TEST(test_restart_between_runs_dt_auto) {
+  mk_tmpdir();
+  static const char BAR[] =
+      "material rock elastic rho 2500 E 1e10 nu 0.2 plane_stress\nmesh rect bar rock 0 0 0.01 0.01 1 1\n"
+      "jointprop cj ft 1e6 fs 1e6 gf 1 pen 1e12\nfracture bar cj\nregion left box -1 -1 1e-9 1\n"
+      "region right box 0.0099999 -1 1 1\ngroup left node region left\ngroup right node region right\n"
+      "fix hold left fixed xy\nvelocity right set 5 0\ntimestep auto\nthermo 100\n";
+  char text[2048], h_full[17], h[17];
+  snprintf(text, sizeof text, "%srun 300\nrun 300\n", BAR);
+  write_text("full.deck", text);
+  expect_ok("full.deck", 1, h_full);
+  snprintf(text, sizeof text, "%srun 300\nwrite_restart bar.restart\n", BAR);
+  write_text("first.deck", text);
+  expect_ok("first.deck", 1, h);
+  snprintf(text, sizeof text, "%sread_restart bar.restart\nrun 300\n", BAR);
+  write_text("cont.deck", text);
+  expect_ok("cont.deck", 1, h);
+  char *dt_full = summary_value("full.deck", "dt"), *dt_first = summary_value("first.deck", "dt"),
+       *dt_cont = summary_value("cont.deck", "dt");
+  ck_assert_msg(atof(dt_full) > 5 * atof(dt_first), "the joint did not set the first run's dt: %s, then %s", dt_first, dt_full);
+  ck_assert_msg(!strcmp(dt_cont, dt_full), "continued dt %s, uninterrupted %s", dt_cont, dt_full);
+  ck_assert_msg(!strcmp(h, h_full), "continued %s != uninterrupted %s", h, h_full);
+  free(dt_full); free(dt_first); free(dt_cont);
+  /* before the first run */
+  snprintf(text, sizeof text, "%swrite_restart zero.restart\n", BAR);
+  write_text("zero.deck", text);
+  expect_ok("zero.deck", 1, h);
+  snprintf(text, sizeof text, "%sread_restart zero.restart\nrun 300\nrun 300\n", BAR);
+  write_text("from0.deck", text);
+  expect_ok("from0.deck", 1, h);
+  ck_assert_msg(!strcmp(h, h_full), "continued from step 0: %s != uninterrupted %s", h, h_full);
   rm_tmpdir();
 }
 END_TEST
@@ -1052,6 +1204,9 @@ Suite *restart_suite(void) {
   tcase_add_test(tc, test_sigkill_frames_readable);
   tcase_add_test(tc, test_interrupt_continue_every_file);
   tcase_add_test(tc, test_restart_on_frame_step);
+  tcase_add_test(tc, test_restart_between_runs_continues);
+  tcase_add_test(tc, test_interrupt_between_runs_continues);
+  tcase_add_test(tc, test_restart_between_runs_dt_auto);
   tcase_add_test(tc, test_interrupt_outside_run);
   tcase_add_test(tc, test_full_disk);
   tcase_add_test(tc, test_outputs_unwritable);

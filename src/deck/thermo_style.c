@@ -233,21 +233,26 @@ static void record_open(Record *r, const char *keep) {
 /* A run continued by read_restart continues each record's file as the dumps continue their
  * series (output.c): the earlier run's rows of steps before the one this run continues from stay,
  * and rows of later steps (written before an interrupt) are this run's to write again.  A file
- * that is missing, or whose header is not this record's, starts afresh at the first row. */
-static void adopt(YfSim *s, Record *r) {
+ * that is missing, or whose header is not this record's, starts afresh at the first row.  Rows of
+ * steps before `before` are kept; returns 1 if one of them is of step before - 1. */
+static int adopt(Record *r, long before) {
   r->adopted = 1;
   size_t len;
   char *t = yf_read_file(r->path, &len, "record file");
-  if (!t) return;
+  if (!t) return 0;
   char *h = record_head(r);
   size_t hl = strlen(h);
+  int at = 0;
   if (!strncmp(t, h, hl)) {
     char *keep = t + hl;
-    keep[yf_rows_before(keep, s->step)] = 0;
+    size_t n = yf_rows_before(keep, before);
+    at = n > yf_rows_before(keep, before - 1);
+    keep[n] = 0;
     record_open(r, keep);
   }
   free(h);
   free(t);
+  return at;
 }
 
 static void record_row(YfSim *s, Record *r) {
@@ -276,7 +281,16 @@ static void record_step(YfSim *s, int force) {
     for (int i = 0; i < P.nrec; i++) {
       Record *r = &P.rec[i];
       if (r->adopted || r->last_step != LONG_MIN) continue;
-      if (yf_writer()) adopt(s, r);
+      if (s->restored_between) {
+        /* a restart written between runs: the earlier run's row of this step stays (due on its
+         * last step, or its next run's start row), and the uninterrupted deck's next run began
+         * with a row unless it had that one (as the dumps' first frames, output.c) */
+        long at = yf_writer() ? adopt(r, s->step + 1) : 0;
+        r->adopted = 1;
+        if (par_bcast_long(at)) r->last_step = s->step; /* MPI: rank 0 read the file; all or none write */
+        continue;
+      }
+      if (yf_writer()) adopt(r, s->step);
       else r->adopted = 1;
       /* the uninterrupted run went through this step in one run: no row here unless one was
        * due (a continued run's dumps write no frame either, output.c) */

@@ -818,11 +818,18 @@ static void csv_frame(YfSim *s, YfDump *d) {
  * steps before the current one, numbered 0, 1, ... in order, and the new frames follow.  Frames of
  * the earlier run at or after this step (written before it was stopped) leave the index; their
  * files are overwritten as the new frames reach their numbers.  An index that is missing, or not
- * one yfdem wrote, starts a new series. */
+ * one yfdem wrote, starts a new series.  A restart written between runs (s->restored_between)
+ * keeps the frame of its own step too: the earlier run wrote it as the uninterrupted deck did
+ * (due on its last step, or at its next run's start), and an interrupt between runs writes none. */
+
+/* The first step whose frames a continued run writes again (a dump on the file of one undumped
+ * is a new dump: it writes its own frame of this step). */
+static long adopt_before(const YfSim *s, const YfDump *d) { return s->restored_between && !d->again ? s->step + 1 : s->step; }
 
 /* An index (STEM.xmf, grids named frame_K, or STEM_cracks.xmf, cracks_K): the frames of the earlier
- * run with step < s->step become this series' first frames, copied to out. */
-static long index_adopt(YfSim *s, const char *path, const char *frame_tag, YfText *out) {
+ * run with step < before become this series' first frames, copied to out; *last: the step of the
+ * last one (LONG_MIN: none). */
+static long index_adopt(const char *path, const char *frame_tag, long before, YfText *out, long *last) {
   size_t len;
   char *t = yf_read_file(path, &len, "index text");
   if (!t) return 0;
@@ -850,9 +857,10 @@ static long index_adopt(YfSim *s, const char *path, const char *frame_tag, YfTex
         while (end > keep_end && end[-1] != '\n') end--;
         char *st = strstr(keep_end, step_tag);
         long step = st && st < end ? strtol(st + sizeof step_tag - 1, NULL, 10) : LONG_MAX;
-        if (cur != kept || step >= s->step) break;
+        if (cur != kept || step >= before) break;
         kept++;
         keep_end = end;
+        if (last) *last = step;
       }
       if (next >= z) break;
       cur = k;
@@ -895,15 +903,15 @@ static void adopted_fields(YfDump *d) {
 
 /* The mesh index and, when the earlier run wrote one, the crack index: a crack index that does
  * not match the mesh index frame for frame is started again. */
-static long h5_adopt(YfSim *s, YfDump *d) {
-  long kept = index_adopt(s, d->xmf, "<Grid Name=\"frame_", &d->grids);
-  if (kept && index_adopt(s, d->cxmf, "<Grid Name=\"cracks_", &d->cgrids) != kept) d->cgrids.len = 0;
+static long h5_adopt(YfDump *d, long before, long *last) {
+  long kept = index_adopt(d->xmf, "<Grid Name=\"frame_", before, &d->grids, last);
+  if (kept && index_adopt(d->cxmf, "<Grid Name=\"cracks_", before, &d->cgrids, NULL) != kept) d->cgrids.len = 0;
   if (kept) adopted_fields(d);
   return kept;
 }
 
-/* PREFIX_frames.csv: its rows of frames with step < s->step stay, and the index is rewritten. */
-static long csv_adopt(YfSim *s, YfDump *d) {
+/* PREFIX_frames.csv: its rows of frames with step < before stay, and the index is rewritten. */
+static long csv_adopt(YfDump *d, long before, long *last) {
   char *ip = str_printf("%s_frames.csv", d->path);
   size_t len;
   char *t = yf_read_file(ip, &len, "index text");
@@ -915,9 +923,10 @@ static long csv_adopt(YfSim *s, YfDump *d) {
     for (char *nl; (nl = strchr(p, '\n')); p = nl + 1) {
       char *e;
       long k = strtol(p, &e, 10), step = *e == ',' ? strtol(e + 1, NULL, 10) : LONG_MAX;
-      if (k != kept || step >= s->step) break;
+      if (k != kept || step >= before) break;
       kept++;
       keep_end = nl + 1;
+      *last = step;
     }
   }
   if (kept) {
@@ -936,19 +945,24 @@ static long csv_adopt(YfSim *s, YfDump *d) {
   return kept;
 }
 
-static void dump_adopt(YfSim *s, YfDump *d) {
+/* Returns the step of the last frame kept (LONG_MIN: none). */
+static long dump_adopt(YfSim *s, YfDump *d) {
+  const long before = adopt_before(s, d);
+  const char *upto = before > s->step ? "up to" : "before";
   if (d->style == YF_DUMP_Y2DREF) { /* its growing tables, as the series of the other styles */
-    if (y2dref_continue(s, d->y2d))
-      sim_printf(s, "dump %s: continuing the tables of the earlier run in %s: their rows before step %ld kept\n",
-                 d->id, d->path, s->step);
-    return;
+    if (!y2dref_continue(s, d->y2d, before)) return LONG_MIN;
+    sim_printf(s, "dump %s: continuing the tables of the earlier run in %s: their rows %s step %ld kept\n",
+               d->id, d->path, upto, s->step);
+    return before - 1; /* (its frames are every step's: the earlier run wrote the last one kept) */
   }
-  long kept = d->style == YF_DUMP_H5 ? h5_adopt(s, d) : d->style == YF_DUMP_CSV ? csv_adopt(s, d) : 0;
-  if (!kept) return;
+  long last = LONG_MIN;
+  long kept = d->style == YF_DUMP_H5 ? h5_adopt(d, before, &last) : d->style == YF_DUMP_CSV ? csv_adopt(d, before, &last) : 0;
+  if (!kept) return LONG_MIN;
   d->nframe = d->first = kept;
-  sim_printf(s, "dump %s: continuing the series of the earlier %s: its %ld frame%s before step %ld kept, "
+  sim_printf(s, "dump %s: continuing the series of the earlier %s: its %ld frame%s %s step %ld kept, "
              "the next is frame %ld\n", d->id, d->again ? "dump on this file" : "run", kept, kept == 1 ? "" : "s",
-             s->step, kept);
+             upto, s->step, kept);
+  return last;
 }
 
 /* ---------------------------------------------------------------- frames */
@@ -988,10 +1002,28 @@ void output_run_begin(YfSim *s) {
   for (int i = 0; i < o->ndump; i++) {
     YfDump *d = o->dump[i];
     if (d->last_step == s->step) continue;
-    /* A run continued from a restart writes the frames the uninterrupted run wrote: none at a
-     * step no dump is due on (an interrupt at step 997 with frames every 500), but its series
-     * is adopted now, at the step it continues from (frames of the earlier run from this step
-     * on, such as the interrupt's own, leave the index). */
+    /* A restart written between runs: the uninterrupted deck's next run began with a frame unless
+     * the dump had one of this step already (due on the last step of the run before), and the
+     * earlier run's index then holds it (an interrupt between runs writes none).  The series is
+     * adopted with that frame, and the run writes one only if there was none (the stresses are
+     * recomputed for it, as the uninterrupted deck's were: restart.c). */
+    if (continuing(s, d) && !d->again && s->restored_between) {
+      d->adopted = 1;
+      long at = LONG_MIN;
+      if (yf_writer() || d->mpio) at = dump_adopt(s, d);
+      /* MPI: rank 0 alone read a gathered dump's index; every rank writes the frame or none */
+      at = par_bcast_long(at);
+      if (at == s->step) {
+        d->last_step = s->step;
+        continue;
+      }
+      write_frame(s, d);
+      continue;
+    }
+    /* A run continued from a restart written within a run writes the frames the uninterrupted run
+     * wrote: none at a step no dump is due on (an interrupt at step 997 with frames every 500), but
+     * its series is adopted now, at the step it continues from (frames of the earlier run from this
+     * step on, such as the interrupt's own, leave the index). */
     if (continuing(s, d) && !d->again && s->step % d->every != 0) { /* (a dump again is new: it writes) */
       d->adopted = 1;
       /* MPI: the writer alone adopts, as in write_frame (a csv index is rewritten: the other ranks

@@ -33,9 +33,12 @@ static void io_observer(YfSim *s, YfEvent *ev) {
     if (s->out) output_topology_changed(s);
     break;
   case YF_EV_INTERRUPT:
-    /* finish cleanly: a restart of this step, its frame in every dump, files closed */
+    /* finish cleanly: a restart of this step, its frame in every dump, files closed.  Between
+     * runs (deck.c) no frame: the uninterrupted deck's next run writes its own of this step after
+     * the commands before it, and a continued run, which cannot tell an interrupt's frame from
+     * that one, writes it (output.c) */
     ev->restart_path = restart_on_interrupt(s, ev->why, sizeof ev->why);
-    output_write_all(s);
+    if (s->in_run) output_write_all(s);
     output_run_end(s);
     break;
   case YF_EV_RUN_END: output_run_end(s); break;

@@ -10,7 +10,8 @@
  * Layout (HDF5 1.8 format, one dataset per array, no compression; a restart must be exact, not
  * small):
  *   /meta/{version, nnode, ntri, njoint, topo_hash, complete}
- *   /sim/{step, time, dt, last_step, energy (7), elem_steps, wall_s, e_budget}
+ *   /sim/{step, time, dt, last_step, energy (7), elem_steps, wall_s, e_budget, gravity_base (3),
+ *         between_runs, dt_auto, dt_safety}   (the last three optional: absent, within a run)
  *   /nodes/{x, y, x0, y0, vx, vy, fx, fy, m}                      (nnode each, [m], [m/s], [N/m], [kg/m])
  *   /tris/s (3 ntri: sxx, syy, sxy [Pa])  the stresses of the step's element stage: a frame due on
  *            the restart's step is written again by the continued run, and must be the live one's
@@ -248,6 +249,14 @@ static void write_all(W *w, YfSim *s) {
   /* gravity's work before the gravity changed, and the gravity booked since (run.c energies) */
   const double gb[3] = {s->gravity_base, s->g_booked[0], s->g_booked[1]};
   put(w, g, "gravity_base", H5T_NATIVE_DOUBLE, 3, gb);
+  /* written outside a run (write_restart, an interrupt between runs): the continued deck's next
+   * run starts as the uninterrupted deck's did (its first frame and record row, the stresses
+   * recomputed, and under timestep auto its dt recomputed), so the deck's time step setting of
+   * this moment goes along.  Optional datasets: a restart without them continues within a run,
+   * as every restart did before, and an older yfdem reads this one as such */
+  put_l(w, g, "between_runs", !s->in_run);
+  put_l(w, g, "dt_auto", s->dt_auto);
+  put_d(w, g, "dt_safety", s->dt_safety);
   gclose(g);
 
   g = group(w, "nodes");
@@ -525,9 +534,17 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   double gb[3] = {0.0, 0.0, 0.0}; /* restarts before 2026-11-28 have none: no gravity changed */
   int has_gb = H5Lexists(g, "gravity_base", H5P_DEFAULT) > 0;
   if (has_gb) get(&r, g, "gravity_base", H5T_NATIVE_DOUBLE, 3, gb);
+  /* restarts before 2026-11-29 have no between_runs: they continue within a run */
+  long between = H5Lexists(g, "between_runs", H5P_DEFAULT) > 0 ? get_l(&r, g, "between_runs") : 0;
+  long f_auto = between ? get_l(&r, g, "dt_auto") : 0;
+  double f_safety = between ? get_d(&r, g, "dt_safety") : 0.0;
   H5Gclose(g);
   if (!(isfinite(gb[0]) && isfinite(gb[1]) && isfinite(gb[2]))) rfail(&r, "gravity_base out of range");
-  if (step < 0 || !(dt > 0) || time != time) rfail(&r, "step, time or dt out of range");
+  if (between != 0 && between != 1) rfail(&r, "sim/between_runs is neither 0 nor 1");
+  if (between && (f_auto < 0 || f_auto > 1 || !(f_safety > 0 && f_safety <= 1.0))) rfail(&r, "sim/dt_auto or dt_safety out of range");
+  /* dt 0: a restart written before the first run of a deck with timestep auto (no step set yet) */
+  if (step < 0 || !(dt > 0 || (between && f_auto && dt == 0.0)) || time != time)
+    rfail(&r, "step, time or dt out of range");
 
   g = ropen(&r, "nodes");
   get(&r, g, "x", H5T_NATIVE_DOUBLE, nn, N->x);
@@ -547,7 +564,9 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
     if (dlen(g, "s") != 3 * (long)m->tri.n) rfail(&r, "tris/s: not 3 stresses per triangle");
     get(&r, g, "s", H5T_NATIVE_DOUBLE, 3 * (size_t)m->tri.n, m->tri.s);
     H5Gclose(g);
-    m->stress_restored = 1;
+    /* between runs the uninterrupted deck's next run recomputed them for its first frame (run.c):
+     * so does the continued one */
+    m->stress_restored = !between;
   }
 
   YfJoints *J = s->joints;
@@ -683,7 +702,12 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   s->time = time;
   s->dt = dt;
   s->restored = 1;
-  s->dt_auto = 0; /* the uninterrupted run kept the dt of its start; a later `timestep` overrides */
+  s->restored_between = (int)between;
+  /* within a run the uninterrupted run kept the dt of its start; between runs its next run took
+   * the time step setting of that moment (timestep auto computes dt anew from the state reached:
+   * broken joints no longer limit it).  A later `timestep` overrides either. */
+  s->dt_auto = (int)f_auto;
+  if (between) s->dt_safety = f_safety;
   s->dt_loc.file = NULL;
   s->last_step = last_step;
   YfEnergy *e = &s->energy;

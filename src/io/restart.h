@@ -12,9 +12,13 @@
  *   count) and the energy-check budget.  Histories are functions of time and need nothing.
  *   A scene that does not match (node, triangle, joint counts or the topology hash over the
  *   triangle corners, initial positions and joint nodes) is refused with a deck error.
- *   The time step is restored and `timestep auto` is switched off (the uninterrupted run used
- *   the dt computed at the start of its `run`); a `timestep` command after read_restart
- *   overrides it.  Output files are not part of a restart: dumps given by the deck write new
+ *   The time step is restored.  A restart written during a run (restart every, an interrupt in
+ *   a run) switches `timestep auto` off (the uninterrupted run used the dt computed at the start
+ *   of its `run`); one written between runs (write_restart, an interrupt outside a run: the file's
+ *   /sim/between_runs) takes the time step setting of that moment, and the next run starts as the
+ *   uninterrupted deck's next run did (dt computed anew under auto, stresses recomputed, a first
+ *   frame and record row where that deck wrote them: output.c, thermo_style.c).  A `timestep`
+ *   command after read_restart overrides either.  Output files are not part of a restart: dumps given by the deck write new
  *   files (name them differently if the old ones must be kept).  `run N upto` runs to step N.
  *   Continuing gives bitwise the same state (state_hash) as the uninterrupted run.
  *
@@ -25,7 +29,8 @@
  *
  * SIGINT/SIGTERM (main.c sets s->interrupted): the step in progress is finished, a restart is
  * written (to the next `restart every` file, or yfdem_interrupt.restart), every dump writes a
- * frame of that step, files are closed, and yfdem exits with code 4 saying how to continue.
+ * frame of that step (in a run only: between runs the continued deck's next run writes it),
+ * files are closed, and yfdem exits with YF_EXIT_INTERRUPT saying how to continue.
  */
 #ifndef YF_RESTART_H
 #define YF_RESTART_H

@@ -728,6 +728,7 @@ void run_steps(YfSim *s, long nsteps) {
   thermo_line(s);
   int tty = s->progress && isatty(2) && yf_writer();
   long searches0 = contact_searches(s);
+  s->in_run = 1; /* a restart written from here to the loop's end continues this run (restart.c) */
   for (long k = 0; k < nsteps; k++) {
     threads_step_begin();
     double ts = yf_now();
@@ -768,6 +769,7 @@ void run_steps(YfSim *s, long nsteps) {
                    "restart could be written (%s)", s->step, s->time, why);
     }
   }
+  s->in_run = 0;
   par_run_end(s); /* MPI: the last state whole on every rank, for what follows */
   run_energies(s);
   energy_check(s);

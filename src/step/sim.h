@@ -137,6 +137,9 @@ typedef struct YfSim {
   long last_step;         /* `run` without N runs to this step (Y2D's MCSTEP), 0 = none   */
   struct YfRestart *restart; /* restart.c (NULL until a restart command)                  */
   int restored;           /* 1 after read_restart: a dump's first frame continues its series */
+  int restored_between;   /* 1 when that restart was written between runs (write_restart, an
+                             interrupt outside a run): the next run starts as the uninterrupted
+                             deck's next run started, first frame and record row included      */
 
   YfEnergy energy;
   double joint_stored;  /* intact joints' stored energy [J/m], part of energy.strain (run_energies) */
@@ -153,6 +156,8 @@ typedef struct YfSim {
 
   volatile int interrupted; /* set by SIGINT/SIGTERM; the run stops after the current step */
   long run_end_step;    /* last step of the current run command                            */
+  int in_run;           /* 1 while a run command's steps are under way: a restart written then
+                           continues within that run, one written otherwise begins a run     */
   int runs_begun;       /* run commands past their checks (RUN_BEGIN sent): the logs are
                            written only after one, so a deck that fails first leaves no file */
 

@@ -40,8 +40,8 @@ typedef struct YfY2dRef {
   YfRows fsum, fprobe, fbroken; /* fd -1: not open */
   int opened;          /* files open                                              */
   int created;         /* files created by this dump (a reopen appends)            */
-  long cont_step;      /* while y2dref_continue opens the files: the step a run continued by
-                          read_restart continues from (else -1)                    */
+  long cont_step;      /* while y2dref_continue opens the files: rows of steps before it are
+                          the earlier run's to keep (else -1)                      */
   long nbroken_written;
 } YfY2dRef;
 
@@ -209,9 +209,9 @@ static int open_files(YfSim *s, YfY2dRef *r) {
   return adopted;
 }
 
-int y2dref_continue(YfSim *s, YfY2dRef *r) {
+int y2dref_continue(YfSim *s, YfY2dRef *r, long before) {
   if (r->opened || r->created) return 0;
-  r->cont_step = s->step;
+  r->cont_step = before;
   int n = open_files(s, r);
   r->cont_step = -1;
   return n;

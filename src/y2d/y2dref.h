@@ -46,10 +46,12 @@ const char *y2dref_dir(const struct YfY2dRef *r);
 void y2dref_frame(YfSim *s, struct YfY2dRef *r);
 /* At the first frame of a run continued by read_restart (before y2dref_frame): the files are
  * opened taking up the tables the earlier run left in DIR (summary, probes, broken), each keeping
- * its rows of steps before s->step, so that the continued tables equal the uninterrupted run's; a
- * table that is missing, or has another header, is begun afresh.  Corner tables are files of
- * their own step, written again when due.  Returns how many tables were taken up. */
-int y2dref_continue(YfSim *s, struct YfY2dRef *r);
+ * its rows of steps before `before` (s->step for a restart written within a run, s->step + 1 for
+ * one written between runs, whose step the earlier run wrote in full), so that the continued
+ * tables equal the uninterrupted run's; a table that is missing, or has another header, is begun
+ * afresh.  Corner tables are files of their own step, written again when due.  Returns how many
+ * tables were taken up. */
+int y2dref_continue(YfSim *s, struct YfY2dRef *r, long before);
 /* Flush and close the files (frames written so far stay complete); safe to call twice. */
 void y2dref_close(struct YfY2dRef *r);
 void y2dref_free(struct YfY2dRef *r);
