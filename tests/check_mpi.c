@@ -872,6 +872,43 @@ START_TEST(rebalance_contact_work) {
 }
 END_TEST
 
+/* Re-balancing an unpartitioned mesh (below 8192 triangles; found by a sweep of new decks,
+ * 2026-11-29): a concrete block with a fracturing zone hit by a steel block, 1600 triangles
+ * each.  On 2 ranks the first cut falls between the bodies, where the node order follows the
+ * ranks by chance, so the update is divided; the couples all sit on one rank, and the re-cut
+ * moved the border to a block of triangles inside a body, where nodes numbered by the mesh (and
+ * the fracture's new nodes) no longer follow the triangles' ranks: halo mode ended in the middle
+ * of a divided run and the contact stage's assertion stopped it (exit 70).  A cut may now take
+ * only a border that keeps the node order (par_mpi.c, P.bok): exit 0 and ./yfdem's bits on 2
+ * and 3 ranks, the update still divided on 2. */
+static const char UNPART_DECK[] =
+    "material c elastic rho 2400 E 30e9 nu 0.2 plane_stress pen_n 3e11 pen_t 3e10 friction 0.4\n"
+    "material s elastic rho 7800 E 200e9 nu 0.3 plane_stress pen_n 3e11 pen_t 3e10 friction 0.3\n"
+    "jointprop cj ft 1e6 fs 3e6 gf 5 pen 3e11\n"
+    "mesh rect a c 0 0 0.1 0.05 40 20 pattern alt\nmesh rect b s 0.1002 0 0.2 0.05 40 20 pattern right\n"
+    "region z box 0.08 -1 0.1 1\nfracture a cj region z\ncontact self a\ncontact pair a b\n"
+    "velocity a set 20 0\nvelocity b set -20 0\ntimestep auto\nthermo 0\nrun 50\n";
+
+START_TEST(rebalance_unpartitioned) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), path[PATH_MAX + 32];
+  write_file(d, "u.deck", UNPART_DECK);
+  ck_assert_int_eq(run_in(d, 0, 1, "-in u.deck -summary ref.json", NULL), 0);
+  snprintf(path, sizeof path, "%s/ref.json", d);
+  char *ref = key_lines(path);
+  for (int ranks = 2; ranks <= 3; ranks++) {
+    ranks_match(d, ranks, "-in u.deck -summary m.json", ref, "unpartitioned, re-balanced");
+    if (ranks == 2)
+      ck_assert_msg(count_in(d, "out.txt", "update divided") == 1, "2 ranks: the update is not divided: the case "
+                    "this test is for (a divided run on an unpartitioned mesh) is gone");
+  }
+  fprintf(stderr, "check_mpi: an unpartitioned mesh's divided run on 2 and 3 ranks: ./yfdem's bits, no cut that "
+          "leaves halo mode\n");
+  free(ref);
+  drop_dir(d);
+}
+END_TEST
+
 /* Scenes that change between runs (found by a sweep of new decks, 2026-11-28):
  *   - a body added after a run moves the first cut (the triangle count changed): a couple whose
  *     lower triangle changed owner must keep its friction memory (it was zeroed: the block slid
@@ -1342,6 +1379,7 @@ Suite *mpi_suite(void) {
   tcase_add_test(t, search_sends_near_only);
   tcase_add_test(t, restart_2_to_3);
   tcase_add_test(t, rebalance_contact_work);
+  tcase_add_test(t, rebalance_unpartitioned);
   tcase_add_test(t, scene_changes_between_runs);
   tcase_add_test(t, readers_gather_nothing);
   tcase_add_test(t, error_all_ranks);
