@@ -909,6 +909,32 @@ START_TEST(rebalance_unpartitioned) {
 }
 END_TEST
 
+/* The mpi: line's communication share is a share of the run's wall time, so at most 100 %.  It
+ * counted the exchanges before the run's clock started (the divided update's ghost lists, the
+ * first frames) and the gathers of the deck's prints between runs, and divided the slowest rank's
+ * by rank 0's wall: 155-260 % on runs of 2 steps on 2 ranks (a sweep of new decks, 2026-11-29).
+ * Each rank's time in exchanges now counts from its run's start, over its own wall. */
+START_TEST(report_share_of_wall) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), path[PATH_MAX + 32];
+  write_file(d, "c.deck", "material c elastic rho 2340 E 26e9 nu 0.18 plane_stress pen_n 1e11\n"
+             "mesh rect a c 0 0 1 0.5 120 60\ntimestep auto\nthermo 0\nrun 2\nprint \"ux $(ux_a)\"\nrun 2\n");
+  ck_assert_int_eq(run_in(d, 2, 1, "-in c.deck", NULL), 0);
+  snprintf(path, sizeof path, "%s/out.txt", d);
+  char *t = yft_slurp(path, 1);
+  int n = 0;
+  for (const char *q = strstr(t, "communication "); q; q = strstr(q + 1, "communication ")) {
+    double share = -1;
+    if (sscanf(q, "communication %lf %% of wall", &share) != 1) continue;
+    ck_assert_msg(share >= 0 && share <= 100.0, "run %d: communication %.1f %% of wall", n + 1, share);
+    n++;
+  }
+  ck_assert_msg(n == 2, "%d communication shares reported for 2 runs", n);
+  free(t);
+  drop_dir(d);
+}
+END_TEST
+
 /* Scenes that change between runs (found by a sweep of new decks, 2026-11-28):
  *   - a body added after a run moves the first cut (the triangle count changed): a couple whose
  *     lower triangle changed owner must keep its friction memory (it was zeroed: the block slid
@@ -1380,6 +1406,7 @@ Suite *mpi_suite(void) {
   tcase_add_test(t, restart_2_to_3);
   tcase_add_test(t, rebalance_contact_work);
   tcase_add_test(t, rebalance_unpartitioned);
+  tcase_add_test(t, report_share_of_wall);
   tcase_add_test(t, scene_changes_between_runs);
   tcase_add_test(t, readers_gather_nothing);
   tcase_add_test(t, error_all_ranks);

@@ -722,6 +722,7 @@ void run_steps(YfSim *s, long nsteps) {
   sim_notify(s, &ev);
   double stage0[YF_NSTAGE];
   memcpy(stage0, yf_stage_time, sizeof stage0);
+  par_run_clock(); /* MPI: the communication share is of this wall time */
   R.t_wall0 = yf_now();
   double t_start = R.t_wall0;
   thermo_header(s);
