@@ -935,6 +935,27 @@ START_TEST(report_share_of_wall) {
 }
 END_TEST
 
+/* Why the update is replicated, in the mpi: line: a mesh of 10 000 triangles left unpartitioned by
+ * 'partition none' was said to be "an unpartitioned mesh below 8192 triangles" (a sweep of new
+ * decks, 2026-11-29).  The reason names both ways a mesh stays unpartitioned; the bits stay
+ * ./yfdem's. */
+START_TEST(replicated_reason) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), path[PATH_MAX + 32];
+  write_file(d, "n.deck", "material m elastic rho 2000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 2 1 100 25 pattern cross\n"
+             "partition none\nvelocity b set 1 0\ntimestep auto\nthermo 0\nrun 2\n");
+  ck_assert_int_eq(run_in(d, 0, 1, "-in n.deck -summary ref.json", NULL), 0);
+  snprintf(path, sizeof path, "%s/ref.json", d);
+  char *ref = key_lines(path);
+  ranks_match(d, 2, "-in n.deck -summary m.json", ref, "partition none");
+  ck_assert_msg(count_in(d, "out.txt", "update replicated (the node order does not follow the triangles' ranks: a "
+                         "mesh left unpartitioned (below 8192 triangles, or 'partition none')") == 1,
+                "the mpi: line does not give 'partition none' as the reason the update is replicated");
+  free(ref);
+  drop_dir(d);
+}
+END_TEST
+
 /* Scenes that change between runs (found by a sweep of new decks, 2026-11-28):
  *   - a body added after a run moves the first cut (the triangle count changed): a couple whose
  *     lower triangle changed owner must keep its friction memory (it was zeroed: the block slid
@@ -1407,6 +1428,7 @@ Suite *mpi_suite(void) {
   tcase_add_test(t, rebalance_contact_work);
   tcase_add_test(t, rebalance_unpartitioned);
   tcase_add_test(t, report_share_of_wall);
+  tcase_add_test(t, replicated_reason);
   tcase_add_test(t, scene_changes_between_runs);
   tcase_add_test(t, readers_gather_nothing);
   tcase_add_test(t, error_all_ranks);

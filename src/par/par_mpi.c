@@ -776,8 +776,8 @@ void par_run_begin(YfSim *s) {
   const YfModel *m = &s->model;
   const int nn = m->node.n;
   if (!P.halo || nn != P.nn) { /* node ranges of another scene, or not one range per rank */
-    P.why = "the node order does not follow the triangles' ranks: an unpartitioned mesh below 8192 triangles "
-            "(every corner force goes to every rank)";
+    P.why = "the node order does not follow the triangles' ranks: a mesh left unpartitioned (below 8192 triangles, "
+            "or 'partition none') (every corner force goes to every rank)";
     return;
   }
   free(P.nmark);
