@@ -956,6 +956,46 @@ START_TEST(replicated_reason) {
 }
 END_TEST
 
+/* The tunnelling warning for speeds a run gains (contact_check_impact_run): a block falling under
+ * 5e7 m/s^2 onto a held base reaches 420 m/s at step 19, where rho v^2 = 4.24e8 Pa passes the
+ * penalty 3e8 Pa.  ./yfdem warned; on MPI ranks the check was made on one process only, so no
+ * rank warned (a sweep of new decks, 2026-11-29).  On 2 and 3 ranks, the update divided and
+ * replicated (mass damping), stderr is ./yfdem's, warning and numbers alike, and so are the bits. */
+START_TEST(impact_warning_in_run) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), path[PATH_MAX + 32];
+  static const char *const extra[] = {"", "damping mass 10\n"};
+  for (int k = 0; k < 2; k++) {
+    char deck[1024];
+    snprintf(deck, sizeof deck, "material c elastic rho 2400 E 30e9 nu 0.2 plane_stress pen_n 3e8\n"
+             "mesh rect base c 0 0 0.2 0.02 40 4\nmesh rect blk c 0.05 0.03 0.1 0.05 10 4\n"
+             "region bot box -1 -1 1 1e-9\ngroup bot node region bot\nfix h bot fixed xy\ncontact pair base blk\n"
+             "gravity 0 -5e7\n%stimestep auto\nthermo 0\nrun 200\n", extra[k]);
+    write_file(d, "fall.deck", deck);
+    ck_assert_int_eq(run_in(d, 0, 1, "-in fall.deck -summary ref.json", NULL), 0);
+    snprintf(path, sizeof path, "%s/err.txt", d);
+    char *eref = yft_slurp(path, 1);
+    ck_assert_msg(strstr(eref, "warning: contact (at step 19): an impact can press up to rho v^2 = 4.24e+08 Pa") != NULL,
+                  "./yfdem does not warn of the impact it gains:\n%s", eref);
+    snprintf(path, sizeof path, "%s/ref.json", d);
+    char *ref = key_lines(path);
+    for (int ranks = 2; ranks <= 3; ranks++) {
+      ranks_match(d, ranks, "-in fall.deck -summary m.json", ref, k ? "falling block, damped" : "falling block");
+      ck_assert_msg(count_in(d, "out.txt", k ? "update replicated" : "update divided") == 1,
+                    "%d ranks: not the update this case is for (%s)", ranks, k ? "replicated" : "divided");
+      snprintf(path, sizeof path, "%s/err.txt", d);
+      char *e = yft_slurp(path, 1);
+      ck_assert_msg(!strcmp(e, eref), "%d ranks%s: stderr\n%s--- ./yfdem's:\n%s", ranks, k ? ", damped" : "", e, eref);
+      free(e);
+    }
+    free(eref);
+    free(ref);
+  }
+  fprintf(stderr, "check_mpi: the tunnelling warning of a run's gained speed on 2 and 3 ranks as ./yfdem's\n");
+  drop_dir(d);
+}
+END_TEST
+
 /* Scenes that change between runs (found by a sweep of new decks, 2026-11-28):
  *   - a body added after a run moves the first cut (the triangle count changed): a couple whose
  *     lower triangle changed owner must keep its friction memory (it was zeroed: the block slid
@@ -1429,6 +1469,7 @@ Suite *mpi_suite(void) {
   tcase_add_test(t, rebalance_unpartitioned);
   tcase_add_test(t, report_share_of_wall);
   tcase_add_test(t, replicated_reason);
+  tcase_add_test(t, impact_warning_in_run);
   tcase_add_test(t, scene_changes_between_runs);
   tcase_add_test(t, readers_gather_nothing);
   tcase_add_test(t, error_all_ranks);

@@ -736,7 +736,7 @@ void run_steps(YfSim *s, long nsteps) {
     if (k == 0) energy_first_step(s); /* the start state's contact energy belongs to the budget */
     if (contact_searches(s) != searches0) { /* speeds gained in the run (gravity, loads) can tunnel too */
       searches0 = contact_searches(s);
-      if (par_size() == 1) contact_check_impact(s, NULL);
+      contact_check_impact_run(s); /* (MPI: every rank, a collective when the update is divided) */
     }
     par_balance(s); /* MPI: after a contact search, move the ranks' borders if their work is uneven */
     double t0 = yf_now();
