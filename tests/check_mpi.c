@@ -872,6 +872,130 @@ START_TEST(rebalance_contact_work) {
 }
 END_TEST
 
+/* Re-balancing an unpartitioned mesh (below 8192 triangles; found by a sweep of new decks,
+ * 2026-11-29): a concrete block with a fracturing zone hit by a steel block, 1600 triangles
+ * each.  On 2 ranks the first cut falls between the bodies, where the node order follows the
+ * ranks by chance, so the update is divided; the couples all sit on one rank, and the re-cut
+ * moved the border to a block of triangles inside a body, where nodes numbered by the mesh (and
+ * the fracture's new nodes) no longer follow the triangles' ranks: halo mode ended in the middle
+ * of a divided run and the contact stage's assertion stopped it (exit 70).  A cut may now take
+ * only a border that keeps the node order (par_mpi.c, P.bok): exit 0 and ./yfdem's bits on 2
+ * and 3 ranks, the update still divided on 2. */
+static const char UNPART_DECK[] =
+    "material c elastic rho 2400 E 30e9 nu 0.2 plane_stress pen_n 3e11 pen_t 3e10 friction 0.4\n"
+    "material s elastic rho 7800 E 200e9 nu 0.3 plane_stress pen_n 3e11 pen_t 3e10 friction 0.3\n"
+    "jointprop cj ft 1e6 fs 3e6 gf 5 pen 3e11\n"
+    "mesh rect a c 0 0 0.1 0.05 40 20 pattern alt\nmesh rect b s 0.1002 0 0.2 0.05 40 20 pattern right\n"
+    "region z box 0.08 -1 0.1 1\nfracture a cj region z\ncontact self a\ncontact pair a b\n"
+    "velocity a set 20 0\nvelocity b set -20 0\ntimestep auto\nthermo 0\nrun 50\n";
+
+START_TEST(rebalance_unpartitioned) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), path[PATH_MAX + 32];
+  write_file(d, "u.deck", UNPART_DECK);
+  ck_assert_int_eq(run_in(d, 0, 1, "-in u.deck -summary ref.json", NULL), 0);
+  snprintf(path, sizeof path, "%s/ref.json", d);
+  char *ref = key_lines(path);
+  for (int ranks = 2; ranks <= 3; ranks++) {
+    ranks_match(d, ranks, "-in u.deck -summary m.json", ref, "unpartitioned, re-balanced");
+    if (ranks == 2)
+      ck_assert_msg(count_in(d, "out.txt", "update divided") == 1, "2 ranks: the update is not divided: the case "
+                    "this test is for (a divided run on an unpartitioned mesh) is gone");
+  }
+  fprintf(stderr, "check_mpi: an unpartitioned mesh's divided run on 2 and 3 ranks: ./yfdem's bits, no cut that "
+          "leaves halo mode\n");
+  free(ref);
+  drop_dir(d);
+}
+END_TEST
+
+/* The mpi: line's communication share is a share of the run's wall time, so at most 100 %.  It
+ * counted the exchanges before the run's clock started (the divided update's ghost lists, the
+ * first frames) and the gathers of the deck's prints between runs, and divided the slowest rank's
+ * by rank 0's wall: 155-260 % on runs of 2 steps on 2 ranks (a sweep of new decks, 2026-11-29).
+ * Each rank's time in exchanges now counts from its run's start, over its own wall. */
+START_TEST(report_share_of_wall) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), path[PATH_MAX + 32];
+  write_file(d, "c.deck", "material c elastic rho 2340 E 26e9 nu 0.18 plane_stress pen_n 1e11\n"
+             "mesh rect a c 0 0 1 0.5 120 60\ntimestep auto\nthermo 0\nrun 2\nprint \"ux $(ux_a)\"\nrun 2\n");
+  ck_assert_int_eq(run_in(d, 2, 1, "-in c.deck", NULL), 0);
+  snprintf(path, sizeof path, "%s/out.txt", d);
+  char *t = yft_slurp(path, 1);
+  int n = 0;
+  for (const char *q = strstr(t, "communication "); q; q = strstr(q + 1, "communication ")) {
+    double share = -1;
+    if (sscanf(q, "communication %lf %% of wall", &share) != 1) continue;
+    ck_assert_msg(share >= 0 && share <= 100.0, "run %d: communication %.1f %% of wall", n + 1, share);
+    n++;
+  }
+  ck_assert_msg(n == 2, "%d communication shares reported for 2 runs", n);
+  free(t);
+  drop_dir(d);
+}
+END_TEST
+
+/* Why the update is replicated, in the mpi: line: a mesh of 10 000 triangles left unpartitioned by
+ * 'partition none' was said to be "an unpartitioned mesh below 8192 triangles" (a sweep of new
+ * decks, 2026-11-29).  The reason names both ways a mesh stays unpartitioned; the bits stay
+ * ./yfdem's. */
+START_TEST(replicated_reason) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), path[PATH_MAX + 32];
+  write_file(d, "n.deck", "material m elastic rho 2000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 2 1 100 25 pattern cross\n"
+             "partition none\nvelocity b set 1 0\ntimestep auto\nthermo 0\nrun 2\n");
+  ck_assert_int_eq(run_in(d, 0, 1, "-in n.deck -summary ref.json", NULL), 0);
+  snprintf(path, sizeof path, "%s/ref.json", d);
+  char *ref = key_lines(path);
+  ranks_match(d, 2, "-in n.deck -summary m.json", ref, "partition none");
+  ck_assert_msg(count_in(d, "out.txt", "update replicated (the node order does not follow the triangles' ranks: a "
+                         "mesh left unpartitioned (below 8192 triangles, or 'partition none')") == 1,
+                "the mpi: line does not give 'partition none' as the reason the update is replicated");
+  free(ref);
+  drop_dir(d);
+}
+END_TEST
+
+/* The tunnelling warning for speeds a run gains (contact_check_impact_run): a block falling under
+ * 5e7 m/s^2 onto a held base reaches 420 m/s at step 19, where rho v^2 = 4.24e8 Pa passes the
+ * penalty 3e8 Pa.  ./yfdem warned; on MPI ranks the check was made on one process only, so no
+ * rank warned (a sweep of new decks, 2026-11-29).  On 2 and 3 ranks, the update divided and
+ * replicated (mass damping), stderr is ./yfdem's, warning and numbers alike, and so are the bits. */
+START_TEST(impact_warning_in_run) {
+  if (!mpi_ready()) return;
+  char *d = workdir(), path[PATH_MAX + 32];
+  static const char *const extra[] = {"", "damping mass 10\n"};
+  for (int k = 0; k < 2; k++) {
+    char deck[1024];
+    snprintf(deck, sizeof deck, "material c elastic rho 2400 E 30e9 nu 0.2 plane_stress pen_n 3e8\n"
+             "mesh rect base c 0 0 0.2 0.02 40 4\nmesh rect blk c 0.05 0.03 0.1 0.05 10 4\n"
+             "region bot box -1 -1 1 1e-9\ngroup bot node region bot\nfix h bot fixed xy\ncontact pair base blk\n"
+             "gravity 0 -5e7\n%stimestep auto\nthermo 0\nrun 200\n", extra[k]);
+    write_file(d, "fall.deck", deck);
+    ck_assert_int_eq(run_in(d, 0, 1, "-in fall.deck -summary ref.json", NULL), 0);
+    snprintf(path, sizeof path, "%s/err.txt", d);
+    char *eref = yft_slurp(path, 1);
+    ck_assert_msg(strstr(eref, "warning: contact (at step 19): an impact can press up to rho v^2 = 4.24e+08 Pa") != NULL,
+                  "./yfdem does not warn of the impact it gains:\n%s", eref);
+    snprintf(path, sizeof path, "%s/ref.json", d);
+    char *ref = key_lines(path);
+    for (int ranks = 2; ranks <= 3; ranks++) {
+      ranks_match(d, ranks, "-in fall.deck -summary m.json", ref, k ? "falling block, damped" : "falling block");
+      ck_assert_msg(count_in(d, "out.txt", k ? "update replicated" : "update divided") == 1,
+                    "%d ranks: not the update this case is for (%s)", ranks, k ? "replicated" : "divided");
+      snprintf(path, sizeof path, "%s/err.txt", d);
+      char *e = yft_slurp(path, 1);
+      ck_assert_msg(!strcmp(e, eref), "%d ranks%s: stderr\n%s--- ./yfdem's:\n%s", ranks, k ? ", damped" : "", e, eref);
+      free(e);
+    }
+    free(eref);
+    free(ref);
+  }
+  fprintf(stderr, "check_mpi: the tunnelling warning of a run's gained speed on 2 and 3 ranks as ./yfdem's\n");
+  drop_dir(d);
+}
+END_TEST
+
 /* Scenes that change between runs (found by a sweep of new decks, 2026-11-28):
  *   - a body added after a run moves the first cut (the triangle count changed): a couple whose
  *     lower triangle changed owner must keep its friction memory (it was zeroed: the block slid
@@ -1342,6 +1466,10 @@ Suite *mpi_suite(void) {
   tcase_add_test(t, search_sends_near_only);
   tcase_add_test(t, restart_2_to_3);
   tcase_add_test(t, rebalance_contact_work);
+  tcase_add_test(t, rebalance_unpartitioned);
+  tcase_add_test(t, report_share_of_wall);
+  tcase_add_test(t, replicated_reason);
+  tcase_add_test(t, impact_warning_in_run);
   tcase_add_test(t, scene_changes_between_runs);
   tcase_add_test(t, readers_gather_nothing);
   tcase_add_test(t, error_all_ranks);

@@ -109,10 +109,12 @@ static struct {
                                joint it is the lower triangle of (units of about 1 ns a step)  */
   long *bw;                 /* per block: the sum of tw                                         */
   int *bc;                  /* per block: contact couples whose lower triangle is in it         */
+  unsigned char *bok;       /* per border before block b (0..bal_nb): a cut there keeps halo mode */
   int tw_nt, tw_nn, tw_nj, bal_g, bal_nb;
   int bal;                  /* 1: re-balance (YFDEM_MPI_BALANCE, default 1)                    */
   long bal_search;          /* contact searches when the ranks' weights were last looked at     */
   int nrecut;               /* re-cuts in this run                                              */
+  int bal_stuck;            /* this run wanted a re-cut that no border keeping halo mode allowed */
   double bal_from, bal_to;  /* the first re-cut's weight imbalance before, the last's after     */
   double t_recut;           /* wall seconds of this run's re-cuts                              */
   int lay_id;               /* changes with the triangle ranges (par_prepare, a re-cut)         */
@@ -774,8 +776,8 @@ void par_run_begin(YfSim *s) {
   const YfModel *m = &s->model;
   const int nn = m->node.n;
   if (!P.halo || nn != P.nn) { /* node ranges of another scene, or not one range per rank */
-    P.why = "the node order does not follow the triangles' ranks: an unpartitioned mesh below 8192 triangles "
-            "(every corner force goes to every rank)";
+    P.why = "the node order does not follow the triangles' ranks: a mesh left unpartitioned (below 8192 triangles, "
+            "or 'partition none') (every corner force goes to every rank)";
     return;
   }
   free(P.nmark);
@@ -813,6 +815,7 @@ void par_run_begin(YfSim *s) {
   P.bal = !(b && *b == '0');
   P.bal_search = -1;
   P.nrecut = 0;
+  P.bal_stuck = 0;
   P.t_recut = 0.0;
   if (!P.div) return;
   divide(s);
@@ -1107,7 +1110,7 @@ static void tri_weights(const YfSim *s) {
   const YfJoints *J = s->joints;
   const int nt = m->tri.n, nn = m->node.n, nj = J ? J->n : 0;
   if (P.tw && P.tw_nt == nt && P.tw_nn == nn && P.tw_nj == nj) return;
-  free(P.tw); free(P.bw); free(P.bc);
+  free(P.tw); free(P.bw); free(P.bc); free(P.bok);
   P.tw = yf_malloc((size_t)(nt > 0 ? nt : 1), "rank weights");
   unsigned char *seen = scratch(1, (size_t)(nn > 0 ? nn : 1));
   memset(seen, 0, (size_t)nn);
@@ -1129,6 +1132,37 @@ static void tri_weights(const YfSim *s) {
   P.bw = yf_calloc((size_t)P.bal_nb + 1, sizeof(long), "rank weights");
   P.bc = yf_calloc((size_t)P.bal_nb + 1, sizeof(int), "rank weights");
   for (int e = 0; e < nt; e++) P.bw[e / P.bal_g] += P.tw[e];
+  /* The borders a cut may take.  The divided update needs halo mode (build_halo): each node's
+   * owner, the rank of the first triangle that meets it, non-decreasing in node order.  A
+   * partitioned mesh numbers its nodes so, and every border keeps it; an unpartitioned one (below
+   * 8192 triangles) may keep it at its first cut by chance (bodies one after another) and not at
+   * a border inside a body: a cut there left halo mode in the middle of a divided run (the contact
+   * stage's assertion, exit 70).  A border at triangle t keeps it when the nodes first met by
+   * triangles before t are the first nodes: the p nodes whose first triangle is below t are
+   * nodes 0 .. p-1 exactly when the largest first triangle of nodes 0 .. p-1 is below t.  A node
+   * no triangle meets goes with the node before it (build_halo), so it takes that node's. */
+  {
+    const int G = P.bal_g, nb = P.bal_nb;
+    int *first = scratch(0, (size_t)(nn > 0 ? nn : 1) * sizeof(int));
+    for (int i = 0; i < nn; i++) first[i] = -1;
+    for (int e = 0; e < nt; e++)
+      for (int c = 0; c < 3; c++)
+        if (first[m->tri.v[3 * e + c]] < 0) first[m->tri.v[3 * e + c]] = e;
+    int *below = yf_calloc((size_t)nb + 2, sizeof(int), "rank weights"); /* nodes first met before border b */
+    for (int i = 0, prev = 0; i < nn; i++) {
+      if (first[i] < 0) first[i] = prev;
+      prev = first[i];
+      below[first[i] / G + 1]++;
+    }
+    for (int b = 1; b <= nb; b++) below[b] += below[b - 1];
+    P.bok = yf_malloc((size_t)nb + 1, "rank weights");
+    int most = -1; /* the largest first triangle of nodes 0 .. i-1 */
+    for (int b = 0, i = 0; b <= nb; b++) {
+      for (; i < below[b]; i++) most = first[i] > most ? first[i] : most;
+      P.bok[b] = most < b * G;
+    }
+    free(below);
+  }
   P.tw_nt = nt;
   P.tw_nn = nn;
   P.tw_nj = nj;
@@ -1180,8 +1214,15 @@ void par_balance(YfSim *s) {
     for (; b < bmin; b++) pre += P.bw[b] + (long)W_COUPLE * P.bc[b];
     for (; b < bmax; b++) {
       const long wb = P.bw[b] + (long)W_COUPLE * P.bc[b];
-      if ((double)pre + 0.5 * (double)wb > want) break; /* the border before block b is the nearer */
+      /* the border before block b is the nearer one that keeps halo mode (P.bok) */
+      if (P.bok[b] && (double)pre + 0.5 * (double)wb > want) break;
       pre += wb;
+    }
+    if (!P.bok[b]) { /* no border left that keeps halo mode: the cut stays */
+      P.bal_stuck = 1;
+      free(tnew);
+      P.t_recut += yf_now() - t0;
+      return;
     }
     tnew[r] = b * G;
     nmax = pre - last > nmax ? pre - last : nmax;
@@ -1254,11 +1295,18 @@ long par_bcast_long(long v) {
 
 const int *par_tri_lo(void) { return P.size > 1 ? P.tlo : NULL; }
 
+/* The report's communication share is of the run's wall time, which starts after the run's set-up
+ * (the first run's partition, a restart's list cut to ranks, the divided update's ghost lists, the
+ * first frames) and after the gathers of the deck's prints between runs: counted, they made the
+ * share above 100 % on short runs (a sweep of new decks: 112-154 % on 2-4 ranks). */
+void par_run_clock(void) { P.t_comm = 0.0; }
+
 /* After a run: what each rank computed and sent, as measured on every rank. */
 void par_run_report(YfSim *s, long nsteps, double wall) {
   long held = 0, whole = 0;
   contact_held(s, &held, &whole);
-  double mine[7] = {P.t_elem, P.t_comm, P.bytes, P.hbytes, P.ngh_max, (double)held, P.bytes_end}, *all = NULL;
+  /* each rank's communication share of its own run wall time: the ranks' clocks start apart */
+  double mine[7] = {P.t_elem, wall > 0 ? P.t_comm / wall : 0.0, P.bytes, P.hbytes, P.ngh_max, (double)held, P.bytes_end}, *all = NULL;
   if (P.rank == 0) all = yf_malloc(7 * (size_t)P.size * sizeof(double), "rank report");
   MPI_Gather(mine, 7, MPI_DOUBLE, all, 7, MPI_DOUBLE, 0, MPI_COMM_WORLD);
   long cross = 0;
@@ -1304,7 +1352,8 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
                P.nrecut > 1 ? "s" : "", P.bal_from, P.bal_to, P.t_recut);
     else
       snprintf(bal, sizeof bal, "not re-balanced (%s; %.3f s weighing)", P.size <= 1 ? "one rank" : !P.div ? "the update is replicated" :
-               !P.bal ? "YFDEM_MPI_BALANCE=0" : "the ranks' work within 1 % of the mean, or a re-cut would cost more than it saves", P.t_recut);
+               !P.bal ? "YFDEM_MPI_BALANCE=0" : P.bal_stuck ? "the node order of an unpartitioned mesh allows no "
+               "border nearer an equal share; 'partition metis' numbers it for any cut" : "the ranks' work within 1 % of the mean, or a re-cut would cost more than it saves", P.t_recut);
     if (P.size <= 1)
       snprintf(upd, sizeof upd, "update on one rank");
     else if (P.div)
@@ -1322,7 +1371,7 @@ void par_run_report(YfSim *s, long nsteps, double wall) {
                "joints broken across rank borders %ld (all runs so far); %s; %s\n",
                P.size, s->threads, tmin, tmax, emean > 0 ? emax / emean : 1.0, emean, bsum / (double)nsteps,
                hmax / (double)nsteps, bend,
-               wall > 0 ? 100.0 * cmax / wall : 0.0, P.ghost_min, P.ghost_max, cross, cpmin, cpmax, whole,
+               100.0 * cmax, P.ghost_min, P.ghost_max, cross, cpmin, cpmax, whole,
                nsearch ? (double)disc[0] / (double)nsearch : 0.0, nsearch ? (double)disc[1] / (double)nsearch : 0.0,
                nsearch, jcross, upd, bal);
   }

@@ -436,7 +436,13 @@ int contact_node_stiffness(YfSim *s, double *K, int *tof, double *pof) {
   return any;
 }
 
-void contact_check_impact(YfSim *s, const YfLoc *loc) {
+static int first_at_least(const int *v, int n, int x);
+/* ranks: in a run whose update is divided (MPI), where a rank's velocities are current for its own
+ * nodes only: each rank takes the spread over its own participating nodes and the ranks' extremes
+ * are agreed (a collective every rank calls at the same search; minima and maxima are exact, so
+ * the warning and its numbers are one rank's).  Without it the warning of speeds gained in a run
+ * was never given on MPI ranks (a sweep of new decks, 2026-11-29). */
+static void check_impact(YfSim *s, const YfLoc *loc, int ranks) {
   YfContact *C = s->contact;
   if (!active(C) || !C->nitem || C->impact_warned) return;
   const YfModel *m = &s->model;
@@ -446,13 +452,25 @@ void contact_check_impact(YfSim *s, const YfLoc *loc) {
   int tw = -1;
   for (int k = 0; k < C->nitem; k++) {
     const int t = C->item[k], *v = m->tri.v + 3 * t;
-    for (int c = 0; c < 3; c++) {
-      vx0 = fmin(vx0, m->node.vx[v[c]]), vx1 = fmax(vx1, m->node.vx[v[c]]);
-      vy0 = fmin(vy0, m->node.vy[v[c]]), vy1 = fmax(vy1, m->node.vy[v[c]]);
-    }
+    if (!ranks)
+      for (int c = 0; c < 3; c++) {
+        vx0 = fmin(vx0, m->node.vx[v[c]]), vx1 = fmax(vx1, m->node.vx[v[c]]);
+        vy0 = fmin(vy0, m->node.vy[v[c]]), vy1 = fmax(vy1, m->node.vy[v[c]]);
+      }
     const double r = m->mat[m->tri.mat[t]].rho;
     if (r > rho) rho = r, tw = t;
     pen = fmin(pen, C->mpn[m->tri.mat[t]]);
+  }
+  if (ranks) { /* the participating nodes (C->pnode: the items' corners, increasing) this rank owns */
+    int n0 = 0, n1 = m->node.n;
+    par_update_nodes(&n0, &n1, NULL, NULL);
+    const int a = first_at_least(C->pnode, C->npn, n0), b = first_at_least(C->pnode, C->npn, n1);
+    for (int q = a; q < b; q++) {
+      const int i = C->pnode[q];
+      vx0 = fmin(vx0, m->node.vx[i]), vx1 = fmax(vx1, m->node.vx[i]);
+      vy0 = fmin(vy0, m->node.vy[i]), vy1 = fmax(vy1, m->node.vy[i]);
+    }
+    vx0 = -par_max(-vx0), vx1 = par_max(vx1), vy0 = -par_max(-vy0), vy1 = par_max(vy1);
   }
   const double vrel = hypot(vx1 - vx0, vy1 - vy0), worst = rho * vrel * vrel;
   if (tw < 0 || !(worst > pen) || !(pen > 0)) return;
@@ -465,6 +483,10 @@ void contact_check_impact(YfSim *s, const YfLoc *loc) {
           "can pass through another (tunnelling); give pen_n above rho v^2 (it lowers the stable step), or 'contact "
           "surface all'", when, worst, m->mat[m->tri.mat[tw]].name, vrel, pen);
 }
+
+void contact_check_impact(YfSim *s, const YfLoc *loc) { check_impact(s, loc, 0); }
+
+void contact_check_impact_run(YfSim *s) { check_impact(s, NULL, par_divided()); }
 
 void contact_prepare(YfSim *s) {
   YfContact *C = s->contact;

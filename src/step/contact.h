@@ -57,9 +57,12 @@ void contact_step(YfSim *s);
  * close at), rho the densest and pen_n the lowest of the participating materials'.  Penalty contact stops a
  * body within a triangle's depth only below that (kinetic energy per volume rho v^2 / 2 against
  * the penalty's p / 2 at full depth); above it a block at 500 m/s passed through a fixed wall
- * four cells thick, "ok".  The run checks again after each contact search on one process (speeds
- * a run gains, a body falling under gravity: under MPI other ranks' velocities are not at hand). */
+ * four cells thick, "ok".  The run checks again after each contact search (speeds a run gains, a
+ * body falling under gravity), with contact_check_impact_run. */
 void contact_check_impact(YfSim *s, const YfLoc *loc);
+/* The same within a run, after a search: on MPI ranks with the divided update, every rank calls it
+ * (a collective) and the ranks' velocities are agreed. */
+void contact_check_impact_run(YfSim *s);
 /* The contact penalty's part of the stable time step (run_stable_dt combines it with the
  * triangles and joints at every node).  For every participating triangle e that can touch a
  * triangle of another body, or its own body's under a self rule (a fracturing body's fragments, a

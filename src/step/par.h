@@ -87,6 +87,7 @@ int par_any(int flag);                  /* flag set on any rank (the same answer
 long par_bcast_long(long v);
 const int *par_tri_lo(void);
 void par_run_report(struct YfSim *s, long nsteps, double wall); /* ranks, imbalance, traffic */
+void par_run_clock(void); /* the run's wall clock starts: its communication time counts from here */
 /* Divided update (docs/SCALING.md section 1).  At each run's start par_run_begin decides whether
  * every rank updates only the nodes it owns (no mass damping, and no boundary-condition kind that
  * both replaces the update and shares nodes), plus the nodes the kinds share (YF_BC_SHARED: every
@@ -155,6 +156,7 @@ static inline int par_any(int flag) { return flag; }
 static inline long par_bcast_long(long v) { return v; }
 static inline const int *par_tri_lo(void) { return NULL; }
 #define par_run_report(s, nsteps, wall) ((void)0)
+static inline void par_run_clock(void) {}
 static inline void par_run_begin(struct YfSim *s) { (void)s; }
 static inline int par_divided(void) { return 0; }
 static inline int par_run_id(void) { return 0; }

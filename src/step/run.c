@@ -722,6 +722,7 @@ void run_steps(YfSim *s, long nsteps) {
   sim_notify(s, &ev);
   double stage0[YF_NSTAGE];
   memcpy(stage0, yf_stage_time, sizeof stage0);
+  par_run_clock(); /* MPI: the communication share is of this wall time */
   R.t_wall0 = yf_now();
   double t_start = R.t_wall0;
   thermo_header(s);
@@ -736,7 +737,7 @@ void run_steps(YfSim *s, long nsteps) {
     if (k == 0) energy_first_step(s); /* the start state's contact energy belongs to the budget */
     if (contact_searches(s) != searches0) { /* speeds gained in the run (gravity, loads) can tunnel too */
       searches0 = contact_searches(s);
-      if (par_size() == 1) contact_check_impact(s, NULL);
+      contact_check_impact_run(s); /* (MPI: every rank, a collective when the update is divided) */
     }
     par_balance(s); /* MPI: after a contact search, move the ranks' borders if their work is uneven */
     double t0 = yf_now();
