@@ -486,7 +486,7 @@ START_TEST(test_search_merge_keeps_friction)
     old.gi[k] = -1;
     if (k % 5 == 4) continue; /* some couples never touched: no memory */
     double *g = contact_pairs_gslot(&old, k);
-    for (int q = 0; q < 6; q++) g[q] = gval(old.ij[2 * k], old.ij[2 * k + 1], q);
+    for (int q = 0; q < YF_PAIR_NG; q++) g[q] = gval(old.ij[2 * k], old.ij[2 * k + 1], q);
   }
   /* Drop every third old couple (as the force routine would), then move everything. */
   unsigned char *keep = malloc(old.n > 0 ? old.n : 1);
@@ -502,9 +502,9 @@ START_TEST(test_search_merge_keeps_friction)
     int i = fresh.ij[2 * k], j = fresh.ij[2 * k + 1], found = 0, had = 0;
     for (int a = 0; a < old.n; a++) /* linear scan: the test's own reference */
       if (old.ij[2 * a] == i && old.ij[2 * a + 1] == j) { found = 1; had = old.gi[a] >= 0; break; }
-    for (int q = 0; q < 6; q++) {
+    for (int q = 0; q < YF_PAIR_NG; q++) {
       double want = found && had ? gval(i, j, q) : 0.0;
-      double got = fresh.gi[k] >= 0 ? fresh.g[6 * fresh.gi[k] + q] : 0.0;
+      double got = fresh.gi[k] >= 0 ? fresh.g[YF_PAIR_NG * fresh.gi[k] + q] : 0.0;
       bad += !(got == want);
     }
     carried += found;
@@ -548,7 +548,7 @@ START_TEST(test_search_merge_chunks_match_serial)
     if (u < 0.5) continue;                  /* never touched */
     double *g = contact_pairs_gslot(&old, k);
     if (u < 0.6) continue;                  /* touched, memory back to zero: not carried */
-    for (int q = 0; q < 6; q++) g[q] = urand() - 0.5;
+    for (int q = 0; q < YF_PAIR_NG; q++) g[q] = urand() - 0.5;
   }
   int a = 0, f = 0;
   while (f < NF && a < NO) {
@@ -566,18 +566,18 @@ START_TEST(test_search_merge_chunks_match_serial)
               (fresh.ij[2 * k - 2] == fresh.ij[2 * k] && fresh.ij[2 * k - 1] < fresh.ij[2 * k + 1]));
   /* the reference: one serial two-pointer pass */
   int *rgi = malloc((size_t)fresh.n * sizeof *rgi), rng = 0;
-  double *rg = malloc((size_t)fresh.n * 6 * sizeof *rg);
+  double *rg = malloc((size_t)fresh.n * YF_PAIR_NG * sizeof *rg);
   for (int k = 0, p = 0; k < fresh.n; k++) {
     int fi = fresh.ij[2 * k], fj = fresh.ij[2 * k + 1];
     while (p < NO && (old.ij[2 * p] < fi || (old.ij[2 * p] == fi && old.ij[2 * p + 1] < fj))) p++;
     rgi[k] = -1;
     if (p < NO && old.ij[2 * p] == fi && old.ij[2 * p + 1] == fj && old.gi[p] >= 0) {
-      const double *g = old.g + 6 * (size_t)old.gi[p];
+      const double *g = old.g + YF_PAIR_NG * (size_t)old.gi[p];
       int nz = 0;
-      for (int q = 0; q < 6; q++) nz |= g[q] != 0.0;
+      for (int q = 0; q < YF_PAIR_NG; q++) nz |= g[q] != 0.0;
       if (!nz) continue;
       rgi[k] = rng;
-      memcpy(rg + 6 * (size_t)rng, g, 6 * sizeof *g);
+      memcpy(rg + YF_PAIR_NG * (size_t)rng, g, YF_PAIR_NG * sizeof *g);
       rng++;
     }
   }
@@ -590,7 +590,7 @@ START_TEST(test_search_merge_chunks_match_serial)
     for (int k = 0; k < fresh.n; k++) {
       bad += fresh.gi[k] != rgi[k];
       if (rgi[k] >= 0 && fresh.gi[k] == rgi[k])
-        bad += memcmp(fresh.g + 6 * (size_t)rgi[k], rg + 6 * (size_t)rgi[k], 6 * sizeof(double)) != 0;
+        bad += memcmp(fresh.g + YF_PAIR_NG * (size_t)rgi[k], rg + YF_PAIR_NG * (size_t)rgi[k], YF_PAIR_NG * sizeof(double)) != 0;
     }
     ck_assert_msg(bad == 0, "%d threads: %d couples differ from the serial merge", t, bad);
   }
@@ -1096,7 +1096,7 @@ START_TEST(test_kernel_matches_reference)
     for (int step = 0; step < 2; step++) {
       double far[6] = {0}, fbr[6] = {0}, fa1[6] = {0}, fb1[6] = {0}, fa2[6] = {0}, fb2[6] = {0};
       double dr = DBL_MAX, d1, d2;
-      YfContactInfo ir = {0, 0, 0, 0, 0, 0}, i1 = ir, i2 = ir;
+      YfContactInfo ir = {0}, i1 = ir, i2 = ir;
       int nr = ref_dir(xa, ya, vxa, vya, xb, yb, vxb, vyb, pn, pt, mu, dt, gr, far, fbr, &dr, &ir);
       nr += ref_dir(xb, yb, vxb, vyb, xa, ya, vxa, vya, pn, pt, mu, dt, gr + 3, fbr, far, &dr, &ir);
       int r1 = contact_pair_force(xa, ya, vxa, vya, xb, yb, vxb, vyb, pn, pt, mu, YF_FRIC_Y2D, dt, g1, fa1, fb1, &d1, &i1);

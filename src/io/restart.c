@@ -18,8 +18,12 @@
  *            (they cannot be recomputed: they belong to the positions at the start of that step)
  *   /joints/{k, fs, dmg(3), w, z, f(8), state, mode, pend, nbroken, diss_broken, dt_prev,
  *            rec_step, rec_d(4: time x y length), rec_i(4: mode triA triB joint), rng_SET}
- *   /contact/{ij(2), g(6), alive, nlive, ndead, travel, nsearch, broken_seen,
+ *   /contact/{ij(2), g(6), gprev(6), spring, alive, nlive, ndead, travel, nsearch, broken_seen,
  *             force_search, fcn(2 nnode), fcn_valid}                 (only when contact is on)
+ *            gprev: each couple's spring forces of the last step and spring: the energy the
+ *            Coulomb springs held then (the friction booking, contact.c); a file without them
+ *            (written before they were kept) reads as no history: zero forces, and the
+ *            springs' energy computed from g at the file's positions
  * /meta/complete is written last; a file without it is refused.
  */
 #include <errno.h>
@@ -38,6 +42,7 @@
 #include "h5quiet.h"
 #include "par.h"
 #include "contact.h"
+#include "contact_search.h" /* YF_PAIR_NG: the friction memory per couple */
 #include "err.h"
 #include "joint.h"
 #include "run.h"
@@ -331,7 +336,14 @@ static void write_all(W *w, YfSim *s) {
     size_t np = (size_t)cs.n;
     g = group(w, "contact");
     put(w, g, "ij", H5T_NATIVE_INT, 2 * np, cs.ij);
-    put(w, g, "g", H5T_NATIVE_DOUBLE, 6 * np, cs.g);
+    /* the memory's two halves as two datasets: g as before, gprev added (older readers skip it) */
+    double *gh = yf_malloc((6 * np + 1) * sizeof(double), "restart buffer");
+    for (int h = 0; h < 2; h++) {
+      for (size_t k = 0; k < np; k++) memcpy(gh + 6 * k, cs.g + YF_PAIR_NG * k + 6 * h, 6 * sizeof(double));
+      put(w, g, h ? "gprev" : "g", H5T_NATIVE_DOUBLE, 6 * np, gh);
+    }
+    free(gh);
+    put_d(w, g, "spring", cs.spring);
     put(w, g, "alive", H5T_NATIVE_UCHAR, np, cs.alive);
     put_l(w, g, "nlive", cs.nlive);
     put_l(w, g, "ndead", cs.ndead);
@@ -651,11 +663,22 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
     if (np < 0 || np > INT_MAX / 12) rfail(&r, "contact/alive missing");
     st.n = (int)np;
     st.ij = yf_malloc((size_t)(np ? np : 1) * 2 * sizeof(int), "restart buffer");
-    st.g = yf_malloc((size_t)(np ? np : 1) * 6 * sizeof(double), "restart buffer");
+    st.g = yf_calloc((size_t)(np ? np : 1) * YF_PAIR_NG, sizeof(double), "restart buffer");
+    double *gh = yf_malloc((size_t)(np ? np : 1) * 6 * sizeof(double), "restart buffer");
     st.alive = yf_malloc((size_t)(np ? np : 1), "restart buffer");
     st.fcn = yf_malloc((nn ? nn : 1) * 2 * sizeof(double), "restart buffer");
     get(&r, g, "ij", H5T_NATIVE_INT, 2 * (size_t)np, st.ij);
-    get(&r, g, "g", H5T_NATIVE_DOUBLE, 6 * (size_t)np, st.g);
+    get(&r, g, "g", H5T_NATIVE_DOUBLE, 6 * (size_t)np, gh);
+    for (long k = 0; k < np; k++) memcpy(st.g + YF_PAIR_NG * k, gh + 6 * k, 6 * sizeof(double));
+    /* the forces of the last step: a file without them (older) has no history, zeros */
+    if (dlen(g, "gprev") == 6 * np) {
+      get(&r, g, "gprev", H5T_NATIVE_DOUBLE, 6 * (size_t)np, gh);
+      for (long k = 0; k < np; k++) memcpy(st.g + YF_PAIR_NG * k + 6, gh + 6 * k, 6 * sizeof(double));
+    }
+    free(gh);
+    /* the springs' energy of the last step: without it (older) contact_state_load computes it */
+    st.has_spring = dlen(g, "spring") == 1;
+    if (st.has_spring) st.spring = get_d(&r, g, "spring");
     get(&r, g, "alive", H5T_NATIVE_UCHAR, (size_t)np, st.alive);
     for (long k = 0; k < 2 * np; k++)
       if (st.ij[k] < 0 || st.ij[k] >= m->tri.n) rfail(&r, "contact/ij: triangle index out of range");
@@ -664,7 +687,7 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
         int ma = m->tri.mat[st.ij[2 * k]], mb = m->tri.mat[st.ij[2 * k + 1]];
         if (m->mat[ma].fric_law == YF_FRIC_Y2D || m->mat[mb].fric_law == YF_FRIC_Y2D) continue;
         for (int c = 0; c < 6; c++)
-          if (st.g[6 * k + c] != 0.0)
+          if (st.g[YF_PAIR_NG * k + c] != 0.0)
             rfail(&r, "format version 1 holds the coulomb friction law's memory as F_t (this yfdem keeps "
                       "F_t / sqrt(k_t)): rerun from the deck, or with the yfdem that wrote it");
       }

@@ -153,7 +153,11 @@ static inline double coulomb_edge(const double al[3], const double dl[3], const 
     Ft = copysign(cap, Ft);
   }
   *g = sk > 0.0 ? Ft / sk : 0.0; /* pen_t 0: no spring */
-  if (info) info->energy += 0.5 * *g * *g * L; /* the spring's energy 0.5 F_t^2 / k_t L [J/m] */
+  if (info) { /* the spring's energy 0.5 F_t^2 / k_t L [J/m] */
+    double es = 0.5 * *g * *g * L;
+    info->energy += es;
+    info->spring += es;
+  }
   return Ft;
 }
 
@@ -166,7 +170,7 @@ static inline double coulomb_edge(const double al[3], const double dl[3], const 
 __attribute__((always_inline)) static inline int pair_dir(const double *t, const double *c, const double vxt[3],
                                                          const double vyt[3], const double vxc[3], const double vyc[3],
                                                          double pn, double pt, double mu, int law, double dt, double g[3],
-                                                         double ft[6], double fc[6], double *dmin2,
+                                                         double *gp, double ft[6], double fc[6], double *dmin2,
                                                          YfContactInfo *info, Mask4 mask)
 {
   /* 6.1: target normals (outward for CCW corners, length = edge length) and twice-area. */
@@ -226,7 +230,10 @@ __attribute__((always_inline)) static inline int pair_dir(const double *t, const
       if (al[2] < amin) { amin = al[2]; m2 = Q[2]; }
       double num = amin * amin * (D * D);
       if (num < dmin * m2) dmin = num / m2;
-      if (law != YF_FRIC_Y2D) g[e] = 0.0; /* apart: the tangential spring lets go */
+      if (law != YF_FRIC_Y2D) {
+        g[e] = 0.0; /* apart: the tangential spring lets go */
+        if (gp) gp[e] = 0.0;
+      }
       continue;
     }
 
@@ -246,7 +253,10 @@ __attribute__((always_inline)) static inline int pair_dir(const double *t, const
       }
     }
     if (smax <= smin) {
-      if (law != YF_FRIC_Y2D) g[e] = 0.0;
+      if (law != YF_FRIC_Y2D) {
+        g[e] = 0.0;
+        if (gp) gp[e] = 0.0;
+      }
       continue;
     }
 
@@ -307,7 +317,7 @@ __attribute__((always_inline)) static inline int pair_dir(const double *t, const
 
     /* 6.4: friction on the edge. */
     double tcx = xc[b] - xc[a], tcy = yc[b] - yc[a]; /* unnormalised tangent */
-    double Ft = 0.0, w = 0.0, slip = 0.0;
+    double Ft = 0.0, w = 0.0, slip = 0.0, fp = 0.0; /* fp: the edge's F_t of the last call (booking) */
     if (law == YF_FRIC_Y2D) {
       double sbar = 0.0;
       for (int i = 0; i < nb; i++) sbar += bs[i];
@@ -345,6 +355,10 @@ __attribute__((always_inline)) static inline int pair_dir(const double *t, const
     } else if (F > 0.0) { /* the Coulomb law; its spring acts at the interval's midpoint s_m */
       Ft = coulomb_edge(al, dl, vxt, vyt, vxc[a], vyc[a], vxc[b], vyc[b], tcx, tcy, smin, smax, Q, D, pt,
                         mu * F, dt, &g[e], &w, &slip, info);
+      if (gp) {
+        fp = gp[e];
+        gp[e] = Ft;
+      }
       double sm = 0.5 * (smin + smax);
       fax += Ft * (1.0 - sm) * tcx;
       fay += Ft * (1.0 - sm) * tcy;
@@ -352,6 +366,7 @@ __attribute__((always_inline)) static inline int pair_dir(const double *t, const
       fby += Ft * sm * tcy;
     } else {
       g[e] = 0.0; /* touching without force: the spring holds nothing */
+      if (gp) gp[e] = 0.0;
     }
 
     fc[2 * a] += fax;
@@ -377,6 +392,7 @@ __attribute__((always_inline)) static inline int pair_dir(const double *t, const
       info->fn += fabs(F) * L;
       info->ft += fabs(Ft) * L;
       info->work_t += Ft * w * dt;
+      info->work_c += 0.5 * (fp + Ft) * w * dt;
       info->dissip += fabs(Ft) * slip;
       info->energy += 1.5 * pn * L * I2h;
     }
@@ -393,7 +409,8 @@ int contact_pair_dir(const double xt[3], const double yt[3], const double vxt[3]
   double rt[YF_TRI_GEOM], rc[YF_TRI_GEOM];
   contact_pair_geom(xt, yt, rt);
   contact_pair_geom(xc, yc, rc);
-  return pair_dir(rt, rc, vxt, vyt, vxc, vyc, pn, pt, mu, law, dt, g, ft, fc, dmin2, info, mask4_any);
+  return pair_dir(rt, rc, vxt, vyt, vxc, vyc, pn, pt, mu, law, dt, g, info ? info->gprev : NULL, ft, fc, dmin2, info,
+                  mask4_any);
 }
 
 /* both directions of a couple (contact_pair_force_rec) with the given lane-mask function */
@@ -404,8 +421,9 @@ __attribute__((always_inline)) static inline int pair_force(const double *ra, co
                                                            YfContactInfo *info, Mask4 mask)
 {
   double d2 = DBL_MAX;
-  int n = pair_dir(ra, rb, vxa, vya, vxb, vyb, pn, pt, mu, law, dt, g, fa, fb, &d2, info, mask);
-  n += pair_dir(rb, ra, vxb, vyb, vxa, vya, pn, pt, mu, law, dt, g + 3, fb, fa, &d2, info, mask);
+  double *gp = info ? info->gprev : NULL;
+  int n = pair_dir(ra, rb, vxa, vya, vxb, vyb, pn, pt, mu, law, dt, g, gp, fa, fb, &d2, info, mask);
+  n += pair_dir(rb, ra, vxb, vyb, vxa, vya, pn, pt, mu, law, dt, g + 3, gp ? gp + 3 : NULL, fb, fa, &d2, info, mask);
   if (dmin2) *dmin2 = d2;
   return n > 0;
 }

@@ -62,7 +62,7 @@ void contact_pairs_greserve(YfPairs *p, int n)
   if (n <= p->gcap) return;
   int cap = p->gcap > 0 ? p->gcap : 256;
   while (cap < n) cap = cap > (1 << 28) ? n : 2 * cap;
-  p->g = yf_realloc(p->g, (size_t)cap * 6 * sizeof *p->g, "contact friction memory");
+  p->g = yf_realloc(p->g, (size_t)cap * YF_PAIR_NG * sizeof *p->g, "contact friction memory");
   p->gcap = cap;
 }
 
@@ -71,9 +71,9 @@ double *contact_pairs_gslot(YfPairs *p, int k)
   if (p->gi[k] < 0) {
     YF_ASSERT(p->ng < p->gcap);
     p->gi[k] = p->ng++;
-    memset(p->g + 6 * (size_t)p->gi[k], 0, 6 * sizeof *p->g);
+    memset(p->g + YF_PAIR_NG * (size_t)p->gi[k], 0, YF_PAIR_NG * sizeof *p->g);
   }
-  return p->g + 6 * (size_t)p->gi[k];
+  return p->g + YF_PAIR_NG * (size_t)p->gi[k];
 }
 
 int contact_pairs_compact(YfPairs *p, const unsigned char *keep)
@@ -373,8 +373,7 @@ static int merge_mark(const YfPairs *old, YfPairs *fresh, int k0, int k1)
     while (a < old->n && pair_before(old->ij, a, i, j)) a++;
     fresh->gi[k] = -1;
     if (a < old->n && old->ij[2 * a] == i && old->ij[2 * a + 1] == j && old->gi[a] >= 0) {
-      const double *g = old->g + 6 * (size_t)old->gi[a];
-      if (g[0] == 0.0 && g[1] == 0.0 && g[2] == 0.0 && g[3] == 0.0 && g[4] == 0.0 && g[5] == 0.0) continue;
+      if (contact_gmem_zero(old->g + YF_PAIR_NG * (size_t)old->gi[a])) continue;
       fresh->gi[k] = old->gi[a];
       used++;
     }
@@ -386,9 +385,9 @@ static void merge_copy(const YfPairs *old, YfPairs *fresh, int k0, int k1, int s
 {
   for (int k = k0; k < k1; k++) {
     if (fresh->gi[k] < 0) continue;
-    const double *g = old->g + 6 * (size_t)fresh->gi[k];
+    const double *g = old->g + YF_PAIR_NG * (size_t)fresh->gi[k];
     fresh->gi[k] = slot++;
-    memcpy(fresh->g + 6 * (size_t)fresh->gi[k], g, 6 * sizeof *g);
+    memcpy(fresh->g + YF_PAIR_NG * (size_t)fresh->gi[k], g, YF_PAIR_NG * sizeof *g);
   }
 }
 

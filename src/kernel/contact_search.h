@@ -14,15 +14,25 @@
 #include <stdint.h>
 
 /* A couple list: pairs (ij[2k], ij[2k+1]) with ij[2k] < ij[2k+1], sorted lexicographically, and
- * the 6 sliding values of each couple (contact_pair.h: index dir*3 + contactor edge), kept
+ * the friction memory of each couple, YF_PAIR_NG values: the 6 sliding values (contact_pair.h:
+ * index dir*3 + contactor edge), then the 6 tangential forces of the last step in the same order
+ * (YfContactInfo.gprev: the Coulomb law's energy booking only; zeros for Y2D's law).  Kept
  * sparse: few couples ever touch (1-2 % of a fracturing body's neighbour couples), so a couple
- * has a slot in the pool g only from its first contact on; without one its six values are 0. */
+ * has a slot in the pool g only from its first contact on; without one its values are 0. */
+#define YF_PAIR_NG 12
+/* 1 when a slot's YF_PAIR_NG values are all zero (the couple holds no memory) */
+static inline int contact_gmem_zero(const double *g)
+{
+  int z = 1;
+  for (int c = 0; c < YF_PAIR_NG; c++) z &= g[c] == 0.0;
+  return z;
+}
 typedef struct {
   int n, cap;
   int *ij;   /* 2 per pair: triangle indices                             */
   int *gi;   /* per pair: slot in g, -1 = none (friction memory all zero)  */
   int ng, gcap;
-  double *g; /* 6 per slot: friction memory [m^2]                        */
+  double *g; /* YF_PAIR_NG per slot: friction memory (above)              */
 } YfPairs;
 
 void contact_pairs_init(YfPairs *p);
@@ -31,7 +41,7 @@ void contact_pairs_free(YfPairs *p);
 void contact_pairs_reserve(YfPairs *p, int n);
 /* Room for n slots of friction memory (keeps content; grows geometrically). */
 void contact_pairs_greserve(YfPairs *p, int n);
-/* The six sliding values of pair k (a zeroed slot is taken when it has none; room must have
+/* The friction memory of pair k, YF_PAIR_NG values (a zeroed slot is taken when it has none; room must have
  * been reserved). */
 double *contact_pairs_gslot(YfPairs *p, int k);
 /* Keep only pairs k with keep[k] != 0, in order (e.g. couples removed by the force routine).

@@ -27,7 +27,14 @@
  *               summed per block in order.
  * Dropped couples stay in the list as dead entries until a search, or until a quarter of the
  * list is dead, when the list is compacted.  Memory per couple: 8 B indices, 4 B friction slot,
- * 1 B state; 48 B of friction memory only for couples that have touched.
+ * 1 B state; 96 B of friction memory only for couples that have touched (the six springs' s and
+ * their forces of the last step, YF_PAIR_NG).
+ * Friction energy (the Coulomb law): what its springs do not store is dissipated.  Each touching
+ * couple gives the centred work of its springs' forces (YfContactInfo.work_c, the work the
+ * integrator books into the motion) and the energy they hold after the step; the dissipation of
+ * a step is the work less the change of the springs' total energy (espring: that of the last
+ * step), so a spring that lets go (apart, screened, dropped, forgotten) is dissipated too, and
+ * the balance sees the springs' work, not their energy estimate.  Y2D's law books |F_t| slip.
  *
  * Units: SI, 2D per unit thickness: forces N/m, penalties Pa, energies J/m.
  */
@@ -99,7 +106,8 @@ typedef struct YfContact {
   int nlive, ndead;
   double *tg;            /* per triangle: the screen's record of this step (YF_TRI_GEOM) */
   int cap_tg;
-  double *blk_e, *blk_d;
+  double *blk_e, *blk_d, *blk_s; /* per block: contact energy, friction dissipation, spring energy */
+  double espring;        /* energy held by the Coulomb springs after the last step [J/m]      */
   int *blk_rm, *blk_busy, *blk_off, *blk_need, *blk_goff, cap_blk;
   /* forces of the couples that touched this step, in couple order: couple hk[h], 12 numbers
    * hf[12 h ..] (A's corners, then B's) [N/m]; room for cap_hit */
@@ -111,7 +119,7 @@ typedef struct YfContact {
   int *tlist, ntl, cap_tl, tl_run;
   double *hf;
   double *fcn;           /* per node: contact force of the last step [N/m]      */
-  double *gdense;        /* restart: the friction memory, 6 per couple (copy)   */
+  double *gdense;        /* restart: the friction memory, YF_PAIR_NG per couple (copy) */
   int cap_nodes;
   int fcn_valid;
 
@@ -170,7 +178,7 @@ void contact_free(YfSim *s) {
   contact_pairs_free(&C->pairs);
   contact_pairs_free(&C->fresh);
   free(C->alive); free(C->tg);
-  free(C->blk_e); free(C->blk_d); free(C->blk_rm); free(C->blk_busy); free(C->blk_off);
+  free(C->blk_e); free(C->blk_d); free(C->blk_s); free(C->blk_rm); free(C->blk_busy); free(C->blk_off);
   free(C->blk_need); free(C->blk_goff); free(C->gdense); free(C->wij); free(C->walive);
   free(C->hk); free(C->hf);
   free(C->tmark); free(C->fcn); free(C->tlist);
@@ -631,6 +639,7 @@ static void couple_arrays(YfContact *C, int n, int ntot) {
     C->cap_blk = nblk + nblk / 4 + 16;
     C->blk_e = yf_realloc(C->blk_e, (size_t)C->cap_blk * sizeof(double), "contact blocks");
     C->blk_d = yf_realloc(C->blk_d, (size_t)C->cap_blk * sizeof(double), "contact blocks");
+    C->blk_s = yf_realloc(C->blk_s, (size_t)C->cap_blk * sizeof(double), "contact blocks");
     C->blk_rm = yf_realloc(C->blk_rm, (size_t)C->cap_blk * sizeof(int), "contact blocks");
     C->blk_busy = yf_realloc(C->blk_busy, (size_t)C->cap_blk * sizeof(int), "contact blocks");
     C->blk_off = yf_realloc(C->blk_off, (size_t)(C->cap_blk + 1) * sizeof(int), "contact blocks");
@@ -723,11 +732,14 @@ typedef struct {
 /* The kernel on the marked couples of block b, in couple order: friction slots numbered from the
  * block's offset, energy and dissipation summed per block, couples dropped as Y2D drops them. */
 /* The kernel on the marked couples ka..kb-1, hits numbered from h, new friction slots from slot;
- * energy and dissipation summed in couple order into *eo, *dofs (and, when ed is not NULL, each
- * touching couple's pair written to ed in order: the pieces of a block shared by two ranks). */
-static void kernel_run(const KernelPass *P, int ka, int kb, int h, int slot, double *eo, double *dofs, int *rmo,
-                       double *ed) {
-  double e = 0.0, d = 0.0;
+ * contact energy, friction dissipation before the springs' release and spring energy summed in
+ * couple order into sum[0..NSUM-1] (and, when ed is not NULL, each touching couple's NSUM values
+ * written to ed in order: the pieces of a block shared by two ranks).  A Coulomb couple's
+ * dissipation is its centred work less its springs' energy now (the caller adds that of the last
+ * step, espring); a Y2D couple's is |F_t| slip. */
+enum { NSUM = 3 };
+static void kernel_run(const KernelPass *P, int ka, int kb, int h, int slot, double *sum, int *rmo, double *ed) {
+  double e = 0.0, d = 0.0, sp = 0.0;
   int rm = 0;
   const int *ij = P->ij, *tv = P->tv, *tmat = P->tmat;
   int *gi = P->gi;
@@ -752,19 +764,24 @@ static void kernel_run(const KernelPass *P, int ka, int kb, int h, int slot, dou
     double loc[12];
     double *fa = P->hf ? P->hf + 12 * (size_t)h : loc, *fb = fa + 6;
     for (int c = 0; c < 12; c++) fa[c] = 0.0;
-    YfContactInfo info = {0, 0, 0, 0, 0, 0};
+    YfContactInfo info = {0, 0, 0, 0, 0, 0, NULL, 0, 0};
     double d2;
     if (gi[k] < 0) { /* first contact of the couple: a zeroed slot, numbered in couple order */
       gi[k] = slot++;
-      memset(gmem + 6 * (size_t)gi[k], 0, 6 * sizeof *gmem);
+      memset(gmem + YF_PAIR_NG * (size_t)gi[k], 0, YF_PAIR_NG * sizeof *gmem);
     }
+    double *gk = gmem + YF_PAIR_NG * (size_t)gi[k];
+    info.gprev = gk + 6;
     int hit = contact_pair_force_rec(tg + (size_t)YF_TRI_GEOM * tj, vxa, vya, tg + (size_t)YF_TRI_GEOM * ti, vxb,
-                                     vyb, pn, pt, mu, law, P->dt, gmem + 6 * (size_t)gi[k], fa, fb, &d2, &info);
+                                     vyb, pn, pt, mu, law, P->dt, gk, fa, fb, &d2, &info);
+    double dc = law == YF_FRIC_Y2D ? info.dissip : info.work_c - info.spring;
     e += info.energy;
-    d += info.dissip;
+    d += dc;
+    sp += info.spring;
     if (ed) {
       *ed++ = info.energy;
-      *ed++ = info.dissip;
+      *ed++ = dc;
+      *ed++ = info.spring;
     }
     if (P->hf) {
       P->hk[h] = k;
@@ -779,16 +796,21 @@ static void kernel_run(const KernelPass *P, int ka, int kb, int h, int slot, dou
     h++;
     if (!hit && d2 > P->rem2) { alive[k] = 0; rm++; }
   }
-  *eo = e;
-  *dofs = d;
+  sum[0] = e;
+  sum[1] = d;
+  sum[2] = sp;
   *rmo = rm;
 }
 
 static void kernel_block(YfContact *C, const KernelPass *P, int b) {
   int h = C->blk_off[b], rm = 0;
-  if (h == C->blk_off[b + 1]) { C->blk_e[b] = C->blk_d[b] = 0.0; return; }
+  if (h == C->blk_off[b + 1]) { C->blk_e[b] = C->blk_d[b] = C->blk_s[b] = 0.0; return; }
   int k1 = (b + 1) * PAIR_BLK < P->np ? (b + 1) * PAIR_BLK : P->np;
-  kernel_run(P, b * PAIR_BLK, k1, h, C->blk_goff[b], &C->blk_e[b], &C->blk_d[b], &rm, NULL);
+  double q[NSUM];
+  kernel_run(P, b * PAIR_BLK, k1, h, C->blk_goff[b], q, &rm, NULL);
+  C->blk_e[b] = q[0];
+  C->blk_d[b] = q[1];
+  C->blk_s[b] = q[2];
   C->blk_rm[b] += rm;
 }
 
@@ -1198,13 +1220,13 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nbusy, int *n
       if (alive[k] == 3) alive[k] = 0;
       else if (alive[k] == 2 && gi[k] < 0) {
         gi[k] = slot++;
-        memset(P->gmem + 6 * (size_t)gi[k], 0, 6 * sizeof(double));
+        memset(P->gmem + YF_PAIR_NG * (size_t)gi[k], 0, YF_PAIR_NG * sizeof(double));
       }
   }
   *ng = slot;
   /* this rank's pieces: hits numbered from 0 in couple order */
-  ds_room(&DS.sum, &DS.csum, (size_t)(4 * nq + 4) * sizeof(double));
-  double *qsum = DS.sum; /* e, d per piece */
+  ds_room(&DS.sum, &DS.csum, (size_t)(NSUM * nq + 4) * sizeof(double));
+  double *qsum = DS.sum; /* e, d, s per piece */
   int nh = 0, ned = 0;
   ds_room(&DS.hof, &DS.chof, (size_t)(3 * nq + 3) * sizeof(int));
   int *hoff = DS.hof, *eoff = hoff + nq + 1;
@@ -1221,14 +1243,13 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nbusy, int *n
   hit_room(C, nh > nbusy ? nh : nbusy);
   P->hf = C->hf;
   P->hk = C->hk;
-  ds_room(&DS.ed, &DS.ced, (size_t)(2 * ned + 2 * nq + 2) * sizeof(double));
+  ds_room(&DS.ed, &DS.ced, (size_t)(NSUM * ned + NSUM * nq + 2) * sizeof(double));
   double *ed = DS.ed;
   const double tk = yf_cpu_now();
   #pragma omp parallel for schedule(dynamic, 1) if (nh >= C->par_min / 32 && nq > 1)
   for (int q = 0; q < nq; q++) {
     int xa, xb, rm = 0, whole = piece(b0 + q, k0, k1, np, &xa, &xb);
-    kernel_run(P, xa - k0, xb - k0, hoff[q], 0, &qsum[2 * q], &qsum[2 * q + 1], &rm,
-               whole ? NULL : ed + 2 * eoff[q]);
+    kernel_run(P, xa - k0, xb - k0, hoff[q], 0, &qsum[NSUM * q], &rm, whole ? NULL : ed + NSUM * eoff[q]);
   }
   par_note_work(yf_cpu_now() - tk);
 
@@ -1241,20 +1262,21 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nbusy, int *n
   }
   int ndrop = nsd;
   for (int h = 0; h < nh; h++) ndrop += !alive[C->hk[h]];
-  size_t nsend = (size_t)(2 * nwhole + 2 * ned + 3) * sizeof(double);
+  size_t nsend = (size_t)(NSUM * nwhole + NSUM * ned + nq + 3) * sizeof(double);
   ds_room(&DS.send, &DS.csend, nsend + 16);
   double *o = DS.send;
   for (int q = 0; q < nq; q++) {
     int xa, xb;
-    if (piece(b0 + q, k0, k1, np, &xa, &xb)) { *o++ = qsum[2 * q]; *o++ = qsum[2 * q + 1]; }
+    if (piece(b0 + q, k0, k1, np, &xa, &xb))
+      for (int v = 0; v < NSUM; v++) *o++ = qsum[NSUM * q + v];
   }
   for (int q = 0; q < nq; q++) { /* split pieces: how many touching couples, then their pairs */
     int xa, xb;
     if (piece(b0 + q, k0, k1, np, &xa, &xb)) continue;
     int c = q + 1 < nq ? eoff[q + 1] - eoff[q] : ned - eoff[q];
     *o++ = c;
-    memcpy(o, ed + 2 * eoff[q], (size_t)(2 * c) * sizeof(double));
-    o += 2 * c;
+    memcpy(o, ed + NSUM * eoff[q], (size_t)(NSUM * c) * sizeof(double));
+    o += NSUM * c;
   }
   *o++ = ndrop;
   const char *all = par_concat(DS.send, (int)((char *)o - (char *)DS.send), rb);
@@ -1265,15 +1287,17 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nbusy, int *n
     if (lo[r + 1] <= lo[r]) continue;
     int rb0 = lo[r] / PAIR_BLK, rb1 = (lo[r + 1] - 1) / PAIR_BLK + 1, xa, xb;
     for (int b = rb0; b < rb1; b++)
-      if (piece(b, lo[r], lo[r + 1], np, &xa, &xb)) { C->blk_e[b] = a[0]; C->blk_d[b] = a[1]; a += 2; }
+      if (piece(b, lo[r], lo[r + 1], np, &xa, &xb)) { C->blk_e[b] = a[0]; C->blk_d[b] = a[1]; C->blk_s[b] = a[2]; a += NSUM; }
     for (int b = rb0; b < rb1; b++) {
       if (piece(b, lo[r], lo[r + 1], np, &xa, &xb)) continue;
       /* a split block: its touching couples in couple order, rank after rank */
-      double e = xa == b * PAIR_BLK ? 0.0 : C->blk_e[b], d = xa == b * PAIR_BLK ? 0.0 : C->blk_d[b];
+      const int first = xa == b * PAIR_BLK;
+      double e = first ? 0.0 : C->blk_e[b], d = first ? 0.0 : C->blk_d[b], sp = first ? 0.0 : C->blk_s[b];
       int c = (int)*a++;
-      for (int t = 0; t < c; t++, a += 2) { e += a[0]; d += a[1]; }
+      for (int t = 0; t < c; t++, a += NSUM) { e += a[0]; d += a[1]; sp += a[2]; }
       C->blk_e[b] = e;
       C->blk_d[b] = d;
+      C->blk_s[b] = sp;
     }
   }
 
@@ -1354,10 +1378,10 @@ void contact_par_gather(YfSim *s) {
   par_gather_ranges(C->fcn, nlo, 2 * (int)sizeof(double));
 }
 
-/* MPI: the whole couple list, its states and its friction memory (6 per couple, zeros where a
- * couple has none, as a restart stores it) into wij, walive, gdense on the writer rank (rank 0,
- * the one that writes the restart), from the ranks' ranges in rank order: 9 B per couple and
- * 48 B per couple with memory, sent to that rank only.  A collective; a no-op unless the list is
+/* MPI: the whole couple list, its states and its friction memory (YF_PAIR_NG per couple, zeros
+ * where a couple has none, as contact_state_save gives it) into wij, walive, gdense on the writer
+ * rank (rank 0, the one that writes the restart), from the ranks' ranges in rank order: 9 B per
+ * couple and 96 B per couple with memory, sent to that rank only.  A collective; a no-op unless the list is
  * laid out by ranks. */
 void contact_par_whole(YfSim *s) {
   YfContact *C = s->contact;
@@ -1377,7 +1401,7 @@ static void gather_whole(YfContact *C, int everyone) {
   if (w) {
     C->wij = yf_malloc((size_t)(ntot + 1) * 2 * sizeof(int), "restart couples");
     C->walive = yf_malloc((size_t)ntot + 1, "restart couples");
-    C->gdense = yf_calloc((size_t)(ntot + 1) * 6, sizeof(double), "restart friction memory");
+    C->gdense = yf_calloc((size_t)(ntot + 1) * YF_PAIR_NG, sizeof(double), "restart friction memory");
   }
   const void *all = cat(C->pairs.ij, (int)((size_t)n * 2 * sizeof(int)), rb);
   if (all && ntot) memcpy(C->wij, all, (size_t)ntot * 2 * sizeof(int));
@@ -1391,14 +1415,17 @@ static void gather_whole(YfContact *C, int everyone) {
   all = cat(st, n, rb);
   if (all && ntot) memcpy(C->walive, all, (size_t)ntot);
   free(st);
-  double *g = yf_malloc((size_t)(6 * nm + 1) * sizeof(double), "restart friction memory"), *o = g;
+  double *g = yf_malloc((size_t)(YF_PAIR_NG * nm + 1) * sizeof(double), "restart friction memory"), *o = g;
   for (int k = 0; k < n; k++)
-    if (C->pairs.gi[k] >= 0) { memcpy(o, C->pairs.g + 6 * (size_t)C->pairs.gi[k], 6 * sizeof(double)); o += 6; }
-  const double *a = cat(g, 6 * nm * (int)sizeof(double), rb);
+    if (C->pairs.gi[k] >= 0) {
+      memcpy(o, C->pairs.g + YF_PAIR_NG * (size_t)C->pairs.gi[k], YF_PAIR_NG * sizeof(double));
+      o += YF_PAIR_NG;
+    }
+  const double *a = cat(g, YF_PAIR_NG * nm * (int)sizeof(double), rb);
   for (int k = 0; a && k < ntot; k++)
     if (C->walive[k] & 4) {
-      memcpy(C->gdense + 6 * (size_t)k, a, 6 * sizeof(double));
-      a += 6;
+      memcpy(C->gdense + YF_PAIR_NG * (size_t)k, a, YF_PAIR_NG * sizeof(double));
+      a += YF_PAIR_NG;
       C->walive[k] &= 3;
     }
   free(g);
@@ -1492,7 +1519,7 @@ void contact_step(YfSim *s) {
       if (q == 0) { alive[k] = 2; busy++; need += gi[k] < 0; }
       else if (q == 2) { alive[k] = dropped; rm++; }
       else if (coul && gi[k] >= 0 && mlaw[tmat[ij[2 * k]]] != YF_FRIC_Y2D && mlaw[tmat[ij[2 * k + 1]]] != YF_FRIC_Y2D)
-        memset(gmem + 6 * (size_t)gi[k], 0, 6 * sizeof *gmem); /* apart: the Coulomb springs let go */
+        memset(gmem + YF_PAIR_NG * (size_t)gi[k], 0, YF_PAIR_NG * sizeof *gmem); /* apart: the Coulomb springs let go */
     }
     C->blk_rm[b] = rm;
     C->blk_busy[b] = busy;
@@ -1544,16 +1571,19 @@ void contact_step(YfSim *s) {
     #pragma omp parallel for schedule(dynamic, 1)
     for (int b = 0; b < nblk; b++) kernel_block(C, &P, b);
   }
-  double esum = 0.0, dsum = 0.0;
+  double esum = 0.0, dsum = 0.0, ssum = 0.0;
   int removed = 0;
   for (int b = 0; b < nblk; b++) {
     esum += C->blk_e[b];
     dsum += C->blk_d[b];
+    ssum += C->blk_s[b];
     removed += C->blk_rm[b];
   }
   if (dist) removed = kdrop; /* blk_rm counted this rank's screen only */
   s->energy.contact = esum;
-  s->energy.friction += dsum;
+  /* the springs' work less the change of their energy (the couples gave work - energy now) */
+  s->energy.friction += dsum + C->espring;
+  C->espring = ssum;
   C->pairs.ng = ng;
 
   /* scatter in couple order: each node's contact force is the sum of its couples'
@@ -1608,8 +1638,8 @@ void contact_count_by_block(const YfSim *s, int g, int *cnt) {
   for (int k = 0; k < C->pairs.n; k++) cnt[C->pairs.ij[2 * k] / g]++;
 }
 
-/* A couple on its way to the new owner of its lower triangle (64 B). */
-typedef struct { int i, j, st, pad; double g[6]; } Moved;
+/* A couple on its way to the new owner of its lower triangle (112 B). */
+typedef struct { int i, j, st, pad; double g[YF_PAIR_NG]; } Moved;
 
 void contact_rehome(YfSim *s, const int *nold) {
   YfContact *C = s->contact;
@@ -1644,8 +1674,8 @@ static void rehome_couples(YfContact *C) {
   for (int k = 0; k < n; k++) {
     if (k >= d[me] && k < d[me + 1]) continue;
     const int gi = C->pairs.gi[k];
-    Moved mv = {C->pairs.ij[2 * k], C->pairs.ij[2 * k + 1], C->alive[k] | (gi >= 0 ? 4 : 0), 0, {0, 0, 0, 0, 0, 0}};
-    if (gi >= 0) memcpy(mv.g, C->pairs.g + 6 * (size_t)gi, sizeof mv.g);
+    Moved mv = {C->pairs.ij[2 * k], C->pairs.ij[2 * k + 1], C->alive[k] | (gi >= 0 ? 4 : 0), 0, {0}};
+    if (gi >= 0) memcpy(mv.g, C->pairs.g + YF_PAIR_NG * (size_t)gi, sizeof mv.g);
     *o++ = mv;
   }
   const Moved *in = par_exchange(DS.send, sb, rb);
@@ -1676,7 +1706,7 @@ static void rehome_couples(YfContact *C) {
     p->gi[w] = -1;
     if (in[t].st & 4) {
       p->gi[w] = p->ng++;
-      memcpy(p->g + 6 * (size_t)p->gi[w], in[t].g, 6 * sizeof(double));
+      memcpy(p->g + YF_PAIR_NG * (size_t)p->gi[w], in[t].g, YF_PAIR_NG * sizeof(double));
     }
     C->alive[w] = (unsigned char)(in[t].st & 3);
   }
@@ -1700,12 +1730,13 @@ int contact_state_save(const YfSim *s, YfContactState *st) {
   } else {
     st->n = C->pairs.n;
     st->ij = C->pairs.ij;
-    /* the friction memory as 6 values per couple (the file format; zeros where a couple has no slot) */
+    /* the friction memory as YF_PAIR_NG values per couple (zeros where a couple has no slot) */
     free(C->gdense);
-    C->gdense = yf_calloc((size_t)(st->n > 0 ? st->n : 1) * 6, sizeof(double), "restart friction memory");
+    C->gdense = yf_calloc((size_t)(st->n > 0 ? st->n : 1) * YF_PAIR_NG, sizeof(double), "restart friction memory");
     for (int k = 0; k < st->n; k++)
       if (C->pairs.gi[k] >= 0)
-        memcpy(C->gdense + 6 * (size_t)k, C->pairs.g + 6 * (size_t)C->pairs.gi[k], 6 * sizeof(double));
+        memcpy(C->gdense + YF_PAIR_NG * (size_t)k, C->pairs.g + YF_PAIR_NG * (size_t)C->pairs.gi[k],
+               YF_PAIR_NG * sizeof(double));
     st->g = C->gdense;
     st->alive = C->alive;
   }
@@ -1718,11 +1749,13 @@ int contact_state_save(const YfSim *s, YfContactState *st) {
   st->nn = C->prep_nn;
   st->fcn = C->fcn;
   st->fcn_valid = C->fcn_valid;
+  st->spring = C->espring;
+  st->has_spring = 1;
   return 1;
 }
 
-/* A whole couple list (n couples ij, friction memory g 6 per couple with zeros for none, states
- * alive) into C: friction slots in couple order for the couples whose memory is not zero. */
+/* A whole couple list (n couples ij, friction memory g YF_PAIR_NG per couple with zeros for none,
+ * states alive) into C: friction slots in couple order for the couples whose memory is not zero. */
 static void install(YfContact *C, int n, const int *ij, const double *g, const unsigned char *alive) {
   contact_pairs_reserve(&C->pairs, n);
   C->pairs.n = n;
@@ -1731,19 +1764,42 @@ static void install(YfContact *C, int n, const int *ij, const double *g, const u
     memcpy(C->pairs.ij, ij, (size_t)n * 2 * sizeof(int));
     int used = 0;
     for (int k = 0; k < n; k++) {
-      const double *gk = g + 6 * (size_t)k;
-      C->pairs.gi[k] = -(gk[0] != 0.0 || gk[1] != 0.0 || gk[2] != 0.0 || gk[3] != 0.0 || gk[4] != 0.0 || gk[5] != 0.0);
+      C->pairs.gi[k] = -!contact_gmem_zero(g + YF_PAIR_NG * (size_t)k);
       used -= C->pairs.gi[k];
     }
     contact_pairs_greserve(&C->pairs, 2 * used + n / 64 + 256);
     for (int k = 0; k < n; k++) { /* gi -1 marks the couples with memory, 0 the others */
       int has = C->pairs.gi[k] < 0;
       C->pairs.gi[k] = -1;
-      if (has) memcpy(contact_pairs_gslot(&C->pairs, k), g + 6 * (size_t)k, 6 * sizeof(double));
+      if (has) memcpy(contact_pairs_gslot(&C->pairs, k), g + YF_PAIR_NG * (size_t)k, YF_PAIR_NG * sizeof(double));
     }
   }
   couple_arrays(C, n, n);
   if (n) memcpy(C->alive, alive, (size_t)n);
+}
+
+/* The energy the Coulomb springs of the installed list hold, sum 0.5 s^2 L over the contactor
+ * edges (contact_pair.c, coulomb_edge) at the current positions: for a restart written before
+ * the springs' energy was kept, whose own step's edge lengths are gone (an approximation of
+ * the energy the next step's dissipation is measured from, by the edges' strain in one step). */
+static double spring_energy(const YfSim *s, const YfContact *C) {
+  const YfModel *m = &s->model;
+  const double *x = m->node.x, *y = m->node.y;
+  double e = 0.0;
+  for (int k = 0; k < C->pairs.n; k++) {
+    if (C->pairs.gi[k] < 0) continue;
+    const int t[2] = {C->pairs.ij[2 * k], C->pairs.ij[2 * k + 1]}; /* contactor of direction 0, 1 */
+    if (C->mlaw[m->tri.mat[t[0]]] == YF_FRIC_Y2D || C->mlaw[m->tri.mat[t[1]]] == YF_FRIC_Y2D) continue;
+    const double *g = C->pairs.g + YF_PAIR_NG * (size_t)C->pairs.gi[k];
+    for (int d = 0; d < 2; d++) {
+      const int *v = m->tri.v + 3 * t[d];
+      for (int c = 0; c < 3; c++) {
+        int a = v[c], b = v[(c + 1) % 3];
+        e += 0.5 * g[3 * d + c] * g[3 * d + c] * hypot(x[b] - x[a], y[b] - y[a]);
+      }
+    }
+  }
+  return e;
 }
 
 int contact_state_load(YfSim *s, const YfContactState *st) {
@@ -1765,5 +1821,6 @@ int contact_state_load(YfSim *s, const YfContactState *st) {
     C->ntl = -1;
   }
   C->fcn_valid = st->fcn_valid;
+  C->espring = st->has_spring ? st->spring : spring_energy(s, C);
   return 0;
 }

@@ -165,8 +165,9 @@ double contact_buffer(const YfSim *s);
 typedef struct {
   int n;                 /* couples in the list (live and dead)                    */
   int *ij;               /* 2 per couple: triangle indices i < j                   */
-  double *g;             /* 6 per couple: friction memory [m^2] (save: a copy the
-                            contact state owns until the next save)              */
+  double *g;             /* YF_PAIR_NG per couple (contact_search.h): friction memory,
+                            the 6 sliding values then the 6 forces of the last step
+                            (save: a copy the contact state owns until the next save) */
   unsigned char *alive;  /* per couple: 0 = dropped since the last search          */
   int nlive, ndead;
   double travel;         /* travel counter of the search trigger [m]               */
@@ -175,6 +176,8 @@ typedef struct {
   int nn;                /* nodes of fcn                                           */
   double *fcn;           /* 2 per node: contact force of the last step [N/m]       */
   int fcn_valid;
+  double spring;         /* energy held by the Coulomb springs after the last step [J/m] */
+  int has_spring;        /* 0: not known (an older restart): load computes it from g      */
 } YfContactState;
 /* 1 when contact is on and prepared (there is a state to save), 0 otherwise. */
 int contact_has_state(const YfSim *s);
