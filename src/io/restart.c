@@ -683,6 +683,7 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   s->time = time;
   s->dt = dt;
   s->restored = 1;
+  s->dt_pending = 0;
   s->dt_auto = 0; /* the uninterrupted run kept the dt of its start; a later `timestep` overrides */
   s->dt_loc.file = NULL;
   s->last_step = last_step;
