@@ -117,12 +117,16 @@ static void resolve_nodes(YfSim *s, YfBcItem *it) {
     int p = n->parent[target];
     for (int i = 0; i < n->n; i++)
       if (n->parent[i] == p && n->m[i] > 0) it->nn++;
-    if (!it->nn) { it->nn = 1; }
+    /* a node no triangle meets (an inline 'node' whose triangle was left out) has no mass and is
+     * never moved: the force went to it and did nothing, and the run ended ok */
+    if (!it->nn)
+      yf_deck_error(&it->sp.loc, "load '%s': node %ld belongs to no triangle, so it has no mass and never moves: a "
+                    "force on it does nothing; load a node of a triangle ('load %s point at X Y' takes the nearest one)",
+                    it->id, (long)n->id[target], it->id);
     it->nodes = yf_malloc((size_t)it->nn * sizeof(int), "load nodes");
     int k = 0;
     for (int i = 0; i < n->n && k < it->nn; i++)
       if (n->parent[i] == p && n->m[i] > 0) it->nodes[k++] = i;
-    if (!k) it->nodes[0] = target;
   } else if (it->sp.kind == BC_TRACTION || it->sp.kind == BC_PRESSURE) {
     free(it->edges);
     it->edges = NULL;
