@@ -139,6 +139,27 @@ START_TEST(test_region_side_out_documented) {
 }
 END_TEST
 
+/* The usage of dump listed the fields without fc, which the parser accepts (and README's ParaView
+ * section uses: 'fields ... fc'): every field a dump writes is in the usage's list. */
+START_TEST(test_dump_usage_lists_every_field) {
+  const char *usage = NULL;
+  for (const YfCommand *c = yf_commands; c->name; c++)
+    if (!strcmp(c->name, "dump")) usage = c->usage;
+  ck_assert_ptr_nonnull(usage);
+  const char *b = strstr(usage, "[fields "), *e = b ? strchr(b, ']') : NULL;
+  ck_assert_msg(b && e, "%s", usage);
+  static const char *const fields[] = {"u", "v", "f", "stress", "vonmises", "sigma1", "material", "body", "fc"};
+  for (size_t k = 0; k < sizeof fields / sizeof fields[0]; k++) {
+    int found = 0;
+    for (const char *p = b + 8; p < e && !found; p++) {
+      size_t n = strlen(fields[k]);
+      found = !strncmp(p, fields[k], n) && p[-1] == ' ' && (p[n] == ' ' || p[n] == ']');
+    }
+    ck_assert_msg(found, "dump usage lacks field '%s': %.*s", fields[k], (int)(e - b + 1), b);
+  }
+}
+END_TEST
+
 START_TEST(test_sweep_deck_does_what_it_says) {
   char cwd[900], deck[1024], *err, *dir;
   ck_assert_ptr_nonnull(getcwd(cwd, sizeof cwd));
@@ -184,6 +205,7 @@ Suite *docs_suite(void) {
   tcase_add_test(t, test_every_command_has_its_arguments);
   tcase_add_test(t, test_sweep_deck_does_what_it_says);
   tcase_add_test(t, test_region_side_out_documented);
+  tcase_add_test(t, test_dump_usage_lists_every_field);
   suite_add_tcase(s, t);
   return s;
 }
