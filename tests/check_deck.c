@@ -772,6 +772,38 @@ START_TEST(dt_known_when_run_computes_it) {
 }
 END_TEST
 
+/* A Gmsh physical group named 'bottom-face' is a group a deck can fix and load, but 'fy_bottom-face'
+ * in an expression reads as fy_bottom minus face, and the error said only "no group or body named
+ * 'bottom'".  It now names the group and gives the alias; the alias reads the group's force. */
+START_TEST(error_group_name_an_expression_cannot_hold) {
+  make_tmpdir();
+  char *msh = yft_slurp("decks/meshes/square4.msh", 0);
+  ck_assert_ptr_nonnull(msh);
+  char *q = strstr(msh, "\"base\"");
+  ck_assert_ptr_nonnull(q);
+  char text[8192];
+  snprintf(text, sizeof text, "%.*s\"bottom-face\"%s", (int)(q - msh), msh, q + 6);
+  write_file("sq.msh", text);
+  free(msh);
+  static const char *const pre = "material soft elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                                 "material hard elastic rho 1000 E 2e9 nu 0.25 plane_stress\n"
+                                 "mesh gmsh b sq.msh material soft=soft hard=hard\nfix a bottom-face fixed xy\n"
+                                 "timestep auto\nrun 1\n";
+  char deck[1024];
+  snprintf(deck, sizeof deck, "%sprint \"$(fy_bottom-face)\"\n", pre);
+  Run r = run_child(deck, NULL, NULL);
+  ck_assert_msg(r.code == 1 && strstr(r.err, "e.deck:7: error: expression 'fy_bottom-face': 'fy_bottom': no group or "
+                                             "body named 'bottom'; the group 'bottom-face' has a character") &&
+                strstr(r.err, "('group bottom_face union \"bottom-face\"') and write fy_bottom_face"),
+                "exit %d: %s", r.code, r.err);
+  run_free(&r);
+  snprintf(deck, sizeof deck, "%sgroup bottom_face union \"bottom-face\"\nprint \"n $(mass_bottom_face > 0)\"\n", pre);
+  r = run_child(deck, NULL, NULL);
+  ck_assert_msg(r.code == 0 && strstr(r.out, "n 1\n"), "exit %d: %s%s", r.code, r.out, r.err);
+  run_free(&r);
+}
+END_TEST
+
 START_TEST(error_includes) {
   expect_error("variable a equal 1\n\ninclude missing.deck\n", 2,
                "e.deck:3: error: include: cannot open 'missing.deck': No such file or directory", NULL, NULL);
@@ -1062,6 +1094,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, error_history_file_rows);
   tcase_add_test(tc, error_quantities_before_run);
   tcase_add_test(tc, dt_known_when_run_computes_it);
+  tcase_add_test(tc, error_group_name_an_expression_cannot_hold);
   tcase_add_test(tc, arg_helpers);
   tcase_add_test(tc, line_endings_any);
   tcase_add_test(tc, variable_hiding_builtin_warned);
