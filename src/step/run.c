@@ -773,7 +773,7 @@ void run_steps(YfSim *s, long nsteps) {
   run_energies(s);
   energy_check(s);
   energy_run_end(s);
-  thermo_line(s);
+  if (nsteps > 0) thermo_line(s); /* 'run 0' printed its start line twice (LAMMPS prints it once) */
   double wall = yf_now() - R.t_wall0;
   s->wall_s += wall;
   s->elem_steps += (double)s->model.tri.n * (double)nsteps;
