@@ -133,6 +133,7 @@ int main(int argc, char **argv) {
     }
     if (dn >= 0) close(dn);
   }
+  int var_end = -2; /* index of the last -var's VALUE: a word right after it may be a second value */
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     if (!strcmp(o, "-h") || !strcmp(o, "-help") || !strcmp(o, "--help")) {
@@ -166,6 +167,7 @@ int main(int argc, char **argv) {
     } else if (!strcmp(o, "-var") && i + 2 < argc) {
       deck_set_var(g_deck, argv[i + 1], argv[i + 2]);
       i += 2;
+      var_end = i;
     } else if ((!strcmp(o, "-log") || !strcmp(o, "-summary")) && i + 1 < argc && is_option(argv[i + 1])) {
       /* '-log -in deck' made a log file named '-in' and read the deck from stdin */
       fprintf(stderr, "yfdem: %s '%s': expected a file name after %s, not an option\n", o, argv[i + 1], o);
@@ -199,6 +201,15 @@ int main(int argc, char **argv) {
         threads_set((int)n);
       }
     } else if (o[0] != '-') {
+      /* LAMMPS reads '-var n 10 20 30' as an index of three values; here -var takes one, and the
+       * second value became the deck ("the deck is already", or "cannot open '20'" under '< deck') */
+      if (i == var_end + 1 && (in || access(o, F_OK) != 0)) {
+        fprintf(stderr, "yfdem: '%s': %s-var takes one value ('-var %s %s' was read); for several values of an "
+                "index variable, list them in the deck ('variable %s index %s %s ...') or run yfdem once per value\n", o,
+                in ? "" : "no such deck file; if it is a second value, ", argv[i - 2], argv[i - 1], argv[i - 2],
+                argv[i - 1], o);
+        return in ? YF_EXIT_DECK : YF_EXIT_IO;
+      }
       if (in) {
         fprintf(stderr, "yfdem: '%s': the deck is already '%s'; give one deck (a native deck can read_y2d a .y "
                 "deck, or include another)\n", o, in);

@@ -737,6 +737,73 @@ START_TEST(error_quantities_before_run) {
 }
 END_TEST
 
+/* dt under 'timestep auto' is the safety factor times the stable limit, which a run computes: before
+ * it, dt read 0 ('run $(round(T/dt))' failed as a division by zero) or the step of an earlier
+ * 'timestep DT' (1e-5 printed, 1.42e-4 run); now an error says to put 'run 0' first.  And each
+ * 'timestep auto' line says its factor anew: without 'safety' it is the documented default 0.5,
+ * not the factor an earlier line gave (0.2 was kept). */
+START_TEST(dt_known_when_run_computes_it) {
+  make_tmpdir();
+  static const char *const pre = "material m elastic rho 2000 E 1e8 nu 0.25 plane_stress\nmesh rect a m 0 0 1 0.2 10 2\n";
+  char deck[768];
+  snprintf(deck, sizeof deck, "%stimestep auto\nprint \"$(dt)\"\n", pre);
+  Run r = run_child(deck, NULL, NULL);
+  ck_assert_msg(r.code == 1 && strstr(r.err, "e.deck:4: error: expression 'dt': 'dt' under 'timestep auto' is known once a "
+                                             "run has computed it"), "exit %d: %s", r.code, r.err);
+  run_free(&r);
+  snprintf(deck, sizeof deck, "%stimestep 1e-5\ntimestep auto\nprint \"$(dt)\"\n", pre);
+  r = run_child(deck, NULL, NULL);
+  ck_assert_msg(r.code == 1 && strstr(r.err, "e.deck:5: error: expression 'dt': 'dt' under 'timestep auto'"),
+                "exit %d: %s", r.code, r.err);
+  run_free(&r);
+  snprintf(deck, sizeof deck, "%sprint \"$(dt)\"\n", pre);
+  r = run_child(deck, NULL, NULL);
+  ck_assert_msg(r.code == 1 && strstr(r.err, "e.deck:3: error: expression 'dt': 'dt' is not known yet: no time step is set"),
+                "exit %d: %s", r.code, r.err);
+  run_free(&r);
+  /* the stable limit of this mesh is 2.84453e-4 s (triangle 5): dt is 0.5 of it after a bare
+   * 'timestep auto', whatever factor an earlier line gave, and 0.2 of it when said */
+  snprintf(deck, sizeof deck, "%stimestep auto safety 0.2\nrun 0\nprint \"r1 $(dt/dt_limit)\"\ntimestep auto\nrun 0\n"
+           "print \"r2 $(dt/dt_limit)\"\ntimestep 1e-6\nprint \"r3 $(dt)\"\n", pre);
+  r = run_child(deck, NULL, NULL);
+  ck_assert_msg(r.code == 0 && strstr(r.out, "r1 0.2\n") && strstr(r.out, "r2 0.5\n") && strstr(r.out, "r3 1e-06\n"),
+                "exit %d: %s%s", r.code, r.out, r.err);
+  run_free(&r);
+}
+END_TEST
+
+/* A Gmsh physical group named 'bottom-face' is a group a deck can fix and load, but 'fy_bottom-face'
+ * in an expression reads as fy_bottom minus face, and the error said only "no group or body named
+ * 'bottom'".  It now names the group and gives the alias; the alias reads the group's force. */
+START_TEST(error_group_name_an_expression_cannot_hold) {
+  make_tmpdir();
+  char *msh = yft_slurp("decks/meshes/square4.msh", 0);
+  ck_assert_ptr_nonnull(msh);
+  char *q = strstr(msh, "\"base\"");
+  ck_assert_ptr_nonnull(q);
+  char text[8192];
+  snprintf(text, sizeof text, "%.*s\"bottom-face\"%s", (int)(q - msh), msh, q + 6);
+  write_file("sq.msh", text);
+  free(msh);
+  static const char *const pre = "material soft elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                                 "material hard elastic rho 1000 E 2e9 nu 0.25 plane_stress\n"
+                                 "mesh gmsh b sq.msh material soft=soft hard=hard\nfix a bottom-face fixed xy\n"
+                                 "timestep auto\nrun 1\n";
+  char deck[1024];
+  snprintf(deck, sizeof deck, "%sprint \"$(fy_bottom-face)\"\n", pre);
+  Run r = run_child(deck, NULL, NULL);
+  ck_assert_msg(r.code == 1 && strstr(r.err, "e.deck:7: error: expression 'fy_bottom-face': 'fy_bottom': no group or "
+                                             "body named 'bottom'; the group 'bottom-face' has a character") &&
+                strstr(r.err, "('group bottom_face union \"bottom-face\"') and write fy_bottom_face"),
+                "exit %d: %s", r.code, r.err);
+  run_free(&r);
+  snprintf(deck, sizeof deck, "%sgroup bottom_face union \"bottom-face\"\nprint \"n $(mass_bottom_face > 0)\"\n", pre);
+  r = run_child(deck, NULL, NULL);
+  ck_assert_msg(r.code == 0 && strstr(r.out, "n 1\n"), "exit %d: %s%s", r.code, r.out, r.err);
+  run_free(&r);
+}
+END_TEST
+
 START_TEST(error_includes) {
   expect_error("variable a equal 1\n\ninclude missing.deck\n", 2,
                "e.deck:3: error: include: cannot open 'missing.deck': No such file or directory", NULL, NULL);
@@ -1026,6 +1093,8 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, error_outputs_share_a_file);
   tcase_add_test(tc, error_history_file_rows);
   tcase_add_test(tc, error_quantities_before_run);
+  tcase_add_test(tc, dt_known_when_run_computes_it);
+  tcase_add_test(tc, error_group_name_an_expression_cannot_hold);
   tcase_add_test(tc, arg_helpers);
   tcase_add_test(tc, line_endings_any);
   tcase_add_test(tc, variable_hiding_builtin_warned);

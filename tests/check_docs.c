@@ -120,6 +120,46 @@ END_TEST
  * loop, one dump showing all three (sweep.xmf), and each bar's end reaction printed next to
  * E A u / L = 2e4 N/m, a little above it (the clamps' lateral restraint) and closer on finer meshes.
  * Measured: 20096, 20064, 20052 N/m. */
+/* The reference said of `region ... side out` that "its boundary counts as inside", so not as the
+ * outside; the selection keeps the boundary on either side (a box side out selects the box's own
+ * edges: 24 of a 5 x 5 grid's 25 nodes for the corner box [0, 0.5]^2, only its centre node left
+ * out).  The reference now says what the selection does. */
+START_TEST(test_region_side_out_documented) {
+  const char *args = commands_args("region");
+  ck_assert_ptr_nonnull(args);
+  const char *side = strstr(args, "side in|out:");
+  ck_assert_ptr_nonnull(side);
+  ck_assert_msg(strstr(side, "selected on either side") && !strstr(side, "counts as inside"), "%s", side);
+  YfSim *s = yft_run("material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 1 4 4\n"
+                     "region r box 0 0 0.5 0.5 side out\ngroup g node region r\n");
+  int g = model_group(&s->model, "g", 0), cnt = 0;
+  for (int i = 0; i < s->model.node.n; i++) cnt += (s->model.node.gmask[i] >> g) & 1;
+  ck_assert_int_eq(cnt, 24);
+  sim_free(s);
+}
+END_TEST
+
+/* The usage of dump listed the fields without fc, which the parser accepts (and README's ParaView
+ * section uses: 'fields ... fc'): every field a dump writes is in the usage's list. */
+START_TEST(test_dump_usage_lists_every_field) {
+  const char *usage = NULL;
+  for (const YfCommand *c = yf_commands; c->name; c++)
+    if (!strcmp(c->name, "dump")) usage = c->usage;
+  ck_assert_ptr_nonnull(usage);
+  const char *b = strstr(usage, "[fields "), *e = b ? strchr(b, ']') : NULL;
+  ck_assert_msg(b && e, "%s", usage);
+  static const char *const fields[] = {"u", "v", "f", "stress", "vonmises", "sigma1", "material", "body", "fc"};
+  for (size_t k = 0; k < sizeof fields / sizeof fields[0]; k++) {
+    int found = 0;
+    for (const char *p = b + 8; p < e && !found; p++) {
+      size_t n = strlen(fields[k]);
+      found = !strncmp(p, fields[k], n) && p[-1] == ' ' && (p[n] == ' ' || p[n] == ']');
+    }
+    ck_assert_msg(found, "dump usage lacks field '%s': %.*s", fields[k], (int)(e - b + 1), b);
+  }
+}
+END_TEST
+
 START_TEST(test_sweep_deck_does_what_it_says) {
   char cwd[900], deck[1024], *err, *dir;
   ck_assert_ptr_nonnull(getcwd(cwd, sizeof cwd));
@@ -164,6 +204,8 @@ Suite *docs_suite(void) {
   tcase_add_test(t, test_reference_sections_match_table);
   tcase_add_test(t, test_every_command_has_its_arguments);
   tcase_add_test(t, test_sweep_deck_does_what_it_says);
+  tcase_add_test(t, test_region_side_out_documented);
+  tcase_add_test(t, test_dump_usage_lists_every_field);
   suite_add_tcase(s, t);
   return s;
 }

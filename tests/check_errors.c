@@ -454,6 +454,26 @@ START_TEST(test_material_constants) {
 }
 END_TEST
 
+/* A point load on a node no triangle meets (an inline node whose triangle was left out) went to
+ * that massless node, which never moves: the force did nothing and the run ended ok.  Now it is a
+ * deck error at the load's line; the same load on a triangle's node moves it (x 1 -> about 1 +
+ * F t^2 / (2 m) after 10 steps, far above round-off). */
+START_TEST(test_point_load_on_node_without_triangle) {
+  static const char *const pre = "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nnode 1 0 0\nnode 2 1 0\n"
+                                 "node 3 1 1\nnode 4 2 2\ntriangle 1 1 2 3 m\n";
+  char deck[1024];
+  snprintf(deck, sizeof deck, "%sload p point node 4 1e6 0\ntimestep auto\ndump d h5 5 out.h5\nrun 10\n", pre);
+  expect_fail(deck, 1, "bad.deck:7: error: load 'p': node 4 belongs to no triangle, so it has no mass and never moves",
+              "'load p point at X Y' takes the nearest one");
+  snprintf(deck, sizeof deck, "%sload p point node 2 1e6 0\ngroup g node id 2\ntimestep auto\nrun 10\n"
+           "print \"moved $(ux_g > 1e-6)\"\n", pre);
+  YfSim *sim = yft_run(deck);
+  int k = yft_node_at(sim, 1.0, 0.0);
+  ck_assert_double_gt(sim->model.node.x[k] - 1.0, 1e-6);
+  sim_free(sim);
+}
+END_TEST
+
 Suite *errors_suite(void) {
   Suite *s = suite_create("errors");
   TCase *t = tcase_create("deck");
@@ -476,6 +496,7 @@ Suite *errors_suite(void) {
   tcase_add_test(t, test_never_inf_nan);
   tcase_add_test(t, test_gmsh_coincident_nodes_warned);
   tcase_add_test(t, test_material_constants);
+  tcase_add_test(t, test_point_load_on_node_without_triangle);
   suite_add_tcase(s, t);
   return s;
 }

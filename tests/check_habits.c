@@ -321,6 +321,67 @@ START_TEST(test_summary_on_the_log_refused) {
 }
 END_TEST
 
+/* LAMMPS reads '-var n 10 20' as an index of two values; yfdem's -var takes one, and the second
+ * value was taken for a deck: "the deck is already 'a.deck'", or under '< deck' "cannot open deck
+ * '20'", neither of which says what went wrong.  Now the message names -var and the remedy, with
+ * exit 1 (2 when no deck was given, as for a missing deck file); a deck file after a -var still
+ * runs. */
+START_TEST(test_var_takes_one_value) {
+  char *err, *dir;
+  int rc = yft_run_binary("a.deck", BAR "run 2\nprint \"nx ${nx}\"\n", "-var nx 10 20", &err, &dir);
+  ck_assert_msg(rc == 1 && strstr(err, "yfdem: '20': -var takes one value ('-var nx 10' was read)") &&
+                strstr(err, "'variable nx index 10 20 ...'"), "exit %d: %s", rc, err);
+  free(err);
+  free(dir);
+  dir = yft_deck_dir("a.deck", BAR "run 2\nprint \"nx ${nx}\"\n");
+  char cmd[4096];
+  snprintf(cmd, sizeof cmd, "cd %s && %s -var nx 12 20 < a.deck > out.txt 2> err.txt; echo $? > rc.txt; "
+           "%s -var nx 12 a.deck > out2.txt 2>&1", dir, yft_binary(), yft_binary());
+  ck_assert_int_eq(system(cmd), 0);
+  char p[4200];
+  snprintf(p, sizeof p, "%s/err.txt", dir);
+  char *e = yft_slurp(p, 0);
+  snprintf(p, sizeof p, "%s/rc.txt", dir);
+  char *c = yft_slurp(p, 0);
+  ck_assert_msg(atoi(c) == 2 && strstr(e, "'20': no such deck file; if it is a second value, -var takes one value"),
+                "exit %s: %s", c, e);
+  snprintf(p, sizeof p, "%s/out2.txt", dir);
+  char *o = yft_slurp(p, 0);
+  ck_assert_msg(strstr(o, "nx 12\n"), "%s", o);
+  free(e);
+  free(c);
+  free(o);
+  free(dir);
+}
+END_TEST
+
+/* 'run 0' (the LAMMPS idiom for setting up and reading quantities) printed the thermo line of step 0
+ * twice, once as the run's start and once as its end; LAMMPS prints it once, and so does yfdem
+ * now, while 'run 5' with thermo 5 still prints steps 0 and 5. */
+START_TEST(test_run_zero_prints_one_line) {
+  char *err, *dir;
+  int rc = yft_run_binary("z.deck", BAR "thermo 5\nthermo_style custom step ke\nrun 0\nrun 5\n", NULL, &err, &dir);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  char p[4096];
+  snprintf(p, sizeof p, "%s/log.yfdem", dir);
+  char *log = yft_slurp(p, 0);
+  int zeros = 0, fives = 0;
+  for (const char *q = log; q && *q; q = strchr(q, '\n') ? strchr(q, '\n') + 1 : NULL) {
+    long step;
+    char rest[8];
+    if (sscanf(q, " %ld %7s", &step, rest) == 2 && rest[0] != '\0') {
+      if (step == 0 && strncmp(q, "run", 3)) zeros++;
+      if (step == 5) fives++;
+    }
+  }
+  /* step 0: once for run 0, once as run 5's start; step 5: run 5's end */
+  ck_assert_msg(zeros == 2 && fives == 1, "step-0 lines %d, step-5 lines %d:\n%s", zeros, fives, log);
+  free(log);
+  free(err);
+  free(dir);
+}
+END_TEST
+
 /* Standard output that cannot be written: 'yfdem deck | head -1' was killed by SIGPIPE (exit 141)
  * with no summary, and stdout on a full disk ran on to "ok" with every thermo line lost.  Both
  * are an output error now: exit 2, the summary written with status io_error. */
@@ -551,6 +612,8 @@ Suite *habits_suite(void) {
   tcase_add_test(t, test_outputs_in_working_dir);
   tcase_add_test(t, test_whole_files_through_links_and_devices);
   tcase_add_test(t, test_summary_on_the_log_refused);
+  tcase_add_test(t, test_var_takes_one_value);
+  tcase_add_test(t, test_run_zero_prints_one_line);
   tcase_add_test(t, test_stdout_unwritable);
   tcase_add_test(t, test_outputs_never_overwrite_inputs);
   tcase_add_test(t, test_runaway_decks_stop_at_their_line);

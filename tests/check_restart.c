@@ -519,8 +519,8 @@ START_TEST(test_restart_refusals) {
   char *e = err_of("other.deck");
   ck_assert_msg(strstr(e, "other.deck:4:") && strstr(e, "different scene"), "%s", e);
   free(e);
-  /* same counts, other joint strengths do not matter, another seed moves nothing... but a moved
-   * node does: shift the hammer by 1 um */
+  /* same counts: another seed moves nothing (other properties: test_restart_refuses_other_properties)...
+   * but a moved node does: shift the hammer by 1 um */
   char *moved = strdup(SCENE);
   char *q = strstr(moved, "0.105 0.0501");
   memcpy(q, "0.105 0.0502", 12);
@@ -561,6 +561,49 @@ START_TEST(test_restart_refusals) {
   e = err_of("nc.deck");
   ck_assert_msg(strstr(e, "contact"), "%s", e);
   free(e);
+  rm_tmpdir();
+}
+END_TEST
+
+/* Write deck NAME: SCENE with FROM replaced by TO (once), then TAIL. */
+static void write_changed(const char *name, const char *from, const char *to, const char *tail) {
+  char *sc = strdup(SCENE), *q = strstr(sc, from);
+  ck_assert_ptr_nonnull(q);
+  char path[256];
+  snprintf(path, sizeof path, "%s/%s", tmpdir, name);
+  FILE *f = fopen(path, "w");
+  ck_assert_ptr_nonnull(f);
+  fprintf(f, "%.*s%s%s%s", (int)(q - sc), sc, to, q + strlen(from), tail);
+  fclose(f);
+  free(sc);
+}
+
+/* The topology hash holds the materials' and joint sets' indices, not their properties: a deck
+ * that rebuilt the scene with another E (26 -> 27 GPa) or fracture energy (20 -> 21 J/m^2) read the
+ * restart and ran on, a run no uninterrupted one gives, though the README says a scene that
+ * differs is refused.  Now both are deck errors naming the material or jointprop; another seed
+ * (the restart holds each joint's factors) and a gravity the deck adds are still accepted, and
+ * the continued run with the same scene is the uninterrupted one. */
+START_TEST(test_restart_refuses_other_properties) {
+  mk_tmpdir();
+  write_deck("first.deck", NULL, "run 10\nwrite_restart r.restart\nrun 10\n");
+  char h[17], h2[17];
+  expect_ok("first.deck", 1, h);
+  static const struct { const char *from, *to, *want; } c[] = {
+      {"E 26e9", "E 27e9", "with other properties of material 'concrete'"},
+      {"gf 20", "gf 21", "with other properties of jointprop 'cj'"}};
+  for (int k = 0; k < 2; k++) {
+    write_changed("changed.deck", c[k].from, c[k].to, "read_restart r.restart\nrun 20 upto\n");
+    ck_assert_int_eq(run_deck("changed.deck", 1, h2), YF_EXIT_DECK);
+    char *e = err_of("changed.deck");
+    ck_assert_msg(strstr(e, "changed.deck:") && strstr(e, c[k].want), "%s", e);
+    free(e);
+  }
+  write_changed("seed.deck", "seed 3", "seed 4", "read_restart r.restart\nrun 20 upto\n");
+  expect_ok("seed.deck", 1, h2);
+  ck_assert_str_eq(h, h2);
+  write_deck("grav.deck", NULL, "gravity 0 -9.81\nread_restart r.restart\nrun 20 upto\n");
+  expect_ok("grav.deck", 1, h2);
   rm_tmpdir();
 }
 END_TEST
@@ -1221,6 +1264,11 @@ Suite *restart_suite(void) {
   tcase_add_test(tc, test_interrupt_outside_run);
   tcase_add_test(tc, test_full_disk);
   tcase_add_test(tc, test_outputs_unwritable);
+  suite_add_tcase(s, tc);
+  /* the scene a restart may continue (a case of its own: the restart case takes minutes) */
+  tc = tcase_create("restart_scene");
+  tcase_set_timeout(tc, 120);
+  tcase_add_test(tc, test_restart_refuses_other_properties);
   suite_add_tcase(s, tc);
   return s;
 }

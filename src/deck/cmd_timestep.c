@@ -12,7 +12,11 @@ void cmd_timestep(YfSim *s, const YfArgs *a) {
   s->dt_warn_only = s->y2d != NULL; /* each timestep line says it anew (a Y2D deck's own rule stays) */
   if (!strcmp(a->w[0], "auto")) {
     s->dt_auto = 1;
+    s->dt_pending = 1;
     s->dt_loc = a->loc; /* the line that auto's refusals name */
+    /* each line says its factor anew: 'timestep auto' after 'timestep auto safety 0.2' is the
+     * documented default 0.5, not the factor of the earlier line */
+    s->dt_safety = 0.5;
     if (a->n > 1) {
       if (strcmp(a->w[1], "safety")) arg_error(a, 1, "expected 'safety S'");
       arg_count(a, 3, 3);
@@ -28,6 +32,7 @@ void cmd_timestep(YfSim *s, const YfArgs *a) {
       s->dt_warn_only = 1;
     }
     s->dt_auto = 0;
+    s->dt_pending = 0;
     s->dt = arg_pos(a, 0, "dt");
     s->dt_loc = a->loc;
   }

@@ -421,7 +421,22 @@ static int lookup_cb(void *ctx, const char *written, double *val, char *err, siz
   if (d->sim) { /* simulation state */
     if (!strcmp(name, "step")) { *val = (double)d->sim->step; return 1; }
     if (!strcmp(name, "time")) { *val = d->sim->time; return 1; }
-    if (!strcmp(name, "dt")) { *val = d->sim->dt; return 1; }
+    if (!strcmp(name, "dt")) {
+      /* before the run that computes it, 'timestep auto' has no dt yet: it read 0 ('run
+       * $(round(T/dt))' failed as a division by zero) or the step of an earlier 'timestep DT' */
+      if (d->sim->dt_pending) {
+        snprintf(err, errlen, "'dt' under 'timestep auto' is known once a run has computed it (the safety factor "
+                 "times the scene's stable limit): put 'run 0' after 'timestep auto' and before this line");
+        return -1;
+      }
+      if (!(d->sim->dt > 0)) {
+        snprintf(err, errlen, "'dt' is not known yet: no time step is set; give 'timestep DT', or 'timestep auto' and 'run 0', "
+                 "before this line");
+        return -1;
+      }
+      *val = d->sim->dt;
+      return 1;
+    }
     int q = sim_query(d->sim, name, val, err, errlen); /* thermo keywords, group averages */
     if (q) return q;
   }

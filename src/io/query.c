@@ -19,6 +19,27 @@ static int group_reduce(YfSim *s, const char *what, const char *g, double *val, 
   YfModel *m = &s->model;
   int k = model_group(m, g, 0);
   if (k < 0) {
+    /* a Gmsh physical group named 'bottom-face' is a group the deck can fix and load, but in an
+     * expression 'fy_bottom-face' reads as fy_bottom minus face: say so and give the alias */
+    size_t L = strlen(g);
+    for (int q = 0; q < m->ngroup; q++) {
+      const char *nm = m->group[q].name;
+      char c = nm[L];
+      if (strncmp(nm, g, L) || !c || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+          c == '_')
+        continue;
+      char alias[YF_NAME_MAX];
+      size_t j = 0;
+      for (; nm[j] && j + 1 < sizeof alias; j++) {
+        char a = nm[j];
+        alias[j] = (a >= 'a' && a <= 'z') || (a >= 'A' && a <= 'Z') || (a >= '0' && a <= '9') ? a : '_';
+      }
+      alias[j] = 0;
+      snprintf(err, n, "'%s_%s': no group or body named '%s'; the group '%s' has a character an expression name "
+               "cannot hold: give it another name first ('group %s union \"%s\"') and write %s_%s", what, g, g, nm,
+               alias, nm, what, alias);
+      return -1;
+    }
     snprintf(err, n, "'%s_%s': no group or body named '%s'", what, g, g);
     return -1;
   }

@@ -105,6 +105,30 @@ static uint64_t topo_hash(const YfSim *s) {
   return h;
 }
 
+/* The properties of material k and of joint set k, each a hash: the topology hash has their
+ * indices only, so a deck that rebuilt the scene with another E, density, penalty, strength or
+ * fracture energy continued the restart silently, with a run no uninterrupted one gives.  Field by
+ * field (no struct padding); names are left out (renaming is harmless). */
+static void fnv_d(uint64_t *h, double v) { fnv(h, &v, sizeof v); }
+static void fnv_i(uint64_t *h, int v) { fnv(h, &v, sizeof v); }
+static uint64_t mat_hash(const YfMaterial *mt) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  fnv_d(&h, mt->rho); fnv_d(&h, mt->E); fnv_d(&h, mt->nu); fnv_i(&h, mt->plane); fnv_d(&h, mt->lambda);
+  fnv_d(&h, mt->mu); fnv_d(&h, mt->volfac); fnv_d(&h, mt->visc); fnv_d(&h, mt->beta); fnv_d(&h, mt->pen_n);
+  fnv_d(&h, mt->pen_t); fnv_d(&h, mt->fric); fnv_i(&h, mt->fric_law); fnv_i(&h, mt->rigid);
+  return h;
+}
+/* (the heterogeneity's seed and scatter are left out: the restart holds each joint's factors) */
+static uint64_t jset_hash(const YfJointProp *p) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  fnv_d(&h, p->ft); fnv_d(&h, p->fs); fnv_d(&h, p->gf); fnv_d(&h, p->pen); fnv_d(&h, p->coh); fnv_d(&h, p->phi);
+  fnv_i(&h, p->law); fnv_i(&h, p->y2d_floor); fnv_i(&h, p->irreversible); fnv_d(&h, p->bl_z); fnv_d(&h, p->bl_s);
+  fnv_i(&h, p->ntab);
+  for (int k = 0; k < p->ntab && k < YF_JOINT_TAB_MAX; k++) { fnv_d(&h, p->tab_z[k]); fnv_d(&h, p->tab_s[k]); }
+  fnv_d(&h, p->hreg);
+  return h;
+}
+
 /* ---------------------------------------------------------------- HDF5 helpers */
 
 
@@ -238,6 +262,19 @@ static void write_all(W *w, YfSim *s) {
   put_l(w, g, "njoint", s->joints ? s->joints->n : 0);
   uint64_t th = topo_hash(s);
   put(w, g, "topo_hash", H5T_NATIVE_UINT64, 1, &th);
+  {
+    uint64_t *mh = yf_malloc((size_t)(m->nmat > 0 ? m->nmat : 1) * sizeof *mh, "restart material hashes");
+    for (int k = 0; k < m->nmat; k++) mh[k] = mat_hash(&m->mat[k]);
+    if (m->nmat > 0) put(w, g, "mat_hash", H5T_NATIVE_UINT64, (size_t)m->nmat, mh);
+    free(mh);
+    const YfJoints *J = s->joints;
+    if (J && J->nset > 0) {
+      uint64_t *jh = yf_malloc((size_t)J->nset * sizeof *jh, "restart joint set hashes");
+      for (int k = 0; k < J->nset; k++) jh[k] = jset_hash(&J->set[k].p);
+      put(w, g, "jset_hash", H5T_NATIVE_UINT64, (size_t)J->nset, jh);
+      free(jh);
+    }
+  }
   gclose(g);
 
   g = group(w, "sim");
@@ -512,6 +549,17 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   long f_nn = get_l(&r, g, "nnode"), f_nt = get_l(&r, g, "ntri"), f_nj = get_l(&r, g, "njoint");
   uint64_t f_th;
   get(&r, g, "topo_hash", H5T_NATIVE_UINT64, 1, &f_th);
+  /* the properties' hashes (absent from restarts of before 2026-11-29: not checked then) */
+  long f_nmat = dlen(g, "mat_hash"), f_nset = dlen(g, "jset_hash");
+  uint64_t *f_mh = NULL, *f_jh = NULL;
+  if (f_nmat > 0) {
+    f_mh = yf_malloc((size_t)f_nmat * sizeof *f_mh, "restart material hashes");
+    get(&r, g, "mat_hash", H5T_NATIVE_UINT64, (size_t)f_nmat, f_mh);
+  }
+  if (f_nset > 0) {
+    f_jh = yf_malloc((size_t)f_nset * sizeof *f_jh, "restart joint set hashes");
+    get(&r, g, "jset_hash", H5T_NATIVE_UINT64, (size_t)f_nset, f_jh);
+  }
   H5Gclose(g);
 
   /* the scene as `run` would prepare it (joints inserted, masses, contact setup) */
@@ -525,6 +573,33 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
     yf_deck_error(loc, "read_restart: '%s' was written for a different scene: same counts, but the triangle corners, "
                   "materials, initial positions or joints differ (the deck must rebuild the same scene)", path);
   }
+  /* the properties of every material a triangle uses and every joint set a joint uses */
+  for (int t = 0; f_mh && t < m->tri.n; t++) {
+    int k = m->tri.mat[t];
+    if (k < f_nmat && f_mh[k] == mat_hash(&m->mat[k])) continue;
+    char name[YF_NAME_MAX];
+    snprintf(name, sizeof name, "%s", m->mat[k].name);
+    free(f_mh);
+    free(f_jh);
+    H5Fclose(r.file);
+    yf_deck_error(loc, "read_restart: '%s' was written with other properties of material '%s' (density, moduli, "
+                  "plane, damping, contact penalties or friction): the deck must rebuild the same scene, the same "
+                  "material commands included", path, name);
+  }
+  for (int j = 0; f_jh && s->joints && j < s->joints->n; j++) {
+    int k = s->joints->prop[j];
+    if (k < f_nset && f_jh[k] == jset_hash(&s->joints->set[k].p)) continue;
+    char name[YF_NAME_MAX];
+    snprintf(name, sizeof name, "%s", s->joints->set[k].name);
+    free(f_mh);
+    free(f_jh);
+    H5Fclose(r.file);
+    yf_deck_error(loc, "read_restart: '%s' was written with other properties of jointprop '%s' (strengths, fracture "
+                  "energy, penalty, law or damage memory): the deck must rebuild the same scene, the same jointprop "
+                  "commands included", path, name);
+  }
+  free(f_mh);
+  free(f_jh);
   int c_here = contact_has_state(s);
   int c_file = H5Lexists(r.file, "contact", H5P_DEFAULT) > 0;
   if (c_here != c_file) {
@@ -731,6 +806,7 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
    * broken joints no longer limit it).  A later `timestep` overrides either. */
   s->dt_auto = (int)f_auto;
   if (between) s->dt_safety = f_safety;
+  s->dt_pending = 0; /* dt is the restart's, as the deck read it at that point */
   s->dt_loc.file = NULL;
   s->last_step = last_step;
   YfEnergy *e = &s->energy;

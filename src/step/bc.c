@@ -117,12 +117,16 @@ static void resolve_nodes(YfSim *s, YfBcItem *it) {
     int p = n->parent[target];
     for (int i = 0; i < n->n; i++)
       if (n->parent[i] == p && n->m[i] > 0) it->nn++;
-    if (!it->nn) { it->nn = 1; }
+    /* a node no triangle meets (an inline 'node' whose triangle was left out) has no mass and is
+     * never moved: the force went to it and did nothing, and the run ended ok */
+    if (!it->nn)
+      yf_deck_error(&it->sp.loc, "load '%s': node %ld belongs to no triangle, so it has no mass and never moves: a "
+                    "force on it does nothing; load a node of a triangle ('load %s point at X Y' takes the nearest one)",
+                    it->id, (long)n->id[target], it->id);
     it->nodes = yf_malloc((size_t)it->nn * sizeof(int), "load nodes");
     int k = 0;
     for (int i = 0; i < n->n && k < it->nn; i++)
       if (n->parent[i] == p && n->m[i] > 0) it->nodes[k++] = i;
-    if (!k) it->nodes[0] = target;
   } else if (it->sp.kind == BC_TRACTION || it->sp.kind == BC_PRESSURE) {
     free(it->edges);
     it->edges = NULL;
@@ -175,7 +179,8 @@ static void warn_overridden(YfSim *s, YfBc *b) {
 }
 
 /* A displacement fix whose nodes are not where it puts them at the run's start (one added after a
- * run, when the body has moved or sagged) moves them there in the first step: a shock whose
+ * run, when the body has moved or sagged, or one whose full displacement applies from the start,
+ * without a ramp) moves them there in the first step: a shock whose
  * strain energy no force did work for, which the energy check then stops as energy from nowhere
  * ("still growing"), with advice about the time step.  Say so at the start, once per fix. */
 static double factor(const YfSim *s, int hist, double t);
@@ -190,7 +195,7 @@ static void warn_jumps(YfSim *s, YfBc *b) {
   for (int i = 0; i < b->n; i++) {
     const YfBcItem *it = &b->item[i];
     if (it->sp.kind != BC_DISPLACEMENT || b->warned[i] & 2) continue;
-    double ph = factor(s, it->sp.hist, s->time), gap = 0.0;
+    double ph = factor(s, it->sp.hist, s->time), gap = 0.0, moved = 0.0;
     int at = -1;
     for (int k = 0; k < it->nn; k++) {
       int j = it->nodes[k];
@@ -199,11 +204,29 @@ static void warn_jumps(YfSim *s, YfBc *b) {
         if (!it->sp.has[c] || b->owner[2 * j + c] != i) continue;
         double d = fabs(x0[c] + it->sp.a[c] * ph - x[c]);
         if (d > gap) { gap = d; at = j; }
+        moved = fmax(moved, fabs(x[c] - x0[c]));
       }
     }
     /* round-off of positions is 1e-16 of the scene; 1e-9 of it is a jump */
     if (at < 0 || !(gap > 1e-9 * size)) continue;
     b->warned[i] |= 2;
+    if (!(moved > 1e-9 * size)) {
+      /* the nodes are where the mesh put them and the fix asks for its full displacement at once
+       * (a pull given without a ramp, the common slip): a history that is 0 at this time is the
+       * cure, the advice for sagged nodes below is not */
+      char u[2][32];
+      for (int c = 0; c < 2; c++) {
+        if (it->sp.has[c]) snprintf(u[c], sizeof u[c], "%.6g", it->sp.a[c]);
+        else snprintf(u[c], sizeof u[c], "NULL");
+      }
+      yf_warn(&it->sp.loc, "fix '%s': at the run's start (time %.6g s) its nodes are at their reference positions and "
+              "it puts them up to %.3g m away (node %ld) at once: they jump there in the first step, a shock the energy "
+              "balance cannot count as work (the energy check may stop the run); give the fix a history that starts "
+              "at 0 then, e.g. 'history %s_ramp ramp %.6g T1' (T1 a few periods of the body later) and 'fix %s %s "
+              "displacement %s %s history %s_ramp'", it->id, s->time, gap, (long)n->id[at], it->id, s->time, it->id,
+              s->model.group[it->sp.group].name, u[0], u[1], it->id);
+      continue;
+    }
     yf_warn(&it->sp.loc, "fix '%s': at the run's start (time %.6g s) its nodes are up to %.3g m from where it puts "
             "them (node %ld): they jump there in the first step, a shock the energy balance cannot count as work "
             "(the energy check may stop the run); a history cannot help (it scales the displacement from the "

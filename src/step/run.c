@@ -659,6 +659,7 @@ void run_steps(YfSim *s, long nsteps) {
   snprintf(s->dt_limiter, sizeof s->dt_limiter, "%s", lim);
   if (s->dt_auto) {
     s->dt = s->dt_safety * limit;
+    s->dt_pending = 0;
     /* E 1e307: omega_max is beyond a double, the limit 0; a step of 0 s would run without moving */
     if (!(s->dt > 0))
       yf_deck_error(s->dt_loc.file ? &s->dt_loc : NULL, "timestep auto: the stable limit %.6g s (set by %s) is "
@@ -775,7 +776,7 @@ void run_steps(YfSim *s, long nsteps) {
   run_energies(s);
   energy_check(s);
   energy_run_end(s);
-  thermo_line(s);
+  if (nsteps > 0) thermo_line(s); /* 'run 0' printed its start line twice (LAMMPS prints it once) */
   double wall = yf_now() - R.t_wall0;
   s->wall_s += wall;
   s->elem_steps += (double)s->model.tri.n * (double)nsteps;

@@ -108,6 +108,8 @@ typedef struct YfSim {
   double dt;            /* [s]; 0 until set                                                 */
   int dt_auto;          /* 1: dt = safety * stable limit, recomputed at each run            */
   double dt_safety;     /* safety factor of auto (default 0.5)                              */
+  int dt_pending;       /* 1: 'timestep auto' given and no run has computed its dt yet, so dt
+                         * holds an older step (or 0) that the next run will not take        */
   double dt_limit;      /* last computed stable limit [s] and what limits it                */
   char dt_limiter[96];
   YfLoc dt_loc;         /* where the time step was set (for the 'above the limit' error)    */
