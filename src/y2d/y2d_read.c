@@ -27,9 +27,11 @@
 #include <stdio_ext.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include "edgesort.h"
 #include "err.h"
 #include "memcap.h"
+#include "model.h"
 #include "y2d_read.h"
 
 /* ------------------------------------------------------------------ key table */
@@ -41,7 +43,8 @@ enum {
   F_RESTART = 4,  /* restart/scratch data: parsed, dropped, warning                          */
   F_3D = 8,       /* 3D only: parsed, dropped (if not stored), warning                        */
   F_UNUSED = 16,  /* read and unused by the anchor: parsed, dropped, no warning              */
-  F_BORE = 32     /* boreholes and sources: parsed, dropped, one warning                     */
+  F_BORE = 32,    /* boreholes and sources: parsed, dropped, one warning                     */
+  F_RANGE = 64    /* node coordinates and velocities: within +-YF_RANGE_MAX, checked as read   */
 };
 #define NOFF ((size_t)-1)
 #define CAPF(n) (-(100 + (n))) /* a fixed dimension size n                                   */
@@ -114,9 +117,9 @@ static const KeyDef keydefs[Y2D_NKEYS] = {
   K(N, "YDN", NNODIM, 5, KI, OFF(nnodim), NOCAP, NOCAP, NOCAP, 0, F_SIZE, -1),
   K(N, "YDN", MNOPO, 0, KI, OFF(mnopo), NOCAP, NOCAP, NOCAP, 0, F_SIZE, Y2D_N_MNODIM),
   KN(NNOPO, KI, OFF(nnopo), NOCAP, NOCAP, 0, F_SIZE),
-  KN(D2NCI, KR2, OFF(d2nci), Y2D_N_MNODIM, Y2D_N_MNOPO, 0, 0),
-  KN(D2NCC, KR2, OFF(d2ncc), Y2D_N_MNODIM, Y2D_N_MNOPO, 0, 0),
-  KN(D2NVC, KR2, OFF(d2nvc), Y2D_N_MNODIM, Y2D_N_MNOPO, 0, 0),
+  KN(D2NCI, KR2, OFF(d2nci), Y2D_N_MNODIM, Y2D_N_MNOPO, 0, F_RANGE),
+  KN(D2NCC, KR2, OFF(d2ncc), Y2D_N_MNODIM, Y2D_N_MNOPO, 0, F_RANGE),
+  KN(D2NVC, KR2, OFF(d2nvc), Y2D_N_MNODIM, Y2D_N_MNOPO, 0, F_RANGE),
   KN(I1NOPR, KI1, OFF(i1nopr), Y2D_N_MNOPO, NOCAP, -1, 0),
   KN(I1NOBF, KI1, OFF(i1nobf), Y2D_N_MNOPO, NOCAP, 0, 0),
   KN(D1NMCT, KR1, NOFF, Y2D_N_MNOPO, NOCAP, 0, F_RESTART),
@@ -431,6 +434,32 @@ static void short_list(Rd *r, int key, const YfLoc *kloc, const char *what, long
                 got, where);
 }
 
+/* Why token t is not a number, and what is: for the messages of read_int and read_real.  The
+ * forms users bring from other programs get their own words: a Fortran 'd' exponent (1.d5, which
+ * Y2D's %le reads as 1. followed by a stray token 'd5'), a value beyond a double (1e400), words. */
+static const char *not_number_why(const char *t) {
+  char buf[64];
+  size_t n = strlen(t);
+  if (n < sizeof buf) {
+    memcpy(buf, t, n + 1);
+    char *d = strpbrk(buf, "dD");
+    if (d) {
+      *d = 'e';
+      double v;
+      if (parse_real_tok(buf, &v))
+        return "a Fortran 'd' exponent: Y2D reads C reals (%le) and stops at the 'd'; write it with 'e', "
+               "e.g. 1.5e5 for 1.5d5";
+    }
+  }
+  char *end;
+  errno = 0;
+  double v = strtod(t, &end);
+  if (end != t && !*end && (isdigit((unsigned char)t[0]) || t[0] == '-' || t[0] == '+' || t[0] == '.') &&
+      (!isfinite(v) || errno == ERANGE) && fabs(v) > 1.0)
+    return "beyond the range of a double (+-1.8e308)";
+  return "a real is written like 2000, -0.5, 1e5 or 1.0E+05";
+}
+
 /* Read one integer of key `key`; `what` names it in messages ("count", "value 3 of 720"). */
 static long read_int(Rd *r, int key, const YfLoc *kloc, const char *what, long want, long got) {
   const char *t = next_tok(r);
@@ -438,10 +467,15 @@ static long read_int(Rd *r, int key, const YfLoc *kloc, const char *what, long w
   long v;
   double d;
   if (!parse_int_tok(t, &v)) {
+    const char *p = t + (*t == '+' || *t == '-');
+    if (*p && strspn(p, "0123456789") == strlen(p)) /* digits only: too many of them */
+      yf_deck_error(&r->loc, "%s: '%s' is beyond the range of an integer (%ld to %ld)", keydefs[key].full, t,
+                    LONG_MIN, LONG_MAX);
     if (parse_real_tok(t, &d))
-      yf_deck_error(&r->loc, "%s: '%s' is not an integer (the anchor would misread it)",
-                    keydefs[key].full, t);
-    yf_deck_error(&r->loc, "%s: '%s' is not a number (%s)", keydefs[key].full, t, what);
+      yf_deck_error(&r->loc, "%s: '%s' is not an integer (the anchor would misread it; an integer is digits "
+                    "only: 3000, not 3000.0 or 3e3)", keydefs[key].full, t);
+    yf_deck_error(&r->loc, "%s: '%s' is not a number (an integer is wanted here, digits only: e.g. 3000)",
+                  keydefs[key].full, t);
   }
   return v;
 }
@@ -451,7 +485,7 @@ static double read_real(Rd *r, int key, const YfLoc *kloc, const char *what, lon
   if (!t || is_key_like(t)) short_list(r, key, kloc, what, want, got, t);
   double v;
   if (!parse_real_tok(t, &v))
-    yf_deck_error(&r->loc, "%s: '%s' is not a number", keydefs[key].full, t);
+    yf_deck_error(&r->loc, "%s: '%s' is not a number (%s)", keydefs[key].full, t, not_number_why(t));
   return v;
 }
 
@@ -659,6 +693,14 @@ static void read_array(Rd *r, int k, const YfLoc *kloc) {
       if (base) ((int *)base)[off] = (int)v;
     } else {
       double v = read_real(r, k, kloc, what, total, m);
+      /* at its own line: the run's check of every node (run.c) would only name the node, without
+       * the deck's FILE:LINE, and a coordinate that large first makes its triangles' areas round
+       * to 0 (then refused as "not counter-clockwise") */
+      if ((kd->flags & F_RANGE) && !(fabs(v) <= YF_RANGE_MAX))
+        yf_deck_error(&r->loc, "%s: node %ld, %c component: %s is beyond +-%g %s, the range the arithmetic holds "
+                      "(areas and energies multiply coordinates and velocities); give it in units that keep "
+                      "it within", kd->full, idx[1], idx[0] == 0 ? 'x' : idx[0] == 1 ? 'y' : 'z', r->tok,
+                      YF_RANGE_MAX, k == Y2D_N_D2NVC ? "m/s" : "m");
       if (base) ((double *)base)[off] = v;
     }
   }
@@ -920,6 +962,9 @@ static void read_tokens(Rd *r) {
         yf_deck_error(&r->loc, "unexpected value '%s': expected a key /YD/<GROUP>/<NAME> (%s at "
                       "%s:%d takes one value)", t, keydefs[prev].full, y->where[prev].file,
                       y->where[prev].line);
+      if (!strncasecmp(t, "/YD/", 4) || !strncasecmp(t, "$Y", 2)) /* Y2D compares keys case by case */
+        yf_deck_error(&r->loc, "unexpected token '%s': keys and control words are upper case (/YD/YDC/MCSTEP, "
+                      "$YDOIT), as Y2D reads them", t);
       yf_deck_error(&r->loc, "unexpected token '%s': expected a key /YD/<GROUP>/<NAME>, a "
                     "comment '/* ... */' or $YDOIT, $YSTOP, $YINCL", t);
     }
