@@ -14,6 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include "contact.h"
+#include "summary.h"
 #include "y2d_read.h"
 #include "yftest.h"
 
@@ -519,6 +520,37 @@ START_TEST(test_frozen_set) {
 }
 END_TEST
 
+/* A property that no element uses is never evaluated by Y2D (its loop runs over each property's
+ * elements), so a deck with NPROP above the properties in use runs there whatever the spare ones
+ * hold.  yfdem refused it ("property 2 has type -1", or "density 0" for a placeholder of type 1).
+ * Deck a with NPROP 4, properties 2 and 3 left at their defaults (type -1, density 0): the binary
+ * runs it (exit 0, one warning at NPROP's line), and read_y2d of it ends 200 steps in the state of
+ * deck a itself (the spare properties change nothing). */
+START_TEST(test_spare_properties) {
+  char *at, *a = deck_a_at("/YD/YDPE/MPROP 2\n/YD/YDPE/NPROP 2\n", &at);
+  char *deck = strdup(a);
+  memcpy(deck + (at - a), "/YD/YDPE/MPROP 4\n/YD/YDPE/NPROP 4\n", strlen("/YD/YDPE/MPROP 4\n/YD/YDPE/NPROP 4\n"));
+  int line = 1;
+  for (const char *c = a; c < at; c++) line += *c == '\n';
+  char *err, *dir;
+  int rc = yft_run_binary("spare.y", deck, "-log none", &err, &dir);
+  char want[128];
+  snprintf(want, sizeof want, "spare.y:%d: warning: /YD/YDPE/NPROP = 4: 2 properties (first: property 2, type -1)",
+           line + 1);
+  ck_assert_msg(rc == 0 && strstr(err, want), "exit %d, no '%s' in: %s", rc, want, err);
+  free(err);
+  char nd[700];
+  snprintf(nd, sizeof nd, "read_y2d %s/spare.y\nrun 200\n", dir);
+  uint64_t h1 = sim_state_hash(yft_run(nd));
+  uint64_t h0 = sim_state_hash(yft_run("read_y2d " DECKS "a_elastic_block.y\nrun 200\n"));
+  ck_assert_msg(h1 == h0, "spare properties changed the state: %016llx vs %016llx", (unsigned long long)h1,
+                (unsigned long long)h0);
+  free(dir);
+  free(deck);
+  free(a);
+}
+END_TEST
+
 /* A message about one value of an array names the line that value is on.  The lines were noted
  * one entry per line (100 MB for a generated deck at 1e6 triangles); they are now runs of lines
  * of equal width, so lines of other widths must still come out right: deck a's I1NOPR (440
@@ -619,6 +651,7 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_ystop_and_comments_as_y2d);
   tcase_add_test(tc, test_diedi_delays_first_search);
   tcase_add_test(tc, test_frozen_set);
+  tcase_add_test(tc, test_spare_properties);
   tcase_add_test(tc, test_value_lines);
   tcase_add_test(tc, test_capacity_memory_total);
   suite_add_tcase(s, tc);

@@ -572,7 +572,13 @@ def convert(src, out):
     ptyp, rho, lam, mu = pe('I1PTYP', -1), pe('D1PERO', 0), pe('D1PELA', 0), pe('D1PEMU', 0)
     ks, pen_n, pen_t, fric = pe('D1PEKS', 0), pe('D1PEPE', 0), pe('D1PEPT', 0), pe('D1PEFR', 0)
     L.append('# materials: Y2D element properties (Lame constants as given)')
+    in_use = set(elpr[:ne])
     for p in range(nprop):
+        if p not in in_use:
+            # Y2D evaluates a property through its elements only: a spare one (NPROP above those in
+            # use, often left at type -1 and density 0, which a native material refuses) has no effect
+            note('property %d is used by no element: not written (no effect in Y2D)' % p)
+            continue
         if ptyp[p] != 1:
             diff('property %d has type %d (%s): written as elastic' %
                          (p, ptyp[p], {2: 'rigid', 4: 'softening'}.get(ptyp[p], '?')))

@@ -1071,7 +1071,9 @@ static void check_meshing(const YfY2d *y) {
       if (p < 0 || p >= y->nprop)
         yf_deck_error(&ml, "%s: row %ld: property %d outside 0..NPROP-1 = 0..%ld",
                       keydefs[Y2D_PM_I2PMSET].full, row, p, y->nprop - 1);
-      if (y->pe_i1ptyp[p] != 1 && y->pe_i1ptyp[p] != 2)
+      int used = 0; /* a property no element uses is not meshed: its type is not checked */
+      for (long e = 0; e < y->nelem && !used; e++) used = y->i1elpr[e] == p;
+      if (used && y->pe_i1ptyp[p] != 1 && y->pe_i1ptyp[p] != 2)
         yf_deck_error(&ml, "%s: row %ld: property %d has type %d; only types 1 and 2 may be meshed",
                       keydefs[Y2D_PM_I2PMSET].full, row, p, y->pe_i1ptyp[p]);
     }
@@ -1275,9 +1277,25 @@ static void check_deck(YfY2d *y) {
                   keydefs[Y2D_E_I2ELTO].full, nbad, first_bad, first_area);
 
   /* ---- element properties ---- */
+  /* A property no element uses is never evaluated by Y2D (its force loop runs over the elements of
+   * each property): a deck with NPROP above the properties in use, the spare ones left at their
+   * defaults (type -1, density 0), runs in Y2D.  Its type and density are not checked (one warning),
+   * as read_y2d only refuses rigid and softening triangles that are used. */
+  unsigned char *used = yf_calloc((size_t)y->nprop + 1, 1, "y2d used properties");
+  for (long e = 0; e < y->nelem; e++) used[y->i1elpr[e]] = 1; /* each in 0..NPROP-1 (checked above) */
+  long nunused = 0, unused0 = -1;
+  for (long p = 0; p < y->nprop; p++)
+    if (!used[p] && !nunused++) unused0 = p;
+  if (nunused) {
+    YfLoc l = loc_of(y, Y2D_PE_NPROP);
+    yf_warn(&l, "%s = %ld: %ld propert%s (first: property %ld, type %d) used by no element: not checked, and "
+            "without effect (Y2D evaluates properties through their elements)", keydefs[Y2D_PE_NPROP].full,
+            y->nprop, nunused, nunused == 1 ? "y" : "ies", unused0, y->pe_i1ptyp[unused0]);
+  }
   for (long p = 0; p < y->nprop; p++) {
     int t = y->pe_i1ptyp[p];
     YfLoc tyl = value_loc(y, Y2D_PE_I1PTYP, p);
+    if (!used[p]) continue;
     if (t == 3)
       yf_deck_error(&tyl, "%s: property %ld has type 3 (YTE2JOINTS), a joint type: it belongs in "
                     "/YD/YDPJ/I1PTYP; triangles are 1 (elastic), 2 (rigid) or 4 (softening)",
@@ -1304,6 +1322,7 @@ static void check_deck(YfY2d *y) {
   check_nonneg(y, Y2D_PE_D1PERO, y->d1pero, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PEPE, y->d1pepe, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PEPT, y->d1pept, y->nprop, "property");
+  free(used);
 
   /* ---- contact ---- */
   if (y->micoup > 0) {
