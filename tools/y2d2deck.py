@@ -656,12 +656,24 @@ def convert(src, out):
             if any(c in str(code) for c in '124'):
                 diff('meshing row %d: code %d has refinement/detach digits (1, 2, 4) that are '
                              'not translated' % (r, code))
-            sets = {pair_set.get((a, b)) for a in props for b in props}
-            if len(sets) != 1 or None in sets:
+            # the set of each pair of the row's properties in use (ALGORITHMS 4.1): its I2PMIJ row, or
+            # without one the creating triangle's own (P, P) row, either of the two; properties no
+            # element uses join nothing (a row that lists one, with two diagonal rows of one set, was
+            # refused as 'joint sets [0]' with None among them)
+            live = [q for q in props if q in in_use]
+            sets = set()
+            for a in live:
+                for b in live:
+                    s = pair_set.get((a, b))
+                    sets |= {s} if s is not None else {pair_set.get((a, a)), pair_set.get((b, b))}
+            if len(sets) > 1 or None in sets:
                 diff('meshing row %d: its property pairs use joint sets %s; written with the set of '
                              'its first property' % (r, sorted(x for x in sets if x is not None)))
-            jset = pair_set.get((props[0], props[0]), 0)
             tris = [e for e in range(ne) if elpr[e] in props]
+            if not tris:
+                note('meshing row %d: no element has its properties %s: nothing to joint' % (r, props))
+                continue
+            jset = pair_set.get((live[0], live[0]), 0)
             for e in tris:
                 meshed[e] = True
                 row_of[e] = r

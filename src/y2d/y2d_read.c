@@ -1098,10 +1098,12 @@ static void check_meshing(const YfY2d *y) {
     }
     if (code % 10 == 3 || code / 10 % 10 == 3 || joints)
       for (int i = 0; i < k; i++) {
-        int p = s[2 + i], found = 0;
+        int p = s[2 + i], found = 0, used = 0;
         for (long q = 0; q < y->mpmrow; q++)
           if (y->i2pmij[q * 3] == p && y->i2pmij[q * 3 + 1] == p) found = 1;
-        if (!found)
+        /* Y2D looks the row up for the triangles it meshes: a property no element uses needs none */
+        for (long e = 0; e < y->nelem && !used; e++) used = y->i1elpr[e] == p;
+        if (!found && used)
           yf_deck_error(&ml, "meshing row %ld joints property %d, but %s has no row '%d %d set' "
                         "(one is needed for every meshed property)", row, p,
                         keydefs[Y2D_PM_I2PMIJ].full, p, p);
