@@ -1071,9 +1071,8 @@ static void check_meshing(const YfY2d *y) {
       if (p < 0 || p >= y->nprop)
         yf_deck_error(&ml, "%s: row %ld: property %d outside 0..NPROP-1 = 0..%ld",
                       keydefs[Y2D_PM_I2PMSET].full, row, p, y->nprop - 1);
-      int used = 0; /* a property no element uses is not meshed: its type is not checked */
-      for (long e = 0; e < y->nelem && !used; e++) used = y->i1elpr[e] == p;
-      if (used && y->pe_i1ptyp[p] != 1 && y->pe_i1ptyp[p] != 2)
+      /* a property no element uses is not meshed: its type is not checked */
+      if (y->prop_used[p] && y->pe_i1ptyp[p] != 1 && y->pe_i1ptyp[p] != 2)
         yf_deck_error(&ml, "%s: row %ld: property %d has type %d; only types 1 and 2 may be meshed",
                       keydefs[Y2D_PM_I2PMSET].full, row, p, y->pe_i1ptyp[p]);
     }
@@ -1098,12 +1097,11 @@ static void check_meshing(const YfY2d *y) {
     }
     if (code % 10 == 3 || code / 10 % 10 == 3 || joints)
       for (int i = 0; i < k; i++) {
-        int p = s[2 + i], found = 0, used = 0;
+        int p = s[2 + i], found = 0;
         for (long q = 0; q < y->mpmrow; q++)
           if (y->i2pmij[q * 3] == p && y->i2pmij[q * 3 + 1] == p) found = 1;
         /* Y2D looks the row up for the triangles it meshes: a property no element uses needs none */
-        for (long e = 0; e < y->nelem && !used; e++) used = y->i1elpr[e] == p;
-        if (!found && used)
+        if (!found && y->prop_used[p])
           yf_deck_error(&ml, "meshing row %ld joints property %d, but %s has no row '%d %d set' "
                         "(one is needed for every meshed property)", row, p,
                         keydefs[Y2D_PM_I2PMIJ].full, p, p);
@@ -1283,7 +1281,8 @@ static void check_deck(YfY2d *y) {
    * each property): a deck with NPROP above the properties in use, the spare ones left at their
    * defaults (type -1, density 0), runs in Y2D.  Its type and density are not checked (one warning),
    * as read_y2d only refuses rigid and softening triangles that are used. */
-  unsigned char *used = yf_calloc((size_t)y->nprop + 1, 1, "y2d used properties");
+  /* kept in y (freed with its arrays): an error below exits with it reachable */
+  unsigned char *used = y->prop_used = yf_calloc((size_t)y->nprop + 1, 1, "y2d used properties");
   for (long e = 0; e < y->nelem; e++) used[y->i1elpr[e]] = 1; /* each in 0..NPROP-1 (checked above) */
   long nunused = 0, unused0 = -1;
   for (long p = 0; p < y->nprop; p++)
@@ -1324,7 +1323,6 @@ static void check_deck(YfY2d *y) {
   check_nonneg(y, Y2D_PE_D1PERO, y->d1pero, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PEPE, y->d1pepe, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PEPT, y->d1pept, y->nprop, "property");
-  free(used);
 
   /* ---- contact ---- */
   if (y->micoup > 0) {
@@ -1565,6 +1563,8 @@ void y2d_free_arrays(YfY2d *y) {
     free(*pp);
     *pp = NULL;
   }
+  free(y->prop_used);
+  y->prop_used = NULL;
   free(y->vline); /* only the checks after reading place values on their lines */
   y->vline = NULL;
   y->nvline = y->capvline = 0;

@@ -97,6 +97,7 @@ typedef struct {
    * per values a line over nlines lines, the last possibly longer); a few per key. */
   YfValueLines *vline;
   long nvline, capvline;
+  unsigned char *prop_used; /* [nprop]: 1 if an element uses property p (set by the checks)     */
 
   /* ---- /YD/YDC/ control ---- */
   long mcstep;             /* MCSTEP: total steps (loop runs while step < MCSTEP)           */
