@@ -639,7 +639,14 @@ def convert(src, out):
             pair_set[(m[0], m[1])] = m[2]
             pair_set[(m[1], m[0])] = m[2]
         L.append('# joints (Y2D meshing code 3): Munjiza\'s law with Y2D\'s floor, no damage memory')
+        # the sets an I2PMIJ row of two properties in use names: the others (spare sets, often left at
+        # f_t 0, which a native jointprop refuses) are never evaluated, as yfdem's reader has it
+        live_sets = {m[2] for m in (get2(K, 'YDPM/I2PMIJ') if 'YDPM/I2PMIJ' in K else [])
+                     if m[0] in in_use and m[1] in in_use}
         for j in range(npj):
+            if j not in live_sets:
+                note('joint set %d is named by no I2PMIJ row of properties in use: not written (no effect)' % j)
+                continue
             mc = SYNTAX['mohr_coulomb'].format(co=float(co[j]), fr=float(fr[j])) if float(co[j]) > 0 else ''
             if float(co[j]) <= 0 and float(fr[j]) != 0:
                 note('joint set %d: friction %g without cohesion (D1PJCO = 0): Y2D ignores it too' % (j, fr[j]))

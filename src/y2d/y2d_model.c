@@ -424,6 +424,10 @@ static void y2d_setup_joints(YfSim *s, YfY2dRun *r, const YfY2d *y, unsigned cha
   int *jmap = yf_malloc((size_t)(y->npjset + 1) * sizeof(int), "y2d joint sets");
   YfLoc jl = y->given[Y2D_PJ_D1PJFT] ? y->where[Y2D_PJ_D1PJFT] : y->end;
   for (long j = 0; j < y->npjset; j++) {
+    if (!y->pjset_used || !y->pjset_used[j]) { /* a spare set: never evaluated (y2d_read.c) */
+      jmap[j] = -1;
+      continue;
+    }
     YfJointProp p;
     joint_prop_default(&p);
     p.ft = y->d1pjft[j];

@@ -1033,7 +1033,7 @@ static int row_has_prop(const YfY2d *y, long row, int p) {
   return 0;
 }
 
-static void check_meshing(const YfY2d *y) {
+static void check_meshing(YfY2d *y) {
   YfLoc ml = loc_of(y, Y2D_PM_I2PMSET);
   if (y->mpmrow <= 0)
     yf_deck_error(&ml, "%s is given, so %s must be > 0 (rows of %s)", keydefs[Y2D_PM_I2PMSET].full,
@@ -1135,11 +1135,54 @@ static void check_meshing(const YfY2d *y) {
     yf_warn(&ml, "%s = %ld is smaller than the about %ld nodes after meshing (the anchor "
             "stops with \"MNOPO too small\"); yfdem allocates what it needs",
             keydefs[Y2D_N_MNOPO].full, y->mnopo, need_nodes);
+  /* The joint sets that can act: named by an I2PMIJ row of two properties in use (the rows Y2D looks
+   * up for the edges it joints).  Those are checked here, in the deck's words and at the value's
+   * line (the joint law divides by f_t, f_s or the cohesion, G_f and the penalty: Y2D's joints turn to
+   * NaN without them); a spare set (NPJSET above the sets in use, left at its defaults) is never
+   * evaluated by Y2D: one warning, and read_y2d does not build it. */
+  unsigned char *su = y->pjset_used = yf_calloc((size_t)y->npjset + 1, 1, "y2d used joint sets");
+  for (long q = 0; q < y->mpmrow; q++) {
+    const int *m = &y->i2pmij[q * 3];
+    if (y->prop_used[m[0]] && y->prop_used[m[1]]) su[m[2]] = 1;
+  }
+  long nspare = 0, spare0 = -1;
   for (long j = 0; j < y->npjset; j++) {
+    if (!su[j]) {
+      if (!nspare++) spare0 = j;
+      continue;
+    }
     YfLoc tl = value_loc(y, Y2D_PJ_I1PTYP, j);
     if (y->pj_i1ptyp[j] != 3)
       yf_deck_error(&tl, "%s: joint set %ld has type %d; 2D joint sets must be 3 (YTE2JOINTS)",
                     keydefs[Y2D_PJ_I1PTYP].full, j, y->pj_i1ptyp[j]);
+    static const struct {
+      int key;
+      const char *what;
+    } pos[] = {{Y2D_PJ_D1PJFT, "tensile strength f_t [Pa]: the peak opening 2 h f_t / p and the softening length "
+                               "3 G_f / f_t divide by it"},
+               {Y2D_PJ_D1PJGF, "fracture energy G_f [J/m^2]: the softening length is 3 G_f / f_t"},
+               {Y2D_PJ_D1PJPE, "joint penalty p [Pa]: the peak openings 2 h f_t / p and 2 h f_s / p divide by it"}};
+    for (size_t i = 0; i < sizeof pos / sizeof pos[0]; i++) {
+      const double v = (*(double **)((char *)y + keydefs[pos[i].key].off))[j];
+      if (!(v > 0)) {
+        YfLoc l = value_loc(y, pos[i].key, j);
+        yf_deck_error(&l, "%s: joint set %ld has %g%s; it must be > 0 (the %s)", keydefs[pos[i].key].full, j, v,
+                      j >= y->nread[pos[i].key] ? " (not given: the default)" : "", pos[i].what);
+      }
+    }
+    if (!(y->d1pjfs[j] > 0) && !(y->d1pjco[j] > 0)) {
+      YfLoc l = value_loc(y, Y2D_PJ_D1PJFS, j);
+      yf_deck_error(&l, "%s: joint set %ld has shear strength %g and cohesion %s %g: one must be > 0 (with "
+                    "D1PJFS <= 0 Y2D starts from the cohesion; the shear softening length 3 G_f / f_s divides "
+                    "by it)", keydefs[Y2D_PJ_D1PJFS].full, j, y->d1pjfs[j], keydefs[Y2D_PJ_D1PJCO].full,
+                    y->d1pjco[j]);
+    }
+  }
+  if (nspare) {
+    YfLoc l = loc_of(y, Y2D_PJ_NPJSET);
+    yf_warn(&l, "%s = %ld: %ld joint set%s (first: set %ld) named by no %s row of two properties in use: not "
+            "checked, and without effect", keydefs[Y2D_PJ_NPJSET].full, y->npjset, nspare, nspare == 1 ? "" : "s",
+            spare0, keydefs[Y2D_PM_I2PMIJ].full);
   }
 }
 
@@ -1565,6 +1608,8 @@ void y2d_free_arrays(YfY2d *y) {
   }
   free(y->prop_used);
   y->prop_used = NULL;
+  free(y->pjset_used);
+  y->pjset_used = NULL;
   free(y->vline); /* only the checks after reading place values on their lines */
   y->vline = NULL;
   y->nvline = y->capvline = 0;

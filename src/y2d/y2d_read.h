@@ -98,6 +98,8 @@ typedef struct {
   YfValueLines *vline;
   long nvline, capvline;
   unsigned char *prop_used; /* [nprop]: 1 if an element uses property p (set by the checks)     */
+  unsigned char *pjset_used; /* [npjset]: 1 if an I2PMIJ row of used properties names set j, with
+                                meshing (set by the checks; NULL without I2PMSET)               */
 
   /* ---- /YD/YDC/ control ---- */
   long mcstep;             /* MCSTEP: total steps (loop runs while step < MCSTEP)           */
