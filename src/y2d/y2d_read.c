@@ -1210,6 +1210,8 @@ static void drop_code0_rows(YfY2d *y) {
           keydefs[Y2D_PM_I2PMSET].full, nrow, rows);
 }
 
+YfLoc y2d_value_loc(const YfY2d *y, int key, long m) { return value_loc(y, key, m); }
+
 static void check_nonneg(const YfY2d *y, int k, const double *a, long n, const char *what) {
   for (long i = 0; i < n; i++)
     if (a[i] < 0) {
@@ -1361,7 +1363,8 @@ static void check_deck(YfY2d *y) {
   }
   check_nonneg(y, Y2D_PE_D1PEFR, y->d1pefr, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PEKS, y->d1peks, y->nprop, "property");
-  check_nonneg(y, Y2D_PE_D1PELA, y->d1pela, y->nprop, "property");
+  /* D1PELA may be negative (a material of negative Poisson's ratio, as write_y2d writes it): the
+   * bulk modulus it must keep positive depends on read_y2d's volfac, checked there (y2d_model.c) */
   check_nonneg(y, Y2D_PE_D1PEMU, y->d1pemu, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PERO, y->d1pero, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PEPE, y->d1pepe, y->nprop, "property");
