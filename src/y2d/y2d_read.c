@@ -1320,6 +1320,27 @@ static void check_deck(YfY2d *y) {
     yf_deck_error(&tl, "%s: %ld element(s) not counter-clockwise, first element %ld (signed "
                   "area %g from D2NCI); Y2D needs counter-clockwise triangles (FORMAT.md 5.1)",
                   keydefs[Y2D_E_I2ELTO].full, nbad, first_bad, first_area);
+  /* D2NCC, the current coordinates (a pre-strained start): every node given, and every triangle of
+   * positive area there too.  A shorter list leaves the other nodes at (0, 0), the array's default,
+   * and a triangle inverted or flat at the start has J <= 0: the run failed at step 0 with "the
+   * strain energy overflows the range of a double", without the deck's place. */
+  if (y->given[Y2D_N_D2NCC]) {
+    YfLoc cl = loc_of(y, Y2D_N_D2NCC);
+    if (y->nread[Y2D_N_D2NCC] < y->nnopo)
+      yf_deck_error(&cl, "%s gives %ld nodes, NNOPO = %ld: the others would start at (0, 0), the array's default "
+                    "(give every node, or leave D2NCC out: it is then D2NCI)", keydefs[Y2D_N_D2NCC].full,
+                    y->nread[Y2D_N_D2NCC], y->nnopo);
+    for (long e = 0; e < y->nelem; e++) {
+      const int *v = &y->i2elto[e * y->melno];
+      const double *a = &y->d2ncc[2 * v[0]], *b = &y->d2ncc[2 * v[1]], *c = &y->d2ncc[2 * v[2]];
+      double area2 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+      if (!(area2 > 0))
+        yf_deck_error(&cl, "%s: element %ld (nodes %d %d %d) has the signed area %g in the current coordinates: "
+                      "%s at the start (its area from D2NCI is positive); a pre-strained start needs every "
+                      "triangle counter-clockwise", keydefs[Y2D_N_D2NCC].full, e, v[0], v[1], v[2], area2 / 2,
+                      area2 < 0 ? "inverted" : "flat");
+    }
+  }
 
   /* ---- element properties ---- */
   /* A property no element uses is never evaluated by Y2D (its force loop runs over the elements of
