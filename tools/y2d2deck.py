@@ -9,7 +9,8 @@ usage: y2d2deck.py [--allow-differences] DECK.y OUT
   spaces, '#' and '$'; an OUT with both a single quote and a '$' or '"' cannot be quoted: exit 1.
 
 Exit status: 0 the converted deck runs the physics of `yfdem DECK.y`; 1 error (a key Y2D does not
-read, a value that is not a number, a file: no OUT.deck written); 2 bad usage; 3 the deck is written
+read, a value that is not a number, or not an integer where Y2D reads one, a file: no OUT.deck
+written); 2 bad usage; 3 the deck is written
 but does not run the same physics: each difference is a line "warning: DECK: ..." on stderr and a
 "DIFFERS:" note at the top of OUT.deck (stdout: "wrote OUT.deck (N differences of physics, M
 notes)").  --allow-differences accepts them: exit 0, the warnings stay.  Notes of exact
@@ -329,9 +330,12 @@ def parse(path):
     toks = tokens(path)
     keys, i = Keys(), 0
 
-    def num(j, key=None, want=-1, got=0, what='value'):
+    def num(j, key=None, want=-1, got=0, what='value', integer=False):
         """The number at token j, of key key = (token, file, line): want values of which got are read
-        (want < 0: a single item, what it is).  A comment there is refused, as by yfdem."""
+        (want < 0: a single item, what it is).  A comment there is refused, as by yfdem; so is, where
+        an integer is read (integer=True: counts, codes, sizes, and the values of the keys whose name
+        begins with M, N or I, Y2D's integer keys), a token that is not digits only: Y2D's %ld reads
+        3000 of '3000.0' and stops at the stray '.0' (yfdem refuses it; the converter ran 3000 steps)."""
         if j >= len(toks) or toks[j][0] == '/*':
             where = 'the end of the input' if j >= len(toks) else \
                 "'/*' at %s:%d (comments cannot appear inside a value list)" % toks[j][1:]
@@ -343,8 +347,17 @@ def parse(path):
             raise DeckError('%s:%d: %s: expected %d %s, found %d before %s' % (kf, kln, kt, want, what, got, where))
         t, f, ln = toks[j]
         v = number(t)
+        kname = key[0] if key else toks[j - 1][0] if j else ''
         if v is None:
-            raise DeckError('%s:%d: %r is not a number' % (f, ln, t))
+            fortran = re.sub('[dD]', 'e', t, count=1) != t and number(re.sub('[dD]', 'e', t, count=1)) is not None
+            raise DeckError('%s:%d: %s: %r is not a number%s' % (
+                f, ln, kname, t, " (a Fortran 'd' exponent: Y2D reads C reals (%le) and stops at the 'd'; write it "
+                "with 'e', e.g. 1.5e5 for 1.5d5)" if fortran else ''))
+        if integer and not isinstance(v, int):
+            raise DeckError("%s:%d: %s: '%s' is not an integer (the anchor would misread it; an integer is digits "
+                            "only: 3000, not 3000.0 or 3e3)" % (f, ln, kname, t))
+        if integer and not -2 ** 63 <= v < 2 ** 63:
+            raise DeckError("%s:%d: %s: '%s' is beyond the range of an integer" % (f, ln, kname, t))
         return v
 
     while i < len(toks):
@@ -358,20 +371,21 @@ def parse(path):
         grp = t.split('/')[2]
         check_key(t, f, ln, grp, name)
         full = grp + '/' + name
+        isint = name[:1] in ('M', 'N', 'I')   # Y2D's integer keys (src/y2d/y2d_read.c keydefs)
         if len(name) >= 2 and name[1] in '123' and name[0] in 'DI':
             nd = int(name[1])
             if nd == 1:
-                n = num(i + 1, toks[i], what='count')
-                vals = [num(i + 2 + k, toks[i], n, k, 'values') for k in range(n)]
+                n = num(i + 1, toks[i], what='count', integer=True)
+                vals = [num(i + 2 + k, toks[i], n, k, 'values', isint) for k in range(n)]
                 keys[full] = ((n,), vals)
                 i += 2 + n
                 continue
-            code = str(num(i + 1, toks[i], what='code'))
-            dims = [num(i + 2 + d, toks[i], what='dimension %d' % (d + 1)) for d in range(nd)]
+            code = str(num(i + 1, toks[i], what='code', integer=True))
+            dims = [num(i + 2 + d, toks[i], what='dimension %d' % (d + 1), integer=True) for d in range(nd)]
             tot = 1
             for d in dims:
                 tot *= d
-            flat = [num(i + 2 + nd + k, toks[i], tot, k, 'values') for k in range(tot)]
+            flat = [num(i + 2 + nd + k, toks[i], tot, k, 'values', isint) for k in range(tot)]
             order = [0, 1] if (nd == 2 and code == '12') else [1, 0] if nd == 2 else \
                 [int(c) - 1 for c in code]
             arr = [0] * tot
@@ -388,7 +402,7 @@ def parse(path):
             keys[full] = (tuple(dims), arr)
             i += 2 + nd + tot
         else:
-            keys[full] = num(i + 1, toks[i])
+            keys[full] = num(i + 1, toks[i], integer=isint)
             i += 2
     return keys
 
