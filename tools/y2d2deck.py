@@ -9,8 +9,9 @@ usage: y2d2deck.py [--allow-differences] DECK.y OUT
   spaces, '#' and '$'; an OUT with both a single quote and a '$' or '"' cannot be quoted: exit 1.
 
 Exit status: 0 the converted deck runs the physics of `yfdem DECK.y`; 1 error (a key Y2D does not
-read, a value that is not a number, or not an integer where Y2D reads one, a file: no OUT.deck
-written); 2 bad usage; 3 the deck is written
+read, a value that is not a number, or not an integer where Y2D reads one, a density, bulk modulus
+or joint strength, energy or penalty of a property or joint set in use that is not positive, as
+yfdem's reader refuses them; a file: no OUT.deck written); 2 bad usage; 3 the deck is written
 but does not run the same physics: each difference is a line "warning: DECK: ..." on stderr and a
 "DIFFERS:" note at the top of OUT.deck (stdout: "wrote OUT.deck (N differences of physics, M
 notes)").  --allow-differences accepts them: exit 0, the warnings stay.  Notes of exact
@@ -242,6 +243,15 @@ class Keys(dict):
     def __init__(self):
         dict.__init__(self)
         self.order = []
+        self.where = {}   # name -> (file, line) of the key and [(file, line)] of its values in order
+
+    def at(self, key, idx, default):
+        """(file, line) of value idx of 1D array key, else of the key, else default."""
+        hit = self._find(key)
+        if hit is None or hit not in self.where:
+            return default
+        kpos, vpos = self.where[hit]
+        return vpos[idx] if idx < len(vpos) else kpos
 
     def __setitem__(self, key, value):
         if dict.__contains__(self, key):
@@ -378,6 +388,7 @@ def parse(path):
                 n = num(i + 1, toks[i], what='count', integer=True)
                 vals = [num(i + 2 + k, toks[i], n, k, 'values', isint) for k in range(n)]
                 keys[full] = ((n,), vals)
+                keys.where[full] = ((f, ln), [toks[i + 2 + k][1:] for k in range(n)])
                 i += 2 + n
                 continue
             code = str(num(i + 1, toks[i], what='code', integer=True))
@@ -405,6 +416,41 @@ def parse(path):
             keys[full] = num(i + 1, toks[i], integer=isint)
             i += 2
     return keys
+
+
+def validate(K, path):
+    """Refuse, as yfdem's reader does (its words, the value's FILE:LINE), the values of the properties and
+    joint sets in use that a native material or jointprop cannot take: the converter wrote them and exited 0,
+    and the converted deck was refused when run, in the native command's words.  Properties no element
+    uses and joint sets no I2PMIJ row of properties in use names are never evaluated (left out)."""
+    g = lambda k, d=0: K.get(k, d)
+    end = (path, 0)
+    ne, nprop = g('YDE/NELEM'), g('YDPE/NPROP')
+    in_use = set(arr1(K, 'YDE/I1ELPR', ne, -1))
+    ptyp, rho = arr1(K, 'YDPE/I1PTYP', nprop, -1), arr1(K, 'YDPE/D1PERO', nprop, 0)
+    lam, mu = arr1(K, 'YDPE/D1PELA', nprop, 0), arr1(K, 'YDPE/D1PEMU', nprop, 0)
+    for p in sorted(x for x in in_use if 0 <= x < nprop and ptyp[x] == 1):
+        if not float(rho[p]) > 0:
+            raise DeckError('%s:%d: /YD/YDPE/D1PERO: property %d (elastic) has density %g; it must be > 0'
+                            % (K.at('YDPE/D1PERO', p, end) + (p, rho[p])))
+        if not float(lam[p]) + float(mu[p]) > 0:   # volfac 0.5: the in-plane bulk modulus is lambda + mu
+            raise DeckError('%s:%d: /YD/YDPE/D1PELA: property %d has lambda %g and mu (/YD/YDPE/D1PEMU) %g: the '
+                            'in-plane bulk modulus lambda + mu = %g must be positive' %
+                            (K.at('YDPE/D1PELA', p, end) + (p, lam[p], mu[p], float(lam[p]) + float(mu[p]))))
+    if 'YDPM/I2PMSET' not in K or not g('YDPJ/NPJSET'):
+        return
+    npj = g('YDPJ/NPJSET')
+    live = {m[2] for m in (get2(K, 'YDPM/I2PMIJ') if 'YDPM/I2PMIJ' in K else []) if m[0] in in_use and m[1] in in_use}
+    vals = {k: arr1(K, 'YDPJ/' + k, npj, 0.0) for k in ('D1PJFT', 'D1PJGF', 'D1PJPE', 'D1PJFS', 'D1PJCO')}
+    for j in sorted(x for x in live if 0 <= x < npj):
+        for k in ('D1PJFT', 'D1PJGF', 'D1PJPE'):
+            if not float(vals[k][j]) > 0:
+                raise DeckError('%s:%d: /YD/YDPJ/%s: joint set %d has %g; it must be > 0'
+                                % (K.at('YDPJ/' + k, j, end) + (k, j, vals[k][j])))
+        if not float(vals['D1PJFS'][j]) > 0 and not float(vals['D1PJCO'][j]) > 0:
+            raise DeckError('%s:%d: /YD/YDPJ/D1PJFS: joint set %d has shear strength %g and cohesion /YD/YDPJ/D1PJCO '
+                            '%g: one must be > 0' % (K.at('YDPJ/D1PJFS', j, end) + (j, vals['D1PJFS'][j],
+                                                                                    vals['D1PJCO'][j])))
 
 
 def arr1(K, key, n, default):
@@ -566,6 +612,7 @@ def convert(src, out):
     for name in (base + '.nodes', base + '.tris', base + '.h5'):
         deck_word(name)   # refused before anything is written
     K = parse(src)
+    validate(K, src)
     g = lambda k, d=0: K.get(k, d)
     ne, nn, nprop = g('YDE/NELEM'), g('YDN/NNOPO'), g('YDPE/NPROP')
     elto = get2(K, 'YDE/I2ELTO')
