@@ -158,8 +158,16 @@ class _Src:
     def push(self, path):
         if len(self.stack) >= INCL_MAX:
             raise DeckError('%s: $YINCL nested deeper than %d' % (path, INCL_MAX - 1))
-        with open(path) as f:
-            raw = [(t, path, ln) for ln, line in enumerate(f, 1) for t in line.split()]
+        # bytes, as the C reader reads them: a UTF-8 byte-order mark skipped, lines ended by LF, CR LF
+        # or a CR alone, tokens split at ASCII white space only; any other byte kept in its token (the
+        # text was decoded as UTF-8: a comment in Latin-1, 'densit\xe9', stopped the converter with
+        # "'utf-8' codec can't decode byte 0xe9", and a BOM made the first token '\ufeff/*')
+        with open(path, 'rb') as f:
+            data = f.read()
+        if data.startswith(b'\xef\xbb\xbf'):
+            data = data[3:]
+        raw = [(t.decode('utf-8', 'surrogateescape'), path, ln) for ln, line in enumerate(data.splitlines(), 1)
+               for t in line.split()]
         self.stack.append([raw, 0])
 
     def next(self):
