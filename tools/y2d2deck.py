@@ -10,8 +10,9 @@ usage: y2d2deck.py [--allow-differences] DECK.y OUT
 
 Exit status: 0 the converted deck runs the physics of `yfdem DECK.y`; 1 error (a key Y2D does not
 read, a value that is not a number, or not an integer where Y2D reads one, a density, bulk modulus
-or joint strength, energy or penalty of a property or joint set in use that is not positive, as
-yfdem's reader refuses them; a file: no OUT.deck written); 2 bad usage; 3 the deck is written
+or joint strength, energy or penalty of a property or joint set in use that is not positive, no
+time step, MISTATE < 6 with contact, an element property out of range, as yfdem's reader refuses
+them; a file: no OUT.deck written); 2 bad usage; 3 the deck is written
 but does not run the same physics: each difference is a line "warning: DECK: ..." on stderr and a
 "DIFFERS:" note at the top of OUT.deck (stdout: "wrote OUT.deck (N differences of physics, M
 notes)").  --allow-differences accepts them: exit 0, the warnings stay.  Notes of exact
@@ -422,6 +423,7 @@ def parse(path):
             i += 2 + nd + tot
         else:
             keys[full] = num(i + 1, toks[i], integer=isint)
+            keys.where[full] = ((f, ln), [toks[i + 1][1:]])
             i += 2
     return keys
 
@@ -434,6 +436,18 @@ def validate(K, path):
     g = lambda k, d=0: K.get(k, d)
     end = (path, 0)
     ne, nprop = g('YDE/NELEM'), g('YDPE/NPROP')
+    # the checks of yfdem's reader that a converted deck would otherwise hide (it ran them, exit 0)
+    if g('YDC/MCSTEP') > g('YDC/NCSTEP') and not float(g('YDC/DCSTEC', 0)) > 0:
+        raise DeckError('%s:%d: /YD/YDC/DCSTEC (the time step) is required and must be > 0 when /YD/YDC/MCSTEP > '
+                        '/YD/YDC/NCSTEP' % K.at('YDC/DCSTEC', 0, K.at('YDC/MCSTEP', 0, end)))
+    if g('YDI/MICOUP') > 0 and g('YDI/MISTATE') < 6:
+        raise DeckError('%s:%d: /YD/YDI/MISTATE = %d with /YD/YDI/MICOUP = %d: contact needs MISTATE >= 6 (sliding '
+                        'state per couple and edge; the anchor crashes otherwise)' % (
+                            K.at('YDI/MISTATE', 0, K.at('YDI/MICOUP', 0, end)) + (g('YDI/MISTATE'), g('YDI/MICOUP'))))
+    for e, p in enumerate(arr1(K, 'YDE/I1ELPR', ne, -1)):
+        if not 0 <= p < nprop:
+            raise DeckError('%s:%d: /YD/YDE/I1ELPR: element %d: property %d outside 0..NPROP-1 = 0..%d'
+                            % (K.at('YDE/I1ELPR', e, end) + (e, p, nprop - 1)))
     in_use = set(arr1(K, 'YDE/I1ELPR', ne, -1))
     ptyp, rho = arr1(K, 'YDPE/I1PTYP', nprop, -1), arr1(K, 'YDPE/D1PERO', nprop, 0)
     lam, mu = arr1(K, 'YDPE/D1PELA', nprop, 0), arr1(K, 'YDPE/D1PEMU', nprop, 0)
