@@ -11,8 +11,10 @@ usage: y2d2deck.py [--allow-differences] DECK.y OUT
 Exit status: 0 the converted deck runs the physics of `yfdem DECK.y`; 1 error (a key Y2D does not
 read, a value that is not a number, or not an integer where Y2D reads one, a density, bulk modulus
 or joint strength, energy or penalty of a property or joint set in use that is not positive, no
-time step, MISTATE < 6 with contact, an element property out of range, as yfdem's reader refuses
-them; a file: no OUT.deck written); 2 bad usage; 3 the deck is written
+time step, MISTATE < 6 with contact, an element property out of range, NELNO other than 3, a 3D
+deck, a clockwise triangle, a zero BC axis, a joint set out of range or not of type 3, a property
+type other than 1, 2, 4, a negative property value, as yfdem's reader refuses them (its words, its
+FILE:LINE); a file: no OUT.deck written); 2 bad usage; 3 the deck is written
 but does not run the same physics: each difference is a line "warning: DECK: ..." on stderr and a
 "DIFFERS:" note at the top of OUT.deck (stdout: "wrote OUT.deck (N differences of physics, M
 notes)").  --allow-differences accepts them: exit 0, the warnings stay.  Notes of exact
@@ -260,7 +262,12 @@ class Keys(dict):
         if hit is None or hit not in self.where:
             return default
         kpos, vpos = self.where[hit]
-        return vpos[idx] if idx < len(vpos) else kpos
+        return vpos[idx] if 0 <= idx < len(vpos) else kpos
+
+    def key_at(self, key, default):
+        """(file, line) of key, else default."""
+        hit = self._find(key)
+        return self.where[hit][0] if hit is not None and hit in self.where else default
 
     def __setitem__(self, key, value):
         if dict.__contains__(self, key):
@@ -420,6 +427,7 @@ def parse(path):
                     rem //= dims[d]
                 arr[sum(idx[d] * strides[d] for d in range(nd))] = v
             keys[full] = (tuple(dims), arr)
+            keys.where[full] = ((f, ln), [])
             i += 2 + nd + tot
         else:
             keys[full] = num(i + 1, toks[i], integer=isint)
@@ -448,7 +456,47 @@ def validate(K, path):
         if not 0 <= p < nprop:
             raise DeckError('%s:%d: /YD/YDE/I1ELPR: element %d: property %d outside 0..NPROP-1 = 0..%d'
                             % (K.at('YDE/I1ELPR', e, end) + (e, p, nprop - 1)))
+    if g('YDE/NELNO') != 3:
+        raise DeckError('%s:%d: /YD/YDE/NELNO = %d: input elements must be 3-node triangles (NELNO 3)'
+                        % (K.at('YDE/NELNO', 0, end) + (g('YDE/NELNO'),)))
+    nnod, mnod = K.get('YDN/NNODIM'), g('YDN/MNODIM')   # MNODIM 3 is a capacity when NNODIM is 2 (C++ writers)
+    if (nnod is not None and nnod != 2) or mnod < 2 or (mnod > 2 and nnod != 2):
+        raise DeckError('%s:%d: /YD/YDN/MNODIM = %d, /YD/YDN/NNODIM = %d: yfdem reads 2D decks only (NNODIM must be 2, '
+                        'and MNODIM, a capacity, at least 2)' % (K.at('YDN/NNODIM', 0, K.at('YDN/MNODIM', 0, end)) +
+                                                                 (g('YDN/MNODIM'), g('YDN/NNODIM'))))
+    nn = g('YDN/NNOPO')
+    xy = get2(K, 'YDN/D2NCI') if 'YDN/D2NCI' in K else []
+    if len(xy) >= nn:
+        cw = []
+        for e, v in enumerate(get2(K, 'YDE/I2ELTO')[:ne] if 'YDE/I2ELTO' in K else []):
+            if all(0 <= n < nn for n in v[:3]):
+                a, b, c = (xy[n] for n in v[:3])
+                area2 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+                if not area2 > 0:
+                    cw.append((e, area2 / 2))
+        if cw:
+            raise DeckError('%s:%d: /YD/YDE/I2ELTO: %d element(s) not counter-clockwise, first element %d (signed area '
+                            '%g from D2NCI); Y2D needs counter-clockwise triangles (FORMAT.md 5.1)'
+                            % (K.at('YDE/I2ELTO', 0, end) + (len(cw),) + cw[0]))
+    nset = g('YDPN/NPNSET')
+    ax = [arr1(K, 'YDPN/' + k, nset, d) for k, d in (('D1PNXX', 1.0), ('D1PNXY', 0.0), ('D1PNYX', 0.0), ('D1PNYY', 1.0))]
+    for s in range(nset):
+        xx, xy_, yx, yy = (float(a[s]) for a in ax)
+        if math.hypot(xx, xy_) == 0 or math.hypot(yx, yy) == 0:
+            raise DeckError('%s:%d: BC set %d: local axis %s is zero (D1PNXX/XY = %g %g, D1PNYX/YY = %g %g)'
+                            % (K.key_at('YDPN/D1PNXX', end) + (s, 'x' if math.hypot(xx, xy_) == 0 else 'y', xx, xy_,
+                                                                  yx, yy)))
     in_use = set(arr1(K, 'YDE/I1ELPR', ne, -1))
+    ptyp = arr1(K, 'YDPE/I1PTYP', nprop, -1)
+    for p in sorted(x for x in in_use if 0 <= x < nprop):
+        if ptyp[p] not in (1, 2, 4):
+            raise DeckError('%s:%d: /YD/YDPE/I1PTYP: property %d has type %d (valid: 1 elastic, 2 rigid, 4 softening '
+                            'triangle)' % (K.at('YDPE/I1PTYP', p, end) + (p, ptyp[p])))
+    for k in ('D1PEFR', 'D1PEKS', 'D1PEMU', 'D1PERO', 'D1PEPE', 'D1PEPT'):
+        for p, v in enumerate(arr1(K, 'YDPE/' + k, nprop, 0.0)):
+            if float(v) < 0:
+                raise DeckError('%s:%d: /YD/YDPE/%s: property %d has the negative value %g'
+                                % (K.at('YDPE/' + k, p, end) + (k, p, v)))
     ptyp, rho = arr1(K, 'YDPE/I1PTYP', nprop, -1), arr1(K, 'YDPE/D1PERO', nprop, 0)
     lam, mu = arr1(K, 'YDPE/D1PELA', nprop, 0), arr1(K, 'YDPE/D1PEMU', nprop, 0)
     for p in sorted(x for x in in_use if 0 <= x < nprop and ptyp[x] == 1):
@@ -462,7 +510,16 @@ def validate(K, path):
     if 'YDPM/I2PMSET' not in K or not g('YDPJ/NPJSET'):
         return
     npj = g('YDPJ/NPJSET')
+    for q, m in enumerate(get2(K, 'YDPM/I2PMIJ') if 'YDPM/I2PMIJ' in K else []):
+        if not 0 <= m[2] < npj:
+            raise DeckError('%s:%d: /YD/YDPM/I2PMIJ: row %d: joint set %d outside 0..NPJSET-1 = 0..%d'
+                            % (K.at('YDPM/I2PMIJ', 0, end) + (q, m[2], npj - 1)))
     live = {m[2] for m in (get2(K, 'YDPM/I2PMIJ') if 'YDPM/I2PMIJ' in K else []) if m[0] in in_use and m[1] in in_use}
+    jtyp = arr1(K, 'YDPJ/I1PTYP', npj, -1)
+    for j in sorted(x for x in live if 0 <= x < npj):
+        if jtyp[j] != 3:
+            raise DeckError('%s:%d: /YD/YDPJ/I1PTYP: joint set %d has type %d; 2D joint sets must be 3 (YTE2JOINTS)'
+                            % (K.at('YDPJ/I1PTYP', j, end) + (j, jtyp[j])))
     vals = {k: arr1(K, 'YDPJ/' + k, npj, 0.0) for k in ('D1PJFT', 'D1PJGF', 'D1PJPE', 'D1PJFS', 'D1PJCO')}
     for j in sorted(x for x in live if 0 <= x < npj):
         for k in ('D1PJFT', 'D1PJGF', 'D1PJPE'):
