@@ -12,7 +12,8 @@ Exit status: 0 the converted deck runs the physics of `yfdem DECK.y`; 1 error (a
 read, a value that is not a number, or not an integer where Y2D reads one, a density, bulk modulus
 or joint strength, energy or penalty of a property or joint set in use that is not positive, no
 time step, MISTATE < 6 with contact, an element property out of range, NELNO other than 3, a 3D
-deck, a clockwise triangle, a zero BC axis, a joint set out of range or not of type 3, a property
+deck, a clockwise triangle, a zero BC axis, a D2NCC short of NNOPO or with a triangle inverted or flat,
+a joint set out of range or not of type 3, a property
 type other than 1, 2, 4, a negative property value, as yfdem's reader refuses them (its words, its
 FILE:LINE); a file: no OUT.deck written); 2 bad usage; 3 the deck is written
 but does not run the same physics: each difference is a line "warning: DECK: ..." on stderr and a
@@ -478,6 +479,20 @@ def validate(K, path):
             raise DeckError('%s:%d: /YD/YDE/I2ELTO: %d element(s) not counter-clockwise, first element %d (signed area '
                             '%g from D2NCI); Y2D needs counter-clockwise triangles (FORMAT.md 5.1)'
                             % (K.at('YDE/I2ELTO', 0, end) + (len(cw),) + cw[0]))
+    if 'YDN/D2NCC' in K:   # a pre-strained start: every node, every triangle counter-clockwise there too
+        xc = get2(K, 'YDN/D2NCC')
+        if len(xc) < nn:
+            raise DeckError('%s:%d: /YD/YDN/D2NCC gives %d nodes, NNOPO = %d: the others would start at (0, 0), the '
+                            "array's default (give every node, or leave D2NCC out: it is then D2NCI)"
+                            % (K.key_at('YDN/D2NCC', end) + (len(xc), nn)))
+        for e, v in enumerate(get2(K, 'YDE/I2ELTO')[:ne] if 'YDE/I2ELTO' in K else []):
+            if all(0 <= n < nn for n in v[:3]):
+                a, b, c = (xc[n] for n in v[:3])
+                area2 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+                if not area2 > 0:
+                    raise DeckError('%s:%d: /YD/YDN/D2NCC: element %d (nodes %d %d %d) has the signed area %g in the '
+                                    'current coordinates: %s at the start' % (K.key_at('YDN/D2NCC', end) + (
+                                        e, v[0], v[1], v[2], area2 / 2, 'inverted' if area2 < 0 else 'flat')))
     nset = g('YDPN/NPNSET')
     ax = [arr1(K, 'YDPN/' + k, nset, d) for k, d in (('D1PNXX', 1.0), ('D1PNXY', 0.0), ('D1PNYX', 0.0), ('D1PNYY', 1.0))]
     for s in range(nset):
