@@ -91,8 +91,8 @@ most 100 tokens after '/*', the terminator its own token beginning with '*/', no
 list; $YINCL relative to the working directory or the including file's directory; $YDOIT and $YSTOP
 honoured at any include depth, after $YDOIT only comments and $YSTOP, in the including files too;
 1D/2D/3D array codes, names compared over the known name's length: /YD/YDC/MCSTEPS is MCSTEP).
-A key or group Y2D does not read is refused with FILE:LINE and the nearest key (exit 1, nothing
-written), and so are a comment inside a value list and one longer than 100 tokens; run `yfdem` on
+A key or group Y2D does not read is refused with FILE:LINE and the nearest key, or as a key or
+group of the Y-Geo derivative, as yfdem names them (exit 1, nothing written), and so are a comment inside a value list and one longer than 100 tokens; run `yfdem` on
 the .y file itself (the C reader, src/y2d/y2d_read.c) for full validation of values and array sizes.
 """
 import argparse
@@ -322,9 +322,25 @@ KNOWN = {
 KNOWN = {g: [(k.split(':')[0], int(k.split(':')[1]) if ':' in k else len(k)) for k in v.split()]
          for g, v in KNOWN.items()}
 
+# Keys and groups of the Y-Geo derivative (FORMAT.md 9; the same lists as src/y2d/y2d_read.c's ygeo_keys
+# and ygeo_groups, which tests/convert/run compares with these): refused by name, as yfdem refuses them,
+# so that a Y-Geo deck is not told 'unknown key ... did you mean' a Y2D key of another meaning.
+YGEO_KEYS = {
+    'YDC': 'ICOUTRF ICOUTNF ICRESF IUSEECZM',
+    'YDN': 'I1NOWE',
+    'YDPE': 'MPEROW D2PEINT D1PEEM D1PENU I1PEXC I1USAN D1PEEX D1PEEY D1PEMX D1PEMY D1PEG D1PHI D1DPC '
+            'D1SIG_T D1F0 D1H1 D1H2 D1HC D1CK D1CC D1BK D1CKP D1NK D1URU D1UC D1RE D1CHI D1NP D1N2 D1NN '
+            'I1USE_EXT_SUBLOADING I1USE_KINHARD I1PSUP',
+    'YDPJ': 'D1PJGS IUSEHY D1USAF D1PJAL D1PJCR D1PJFD D1PJTR D1PJGR D1PJSR',
+}
+YGEO_KEYS = {g: v.split() for g, v in YGEO_KEYS.items()}
+YGEO_GROUPS = ['YDP', 'YDFN', 'YDIS', 'YDHF', 'YDSM', 'YDR', 'YDSB', 'YDPS']
+
 
 def check_key(t, f, ln, grp, name):
     """Refuse a group or key Y2D does not read, with the file, the line and the nearest name."""
+    if grp in YGEO_GROUPS:
+        raise DeckError('%s:%d: %s: Y-Geo group /YD/%s/, not in Y2D' % (f, ln, t, grp))
     if grp not in KNOWN:
         near = difflib.get_close_matches(grp, KNOWN, 1)
         raise DeckError('%s:%d: %s: unknown group /YD/%s/%s (groups: %s)' % (
@@ -332,6 +348,8 @@ def check_key(t, f, ln, grp, name):
     keys = KNOWN[grp]
     if any(len(name) >= m and name[:m] == k[:m] for k, m in keys):
         return
+    if name in YGEO_KEYS.get(grp, []):
+        raise DeckError('%s:%d: %s: Y-Geo key, not in Y2D' % (f, ln, t))
     near = difflib.get_close_matches(name, [k for k, _ in keys], 1)
     raise DeckError('%s:%d: %s: unknown key in /YD/%s/ (%s)' % (
         f, ln, t, grp, 'did you mean %s?' % near[0] if near else 'keys: ' + ' '.join(k for k, _ in keys)))
