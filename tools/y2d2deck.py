@@ -335,6 +335,8 @@ YGEO_KEYS = {
 }
 YGEO_KEYS = {g: v.split() for g, v in YGEO_KEYS.items()}
 YGEO_GROUPS = ['YDP', 'YDFN', 'YDIS', 'YDHF', 'YDSM', 'YDR', 'YDSB', 'YDPS']
+# Keys that pre-processors of other Y derivatives write (src/y2d/y2d_read.c's other_keys): Y2D stops on them
+OTHER_KEYS = {'YDC': 'ISAVE ICSAVF DCSIZD DCSIZA DCRMPT DCGRST ICFMTY ICIATY'.split(), 'YDE': 'I1ELTY I2ELJP'.split()}
 
 
 def check_key(t, f, ln, grp, name):
@@ -350,6 +352,8 @@ def check_key(t, f, ln, grp, name):
         return
     if name in YGEO_KEYS.get(grp, []):
         raise DeckError('%s:%d: %s: Y-Geo key, not in Y2D' % (f, ln, t))
+    if name in OTHER_KEYS.get(grp, []):
+        raise DeckError('%s:%d: %s: not a Y2D key (written for other Y derivatives; Y2D stops on it too)' % (f, ln, t))
     near = difflib.get_close_matches(name, [k for k, _ in keys], 1)
     raise DeckError('%s:%d: %s: unknown key in /YD/%s/ (%s)' % (
         f, ln, t, grp, 'did you mean %s?' % near[0] if near else 'keys: ' + ' '.join(k for k, _ in keys)))
