@@ -14,6 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include "contact.h"
+#include "summary.h"
 #include "y2d_read.h"
 #include "yftest.h"
 
@@ -519,6 +520,88 @@ START_TEST(test_frozen_set) {
 }
 END_TEST
 
+/* A property that no element uses is never evaluated by Y2D (its loop runs over each property's
+ * elements), so a deck with NPROP above the properties in use runs there whatever the spare ones
+ * hold.  yfdem refused it ("property 2 has type -1", or "density 0" for a placeholder of type 1).
+ * Deck a with NPROP 4, properties 2 and 3 left at their defaults (type -1, density 0): the binary
+ * runs it (exit 0, one warning at NPROP's line), and read_y2d of it ends 200 steps in the state of
+ * deck a itself (the spare properties change nothing). */
+START_TEST(test_spare_properties) {
+  char *at, *a = deck_a_at("/YD/YDPE/MPROP 2\n/YD/YDPE/NPROP 2\n", &at);
+  char *deck = strdup(a);
+  memcpy(deck + (at - a), "/YD/YDPE/MPROP 4\n/YD/YDPE/NPROP 4\n", strlen("/YD/YDPE/MPROP 4\n/YD/YDPE/NPROP 4\n"));
+  int line = 1;
+  for (const char *c = a; c < at; c++) line += *c == '\n';
+  char *err, *dir;
+  int rc = yft_run_binary("spare.y", deck, "-log none", &err, &dir);
+  char want[128];
+  snprintf(want, sizeof want, "spare.y:%d: warning: /YD/YDPE/NPROP = 4: 2 properties (first: property 2, type -1)",
+           line + 1);
+  ck_assert_msg(rc == 0 && strstr(err, want), "exit %d, no '%s' in: %s", rc, want, err);
+  free(err);
+  char nd[700];
+  snprintf(nd, sizeof nd, "read_y2d %s/spare.y\nrun 200\n", dir);
+  uint64_t h1 = sim_state_hash(yft_run(nd));
+  uint64_t h0 = sim_state_hash(yft_run("read_y2d " DECKS "a_elastic_block.y\nrun 200\n"));
+  ck_assert_msg(h1 == h0, "spare properties changed the state: %016llx vs %016llx", (unsigned long long)h1,
+                (unsigned long long)h0);
+  free(dir);
+  free(deck);
+  free(a);
+}
+END_TEST
+
+/* Joint sets as Y2D evaluates them: a set that no I2PMIJ row of properties in use names is never
+ * evaluated (spare sets left at their defaults: type -1, f_t 0 ... ran in Y2D, yfdem refused them
+ * as "jointprop 'y2d_j2': tensile strength ft must be > 0" at D1PJFT's line); a set in use with a
+ * value the joint law divides by at 0 is refused in the deck's words at that value's line (it was
+ * the native jointprop's words at D1PJFT's line whatever the value).  Deck b (300 steps) with
+ * NPJSET 3: one warning at NPJSET's line, and deck b's own state; deck b with G_f 0 in set 1 (the
+ * impactor's joints): the error at the line of that value. */
+START_TEST(test_spare_joint_sets) {
+  char *b = yft_slurp(DECKS "b_beam_impact.y", 0);
+  ck_assert_ptr_nonnull(b);
+  char *m = strstr(b, "/YD/YDC/MCSTEP 15000\n"), *js = strstr(b, "/YD/YDPJ/MPJSET 2\n/YD/YDPJ/NPJSET 2\n");
+  char *gf = strstr(b, "/YD/YDPJ/D1PJGF 2\n300 3000000000000.0\n");
+  ck_assert(m && js && gf);
+  memcpy(m, "/YD/YDC/MCSTEP   300", 20); /* the same length: the lines stay where they are */
+  int line = 1;
+  for (const char *c = b; c < js; c++) line += *c == '\n';
+  char *deck = strdup(b);
+  memcpy(deck + (js - b), "/YD/YDPJ/MPJSET 3\n/YD/YDPJ/NPJSET 3\n", 36);
+  char *err, *dir, want[200];
+  int rc = yft_run_binary("spare_j.y", deck, "-log none", &err, &dir);
+  snprintf(want, sizeof want, "spare_j.y:%d: warning: /YD/YDPJ/NPJSET = 3: 1 joint set (first: set 2) named by no",
+           line + 1);
+  ck_assert_msg(rc == 0 && strstr(err, want), "exit %d, no '%s' in: %s", rc, want, err);
+  free(err);
+  char nd[700];
+  snprintf(nd, sizeof nd, "read_y2d %s/spare_j.y\nrun\n", dir);
+  YfSim *s1 = yft_run(nd);
+  ck_assert_int_eq(s1->step, 300);
+  uint64_t h1 = sim_state_hash(s1);
+  free(dir);
+  dir = yft_deck_dir("b300.y", b);
+  snprintf(nd, sizeof nd, "read_y2d %s/b300.y\nrun\n", dir);
+  uint64_t h0 = sim_state_hash(yft_run(nd));
+  ck_assert_msg(h1 == h0, "a spare joint set changed the state: %016llx vs %016llx", (unsigned long long)h1,
+                (unsigned long long)h0);
+  free(dir);
+  /* G_f 0 in set 1, which the impactor's joints use */
+  strcpy(deck, b);
+  memcpy(deck + (gf - b) + strlen("/YD/YDPJ/D1PJGF 2\n300 "), "0.0000000000000", 15);
+  line = 2;
+  for (const char *c = b; c < gf; c++) line += *c == '\n';
+  rc = yft_run_binary("gf0.y", deck, "-log none", &err, &dir);
+  snprintf(want, sizeof want, "gf0.y:%d: error: /YD/YDPJ/D1PJGF: joint set 1 has 0; it must be > 0", line);
+  ck_assert_msg(rc == 1 && strstr(err, want), "exit %d, no '%s' in: %s", rc, want, err);
+  free(err);
+  free(dir);
+  free(deck);
+  free(b);
+}
+END_TEST
+
 /* A message about one value of an array names the line that value is on.  The lines were noted
  * one entry per line (100 MB for a generated deck at 1e6 triangles); they are now runs of lines
  * of equal width, so lines of other widths must still come out right: deck a's I1NOPR (440
@@ -619,6 +702,8 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_ystop_and_comments_as_y2d);
   tcase_add_test(tc, test_diedi_delays_first_search);
   tcase_add_test(tc, test_frozen_set);
+  tcase_add_test(tc, test_spare_properties);
+  tcase_add_test(tc, test_spare_joint_sets);
   tcase_add_test(tc, test_value_lines);
   tcase_add_test(tc, test_capacity_memory_total);
   suite_add_tcase(s, tc);

@@ -9,7 +9,13 @@ usage: y2d2deck.py [--allow-differences] DECK.y OUT
   spaces, '#' and '$'; an OUT with both a single quote and a '$' or '"' cannot be quoted: exit 1.
 
 Exit status: 0 the converted deck runs the physics of `yfdem DECK.y`; 1 error (a key Y2D does not
-read, a value that is not a number, a file: no OUT.deck written); 2 bad usage; 3 the deck is written
+read, a value that is not a number, or not an integer where Y2D reads one, a density, bulk modulus
+or joint strength, energy or penalty of a property or joint set in use that is not positive, no
+time step, MISTATE < 6 with contact, an element property out of range, NELNO other than 3, a 3D
+deck, a clockwise triangle, a zero BC axis, a D2NCC short of NNOPO or with a triangle inverted or flat,
+a joint set out of range or not of type 3, a property
+type other than 1, 2, 4, a negative property value, as yfdem's reader refuses them (its words, its
+FILE:LINE); a file: no OUT.deck written); 2 bad usage; 3 the deck is written
 but does not run the same physics: each difference is a line "warning: DECK: ..." on stderr and a
 "DIFFERS:" note at the top of OUT.deck (stdout: "wrote OUT.deck (N differences of physics, M
 notes)").  --allow-differences accepts them: exit 0, the warnings stay.  Notes of exact
@@ -85,8 +91,8 @@ most 100 tokens after '/*', the terminator its own token beginning with '*/', no
 list; $YINCL relative to the working directory or the including file's directory; $YDOIT and $YSTOP
 honoured at any include depth, after $YDOIT only comments and $YSTOP, in the including files too;
 1D/2D/3D array codes, names compared over the known name's length: /YD/YDC/MCSTEPS is MCSTEP).
-A key or group Y2D does not read is refused with FILE:LINE and the nearest key (exit 1, nothing
-written), and so are a comment inside a value list and one longer than 100 tokens; run `yfdem` on
+A key or group Y2D does not read is refused with FILE:LINE and the nearest key, or as a key or
+group of the Y-Geo derivative, as yfdem names them (exit 1, nothing written), and so are a comment inside a value list and one longer than 100 tokens; run `yfdem` on
 the .y file itself (the C reader, src/y2d/y2d_read.c) for full validation of values and array sizes.
 """
 import argparse
@@ -156,8 +162,16 @@ class _Src:
     def push(self, path):
         if len(self.stack) >= INCL_MAX:
             raise DeckError('%s: $YINCL nested deeper than %d' % (path, INCL_MAX - 1))
-        with open(path) as f:
-            raw = [(t, path, ln) for ln, line in enumerate(f, 1) for t in line.split()]
+        # bytes, as the C reader reads them: a UTF-8 byte-order mark skipped, lines ended by LF, CR LF
+        # or a CR alone, tokens split at ASCII white space only; any other byte kept in its token (the
+        # text was decoded as UTF-8: a comment in Latin-1, 'densit\xe9', stopped the converter with
+        # "'utf-8' codec can't decode byte 0xe9", and a BOM made the first token '\ufeff/*')
+        with open(path, 'rb') as f:
+            data = f.read()
+        if data.startswith(b'\xef\xbb\xbf'):
+            data = data[3:]
+        raw = [(t.decode('utf-8', 'surrogateescape'), path, ln) for ln, line in enumerate(data.splitlines(), 1)
+               for t in line.split()]
         self.stack.append([raw, 0])
 
     def next(self):
@@ -241,6 +255,20 @@ class Keys(dict):
     def __init__(self):
         dict.__init__(self)
         self.order = []
+        self.where = {}   # name -> (file, line) of the key and [(file, line)] of its values in order
+
+    def at(self, key, idx, default):
+        """(file, line) of value idx of 1D array key, else of the key, else default."""
+        hit = self._find(key)
+        if hit is None or hit not in self.where:
+            return default
+        kpos, vpos = self.where[hit]
+        return vpos[idx] if 0 <= idx < len(vpos) else kpos
+
+    def key_at(self, key, default):
+        """(file, line) of key, else default."""
+        hit = self._find(key)
+        return self.where[hit][0] if hit is not None and hit in self.where else default
 
     def __setitem__(self, key, value):
         if dict.__contains__(self, key):
@@ -288,15 +316,33 @@ KNOWN = {
     'YDPN': 'MPNSET NPNSET I1PNFX I1PNFY D1PNAX D1PNAY D1PNAP D1PNAT D1PNXX D1PNXY D1PNYX D1PNYY D1PNXZ '
             'D1PNYZ D1PNZX D1PNZY D1PNZZ I1PNFZ D1PNAZ MPNFACT NPNFACT D3PNFAC D1PNAF',
     'YDO': 'MOHYS NOHYS DOHYP I1OHYT D1OHYX D1OHYY D1OHYC D1OHYF D1OHYS D1OHYT',
-    'YDB': 'MBORH D2BCB D1BVDT',
-    'YDS': 'MSOUR D2SCS D1SVPR',
+    'YDB': 'MBORH NBORH MBDIM NBDIM NBPAF D2BCA D2BCB D1BRAD D1BPAF D1BPTS D1BPTE D1BVDT D1BPRS DBLMAX DBBUF',
+    'YDS': 'MSOUR NSOUR MSDIM NSDIM NSPAF NSSAF D2SCS D1SPAF D1SSAF D1SPTS D1SPTE D1SVPR D1SPRS D1SSIR DSBUF',
 }
 KNOWN = {g: [(k.split(':')[0], int(k.split(':')[1]) if ':' in k else len(k)) for k in v.split()]
          for g, v in KNOWN.items()}
 
+# Keys and groups of the Y-Geo derivative (FORMAT.md 9; the same lists as src/y2d/y2d_read.c's ygeo_keys
+# and ygeo_groups, which tests/convert/run compares with these): refused by name, as yfdem refuses them,
+# so that a Y-Geo deck is not told 'unknown key ... did you mean' a Y2D key of another meaning.
+YGEO_KEYS = {
+    'YDC': 'ICOUTRF ICOUTNF ICRESF IUSEECZM',
+    'YDN': 'I1NOWE',
+    'YDPE': 'MPEROW D2PEINT D1PEEM D1PENU I1PEXC I1USAN D1PEEX D1PEEY D1PEMX D1PEMY D1PEG D1PHI D1DPC '
+            'D1SIG_T D1F0 D1H1 D1H2 D1HC D1CK D1CC D1BK D1CKP D1NK D1URU D1UC D1RE D1CHI D1NP D1N2 D1NN '
+            'I1USE_EXT_SUBLOADING I1USE_KINHARD I1PSUP',
+    'YDPJ': 'D1PJGS IUSEHY D1USAF D1PJAL D1PJCR D1PJFD D1PJTR D1PJGR D1PJSR',
+}
+YGEO_KEYS = {g: v.split() for g, v in YGEO_KEYS.items()}
+YGEO_GROUPS = ['YDP', 'YDFN', 'YDIS', 'YDHF', 'YDSM', 'YDR', 'YDSB', 'YDPS']
+# Keys that pre-processors of other Y derivatives write (src/y2d/y2d_read.c's other_keys): Y2D stops on them
+OTHER_KEYS = {'YDC': 'ISAVE ICSAVF DCSIZD DCSIZA DCRMPT DCGRST ICFMTY ICIATY'.split(), 'YDE': 'I1ELTY I2ELJP'.split()}
+
 
 def check_key(t, f, ln, grp, name):
     """Refuse a group or key Y2D does not read, with the file, the line and the nearest name."""
+    if grp in YGEO_GROUPS:
+        raise DeckError('%s:%d: %s: Y-Geo group /YD/%s/, not in Y2D' % (f, ln, t, grp))
     if grp not in KNOWN:
         near = difflib.get_close_matches(grp, KNOWN, 1)
         raise DeckError('%s:%d: %s: unknown group /YD/%s/%s (groups: %s)' % (
@@ -304,6 +350,10 @@ def check_key(t, f, ln, grp, name):
     keys = KNOWN[grp]
     if any(len(name) >= m and name[:m] == k[:m] for k, m in keys):
         return
+    if name in YGEO_KEYS.get(grp, []):
+        raise DeckError('%s:%d: %s: Y-Geo key, not in Y2D' % (f, ln, t))
+    if name in OTHER_KEYS.get(grp, []):
+        raise DeckError('%s:%d: %s: not a Y2D key (written for other Y derivatives; Y2D stops on it too)' % (f, ln, t))
     near = difflib.get_close_matches(name, [k for k, _ in keys], 1)
     raise DeckError('%s:%d: %s: unknown key in /YD/%s/ (%s)' % (
         f, ln, t, grp, 'did you mean %s?' % near[0] if near else 'keys: ' + ' '.join(k for k, _ in keys)))
@@ -329,9 +379,12 @@ def parse(path):
     toks = tokens(path)
     keys, i = Keys(), 0
 
-    def num(j, key=None, want=-1, got=0, what='value'):
+    def num(j, key=None, want=-1, got=0, what='value', integer=False):
         """The number at token j, of key key = (token, file, line): want values of which got are read
-        (want < 0: a single item, what it is).  A comment there is refused, as by yfdem."""
+        (want < 0: a single item, what it is).  A comment there is refused, as by yfdem; so is, where
+        an integer is read (integer=True: counts, codes, sizes, and the values of the keys whose name
+        begins with M, N or I, Y2D's integer keys), a token that is not digits only: Y2D's %ld reads
+        3000 of '3000.0' and stops at the stray '.0' (yfdem refuses it; the converter ran 3000 steps)."""
         if j >= len(toks) or toks[j][0] == '/*':
             where = 'the end of the input' if j >= len(toks) else \
                 "'/*' at %s:%d (comments cannot appear inside a value list)" % toks[j][1:]
@@ -343,8 +396,17 @@ def parse(path):
             raise DeckError('%s:%d: %s: expected %d %s, found %d before %s' % (kf, kln, kt, want, what, got, where))
         t, f, ln = toks[j]
         v = number(t)
+        kname = key[0] if key else toks[j - 1][0] if j else ''
         if v is None:
-            raise DeckError('%s:%d: %r is not a number' % (f, ln, t))
+            fortran = re.sub('[dD]', 'e', t, count=1) != t and number(re.sub('[dD]', 'e', t, count=1)) is not None
+            raise DeckError('%s:%d: %s: %r is not a number%s' % (
+                f, ln, kname, t, " (a Fortran 'd' exponent: Y2D reads C reals (%le) and stops at the 'd'; write it "
+                "with 'e', e.g. 1.5e5 for 1.5d5)" if fortran else ''))
+        if integer and not isinstance(v, int):
+            raise DeckError("%s:%d: %s: '%s' is not an integer (the anchor would misread it; an integer is digits "
+                            "only: 3000, not 3000.0 or 3e3)" % (f, ln, kname, t))
+        if integer and not -2 ** 63 <= v < 2 ** 63:
+            raise DeckError("%s:%d: %s: '%s' is beyond the range of an integer" % (f, ln, kname, t))
         return v
 
     while i < len(toks):
@@ -358,20 +420,22 @@ def parse(path):
         grp = t.split('/')[2]
         check_key(t, f, ln, grp, name)
         full = grp + '/' + name
+        isint = name[:1] in ('M', 'N', 'I')   # Y2D's integer keys (src/y2d/y2d_read.c keydefs)
         if len(name) >= 2 and name[1] in '123' and name[0] in 'DI':
             nd = int(name[1])
             if nd == 1:
-                n = num(i + 1, toks[i], what='count')
-                vals = [num(i + 2 + k, toks[i], n, k, 'values') for k in range(n)]
+                n = num(i + 1, toks[i], what='count', integer=True)
+                vals = [num(i + 2 + k, toks[i], n, k, 'values', isint) for k in range(n)]
                 keys[full] = ((n,), vals)
+                keys.where[full] = ((f, ln), [toks[i + 2 + k][1:] for k in range(n)])
                 i += 2 + n
                 continue
-            code = str(num(i + 1, toks[i], what='code'))
-            dims = [num(i + 2 + d, toks[i], what='dimension %d' % (d + 1)) for d in range(nd)]
+            code = str(num(i + 1, toks[i], what='code', integer=True))
+            dims = [num(i + 2 + d, toks[i], what='dimension %d' % (d + 1), integer=True) for d in range(nd)]
             tot = 1
             for d in dims:
                 tot *= d
-            flat = [num(i + 2 + nd + k, toks[i], tot, k, 'values') for k in range(tot)]
+            flat = [num(i + 2 + nd + k, toks[i], tot, k, 'values', isint) for k in range(tot)]
             order = [0, 1] if (nd == 2 and code == '12') else [1, 0] if nd == 2 else \
                 [int(c) - 1 for c in code]
             arr = [0] * tot
@@ -386,11 +450,123 @@ def parse(path):
                     rem //= dims[d]
                 arr[sum(idx[d] * strides[d] for d in range(nd))] = v
             keys[full] = (tuple(dims), arr)
+            keys.where[full] = ((f, ln), [])
             i += 2 + nd + tot
         else:
-            keys[full] = num(i + 1, toks[i])
+            keys[full] = num(i + 1, toks[i], integer=isint)
+            keys.where[full] = ((f, ln), [toks[i + 1][1:]])
             i += 2
     return keys
+
+
+def validate(K, path):
+    """Refuse, as yfdem's reader does (its words, the value's FILE:LINE), the values of the properties and
+    joint sets in use that a native material or jointprop cannot take: the converter wrote them and exited 0,
+    and the converted deck was refused when run, in the native command's words.  Properties no element
+    uses and joint sets no I2PMIJ row of properties in use names are never evaluated (left out)."""
+    g = lambda k, d=0: K.get(k, d)
+    end = (path, 0)
+    ne, nprop = g('YDE/NELEM'), g('YDPE/NPROP')
+    # the checks of yfdem's reader that a converted deck would otherwise hide (it ran them, exit 0)
+    if g('YDC/MCSTEP') > g('YDC/NCSTEP') and not float(g('YDC/DCSTEC', 0)) > 0:
+        raise DeckError('%s:%d: /YD/YDC/DCSTEC (the time step) is required and must be > 0 when /YD/YDC/MCSTEP > '
+                        '/YD/YDC/NCSTEP' % K.at('YDC/DCSTEC', 0, K.at('YDC/MCSTEP', 0, end)))
+    if g('YDI/MICOUP') > 0 and g('YDI/MISTATE') < 6:
+        raise DeckError('%s:%d: /YD/YDI/MISTATE = %d with /YD/YDI/MICOUP = %d: contact needs MISTATE >= 6 (sliding '
+                        'state per couple and edge; the anchor crashes otherwise)' % (
+                            K.at('YDI/MISTATE', 0, K.at('YDI/MICOUP', 0, end)) + (g('YDI/MISTATE'), g('YDI/MICOUP'))))
+    for e, p in enumerate(arr1(K, 'YDE/I1ELPR', ne, -1)):
+        if not 0 <= p < nprop:
+            raise DeckError('%s:%d: /YD/YDE/I1ELPR: element %d: property %d outside 0..NPROP-1 = 0..%d'
+                            % (K.at('YDE/I1ELPR', e, end) + (e, p, nprop - 1)))
+    if g('YDE/NELNO') != 3:
+        raise DeckError('%s:%d: /YD/YDE/NELNO = %d: input elements must be 3-node triangles (NELNO 3)'
+                        % (K.at('YDE/NELNO', 0, end) + (g('YDE/NELNO'),)))
+    nnod, mnod = K.get('YDN/NNODIM'), g('YDN/MNODIM')   # MNODIM 3 is a capacity when NNODIM is 2 (C++ writers)
+    if (nnod is not None and nnod != 2) or mnod < 2 or (mnod > 2 and nnod != 2):
+        raise DeckError('%s:%d: /YD/YDN/MNODIM = %d, /YD/YDN/NNODIM = %d: yfdem reads 2D decks only (NNODIM must be 2, '
+                        'and MNODIM, a capacity, at least 2)' % (K.at('YDN/NNODIM', 0, K.at('YDN/MNODIM', 0, end)) +
+                                                                 (g('YDN/MNODIM'), g('YDN/NNODIM'))))
+    nn = g('YDN/NNOPO')
+    xy = get2(K, 'YDN/D2NCI') if 'YDN/D2NCI' in K else []
+    if len(xy) >= nn:
+        cw = []
+        for e, v in enumerate(get2(K, 'YDE/I2ELTO')[:ne] if 'YDE/I2ELTO' in K else []):
+            if all(0 <= n < nn for n in v[:3]):
+                a, b, c = (xy[n] for n in v[:3])
+                area2 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+                if not area2 > 0:
+                    cw.append((e, area2 / 2))
+        if cw:
+            raise DeckError('%s:%d: /YD/YDE/I2ELTO: %d element(s) not counter-clockwise, first element %d (signed area '
+                            '%g from D2NCI); Y2D needs counter-clockwise triangles (FORMAT.md 5.1)'
+                            % (K.at('YDE/I2ELTO', 0, end) + (len(cw),) + cw[0]))
+    if 'YDN/D2NCC' in K:   # a pre-strained start: every node, every triangle counter-clockwise there too
+        xc = get2(K, 'YDN/D2NCC')
+        if len(xc) < nn:
+            raise DeckError('%s:%d: /YD/YDN/D2NCC gives %d nodes, NNOPO = %d: the others would start at (0, 0), the '
+                            "array's default (give every node, or leave D2NCC out: it is then D2NCI)"
+                            % (K.key_at('YDN/D2NCC', end) + (len(xc), nn)))
+        for e, v in enumerate(get2(K, 'YDE/I2ELTO')[:ne] if 'YDE/I2ELTO' in K else []):
+            if all(0 <= n < nn for n in v[:3]):
+                a, b, c = (xc[n] for n in v[:3])
+                area2 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+                if not area2 > 0:
+                    raise DeckError('%s:%d: /YD/YDN/D2NCC: element %d (nodes %d %d %d) has the signed area %g in the '
+                                    'current coordinates: %s at the start' % (K.key_at('YDN/D2NCC', end) + (
+                                        e, v[0], v[1], v[2], area2 / 2, 'inverted' if area2 < 0 else 'flat')))
+    nset = g('YDPN/NPNSET')
+    ax = [arr1(K, 'YDPN/' + k, nset, d) for k, d in (('D1PNXX', 1.0), ('D1PNXY', 0.0), ('D1PNYX', 0.0), ('D1PNYY', 1.0))]
+    for s in range(nset):
+        xx, xy_, yx, yy = (float(a[s]) for a in ax)
+        if math.hypot(xx, xy_) == 0 or math.hypot(yx, yy) == 0:
+            raise DeckError('%s:%d: BC set %d: local axis %s is zero (D1PNXX/XY = %g %g, D1PNYX/YY = %g %g)'
+                            % (K.key_at('YDPN/D1PNXX', end) + (s, 'x' if math.hypot(xx, xy_) == 0 else 'y', xx, xy_,
+                                                                  yx, yy)))
+    in_use = set(arr1(K, 'YDE/I1ELPR', ne, -1))
+    ptyp = arr1(K, 'YDPE/I1PTYP', nprop, -1)
+    for p in sorted(x for x in in_use if 0 <= x < nprop):
+        if ptyp[p] not in (1, 2, 4):
+            raise DeckError('%s:%d: /YD/YDPE/I1PTYP: property %d has type %d (valid: 1 elastic, 2 rigid, 4 softening '
+                            'triangle)' % (K.at('YDPE/I1PTYP', p, end) + (p, ptyp[p])))
+    for k in ('D1PEFR', 'D1PEKS', 'D1PEMU', 'D1PERO', 'D1PEPE', 'D1PEPT'):
+        for p, v in enumerate(arr1(K, 'YDPE/' + k, nprop, 0.0)):
+            if float(v) < 0:
+                raise DeckError('%s:%d: /YD/YDPE/%s: property %d has the negative value %g'
+                                % (K.at('YDPE/' + k, p, end) + (k, p, v)))
+    ptyp, rho = arr1(K, 'YDPE/I1PTYP', nprop, -1), arr1(K, 'YDPE/D1PERO', nprop, 0)
+    lam, mu = arr1(K, 'YDPE/D1PELA', nprop, 0), arr1(K, 'YDPE/D1PEMU', nprop, 0)
+    for p in sorted(x for x in in_use if 0 <= x < nprop and ptyp[x] == 1):
+        if not float(rho[p]) > 0:
+            raise DeckError('%s:%d: /YD/YDPE/D1PERO: property %d (elastic) has density %g; it must be > 0'
+                            % (K.at('YDPE/D1PERO', p, end) + (p, rho[p])))
+        if not float(lam[p]) + float(mu[p]) > 0:   # volfac 0.5: the in-plane bulk modulus is lambda + mu
+            raise DeckError('%s:%d: /YD/YDPE/D1PELA: property %d has lambda %g and mu (/YD/YDPE/D1PEMU) %g: the '
+                            'in-plane bulk modulus lambda + mu = %g must be positive' %
+                            (K.at('YDPE/D1PELA', p, end) + (p, lam[p], mu[p], float(lam[p]) + float(mu[p]))))
+    if 'YDPM/I2PMSET' not in K or not g('YDPJ/NPJSET'):
+        return
+    npj = g('YDPJ/NPJSET')
+    for q, m in enumerate(get2(K, 'YDPM/I2PMIJ') if 'YDPM/I2PMIJ' in K else []):
+        if not 0 <= m[2] < npj:
+            raise DeckError('%s:%d: /YD/YDPM/I2PMIJ: row %d: joint set %d outside 0..NPJSET-1 = 0..%d'
+                            % (K.at('YDPM/I2PMIJ', 0, end) + (q, m[2], npj - 1)))
+    live = {m[2] for m in (get2(K, 'YDPM/I2PMIJ') if 'YDPM/I2PMIJ' in K else []) if m[0] in in_use and m[1] in in_use}
+    jtyp = arr1(K, 'YDPJ/I1PTYP', npj, -1)
+    for j in sorted(x for x in live if 0 <= x < npj):
+        if jtyp[j] != 3:
+            raise DeckError('%s:%d: /YD/YDPJ/I1PTYP: joint set %d has type %d; 2D joint sets must be 3 (YTE2JOINTS)'
+                            % (K.at('YDPJ/I1PTYP', j, end) + (j, jtyp[j])))
+    vals = {k: arr1(K, 'YDPJ/' + k, npj, 0.0) for k in ('D1PJFT', 'D1PJGF', 'D1PJPE', 'D1PJFS', 'D1PJCO')}
+    for j in sorted(x for x in live if 0 <= x < npj):
+        for k in ('D1PJFT', 'D1PJGF', 'D1PJPE'):
+            if not float(vals[k][j]) > 0:
+                raise DeckError('%s:%d: /YD/YDPJ/%s: joint set %d has %g; it must be > 0'
+                                % (K.at('YDPJ/' + k, j, end) + (k, j, vals[k][j])))
+        if not float(vals['D1PJFS'][j]) > 0 and not float(vals['D1PJCO'][j]) > 0:
+            raise DeckError('%s:%d: /YD/YDPJ/D1PJFS: joint set %d has shear strength %g and cohesion /YD/YDPJ/D1PJCO '
+                            '%g: one must be > 0' % (K.at('YDPJ/D1PJFS', j, end) + (j, vals['D1PJFS'][j],
+                                                                                    vals['D1PJCO'][j])))
 
 
 def arr1(K, key, n, default):
@@ -552,6 +728,7 @@ def convert(src, out):
     for name in (base + '.nodes', base + '.tris', base + '.h5'):
         deck_word(name)   # refused before anything is written
     K = parse(src)
+    validate(K, src)
     g = lambda k, d=0: K.get(k, d)
     ne, nn, nprop = g('YDE/NELEM'), g('YDN/NNOPO'), g('YDPE/NPROP')
     elto = get2(K, 'YDE/I2ELTO')
@@ -572,7 +749,13 @@ def convert(src, out):
     ptyp, rho, lam, mu = pe('I1PTYP', -1), pe('D1PERO', 0), pe('D1PELA', 0), pe('D1PEMU', 0)
     ks, pen_n, pen_t, fric = pe('D1PEKS', 0), pe('D1PEPE', 0), pe('D1PEPT', 0), pe('D1PEFR', 0)
     L.append('# materials: Y2D element properties (Lame constants as given)')
+    in_use = set(elpr[:ne])
     for p in range(nprop):
+        if p not in in_use:
+            # Y2D evaluates a property through its elements only: a spare one (NPROP above those in
+            # use, often left at type -1 and density 0, which a native material refuses) has no effect
+            note('property %d is used by no element: not written (no effect in Y2D)' % p)
+            continue
         if ptyp[p] != 1:
             diff('property %d has type %d (%s): written as elastic' %
                          (p, ptyp[p], {2: 'rigid', 4: 'softening'}.get(ptyp[p], '?')))
@@ -633,7 +816,14 @@ def convert(src, out):
             pair_set[(m[0], m[1])] = m[2]
             pair_set[(m[1], m[0])] = m[2]
         L.append('# joints (Y2D meshing code 3): Munjiza\'s law with Y2D\'s floor, no damage memory')
+        # the sets an I2PMIJ row of two properties in use names: the others (spare sets, often left at
+        # f_t 0, which a native jointprop refuses) are never evaluated, as yfdem's reader has it
+        live_sets = {m[2] for m in (get2(K, 'YDPM/I2PMIJ') if 'YDPM/I2PMIJ' in K else [])
+                     if m[0] in in_use and m[1] in in_use}
         for j in range(npj):
+            if j not in live_sets:
+                note('joint set %d is named by no I2PMIJ row of properties in use: not written (no effect)' % j)
+                continue
             mc = SYNTAX['mohr_coulomb'].format(co=float(co[j]), fr=float(fr[j])) if float(co[j]) > 0 else ''
             if float(co[j]) <= 0 and float(fr[j]) != 0:
                 note('joint set %d: friction %g without cohesion (D1PJCO = 0): Y2D ignores it too' % (j, fr[j]))
@@ -650,12 +840,24 @@ def convert(src, out):
             if any(c in str(code) for c in '124'):
                 diff('meshing row %d: code %d has refinement/detach digits (1, 2, 4) that are '
                              'not translated' % (r, code))
-            sets = {pair_set.get((a, b)) for a in props for b in props}
-            if len(sets) != 1 or None in sets:
+            # the set of each pair of the row's properties in use (ALGORITHMS 4.1): its I2PMIJ row, or
+            # without one the creating triangle's own (P, P) row, either of the two; properties no
+            # element uses join nothing (a row that lists one, with two diagonal rows of one set, was
+            # refused as 'joint sets [0]' with None among them)
+            live = [q for q in props if q in in_use]
+            sets = set()
+            for a in live:
+                for b in live:
+                    s = pair_set.get((a, b))
+                    sets |= {s} if s is not None else {pair_set.get((a, a)), pair_set.get((b, b))}
+            if len(sets) > 1 or None in sets:
                 diff('meshing row %d: its property pairs use joint sets %s; written with the set of '
                              'its first property' % (r, sorted(x for x in sets if x is not None)))
-            jset = pair_set.get((props[0], props[0]), 0)
             tris = [e for e in range(ne) if elpr[e] in props]
+            if not tris:
+                note('meshing row %d: no element has its properties %s: nothing to joint' % (r, props))
+                continue
+            jset = pair_set.get((live[0], live[0]), 0)
             for e in tris:
                 meshed[e] = True
                 row_of[e] = r

@@ -424,6 +424,10 @@ static void y2d_setup_joints(YfSim *s, YfY2dRun *r, const YfY2d *y, unsigned cha
   int *jmap = yf_malloc((size_t)(y->npjset + 1) * sizeof(int), "y2d joint sets");
   YfLoc jl = y->given[Y2D_PJ_D1PJFT] ? y->where[Y2D_PJ_D1PJFT] : y->end;
   for (long j = 0; j < y->npjset; j++) {
+    if (!y->pjset_used || !y->pjset_used[j]) { /* a spare set: never evaluated (y2d_read.c) */
+      jmap[j] = -1;
+      continue;
+    }
     YfJointProp p;
     joint_prop_default(&p);
     p.ft = y->d1pjft[j];
@@ -491,6 +495,21 @@ static int load(YfSim *s, const char *path, double volfac, const YfLoc *from, in
     return 0;
   }
   unsupported_checks(y);
+  /* the law's in-plane bulk modulus 2 volfac lambda + mu must be positive, as for a native material
+   * (cmd_material.c): lambda itself may be negative (a negative Poisson's ratio).  Checked before
+   * anything is allocated here, so that the error leaves nothing unreachable. */
+  for (long p = 0; p < y->nprop; p++) {
+    const double la = y->d1pela[p], mu = y->d1pemu[p];
+    if (y->prop_used[p] && y->pe_i1ptyp[p] == 1 && !(2.0 * volfac * la + mu > 0)) {
+      YfLoc l = y2d_value_loc(y, Y2D_PE_D1PELA, p);
+      yf_deck_error(&l, "%s: property %ld has lambda %g and mu (%s) %g: the in-plane bulk modulus %s = %g must be "
+                    "positive (lambda above %g; every E > 0 with nu in (-1, 0.5) gives such a pair)",
+                    y2d_key_name(Y2D_PE_D1PELA), p, la, y2d_key_name(Y2D_PE_D1PEMU), mu,
+                    volfac == 1.0 ? "2 lambda + mu" : "lambda + mu", 2.0 * volfac * la + mu,
+                    mu > 0 ? -mu / (2.0 * volfac) : 0.0);
+    }
+  }
+
   YfModel *m = &s->model;
   YfY2dRun *r = yf_calloc(1, sizeof *r, "y2d run");
   r->path = yf_strdup(path);
@@ -513,6 +532,7 @@ static int load(YfSim *s, const char *path, double volfac, const YfLoc *from, in
     mt->lambda = y->d1pela[p];
     mt->mu = y->d1pemu[p];
     mt->volfac = volfac;
+
     mt->visc = y->d1peks[p];
     mt->pen_n = y->d1pepe[p];
     mt->pen_t = y->d1pept[p];

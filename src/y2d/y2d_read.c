@@ -27,9 +27,11 @@
 #include <stdio_ext.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include "edgesort.h"
 #include "err.h"
 #include "memcap.h"
+#include "model.h"
 #include "y2d_read.h"
 
 /* ------------------------------------------------------------------ key table */
@@ -41,7 +43,8 @@ enum {
   F_RESTART = 4,  /* restart/scratch data: parsed, dropped, warning                          */
   F_3D = 8,       /* 3D only: parsed, dropped (if not stored), warning                        */
   F_UNUSED = 16,  /* read and unused by the anchor: parsed, dropped, no warning              */
-  F_BORE = 32     /* boreholes and sources: parsed, dropped, one warning                     */
+  F_BORE = 32,    /* boreholes and sources: parsed, dropped, one warning                     */
+  F_RANGE = 64    /* node coordinates and velocities: within +-YF_RANGE_MAX, checked as read   */
 };
 #define NOFF ((size_t)-1)
 #define CAPF(n) (-(100 + (n))) /* a fixed dimension size n                                   */
@@ -114,9 +117,9 @@ static const KeyDef keydefs[Y2D_NKEYS] = {
   K(N, "YDN", NNODIM, 5, KI, OFF(nnodim), NOCAP, NOCAP, NOCAP, 0, F_SIZE, -1),
   K(N, "YDN", MNOPO, 0, KI, OFF(mnopo), NOCAP, NOCAP, NOCAP, 0, F_SIZE, Y2D_N_MNODIM),
   KN(NNOPO, KI, OFF(nnopo), NOCAP, NOCAP, 0, F_SIZE),
-  KN(D2NCI, KR2, OFF(d2nci), Y2D_N_MNODIM, Y2D_N_MNOPO, 0, 0),
-  KN(D2NCC, KR2, OFF(d2ncc), Y2D_N_MNODIM, Y2D_N_MNOPO, 0, 0),
-  KN(D2NVC, KR2, OFF(d2nvc), Y2D_N_MNODIM, Y2D_N_MNOPO, 0, 0),
+  KN(D2NCI, KR2, OFF(d2nci), Y2D_N_MNODIM, Y2D_N_MNOPO, 0, F_RANGE),
+  KN(D2NCC, KR2, OFF(d2ncc), Y2D_N_MNODIM, Y2D_N_MNOPO, 0, F_RANGE),
+  KN(D2NVC, KR2, OFF(d2nvc), Y2D_N_MNODIM, Y2D_N_MNOPO, 0, F_RANGE),
   KN(I1NOPR, KI1, OFF(i1nopr), Y2D_N_MNOPO, NOCAP, -1, 0),
   KN(I1NOBF, KI1, OFF(i1nobf), Y2D_N_MNOPO, NOCAP, 0, 0),
   KN(D1NMCT, KR1, NOFF, Y2D_N_MNOPO, NOCAP, 0, F_RESTART),
@@ -431,6 +434,32 @@ static void short_list(Rd *r, int key, const YfLoc *kloc, const char *what, long
                 got, where);
 }
 
+/* Why token t is not a number, and what is: for the messages of read_int and read_real.  The
+ * forms users bring from other programs get their own words: a Fortran 'd' exponent (1.d5, which
+ * Y2D's %le reads as 1. followed by a stray token 'd5'), a value beyond a double (1e400), words. */
+static const char *not_number_why(const char *t) {
+  char buf[64];
+  size_t n = strlen(t);
+  if (n < sizeof buf) {
+    memcpy(buf, t, n + 1);
+    char *d = strpbrk(buf, "dD");
+    if (d) {
+      *d = 'e';
+      double v;
+      if (parse_real_tok(buf, &v))
+        return "a Fortran 'd' exponent: Y2D reads C reals (%le) and stops at the 'd'; write it with 'e', "
+               "e.g. 1.5e5 for 1.5d5";
+    }
+  }
+  char *end;
+  errno = 0;
+  double v = strtod(t, &end);
+  if (end != t && !*end && (isdigit((unsigned char)t[0]) || t[0] == '-' || t[0] == '+' || t[0] == '.') &&
+      (!isfinite(v) || errno == ERANGE) && fabs(v) > 1.0)
+    return "beyond the range of a double (+-1.8e308)";
+  return "a real is written like 2000, -0.5, 1e5 or 1.0E+05";
+}
+
 /* Read one integer of key `key`; `what` names it in messages ("count", "value 3 of 720"). */
 static long read_int(Rd *r, int key, const YfLoc *kloc, const char *what, long want, long got) {
   const char *t = next_tok(r);
@@ -438,10 +467,15 @@ static long read_int(Rd *r, int key, const YfLoc *kloc, const char *what, long w
   long v;
   double d;
   if (!parse_int_tok(t, &v)) {
+    const char *p = t + (*t == '+' || *t == '-');
+    if (*p && strspn(p, "0123456789") == strlen(p)) /* digits only: too many of them */
+      yf_deck_error(&r->loc, "%s: '%s' is beyond the range of an integer (%ld to %ld)", keydefs[key].full, t,
+                    LONG_MIN, LONG_MAX);
     if (parse_real_tok(t, &d))
-      yf_deck_error(&r->loc, "%s: '%s' is not an integer (the anchor would misread it)",
-                    keydefs[key].full, t);
-    yf_deck_error(&r->loc, "%s: '%s' is not a number (%s)", keydefs[key].full, t, what);
+      yf_deck_error(&r->loc, "%s: '%s' is not an integer (the anchor would misread it; an integer is digits "
+                    "only: 3000, not 3000.0 or 3e3)", keydefs[key].full, t);
+    yf_deck_error(&r->loc, "%s: '%s' is not a number (an integer is wanted here, digits only: e.g. 3000)",
+                  keydefs[key].full, t);
   }
   return v;
 }
@@ -451,7 +485,7 @@ static double read_real(Rd *r, int key, const YfLoc *kloc, const char *what, lon
   if (!t || is_key_like(t)) short_list(r, key, kloc, what, want, got, t);
   double v;
   if (!parse_real_tok(t, &v))
-    yf_deck_error(&r->loc, "%s: '%s' is not a number", keydefs[key].full, t);
+    yf_deck_error(&r->loc, "%s: '%s' is not a number (%s)", keydefs[key].full, t, not_number_why(t));
   return v;
 }
 
@@ -659,6 +693,14 @@ static void read_array(Rd *r, int k, const YfLoc *kloc) {
       if (base) ((int *)base)[off] = (int)v;
     } else {
       double v = read_real(r, k, kloc, what, total, m);
+      /* at its own line: the run's check of every node (run.c) would only name the node, without
+       * the deck's FILE:LINE, and a coordinate that large first makes its triangles' areas round
+       * to 0 (then refused as "not counter-clockwise") */
+      if ((kd->flags & F_RANGE) && !(fabs(v) <= YF_RANGE_MAX))
+        yf_deck_error(&r->loc, "%s: node %ld, %c component: %s is beyond +-%g %s, the range the arithmetic holds "
+                      "(areas and energies multiply coordinates and velocities); give it in units that keep "
+                      "it within", kd->full, idx[1], idx[0] == 0 ? 'x' : idx[0] == 1 ? 'y' : 'z', r->tok,
+                      YF_RANGE_MAX, k == Y2D_N_D2NVC ? "m/s" : "m");
       if (base) ((double *)base)[off] = v;
     }
   }
@@ -920,6 +962,9 @@ static void read_tokens(Rd *r) {
         yf_deck_error(&r->loc, "unexpected value '%s': expected a key /YD/<GROUP>/<NAME> (%s at "
                       "%s:%d takes one value)", t, keydefs[prev].full, y->where[prev].file,
                       y->where[prev].line);
+      if (!strncasecmp(t, "/YD/", 4) || !strncasecmp(t, "$Y", 2)) /* Y2D compares keys case by case */
+        yf_deck_error(&r->loc, "unexpected token '%s': keys and control words are upper case (/YD/YDC/MCSTEP, "
+                      "$YDOIT), as Y2D reads them", t);
       yf_deck_error(&r->loc, "unexpected token '%s': expected a key /YD/<GROUP>/<NAME>, a "
                     "comment '/* ... */' or $YDOIT, $YSTOP, $YINCL", t);
     }
@@ -988,7 +1033,7 @@ static int row_has_prop(const YfY2d *y, long row, int p) {
   return 0;
 }
 
-static void check_meshing(const YfY2d *y) {
+static void check_meshing(YfY2d *y) {
   YfLoc ml = loc_of(y, Y2D_PM_I2PMSET);
   if (y->mpmrow <= 0)
     yf_deck_error(&ml, "%s is given, so %s must be > 0 (rows of %s)", keydefs[Y2D_PM_I2PMSET].full,
@@ -1026,7 +1071,8 @@ static void check_meshing(const YfY2d *y) {
       if (p < 0 || p >= y->nprop)
         yf_deck_error(&ml, "%s: row %ld: property %d outside 0..NPROP-1 = 0..%ld",
                       keydefs[Y2D_PM_I2PMSET].full, row, p, y->nprop - 1);
-      if (y->pe_i1ptyp[p] != 1 && y->pe_i1ptyp[p] != 2)
+      /* a property no element uses is not meshed: its type is not checked */
+      if (y->prop_used[p] && y->pe_i1ptyp[p] != 1 && y->pe_i1ptyp[p] != 2)
         yf_deck_error(&ml, "%s: row %ld: property %d has type %d; only types 1 and 2 may be meshed",
                       keydefs[Y2D_PM_I2PMSET].full, row, p, y->pe_i1ptyp[p]);
     }
@@ -1054,7 +1100,8 @@ static void check_meshing(const YfY2d *y) {
         int p = s[2 + i], found = 0;
         for (long q = 0; q < y->mpmrow; q++)
           if (y->i2pmij[q * 3] == p && y->i2pmij[q * 3 + 1] == p) found = 1;
-        if (!found)
+        /* Y2D looks the row up for the triangles it meshes: a property no element uses needs none */
+        if (!found && y->prop_used[p])
           yf_deck_error(&ml, "meshing row %ld joints property %d, but %s has no row '%d %d set' "
                         "(one is needed for every meshed property)", row, p,
                         keydefs[Y2D_PM_I2PMIJ].full, p, p);
@@ -1088,11 +1135,54 @@ static void check_meshing(const YfY2d *y) {
     yf_warn(&ml, "%s = %ld is smaller than the about %ld nodes after meshing (the anchor "
             "stops with \"MNOPO too small\"); yfdem allocates what it needs",
             keydefs[Y2D_N_MNOPO].full, y->mnopo, need_nodes);
+  /* The joint sets that can act: named by an I2PMIJ row of two properties in use (the rows Y2D looks
+   * up for the edges it joints).  Those are checked here, in the deck's words and at the value's
+   * line (the joint law divides by f_t, f_s or the cohesion, G_f and the penalty: Y2D's joints turn to
+   * NaN without them); a spare set (NPJSET above the sets in use, left at its defaults) is never
+   * evaluated by Y2D: one warning, and read_y2d does not build it. */
+  unsigned char *su = y->pjset_used = yf_calloc((size_t)y->npjset + 1, 1, "y2d used joint sets");
+  for (long q = 0; q < y->mpmrow; q++) {
+    const int *m = &y->i2pmij[q * 3];
+    if (y->prop_used[m[0]] && y->prop_used[m[1]]) su[m[2]] = 1;
+  }
+  long nspare = 0, spare0 = -1;
   for (long j = 0; j < y->npjset; j++) {
+    if (!su[j]) {
+      if (!nspare++) spare0 = j;
+      continue;
+    }
     YfLoc tl = value_loc(y, Y2D_PJ_I1PTYP, j);
     if (y->pj_i1ptyp[j] != 3)
       yf_deck_error(&tl, "%s: joint set %ld has type %d; 2D joint sets must be 3 (YTE2JOINTS)",
                     keydefs[Y2D_PJ_I1PTYP].full, j, y->pj_i1ptyp[j]);
+    static const struct {
+      int key;
+      const char *what;
+    } pos[] = {{Y2D_PJ_D1PJFT, "tensile strength f_t [Pa]: the peak opening 2 h f_t / p and the softening length "
+                               "3 G_f / f_t divide by it"},
+               {Y2D_PJ_D1PJGF, "fracture energy G_f [J/m^2]: the softening length is 3 G_f / f_t"},
+               {Y2D_PJ_D1PJPE, "joint penalty p [Pa]: the peak openings 2 h f_t / p and 2 h f_s / p divide by it"}};
+    for (size_t i = 0; i < sizeof pos / sizeof pos[0]; i++) {
+      const double v = (*(double **)((char *)y + keydefs[pos[i].key].off))[j];
+      if (!(v > 0)) {
+        YfLoc l = value_loc(y, pos[i].key, j);
+        yf_deck_error(&l, "%s: joint set %ld has %g%s; it must be > 0 (the %s)", keydefs[pos[i].key].full, j, v,
+                      j >= y->nread[pos[i].key] ? " (not given: the default)" : "", pos[i].what);
+      }
+    }
+    if (!(y->d1pjfs[j] > 0) && !(y->d1pjco[j] > 0)) {
+      YfLoc l = value_loc(y, Y2D_PJ_D1PJFS, j);
+      yf_deck_error(&l, "%s: joint set %ld has shear strength %g and cohesion %s %g: one must be > 0 (with "
+                    "D1PJFS <= 0 Y2D starts from the cohesion; the shear softening length 3 G_f / f_s divides "
+                    "by it)", keydefs[Y2D_PJ_D1PJFS].full, j, y->d1pjfs[j], keydefs[Y2D_PJ_D1PJCO].full,
+                    y->d1pjco[j]);
+    }
+  }
+  if (nspare) {
+    YfLoc l = loc_of(y, Y2D_PJ_NPJSET);
+    yf_warn(&l, "%s = %ld: %ld joint set%s (first: set %ld) named by no %s row of two properties in use: not "
+            "checked, and without effect", keydefs[Y2D_PJ_NPJSET].full, y->npjset, nspare, nspare == 1 ? "" : "s",
+            spare0, keydefs[Y2D_PM_I2PMIJ].full);
   }
 }
 
@@ -1119,6 +1209,8 @@ static void drop_code0_rows(YfY2d *y) {
           "properties\", as Y2D does: no joints are inserted, their triangles stay unjointed",
           keydefs[Y2D_PM_I2PMSET].full, nrow, rows);
 }
+
+YfLoc y2d_value_loc(const YfY2d *y, int key, long m) { return value_loc(y, key, m); }
 
 static void check_nonneg(const YfY2d *y, int k, const double *a, long n, const char *what) {
   for (long i = 0; i < n; i++)
@@ -1228,11 +1320,49 @@ static void check_deck(YfY2d *y) {
     yf_deck_error(&tl, "%s: %ld element(s) not counter-clockwise, first element %ld (signed "
                   "area %g from D2NCI); Y2D needs counter-clockwise triangles (FORMAT.md 5.1)",
                   keydefs[Y2D_E_I2ELTO].full, nbad, first_bad, first_area);
+  /* D2NCC, the current coordinates (a pre-strained start): every node given, and every triangle of
+   * positive area there too.  A shorter list leaves the other nodes at (0, 0), the array's default,
+   * and a triangle inverted or flat at the start has J <= 0: the run failed at step 0 with "the
+   * strain energy overflows the range of a double", without the deck's place. */
+  if (y->given[Y2D_N_D2NCC]) {
+    YfLoc cl = loc_of(y, Y2D_N_D2NCC);
+    if (y->nread[Y2D_N_D2NCC] < y->nnopo)
+      yf_deck_error(&cl, "%s gives %ld nodes, NNOPO = %ld: the others would start at (0, 0), the array's default "
+                    "(give every node, or leave D2NCC out: it is then D2NCI)", keydefs[Y2D_N_D2NCC].full,
+                    y->nread[Y2D_N_D2NCC], y->nnopo);
+    for (long e = 0; e < y->nelem; e++) {
+      const int *v = &y->i2elto[e * y->melno];
+      const double *a = &y->d2ncc[2 * v[0]], *b = &y->d2ncc[2 * v[1]], *c = &y->d2ncc[2 * v[2]];
+      double area2 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+      if (!(area2 > 0))
+        yf_deck_error(&cl, "%s: element %ld (nodes %d %d %d) has the signed area %g in the current coordinates: "
+                      "%s at the start (its area from D2NCI is positive); a pre-strained start needs every "
+                      "triangle counter-clockwise", keydefs[Y2D_N_D2NCC].full, e, v[0], v[1], v[2], area2 / 2,
+                      area2 < 0 ? "inverted" : "flat");
+    }
+  }
 
   /* ---- element properties ---- */
+  /* A property no element uses is never evaluated by Y2D (its force loop runs over the elements of
+   * each property): a deck with NPROP above the properties in use, the spare ones left at their
+   * defaults (type -1, density 0), runs in Y2D.  Its type and density are not checked (one warning),
+   * as read_y2d only refuses rigid and softening triangles that are used. */
+  /* kept in y (freed with its arrays): an error below exits with it reachable */
+  unsigned char *used = y->prop_used = yf_calloc((size_t)y->nprop + 1, 1, "y2d used properties");
+  for (long e = 0; e < y->nelem; e++) used[y->i1elpr[e]] = 1; /* each in 0..NPROP-1 (checked above) */
+  long nunused = 0, unused0 = -1;
+  for (long p = 0; p < y->nprop; p++)
+    if (!used[p] && !nunused++) unused0 = p;
+  if (nunused) {
+    YfLoc l = loc_of(y, Y2D_PE_NPROP);
+    yf_warn(&l, "%s = %ld: %ld propert%s (first: property %ld, type %d) used by no element: not checked, and "
+            "without effect (Y2D evaluates properties through their elements)", keydefs[Y2D_PE_NPROP].full,
+            y->nprop, nunused, nunused == 1 ? "y" : "ies", unused0, y->pe_i1ptyp[unused0]);
+  }
   for (long p = 0; p < y->nprop; p++) {
     int t = y->pe_i1ptyp[p];
     YfLoc tyl = value_loc(y, Y2D_PE_I1PTYP, p);
+    if (!used[p]) continue;
     if (t == 3)
       yf_deck_error(&tyl, "%s: property %ld has type 3 (YTE2JOINTS), a joint type: it belongs in "
                     "/YD/YDPJ/I1PTYP; triangles are 1 (elastic), 2 (rigid) or 4 (softening)",
@@ -1254,7 +1384,8 @@ static void check_deck(YfY2d *y) {
   }
   check_nonneg(y, Y2D_PE_D1PEFR, y->d1pefr, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PEKS, y->d1peks, y->nprop, "property");
-  check_nonneg(y, Y2D_PE_D1PELA, y->d1pela, y->nprop, "property");
+  /* D1PELA may be negative (a material of negative Poisson's ratio, as write_y2d writes it): the
+   * bulk modulus it must keep positive depends on read_y2d's volfac, checked there (y2d_model.c) */
   check_nonneg(y, Y2D_PE_D1PEMU, y->d1pemu, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PERO, y->d1pero, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PEPE, y->d1pepe, y->nprop, "property");
@@ -1499,6 +1630,10 @@ void y2d_free_arrays(YfY2d *y) {
     free(*pp);
     *pp = NULL;
   }
+  free(y->prop_used);
+  y->prop_used = NULL;
+  free(y->pjset_used);
+  y->pjset_used = NULL;
   free(y->vline); /* only the checks after reading place values on their lines */
   y->vline = NULL;
   y->nvline = y->capvline = 0;

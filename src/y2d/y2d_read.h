@@ -97,6 +97,9 @@ typedef struct {
    * per values a line over nlines lines, the last possibly longer); a few per key. */
   YfValueLines *vline;
   long nvline, capvline;
+  unsigned char *prop_used; /* [nprop]: 1 if an element uses property p (set by the checks)     */
+  unsigned char *pjset_used; /* [npjset]: 1 if an I2PMIJ row of used properties names set j, with
+                                meshing (set by the checks; NULL without I2PMSET)               */
 
   /* ---- /YD/YDC/ control ---- */
   long mcstep;             /* MCSTEP: total steps (loop runs while step < MCSTEP)           */
@@ -207,6 +210,9 @@ int y2d_read(const char *path, YfY2d *out, const YfLoc *from);
  * a warning, without checking the keys (a $YSTOP before the data is a quiet end), else 0. */
 int y2d_read_program(const char *path, YfY2d *out, const YfLoc *from);
 void y2d_free(YfY2d *y);
+/* FILE:LINE of value m (in reading order; for 1D arrays entry m) of array key `key`, while the
+ * deck's value lines are kept (until y2d_free_arrays). */
+YfLoc y2d_value_loc(const YfY2d *y, int key, long m);
 /* Free the arrays and the value lines only (set to NULL); scalars, given/where and the file names (which YfLoc
  * places of messages point at) stay valid until y2d_free. */
 void y2d_free_arrays(YfY2d *y);
