@@ -9,7 +9,9 @@
  *
  * Layout (HDF5 1.8 format, one dataset per array, no compression; a restart must be exact, not
  * small):
- *   /meta/{version, nnode, ntri, njoint, topo_hash, complete}
+ *   /meta/{version, nnode, ntri, njoint, topo_hash, mat_hash, jset_hash, part_ntri, complete}
+ *          (part_ntri: the triangles the partition renumbered at the first run, -1 when it renumbered
+ *          none; optional, for the message when a scene grew after it)
  *   /sim/{step, time, dt, last_step, energy (7), elem_steps, wall_s, e_budget, gravity_base (3),
  *         between_runs, dt_auto, dt_safety}   (the last three optional: absent, within a run)
  *   /nodes/{x, y, x0, y0, vx, vy, fx, fy, m}                      (nnode each, [m], [m/s], [N/m], [kg/m])
@@ -262,6 +264,7 @@ static void write_all(W *w, YfSim *s) {
   put_l(w, g, "njoint", s->joints ? s->joints->n : 0);
   uint64_t th = topo_hash(s);
   put(w, g, "topo_hash", H5T_NATIVE_UINT64, 1, &th);
+  put_l(w, g, "part_ntri", m->tri_new ? m->ntri_new : -1);
   {
     uint64_t *mh = yf_malloc((size_t)(m->nmat > 0 ? m->nmat : 1) * sizeof *mh, "restart material hashes");
     for (int k = 0; k < m->nmat; k++) mh[k] = mat_hash(&m->mat[k]);
@@ -549,6 +552,7 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   long f_nn = get_l(&r, g, "nnode"), f_nt = get_l(&r, g, "ntri"), f_nj = get_l(&r, g, "njoint");
   uint64_t f_th;
   get(&r, g, "topo_hash", H5T_NATIVE_UINT64, 1, &f_th);
+  long f_part = H5Lexists(g, "part_ntri", H5P_DEFAULT) > 0 ? get_l(&r, g, "part_ntri") : -1;
   /* the properties' hashes (absent from restarts of before 2026-11-29: not checked then) */
   long f_nmat = dlen(g, "mat_hash"), f_nset = dlen(g, "jset_hash");
   uint64_t *f_mh = NULL, *f_jh = NULL;
@@ -570,6 +574,18 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   if (f_nj != nj) { H5Fclose(r.file); mismatch(loc, path, "joints", f_nj, nj); }
   if (f_th != topo_hash(s)) {
     H5Fclose(r.file);
+    free(f_mh);
+    free(f_jh);
+    if (f_part >= 0 && f_part < f_nt)
+      /* The partition renumbers the scene once, at the first run; triangles added after it follow
+       * in the order they were made.  A deck that makes them all before read_restart has them
+       * renumbered together, in another order, so the scene cannot be matched; without a
+       * renumbering (partition none: every triangle in the order made) both decks agree. */
+      yf_deck_error(loc, "read_restart: '%s' was written for a scene that grew after the partition of its first run "
+                    "(%ld of its %ld triangles were renumbered then, the rest were added between runs): a deck that "
+                    "makes them all before read_restart renumbers them together, in another order, so it cannot "
+                    "continue it; give 'partition none' in the deck that writes the restart and in the one that "
+                    "reads it", path, f_part, f_nt);
     yf_deck_error(loc, "read_restart: '%s' was written for a different scene: same counts, but the triangle corners, "
                   "materials, initial positions or joints differ (the deck must rebuild the same scene)", path);
   }
