@@ -17,9 +17,12 @@ a joint set out of range or not of type 3, a property
 type other than 1, 2, 4, a negative property value, as yfdem's reader refuses them (its words, its
 FILE:LINE); a file: no OUT.deck written); 2 bad usage; 3 the deck is written
 but does not run the same physics: each difference is a line "warning: DECK: ..." on stderr and a
-"DIFFERS:" note at the top of OUT.deck (stdout: "wrote OUT.deck (N differences of physics, M
-notes)").  --allow-differences accepts them: exit 0, the warnings stay.  Notes of exact
-translations (written in OUT.deck only) do not count.
+"DIFFERS:" note at the top of OUT.deck (stdout: "wrote OUT.deck (N differences of physics, W
+warnings, M notes)").  --allow-differences accepts them: exit 0, the warnings stay.  Notes of exact
+translations (written in OUT.deck only) do not count.  A warning of the same physics told differently
+(NCSTEP > 0: step numbers; "nothing is computed" for a .y with no key and no $YDOIT, whose OUT.deck
+computes nothing and says so, as yfdem DECK.y warns and exits 0) is a line "warning: FILE:LINE: ..."
+and a "WARNING:" note in OUT.deck, exit 0.
 
 The converted deck runs the physics of `yfdem DECK.y` (tests/convert/run compares the final
 energies, broken joints and contact pairs of the four shared decks and of the small decks in
@@ -29,7 +32,9 @@ is not Y2D's BC-set update).
 What is translated (native syntax = the SYNTAX dict below, one place to adapt):
   DCSTEC                     -> timestep DT above_limit warn (a step above yfdem's
                                 limit warns, as for `yfdem DECK.y`; the energy check still stops a divergence)
-  MCSTEP - NCSTEP            -> run N
+  MCSTEP - NCSTEP            -> run N (a native deck counts its steps from 0 and no command sets the
+                                counter: NCSTEP > 0 is a warning, exit 0: the same physics, step
+                                numbers lower by NCSTEP than those of `yfdem DECK.y`)
   DCTIME (start time)        -> no native start time: every time table is shifted by -DCTIME (the
                                 native time is the Y2D time - DCTIME; thermo/summary times too)
   ICSHTF / ICOUTF            -> thermo N (ICSHTF <= 0: thermo 0) / dump ID h5 N FILE
@@ -157,6 +162,7 @@ class _Src:
 
     def __init__(self, path):
         self.stack = []
+        self.last = ('', path, 1)   # the last token read: where yfdem's reader says the deck ends
         self.push(path)
 
     def push(self, path):
@@ -179,6 +185,7 @@ class _Src:
             raw, i = self.stack[-1]
             if i < len(raw):
                 self.stack[-1][1] += 1
+                self.last = raw[i]
                 return raw[i]
             self.stack.pop()
         return None
@@ -244,6 +251,7 @@ def tokens(path):
             break
         else:
             out.append(tok)
+    CONTROL[path]['end'] = src.last[1:]
     return out
 
 
@@ -256,6 +264,7 @@ class Keys(dict):
         dict.__init__(self)
         self.order = []
         self.where = {}   # name -> (file, line) of the key and [(file, line)] of its values in order
+        self.warnings = []   # what yfdem's reader warns of while reading (FILE:LINE: text)
 
     def at(self, key, idx, default):
         """(file, line) of value idx of 1D array key, else of the key, else default."""
@@ -723,11 +732,36 @@ def deck_word(name):
                     "choose another OUT" % name)
 
 
+WARN = 'warn'   # a note kind: the same physics, but something the user sees differently (exit 0, on stderr)
+
+
+def nothing_computed(src, out, ctl):
+    """A .y with no key and no $YDOIT (empty, or comments only): yfdem DECK.y warns that nothing is computed
+    and exits 0, as Y2D reads it and stops.  The converted deck computes nothing too, and says so: in its
+    header, and when run (a print); no .nodes / .tris (there is no scene).  The converter refused it, exit 1
+    ('/YD/YDE/NELNO = 0', 2026-11-29)."""
+    f, ln = ctl.get('end', (src, 1))
+    why = ('%s:%d: nothing is computed: the deck has no $YDOIT before %s, and Y2D reads it and stops without '
+           'computing; put $YDOIT before $YSTOP to run it' % (f, ln, 'its $YSTOP' if ctl.get('ystop') else 'its end'))
+    L = [SYNTAX['header'].format(src=src),
+         '# NOTES: WARNING = the same physics, told differently', '#   WARNING: ' + why,
+         '# the .y has no keys: no scene, no run; this deck computes nothing, as yfdem DECK.y',
+         # single quotes: no $ substitution in the native deck
+         "print 'nothing is computed: %s has no keys and no $YDOIT (converted by tools/y2d2deck.py)'"
+         % os.path.basename(src).replace("'", "")]
+    with open(out + '.deck', 'w') as fh:
+        fh.write('\n'.join(L) + '\n')
+    return out + '.deck', [(why, WARN)]
+
+
 def convert(src, out):
     base = os.path.basename(out)
     for name in (base + '.nodes', base + '.tris', base + '.h5'):
         deck_word(name)   # refused before anything is written
     K = parse(src)
+    ctl = CONTROL.get(src, {})
+    if not ctl.get('ydoit') and not K.order:
+        return nothing_computed(src, out, ctl)
     validate(K, src)
     g = lambda k, d=0: K.get(k, d)
     ne, nn, nprop = g('YDE/NELEM'), g('YDN/NNOPO'), g('YDPE/NPROP')
@@ -740,9 +774,10 @@ def convert(src, out):
     # notes: (text, changes the physics).  diff(): the converted deck does not run the physics of
     # `yfdem DECK.y` (a warning, counted, exit 3 unless accepted); note(): an exact translation
     # worth a word (listed in OUT.deck only)
-    notes = []
+    notes = [(w, WARN) for w in K.warnings]
     note = lambda text: notes.append((text, False))
     diff = lambda text: notes.append((text, True))
+    warn = lambda text: notes.append((text, WARN))
 
     # ---- materials
     pe = lambda name, d: arr1(K, 'YDPE/' + name, nprop, d)
@@ -1067,7 +1102,16 @@ def convert(src, out):
 
     # ---- run control
     dt = float(g('YDC/DCSTEC', 0.0))
-    nsteps = int(g('YDC/MCSTEP', 0)) - int(g('YDC/NCSTEP', 0))
+    ncstep = int(g('YDC/NCSTEP', 0))
+    nsteps = int(g('YDC/MCSTEP', 0)) - ncstep
+    if ncstep:
+        # yfdem DECK.y starts its step counter at NCSTEP (src/y2d/y2d_model.c); a native deck has no command
+        # that sets it (only read_restart restores a step; 'run N upto' needs the counter there already)
+        kf, kl = K.key_at('YDC/NCSTEP', (src, 0))
+        warn('%s:%d: /YD/YDC/NCSTEP %d: the converted deck counts its steps from 0, yfdem DECK.y from %d (no native '
+             'command sets the step counter): its step numbers (summary, thermo lines, dump frames) are those of '
+             'yfdem DECK.y less %d, and its thermo lines and dumps every N steps fall at its own multiples of N; '
+             'the physics is the same' % (kf, kl, ncstep, ncstep, ncstep))
     L.append(SYNTAX['timestep'].format(dt=dt))
     icshtf = int(g('YDC/ICSHTF', 100))
     if not 0 < icshtf <= 2000000000:
@@ -1079,8 +1123,10 @@ def convert(src, out):
     L.append(SYNTAX['run'].format(n=max(nsteps, 0)))
     if 'YDO/NOHYS' in K:
         note('history output /YD/YDO/ not translated (output only)')
-    head = ['# NOTES: DIFFERS = the converted deck does not run the physics of the .y there; note = an exact '
-            'translation'] + ['#   %s %s' % ('DIFFERS:' if d else 'note:', t) for t, d in notes] if notes else []
+    head = ['# NOTES: DIFFERS = the converted deck does not run the physics of the .y there; WARNING = the same '
+            'physics, told differently; note = an exact translation'] + \
+        ['#   %s %s' % ('DIFFERS:' if d is True else 'WARNING:' if d == WARN else 'note:', t) for t, d in notes] \
+        if notes else []
     with open(out + '.deck', 'w') as f:
         f.write('\n'.join(L[:1] + head + L[1:]) + '\n')
     return out + '.deck', notes
@@ -1107,12 +1153,16 @@ def main():
         # a DeckError names its file and line first (an included file's, maybe): no second name
         sys.stderr.write('error: %s\n' % msg if isinstance(e, DeckError) else 'error: %s: %s\n' % (a.deck, msg))
         sys.exit(EXIT_ERROR)
-    ndiff = sum(1 for _, d in notes if d)
+    ndiff = sum(1 for _, d in notes if d is True)
+    nwarn = sum(1 for _, d in notes if d == WARN)
     for t, d in notes:
-        if d:
+        if d is True:
             sys.stderr.write('warning: %s: %s\n' % (a.deck, t))
-    print('wrote %s (%d difference%s of physics, %d note%s)' % (path, ndiff, '' if ndiff == 1 else 's',
-                                                            len(notes) - ndiff, '' if len(notes) - ndiff == 1 else 's'))
+        elif d == WARN:   # the text names its FILE:LINE, as yfdem's reader's warnings do
+            sys.stderr.write('warning: %s\n' % t)
+    nnote = len(notes) - ndiff - nwarn
+    print('wrote %s (%d difference%s of physics, %d warning%s, %d note%s)' % (
+        path, ndiff, '' if ndiff == 1 else 's', nwarn, '' if nwarn == 1 else 's', nnote, '' if nnote == 1 else 's'))
     if ndiff and not a.allow_differences:
         sys.stderr.write('%s: the converted deck does not run the physics of %s (%d difference%s above; '
                          '--allow-differences accepts them)\n' % (path, a.deck, ndiff, '' if ndiff == 1 else 's'))
