@@ -14,8 +14,9 @@ or joint strength, energy or penalty of a property or joint set in use that is n
 time step, MISTATE < 6 with contact, an element property out of range, NELNO other than 3, a 3D
 deck, a clockwise triangle, a zero BC axis, a D2NCC short of NNOPO or with a triangle inverted or flat,
 a joint set out of range or not of type 3, a property
-type other than 1, 2, 4, a negative property value, as yfdem's reader refuses them (its words, its
-FILE:LINE); a file: no OUT.deck written); 2 bad usage; 3 the deck is written
+type other than 1, 2, 4, a negative property value, a count above its capacity (NNOPO > MNOPO) or an
+array longer than its capacity, a node coordinate or velocity beyond +-1e100, as yfdem's reader
+refuses them (its words, its FILE:LINE); a file: no OUT.deck written); 2 bad usage; 3 the deck is written
 but does not run the same physics: each difference is a line "warning: DECK: ..." on stderr and a
 "DIFFERS:" note at the top of OUT.deck (stdout: "wrote OUT.deck (N differences of physics, W
 warnings, M notes)").  --allow-differences accepts them: exit 0, the warnings stay.  Notes of exact
@@ -347,6 +348,27 @@ YGEO_GROUPS = ['YDP', 'YDFN', 'YDIS', 'YDHF', 'YDSM', 'YDR', 'YDSB', 'YDPS']
 # Keys that pre-processors of other Y derivatives write (src/y2d/y2d_read.c's other_keys): Y2D stops on them
 OTHER_KEYS = {'YDC': 'ISAVE ICSAVF DCSIZD DCSIZA DCRMPT DCGRST ICFMTY ICIATY'.split(), 'YDE': 'I1ELTY I2ELJP'.split()}
 
+# The capacity of each dimension of an array key (src/y2d/y2d_read.c keydefs' cap[], which tests/convert/run
+# compares with this table): the capacity key, or a fixed size; None (or a key not listed) is not checked.
+# An array of more entries than its capacity is refused at its key's line, as yfdem refuses it (Y2D writes
+# past its arrays): the converter wrote such decks and exited 0 (2026-11-29).
+_ONE = {'YDPE': 'YDPE/MPROP', 'YDPJ': 'YDPJ/MPJSET', 'YDPN': 'YDPN/MPNSET', 'YDO': 'YDO/MOHYS'}
+CAPS = {g + '/' + k: [c] for g, c in _ONE.items() for k, _ in KNOWN[g] if k[:2] in ('D1', 'I1')}
+CAPS.update({k: ['YDE/MELEM'] for k in ('YDE/I1ELPR', 'YDE/I1ELCF', 'YDE/I1ELBE', 'YDE/D1EMCT')})
+CAPS.update({k: ['YDN/MNOPO'] for k in ('YDN/I1NOPR', 'YDN/I1NOBF', 'YDN/D1NMCT')})
+CAPS.update({k: ['YDN/MNODIM', 'YDN/MNOPO'] for k in ('YDN/D2NCI', 'YDN/D2NCC', 'YDN/D2NVC', 'YDN/D2NFC', 'YDN/D2NFT')})
+CAPS.update({k: ['YDI/MICOUP'] for k in ('YDI/D1IESL', 'YDI/I1IECN', 'YDI/I1IECT')})
+CAPS.update({'YDE/I2ELTO': ['YDE/MELNO', 'YDE/MELEM'], 'YDE/D2ELST': ['YDE/MELST', 'YDE/MELEM'],
+             'YDI/D2SLDIS': ['YDI/MISTATE', 'YDI/MICOUP'], 'YDPM/I2PMSET': ['YDPM/MPMCOL', 'YDPM/MPMCOM'],
+             'YDPM/I2PMIJ': [3, 'YDPM/MPMROW'], 'YDPN/D3PNFAC': [2, 'YDPN/MPNSET', 'YDPN/MPNFACT']})
+# Count keys and their capacities (src/y2d/y2d_read.c check_deck's pairs): a count above its capacity is
+# refused at the count's line, in the reader's words
+CAP_PAIRS = [('YDE/MELEM', 'YDE/NELEM'), ('YDE/MELNO', 'YDE/NELNO'), ('YDN/MNOPO', 'YDN/NNOPO'),
+             ('YDPE/MPROP', 'YDPE/NPROP'), ('YDPN/MPNSET', 'YDPN/NPNSET'), ('YDPJ/MPJSET', 'YDPJ/NPJSET'),
+             ('YDE/MELST', 'YDE/NELST'), ('YDPN/MPNFACT', 'YDPN/NPNFACT'), ('YDO/MOHYS', 'YDO/NOHYS')]
+# Node coordinates and velocities beyond this are refused at their value's line (YF_RANGE_MAX, F_RANGE keys)
+RANGE_MAX, RANGE_KEYS = 1e100, {'YDN/D2NCI': 'm', 'YDN/D2NCC': 'm', 'YDN/D2NVC': 'm/s'}
+
 
 def check_key(t, f, ln, grp, name):
     """Refuse a group or key Y2D does not read, with the file, the line and the nearest name."""
@@ -381,6 +403,30 @@ def number(t):
     except ValueError:
         return None
     return v if math.isfinite(v) else None
+
+
+def check_caps(keys, key, canon, caps, counts, last):
+    """Refuse counts of array key key = (token, file, line) above their capacities (caps, CAPS), at the
+    key's line in yfdem's reader's words; over capacity in a list that holds no value (another size 0):
+    read as empty, a warning, as yfdem and Y2D read it."""
+    t, f, ln = key
+    empty = any(c == 0 for c in counts)
+    for n in counts:
+        if n < 0:   # at the last size's line, as the reader (its position after reading the sizes)
+            raise DeckError('%s:%d: /YD/%s: negative size %d' % (last[1], last[2], canon, n))
+    for d, (n, c) in enumerate(zip(counts, caps)):
+        if c is None:
+            continue
+        cap, by = (c, 'its fixed size') if isinstance(c, int) else (int(keys.get(c, 0)), '/YD/' + c)
+        if n > cap:
+            nm = ('n%d = ' % (d + 1)) if len(counts) > 1 else 'n = '
+            if empty:
+                keys.warnings.append('%s:%d: /YD/%s: %s%d exceeds the capacity %d given by %s, but the array holds '
+                                     'no values (another size is 0): read as an empty array, as Y2D does'
+                                     % (f, ln, canon, nm, n, cap, by))
+            else:
+                raise DeckError('%s:%d: /YD/%s: %s%d entries exceed the capacity %d given by %s%s' % (
+                    f, ln, canon, nm, n, cap, by, ' (set it before this key)' if cap == 0 else ''))
 
 
 def parse(path):
@@ -429,11 +475,19 @@ def parse(path):
         grp = t.split('/')[2]
         check_key(t, f, ln, grp, name)
         full = grp + '/' + name
+        # the key's own name (MCSTEPS is MCSTEP), for its capacities and range
+        canon = grp + '/' + next(k for k, m in KNOWN[grp] if len(name) >= m and name[:m] == k[:m])
+        caps = CAPS.get(canon, [])
+        for c in caps:
+            if isinstance(c, str) and c not in keys:
+                raise DeckError('%s:%d: /YD/%s: read before its capacity /YD/%s; give /YD/%s first (FORMAT.md 2.1)'
+                                % (f, ln, canon, c, c))
         isint = name[:1] in ('M', 'N', 'I')   # Y2D's integer keys (src/y2d/y2d_read.c keydefs)
         if len(name) >= 2 and name[1] in '123' and name[0] in 'DI':
             nd = int(name[1])
             if nd == 1:
                 n = num(i + 1, toks[i], what='count', integer=True)
+                check_caps(keys, toks[i], canon, caps, [n], toks[i + 1])
                 vals = [num(i + 2 + k, toks[i], n, k, 'values', isint) for k in range(n)]
                 keys[full] = ((n,), vals)
                 keys.where[full] = ((f, ln), [toks[i + 2 + k][1:] for k in range(n)])
@@ -441,6 +495,7 @@ def parse(path):
                 continue
             code = str(num(i + 1, toks[i], what='code', integer=True))
             dims = [num(i + 2 + d, toks[i], what='dimension %d' % (d + 1), integer=True) for d in range(nd)]
+            check_caps(keys, toks[i], canon, caps, dims, toks[i + 1 + nd])
             tot = 1
             for d in dims:
                 tot *= d
@@ -458,6 +513,15 @@ def parse(path):
                     idx[d] = rem % dims[d]
                     rem //= dims[d]
                 arr[sum(idx[d] * strides[d] for d in range(nd))] = v
+                # at its own line, in the words of yfdem's reader (a coordinate that large makes its
+                # triangles' areas round to 0: refused later as 'not counter-clockwise', far from the cause)
+                if canon in RANGE_KEYS and not abs(v) <= RANGE_MAX:
+                    vt, vf, vln = toks[i + 2 + nd + m]
+                    raise DeckError('%s:%d: /YD/%s: node %d, %s component: %s is beyond +-%g %s, the range the '
+                                    'arithmetic holds (areas and energies multiply coordinates and velocities); give '
+                                    'it in units that keep it within' % (vf, vln, canon, idx[1], 'xyz'[idx[0]]
+                                                                         if idx[0] < 3 else '?', vt, RANGE_MAX,
+                                                                         RANGE_KEYS[canon]))
             keys[full] = (tuple(dims), arr)
             keys.where[full] = ((f, ln), [])
             i += 2 + nd + tot
@@ -476,6 +540,11 @@ def validate(K, path):
     g = lambda k, d=0: K.get(k, d)
     end = (path, 0)
     ne, nprop = g('YDE/NELEM'), g('YDPE/NPROP')
+    # counts above their capacities, first, as yfdem's reader checks them (the converter took NNOPO > MNOPO
+    # and refused the deck later for a symptom, or wrote it, 2026-11-29)
+    for m, n in CAP_PAIRS:
+        if int(g(n)) > int(g(m)):
+            raise DeckError('%s:%d: /YD/%s = %d exceeds its capacity /YD/%s = %d' % (K.key_at(n, end) + (n, g(n), m, g(m))))
     # the checks of yfdem's reader that a converted deck would otherwise hide (it ran them, exit 0)
     if g('YDC/MCSTEP') > g('YDC/NCSTEP') and not float(g('YDC/DCSTEC', 0)) > 0:
         raise DeckError('%s:%d: /YD/YDC/DCSTEC (the time step) is required and must be > 0 when /YD/YDC/MCSTEP > '
