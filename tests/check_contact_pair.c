@@ -442,6 +442,46 @@ START_TEST(test_search_filters_and_threads)
   q.n = m;
   assert_same(&p, &q);
 
+  /* The lower-triangle range (MPI: a rank searches from its own triangles only): the couples of
+   * brute force whose lower triangle is in [a, b), in the same order, on 1 and 2 threads, for
+   * ranges that start and end anywhere (at the ends, one triangle, past the last); items given by a list
+   * of triangle numbers with gaps (every other one), as the ranks' searches give them. */
+  static int half[NT / 2];
+  for (int k = 0; k < NT / 2; k++) half[k] = 2 * k + 1;
+  static double hx[NT / 2], hy[NT / 2], hr[NT / 2];
+  for (int k = 0; k < NT / 2; k++) { hx[k] = cx[half[k]]; hy[k] = cy[half[k]]; hr[k] = r[half[k]]; }
+  const int ranges[][2] = {{0, NT}, {0, NT / 3}, {NT / 3, 2 * NT / 3}, {2 * NT / 3, NT}, {7, 8}, {8, 9}, {NT - 1, NT + 5}};
+  int nthr0 = 1;
+#ifdef _OPENMP
+  nthr0 = omp_get_max_threads();
+  w.par_min = 1;
+#endif
+  for (int g = 0; g < 2; g++)
+    for (unsigned c = 0; c < sizeof ranges / sizeof ranges[0]; c++)
+      for (int th = 1; th <= 2; th++) {
+#ifdef _OPENMP
+        omp_set_num_threads(th);
+#endif
+        const int n = g ? NT / 2 : NT, *items = g ? half : tri;
+        f = (YfSearchFilter){0};
+        f.lower_lo = ranges[c][0];
+        f.lower_hi = ranges[c][1];
+        if (g) contact_search(&w, n, half, hx, hy, hr, buf, &f, &p);
+        else contact_search(&w, n, NULL, cx, cy, r, buf, &f, &p);
+        brute(n, items, g ? hx : cx, g ? hy : cy, g ? hr : r, buf, NULL, NULL, NULL, &q);
+        int kept = 0;
+        for (int k = 0; k < q.n; k++)
+          if (q.ij[2 * k] >= ranges[c][0] && q.ij[2 * k] < ranges[c][1]) {
+            q.ij[2 * kept] = q.ij[2 * k]; q.ij[2 * kept + 1] = q.ij[2 * k + 1]; kept++;
+          }
+        q.n = kept;
+        if (ranges[c][1] - ranges[c][0] > NT / 4) ck_assert_int_gt(q.n, 0);
+        assert_same(&p, &q);
+      }
+#ifdef _OPENMP
+  omp_set_num_threads(nthr0);
+#endif
+
 #ifdef _OPENMP
   /* Same list, bit for bit, with 1 and 2 threads (threaded path forced for this small N), and
    * equal to brute force with 2 threads. */

@@ -201,6 +201,18 @@ static inline int filter_keep(const YfSearchFilter *f, int i, int j)
 
 /* ---------------------------------------------------------------- search */
 
+/* The first item whose triangle (tri NULL: the item itself) is >= x; tri increasing. */
+static int first_item_at_least(int n, const int *tri, int x)
+{
+  int a = 0, b = n;
+  while (a < b) {
+    int c = a + (b - a) / 2;
+    if ((tri ? tri[c] : c) < x) a = c + 1;
+    else b = c;
+  }
+  return a;
+}
+
 void contact_search_bounds(int n, const int *tri, const int *tri_v, const double *x, const double *y,
                            double *cx, double *cy, double *r)
 {
@@ -286,6 +298,12 @@ void contact_search(YfSearchWork *w, int n, const int *tri, const double *cx, co
   const int *stri = w->stri;
   long tested = 0;
   int nthr_used = 1;
+  /* the items searched from: those whose triangle may be a couple's lower one (all by default) */
+  int klo = 0, khi = n;
+  if (f && f->lower_hi > f->lower_lo) {
+    klo = first_item_at_least(n, tri, f->lower_lo);
+    khi = first_item_at_least(n, tri, f->lower_hi);
+  }
 
 #pragma omp parallel reduction(+ : tested) if (n >= w->par_min)
   {
@@ -300,7 +318,7 @@ void contact_search(YfSearchWork *w, int n, const int *tri, const double *cx, co
      * line, and bumping a shared line's counter per pair would serialise the threads. */
     struct YfPairBuf bl = w->buf[t], *b = &bl;
     b->n = 0;
-    int lo = (int)((long)n * t / nt), hi = (int)((long)n * (t + 1) / nt);
+    int lo = klo + (int)((long)(khi - klo) * t / nt), hi = klo + (int)((long)(khi - klo) * (t + 1) / nt);
     for (int k = lo; k < hi; k++) {
       int ti = tri ? tri[k] : k;
       double xi = cx[k], yi = cy[k], ri = r[k] + buffer;

@@ -57,6 +57,11 @@ typedef struct {
   const int *tri_v;       /* 3 node indices per triangle: drop pairs that share a node           */
   int (*keep)(int i, int j, void *ctx); /* last word (i < j); called from several threads      */
   void *ctx;
+  /* lower_hi > lower_lo: only couples whose lower triangle i is in [lower_lo, lower_hi).  Items
+   * outside that range are still binned (they can be the upper partner j) but not searched from,
+   * so a rank that evaluates the couples of its own triangles (MPI: the owner of the lower one)
+   * pays neither the time nor the buffers of its neighbours' couples.  0, 0: no restriction. */
+  int lower_lo, lower_hi;
 } YfSearchFilter;
 
 /* Reusable workspace (binning arrays and per-thread pair buffers). */

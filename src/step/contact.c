@@ -496,6 +496,17 @@ void contact_check_impact(YfSim *s, const YfLoc *loc) { check_impact(s, loc, 0);
 
 void contact_check_impact_run(YfSim *s) { check_impact(s, NULL, par_divided()); }
 
+/* Room for n triangle records of the screen (YF_TRI_GEOM doubles each; their contents are made
+ * again at every step).  MPI ranks keep those of their couples' triangles only, which change at
+ * a search: a margin keeps a rank from allocating again at every search. */
+static void tg_room(YfContact *C, int n) {
+  if (C->cap_tg >= n) return;
+  int cap = par_size() == 1 ? n : n + n / 4 + 256;
+  free(C->tg);
+  C->tg = yf_malloc((size_t)(cap > 0 ? cap : 1) * YF_TRI_GEOM * sizeof(double), "contact triangle records");
+  C->cap_tg = cap;
+}
+
 void contact_prepare(YfSim *s) {
   YfContact *C = s->contact;
   if (!active(C)) return;
@@ -606,11 +617,10 @@ void contact_prepare(YfSim *s) {
   C->ntl = -1;
   memset(C->fcn, 0, (size_t)2 * nn * sizeof(double));
   C->fcn_valid = 0;
-  if (C->cap_tg < nt) {
-    free(C->tg);
-    C->tg = yf_malloc((size_t)(nt > 0 ? nt : 1) * YF_TRI_GEOM * sizeof(double), "contact triangle records");
-    C->cap_tg = nt;
-  }
+  /* one process: a record for every triangle, made here (no allocation in the step); MPI: sized
+   * at the first step, when it is known whether a rank keeps the records of its couples'
+   * triangles only (contact_step) */
+  if (par_size() == 1) tg_room(C, nt);
 
   /* the first step after a (re)setup searches; couples of the old list that still pass keep
    * their friction memory through the merge (triangle indices do not change) */
@@ -672,7 +682,6 @@ static int first_at_least(const int *v, int n, int x) {
 }
 
 static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f);
-static void keep_own(YfPairs *p);
 static int set_ranges(int n);
 static void search(YfSim *s, YfContact *C) {
   const YfModel *m = &s->model;
@@ -686,12 +695,18 @@ static void search(YfSim *s, YfContact *C) {
     f.keep = joined_keep;
     f.ctx = C;
   }
+  /* MPI, couples laid out by ranks: a rank finds only the couples whose lower triangle it owns
+   * (it evaluates those), the others' partners serving as upper triangles only */
+  const int *tlo = par_tri_lo();
+  if (tlo && (C->local || par_divided())) {
+    f.lower_lo = tlo[par_rank()];
+    f.lower_hi = tlo[par_rank() + 1];
+  }
   if (par_divided()) { /* MPI: each rank its own triangles against its neighbours' (below) */
     search_ranks(s, C, &f);
   } else {
     contact_search_bounds(C->nitem, C->item, m->tri.v, m->node.x, m->node.y, C->cx, C->cy, C->cr);
     contact_search(&C->work, C->nitem, C->item, C->cx, C->cy, C->cr, C->buffer, &f, &C->fresh);
-    if (C->local) keep_own(&C->fresh); /* MPI, replicated update: every rank searched everything */
   }
   contact_search_merge(&C->pairs, &C->fresh);
   YfPairs tmp = C->pairs;
@@ -718,6 +733,7 @@ typedef struct {
   int *gi;
   unsigned char *alive;
   const double *vx, *vy, *tg;
+  const int *tmap; /* MPI, divided update: a triangle's record in tg (NULL: tg by triangle) */
   double *gmem;
   const double *mpn, *mpt, *mmu;
   const int *mlaw;
@@ -772,7 +788,9 @@ static void kernel_run(const KernelPass *P, int ka, int kb, int h, int slot, dou
     }
     double *gk = gmem + YF_PAIR_NG * (size_t)gi[k];
     info.gprev = gk + 6;
-    int hit = contact_pair_force_rec(tg + (size_t)YF_TRI_GEOM * tj, vxa, vya, tg + (size_t)YF_TRI_GEOM * ti, vxb,
+    const int *tm = P->tmap;
+    int hit = contact_pair_force_rec(tg + (size_t)YF_TRI_GEOM * (tm ? tm[tj] : tj), vxa, vya,
+                                     tg + (size_t)YF_TRI_GEOM * (tm ? tm[ti] : ti), vxb,
                                      vyb, pn, pt, mu, law, P->dt, gk, fa, fb, &d2, &info);
     double dc = law == YF_FRIC_Y2D ? info.dissip : info.work_c - info.spring;
     e += info.energy;
@@ -859,6 +877,7 @@ static struct {
   unsigned char *tmk;    /* divided update: per triangle, scratch mark (all 0 between uses)  */
   int ntmk;
   int *rtri, nrtri, crtri; /* the triangles this rank's couples read (increasing)           */
+  int *tloc;             /* per triangle: its place in rtri (only those of rtri are current) */
   int *rnode;            /* their corners                                                   */
   int *uitem, cu;        /* search on ranks: the triangles searched and their discs          */
   int *cst, ncst;        /* search on ranks: this rank's chunks' first items                 */
@@ -928,8 +947,9 @@ static void contact_ghosts(YfSim *s, YfContact *C) {
   const YfModel *m = &s->model;
   const int nt = m->tri.n, np = C->pairs.n, *ij = C->pairs.ij;
   if (DS.ntmk < nt) {
-    free(DS.tmk);
+    free(DS.tmk); free(DS.tloc);
     DS.tmk = yf_calloc((size_t)nt, 1, "contact ghosts");
+    DS.tloc = yf_malloc((size_t)nt * sizeof(int), "contact ghosts");
     DS.ntmk = nt;
   }
   if (DS.crtri < C->nitem + 1) {
@@ -945,6 +965,7 @@ static void contact_ghosts(YfSim *s, YfContact *C) {
     int t = C->item[q];
     if (!DS.tmk[t]) continue;
     DS.tmk[t] = 0;
+    DS.tloc[t] = n;
     DS.rtri[n] = t;
     for (int c = 0; c < 3; c++) DS.rnode[3 * n + c] = m->tri.v[3 * t + c];
     n++;
@@ -1112,19 +1133,6 @@ static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f) {
     }
   }
   contact_search(&C->work, nu, DS.uitem, DS.ucx, DS.ucy, DS.ucr, buf, f, &C->fresh);
-  keep_own(&C->fresh);
-}
-
-/* MPI: of a sorted list, the couples whose lower triangle this rank owns (one range of it),
- * moved to its start. */
-static void keep_own(YfPairs *p) {
-  const int *tlo = par_tri_lo(), me = par_rank(), n = p->n;
-  if (!tlo) return; /* one rank */
-  int *ij = p->ij, ka = 0, kb;
-  while (ka < n && ij[2 * ka] < tlo[me]) ka++;
-  for (kb = ka; kb < n && ij[2 * kb] < tlo[me + 1];) kb++;
-  if (kb > ka && ka > 0) memmove(ij, ij + 2 * (size_t)ka, (size_t)(kb - ka) * 2 * sizeof(int));
-  p->n = kb - ka;
 }
 
 /* MPI: the ranks' ranges of the one-rank list (DS.lo) from their counts (n: this rank's); a
@@ -1470,13 +1478,15 @@ void contact_step(YfSim *s) {
     return;
   }
   /* MPI, divided update: the triangles this rank's couples read, their corners as ghosts */
-  const int *item = C->item;
+  const int *item = C->item, *tmap = NULL;
   int nitem = C->nitem;
   if (par_divided()) {
     if (searched || C->ghost_run != par_run_id()) contact_ghosts(s, C);
     item = DS.rtri;
     nitem = DS.nrtri;
+    tmap = DS.tloc; /* the records of these triangles only, in this order */
   }
+  tg_room(C, tmap ? nitem : m->tri.n);
   double t1 = yf_now();
   yf_stage_time[YF_ST_DETECT] += t1 - t0;
 
@@ -1489,7 +1499,7 @@ void contact_step(YfSim *s) {
   for (int q = 0; q < nitem; q++) {
     const int t = item[q], *v = tv + 3 * t;
     double xs[3] = {x[v[0]], x[v[1]], x[v[2]]}, ys[3] = {y[v[0]], y[v[1]], y[v[2]]};
-    contact_pair_geom(xs, ys, tg + (size_t)YF_TRI_GEOM * t);
+    contact_pair_geom(xs, ys, tg + (size_t)YF_TRI_GEOM * (tmap ? q : t));
   }
 
   /* pass 1, the screen: couples whose edges all miss give no force (only their distance decides
@@ -1514,7 +1524,8 @@ void contact_step(YfSim *s) {
     int k1 = (b + 1) * PAIR_BLK < s1 ? (b + 1) * PAIR_BLK : s1, rm = 0, busy = 0, need = 0;
     for (int k = (b * PAIR_BLK > s0 ? b * PAIR_BLK : s0) - s0; k < k1 - s0; k++) {
       if (!alive[k]) continue;
-      const double *ra = tg + (size_t)YF_TRI_GEOM * ij[2 * k + 1], *rb = tg + (size_t)YF_TRI_GEOM * ij[2 * k];
+      const int ta = ij[2 * k + 1], tb = ij[2 * k];
+      const double *ra = tg + (size_t)YF_TRI_GEOM * (tmap ? tmap[ta] : ta), *rb = tg + (size_t)YF_TRI_GEOM * (tmap ? tmap[tb] : tb);
       int q = contact_pair_quiet(ra, rb, rem2);
       if (q == 0) { alive[k] = 2; busy++; need += gi[k] < 0; }
       else if (q == 2) { alive[k] = dropped; rm++; }
@@ -1548,7 +1559,7 @@ void contact_step(YfSim *s) {
   nthr = omp_get_max_threads();
 #endif
   const int serial = !(nbusy >= C->par_min / 32 && nblk > 1) || nthr == 1;
-  KernelPass P = {ij, tv, tmat, gi, alive, vx, vy, tg, C->pairs.g, C->mpn, C->mpt, C->mmu, C->mlaw, dt, rem2, ntot,
+  KernelPass P = {ij, tv, tmat, gi, alive, vx, vy, tg, tmap, C->pairs.g, C->mpn, C->mpt, C->mmu, C->mlaw, dt, rem2, ntot,
                   NULL, NULL, NULL, NULL};
   double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
   unsigned char *tmark = C->tmark;
