@@ -474,9 +474,12 @@ def parse(path):
         name = t.split('/')[3] if t.count('/') >= 3 else ''
         grp = t.split('/')[2]
         check_key(t, f, ln, grp, name)
-        full = grp + '/' + name
         # the key's own name (MCSTEPS is MCSTEP), for its capacities and range
         canon = grp + '/' + next(k for k, m in KNOWN[grp] if len(name) >= m and name[:m] == k[:m])
+        # stored under it: a name shorter than the key that Y2D's rule still matches (MNODI, compared over
+        # 5 characters) was stored as written and never found ('D2NCI read before its capacity MNODIM',
+        # a deck yfdem reads, 2026-11-29)
+        full = canon
         caps = CAPS.get(canon, [])
         for c in caps:
             if isinstance(c, str) and c not in keys:
@@ -679,12 +682,17 @@ def native_table(tab, shift):
     length (a table padded by repeating its last point) are dropped, a jump at a repeated time gets a
     point one ulp later, and a point of value 1.0 one ulp before the first time and one after the
     last: the same factor at every double time.  Times are shifted by -shift (DCTIME).  exact is
-    False when times decrease (intervals that go back in time are dropped)."""
+    False when times decrease and an interval that increases is dropped where the intervals before it do
+    not hold it: Y2D takes it first there.  Times that fall back into what the table already holds (a
+    table padded with the default points (0, 0) under a larger NPNFACT) change nothing: exact."""
     pts = [(float(t) - shift, float(v)) for t, v in tab]
-    exact = all(pts[i + 1][0] >= pts[i][0] for i in range(len(pts) - 1))
+    exact = True
     out = []
     for (ta, va), (tb, vb) in zip(pts, pts[1:]):
-        if not tb > ta or (out and ta < out[-1][0]):
+        if not tb > ta:
+            continue
+        if out and ta < out[-1][0]:
+            exact = exact and out[0][0] <= ta and tb <= out[-1][0]
             continue
         if not out:
             out.append((ta, va))
@@ -1049,9 +1057,12 @@ def convert(src, out):
     tables = {}
     if 'YDPN/D3PNFAC' in K and npts > 0:
         (d1, d2, d3), flat = K['YDPN/D3PNFAC']
+        # entries not given keep the default 0, as Y2D and yfdem read them (NPNFACT above the points given,
+        # sets beyond those given, no factor row): the converter indexed past the list, 2026-11-29
+        fac = lambda i, s, p: flat[(i * d2 + s) * d3 + p] if i < d1 and s < d2 and p < d3 else 0.0
         if flat and flat[0] != -1:
             for s in range(min(d2, nset)):
-                tables[s] = [(flat[(0 * d2 + s) * d3 + p], flat[(1 * d2 + s) * d3 + p]) for p in range(npts)]
+                tables[s] = [(fac(0, s, p), fac(1, s, p)) for p in range(npts)]
     L.append('# boundary conditions: one group per Y2D BC set (node ids)')
     hist_of = {}      # set -> native table (tuple of (t, v)), None = factor 1.0 throughout
     for s in range(nset):
