@@ -98,14 +98,18 @@ list; $YINCL relative to the working directory or the including file's directory
 honoured at any include depth, after $YDOIT only comments and $YSTOP, in the including files too;
 1D/2D/3D array codes, names compared over the known name's length: /YD/YDC/MCSTEPS is MCSTEP).
 A key or group Y2D does not read is refused with FILE:LINE and the nearest key, or as a key or
-group of the Y-Geo derivative, as yfdem names them (exit 1, nothing written), and so are a comment inside a value list and one longer than 100 tokens; run `yfdem` on
-the .y file itself (the C reader, src/y2d/y2d_read.c) for full validation of values and array sizes.
+group of the Y-Geo derivative, as yfdem names them (exit 1, nothing written), and so are a comment inside a value list and one longer than 100 tokens.  Every
+other refusal of yfdem's reader (src/y2d/y2d_read.c) is the converter's too, in its words at its FILE:LINE:
+the .y is first read by `read_y2d` (reads and checks, computes nothing) of the yfdem in $YFDEM, else the
+one built beside tools/, else the first on PATH; without a yfdem, only the checks above are made.
 """
 import argparse
 import difflib
 import math
 import os
 import re
+import shutil
+import subprocess
 import sys
 
 # ---------------------------------------------------------------------------------------------
@@ -831,14 +835,59 @@ def nothing_computed(src, out, ctl):
     return out + '.deck', [(why, WARN)]
 
 
+def find_yfdem():
+    """yfdem's binary for reader_check: $YFDEM, else the one built beside tools/ (the repository's root),
+    else the first on PATH; None when there is none."""
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    for cand in (os.environ.get('YFDEM'), os.path.join(here, 'yfdem'), shutil.which('yfdem')):
+        if cand and os.path.isfile(cand) and os.access(cand, os.X_OK):
+            return cand
+    return None
+
+
+def reader_check(src):
+    """Refuse the .y as yfdem's own reader refuses it: `read_y2d SRC` (reads, checks and builds the scene,
+    computes nothing) in the yfdem found by find_yfdem, from the working directory (where `yfdem SRC` would
+    look for SRC and its $YINCL files).  Its error 'FILE:LINE: error: TEXT' (exit 1, or 2 for a file it
+    cannot read) becomes DeckError('FILE:LINE: TEXT'), in its words.  The checks of validate() mirror a
+    part of the reader's; this one is all of them: the converter wrote decks the reader refuses (a negative
+    DIEZON or MCSTEP, BC axes that are not orthogonal, a meshing code digit 5, NPJSET 0 with meshing: the
+    joints dropped) or stopped with a Python message ('list index out of range'), 2026-11-29.  Without a
+    yfdem (or with a name a native deck cannot quote), validate() alone checks."""
+    exe = find_yfdem()
+    if not exe:
+        return
+    try:
+        word = deck_word(src)
+    except DeckError:
+        return
+    env = dict(os.environ, OMP_NUM_THREADS='1')
+    p = subprocess.run([exe, '-log', os.devnull], input=('read_y2d %s\n' % word).encode(), stdout=subprocess.DEVNULL,
+                       stderr=subprocess.PIPE, env=env)
+    if p.returncode not in (1, 2):   # read (0), or a failure that is not the reader's refusal: validate() checks
+        return
+    lines = p.stderr.decode(errors='replace').splitlines()
+    for k, line in enumerate(lines):
+        m = re.match(r'^(.*?:\d+): error: (.*)$', line) or re.match(r'^()error: (.*)$', line)
+        if m:
+            head = ('%s: ' % m.group(1)) if m.group(1) else ('%s: ' % src)
+            raise DeckError('\n'.join([head + m.group(2)] + lines[k + 1:]))
+    raise DeckError('%s: refused by yfdem\'s reader (exit %d): %s' % (src, p.returncode, ' '.join(lines)[-300:]))
+
+
 def convert(src, out):
     base = os.path.basename(out)
     for name in (base + '.nodes', base + '.tris', base + '.h5'):
         deck_word(name)   # refused before anything is written
-    K = parse(src)
+    try:
+        K = parse(src)
+    except Exception:
+        reader_check(src)   # the reader's words where it refuses the deck too
+        raise
     ctl = CONTROL.get(src, {})
     if not ctl.get('ydoit') and not K.order:
         return nothing_computed(src, out, ctl)
+    reader_check(src)
     validate(K, src)
     g = lambda k, d=0: K.get(k, d)
     ne, nn, nprop = g('YDE/NELEM'), g('YDN/NNOPO'), g('YDPE/NPROP')
