@@ -685,6 +685,27 @@ START_TEST(test_capacity_memory_total) {
 }
 END_TEST
 
+/* A Y2D deck whose DCSTEC is far above the stable limit inverts a triangle: exit 3, and the advice names
+ * the deck's own time step key.  It said only "try a smaller 'timestep auto safety'", a native command
+ * that `yfdem DECK.y` has no place for (2026-11-29 sweep): tiny.y with DCSTEC 1 s (1.2e4 x the limit)
+ * and node 2 moving down at 3 m/s, which crosses the unit triangle in its second step. */
+START_TEST(test_inverted_names_dcstec) {
+  char *text = yft_slurp("tests/y2d/tiny.y", 0);
+  ck_assert_ptr_nonnull(text);
+  char deck[4096];
+  const char *dt = strstr(text, "/YD/YDC/DCSTEC 1e-6\n"), *pr = strstr(text, "/YD/YDN/I1NOPR");
+  ck_assert(dt && pr && dt < pr);
+  snprintf(deck, sizeof deck, "%.*s/YD/YDC/DCSTEC 1.0\n%.*s/YD/YDN/D2NVC 21 2 4 0 0 0 0 0 -3 0 0\n%s", (int)(dt - text), text,
+           (int)(pr - dt - strlen("/YD/YDC/DCSTEC 1e-6\n")), dt + strlen("/YD/YDC/DCSTEC 1e-6\n"), pr);
+  free(text);
+  char *err = NULL;
+  int code = yft_run_binary("inv.y", deck, "-log none", &err, NULL);
+  ck_assert_msg(code == 3 && strstr(err, "numerical failure at step 2: triangle 0") && strstr(err, "inverted") &&
+                strstr(err, "DCSTEC"), "exit %d: %s", code, err);
+  free(err);
+}
+END_TEST
+
 Suite *y2d_read_suite(void) {
   Suite *s = suite_create("y2d_read");
   TCase *tc = tcase_create("reference_decks");
@@ -710,6 +731,7 @@ Suite *y2d_read_suite(void) {
   tc = tcase_create("errors");
   tcase_add_loop_test(tc, test_bad_decks, 0, (int)(sizeof bad / sizeof bad[0]));
   tcase_add_test(tc, test_missing_deck);
+  tcase_add_test(tc, test_inverted_names_dcstec);
   suite_add_tcase(s, tc);
   return s;
 }
