@@ -70,7 +70,9 @@ What is translated (native syntax = the SYNTAX dict below, one place to adapt):
                                                  its copies have equal masses, else a difference)
     D1PNAP (edge pressure) != 0               -> load ID GROUP pressure P [history H], one per
                                                  (pressure, table) class: GROUP = its set, or the
-                                                 union of its sets (group pr<k> union bc<a> bc<b>)
+                                                 union of its sets (group pr<k> union bc<a> bc<b>);
+                                                 a D1PNAP or D1PNAT that never exceeds 1e-10 times
+                                                 its table loads nothing in Y2D: left out
     kind 1 amp 0                              -> nothing (free)
   D3PNFAC time table of set s  -> history bc<s> table T1 V1 T2 V2 ... with Y2D's factor at every
                                 time: 1.0 before the first and after the last time (points of value
@@ -717,6 +719,17 @@ def native_table(tab, shift):
     return out, exact
 
 
+def below_edge_threshold(value, table):
+    """True when an edge load value (D1PNAP or D1PNAT of a set) times its time factor (table: the set's
+    native history pairs, None for 1.0; outside a table the factor is 1.0) never exceeds 1e-10 in
+    magnitude: Y2D applies an edge load only where both end nodes' values exceed 1e-10 (ALGORITHMS 2.5,
+    9; yfdem's reader the same), so such a set loads no edge, not even one shared with a loaded set.  The
+    converter wrote a set of D1PNAP 1e-15 next to one of 1e6 as a linearly varying pressure, loaded with
+    the mean, and exited 3 (2026-11-29)."""
+    peak = max([1.0] + [abs(v) for _, v in table]) if table else 1.0
+    return abs(float(value)) * peak <= 1e-10
+
+
 def pressure_loads(L, note, diff, ne, elto, meshed, nopr, nset, ap, hist_of, ids_of_node):
     """Y2D's edge pressure (ALGORITHMS 2.5): every triangle edge whose two end nodes are in sets with
     D1PNAP != 0, with the consistent load of a pressure varying linearly from p_j to p_k.  The native
@@ -1190,11 +1203,20 @@ def convert(src, out):
         if any(k == 1 and a != 0 for k, a in zip(kinds, amps)) and any(len(copies[n]) > 1 for n in nodes_s):
             note('BC set %d: a point force on a node with c copies (joint insertion) is written as c F: '
                  '`load point` shares it, Y2D gives every copy F' % s)
-        if float(at[s]) != 0.0:
+        if float(at[s]) != 0.0 and below_edge_threshold(at[s], hist_of[s]):
+            note('BC set %d: edge shear D1PNAT %r, times its time factor, never exceeds 1e-10: Y2D loads no edge '
+                 'with it (ALGORITHMS 2.5, 9); left out' % (s, float(at[s])))
+        elif float(at[s]) != 0.0:
             L.append('# NOT TRANSLATED: BC set %d: edge shear traction D1PNAT = %r' % (s, float(at[s])))
             diff('BC set %d: edge shear traction D1PNAT %r not translated (the native traction has a fixed '
                  'direction, Y2D\'s follows the edge)' % (s, float(at[s])))
     L.append('')
+    for s_ in hist_of:
+        if float(ap[s_]) != 0.0 and below_edge_threshold(ap[s_], hist_of[s_]):
+            note('BC set %d: edge pressure D1PNAP %r, times its time factor, never exceeds 1e-10: Y2D loads no '
+                 'edge with it (ALGORITHMS 2.5, 9), nor an edge between it and another pressure set; left out'
+                 % (s_, float(ap[s_])))
+            ap[s_] = 0.0
     pressure_loads(L, note, diff, ne, elto, meshed, nopr, nset, ap, hist_of, ids_of_node)
 
     # ---- nodes Y2D never moves: a BC set outside 0..NPNSET-1 (FORMAT.md 6), or a lumped mass of
