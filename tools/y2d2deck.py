@@ -54,7 +54,8 @@ What is translated (native syntax = the SYNTAX dict below, one place to adapt):
                                 those with a corner flagged in I1NOBF and those of jointed rows),
                                 contact self contact_tris, contact buffer DIEZON joined keep
                                 surface all search travel shared keep; nothing when no triangle
-                                takes part
+                                takes part; triangles of a property with D1PEPE 0 (no force with
+                                anyone: Y2D's pair penalty is the smaller D1PEPE) are left out
   D2NVC                      -> velocity GROUP set VX VY, one group per distinct initial velocity
   BC sets (/YD/YDPN/, global frame only):
     kind 3 (velocity) amp 0 in x and y        -> fix ID GROUP fixed xy   (x or y alone likewise)
@@ -1057,6 +1058,15 @@ def convert(src, out):
         nobf = arr1(K, 'YDN/I1NOBF', nn, 0)
         iwfast = g('YDC/IWFAST', 1)
         part = [e for e in range(ne) if iwfast == 0 or meshed[e] or any(nobf[v] == 1 for v in elto[e][:3])]
+        # Y2D's pair penalty is the smaller D1PEPE of the two properties (ALGORITHMS 6): a triangle of a property
+        # with D1PEPE 0 gets no contact force from any couple, and a native contact rule refuses its material
+        # (no pen_n): left out of contact.  The converter kept it, and the converted deck was refused, 2026-11-29.
+        nopen = sorted({elpr[e] for e in part if not float(pen_n[elpr[e]]) > 0})
+        if nopen:
+            part = [e for e in part if float(pen_n[elpr[e]]) > 0]
+            note('propert%s %s: D1PEPE 0, so no couple with %s triangles carries a contact force in Y2D (the pair '
+                 'penalty is the smaller D1PEPE): left out of contact' % (
+                     'y' if len(nopen) == 1 else 'ies', ' '.join(map(str, nopen)), 'its' if len(nopen) == 1 else 'their'))
         L.append('# contact (Y2D MICOUP %d, buffer DIEZON, IWFAST %d: %d of %d triangles take part)'
                  % (g('YDI/MICOUP'), iwfast, len(part), ne))
         if part:
