@@ -10,7 +10,8 @@ usage: y2d2deck.py [--allow-differences] DECK.y OUT
 
 Exit status: 0 the converted deck runs the physics of `yfdem DECK.y`; 1 error (a key Y2D does not
 read, a value that is not a number, or not an integer where Y2D reads one, a density, bulk modulus
-or joint strength, energy or penalty of a property or joint set in use that is not positive, no
+or joint strength, energy or penalty of a property or joint set in use that is not positive (and a shear
+modulus D1PEMU of 0, which yfdem DECK.y runs as Y2D does and no native material takes), no
 time step, MISTATE < 6 with contact, an element property out of range, NELNO other than 3, a 3D
 deck, a clockwise triangle, a zero BC axis, a D2NCC short of NNOPO or with a triangle inverted or flat,
 a joint set out of range or not of type 3, a property
@@ -628,6 +629,10 @@ def validate(K, path):
         if not float(rho[p]) > 0:
             raise DeckError('%s:%d: /YD/YDPE/D1PERO: property %d (elastic) has density %g; it must be > 0'
                             % (K.at('YDPE/D1PERO', p, end) + (p, rho[p])))
+        if not float(mu[p]) > 0:   # Y2D and yfdem DECK.y take 0 (only a negative mu is refused): no native material
+            raise DeckError('%s:%d: /YD/YDPE/D1PEMU: property %d has mu %g: Y2D and yfdem DECK.y run it (a triangle '
+                            'without shear stiffness), but a native material needs mu > 0: no deck written (run the '
+                            '.y with yfdem DECK.y)' % (K.at('YDPE/D1PEMU', p, end) + (p, float(mu[p]))))
         if not float(lam[p]) + float(mu[p]) > 0:   # volfac 0.5: the in-plane bulk modulus is lambda + mu
             raise DeckError('%s:%d: /YD/YDPE/D1PELA: property %d has lambda %g and mu (/YD/YDPE/D1PEMU) %g: the '
                             'in-plane bulk modulus lambda + mu = %g must be positive' %
