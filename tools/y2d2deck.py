@@ -667,10 +667,20 @@ def arr1(K, key, n, default):
     return [vals[k] if k < len(vals) else default for k in range(n)]
 
 
+# Rows of 2D arrays padded to the width the code reads, with the reader's default: a deck may give fewer
+# values along dimension 1 than it holds (D2NVC 21 1 N: x velocities only; I2PMIJ 21 2 N: the set column
+# left at 0), which Y2D and yfdem read with the rest at the default; the converter indexed past the row
+# ('list index out of range', 2026-11-29).  I2PMSET rows are padded to MPMCOL.
+ROW_PAD = {'YDN/D2NCI': (2, 0.0), 'YDN/D2NCC': (2, 0.0), 'YDN/D2NVC': (2, 0.0), 'YDE/I2ELTO': (3, -1),
+           'YDPM/I2PMIJ': (3, 0), 'YDPM/I2PMSET': ('YDPM/MPMCOL', 0)}
+
+
 def get2(K, key):
-    """2D array as rows over dimension 2: list of lists (dim-1 values)."""
+    """2D array as rows over dimension 2: list of lists (dim-1 values, padded as ROW_PAD says)."""
     (n1, n2), flat = K[key]
-    return [[flat[a * n2 + b] for a in range(n1)] for b in range(n2)]
+    width, default = ROW_PAD.get(key, (n1, 0))
+    width = max(n1, int(K.get(width, 0)) if isinstance(width, str) else width)
+    return [[flat[a * n2 + b] for a in range(n1)] + [default] * (width - n1) for b in range(n2)]
 
 
 def wrap(head, items):
