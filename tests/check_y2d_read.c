@@ -706,6 +706,26 @@ START_TEST(test_inverted_names_dcstec) {
 }
 END_TEST
 
+/* IWFAST below 0: yfdem takes only flagged triangles into contact, as for IWFAST > 0 (y2d_model.c: all of them
+ * with IWFAST 0 only), but the warning about boundary nodes left unflagged was given for IWFAST > 0 only: tiny.y
+ * with IWFAST -1 and no I1NOBF flag ran without contact and without a word (2026-11-29 sweep). */
+START_TEST(test_iwfast_negative_warned) {
+  char *text = yft_slurp("tests/y2d/tiny.y", 0);
+  ck_assert_ptr_nonnull(text);
+  char *f = strstr(text, "/YD/YDN/I1NOBF 4 1 1 1 1");
+  ck_assert_ptr_nonnull(f);
+  memcpy(f, "/YD/YDN/I1NOBF 4 0 0 0 0", strlen("/YD/YDN/I1NOBF 4 0 0 0 0"));
+  char deck[4096];
+  snprintf(deck, sizeof deck, "/YD/YDC/IWFAST -1\n%s", text);
+  free(text);
+  char *err = NULL;
+  int code = yft_run_binary("neg.y", deck, "-log none", &err, NULL);
+  ck_assert_msg(code == 0 && strstr(err, "boundary node(s) of unjointed bodies have /YD/YDN/I1NOBF != 1") &&
+                strstr(err, "IWFAST = -1"), "exit %d: %s", code, err);
+  free(err);
+}
+END_TEST
+
 Suite *y2d_read_suite(void) {
   Suite *s = suite_create("y2d_read");
   TCase *tc = tcase_create("reference_decks");
@@ -723,6 +743,7 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_ystop_and_comments_as_y2d);
   tcase_add_test(tc, test_diedi_delays_first_search);
   tcase_add_test(tc, test_frozen_set);
+  tcase_add_test(tc, test_iwfast_negative_warned);
   tcase_add_test(tc, test_spare_properties);
   tcase_add_test(tc, test_spare_joint_sets);
   tcase_add_test(tc, test_value_lines);

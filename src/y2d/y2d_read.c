@@ -1498,8 +1498,9 @@ static void check_deck(YfY2d *y) {
             keydefs[Y2D_PN_NPNFACT].full);
   }
 
-  /* ---- contact participation (FORMAT.md 5.3) ---- */
-  if (y->micoup > 0 && y->iwfast > 0) {
+  /* ---- contact participation (FORMAT.md 5.3): the model (y2d_model.c) takes every triangle with IWFAST 0
+   * only, so any other value, below 0 too, leaves unflagged boundaries out of contact ---- */
+  if (y->micoup > 0 && y->iwfast != 0) {
     unsigned char *sel = yf_calloc((size_t)y->nelem + 1, 1, "y2d selection");
     for (long e = 0; e < y->nelem; e++) {
       int meshed = 0;
@@ -1527,8 +1528,8 @@ static void check_deck(YfY2d *y) {
     if (nflag) {
       YfLoc l = loc_of(y, Y2D_N_I1NOBF);
       yf_warn(&l, "%ld boundary node(s) of unjointed bodies have %s != 1 (first: node %ld): with "
-              "IWFAST > 0 their triangles take no part in contact, as in Y2D", nflag,
-              keydefs[Y2D_N_I1NOBF].full, first);
+              "IWFAST = %ld (not 0) their triangles take no part in contact, as in Y2D with IWFAST > 0", nflag,
+              keydefs[Y2D_N_I1NOBF].full, first, y->iwfast);
     }
   }
 
