@@ -247,6 +247,9 @@ static const struct {
   {"ygeo_group.y", 1, 35, "/YD/YDFN/MFNSET: Y-Geo group"},
   {"short_array.y", 1, 10, "/YD/YDE/I1ELPR: expected 2 values, found 1 before '/YD/YDE/I2ELTO'"},
   {"real_for_int.y", 1, 2, "/YD/YDC/MCSTEP: '4e3' is not an integer"},
+  /* a decimal comma said as such, with the number to write (2026-11-29 sweep: only "not a number") */
+  {"decimal_comma.y", 1, 4, "/YD/YDC/DCGRAY: '-9,81' is not a number (a decimal comma: Y2D reads C reals (%le) with a "
+                            "decimal point and stops at the ','; write -9.81)"},
   {"array_before_cap.y", 1, 4, "/YD/YDE/I1ELPR: read before its capacity /YD/YDE/MELEM"},
   /* a set given out of range freezes its node (FORMAT.md 6, test_frozen_set); one not given is a mistake */
   {"set_list_short.y", 1, 18, "/YD/YDN/I1NOPR: node 3 has no BC set (not given: the list is shorter than NNOPO = 4"},

@@ -451,6 +451,18 @@ static const char *not_number_why(const char *t) {
                "e.g. 1.5e5 for 1.5d5";
     }
   }
+  /* a decimal comma (a European locale's output): Y2D's %le reads up to the ',' and the rest is a stray token */
+  if (n < sizeof buf && strchr(t, ',') && strchr(t, ',') == strrchr(t, ',')) {
+    memcpy(buf, t, n + 1);
+    *strchr(buf, ',') = '.';
+    double v;
+    if (parse_real_tok(buf, &v)) {
+      static char why[160]; /* the reader is one thread; the message is printed before the next call */
+      snprintf(why, sizeof why, "a decimal comma: Y2D reads C reals (%%le) with a decimal point and stops at the ','; "
+               "write %s", buf);
+      return why;
+    }
+  }
   char *end;
   errno = 0;
   double v = strtod(t, &end);
