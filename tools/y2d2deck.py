@@ -80,8 +80,9 @@ What is translated (native syntax = the SYNTAX dict below, one place to adapt):
                                 time: 1.0 before the first and after the last time (points of value
                                 1.0 one ulp outside), zero-length intervals (a padded table) dropped,
                                 a jump at a repeated time one ulp wide
-Differences (warnings, exit 3): BC sets with a rotated local frame (unless held, free or frozen in
-both directions, the same in any frame), kind 2 on copies of different masses, D1PNAT edge shear
+Differences (warnings, exit 3): BC sets with a rotated local frame and conditions of different kinds
+in its two directions (one kind in both, force, acceleration or velocity, is that kind in global x and
+y with the amplitude turned, R A; frozen in both is the same in any frame), kind 2 on copies of different masses, D1PNAT edge shear
 (the native traction keeps its direction), edge pressure on an outer edge between sets of different
 pressures or tables (Y2D: linear variation; written as the mean of the two when a group can hold
 that edge alone: the same resultant), edge pressure on interior edges of jointed triangles (Y2D
@@ -1176,10 +1177,21 @@ def convert(src, out):
         # held in both directions, free in both, or frozen in both: the same in any frame
         any_frame = (not hist and amps == (0.0, 0.0) and tuple(kinds) in ((3, 3), (1, 1))) or all(frozen)
         if (xx[s], xy_[s], yx[s], yy[s]) != (1, 0, 0, 1) and not any_frame:
-            L.append('# NOT TRANSLATED: BC set %d uses the local frame x = (%g, %g), y = (%g, %g): kinds %d/%d, '
-                     'amplitudes %g/%g' % (s, xx[s], xy_[s], yx[s], yy[s], fx[s], fy[s], ax[s], ay[s]))
-            diff('BC set %d (a rotated local frame) not translated: its nodes are free' % s)
-            continue
+            if kinds[0] == kinds[1] and kinds[0] in (1, 2, 3):
+                # the same kind in both local directions: Y2D's v = R u with u updated by that kind (ALGORITHMS 7)
+                # is the same kind in global x and y with the amplitude R A (force, acceleration or velocity; the
+                # edge loads and gravity act through R R^-1 = 1); the converter dropped such a set (2026-11-29)
+                ex, ey = (float(xx[s]), float(xy_[s])), (float(yx[s]), float(yy[s]))
+                amps = (ex[0] * amps[0] + ey[0] * amps[1], ex[1] * amps[0] + ey[1] * amps[1])
+                note('BC set %d: kinds %d/%d in the local frame x = (%g, %g), y = (%g, %g): the same kind in global '
+                     'x and y, amplitudes turned into it (%r, %r)' % (s, kinds[0], kinds[1], ex[0], ex[1], ey[0],
+                                                                        ey[1], amps[0], amps[1]))
+            else:
+                L.append('# NOT TRANSLATED: BC set %d uses the local frame x = (%g, %g), y = (%g, %g): kinds %d/%d, '
+                         'amplitudes %g/%g' % (s, xx[s], xy_[s], yx[s], yy[s], fx[s], fy[s], ax[s], ay[s]))
+                diff('BC set %d (a rotated local frame, kinds %d/%d: a condition of another kind in each local '
+                     'direction) not translated: its nodes are free' % (s, kinds[0], kinds[1]))
+                continue
         fixed = ''.join(d for d, k, a in zip('xy', kinds, amps) if k == 3 and a == 0 and not hist)
         # kinds other than 1, 2, 3 freeze the velocity at its initial value (forces ignored): held
         # when it is 0, else a prescribed velocity, one fix per distinct initial velocity
