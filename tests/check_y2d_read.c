@@ -247,6 +247,9 @@ static const struct {
   {"ygeo_group.y", 1, 35, "/YD/YDFN/MFNSET: Y-Geo group"},
   {"short_array.y", 1, 10, "/YD/YDE/I1ELPR: expected 2 values, found 1 before '/YD/YDE/I2ELTO'"},
   {"real_for_int.y", 1, 2, "/YD/YDC/MCSTEP: '4e3' is not an integer"},
+  /* a decimal comma said as such, with the number to write (2026-11-29 sweep: only "not a number") */
+  {"decimal_comma.y", 1, 4, "/YD/YDC/DCGRAY: '-9,81' is not a number (a decimal comma: Y2D reads C reals (%le) with a "
+                            "decimal point and stops at the ','; write -9.81)"},
   {"array_before_cap.y", 1, 4, "/YD/YDE/I1ELPR: read before its capacity /YD/YDE/MELEM"},
   /* a set given out of range freezes its node (FORMAT.md 6, test_frozen_set); one not given is a mistake */
   {"set_list_short.y", 1, 18, "/YD/YDN/I1NOPR: node 3 has no BC set (not given: the list is shorter than NNOPO = 4"},
@@ -685,6 +688,47 @@ START_TEST(test_capacity_memory_total) {
 }
 END_TEST
 
+/* A Y2D deck whose DCSTEC is far above the stable limit inverts a triangle: exit 3, and the advice names
+ * the deck's own time step key.  It said only "try a smaller 'timestep auto safety'", a native command
+ * that `yfdem DECK.y` has no place for (2026-11-29 sweep): tiny.y with DCSTEC 1 s (1.2e4 x the limit)
+ * and node 2 moving down at 3 m/s, which crosses the unit triangle in its second step. */
+START_TEST(test_inverted_names_dcstec) {
+  char *text = yft_slurp("tests/y2d/tiny.y", 0);
+  ck_assert_ptr_nonnull(text);
+  char deck[4096];
+  const char *dt = strstr(text, "/YD/YDC/DCSTEC 1e-6\n"), *pr = strstr(text, "/YD/YDN/I1NOPR");
+  ck_assert(dt && pr && dt < pr);
+  snprintf(deck, sizeof deck, "%.*s/YD/YDC/DCSTEC 1.0\n%.*s/YD/YDN/D2NVC 21 2 4 0 0 0 0 0 -3 0 0\n%s", (int)(dt - text), text,
+           (int)(pr - dt - strlen("/YD/YDC/DCSTEC 1e-6\n")), dt + strlen("/YD/YDC/DCSTEC 1e-6\n"), pr);
+  free(text);
+  char *err = NULL;
+  int code = yft_run_binary("inv.y", deck, "-log none", &err, NULL);
+  ck_assert_msg(code == 3 && strstr(err, "numerical failure at step 2: triangle 0") && strstr(err, "inverted") &&
+                strstr(err, "DCSTEC"), "exit %d: %s", code, err);
+  free(err);
+}
+END_TEST
+
+/* IWFAST below 0: yfdem takes only flagged triangles into contact, as for IWFAST > 0 (y2d_model.c: all of them
+ * with IWFAST 0 only), but the warning about boundary nodes left unflagged was given for IWFAST > 0 only: tiny.y
+ * with IWFAST -1 and no I1NOBF flag ran without contact and without a word (2026-11-29 sweep). */
+START_TEST(test_iwfast_negative_warned) {
+  char *text = yft_slurp("tests/y2d/tiny.y", 0);
+  ck_assert_ptr_nonnull(text);
+  char *f = strstr(text, "/YD/YDN/I1NOBF 4 1 1 1 1");
+  ck_assert_ptr_nonnull(f);
+  memcpy(f, "/YD/YDN/I1NOBF 4 0 0 0 0", strlen("/YD/YDN/I1NOBF 4 0 0 0 0"));
+  char deck[4096];
+  snprintf(deck, sizeof deck, "/YD/YDC/IWFAST -1\n%s", text);
+  free(text);
+  char *err = NULL;
+  int code = yft_run_binary("neg.y", deck, "-log none", &err, NULL);
+  ck_assert_msg(code == 0 && strstr(err, "boundary node(s) of unjointed bodies have /YD/YDN/I1NOBF != 1") &&
+                strstr(err, "IWFAST = -1"), "exit %d: %s", code, err);
+  free(err);
+}
+END_TEST
+
 Suite *y2d_read_suite(void) {
   Suite *s = suite_create("y2d_read");
   TCase *tc = tcase_create("reference_decks");
@@ -702,6 +746,7 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_ystop_and_comments_as_y2d);
   tcase_add_test(tc, test_diedi_delays_first_search);
   tcase_add_test(tc, test_frozen_set);
+  tcase_add_test(tc, test_iwfast_negative_warned);
   tcase_add_test(tc, test_spare_properties);
   tcase_add_test(tc, test_spare_joint_sets);
   tcase_add_test(tc, test_value_lines);
@@ -710,6 +755,7 @@ Suite *y2d_read_suite(void) {
   tc = tcase_create("errors");
   tcase_add_loop_test(tc, test_bad_decks, 0, (int)(sizeof bad / sizeof bad[0]));
   tcase_add_test(tc, test_missing_deck);
+  tcase_add_test(tc, test_inverted_names_dcstec);
   suite_add_tcase(s, tc);
   return s;
 }

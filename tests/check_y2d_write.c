@@ -257,6 +257,51 @@ START_TEST(test_negative_poisson_round_trip) {
 }
 END_TEST
 
+/* Y2D moves no node of lumped mass <= 1e-10 in the deck's units (ALGORITHMS 7, 9), yfdem moves every node: a
+ * scene in tonnes and millimetres with 0.5 mm cells has corner masses of 1e-10 t/mm, and write_y2d wrote it
+ * silently; read back, those nodes stayed put and the energies differed by 27 % of the largest after 200 steps
+ * (2026-11-29 sweep).  Now an error names the node, its mass and the units; with the light nodes held at rest
+ * (Y2D and yfdem hold them alike) the scene is written and runs the same way. */
+START_TEST(test_light_nodes_refused) {
+  static const char *scene =
+    "material c elastic rho 2.4e-9 E 30000 nu 0.2 plane_stress\n"
+    "mesh rect A c 0 0 4 2 8 4\n"
+    "velocity A set 1000 0\n"
+    "region l box -1 -1 1e-9 10\n"
+    "group l node region l\n"
+    "fix f l fixed xy\n"
+    "timestep auto safety 0.4\n"
+    "write_y2d light.y steps 200\n"
+    "run 200\n";
+  char *err = NULL, *dir = NULL;
+  int code = yft_run_binary("light.deck", scene, "", &err, &dir);
+  ck_assert_msg(code == 1 && strstr(err, "light.deck:8: error:") && strstr(err, "1e-10") &&
+                strstr(err, "Y2D never moves"), "exit %d: %s", code, err);
+  char path[1200];
+  snprintf(path, sizeof path, "%s/light.y", dir);
+  ck_assert(!yft_exists(path));
+  free(err);
+  free(dir);
+  /* the same scene with every node on the boundary held at rest (the light ones are two corners) and its
+   * middle moving: written, and the same run */
+  static const char *held =
+    "material c elastic rho 2.4e-9 E 30000 nu 0.2 plane_stress\n"
+    "mesh rect A c 0 0 4 2 8 4\n"
+    "region c box 1 0.5 3 1.5\n"
+    "group c node region c\n"
+    "velocity c set 1000 0\n"
+    "region in box 0.01 0.01 3.99 1.99 side out\n"
+    "group l node region in\n"
+    "fix f l fixed xy\n"
+    "timestep auto safety 0.4\n"
+    "write_y2d light.y steps 200\n"
+    "run 200\n";
+  int nb = 0;
+  double worst = round_trip(held, "", "light.y", NULL, &nb, NULL);
+  ck_assert_msg(worst <= 1e-11, "energies differ by %.2e of the largest", worst);
+}
+END_TEST
+
 /* Features Y2D cannot express: an error that names them, at the right line. */
 static const struct {
   const char *change, *with, *text;
@@ -356,6 +401,7 @@ Suite *y2d_write_suite(void) {
   tcase_add_test(tc, test_column_round_trip);
   tcase_add_test(tc, test_bc_sets_round_trip);
   tcase_add_test(tc, test_negative_poisson_round_trip);
+  tcase_add_test(tc, test_light_nodes_refused);
   tcase_add_test(tc, test_beam_mohr_coulomb_round_trip);
   tcase_add_test(tc, test_output_scales);
   tcase_add_test(tc, test_column_friction_round_trip);

@@ -10,7 +10,8 @@ usage: y2d2deck.py [--allow-differences] DECK.y OUT
 
 Exit status: 0 the converted deck runs the physics of `yfdem DECK.y`; 1 error (a key Y2D does not
 read, a value that is not a number, or not an integer where Y2D reads one, a density, bulk modulus
-or joint strength, energy or penalty of a property or joint set in use that is not positive, no
+or joint strength, energy or penalty of a property or joint set in use that is not positive (and a shear
+modulus D1PEMU of 0, which yfdem DECK.y runs as Y2D does and no native material takes), no
 time step, MISTATE < 6 with contact, an element property out of range, NELNO other than 3, a 3D
 deck, a clockwise triangle, a zero BC axis, a D2NCC short of NNOPO or with a triangle inverted or flat,
 a joint set out of range or not of type 3, a property
@@ -54,7 +55,8 @@ What is translated (native syntax = the SYNTAX dict below, one place to adapt):
                                 those with a corner flagged in I1NOBF and those of jointed rows),
                                 contact self contact_tris, contact buffer DIEZON joined keep
                                 surface all search travel shared keep; nothing when no triangle
-                                takes part
+                                takes part; triangles of a property with D1PEPE 0 (no force with
+                                anyone: Y2D's pair penalty is the smaller D1PEPE) are left out
   D2NVC                      -> velocity GROUP set VX VY, one group per distinct initial velocity
   BC sets (/YD/YDPN/, global frame only):
     kind 3 (velocity) amp 0 in x and y        -> fix ID GROUP fixed xy   (x or y alone likewise)
@@ -70,14 +72,17 @@ What is translated (native syntax = the SYNTAX dict below, one place to adapt):
                                                  its copies have equal masses, else a difference)
     D1PNAP (edge pressure) != 0               -> load ID GROUP pressure P [history H], one per
                                                  (pressure, table) class: GROUP = its set, or the
-                                                 union of its sets (group pr<k> union bc<a> bc<b>)
+                                                 union of its sets (group pr<k> union bc<a> bc<b>);
+                                                 a D1PNAP or D1PNAT that never exceeds 1e-10 times
+                                                 its table loads nothing in Y2D: left out
     kind 1 amp 0                              -> nothing (free)
   D3PNFAC time table of set s  -> history bc<s> table T1 V1 T2 V2 ... with Y2D's factor at every
                                 time: 1.0 before the first and after the last time (points of value
                                 1.0 one ulp outside), zero-length intervals (a padded table) dropped,
                                 a jump at a repeated time one ulp wide
-Differences (warnings, exit 3): BC sets with a rotated local frame (unless held, free or frozen in
-both directions, the same in any frame), kind 2 on copies of different masses, D1PNAT edge shear
+Differences (warnings, exit 3): BC sets with a rotated local frame and conditions of different kinds
+in its two directions (one kind in both, force, acceleration or velocity, is that kind in global x and
+y with the amplitude turned, R A; frozen in both is the same in any frame), kind 2 on copies of different masses, D1PNAT edge shear
 (the native traction keeps its direction), edge pressure on an outer edge between sets of different
 pressures or tables (Y2D: linear variation; written as the mean of the two when a group can hold
 that edge alone: the same resultant), edge pressure on interior edges of jointed triangles (Y2D
@@ -98,14 +103,18 @@ list; $YINCL relative to the working directory or the including file's directory
 honoured at any include depth, after $YDOIT only comments and $YSTOP, in the including files too;
 1D/2D/3D array codes, names compared over the known name's length: /YD/YDC/MCSTEPS is MCSTEP).
 A key or group Y2D does not read is refused with FILE:LINE and the nearest key, or as a key or
-group of the Y-Geo derivative, as yfdem names them (exit 1, nothing written), and so are a comment inside a value list and one longer than 100 tokens; run `yfdem` on
-the .y file itself (the C reader, src/y2d/y2d_read.c) for full validation of values and array sizes.
+group of the Y-Geo derivative, as yfdem names them (exit 1, nothing written), and so are a comment inside a value list and one longer than 100 tokens.  Every
+other refusal of yfdem's reader (src/y2d/y2d_read.c) is the converter's too, in its words at its FILE:LINE:
+the .y is first read by `read_y2d` (reads and checks, computes nothing) of the yfdem in $YFDEM, else the
+one built beside tools/, else the first on PATH; without a yfdem, only the checks above are made.
 """
 import argparse
 import difflib
 import math
 import os
 import re
+import shutil
+import subprocess
 import sys
 
 # ---------------------------------------------------------------------------------------------
@@ -474,9 +483,12 @@ def parse(path):
         name = t.split('/')[3] if t.count('/') >= 3 else ''
         grp = t.split('/')[2]
         check_key(t, f, ln, grp, name)
-        full = grp + '/' + name
         # the key's own name (MCSTEPS is MCSTEP), for its capacities and range
         canon = grp + '/' + next(k for k, m in KNOWN[grp] if len(name) >= m and name[:m] == k[:m])
+        # stored under it: a name shorter than the key that Y2D's rule still matches (MNODI, compared over
+        # 5 characters) was stored as written and never found ('D2NCI read before its capacity MNODIM',
+        # a deck yfdem reads, 2026-11-29)
+        full = canon
         caps = CAPS.get(canon, [])
         for c in caps:
             if isinstance(c, str) and c not in keys:
@@ -618,6 +630,10 @@ def validate(K, path):
         if not float(rho[p]) > 0:
             raise DeckError('%s:%d: /YD/YDPE/D1PERO: property %d (elastic) has density %g; it must be > 0'
                             % (K.at('YDPE/D1PERO', p, end) + (p, rho[p])))
+        if not float(mu[p]) > 0:   # Y2D and yfdem DECK.y take 0 (only a negative mu is refused): no native material
+            raise DeckError('%s:%d: /YD/YDPE/D1PEMU: property %d has mu %g: Y2D and yfdem DECK.y run it (a triangle '
+                            'without shear stiffness), but a native material needs mu > 0: no deck written (run the '
+                            '.y with yfdem DECK.y)' % (K.at('YDPE/D1PEMU', p, end) + (p, float(mu[p]))))
         if not float(lam[p]) + float(mu[p]) > 0:   # volfac 0.5: the in-plane bulk modulus is lambda + mu
             raise DeckError('%s:%d: /YD/YDPE/D1PELA: property %d has lambda %g and mu (/YD/YDPE/D1PEMU) %g: the '
                             'in-plane bulk modulus lambda + mu = %g must be positive' %
@@ -652,10 +668,20 @@ def arr1(K, key, n, default):
     return [vals[k] if k < len(vals) else default for k in range(n)]
 
 
+# Rows of 2D arrays padded to the width the code reads, with the reader's default: a deck may give fewer
+# values along dimension 1 than it holds (D2NVC 21 1 N: x velocities only; I2PMIJ 21 2 N: the set column
+# left at 0), which Y2D and yfdem read with the rest at the default; the converter indexed past the row
+# ('list index out of range', 2026-11-29).  I2PMSET rows are padded to MPMCOL.
+ROW_PAD = {'YDN/D2NCI': (2, 0.0), 'YDN/D2NCC': (2, 0.0), 'YDN/D2NVC': (2, 0.0), 'YDE/I2ELTO': (3, -1),
+           'YDPM/I2PMIJ': (3, 0), 'YDPM/I2PMSET': ('YDPM/MPMCOL', 0)}
+
+
 def get2(K, key):
-    """2D array as rows over dimension 2: list of lists (dim-1 values)."""
+    """2D array as rows over dimension 2: list of lists (dim-1 values, padded as ROW_PAD says)."""
     (n1, n2), flat = K[key]
-    return [[flat[a * n2 + b] for a in range(n1)] for b in range(n2)]
+    width, default = ROW_PAD.get(key, (n1, 0))
+    width = max(n1, int(K.get(width, 0)) if isinstance(width, str) else width)
+    return [[flat[a * n2 + b] for a in range(n1)] + [default] * (width - n1) for b in range(n2)]
 
 
 def wrap(head, items):
@@ -679,12 +705,17 @@ def native_table(tab, shift):
     length (a table padded by repeating its last point) are dropped, a jump at a repeated time gets a
     point one ulp later, and a point of value 1.0 one ulp before the first time and one after the
     last: the same factor at every double time.  Times are shifted by -shift (DCTIME).  exact is
-    False when times decrease (intervals that go back in time are dropped)."""
+    False when times decrease and an interval that increases is dropped where the intervals before it do
+    not hold it: Y2D takes it first there.  Times that fall back into what the table already holds (a
+    table padded with the default points (0, 0) under a larger NPNFACT) change nothing: exact."""
     pts = [(float(t) - shift, float(v)) for t, v in tab]
-    exact = all(pts[i + 1][0] >= pts[i][0] for i in range(len(pts) - 1))
+    exact = True
     out = []
     for (ta, va), (tb, vb) in zip(pts, pts[1:]):
-        if not tb > ta or (out and ta < out[-1][0]):
+        if not tb > ta:
+            continue
+        if out and ta < out[-1][0]:
+            exact = exact and out[0][0] <= ta and tb <= out[-1][0]
             continue
         if not out:
             out.append((ta, va))
@@ -703,6 +734,17 @@ def native_table(tab, shift):
     if all(v == 1.0 for _, v in out):
         return None, exact
     return out, exact
+
+
+def below_edge_threshold(value, table):
+    """True when an edge load value (D1PNAP or D1PNAT of a set) times its time factor (table: the set's
+    native history pairs, None for 1.0; outside a table the factor is 1.0) never exceeds 1e-10 in
+    magnitude: Y2D applies an edge load only where both end nodes' values exceed 1e-10 (ALGORITHMS 2.5,
+    9; yfdem's reader the same), so such a set loads no edge, not even one shared with a loaded set.  The
+    converter wrote a set of D1PNAP 1e-15 next to one of 1e6 as a linearly varying pressure, loaded with
+    the mean, and exited 3 (2026-11-29)."""
+    peak = max([1.0] + [abs(v) for _, v in table]) if table else 1.0
+    return abs(float(value)) * peak <= 1e-10
 
 
 def pressure_loads(L, note, diff, ne, elto, meshed, nopr, nset, ap, hist_of, ids_of_node):
@@ -823,14 +865,59 @@ def nothing_computed(src, out, ctl):
     return out + '.deck', [(why, WARN)]
 
 
+def find_yfdem():
+    """yfdem's binary for reader_check: $YFDEM, else the one built beside tools/ (the repository's root),
+    else the first on PATH; None when there is none."""
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    for cand in (os.environ.get('YFDEM'), os.path.join(here, 'yfdem'), shutil.which('yfdem')):
+        if cand and os.path.isfile(cand) and os.access(cand, os.X_OK):
+            return cand
+    return None
+
+
+def reader_check(src):
+    """Refuse the .y as yfdem's own reader refuses it: `read_y2d SRC` (reads, checks and builds the scene,
+    computes nothing) in the yfdem found by find_yfdem, from the working directory (where `yfdem SRC` would
+    look for SRC and its $YINCL files).  Its error 'FILE:LINE: error: TEXT' (exit 1, or 2 for a file it
+    cannot read) becomes DeckError('FILE:LINE: TEXT'), in its words.  The checks of validate() mirror a
+    part of the reader's; this one is all of them: the converter wrote decks the reader refuses (a negative
+    DIEZON or MCSTEP, BC axes that are not orthogonal, a meshing code digit 5, NPJSET 0 with meshing: the
+    joints dropped) or stopped with a Python message ('list index out of range'), 2026-11-29.  Without a
+    yfdem (or with a name a native deck cannot quote), validate() alone checks."""
+    exe = find_yfdem()
+    if not exe:
+        return
+    try:
+        word = deck_word(src)
+    except DeckError:
+        return
+    env = dict(os.environ, OMP_NUM_THREADS='1')
+    p = subprocess.run([exe, '-log', os.devnull], input=('read_y2d %s\n' % word).encode(), stdout=subprocess.DEVNULL,
+                       stderr=subprocess.PIPE, env=env)
+    if p.returncode not in (1, 2):   # read (0), or a failure that is not the reader's refusal: validate() checks
+        return
+    lines = p.stderr.decode(errors='replace').splitlines()
+    for k, line in enumerate(lines):
+        m = re.match(r'^(.*?:\d+): error: (.*)$', line) or re.match(r'^()error: (.*)$', line)
+        if m:
+            head = ('%s: ' % m.group(1)) if m.group(1) else ('%s: ' % src)
+            raise DeckError('\n'.join([head + m.group(2)] + lines[k + 1:]))
+    raise DeckError('%s: refused by yfdem\'s reader (exit %d): %s' % (src, p.returncode, ' '.join(lines)[-300:]))
+
+
 def convert(src, out):
     base = os.path.basename(out)
     for name in (base + '.nodes', base + '.tris', base + '.h5'):
         deck_word(name)   # refused before anything is written
-    K = parse(src)
+    try:
+        K = parse(src)
+    except Exception:
+        reader_check(src)   # the reader's words where it refuses the deck too
+        raise
     ctl = CONTROL.get(src, {})
     if not ctl.get('ydoit') and not K.order:
         return nothing_computed(src, out, ctl)
+    reader_check(src)
     validate(K, src)
     g = lambda k, d=0: K.get(k, d)
     ne, nn, nprop = g('YDE/NELEM'), g('YDN/NNOPO'), g('YDPE/NPROP')
@@ -987,6 +1074,15 @@ def convert(src, out):
         nobf = arr1(K, 'YDN/I1NOBF', nn, 0)
         iwfast = g('YDC/IWFAST', 1)
         part = [e for e in range(ne) if iwfast == 0 or meshed[e] or any(nobf[v] == 1 for v in elto[e][:3])]
+        # Y2D's pair penalty is the smaller D1PEPE of the two properties (ALGORITHMS 6): a triangle of a property
+        # with D1PEPE 0 gets no contact force from any couple, and a native contact rule refuses its material
+        # (no pen_n): left out of contact.  The converter kept it, and the converted deck was refused, 2026-11-29.
+        nopen = sorted({elpr[e] for e in part if not float(pen_n[elpr[e]]) > 0})
+        if nopen:
+            part = [e for e in part if float(pen_n[elpr[e]]) > 0]
+            note('propert%s %s: D1PEPE 0, so no couple with %s triangles carries a contact force in Y2D (the pair '
+                 'penalty is the smaller D1PEPE): left out of contact' % (
+                     'y' if len(nopen) == 1 else 'ies', ' '.join(map(str, nopen)), 'its' if len(nopen) == 1 else 'their'))
         L.append('# contact (Y2D MICOUP %d, buffer DIEZON, IWFAST %d: %d of %d triangles take part)'
                  % (g('YDI/MICOUP'), iwfast, len(part), ne))
         if part:
@@ -1049,9 +1145,12 @@ def convert(src, out):
     tables = {}
     if 'YDPN/D3PNFAC' in K and npts > 0:
         (d1, d2, d3), flat = K['YDPN/D3PNFAC']
+        # entries not given keep the default 0, as Y2D and yfdem read them (NPNFACT above the points given,
+        # sets beyond those given, no factor row): the converter indexed past the list, 2026-11-29
+        fac = lambda i, s, p: flat[(i * d2 + s) * d3 + p] if i < d1 and s < d2 and p < d3 else 0.0
         if flat and flat[0] != -1:
             for s in range(min(d2, nset)):
-                tables[s] = [(flat[(0 * d2 + s) * d3 + p], flat[(1 * d2 + s) * d3 + p]) for p in range(npts)]
+                tables[s] = [(fac(0, s, p), fac(1, s, p)) for p in range(npts)]
     L.append('# boundary conditions: one group per Y2D BC set (node ids)')
     hist_of = {}      # set -> native table (tuple of (t, v)), None = factor 1.0 throughout
     for s in range(nset):
@@ -1078,10 +1177,21 @@ def convert(src, out):
         # held in both directions, free in both, or frozen in both: the same in any frame
         any_frame = (not hist and amps == (0.0, 0.0) and tuple(kinds) in ((3, 3), (1, 1))) or all(frozen)
         if (xx[s], xy_[s], yx[s], yy[s]) != (1, 0, 0, 1) and not any_frame:
-            L.append('# NOT TRANSLATED: BC set %d uses the local frame x = (%g, %g), y = (%g, %g): kinds %d/%d, '
-                     'amplitudes %g/%g' % (s, xx[s], xy_[s], yx[s], yy[s], fx[s], fy[s], ax[s], ay[s]))
-            diff('BC set %d (a rotated local frame) not translated: its nodes are free' % s)
-            continue
+            if kinds[0] == kinds[1] and kinds[0] in (1, 2, 3):
+                # the same kind in both local directions: Y2D's v = R u with u updated by that kind (ALGORITHMS 7)
+                # is the same kind in global x and y with the amplitude R A (force, acceleration or velocity; the
+                # edge loads and gravity act through R R^-1 = 1); the converter dropped such a set (2026-11-29)
+                ex, ey = (float(xx[s]), float(xy_[s])), (float(yx[s]), float(yy[s]))
+                amps = (ex[0] * amps[0] + ey[0] * amps[1], ex[1] * amps[0] + ey[1] * amps[1])
+                note('BC set %d: kinds %d/%d in the local frame x = (%g, %g), y = (%g, %g): the same kind in global '
+                     'x and y, amplitudes turned into it (%r, %r)' % (s, kinds[0], kinds[1], ex[0], ex[1], ey[0],
+                                                                        ey[1], amps[0], amps[1]))
+            else:
+                L.append('# NOT TRANSLATED: BC set %d uses the local frame x = (%g, %g), y = (%g, %g): kinds %d/%d, '
+                         'amplitudes %g/%g' % (s, xx[s], xy_[s], yx[s], yy[s], fx[s], fy[s], ax[s], ay[s]))
+                diff('BC set %d (a rotated local frame, kinds %d/%d: a condition of another kind in each local '
+                     'direction) not translated: its nodes are free' % (s, kinds[0], kinds[1]))
+                continue
         fixed = ''.join(d for d, k, a in zip('xy', kinds, amps) if k == 3 and a == 0 and not hist)
         # kinds other than 1, 2, 3 freeze the velocity at its initial value (forces ignored): held
         # when it is 0, else a prescribed velocity, one fix per distinct initial velocity
@@ -1130,11 +1240,20 @@ def convert(src, out):
         if any(k == 1 and a != 0 for k, a in zip(kinds, amps)) and any(len(copies[n]) > 1 for n in nodes_s):
             note('BC set %d: a point force on a node with c copies (joint insertion) is written as c F: '
                  '`load point` shares it, Y2D gives every copy F' % s)
-        if float(at[s]) != 0.0:
+        if float(at[s]) != 0.0 and below_edge_threshold(at[s], hist_of[s]):
+            note('BC set %d: edge shear D1PNAT %r, times its time factor, never exceeds 1e-10: Y2D loads no edge '
+                 'with it (ALGORITHMS 2.5, 9); left out' % (s, float(at[s])))
+        elif float(at[s]) != 0.0:
             L.append('# NOT TRANSLATED: BC set %d: edge shear traction D1PNAT = %r' % (s, float(at[s])))
             diff('BC set %d: edge shear traction D1PNAT %r not translated (the native traction has a fixed '
                  'direction, Y2D\'s follows the edge)' % (s, float(at[s])))
     L.append('')
+    for s_ in hist_of:
+        if float(ap[s_]) != 0.0 and below_edge_threshold(ap[s_], hist_of[s_]):
+            note('BC set %d: edge pressure D1PNAP %r, times its time factor, never exceeds 1e-10: Y2D loads no '
+                 'edge with it (ALGORITHMS 2.5, 9), nor an edge between it and another pressure set; left out'
+                 % (s_, float(ap[s_])))
+            ap[s_] = 0.0
     pressure_loads(L, note, diff, ne, elto, meshed, nopr, nset, ap, hist_of, ids_of_node)
 
     # ---- nodes Y2D never moves: a BC set outside 0..NPNSET-1 (FORMAT.md 6), or a lumped mass of

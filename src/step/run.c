@@ -486,8 +486,10 @@ static void stage_elements(YfSim *s) {
         yf_numeric_error(s->step + 1, "triangle %d (material %s) inverted: J = %.6g (area ratio current/initial); "
                          "the time step (%.6g s, stable limit %.6g s of the undeformed mesh, set by %s) may be too "
                          "large for the mesh as compressed (its limit is lower: try a smaller 'timestep auto "
-                         "safety'), or the body is crushed beyond what the law allows",
-                         m->tri.id[e], m->mat[m->tri.mat[e]].name, R.blk_badJ[b], s->dt, s->dt_limit, s->dt_limiter);
+                         "safety'%s), or the body is crushed beyond what the law allows",
+                         m->tri.id[e], m->mat[m->tri.mat[e]].name, R.blk_badJ[b], s->dt, s->dt_limit, s->dt_limiter,
+                         /* a Y2D deck's step is its DCSTEC, which `yfdem DECK.y` has no timestep command for */
+                         s->y2d ? ", or a smaller DCSTEC in the .y deck" : "");
       /* a non-finite stress is an overflow of a growing instability: say what limits the step */
       yf_numeric_error(s->step + 1, "triangle %d (material %s): stress is not finite (not a number, or beyond a double): the motion "
                        "blew up (time step %.6g s, stable limit %.6g s set by %s)", m->tri.id[e],

@@ -451,6 +451,18 @@ static const char *not_number_why(const char *t) {
                "e.g. 1.5e5 for 1.5d5";
     }
   }
+  /* a decimal comma (a European locale's output): Y2D's %le reads up to the ',' and the rest is a stray token */
+  if (n < sizeof buf && strchr(t, ',') && strchr(t, ',') == strrchr(t, ',')) {
+    memcpy(buf, t, n + 1);
+    *strchr(buf, ',') = '.';
+    double v;
+    if (parse_real_tok(buf, &v)) {
+      static char why[160]; /* the reader is one thread; the message is printed before the next call */
+      snprintf(why, sizeof why, "a decimal comma: Y2D reads C reals (%%le) with a decimal point and stops at the ','; "
+               "write %s", buf);
+      return why;
+    }
+  }
   char *end;
   errno = 0;
   double v = strtod(t, &end);
@@ -1498,8 +1510,9 @@ static void check_deck(YfY2d *y) {
             keydefs[Y2D_PN_NPNFACT].full);
   }
 
-  /* ---- contact participation (FORMAT.md 5.3) ---- */
-  if (y->micoup > 0 && y->iwfast > 0) {
+  /* ---- contact participation (FORMAT.md 5.3): the model (y2d_model.c) takes every triangle with IWFAST 0
+   * only, so any other value, below 0 too, leaves unflagged boundaries out of contact ---- */
+  if (y->micoup > 0 && y->iwfast != 0) {
     unsigned char *sel = yf_calloc((size_t)y->nelem + 1, 1, "y2d selection");
     for (long e = 0; e < y->nelem; e++) {
       int meshed = 0;
@@ -1527,8 +1540,8 @@ static void check_deck(YfY2d *y) {
     if (nflag) {
       YfLoc l = loc_of(y, Y2D_N_I1NOBF);
       yf_warn(&l, "%ld boundary node(s) of unjointed bodies have %s != 1 (first: node %ld): with "
-              "IWFAST > 0 their triangles take no part in contact, as in Y2D", nflag,
-              keydefs[Y2D_N_I1NOBF].full, first);
+              "IWFAST = %ld (not 0) their triangles take no part in contact, as in Y2D with IWFAST > 0", nflag,
+              keydefs[Y2D_N_I1NOBF].full, first, y->iwfast);
     }
   }
 

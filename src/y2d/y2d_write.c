@@ -300,6 +300,47 @@ void y2d_write(YfSim *s, const char *path, long steps, long every, const YfLoc *
     }
     nbc[i].hist = h < 0 ? -1 : h;
   }
+  /* Y2D moves no node of lumped mass <= 1e-10 in the deck's units (ALGORITHMS 7, 9), yfdem moves every node: a
+   * scene in tonnes and millimetres with fine cells has such nodes, and Y2D would leave them where they are.
+   * Masses as both programs lump them, rho A0 / 3 per triangle corner: summed over a node's triangles, or, in
+   * a fractured body, one triangle's for each of its copies.  A node held in both directions and at rest
+   * stays put in both programs: not refused (with an initial velocity Y2D would keep it in its kinetic
+   * energy, yfdem's fix zeroes it). */
+#define HELD_AT_REST(i) (nbc[i].k[0] == 3 && nbc[i].a[0] == 0 && nbc[i].k[1] == 3 && nbc[i].a[1] == 0 && nvx[i] == 0 && \
+                         nvy[i] == 0)
+  {
+    long nlight = 0;
+    int first = -1;
+    double mfirst = 0.0;
+    double *msum = yf_calloc((size_t)nn + 1, sizeof(double), "write_y2d masses");
+    for (int t = 0; t < nt; t++) {
+      const int *v = tv + 3 * t;
+      double a0 = 0.5 * fabs((nx0[v[1]] - nx0[v[0]]) * (ny0[v[2]] - ny0[v[0]]) -
+                             (ny0[v[1]] - ny0[v[0]]) * (nx0[v[2]] - nx0[v[0]]));
+      double mc = m->mat[pmat[tprop[t]]].rho * a0 / 3.0;
+      for (int c = 0; c < 3; c++) {
+        if (bset[m->tri.body[t]] < 0) {
+          msum[v[c]] += mc;
+        } else if (mc <= 1e-10 && !HELD_AT_REST(v[c])) {
+          if (first < 0) first = v[c], mfirst = mc;
+          nlight++;
+        }
+      }
+    }
+    for (int i = 0; i < nn; i++)
+      if (ouse[i] && msum[i] <= 1e-10 && !HELD_AT_REST(i)) {
+        if (first < 0) first = i, mfirst = msum[i];
+        nlight++;
+      }
+    free(msum);
+    if (nlight)
+      yf_deck_error(loc, "write_y2d: %ld node%s (first: node %d, lumped mass %g) ha%s a mass at or below Y2D's threshold "
+                    "1e-10 in the deck's units: Y2D never moves such a node (ALGORITHMS.md 7, 9), yfdem does; write the "
+                    "scene in units that make the masses larger (kg and m rather than tonnes and mm), use coarser "
+                    "cells, or hold those nodes at rest (fix ... fixed xy)", nlight, nlight == 1 ? " (or copy)" : "s (or copies)",
+                    m->node.id[first], mfirst, nlight == 1 ? "s" : "ve");
+  }
+#undef HELD_AT_REST
   /* Y2D loads every triangle edge whose two nodes carry an edge load: no more than yfdem's */
   long ny2d = 0;
   for (int t = 0; t < nt; t++)
