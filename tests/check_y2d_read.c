@@ -729,6 +729,50 @@ START_TEST(test_iwfast_negative_warned) {
 }
 END_TEST
 
+/* Y2D prints a progress line every ICSHTF steps (FORMAT.md 1.5); `yfdem DECK.y` printed the thermo
+ * line at the run's start and end only, so a long batch run's log showed nothing until it ended
+ * (2026-11-29 sweep).  Now the thermo line comes every ICSHTF steps: tiny.y run for 10 steps with
+ * ICSHTF 4 logs steps 0, 4, 8 and 10; ICSHTF 0 (no progress lines) logs 0 and 10. */
+static int thermo_steps(const char *log, long *steps, int max) {
+  int n = 0;
+  const char *p = strstr(log, "      Step ");
+  while (p && (p = strchr(p, '\n')) && n < max) {
+    p++;
+    long st;
+    double t;
+    if (sscanf(p, "%ld %lf", &st, &t) != 2) break;
+    steps[n++] = st;
+  }
+  return n;
+}
+
+START_TEST(test_progress_every_icshtf) {
+  char *text = yft_slurp("tests/y2d/tiny.y", 0);
+  ck_assert_ptr_nonnull(text);
+  const long every[2] = {4, 0}, want[2][4] = {{0, 4, 8, 10}, {0, 10, -1, -1}};
+  const int nwant[2] = {4, 2};
+  for (int c = 0; c < 2; c++) {
+    char *deck = malloc(strlen(text) + 128);
+    sprintf(deck, "/YD/YDC/ICSHTF %ld\n/YD/YDC/MCSTEP 10\n%s", every[c], text);
+    char *err = NULL, *dir = NULL, path[1200];
+    int code = yft_run_binary("progress.y", deck, "-log run.log", &err, &dir);
+    ck_assert_msg(code == 0, "exit %d: %s", code, err);
+    snprintf(path, sizeof path, "%s/run.log", dir);
+    char *log = yft_slurp(path, 0);
+    ck_assert_ptr_nonnull(log);
+    long steps[16];
+    int n = thermo_steps(log, steps, 16);
+    ck_assert_msg(n == nwant[c], "ICSHTF %ld: %d thermo lines:\n%s", every[c], n, log);
+    for (int k = 0; k < n; k++) ck_assert_int_eq(steps[k], want[c][k]);
+    free(log);
+    free(err);
+    free(dir);
+    free(deck);
+  }
+  free(text);
+}
+END_TEST
+
 Suite *y2d_read_suite(void) {
   Suite *s = suite_create("y2d_read");
   TCase *tc = tcase_create("reference_decks");
@@ -747,6 +791,7 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_diedi_delays_first_search);
   tcase_add_test(tc, test_frozen_set);
   tcase_add_test(tc, test_iwfast_negative_warned);
+  tcase_add_test(tc, test_progress_every_icshtf);
   tcase_add_test(tc, test_spare_properties);
   tcase_add_test(tc, test_spare_joint_sets);
   tcase_add_test(tc, test_value_lines);

@@ -744,6 +744,11 @@ void y2d_load(YfSim *s, const char *path, double volfac, const YfLoc *from) { lo
 void y2d_run_file(YfSim *s, const char *path) {
   if (!load(s, path, 0.5, NULL, 1)) return; /* $YSTOP before any $YDOIT: Y2D computes nothing */
   s->y2d_program = s->y2d->path;
+  /* Y2D prints a progress line every ICSHTF steps (FORMAT.md 1.5): the thermo line takes its place,
+   * so a batch run's log shows the run going, as Y2D's does (only `yfdem DECK.y`: a native deck
+   * that reads a .y keeps its own thermo) */
+  const long every = deck_of(s->y2d)->icshtf;
+  if (every > 0) s->thermo_every = every;
   long n = s->last_step - s->step;
   run_steps(s, n > 0 ? n : 0);
 }
