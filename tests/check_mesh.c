@@ -409,13 +409,9 @@ START_TEST(test_gmsh_parametric_scale_mapping) {
 }
 END_TEST
 
-START_TEST(test_gmsh_hand_written) {
-  YfSim *s = new_sim();
-  YfModel *m = &s->model;
-  int soft = model_add_material(m, "soft"), hard = model_add_material(m, "hard");
-  char line[1200];
-  snprintf(line, sizeof line, "gmsh sq %s", repo_path("decks/meshes/square4.msh"));
-  run(s, cmd_mesh, "mesh", line);
+/* The scene of square4.msh (or of the same mesh partitioned): 5 nodes, 4 triangles covering the
+ * unit square, tags up to 3 soft and above hard, the curve 'base' on y = 0 of length 1. */
+static void check_square4(YfModel *m, int soft, int hard) {
   ck_assert_int_eq(m->node.n, 5);
   ck_assert_int_eq(m->tri.n, 4);
   assert_all_ccw(m); /* triangle 3 is clockwise in the file */
@@ -433,6 +429,16 @@ START_TEST(test_gmsh_hand_written) {
   int nb;
   ck_assert_double_eq_tol(boundary_length(m, gb, 0.5, 0.5, &nb), 1.0, 1e-15);
   ck_assert_int_eq(nb, 1);
+}
+
+START_TEST(test_gmsh_hand_written) {
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  int soft = model_add_material(m, "soft"), hard = model_add_material(m, "hard");
+  char line[1200];
+  snprintf(line, sizeof line, "gmsh sq %s", repo_path("decks/meshes/square4.msh"));
+  run(s, cmd_mesh, "mesh", line);
+  check_square4(m, soft, hard);
   free_sim(s);
 }
 END_TEST
@@ -539,6 +545,48 @@ START_TEST(test_gmsh_malformed) {
   bad_msh("z.msh", "0.5 0.5 0\n", "0.5 0.5 0.1\n", 29, "needs the mesh in the plane z = 0");
   bad_msh("ent.msh", "2 2 2 2\n", "2 7 2 2\n", 38, "surface 7, which $Entities does not define");
   bad_msh("start.msh", "$MeshFormat\n", "$Mesh\n", 1, "must start with $MeshFormat");
+}
+END_TEST
+
+/* square4.msh as Gmsh writes it once partitioned (Mesh > Partition, or gmsh -part 2): the nodes
+ * and elements sit in partition entities, which $PartitionedEntities lists with their parents'
+ * physical tags (and ghost entities, here one); the scene is that of the unpartitioned file.
+ * Before, the reader looked the element blocks up in $Entities and refused the file. */
+START_TEST(test_gmsh_partitioned) {
+  static const char *const sub[][2] = {
+      {"$EndEntities\n", "$EndEntities\n$PartitionedEntities\n2\n1\n5 1\n0 1 2 0\n"
+                         "3 1 1 1 1 0 0 0 1 0 0 1 10 0\n"
+                         "3 2 1 1 1 0 0 0 1 1 0 1 1 0\n"
+                         "4 2 2 1 2 0 0 0 1 1 0 1 2 0\n$EndPartitionedEntities\n"},
+      {"1 1 0 2\n", "1 3 0 2\n"}, {"2 1 0 3\n", "2 3 0 3\n"},
+      {"1 1 1 1\n", "1 3 1 1\n"}, {"2 1 2 2\n", "2 3 2 2\n"}, {"2 2 2 2\n", "2 4 2 2\n"}};
+  static char txt[4096];
+  snprintf(txt, sizeof txt, "%s", SQ4);
+  for (size_t k = 0; k < sizeof sub / sizeof sub[0]; k++) {
+    char *p = strstr(txt, sub[k][0]);
+    ck_assert_ptr_nonnull(p);
+    char rest[4096];
+    snprintf(rest, sizeof rest, "%s", p + strlen(sub[k][0]));
+    snprintf(p, sizeof txt - (size_t)(p - txt), "%s%s", sub[k][1], rest);
+  }
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  int soft = model_add_material(m, "soft"), hard = model_add_material(m, "hard");
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s", write_tmp("part.msh", txt));
+  run(s, cmd_mesh, "mesh", cmd);
+  check_square4(m, soft, hard);
+  free_sim(s);
+  /* an element block in an entity $PartitionedEntities lacks names that section */
+  char *p = strstr(txt, "2 4 2 2\n");
+  p[2] = '7';
+  s = new_sim();
+  model_add_material(&s->model, "soft");
+  model_add_material(&s->model, "hard");
+  snprintf(cmd, sizeof cmd, "gmsh sq %s", write_tmp("part7.msh", txt));
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "part7.msh:47: error:",
+              "surface 7, which $PartitionedEntities does not define");
+  free_sim(s);
 }
 END_TEST
 
@@ -911,6 +959,7 @@ Suite *mesh_suite(void) {
   tcase_add_test(tc, test_gmsh_hand_written);
   tcase_add_test(tc, test_gmsh_same_as_file);
   tcase_add_test(tc, test_gmsh_malformed);
+  tcase_add_test(tc, test_gmsh_partitioned);
   tcase_add_test(tc, test_gmsh_deck_errors);
   tcase_add_test(tc, test_gmsh_no_entities_unnamed);
   suite_add_tcase(s, tc);

@@ -3,8 +3,9 @@
  * The file is read whole into memory and walked token by token, keeping the line of each token
  * so that every complaint names FILE.msh:LINE (and the deck line of the mesh command).  Sections
  * used: $MeshFormat (must say 4.1, ASCII), $PhysicalNames, $Entities (which entity belongs to
- * which physical groups), $Nodes (with or without parametric coordinates) and $Elements; any
- * other section is skipped.
+ * which physical groups), $PartitionedEntities (the same for the partition entities that hold the
+ * elements of a mesh partitioned in Gmsh; its partitions are ignored), $Nodes (with or without
+ * parametric coordinates) and $Elements; any other section is skipped.
  *
  * What becomes what:
  *   - 3-node triangles (type 2) in surfaces become triangles, turned counter-clockwise when the
@@ -246,8 +247,9 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
   int nent = 0, capent = 0, npool = 0, cappool = 0;
   Ent *ent = NULL;
   long *pool = NULL;
-  YfIdMap emap;
+  YfIdMap emap, pmap; /* entities of $Entities and of $PartitionedEntities, by tag * 4 + dim */
   idmap_init(&emap);
+  idmap_init(&pmap);
   int npn = 0;
   PhysName *pn = NULL;
 
@@ -266,7 +268,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
   long npair = 0, cappair = 0;
   int *pair = NULL; /* 2 per pair: entity, local node */
 
-  int have_fmt = 0, have_ent = 0, have_nodes = 0, have_elems = 0;
+  int have_fmt = 0, have_ent = 0, have_pent = 0, have_nodes = 0, have_elems = 0;
 
   while (msh_next(r)) {
     r->section = NULL;
@@ -332,9 +334,20 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       }
       msh_expect(r, "$EndPhysicalNames", " (more names than the count declares?)");
 
-    } else if (!strcmp(r->tok, "$Entities")) {
-      if (have_ent) msh_fail(r, r->tokline, "a second $Entities section");
-      r->section = "$Entities";
+    } else if (!strcmp(r->tok, "$Entities") || !strcmp(r->tok, "$PartitionedEntities")) {
+      /* a mesh partitioned in Gmsh keeps its elements in partition entities, listed in
+       * $PartitionedEntities with the physical tags of their parents: elements refer to those */
+      int part = !strcmp(r->tok, "$PartitionedEntities");
+      if (part ? have_pent : have_ent) msh_fail(r, r->tokline, "a second %s section", r->tok);
+      r->section = part ? "$PartitionedEntities" : "$Entities";
+      YfIdMap *map = part ? &pmap : &emap;
+      if (part) {
+        long npart = msh_long(r, "the number of partitions");
+        if (npart < 0) msh_fail(r, r->tokline, "bad number of partitions %ld", npart);
+        long nghost = msh_long(r, "the number of ghost entities");
+        if (nghost < 0 || nghost > 100000000) msh_fail(r, r->tokline, "bad number of ghost entities %ld", nghost);
+        for (long k = 0; k < 2 * nghost; k++) msh_long(r, k % 2 ? "a ghost entity's partition" : "a ghost entity tag");
+      }
       long cnt[4];
       for (int d = 0; d < 4; d++) {
         cnt[d] = msh_long(r, "the number of entities");
@@ -346,6 +359,13 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
           snprintf(what, sizeof what, "a %s entity", dim_word[d]);
           long tag = msh_long(r, what);
           int line = r->tokline;
+          if (part) { /* parent dimension and tag, the partitions it belongs to */
+            msh_long(r, "the parent's dimension");
+            msh_long(r, "the parent's tag");
+            long np = msh_long(r, "the number of partitions of an entity");
+            if (np < 0 || np > 100000000) msh_fail(r, r->tokline, "bad number of partitions %ld", np);
+            for (long k = 0; k < np; k++) msh_long(r, "a partition tag");
+          }
           for (int k = 0; k < (d == 0 ? 3 : 6); k++) msh_double(r, d == 0 ? "a point coordinate" : "a bounding box");
           long np = msh_long(r, "the number of physical tags");
           if (np < 0 || np > 100000) msh_fail(r, r->tokline, "bad number of physical tags %ld", np);
@@ -370,12 +390,13 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
             if (nb < 0 || nb > 100000000) msh_fail(r, r->tokline, "bad number of bounding entities %ld", nb);
             for (long k = 0; k < nb; k++) msh_long(r, "a bounding entity tag");
           }
-          if (!idmap_put(&emap, (long long)tag * 4 + d, nent))
+          if (!idmap_put(map, (long long)tag * 4 + d, nent))
             msh_fail(r, line, "%s %ld is defined twice", dim_word[d], tag);
           nent++;
         }
-      msh_expect(r, "$EndEntities", " (more entities than the counts declare?)");
-      have_ent = 1;
+      msh_expect(r, part ? "$EndPartitionedEntities" : "$EndEntities", " (more entities than the counts declare?)");
+      if (part) have_pent = 1;
+      else have_ent = 1;
 
     } else if (!strcmp(r->tok, "$Nodes")) {
       if (have_nodes) msh_fail(r, r->tokline, "a second $Nodes section");
@@ -466,7 +487,11 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
           msh_fail(r, r->tokline, "element block %ld declares %ld elements, more than the %ld left of "
                    "the header's total %ld", b + 1, nin, ntot - ne, ntot);
         int ei = -1;
-        if (have_ent) {
+        if (have_pent) {
+          ei = ent_find(&pmap, (int)edim, etag);
+          if (ei < 0) msh_fail(r, bline, "element block in %s %ld, which $PartitionedEntities does not define",
+                               dim_word[edim], etag);
+        } else if (have_ent) {
           ei = ent_find(&emap, (int)edim, etag);
           if (ei < 0) msh_fail(r, bline, "element block in %s %ld, which $Entities does not define",
                                dim_word[edim], etag);
@@ -736,6 +761,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
   free(used);
   idmap_free(&nmap);
   idmap_free(&emap);
+  idmap_free(&pmap);
   free(pn);
   free(pool);
   free(ent);
