@@ -101,6 +101,33 @@ static int is_option(const char *w) {
   return 0;
 }
 
+/* LAMMPS's options that yfdem spells otherwise or lacks: a LAMMPS user's '-i deck', '-v n 10',
+ * '-sc none' or '-pk omp 2' was "unknown or incomplete option" with no way forward. */
+static const char *lammps_hint(const char *w) {
+  static const char *const hint[][2] = {
+      {"-i", "yfdem reads the deck with -in FILE"},
+      {"-v", "yfdem sets a variable with -var NAME VALUE"},
+      {"-l", "yfdem names the log with -log FILE|none"},
+      {"-e", "yfdem's -echo takes no value: it prints each command on the screen and in the log"},
+      {"-sc", "yfdem has no -screen: send the screen elsewhere with > FILE (or > /dev/null)"},
+      {"-screen", "yfdem has no -screen: send the screen elsewhere with > FILE (or > /dev/null)"},
+      {"-pk", "yfdem sets its OpenMP threads with -threads N"},
+      {"-sf", "yfdem's steps are OpenMP ones already: set their threads with -threads N"},
+      {"-k", "yfdem sets its OpenMP threads with -threads N"},
+      {"-nc", "yfdem writes no citation file"},
+      {"-nocite", "yfdem writes no citation file"},
+      {"--in", "yfdem's options take one dash: -in FILE"},
+      {"--var", "yfdem's options take one dash: -var NAME VALUE"},
+      {"--log", "yfdem's options take one dash: -log FILE|none"},
+      {"--summary", "yfdem's options take one dash: -summary FILE"},
+      {"--threads", "yfdem's options take one dash: -threads N|auto"},
+      {"--echo", "yfdem's options take one dash: -echo"},
+  };
+  for (size_t k = 0; k < sizeof hint / sizeof hint[0]; k++)
+    if (!strcmp(w, hint[k][0])) return hint[k][1];
+  return NULL;
+}
+
 /* An output option on a file another output writes, or on the deck itself. */
 static int refuse_claim(const char *opt, const char *path, const char *by) {
   int input = !strncmp(by, "the deck being read", 19);
@@ -176,6 +203,16 @@ int main(int argc, char **argv) {
       log_path = argv[++i];
     } else if (!strcmp(o, "-echo")) {
       echo = 1;
+      /* LAMMPS's '-echo screen|log|both|none' takes a value, yfdem's none: the value became the
+       * deck ("the deck is already 'screen'", or a deck named 'none' that cannot be opened) */
+      static const char *const lmp_echo[] = {"screen", "log", "both", "none", NULL};
+      for (int k = 0; i + 1 < argc && lmp_echo[k]; k++)
+        if (!strcmp(argv[i + 1], lmp_echo[k]) && access(argv[i + 1], F_OK) != 0) {
+          fprintf(stderr, "yfdem: -echo '%s': -echo takes no value (LAMMPS's -echo screen|log|both|none); "
+                  "-echo alone prints each command on the screen and in the log, without it none is printed\n",
+                  argv[i + 1]);
+          return YF_EXIT_DECK;
+        }
     } else if (!strcmp(o, "-summary") && i + 1 < argc) {
       /* an empty name was ignored, a long one cut short: the summary went nowhere, or elsewhere */
       if (!argv[i + 1][0] || strlen(argv[i + 1]) >= sizeof g_sim.summary_path) {
@@ -217,7 +254,19 @@ int main(int argc, char **argv) {
       }
       in = o;
     } else {
-      fprintf(stderr, "yfdem: unknown or incomplete option '%s' (try yfdem -h)\n", o);
+      const char *h = lammps_hint(o);
+      static const char *const need[][2] = {{"-in", "FILE"}, {"-var", "NAME VALUE"}, {"-log", "FILE|none"},
+                                            {"-summary", "FILE"}, {"-threads", "N|auto"}};
+      for (size_t k = 0; k < sizeof need / sizeof need[0]; k++)
+        if (!strcmp(o, need[k][0])) {
+          fprintf(stderr, "yfdem: %s expects %s after it, and the command line ends before\n", o, need[k][1]);
+          return YF_EXIT_DECK;
+        }
+      if (h) fprintf(stderr, "yfdem: unknown option '%s': %s (yfdem -h lists the options)\n", o, h);
+      else
+        fprintf(stderr, "yfdem: unknown or incomplete option '%s': the options are -in FILE, -var NAME VALUE, "
+                "-log FILE|none, -echo, -summary FILE, -threads N|auto, -h [COMMAND], -reference, -version "
+                "(yfdem -h)\n", o);
       return YF_EXIT_DECK;
     }
   }

@@ -355,6 +355,35 @@ START_TEST(test_var_takes_one_value) {
 }
 END_TEST
 
+/* LAMMPS's spellings on yfdem's command line: '-echo screen' made 'screen' the deck ("the deck is
+ * already"), '-v', '-sc none', '-pk omp 2' were "unknown or incomplete option" with no way on, and
+ * an option cut short ('-var n' at the end) did not say what it lacked. Each now names the word at
+ * fault and yfdem's way, exit 1, before anything runs. */
+START_TEST(test_lammps_options_hinted) {
+  static const struct {
+    const char *args, *msg;
+  } cases[] = {
+      {"-echo screen", "yfdem: -echo 'screen': -echo takes no value (LAMMPS's -echo screen|log|both|none)"},
+      {"-echo none", "yfdem: -echo 'none': -echo takes no value"},
+      {"-v nx 4", "yfdem: unknown option '-v': yfdem sets a variable with -var NAME VALUE"},
+      {"-sc none", "yfdem: unknown option '-sc': yfdem has no -screen: send the screen elsewhere with > FILE"},
+      {"-pk omp 2", "yfdem: unknown option '-pk': yfdem sets its OpenMP threads with -threads N"},
+      {"-x", "yfdem: unknown or incomplete option '-x': the options are -in FILE, -var NAME VALUE,"},
+      {"-var nx", "yfdem: -var expects NAME VALUE after it, and the command line ends before"},
+      {"-threads", "yfdem: -threads expects N|auto after it"},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+    char *err, *dir;
+    int rc = yft_run_binary("a.deck", BAR "run 2\nprint \"done\"\n", cases[k].args, &err, &dir);
+    ck_assert_msg(rc == 1 && strstr(err, cases[k].msg), "'%s': exit %d: %s", cases[k].args, rc, err);
+    char *log = file_in(dir, "log.yfdem"); /* refused before the deck was read */
+    ck_assert_msg(!log, "'%s' ran the deck", cases[k].args);
+    free(err);
+    free(dir);
+  }
+}
+END_TEST
+
 /* 'run 0' (the LAMMPS idiom for setting up and reading quantities) printed the thermo line of step 0
  * twice, once as the run's start and once as its end; LAMMPS prints it once, and so does yfdem
  * now, while 'run 5' with thermo 5 still prints steps 0 and 5. */
@@ -621,6 +650,7 @@ Suite *habits_suite(void) {
   tcase_add_test(t, test_summary_keys_without_run);
   tcase_add_test(t, test_metrics_log_survives_kill);
   tcase_add_test(t, test_second_interrupt_leaves_no_tmp);
+  tcase_add_test(t, test_lammps_options_hinted);
   suite_add_tcase(s, t);
   return s;
 }
