@@ -318,6 +318,10 @@ int main(int argc, char **argv) {
       deck_run_file(g_deck, in, NULL);
     }
   } else {
+    /* 'yfdem' alone waited for a deck on the terminal without a word: say what it waits for */
+    if (isatty(0) && yf_writer())
+      fprintf(stderr, "yfdem: reading the deck from the terminal: type commands, end with Ctrl-D "
+              "(yfdem -in FILE or yfdem < FILE reads a file; yfdem -h lists the options)\n");
     deck_run_stream(g_deck, par_stdin(stdin, &g_sim.interrupted), "<stdin>");
   }
   int code = yf_finish(YF_EXIT_OK);

@@ -384,6 +384,43 @@ START_TEST(test_lammps_options_hinted) {
 }
 END_TEST
 
+/* A deck without a command ('yfdem < /dev/null', an empty or comment-only file a generator left)
+ * ran nothing and exited 0 in silence, as a run that went well; it still exits 0 but warns.  And
+ * 'yfdem' alone at a terminal waited for a deck without a word: it now says what it waits for
+ * (run under script(1), which gives it a terminal). */
+START_TEST(test_empty_deck_and_terminal_stdin) {
+  char *dir = yft_deck_dir("c.deck", "# a deck to come\n\n");
+  yft_put_file(dir, "e.deck", "");
+  char cmd[4096];
+  snprintf(cmd, sizeof cmd, "cd %s && %s -log none -in c.deck 2> err1.txt; echo $? > rc1.txt; "
+           "%s -log none < e.deck 2> err2.txt; echo $? > rc2.txt; "
+           "printf 'print \"from the terminal\"\\n\\004' | timeout 60 script -qec '%s -log none' /dev/null > tty.txt 2>&1; "
+           "echo $? > rc3.txt",
+           dir, yft_binary(), yft_binary(), yft_binary());
+  ck_assert_int_eq(system(cmd), 0);
+  const char *want[2] = {"c.deck:1: warning: the deck holds no command (it is empty, or only comments and blank "
+                         "lines): nothing was done",
+                         "<stdin>:1: warning: the deck holds no command"};
+  for (int k = 0; k < 2; k++) {
+    char name[32];
+    snprintf(name, sizeof name, "err%d.txt", k + 1);
+    char *e = file_in(dir, name);
+    snprintf(name, sizeof name, "rc%d.txt", k + 1);
+    char *c = file_in(dir, name);
+    ck_assert_msg(e && c && atoi(c) == 0 && strstr(e, want[k]), "exit %s: %s", c, e);
+    free(e);
+    free(c);
+  }
+  char *t = file_in(dir, "tty.txt"), *c = file_in(dir, "rc3.txt");
+  ck_assert_msg(t && c && atoi(c) == 0 &&
+                strstr(t, "yfdem: reading the deck from the terminal: type commands, end with Ctrl-D") &&
+                strstr(t, "from the terminal"), "exit %s: %s", c, t);
+  free(t);
+  free(c);
+  free(dir);
+}
+END_TEST
+
 /* 'run 0' (the LAMMPS idiom for setting up and reading quantities) printed the thermo line of step 0
  * twice, once as the run's start and once as its end; LAMMPS prints it once, and so does yfdem
  * now, while 'run 5' with thermo 5 still prints steps 0 and 5. */
@@ -651,6 +688,7 @@ Suite *habits_suite(void) {
   tcase_add_test(t, test_metrics_log_survives_kill);
   tcase_add_test(t, test_second_interrupt_leaves_no_tmp);
   tcase_add_test(t, test_lammps_options_hinted);
+  tcase_add_test(t, test_empty_deck_and_terminal_stdin);
   suite_add_tcase(s, t);
   return s;
 }

@@ -96,6 +96,7 @@ struct YfDeck {
   int eval_count;  /* equal-style evaluations of the current top-level expression */
   int exec_depth;  /* commands running inside other commands (if), see DECK_NEST_MAX */
   int subst_depth; /* $(...) being substituted inside $(...)                    */
+  long ncmd;       /* commands run so far (an empty deck is worth a warning)     */
 };
 
 /* Interned file names: never freed (a YfLoc may outlive the deck). */
@@ -841,6 +842,7 @@ static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
   a.loc = *loc;
   a.line = line;
   d->exec_depth++;
+  d->ncmd++;
   c->fn(d->sim, &a);
   d->exec_depth--;
   free_words(w, cols, n);
@@ -905,13 +907,24 @@ void deck_set_var(YfDeck *d, const char *name, const char *value) {
 
 void deck_set_echo(YfDeck *d, int on) { d->echo = on != 0; }
 
+/* A deck without a single command ran nothing and exited 0 in silence: an empty file on stdin
+ * (a generator that failed, 'yfdem < /dev/null') looked like a run that went well. */
+static void warn_if_empty(const YfDeck *d, const DeckSource *s) {
+  if (d->ncmd || d->depth) return;
+  YfLoc loc = {s->name, 1};
+  yf_warn(&loc, "the deck holds no command (it is empty, or only comments and blank lines): nothing was done");
+}
+
 void deck_run_stream(YfDeck *d, FILE *fp, const char *fname) {
   DeckSource *s = source_from_stream(d, fp, fname ? fname : "<stdin>", NULL);
   run_source(d, s, NULL);
+  warn_if_empty(d, s);
 }
 
 void deck_run_file(YfDeck *d, const char *path, const YfLoc *from) {
-  run_source(d, source_load(d, path, from, NULL), from);
+  DeckSource *s = source_load(d, path, from, NULL);
+  run_source(d, s, from);
+  warn_if_empty(d, s);
 }
 
 char *deck_resolve_path(const YfArgs *a, const char *name) {
