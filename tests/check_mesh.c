@@ -590,6 +590,40 @@ START_TEST(test_gmsh_partitioned) {
 }
 END_TEST
 
+/* Two Gmsh bodies keep their files' tags as ids, so they share ids: 'group G node id 5' takes the
+ * node of each and said nothing.  It still takes both (the ids are the user's), with a warning
+ * naming the two bodies and how to keep one. */
+START_TEST(test_gmsh_shared_ids_warned) {
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  model_add_material(m, "soft");
+  model_add_material(m, "hard");
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "gmsh one %s", repo_path("decks/meshes/square4.msh"));
+  run(s, cmd_mesh, "mesh", cmd);
+  snprintf(cmd, sizeof cmd, "gmsh two %s scale 2", repo_path("decks/meshes/square4.msh"));
+  run(s, cmd_mesh, "mesh", cmd);
+  EXPECT_FAIL(s, cmd_group, "group", "c node id 5", 0, "test.deck:7: warning: group c: node id 5 is that of a node "
+              "of body 'one' and of one of body 'two'", "'group c_one intersect c one'");
+  EXPECT_FAIL(s, cmd_group, "group", "t tri id 4", 0, "warning: group t: triangle id 4 is that of a triangle of body 'one'");
+  run(s, cmd_group, "group", "c node id 5");
+  ck_assert_int_eq(count_nodes(m, group_of(m, "c")), 2); /* the centres (0.5, 0.5) and (1, 1) */
+  run(s, cmd_group, "group", "c_one intersect c one");
+  ck_assert_int_eq(count_nodes(m, group_of(m, "c_one")), 1);
+  free_sim(s);
+  /* ids of one body only: no warning */
+  s = new_sim();
+  model_add_material(&s->model, "soft");
+  model_add_material(&s->model, "hard");
+  snprintf(cmd, sizeof cmd, "gmsh one %s", repo_path("decks/meshes/square4.msh"));
+  run(s, cmd_mesh, "mesh", cmd);
+  char *err;
+  ck_assert_int_eq(run_child(s, cmd_group, "group", "c node id 5 4", &err), 0);
+  ck_assert_msg(!strstr(err, "warning"), "%s", err);
+  free_sim(s);
+}
+END_TEST
+
 START_TEST(test_gmsh_deck_errors) {
   YfSim *s = new_sim();
   model_add_material(&s->model, "soft");
@@ -960,6 +994,7 @@ Suite *mesh_suite(void) {
   tcase_add_test(tc, test_gmsh_same_as_file);
   tcase_add_test(tc, test_gmsh_malformed);
   tcase_add_test(tc, test_gmsh_partitioned);
+  tcase_add_test(tc, test_gmsh_shared_ids_warned);
   tcase_add_test(tc, test_gmsh_deck_errors);
   tcase_add_test(tc, test_gmsh_no_entities_unnamed);
   suite_add_tcase(s, tc);
