@@ -592,7 +592,8 @@ END_TEST
 
 /* Two Gmsh bodies keep their files' tags as ids, so they share ids: 'group G node id 5' takes the
  * node of each and said nothing.  It still takes both (the ids are the user's), with a warning
- * naming the two bodies and how to keep one. */
+ * naming the two bodies and how to keep one; 'load ID point node 5', which loads one node, is
+ * refused. */
 START_TEST(test_gmsh_shared_ids_warned) {
   YfSim *s = new_sim();
   YfModel *m = &s->model;
@@ -610,6 +611,9 @@ START_TEST(test_gmsh_shared_ids_warned) {
   ck_assert_int_eq(count_nodes(m, group_of(m, "c")), 2); /* the centres (0.5, 0.5) and (1, 1) */
   run(s, cmd_group, "group", "c_one intersect c one");
   ck_assert_int_eq(count_nodes(m, group_of(m, "c_one")), 1);
+  /* a point load on such an id went to whichever node came first in memory: refused */
+  EXPECT_FAIL(s, cmd_load, "load", "p point node 5 1 0", 1, "test.deck:7: error: load: '5': node id 5 is that of a node "
+              "of body 'one' and of one of body 'two'", "'load p point at X Y'");
   free_sim(s);
   /* ids of one body only: no warning */
   s = new_sim();
