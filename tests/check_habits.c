@@ -384,6 +384,20 @@ START_TEST(test_lammps_options_hinted) {
 }
 END_TEST
 
+/* '-var nx 4 ... -var nx 6' (a sweep script that appends its value to a base command line) kept
+ * the last value in silence, where LAMMPS keeps the first: it still keeps the last, and says so. */
+START_TEST(test_var_given_twice_warned) {
+  char *err, *dir;
+  int rc = yft_run_binary("a.deck", BAR "run 0\nprint \"nx ${nx}\"\n", "-var nx 4 -var nx 6", &err, &dir);
+  char *out = file_in(dir, "log.yfdem");
+  ck_assert_msg(rc == 0 && strstr(err, "warning: -var nx is given twice ('4', then '6'): the last is used") && out &&
+                strstr(out, "nx 6\n"), "exit %d: %s", rc, err);
+  free(out);
+  free(err);
+  free(dir);
+}
+END_TEST
+
 /* A deck without a command ('yfdem < /dev/null', an empty or comment-only file a generator left)
  * ran nothing and exited 0 in silence, as a run that went well; it still exits 0 but warns.  And
  * 'yfdem' alone at a terminal waited for a deck without a word: it now says what it waits for
@@ -689,6 +703,7 @@ Suite *habits_suite(void) {
   tcase_add_test(t, test_second_interrupt_leaves_no_tmp);
   tcase_add_test(t, test_lammps_options_hinted);
   tcase_add_test(t, test_empty_deck_and_terminal_stdin);
+  tcase_add_test(t, test_var_given_twice_warned);
   suite_add_tcase(s, t);
   return s;
 }

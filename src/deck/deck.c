@@ -898,6 +898,12 @@ void deck_free(YfDeck *d) {
 void deck_set_var(YfDeck *d, const char *name, const char *value) {
   const char *why = name_fault(name);
   if (why) yf_deck_error(NULL, "-var: bad variable name '%.60s%s' (%s)", name, strlen(name) > 60 ? "..." : "", why);
+  /* '-var n 5 ... -var n 7' kept the last in silence, where LAMMPS keeps the first */
+  for (int i = 0; i < d->nvars; i++)
+    if (d->vars[i].cmdline && !strcmp(d->vars[i].name, name) && d->vars[i].nvals == 1 &&
+        strcmp(d->vars[i].vals[0], value) != 0)
+      yf_warn(NULL, "-var %s is given twice ('%.60s', then '%.60s'): the last is used (LAMMPS keeps the first)", name,
+              d->vars[i].vals[0], value);
   DeckVar *v = var_new(d, name, VAR_INDEX);
   v->cmdline = 1;
   v->vals = yf_malloc(sizeof *v->vals, "variable values");
