@@ -184,6 +184,11 @@ int main(int argc, char **argv) {
     } else if (!strcmp(o, "-version") || !strcmp(o, "--version")) {
       printf("yfdem %s\n", YF_VERSION);
       return 0;
+    } else if (!strcmp(o, "-in") && i + 1 < argc && !strcmp(argv[i + 1], "-") && access("-", F_OK) != 0) {
+      /* 'cat deck | yfdem -in -' was "cannot open deck '-'" */
+      fprintf(stderr, "yfdem: -in '-': yfdem reads standard input when no deck is given: yfdem < FILE, or "
+              "... | yfdem\n");
+      return YF_EXIT_DECK;
     } else if (!strcmp(o, "-in") && i + 1 < argc) {
       if (in) { /* 'yfdem a.y -in b.deck' ran b.deck alone, a.y not even looked at */
         fprintf(stderr, "yfdem: -in '%s': the deck is already '%s'; give one deck (a native deck can read_y2d a .y "
@@ -200,6 +205,12 @@ int main(int argc, char **argv) {
       fprintf(stderr, "yfdem: %s '%s': expected a file name after %s, not an option\n", o, argv[i + 1], o);
       return YF_EXIT_DECK;
     } else if (!strcmp(o, "-log") && i + 1 < argc) {
+      /* an empty name was an I/O error (exit 2, "cannot open log file ''"), where -summary's is a
+       * command-line error (exit 1) */
+      if (!argv[i + 1][0]) {
+        fprintf(stderr, "yfdem: -log '': an empty file name (give -log FILE, or -log none for no log)\n");
+        return YF_EXIT_DECK;
+      }
       log_path = argv[++i];
     } else if (!strcmp(o, "-echo")) {
       echo = 1;
