@@ -542,9 +542,43 @@ START_TEST(test_gmsh_malformed) {
   bad_msh("zero.msh", "0.5 0.5 0\n", "0.5 0 0\n", 36, "triangle 2 has zero area");
   bad_msh("quad.msh", "2 2 2 2\n4 2 3 5\n5 4 1 5\n", "2 2 3 1\n4 2 3 5 1\n", 38,
           "element type 3 (4-node quadrangle) in surface 2 is not supported");
-  bad_msh("z.msh", "0.5 0.5 0\n", "0.5 0.5 0.1\n", 29, "needs the mesh in the plane z = 0");
+  bad_msh("z.msh", "0.5 0.5 0\n", "0.5 0.5 0.1\n", 29, "needs a flat mesh, in one plane z = constant");
   bad_msh("ent.msh", "2 2 2 2\n", "2 7 2 2\n", 38, "surface 7, which $Entities does not define");
   bad_msh("start.msh", "$MeshFormat\n", "$Mesh\n", 1, "must start with $MeshFormat");
+}
+END_TEST
+
+/* SQ4 with each sub[k][0] replaced by sub[k][1] (first occurrence, in turn); a static buffer. */
+static char *sq4_with(const char *const (*sub)[2], size_t n) {
+  static char txt[4096];
+  snprintf(txt, sizeof txt, "%s", SQ4);
+  for (size_t k = 0; k < n; k++) {
+    char *p = strstr(txt, sub[k][0]);
+    ck_assert_ptr_nonnull(p);
+    char rest[4096];
+    snprintf(rest, sizeof rest, "%s", p + strlen(sub[k][0]));
+    snprintf(p, sizeof txt - (size_t)(p - txt), "%s%s", sub[k][1], rest);
+  }
+  return txt;
+}
+
+/* A flat mesh in the plane z = 5 (a section of a 3D model drawn where it lies) is as 2D as one at
+ * z = 0: its scene is square4's.  It was refused ("node 1 has z = 5 ... needs the plane z = 0"). A
+ * mesh that is not flat is still refused, naming a node off the first node's plane. */
+START_TEST(test_gmsh_flat_plane_off_zero) {
+  static const char *const sub[][2] = {{"0 0 0\n1 0 0\n", "0 0 5\n1 0 5\n"},
+                                       {"1 1 0\n0 1 0\n0.5 0.5 0\n", "1 1 5\n0 1 5\n0.5 0.5 5.0000000000000001\n"}};
+  char *txt = sq4_with(sub, 2);
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  int soft = model_add_material(m, "soft"), hard = model_add_material(m, "hard");
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s", write_tmp("z5.msh", txt));
+  run(s, cmd_mesh, "mesh", cmd);
+  check_square4(m, soft, hard);
+  free_sim(s);
+  bad_msh("z5tilt.msh", "0.5 0.5 0\n", "0.5 0.5 0.1\n", 29, "node 5 has z = 0.1 where node 1 has z = 0: yfdem is 2D "
+          "and needs a flat mesh, in one plane z = constant");
 }
 END_TEST
 
@@ -560,15 +594,7 @@ START_TEST(test_gmsh_partitioned) {
                          "4 2 2 1 2 0 0 0 1 1 0 1 2 0\n$EndPartitionedEntities\n"},
       {"1 1 0 2\n", "1 3 0 2\n"}, {"2 1 0 3\n", "2 3 0 3\n"},
       {"1 1 1 1\n", "1 3 1 1\n"}, {"2 1 2 2\n", "2 3 2 2\n"}, {"2 2 2 2\n", "2 4 2 2\n"}};
-  static char txt[4096];
-  snprintf(txt, sizeof txt, "%s", SQ4);
-  for (size_t k = 0; k < sizeof sub / sizeof sub[0]; k++) {
-    char *p = strstr(txt, sub[k][0]);
-    ck_assert_ptr_nonnull(p);
-    char rest[4096];
-    snprintf(rest, sizeof rest, "%s", p + strlen(sub[k][0]));
-    snprintf(p, sizeof txt - (size_t)(p - txt), "%s%s", sub[k][1], rest);
-  }
+  char *txt = sq4_with(sub, sizeof sub / sizeof sub[0]);
   YfSim *s = new_sim();
   YfModel *m = &s->model;
   int soft = model_add_material(m, "soft"), hard = model_add_material(m, "hard");
@@ -999,6 +1025,7 @@ Suite *mesh_suite(void) {
   tcase_add_test(tc, test_gmsh_malformed);
   tcase_add_test(tc, test_gmsh_partitioned);
   tcase_add_test(tc, test_gmsh_shared_ids_warned);
+  tcase_add_test(tc, test_gmsh_flat_plane_off_zero);
   tcase_add_test(tc, test_gmsh_deck_errors);
   tcase_add_test(tc, test_gmsh_no_entities_unnamed);
   suite_add_tcase(s, tc);

@@ -19,7 +19,8 @@
  *   - 2-node lines (type 1) and points (type 15) only matter in physical curves and points;
  *     elements of entities without physical groups in dimensions 0 and 1 are skipped;
  *   - only nodes that are triangle corners enter the model (a node without a triangle would
- *     have no mass).  Node and element tags become the user ids.
+ *     have no mass); z is dropped, after checking that every node has the first one's.  Node
+ *     and element tags become the user ids.
  * Each element must sit on one line (as Gmsh writes them), which lets the reader check the
  * number of node tags of every element.
  */
@@ -415,7 +416,9 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       nx = yf_malloc((size_t)ntot * sizeof *nx, "mesh nodes");
       ny = yf_malloc((size_t)ntot * sizeof *ny, "mesh nodes");
       used = yf_calloc((size_t)ntot, sizeof *used, "mesh nodes");
-      double zmax = 0.0, ext = 0.0;
+      /* z: the mesh must be flat, in a plane z = constant (a section drawn at z = 5 is as 2D as one
+       * at z = 0: its z is dropped); the first node's z is the plane's */
+      double zmax = 0.0, ext = 0.0, zref = 0.0, zat = 0.0;
       int zline = 0;
       long zntag = 0;
       for (long b = 0; b < nblk; b++) {
@@ -448,8 +451,10 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
             msh_fail(r, cline, "node %ld at (%g, %g) m is beyond +-%g m, the range the arithmetic holds "
                      "(areas and energies multiply coordinates)", ntag[nn + i], nx[nn + i], ny[nn + i], YF_RANGE_MAX);
           ext = fmax(ext, fmax(fabs(x), fabs(y)));
-          if (fabs(z) > zmax) {
-            zmax = fabs(z);
+          if (nn + i == 0) zref = z;
+          if (fabs(z - zref) > zmax) {
+            zmax = fabs(z - zref);
+            zat = z;
             zline = cline;
             zntag = ntag[nn + i];
           }
@@ -459,9 +464,9 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       if (nn != ntot)
         msh_fail(r, hline, "the blocks hold %ld nodes but the header declares %ld", nn, ntot);
       msh_expect(r, "$EndNodes", " (the header's block count does not match the data?)");
-      if (zmax > 1e-9 * ext)
-        msh_fail(r, zline, "node %ld has z = %g: yfdem is 2D and needs the mesh in the plane z = 0",
-                 zntag, zmax);
+      if (zmax > 1e-9 * fmax(ext, fabs(zref)))
+        msh_fail(r, zline, "node %ld has z = %g where node %ld has z = %g: yfdem is 2D and needs a flat mesh, in "
+                 "one plane z = constant (such as z = 0)", zntag, zat, ntag[0], zref);
       have_nodes = 1;
 
     } else if (!strcmp(r->tok, "$Elements")) {
