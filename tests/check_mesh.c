@@ -582,6 +582,27 @@ START_TEST(test_gmsh_flat_plane_off_zero) {
 }
 END_TEST
 
+/* Every physical group becomes a group and yfdem holds 64: a file with more (here the base curve in
+ * 70 unnamed physical groups) was refused naming the first group that did not fit ("cannot create
+ * group 'phys_73'"), a name the deck never gave; the error now counts them and says what to do. */
+START_TEST(test_gmsh_too_many_groups) {
+  char ents[600];
+  int k = snprintf(ents, sizeof ents, "1 0 0 0 1 0 0 70");
+  for (int t = 10; t < 80; t++) k += snprintf(ents + k, sizeof ents - (size_t)k, " %d", t);
+  snprintf(ents + k, sizeof ents - (size_t)k, " 0\n");
+  const char *const sub[][2] = {{"1 0 0 0 1 0 0 1 10 0\n", ents}};
+  char *txt = sq4_with(sub, 1);
+  YfSim *s = new_sim();
+  model_add_material(&s->model, "soft");
+  model_add_material(&s->model, "hard");
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s", write_tmp("many.msh", txt));
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "test.deck:7: error: mesh gmsh:", "many.msh' has 72 physical groups: with the "
+              "body's they need 73 new groups, and 64 of the 64 groups yfdem holds are free", "merge physical groups in Gmsh");
+  free_sim(s);
+}
+END_TEST
+
 /* square4.msh as Gmsh writes it once partitioned (Mesh > Partition, or gmsh -part 2): the nodes
  * and elements sit in partition entities, which $PartitionedEntities lists with their parents'
  * physical tags (and ghost entities, here one); the scene is that of the unpartitioned file.
@@ -1026,6 +1047,7 @@ Suite *mesh_suite(void) {
   tcase_add_test(tc, test_gmsh_partitioned);
   tcase_add_test(tc, test_gmsh_shared_ids_warned);
   tcase_add_test(tc, test_gmsh_flat_plane_off_zero);
+  tcase_add_test(tc, test_gmsh_too_many_groups);
   tcase_add_test(tc, test_gmsh_deck_errors);
   tcase_add_test(tc, test_gmsh_no_entities_unnamed);
   suite_add_tcase(s, tc);

@@ -700,6 +700,19 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
   }
 
   /* ---- into the model ---- */
+  /* every physical group becomes a group: say so when they do not fit, rather than naming the
+   * first group that did not ("cannot create group 'edge63'"), a name the deck never gave */
+  int fresh = model_group(m, o->body, 0) < 0; /* the body's own group */
+  for (int j = 0; j < nph; j++) {
+    int dup = 0;
+    for (int q = 0; q < j; q++) dup |= !strcmp(ph[q].name, ph[j].name);
+    fresh += !dup && model_group(m, ph[j].name, 0) < 0;
+  }
+  if (m->ngroup + fresh > YF_MAX_GROUPS)
+    yf_deck_error(&o->from, "mesh gmsh: '%s' has %d physical groups: with the body's they need %d new groups, and %d "
+                  "of the %d groups yfdem holds are free (every body and group counts): merge physical groups in "
+                  "Gmsh (one physical surface per material, one physical curve per loaded or held boundary)",
+                  path, nph, fresh, YF_MAX_GROUPS - m->ngroup, YF_MAX_GROUPS);
   int b = mesh_new_body(m, o->body, o->defmat >= 0 ? o->defmat : first_mat, &o->from, "mesh gmsh");
   uint64_t bbit = (uint64_t)1 << m->body[b].group;
   for (int j = 0; j < nph; j++) {
