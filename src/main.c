@@ -37,7 +37,8 @@ static const char *g_log_path;
 static void usage(FILE *fp) {
   fprintf(fp,
           "yfdem %s: combined finite-discrete element method (Munjiza's FDEM, Y2D-compatible)\n\n"
-          "usage: yfdem [options] [< deck]\n"
+          "usage: yfdem [options] [-in] DECK       run a deck\n"
+          "       yfdem [options] < DECK           the same, the deck read from standard input\n"
           "       yfdem [options] FILE.y           run a Y2D input deck\n"
           "options:\n"
           "  -in FILE          read the deck from FILE (default: standard input)\n"
