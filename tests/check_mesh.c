@@ -526,6 +526,9 @@ START_TEST(test_gmsh_malformed) {
   bad_msh("bin.msh", "4.1 0 8", "4.1 1 8", 2, "binary .msh files are not supported");
   bad_msh("trunc.msh", "4 2 3 5\n", NULL, 40, "unexpected end of file");
   bad_msh("trunc2.msh", "1 0 0\n", NULL, 23, "unexpected end of file");
+  /* cut inside an element's line: it said "element 4 (3-node triangle) has 2 node tags" */
+  bad_msh("trunc3.msh", "4 2 3", NULL, 39, "unexpected end of file in element 4, 1 of 2 elements into its block "
+          "(truncated file?)");
   bad_msh("num.msh", "0.5 0.5 0\n", "0.5 0.5x 0\n", 29, "expected a number for a node y, found '0.5x'");
   /* the deck's number rules (strictnum.h): strtod read hex coordinates the deck refuses */
   bad_msh("hex.msh", "0.5 0.5 0\n", "0x1p-1 0.5 0\n", 29,

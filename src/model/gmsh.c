@@ -553,6 +553,10 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
               msh_fail(r, line, "expected an integer node tag in element %ld, found '%s'", tag, r->tok);
             k++;
           }
+          /* a file cut inside an element's line said "has 0 node tags", not that it was cut */
+          if (r->pos >= r->len)
+            msh_fail(r, r->line, "unexpected end of file in element %ld, %ld of %ld elements into its block "
+                     "(truncated file?)", tag, i + 1, nin);
           if (!keep) continue;
           if (k < want)
             msh_fail(r, line, "element %ld (%s) has %d node tags on its line, expected %d", tag,
