@@ -526,6 +526,9 @@ START_TEST(test_gmsh_malformed) {
   bad_msh("bin.msh", "4.1 0 8", "4.1 1 8", 2, "binary .msh files are not supported");
   bad_msh("trunc.msh", "4 2 3 5\n", NULL, 40, "unexpected end of file");
   bad_msh("trunc2.msh", "1 0 0\n", NULL, 23, "unexpected end of file");
+  /* cut inside a physical name: it said "unterminated physical name", or "has no name" */
+  bad_msh("trunc4.msh", "2 2 \"ha", NULL, 8, "unexpected end of file in the name of physical group 2 (truncated file?)");
+  bad_msh("trunc5.msh", "2 2", NULL, 8, "unexpected end of file: physical group 2 has no name (truncated file?)");
   /* cut inside an element's line: it said "element 4 (3-node triangle) has 2 node tags" */
   bad_msh("trunc3.msh", "4 2 3", NULL, 39, "unexpected end of file in element 4, 1 of 2 elements into its block "
           "(truncated file?)");

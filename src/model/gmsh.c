@@ -316,7 +316,9 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
         p->dim = (int)dim;
         p->tag = msh_long(r, "the tag of a physical name");
         /* the name is a quoted string on the same line, spaces allowed */
-        if (msh_eol(r)) msh_fail(r, r->line, "physical group %ld has no name", p->tag);
+        if (msh_eol(r))
+          msh_fail(r, r->line, r->pos >= r->len ? "unexpected end of file: physical group %ld has no name (truncated "
+                   "file?)" : "physical group %ld has no name", p->tag);
         if (r->buf[r->pos] != '"')
           msh_fail(r, r->line, "the name of physical group %ld must be in double quotes", p->tag);
         size_t k = 0, q = r->pos + 1;
@@ -324,7 +326,8 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
           if (k + 1 >= sizeof p->name) msh_fail(r, r->line, "physical name longer than %zu characters", sizeof p->name - 1);
           p->name[k++] = r->buf[q++];
         }
-        if (q >= r->len || r->buf[q] != '"') msh_fail(r, r->line, "unterminated physical name");
+        if (q >= r->len) msh_fail(r, r->line, "unexpected end of file in the name of physical group %ld (truncated file?)", p->tag);
+        if (r->buf[q] != '"') msh_fail(r, r->line, "unterminated physical name");
         p->name[k] = '\0';
         r->pos = q + 1;
         if (k == 0) msh_fail(r, r->line, "physical group %ld has an empty name", p->tag);
