@@ -528,7 +528,11 @@ START_TEST(test_gmsh_malformed) {
   bad_msh("trunc2.msh", "1 0 0\n", NULL, 23, "unexpected end of file");
   /* cut inside a physical name: it said "unterminated physical name", or "has no name" */
   bad_msh("trunc4.msh", "2 2 \"ha", NULL, 8, "unexpected end of file in the name of physical group 2 (truncated file?)");
-  bad_msh("trunc5.msh", "2 2", NULL, 8, "unexpected end of file: physical group 2 has no name (truncated file?)");
+  bad_msh("trunc5.msh", "2 2 ", NULL, 8, "unexpected end of file: physical group 2 has no name (truncated file?)");
+  /* cut inside a number or an $End marker: the cut word was read as it stood ("expected a number,
+   * found '-'", "node tag 1 is defined twice" for a cut "12", "expected $EndNodes, found '$EndNod'") */
+  bad_msh("trunc6.msh", "0.5 0.", NULL, 29, "unexpected end of file in '0.' while reading a node y (truncated file?)");
+  bad_msh("trunc7.msh", "$EndNod", NULL, 30, "unexpected end of file in '$EndNod': $EndNodes is cut short (truncated file?)");
   /* cut inside an element's line: it said "element 4 (3-node triangle) has 2 node tags" */
   bad_msh("trunc3.msh", "4 2 3", NULL, 39, "unexpected end of file in element 4, 1 of 2 elements into its block "
           "(truncated file?)");

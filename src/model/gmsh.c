@@ -120,6 +120,10 @@ static void msh_need(Msh *r, const char *what) {
   if (r->tok[0] == '$')
     msh_fail(r, r->tokline, "found '%s' while reading %s: the section holds less data than its "
              "counts declare", r->tok, what);
+  /* no file ends on data (an $End marker follows): a word that runs into the end was cut, and
+   * read as it stands it gave wrong complaints ("node tag 1 is defined twice" for a cut "12") */
+  if (r->pos >= r->len)
+    msh_fail(r, r->tokline, "unexpected end of file in '%s' while reading %s (truncated file?)", r->tok, what);
 }
 
 static long msh_long(Msh *r, const char *what) {
@@ -146,6 +150,8 @@ static double msh_double(Msh *r, const char *what) {
 static void msh_expect(Msh *r, const char *word, const char *why) {
   if (!msh_next(r))
     msh_fail(r, r->line, "unexpected end of file: %s is missing (truncated file?)", word);
+  if (strcmp(r->tok, word) != 0 && r->pos >= r->len && !strncmp(word, r->tok, strlen(r->tok)))
+    msh_fail(r, r->tokline, "unexpected end of file in '%s': %s is cut short (truncated file?)", r->tok, word);
   if (strcmp(r->tok, word) != 0)
     msh_fail(r, r->tokline, "expected %s, found '%s'%s", word, r->tok, why);
 }
