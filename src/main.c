@@ -179,6 +179,12 @@ int main(int argc, char **argv) {
       usage(stdout);
       return 0;
     } else if (!strcmp(o, "-reference")) {
+      /* '-reference sectons' printed the table, the typo unseen */
+      if (i + 1 < argc && strcmp(argv[i + 1], "sections") != 0 && !is_option(argv[i + 1])) {
+        fprintf(stderr, "yfdem: -reference '%s': expected 'sections' (a section per command) or nothing (the "
+                "markdown table)\n", argv[i + 1]);
+        return YF_EXIT_DECK;
+      }
       if (i + 1 < argc && !strcmp(argv[i + 1], "sections")) commands_print_sections(stdout);
       else commands_print_reference(stdout);
       return 0;

@@ -358,8 +358,9 @@ END_TEST
 /* LAMMPS's spellings on yfdem's command line: '-echo screen' made 'screen' the deck ("the deck is
  * already"), '-v', '-sc none', '-pk omp 2' were "unknown or incomplete option" with no way on, and
  * an option cut short ('-var n' at the end) did not say what it lacked; '-log ""' was an I/O error
- * (exit 2, -summary's a command-line one) and '-in -' "cannot open deck '-'". Each now names the
- * word at fault and yfdem's way, exit 1, before anything runs. */
+ * (exit 2, -summary's a command-line one), '-in -' "cannot open deck '-'" and '-reference sectons'
+ * printed the table, its typo unseen. Each now names the word at fault and yfdem's way, exit 1,
+ * before anything runs. */
 START_TEST(test_lammps_options_hinted) {
   static const struct {
     const char *args, *msg;
@@ -374,6 +375,7 @@ START_TEST(test_lammps_options_hinted) {
       {"-threads", "yfdem: -threads expects N|auto after it"},
       {"-log ''", "yfdem: -log '': an empty file name (give -log FILE, or -log none"},
       {"-in -", "yfdem: -in '-': yfdem reads standard input when no deck is given: yfdem < FILE"},
+      {"-reference sectons", "yfdem: -reference 'sectons': expected 'sections' (a section per command) or nothing"},
   };
   for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
     char *err, *dir;
