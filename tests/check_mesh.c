@@ -613,6 +613,26 @@ START_TEST(test_gmsh_too_many_groups) {
 }
 END_TEST
 
+/* $Entities after $Elements came too late to give the elements their physical groups, and said
+ * "surface 1 is defined twice" (the element blocks had made it); now it names the order. */
+START_TEST(test_gmsh_entities_after_elements) {
+  static const char *const ents = "$Entities\n0 1 2 0\n1 0 0 0 1 0 0 1 10 0\n1 0 0 0 1 1 0 1 1 0\n"
+                                  "2 0 0 0 1 1 0 1 2 0\n$EndEntities\n";
+  char moved[300];
+  snprintf(moved, sizeof moved, "$EndElements\n%s", ents);
+  const char *const sub[][2] = {{ents, ""}, {"$EndElements\n", moved}};
+  char *txt = sq4_with(sub, 2);
+  YfSim *s = new_sim();
+  model_add_material(&s->model, "soft");
+  model_add_material(&s->model, "hard");
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s", write_tmp("entlast.msh", txt));
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "entlast.msh:36: error: $Entities comes after $Elements: it must "
+              "come before (as Gmsh writes it)");
+  free_sim(s);
+}
+END_TEST
+
 /* square4.msh as Gmsh writes it once partitioned (Mesh > Partition, or gmsh -part 2): the nodes
  * and elements sit in partition entities, which $PartitionedEntities lists with their parents'
  * physical tags (and ghost entities, here one); the scene is that of the unpartitioned file.
@@ -1058,6 +1078,7 @@ Suite *mesh_suite(void) {
   tcase_add_test(tc, test_gmsh_shared_ids_warned);
   tcase_add_test(tc, test_gmsh_flat_plane_off_zero);
   tcase_add_test(tc, test_gmsh_too_many_groups);
+  tcase_add_test(tc, test_gmsh_entities_after_elements);
   tcase_add_test(tc, test_gmsh_deck_errors);
   tcase_add_test(tc, test_gmsh_no_entities_unnamed);
   suite_add_tcase(s, tc);

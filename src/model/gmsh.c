@@ -349,6 +349,11 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
        * $PartitionedEntities with the physical tags of their parents: elements refer to those */
       int part = !strcmp(r->tok, "$PartitionedEntities");
       if (part ? have_pent : have_ent) msh_fail(r, r->tokline, "a second %s section", r->tok);
+      /* after the elements it came too late to give them their physical groups, and the surfaces
+       * those elements had defined made it say "surface 1 is defined twice" */
+      if (have_elems)
+        msh_fail(r, r->tokline, "%s comes after $Elements: it must come before (as Gmsh writes it), since the "
+                 "element blocks name its entities", r->tok);
       r->section = part ? "$PartitionedEntities" : "$Entities";
       YfIdMap *map = part ? &pmap : &emap;
       if (part) {
