@@ -37,7 +37,8 @@ static const char *g_log_path;
 static void usage(FILE *fp) {
   fprintf(fp,
           "yfdem %s: combined finite-discrete element method (Munjiza's FDEM, Y2D-compatible)\n\n"
-          "usage: yfdem [options] [< deck]\n"
+          "usage: yfdem [options] [-in] DECK       run a deck\n"
+          "       yfdem [options] < DECK           the same, the deck read from standard input\n"
           "       yfdem [options] FILE.y           run a Y2D input deck\n"
           "options:\n"
           "  -in FILE          read the deck from FILE (default: standard input)\n"
@@ -101,6 +102,33 @@ static int is_option(const char *w) {
   return 0;
 }
 
+/* LAMMPS's options that yfdem spells otherwise or lacks: a LAMMPS user's '-i deck', '-v n 10',
+ * '-sc none' or '-pk omp 2' was "unknown or incomplete option" with no way forward. */
+static const char *lammps_hint(const char *w) {
+  static const char *const hint[][2] = {
+      {"-i", "yfdem reads the deck with -in FILE"},
+      {"-v", "yfdem sets a variable with -var NAME VALUE"},
+      {"-l", "yfdem names the log with -log FILE|none"},
+      {"-e", "yfdem's -echo takes no value: it prints each command on the screen and in the log"},
+      {"-sc", "yfdem has no -screen: send the screen elsewhere with > FILE (or > /dev/null)"},
+      {"-screen", "yfdem has no -screen: send the screen elsewhere with > FILE (or > /dev/null)"},
+      {"-pk", "yfdem sets its OpenMP threads with -threads N"},
+      {"-sf", "yfdem's steps are OpenMP ones already: set their threads with -threads N"},
+      {"-k", "yfdem sets its OpenMP threads with -threads N"},
+      {"-nc", "yfdem writes no citation file"},
+      {"-nocite", "yfdem writes no citation file"},
+      {"--in", "yfdem's options take one dash: -in FILE"},
+      {"--var", "yfdem's options take one dash: -var NAME VALUE"},
+      {"--log", "yfdem's options take one dash: -log FILE|none"},
+      {"--summary", "yfdem's options take one dash: -summary FILE"},
+      {"--threads", "yfdem's options take one dash: -threads N|auto"},
+      {"--echo", "yfdem's options take one dash: -echo"},
+  };
+  for (size_t k = 0; k < sizeof hint / sizeof hint[0]; k++)
+    if (!strcmp(w, hint[k][0])) return hint[k][1];
+  return NULL;
+}
+
 /* An output option on a file another output writes, or on the deck itself. */
 static int refuse_claim(const char *opt, const char *path, const char *by) {
   int input = !strncmp(by, "the deck being read", 19);
@@ -151,12 +179,23 @@ int main(int argc, char **argv) {
       usage(stdout);
       return 0;
     } else if (!strcmp(o, "-reference")) {
+      /* '-reference sectons' printed the table, the typo unseen */
+      if (i + 1 < argc && strcmp(argv[i + 1], "sections") != 0 && !is_option(argv[i + 1])) {
+        fprintf(stderr, "yfdem: -reference '%s': expected 'sections' (a section per command) or nothing (the "
+                "markdown table)\n", argv[i + 1]);
+        return YF_EXIT_DECK;
+      }
       if (i + 1 < argc && !strcmp(argv[i + 1], "sections")) commands_print_sections(stdout);
       else commands_print_reference(stdout);
       return 0;
     } else if (!strcmp(o, "-version") || !strcmp(o, "--version")) {
       printf("yfdem %s\n", YF_VERSION);
       return 0;
+    } else if (!strcmp(o, "-in") && i + 1 < argc && !strcmp(argv[i + 1], "-") && access("-", F_OK) != 0) {
+      /* 'cat deck | yfdem -in -' was "cannot open deck '-'" */
+      fprintf(stderr, "yfdem: -in '-': yfdem reads standard input when no deck is given: yfdem < FILE, or "
+              "... | yfdem\n");
+      return YF_EXIT_DECK;
     } else if (!strcmp(o, "-in") && i + 1 < argc) {
       if (in) { /* 'yfdem a.y -in b.deck' ran b.deck alone, a.y not even looked at */
         fprintf(stderr, "yfdem: -in '%s': the deck is already '%s'; give one deck (a native deck can read_y2d a .y "
@@ -173,9 +212,25 @@ int main(int argc, char **argv) {
       fprintf(stderr, "yfdem: %s '%s': expected a file name after %s, not an option\n", o, argv[i + 1], o);
       return YF_EXIT_DECK;
     } else if (!strcmp(o, "-log") && i + 1 < argc) {
+      /* an empty name was an I/O error (exit 2, "cannot open log file ''"), where -summary's is a
+       * command-line error (exit 1) */
+      if (!argv[i + 1][0]) {
+        fprintf(stderr, "yfdem: -log '': an empty file name (give -log FILE, or -log none for no log)\n");
+        return YF_EXIT_DECK;
+      }
       log_path = argv[++i];
     } else if (!strcmp(o, "-echo")) {
       echo = 1;
+      /* LAMMPS's '-echo screen|log|both|none' takes a value, yfdem's none: the value became the
+       * deck ("the deck is already 'screen'", or a deck named 'none' that cannot be opened) */
+      static const char *const lmp_echo[] = {"screen", "log", "both", "none", NULL};
+      for (int k = 0; i + 1 < argc && lmp_echo[k]; k++)
+        if (!strcmp(argv[i + 1], lmp_echo[k]) && access(argv[i + 1], F_OK) != 0) {
+          fprintf(stderr, "yfdem: -echo '%s': -echo takes no value (LAMMPS's -echo screen|log|both|none); "
+                  "-echo alone prints each command on the screen and in the log, without it none is printed\n",
+                  argv[i + 1]);
+          return YF_EXIT_DECK;
+        }
     } else if (!strcmp(o, "-summary") && i + 1 < argc) {
       /* an empty name was ignored, a long one cut short: the summary went nowhere, or elsewhere */
       if (!argv[i + 1][0] || strlen(argv[i + 1]) >= sizeof g_sim.summary_path) {
@@ -217,7 +272,19 @@ int main(int argc, char **argv) {
       }
       in = o;
     } else {
-      fprintf(stderr, "yfdem: unknown or incomplete option '%s' (try yfdem -h)\n", o);
+      const char *h = lammps_hint(o);
+      static const char *const need[][2] = {{"-in", "FILE"}, {"-var", "NAME VALUE"}, {"-log", "FILE|none"},
+                                            {"-summary", "FILE"}, {"-threads", "N|auto"}};
+      for (size_t k = 0; k < sizeof need / sizeof need[0]; k++)
+        if (!strcmp(o, need[k][0])) {
+          fprintf(stderr, "yfdem: %s expects %s after it, and the command line ends before\n", o, need[k][1]);
+          return YF_EXIT_DECK;
+        }
+      if (h) fprintf(stderr, "yfdem: unknown option '%s': %s (yfdem -h lists the options)\n", o, h);
+      else
+        fprintf(stderr, "yfdem: unknown or incomplete option '%s': the options are -in FILE, -var NAME VALUE, "
+                "-log FILE|none, -echo, -summary FILE, -threads N|auto, -h [COMMAND], -reference, -version "
+                "(yfdem -h)\n", o);
       return YF_EXIT_DECK;
     }
   }
@@ -269,6 +336,10 @@ int main(int argc, char **argv) {
       deck_run_file(g_deck, in, NULL);
     }
   } else {
+    /* 'yfdem' alone waited for a deck on the terminal without a word: say what it waits for */
+    if (isatty(0) && yf_writer())
+      fprintf(stderr, "yfdem: reading the deck from the terminal: type commands, end with Ctrl-D "
+              "(yfdem -in FILE or yfdem < FILE reads a file; yfdem -h lists the options)\n");
     deck_run_stream(g_deck, par_stdin(stdin, &g_sim.interrupted), "<stdin>");
   }
   int code = yf_finish(YF_EXIT_OK);

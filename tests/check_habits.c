@@ -355,6 +355,91 @@ START_TEST(test_var_takes_one_value) {
 }
 END_TEST
 
+/* LAMMPS's spellings on yfdem's command line: '-echo screen' made 'screen' the deck ("the deck is
+ * already"), '-v', '-sc none', '-pk omp 2' were "unknown or incomplete option" with no way on, and
+ * an option cut short ('-var n' at the end) did not say what it lacked; '-log ""' was an I/O error
+ * (exit 2, -summary's a command-line one), '-in -' "cannot open deck '-'" and '-reference sectons'
+ * printed the table, its typo unseen. Each now names the word at fault and yfdem's way, exit 1,
+ * before anything runs. */
+START_TEST(test_lammps_options_hinted) {
+  static const struct {
+    const char *args, *msg;
+  } cases[] = {
+      {"-echo screen", "yfdem: -echo 'screen': -echo takes no value (LAMMPS's -echo screen|log|both|none)"},
+      {"-echo none", "yfdem: -echo 'none': -echo takes no value"},
+      {"-v nx 4", "yfdem: unknown option '-v': yfdem sets a variable with -var NAME VALUE"},
+      {"-sc none", "yfdem: unknown option '-sc': yfdem has no -screen: send the screen elsewhere with > FILE"},
+      {"-pk omp 2", "yfdem: unknown option '-pk': yfdem sets its OpenMP threads with -threads N"},
+      {"-x", "yfdem: unknown or incomplete option '-x': the options are -in FILE, -var NAME VALUE,"},
+      {"-var nx", "yfdem: -var expects NAME VALUE after it, and the command line ends before"},
+      {"-threads", "yfdem: -threads expects N|auto after it"},
+      {"-log ''", "yfdem: -log '': an empty file name (give -log FILE, or -log none"},
+      {"-in -", "yfdem: -in '-': yfdem reads standard input when no deck is given: yfdem < FILE"},
+      {"-reference sectons", "yfdem: -reference 'sectons': expected 'sections' (a section per command) or nothing"},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+    char *err, *dir;
+    int rc = yft_run_binary("a.deck", BAR "run 2\nprint \"done\"\n", cases[k].args, &err, &dir);
+    ck_assert_msg(rc == 1 && strstr(err, cases[k].msg), "'%s': exit %d: %s", cases[k].args, rc, err);
+    char *log = file_in(dir, "log.yfdem"); /* refused before the deck was read */
+    ck_assert_msg(!log, "'%s' ran the deck", cases[k].args);
+    free(err);
+    free(dir);
+  }
+}
+END_TEST
+
+/* '-var nx 4 ... -var nx 6' (a sweep script that appends its value to a base command line) kept
+ * the last value in silence, where LAMMPS keeps the first: it still keeps the last, and says so. */
+START_TEST(test_var_given_twice_warned) {
+  char *err, *dir;
+  int rc = yft_run_binary("a.deck", BAR "run 0\nprint \"nx ${nx}\"\n", "-var nx 4 -var nx 6", &err, &dir);
+  char *out = file_in(dir, "log.yfdem");
+  ck_assert_msg(rc == 0 && strstr(err, "warning: -var nx is given twice ('4', then '6'): the last is used") && out &&
+                strstr(out, "nx 6\n"), "exit %d: %s", rc, err);
+  free(out);
+  free(err);
+  free(dir);
+}
+END_TEST
+
+/* A deck without a command ('yfdem < /dev/null', an empty or comment-only file a generator left)
+ * ran nothing and exited 0 in silence, as a run that went well; it still exits 0 but warns.  And
+ * 'yfdem' alone at a terminal waited for a deck without a word: it now says what it waits for
+ * (run under script(1), which gives it a terminal). */
+START_TEST(test_empty_deck_and_terminal_stdin) {
+  char *dir = yft_deck_dir("c.deck", "# a deck to come\n\n");
+  yft_put_file(dir, "e.deck", "");
+  char cmd[4096];
+  snprintf(cmd, sizeof cmd, "cd %s && %s -log none -in c.deck 2> err1.txt; echo $? > rc1.txt; "
+           "%s -log none < e.deck 2> err2.txt; echo $? > rc2.txt; "
+           "printf 'print \"from the terminal\"\\n\\004' | timeout 60 script -qec '%s -log none' /dev/null > tty.txt 2>&1; "
+           "echo $? > rc3.txt",
+           dir, yft_binary(), yft_binary(), yft_binary());
+  ck_assert_int_eq(system(cmd), 0);
+  const char *want[2] = {"c.deck:1: warning: the deck holds no command (it is empty, or only comments and blank "
+                         "lines): nothing was done",
+                         "<stdin>:1: warning: the deck holds no command"};
+  for (int k = 0; k < 2; k++) {
+    char name[32];
+    snprintf(name, sizeof name, "err%d.txt", k + 1);
+    char *e = file_in(dir, name);
+    snprintf(name, sizeof name, "rc%d.txt", k + 1);
+    char *c = file_in(dir, name);
+    ck_assert_msg(e && c && atoi(c) == 0 && strstr(e, want[k]), "exit %s: %s", c, e);
+    free(e);
+    free(c);
+  }
+  char *t = file_in(dir, "tty.txt"), *c = file_in(dir, "rc3.txt");
+  ck_assert_msg(t && c && atoi(c) == 0 &&
+                strstr(t, "yfdem: reading the deck from the terminal: type commands, end with Ctrl-D") &&
+                strstr(t, "from the terminal"), "exit %s: %s", c, t);
+  free(t);
+  free(c);
+  free(dir);
+}
+END_TEST
+
 /* 'run 0' (the LAMMPS idiom for setting up and reading quantities) printed the thermo line of step 0
  * twice, once as the run's start and once as its end; LAMMPS prints it once, and so does yfdem
  * now, while 'run 5' with thermo 5 still prints steps 0 and 5. */
@@ -621,6 +706,9 @@ Suite *habits_suite(void) {
   tcase_add_test(t, test_summary_keys_without_run);
   tcase_add_test(t, test_metrics_log_survives_kill);
   tcase_add_test(t, test_second_interrupt_leaves_no_tmp);
+  tcase_add_test(t, test_lammps_options_hinted);
+  tcase_add_test(t, test_empty_deck_and_terminal_stdin);
+  tcase_add_test(t, test_var_given_twice_warned);
   suite_add_tcase(s, t);
   return s;
 }

@@ -409,13 +409,9 @@ START_TEST(test_gmsh_parametric_scale_mapping) {
 }
 END_TEST
 
-START_TEST(test_gmsh_hand_written) {
-  YfSim *s = new_sim();
-  YfModel *m = &s->model;
-  int soft = model_add_material(m, "soft"), hard = model_add_material(m, "hard");
-  char line[1200];
-  snprintf(line, sizeof line, "gmsh sq %s", repo_path("decks/meshes/square4.msh"));
-  run(s, cmd_mesh, "mesh", line);
+/* The scene of square4.msh (or of the same mesh partitioned): 5 nodes, 4 triangles covering the
+ * unit square, tags up to 3 soft and above hard, the curve 'base' on y = 0 of length 1. */
+static void check_square4(YfModel *m, int soft, int hard) {
   ck_assert_int_eq(m->node.n, 5);
   ck_assert_int_eq(m->tri.n, 4);
   assert_all_ccw(m); /* triangle 3 is clockwise in the file */
@@ -433,6 +429,16 @@ START_TEST(test_gmsh_hand_written) {
   int nb;
   ck_assert_double_eq_tol(boundary_length(m, gb, 0.5, 0.5, &nb), 1.0, 1e-15);
   ck_assert_int_eq(nb, 1);
+}
+
+START_TEST(test_gmsh_hand_written) {
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  int soft = model_add_material(m, "soft"), hard = model_add_material(m, "hard");
+  char line[1200];
+  snprintf(line, sizeof line, "gmsh sq %s", repo_path("decks/meshes/square4.msh"));
+  run(s, cmd_mesh, "mesh", line);
+  check_square4(m, soft, hard);
   free_sim(s);
 }
 END_TEST
@@ -520,6 +526,16 @@ START_TEST(test_gmsh_malformed) {
   bad_msh("bin.msh", "4.1 0 8", "4.1 1 8", 2, "binary .msh files are not supported");
   bad_msh("trunc.msh", "4 2 3 5\n", NULL, 40, "unexpected end of file");
   bad_msh("trunc2.msh", "1 0 0\n", NULL, 23, "unexpected end of file");
+  /* cut inside a physical name: it said "unterminated physical name", or "has no name" */
+  bad_msh("trunc4.msh", "2 2 \"ha", NULL, 8, "unexpected end of file in the name of physical group 2 (truncated file?)");
+  bad_msh("trunc5.msh", "2 2 ", NULL, 8, "unexpected end of file: physical group 2 has no name (truncated file?)");
+  /* cut inside a number or an $End marker: the cut word was read as it stood ("expected a number,
+   * found '-'", "node tag 1 is defined twice" for a cut "12", "expected $EndNodes, found '$EndNod'") */
+  bad_msh("trunc6.msh", "0.5 0.", NULL, 29, "unexpected end of file in '0.' while reading a node y (truncated file?)");
+  bad_msh("trunc7.msh", "$EndNod", NULL, 30, "unexpected end of file in '$EndNod': $EndNodes is cut short (truncated file?)");
+  /* cut inside an element's line: it said "element 4 (3-node triangle) has 2 node tags" */
+  bad_msh("trunc3.msh", "4 2 3", NULL, 39, "unexpected end of file in element 4, 1 of 2 elements into its block "
+          "(truncated file?)");
   bad_msh("num.msh", "0.5 0.5 0\n", "0.5 0.5x 0\n", 29, "expected a number for a node y, found '0.5x'");
   /* the deck's number rules (strictnum.h): strtod read hex coordinates the deck refuses */
   bad_msh("hex.msh", "0.5 0.5 0\n", "0x1p-1 0.5 0\n", 29,
@@ -536,9 +552,156 @@ START_TEST(test_gmsh_malformed) {
   bad_msh("zero.msh", "0.5 0.5 0\n", "0.5 0 0\n", 36, "triangle 2 has zero area");
   bad_msh("quad.msh", "2 2 2 2\n4 2 3 5\n5 4 1 5\n", "2 2 3 1\n4 2 3 5 1\n", 38,
           "element type 3 (4-node quadrangle) in surface 2 is not supported");
-  bad_msh("z.msh", "0.5 0.5 0\n", "0.5 0.5 0.1\n", 29, "needs the mesh in the plane z = 0");
+  bad_msh("z.msh", "0.5 0.5 0\n", "0.5 0.5 0.1\n", 29, "needs a flat mesh, in one plane z = constant");
   bad_msh("ent.msh", "2 2 2 2\n", "2 7 2 2\n", 38, "surface 7, which $Entities does not define");
   bad_msh("start.msh", "$MeshFormat\n", "$Mesh\n", 1, "must start with $MeshFormat");
+}
+END_TEST
+
+/* SQ4 with each sub[k][0] replaced by sub[k][1] (first occurrence, in turn); a static buffer. */
+static char *sq4_with(const char *const (*sub)[2], size_t n) {
+  static char txt[4096];
+  snprintf(txt, sizeof txt, "%s", SQ4);
+  for (size_t k = 0; k < n; k++) {
+    char *p = strstr(txt, sub[k][0]);
+    ck_assert_ptr_nonnull(p);
+    char rest[4096];
+    snprintf(rest, sizeof rest, "%s", p + strlen(sub[k][0]));
+    snprintf(p, sizeof txt - (size_t)(p - txt), "%s%s", sub[k][1], rest);
+  }
+  return txt;
+}
+
+/* A flat mesh in the plane z = 5 (a section of a 3D model drawn where it lies) is as 2D as one at
+ * z = 0: its scene is square4's.  It was refused ("node 1 has z = 5 ... needs the plane z = 0"). A
+ * mesh that is not flat is still refused, naming a node off the first node's plane. */
+START_TEST(test_gmsh_flat_plane_off_zero) {
+  static const char *const sub[][2] = {{"0 0 0\n1 0 0\n", "0 0 5\n1 0 5\n"},
+                                       {"1 1 0\n0 1 0\n0.5 0.5 0\n", "1 1 5\n0 1 5\n0.5 0.5 5.0000000000000001\n"}};
+  char *txt = sq4_with(sub, 2);
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  int soft = model_add_material(m, "soft"), hard = model_add_material(m, "hard");
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s", write_tmp("z5.msh", txt));
+  run(s, cmd_mesh, "mesh", cmd);
+  check_square4(m, soft, hard);
+  free_sim(s);
+  bad_msh("z5tilt.msh", "0.5 0.5 0\n", "0.5 0.5 0.1\n", 29, "node 5 has z = 0.1 where node 1 has z = 0: yfdem is 2D "
+          "and needs a flat mesh, in one plane z = constant");
+}
+END_TEST
+
+/* Every physical group becomes a group and yfdem holds 64: a file with more (here the base curve in
+ * 70 unnamed physical groups) was refused naming the first group that did not fit ("cannot create
+ * group 'phys_73'"), a name the deck never gave; the error now counts them and says what to do. */
+START_TEST(test_gmsh_too_many_groups) {
+  char ents[600];
+  int k = snprintf(ents, sizeof ents, "1 0 0 0 1 0 0 70");
+  for (int t = 10; t < 80; t++) k += snprintf(ents + k, sizeof ents - (size_t)k, " %d", t);
+  snprintf(ents + k, sizeof ents - (size_t)k, " 0\n");
+  const char *const sub[][2] = {{"1 0 0 0 1 0 0 1 10 0\n", ents}};
+  char *txt = sq4_with(sub, 1);
+  YfSim *s = new_sim();
+  model_add_material(&s->model, "soft");
+  model_add_material(&s->model, "hard");
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s", write_tmp("many.msh", txt));
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "test.deck:7: error: mesh gmsh:", "many.msh' has 72 physical groups: with the "
+              "body's they need 73 new groups, and 64 of the 64 groups yfdem holds are free", "merge physical groups in Gmsh");
+  free_sim(s);
+}
+END_TEST
+
+/* $Entities after $Elements came too late to give the elements their physical groups, and said
+ * "surface 1 is defined twice" (the element blocks had made it); now it names the order. */
+START_TEST(test_gmsh_entities_after_elements) {
+  static const char *const ents = "$Entities\n0 1 2 0\n1 0 0 0 1 0 0 1 10 0\n1 0 0 0 1 1 0 1 1 0\n"
+                                  "2 0 0 0 1 1 0 1 2 0\n$EndEntities\n";
+  char moved[300];
+  snprintf(moved, sizeof moved, "$EndElements\n%s", ents);
+  const char *const sub[][2] = {{ents, ""}, {"$EndElements\n", moved}};
+  char *txt = sq4_with(sub, 2);
+  YfSim *s = new_sim();
+  model_add_material(&s->model, "soft");
+  model_add_material(&s->model, "hard");
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s", write_tmp("entlast.msh", txt));
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "entlast.msh:36: error: $Entities comes after $Elements: it must "
+              "come before (as Gmsh writes it)");
+  free_sim(s);
+}
+END_TEST
+
+/* square4.msh as Gmsh writes it once partitioned (Mesh > Partition, or gmsh -part 2): the nodes
+ * and elements sit in partition entities, which $PartitionedEntities lists with their parents'
+ * physical tags (and ghost entities, here one); the scene is that of the unpartitioned file.
+ * Before, the reader looked the element blocks up in $Entities and refused the file. */
+START_TEST(test_gmsh_partitioned) {
+  static const char *const sub[][2] = {
+      {"$EndEntities\n", "$EndEntities\n$PartitionedEntities\n2\n1\n5 1\n0 1 2 0\n"
+                         "3 1 1 1 1 0 0 0 1 0 0 1 10 0\n"
+                         "3 2 1 1 1 0 0 0 1 1 0 1 1 0\n"
+                         "4 2 2 1 2 0 0 0 1 1 0 1 2 0\n$EndPartitionedEntities\n"},
+      {"1 1 0 2\n", "1 3 0 2\n"}, {"2 1 0 3\n", "2 3 0 3\n"},
+      {"1 1 1 1\n", "1 3 1 1\n"}, {"2 1 2 2\n", "2 3 2 2\n"}, {"2 2 2 2\n", "2 4 2 2\n"}};
+  char *txt = sq4_with(sub, sizeof sub / sizeof sub[0]);
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  int soft = model_add_material(m, "soft"), hard = model_add_material(m, "hard");
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s", write_tmp("part.msh", txt));
+  run(s, cmd_mesh, "mesh", cmd);
+  check_square4(m, soft, hard);
+  free_sim(s);
+  /* an element block in an entity $PartitionedEntities lacks names that section */
+  char *p = strstr(txt, "2 4 2 2\n");
+  p[2] = '7';
+  s = new_sim();
+  model_add_material(&s->model, "soft");
+  model_add_material(&s->model, "hard");
+  snprintf(cmd, sizeof cmd, "gmsh sq %s", write_tmp("part7.msh", txt));
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "part7.msh:47: error:",
+              "surface 7, which $PartitionedEntities does not define");
+  free_sim(s);
+}
+END_TEST
+
+/* Two Gmsh bodies keep their files' tags as ids, so they share ids: 'group G node id 5' takes the
+ * node of each and said nothing.  It still takes both (the ids are the user's), with a warning
+ * naming the two bodies and how to keep one; 'load ID point node 5', which loads one node, is
+ * refused. */
+START_TEST(test_gmsh_shared_ids_warned) {
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  model_add_material(m, "soft");
+  model_add_material(m, "hard");
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "gmsh one %s", repo_path("decks/meshes/square4.msh"));
+  run(s, cmd_mesh, "mesh", cmd);
+  snprintf(cmd, sizeof cmd, "gmsh two %s scale 2", repo_path("decks/meshes/square4.msh"));
+  run(s, cmd_mesh, "mesh", cmd);
+  EXPECT_FAIL(s, cmd_group, "group", "c node id 5", 0, "test.deck:7: warning: group c: node id 5 is that of a node "
+              "of body 'one' and of one of body 'two'", "'group c_one intersect c one'");
+  EXPECT_FAIL(s, cmd_group, "group", "t tri id 4", 0, "warning: group t: triangle id 4 is that of a triangle of body 'one'");
+  run(s, cmd_group, "group", "c node id 5");
+  ck_assert_int_eq(count_nodes(m, group_of(m, "c")), 2); /* the centres (0.5, 0.5) and (1, 1) */
+  run(s, cmd_group, "group", "c_one intersect c one");
+  ck_assert_int_eq(count_nodes(m, group_of(m, "c_one")), 1);
+  /* a point load on such an id went to whichever node came first in memory: refused */
+  EXPECT_FAIL(s, cmd_load, "load", "p point node 5 1 0", 1, "test.deck:7: error: load: '5': node id 5 is that of a node "
+              "of body 'one' and of one of body 'two'", "'load p point at X Y'");
+  free_sim(s);
+  /* ids of one body only: no warning */
+  s = new_sim();
+  model_add_material(&s->model, "soft");
+  model_add_material(&s->model, "hard");
+  snprintf(cmd, sizeof cmd, "gmsh one %s", repo_path("decks/meshes/square4.msh"));
+  run(s, cmd_mesh, "mesh", cmd);
+  char *err;
+  ck_assert_int_eq(run_child(s, cmd_group, "group", "c node id 5 4", &err), 0);
+  ck_assert_msg(!strstr(err, "warning"), "%s", err);
+  free_sim(s);
 }
 END_TEST
 
@@ -911,6 +1074,11 @@ Suite *mesh_suite(void) {
   tcase_add_test(tc, test_gmsh_hand_written);
   tcase_add_test(tc, test_gmsh_same_as_file);
   tcase_add_test(tc, test_gmsh_malformed);
+  tcase_add_test(tc, test_gmsh_partitioned);
+  tcase_add_test(tc, test_gmsh_shared_ids_warned);
+  tcase_add_test(tc, test_gmsh_flat_plane_off_zero);
+  tcase_add_test(tc, test_gmsh_too_many_groups);
+  tcase_add_test(tc, test_gmsh_entities_after_elements);
   tcase_add_test(tc, test_gmsh_deck_errors);
   tcase_add_test(tc, test_gmsh_no_entities_unnamed);
   suite_add_tcase(s, tc);

@@ -17,6 +17,36 @@ static int body_or_die(const YfModel *m, const YfArgs *a, int i) {
   return b;
 }
 
+/* Gmsh meshes keep their files' tags as ids, so two such bodies (or one and an earlier mesh) share
+ * ids, and `group G node id 1` took node 1 of every body without a word.  Warn at the first id
+ * that selected nodes or triangles of two bodies, with the way to keep one body's. */
+static void warn_shared_ids(const YfModel *m, const YfArgs *a, const char *name, const unsigned char *ns,
+                            const unsigned char *ts) {
+  for (int kind = 0; kind < 2; kind++) {
+    const unsigned char *sel = kind ? ts : ns;
+    int n = kind ? m->tri.n : m->node.n;
+    const int *id = kind ? m->tri.id : m->node.id, *body = kind ? m->tri.body : m->node.body;
+    YfIdMap first; /* id -> index of the first selected entity with it */
+    idmap_init(&first);
+    for (int i = 0; i < n; i++) {
+      if (!sel[i]) continue;
+      int j = idmap_get(&first, id[i]);
+      if (j < 0) {
+        idmap_put(&first, id[i], i);
+        continue;
+      }
+      if (body[j] == body[i]) continue;
+      yf_warn(&a->loc, "group %s: %s id %d is that of a %s of body '%s' and of one of body '%s' (a Gmsh mesh keeps "
+              "its file's tags as ids): all are selected; to keep one body's, 'group %s_%s intersect %s %s'",
+              name, kind ? "triangle" : "node", id[i], kind ? "triangle" : "node", m->body[body[j]].name,
+              m->body[body[i]].name, name, m->body[body[j]].name, name, m->body[body[j]].name);
+      idmap_free(&first);
+      return;
+    }
+    idmap_free(&first);
+  }
+}
+
 static int group_or_die(YfModel *m, const YfArgs *a, int i) {
   char buf[1024];
   int g = model_group(m, a->w[i], 0);
@@ -90,6 +120,7 @@ void cmd_group(YfSim *sim, const YfArgs *a) {
       }
       free(hit);
       free(ids);
+      warn_shared_ids(m, a, name, ns, ts);
     } else if (by == BY_BODY) {
       arg_count(a, 4, 4);
       group_select_body(m, body_or_die(m, a, 3), want_n, want_t, ns, ts);

@@ -33,9 +33,19 @@ void cmd_load(YfSim *s, const YfArgs *a) {
     it.a[1] = arg_num(a, i + 1, "fy");
     it.hist = arg_history(s, a, i + 2);
     if (h == 0) {
-      int found = 0;
-      for (int k = 0; k < s->model.node.n && !found; k++) found = s->model.node.id[k] == it.node_id;
-      if (!found) arg_error(a, 3, "no node has this id");
+      /* Gmsh bodies keep their files' tags as ids, so two may share this one: the load went to
+       * whichever came first in memory (and a partition renumbers memory); refuse the guess */
+      const YfModel *m = &s->model;
+      int first = -1;
+      for (int k = 0; k < m->node.n; k++) {
+        if (m->node.id[k] != it.node_id) continue;
+        if (first < 0) first = k;
+        else if (m->node.body[k] != m->node.body[first]) /* copies of one node (joints) share its id */
+          arg_error(a, 3, "node id %d is that of a node of body '%s' and of one of body '%s' (a Gmsh mesh keeps its "
+                    "file's tags as ids): say which with 'load %s point at X Y' (the nearest node)", it.node_id,
+                    m->body[m->node.body[first]].name, m->body[m->node.body[k]].name, id);
+      }
+      if (first < 0) arg_error(a, 3, "no node has this id");
     }
     bc_add(s, id, &it);
     return;

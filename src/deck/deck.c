@@ -96,6 +96,7 @@ struct YfDeck {
   int eval_count;  /* equal-style evaluations of the current top-level expression */
   int exec_depth;  /* commands running inside other commands (if), see DECK_NEST_MAX */
   int subst_depth; /* $(...) being substituted inside $(...)                    */
+  long ncmd;       /* commands run so far (an empty deck is worth a warning)     */
 };
 
 /* Interned file names: never freed (a YfLoc may outlive the deck). */
@@ -841,6 +842,7 @@ static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
   a.loc = *loc;
   a.line = line;
   d->exec_depth++;
+  d->ncmd++;
   c->fn(d->sim, &a);
   d->exec_depth--;
   free_words(w, cols, n);
@@ -896,6 +898,12 @@ void deck_free(YfDeck *d) {
 void deck_set_var(YfDeck *d, const char *name, const char *value) {
   const char *why = name_fault(name);
   if (why) yf_deck_error(NULL, "-var: bad variable name '%.60s%s' (%s)", name, strlen(name) > 60 ? "..." : "", why);
+  /* '-var n 5 ... -var n 7' kept the last in silence, where LAMMPS keeps the first */
+  for (int i = 0; i < d->nvars; i++)
+    if (d->vars[i].cmdline && !strcmp(d->vars[i].name, name) && d->vars[i].nvals == 1 &&
+        strcmp(d->vars[i].vals[0], value) != 0)
+      yf_warn(NULL, "-var %s is given twice ('%.60s', then '%.60s'): the last is used (LAMMPS keeps the first)", name,
+              d->vars[i].vals[0], value);
   DeckVar *v = var_new(d, name, VAR_INDEX);
   v->cmdline = 1;
   v->vals = yf_malloc(sizeof *v->vals, "variable values");
@@ -905,13 +913,24 @@ void deck_set_var(YfDeck *d, const char *name, const char *value) {
 
 void deck_set_echo(YfDeck *d, int on) { d->echo = on != 0; }
 
+/* A deck without a single command ran nothing and exited 0 in silence: an empty file on stdin
+ * (a generator that failed, 'yfdem < /dev/null') looked like a run that went well. */
+static void warn_if_empty(const YfDeck *d, const DeckSource *s) {
+  if (d->ncmd || d->depth) return;
+  YfLoc loc = {s->name, 1};
+  yf_warn(&loc, "the deck holds no command (it is empty, or only comments and blank lines): nothing was done");
+}
+
 void deck_run_stream(YfDeck *d, FILE *fp, const char *fname) {
   DeckSource *s = source_from_stream(d, fp, fname ? fname : "<stdin>", NULL);
   run_source(d, s, NULL);
+  warn_if_empty(d, s);
 }
 
 void deck_run_file(YfDeck *d, const char *path, const YfLoc *from) {
-  run_source(d, source_load(d, path, from, NULL), from);
+  DeckSource *s = source_load(d, path, from, NULL);
+  run_source(d, s, from);
+  warn_if_empty(d, s);
 }
 
 char *deck_resolve_path(const YfArgs *a, const char *name) {

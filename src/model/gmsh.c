@@ -3,8 +3,9 @@
  * The file is read whole into memory and walked token by token, keeping the line of each token
  * so that every complaint names FILE.msh:LINE (and the deck line of the mesh command).  Sections
  * used: $MeshFormat (must say 4.1, ASCII), $PhysicalNames, $Entities (which entity belongs to
- * which physical groups), $Nodes (with or without parametric coordinates) and $Elements; any
- * other section is skipped.
+ * which physical groups), $PartitionedEntities (the same for the partition entities that hold the
+ * elements of a mesh partitioned in Gmsh; its partitions are ignored), $Nodes (with or without
+ * parametric coordinates) and $Elements; any other section is skipped.
  *
  * What becomes what:
  *   - 3-node triangles (type 2) in surfaces become triangles, turned counter-clockwise when the
@@ -18,7 +19,8 @@
  *   - 2-node lines (type 1) and points (type 15) only matter in physical curves and points;
  *     elements of entities without physical groups in dimensions 0 and 1 are skipped;
  *   - only nodes that are triangle corners enter the model (a node without a triangle would
- *     have no mass).  Node and element tags become the user ids.
+ *     have no mass); z is dropped, after checking that every node has the first one's.  Node
+ *     and element tags become the user ids.
  * Each element must sit on one line (as Gmsh writes them), which lets the reader check the
  * number of node tags of every element.
  */
@@ -118,6 +120,10 @@ static void msh_need(Msh *r, const char *what) {
   if (r->tok[0] == '$')
     msh_fail(r, r->tokline, "found '%s' while reading %s: the section holds less data than its "
              "counts declare", r->tok, what);
+  /* no file ends on data (an $End marker follows): a word that runs into the end was cut, and
+   * read as it stands it gave wrong complaints ("node tag 1 is defined twice" for a cut "12") */
+  if (r->pos >= r->len)
+    msh_fail(r, r->tokline, "unexpected end of file in '%s' while reading %s (truncated file?)", r->tok, what);
 }
 
 static long msh_long(Msh *r, const char *what) {
@@ -144,6 +150,8 @@ static double msh_double(Msh *r, const char *what) {
 static void msh_expect(Msh *r, const char *word, const char *why) {
   if (!msh_next(r))
     msh_fail(r, r->line, "unexpected end of file: %s is missing (truncated file?)", word);
+  if (strcmp(r->tok, word) != 0 && r->pos >= r->len && !strncmp(word, r->tok, strlen(r->tok)))
+    msh_fail(r, r->tokline, "unexpected end of file in '%s': %s is cut short (truncated file?)", r->tok, word);
   if (strcmp(r->tok, word) != 0)
     msh_fail(r, r->tokline, "expected %s, found '%s'%s", word, r->tok, why);
 }
@@ -246,8 +254,9 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
   int nent = 0, capent = 0, npool = 0, cappool = 0;
   Ent *ent = NULL;
   long *pool = NULL;
-  YfIdMap emap;
+  YfIdMap emap, pmap; /* entities of $Entities and of $PartitionedEntities, by tag * 4 + dim */
   idmap_init(&emap);
+  idmap_init(&pmap);
   int npn = 0;
   PhysName *pn = NULL;
 
@@ -266,7 +275,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
   long npair = 0, cappair = 0;
   int *pair = NULL; /* 2 per pair: entity, local node */
 
-  int have_fmt = 0, have_ent = 0, have_nodes = 0, have_elems = 0;
+  int have_fmt = 0, have_ent = 0, have_pent = 0, have_nodes = 0, have_elems = 0;
 
   while (msh_next(r)) {
     r->section = NULL;
@@ -313,7 +322,9 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
         p->dim = (int)dim;
         p->tag = msh_long(r, "the tag of a physical name");
         /* the name is a quoted string on the same line, spaces allowed */
-        if (msh_eol(r)) msh_fail(r, r->line, "physical group %ld has no name", p->tag);
+        if (msh_eol(r))
+          msh_fail(r, r->line, r->pos >= r->len ? "unexpected end of file: physical group %ld has no name (truncated "
+                   "file?)" : "physical group %ld has no name", p->tag);
         if (r->buf[r->pos] != '"')
           msh_fail(r, r->line, "the name of physical group %ld must be in double quotes", p->tag);
         size_t k = 0, q = r->pos + 1;
@@ -321,7 +332,8 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
           if (k + 1 >= sizeof p->name) msh_fail(r, r->line, "physical name longer than %zu characters", sizeof p->name - 1);
           p->name[k++] = r->buf[q++];
         }
-        if (q >= r->len || r->buf[q] != '"') msh_fail(r, r->line, "unterminated physical name");
+        if (q >= r->len) msh_fail(r, r->line, "unexpected end of file in the name of physical group %ld (truncated file?)", p->tag);
+        if (r->buf[q] != '"') msh_fail(r, r->line, "unterminated physical name");
         p->name[k] = '\0';
         r->pos = q + 1;
         if (k == 0) msh_fail(r, r->line, "physical group %ld has an empty name", p->tag);
@@ -332,9 +344,25 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       }
       msh_expect(r, "$EndPhysicalNames", " (more names than the count declares?)");
 
-    } else if (!strcmp(r->tok, "$Entities")) {
-      if (have_ent) msh_fail(r, r->tokline, "a second $Entities section");
-      r->section = "$Entities";
+    } else if (!strcmp(r->tok, "$Entities") || !strcmp(r->tok, "$PartitionedEntities")) {
+      /* a mesh partitioned in Gmsh keeps its elements in partition entities, listed in
+       * $PartitionedEntities with the physical tags of their parents: elements refer to those */
+      int part = !strcmp(r->tok, "$PartitionedEntities");
+      if (part ? have_pent : have_ent) msh_fail(r, r->tokline, "a second %s section", r->tok);
+      /* after the elements it came too late to give them their physical groups, and the surfaces
+       * those elements had defined made it say "surface 1 is defined twice" */
+      if (have_elems)
+        msh_fail(r, r->tokline, "%s comes after $Elements: it must come before (as Gmsh writes it), since the "
+                 "element blocks name its entities", r->tok);
+      r->section = part ? "$PartitionedEntities" : "$Entities";
+      YfIdMap *map = part ? &pmap : &emap;
+      if (part) {
+        long npart = msh_long(r, "the number of partitions");
+        if (npart < 0) msh_fail(r, r->tokline, "bad number of partitions %ld", npart);
+        long nghost = msh_long(r, "the number of ghost entities");
+        if (nghost < 0 || nghost > 100000000) msh_fail(r, r->tokline, "bad number of ghost entities %ld", nghost);
+        for (long k = 0; k < 2 * nghost; k++) msh_long(r, k % 2 ? "a ghost entity's partition" : "a ghost entity tag");
+      }
       long cnt[4];
       for (int d = 0; d < 4; d++) {
         cnt[d] = msh_long(r, "the number of entities");
@@ -346,6 +374,13 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
           snprintf(what, sizeof what, "a %s entity", dim_word[d]);
           long tag = msh_long(r, what);
           int line = r->tokline;
+          if (part) { /* parent dimension and tag, the partitions it belongs to */
+            msh_long(r, "the parent's dimension");
+            msh_long(r, "the parent's tag");
+            long np = msh_long(r, "the number of partitions of an entity");
+            if (np < 0 || np > 100000000) msh_fail(r, r->tokline, "bad number of partitions %ld", np);
+            for (long k = 0; k < np; k++) msh_long(r, "a partition tag");
+          }
           for (int k = 0; k < (d == 0 ? 3 : 6); k++) msh_double(r, d == 0 ? "a point coordinate" : "a bounding box");
           long np = msh_long(r, "the number of physical tags");
           if (np < 0 || np > 100000) msh_fail(r, r->tokline, "bad number of physical tags %ld", np);
@@ -370,12 +405,13 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
             if (nb < 0 || nb > 100000000) msh_fail(r, r->tokline, "bad number of bounding entities %ld", nb);
             for (long k = 0; k < nb; k++) msh_long(r, "a bounding entity tag");
           }
-          if (!idmap_put(&emap, (long long)tag * 4 + d, nent))
+          if (!idmap_put(map, (long long)tag * 4 + d, nent))
             msh_fail(r, line, "%s %ld is defined twice", dim_word[d], tag);
           nent++;
         }
-      msh_expect(r, "$EndEntities", " (more entities than the counts declare?)");
-      have_ent = 1;
+      msh_expect(r, part ? "$EndPartitionedEntities" : "$EndEntities", " (more entities than the counts declare?)");
+      if (part) have_pent = 1;
+      else have_ent = 1;
 
     } else if (!strcmp(r->tok, "$Nodes")) {
       if (have_nodes) msh_fail(r, r->tokline, "a second $Nodes section");
@@ -394,7 +430,9 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       nx = yf_malloc((size_t)ntot * sizeof *nx, "mesh nodes");
       ny = yf_malloc((size_t)ntot * sizeof *ny, "mesh nodes");
       used = yf_calloc((size_t)ntot, sizeof *used, "mesh nodes");
-      double zmax = 0.0, ext = 0.0;
+      /* z: the mesh must be flat, in a plane z = constant (a section drawn at z = 5 is as 2D as one
+       * at z = 0: its z is dropped); the first node's z is the plane's */
+      double zmax = 0.0, ext = 0.0, zref = 0.0, zat = 0.0;
       int zline = 0;
       long zntag = 0;
       for (long b = 0; b < nblk; b++) {
@@ -427,8 +465,10 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
             msh_fail(r, cline, "node %ld at (%g, %g) m is beyond +-%g m, the range the arithmetic holds "
                      "(areas and energies multiply coordinates)", ntag[nn + i], nx[nn + i], ny[nn + i], YF_RANGE_MAX);
           ext = fmax(ext, fmax(fabs(x), fabs(y)));
-          if (fabs(z) > zmax) {
-            zmax = fabs(z);
+          if (nn + i == 0) zref = z;
+          if (fabs(z - zref) > zmax) {
+            zmax = fabs(z - zref);
+            zat = z;
             zline = cline;
             zntag = ntag[nn + i];
           }
@@ -438,9 +478,9 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       if (nn != ntot)
         msh_fail(r, hline, "the blocks hold %ld nodes but the header declares %ld", nn, ntot);
       msh_expect(r, "$EndNodes", " (the header's block count does not match the data?)");
-      if (zmax > 1e-9 * ext)
-        msh_fail(r, zline, "node %ld has z = %g: yfdem is 2D and needs the mesh in the plane z = 0",
-                 zntag, zmax);
+      if (zmax > 1e-9 * fmax(ext, fabs(zref)))
+        msh_fail(r, zline, "node %ld has z = %g where node %ld has z = %g: yfdem is 2D and needs a flat mesh, in "
+                 "one plane z = constant (such as z = 0)", zntag, zat, ntag[0], zref);
       have_nodes = 1;
 
     } else if (!strcmp(r->tok, "$Elements")) {
@@ -466,7 +506,11 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
           msh_fail(r, r->tokline, "element block %ld declares %ld elements, more than the %ld left of "
                    "the header's total %ld", b + 1, nin, ntot - ne, ntot);
         int ei = -1;
-        if (have_ent) {
+        if (have_pent) {
+          ei = ent_find(&pmap, (int)edim, etag);
+          if (ei < 0) msh_fail(r, bline, "element block in %s %ld, which $PartitionedEntities does not define",
+                               dim_word[edim], etag);
+        } else if (have_ent) {
           ei = ent_find(&emap, (int)edim, etag);
           if (ei < 0) msh_fail(r, bline, "element block in %s %ld, which $Entities does not define",
                                dim_word[edim], etag);
@@ -523,6 +567,10 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
               msh_fail(r, line, "expected an integer node tag in element %ld, found '%s'", tag, r->tok);
             k++;
           }
+          /* a file cut inside an element's line said "has 0 node tags", not that it was cut */
+          if (r->pos >= r->len)
+            msh_fail(r, r->line, "unexpected end of file in element %ld, %ld of %ld elements into its block "
+                     "(truncated file?)", tag, i + 1, nin);
           if (!keep) continue;
           if (k < want)
             msh_fail(r, line, "element %ld (%s) has %d node tags on its line, expected %d", tag,
@@ -670,6 +718,19 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
   }
 
   /* ---- into the model ---- */
+  /* every physical group becomes a group: say so when they do not fit, rather than naming the
+   * first group that did not ("cannot create group 'edge63'"), a name the deck never gave */
+  int fresh = model_group(m, o->body, 0) < 0; /* the body's own group */
+  for (int j = 0; j < nph; j++) {
+    int dup = 0;
+    for (int q = 0; q < j; q++) dup |= !strcmp(ph[q].name, ph[j].name);
+    fresh += !dup && model_group(m, ph[j].name, 0) < 0;
+  }
+  if (m->ngroup + fresh > YF_MAX_GROUPS)
+    yf_deck_error(&o->from, "mesh gmsh: '%s' has %d physical groups: with the body's they need %d new groups, and %d "
+                  "of the %d groups yfdem holds are free (every body and group counts): merge physical groups in "
+                  "Gmsh (one physical surface per material, one physical curve per loaded or held boundary)",
+                  path, nph, fresh, YF_MAX_GROUPS - m->ngroup, YF_MAX_GROUPS);
   int b = mesh_new_body(m, o->body, o->defmat >= 0 ? o->defmat : first_mat, &o->from, "mesh gmsh");
   uint64_t bbit = (uint64_t)1 << m->body[b].group;
   for (int j = 0; j < nph; j++) {
@@ -736,6 +797,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
   free(used);
   idmap_free(&nmap);
   idmap_free(&emap);
+  idmap_free(&pmap);
   free(pn);
   free(pool);
   free(ent);
