@@ -684,6 +684,24 @@ START_TEST(test_capacity_memory_total) {
     free(deck);
     free(a);
   }
+  /* The key that tips the sum over need not be the one to change: MELEM 200000000 (line 14 of deck a)
+   * sizes nothing until MELST (line 16) does, with it, D2ELST.  The error, at MELST's line, said
+   * "MELST = 1 ... use a smaller size" alone (2026-11-29 sweep); it now names the largest array's
+   * capacities with their values and lines. */
+  {
+    char *at, *a = deck_a_at("/YD/YDE/MELEM 3680\n", &at);
+    int line = 1;
+    for (const char *p = a; p < at; p++) line += *p == '\n';
+    char *deck = malloc(strlen(a) + 64), *err, want[200];
+    sprintf(deck, "%.*s/YD/YDE/MELEM 200000000\n%s", (int)(at - a), a, at + strlen("/YD/YDE/MELEM 3680\n"));
+    int rc = yft_run_binary("cap.y", deck, "-log none", &err, NULL);
+    snprintf(want, sizeof want, "the largest array, /YD/YDE/D2ELST, is sized by /YD/YDE/MELST = 1 (line %d), "
+             "/YD/YDE/MELEM = 200000000 (line %d)", line + 2, line);
+    ck_assert_msg(rc == 1 && strstr(err, want), "exit %d, want '%s': %s", rc, want, err);
+    free(err);
+    free(deck);
+    free(a);
+  }
   unsetenv("YFDEM_MEM_MAX");
 }
 END_TEST

@@ -537,13 +537,14 @@ static double array_bytes(const YfY2d *y, int k) {
  * need 180 GB, and every array is allocated at its capacity (those never given at the end).
  * Checked here, once per capacity, so that alloc_array never meets a size that overflows. */
 static void check_capacity_memory(const YfY2d *y, int k, const YfLoc *kloc) {
-  double total = 0.0;
-  int nsized = 0, nall = 0;
+  double total = 0.0, bmax = 0.0;
+  int nsized = 0, nall = 0, amax = -1;
   for (int a = 0; a < Y2D_NKEYS; a++) {
     double b = array_bytes(y, a);
     if (!(b > 0)) continue;
     total += b;
     nall++;
+    if (b > bmax) { bmax = b; amax = a; }
     for (int d = 0; d < 3; d++)
       if (keydefs[a].cap[d] == k) {
         nsized++;
@@ -551,9 +552,22 @@ static void check_capacity_memory(const YfY2d *y, int k, const YfLoc *kloc) {
       }
   }
   if (!nsized || !(total > yf_mem_cap())) return;
-  char what[240];
+  /* The key read last tips the sum over, but the capacity to change is often an earlier one (MELEM
+   * 4000000000, then MELST 1: the error named MELST alone): name the largest array's capacities,
+   * each with its value and line. */
+  char big[400] = "";
+  if (amax >= 0) {
+    int o = snprintf(big, sizeof big, "; the largest array, %s, is sized by", keydefs[amax].full);
+    for (int d = 0; d < ndims(keydefs[amax].type) && o > 0 && (size_t)o < sizeof big; d++) {
+      int c = keydefs[amax].cap[d];
+      if (c < 0) continue; /* a fixed size */
+      o += snprintf(big + o, sizeof big - (size_t)o, "%s %s = %ld (line %d)", d ? "," : "", keydefs[c].full,
+                    scalar_long(y, c), c == k ? kloc->line : y->where[c].line);
+    }
+  }
+  char what[640];
   snprintf(what, sizeof what, "%s = %ld (it sizes %d array%s; with the arrays sized by the capacities before it, "
-           "%d in all)", keydefs[k].full, scalar_long(y, k), nsized, nsized == 1 ? "" : "s", nall);
+           "%d in all%s)", keydefs[k].full, scalar_long(y, k), nsized, nsized == 1 ? "" : "s", nall, big);
   yf_mem_check(kloc, total, what);
 }
 
