@@ -66,6 +66,8 @@ static struct {
   double r_max;      /* the largest residual of the checks so far */
   int streak;        /* consecutive checks above the tolerance with the residual still growing */
   int warned;        /* warn mode: one warning per run */
+  double overlap;    /* contact energy of a start state taken as given (bodies that start overlapping) [J/m] */
+  long overlap_step; /* ... at the first step of the run that started at this step */
 } E;
 
 /* Checks in a row (100 steps apart) at which a residual above the tolerance must reach a new high,
@@ -142,7 +144,11 @@ void energy_first_step(YfSim *s) {
   if (!E.contact_pending) return;
   E.contact_pending = 0;
   double c = s->energy.contact - E.contact_base;
-  if (isfinite(c) && c > 0) E.budget += c;
+  if (isfinite(c) && c > 0) {
+    E.budget += c;
+    E.overlap = c;
+    E.overlap_step = s->step - 1;
+  }
 }
 
 /* The checks' steps: one in each hundred, the c-th at step 100 c + j with j in -32..31 from a hash
@@ -169,10 +175,20 @@ static void advice(const YfSim *s, char *buf, size_t n) {
   YfContactExport ce;
   int skip = contact_export(s, &ce) && ce.joined_skip && s->joints && s->joints->n > 0;
   int k;
+  const double scale = E.budget + fabs(energy_external(s));
   if (ratio > 1.0)
     k = snprintf(buf, n, "the time step %.6g s is %.3g x the stable limit %.6g s (set by %s): use at most %.6g s%s",
                  s->dt, ratio, s->dt_limit, s->dt_limiter, YF_DT_SAFETY_RECOMMENDED * s->dt_limit,
                  s->y2d ? " (DCSTEC of the .y deck)" : " ('timestep auto')");
+  else if (E.overlap > 0.5 * scale)
+    /* two 1 m squares placed 0.65 m into each other (a second Gmsh body not moved off the first):
+     * 4.3e7 J/m of penalty energy at once, released at 2.6 km/s, stopped at step 107 with the
+     * time-step advice, which does not help: the start state is the cause */
+    k = snprintf(buf, n, "the bodies start overlapping: their contact penalty energy at step %ld, %.6g J/m, is %.0f %% "
+                 "of the energy given, and the penalty throws them apart with it; check the bodies' positions (a mesh "
+                 "placed into another, a body not moved off its neighbour) and start them touching, not overlapping; "
+                 "the time step %.6g s is %.3g x the stable limit %.6g s (set by %s)", E.overlap_step, E.overlap,
+                 100.0 * E.overlap / scale, s->dt, ratio, s->dt_limit, s->dt_limiter);
   else if (ratio > 0 && skip)
     /* a block with joints hitting a base at 20 m/s: 13 % of the impact energy from nowhere at
      * safety 0.5 and at 0.1 alike, none with joined keep; the time step advice sent users astray */
