@@ -170,6 +170,19 @@ void energy_run_end(const YfSim *s) {
 }
 
 /* What to change: the time step against the limit, and the switch. */
+/* Most of the energy given is a start state's contact energy: bodies that start overlapping. */
+static int overlap_dominates(const YfSim *s) { return E.overlap > 0.5 * (E.budget + fabs(energy_external(s))); }
+
+const char *energy_overlap_note(const YfSim *s, char *buf, size_t n) {
+  if (n) buf[0] = 0;
+  if (overlap_dominates(s))
+    snprintf(buf, n, "; the bodies started overlapping (their contact penalty energy at step %ld, %.6g J/m, is %.0f %% "
+             "of the energy given, and the penalty throws them apart with it): check the bodies' positions and start "
+             "them touching, not overlapping", E.overlap_step, E.overlap,
+             100.0 * E.overlap / (E.budget + fabs(energy_external(s))));
+  return buf;
+}
+
 static void advice(const YfSim *s, char *buf, size_t n) {
   double ratio = s->dt_limit > 0 && isfinite(s->dt_limit) ? s->dt / s->dt_limit : 0.0;
   YfContactExport ce;
@@ -180,7 +193,7 @@ static void advice(const YfSim *s, char *buf, size_t n) {
     k = snprintf(buf, n, "the time step %.6g s is %.3g x the stable limit %.6g s (set by %s): use at most %.6g s%s",
                  s->dt, ratio, s->dt_limit, s->dt_limiter, YF_DT_SAFETY_RECOMMENDED * s->dt_limit,
                  s->y2d ? " (DCSTEC of the .y deck)" : " ('timestep auto')");
-  else if (E.overlap > 0.5 * scale)
+  else if (overlap_dominates(s))
     /* two 1 m squares placed 0.65 m into each other (a second Gmsh body not moved off the first):
      * 4.3e7 J/m of penalty energy at once, released at 2.6 km/s, stopped at step 107 with the
      * time-step advice, which does not help: the start state is the cause */

@@ -39,5 +39,9 @@ void energy_set_budget(double e);
  * restart holds them; changes the deck makes before the next run are energy given). */
 void energy_restored(const YfSim *s, double budget);
 void energy_reset(void);
+/* When most of the energy given is the contact energy of a start state (bodies that start
+ * overlapping), a clause for a numerical failure's message naming it ("; the bodies started
+ * overlapping: ..."), written into buf; "" otherwise.  Returns buf. */
+const char *energy_overlap_note(const YfSim *s, char *buf, size_t n);
 
 #endif

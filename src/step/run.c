@@ -482,18 +482,20 @@ static void stage_elements(YfSim *s) {
                            "apart); are the velocities (or coordinates) far too large?", m->tri.id[e],
                            m->mat[m->tri.mat[e]].name, size, far);
       }
+      char ov[400];
+      energy_overlap_note(s, ov, sizeof ov); /* bodies that start overlapping: the likelier cause */
       if (R.blk_badJ[b] <= 0)
         yf_numeric_error(s->step + 1, "triangle %d (material %s) inverted: J = %.6g (area ratio current/initial); "
                          "the time step (%.6g s, stable limit %.6g s of the undeformed mesh, set by %s) may be too "
                          "large for the mesh as compressed (its limit is lower: try a smaller 'timestep auto "
-                         "safety'%s), or the body is crushed beyond what the law allows",
+                         "safety'%s), or the body is crushed beyond what the law allows%s",
                          m->tri.id[e], m->mat[m->tri.mat[e]].name, R.blk_badJ[b], s->dt, s->dt_limit, s->dt_limiter,
                          /* a Y2D deck's step is its DCSTEC, which `yfdem DECK.y` has no timestep command for */
-                         s->y2d ? ", or a smaller DCSTEC in the .y deck" : "");
+                         s->y2d ? ", or a smaller DCSTEC in the .y deck" : "", ov);
       /* a non-finite stress is an overflow of a growing instability: say what limits the step */
       yf_numeric_error(s->step + 1, "triangle %d (material %s): stress is not finite (not a number, or beyond a double): the motion "
-                       "blew up (time step %.6g s, stable limit %.6g s set by %s)", m->tri.id[e],
-                       m->mat[m->tri.mat[e]].name, s->dt, s->dt_limit, s->dt_limiter);
+                       "blew up (time step %.6g s, stable limit %.6g s set by %s)%s", m->tri.id[e],
+                       m->mat[m->tri.mat[e]].name, s->dt, s->dt_limit, s->dt_limiter, ov);
     }
     power += R.blk[b];
   }
