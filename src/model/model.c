@@ -133,3 +133,13 @@ double model_tri_d(const YfModel *m, int t, int cur) {
   const double *X = cur ? m->node.x : m->node.x0, *Y = cur ? m->node.y : m->node.y0;
   return (X[v[1]] - X[v[0]]) * (Y[v[2]] - Y[v[0]]) - (X[v[2]] - X[v[0]]) * (Y[v[1]] - Y[v[0]]);
 }
+
+const char *model_tri_label(const YfModel *m, int e, char *buf, size_t n) {
+  const char *mat = m->mat[m->tri.mat[e]].name;
+  const int b = m->tri.body ? m->tri.body[e] : -1;
+  if (m->nbody > 1 && b >= 0 && strcmp(m->body[b].name, mat) != 0)
+    snprintf(buf, n, "triangle %d of body %s (material %s)", m->tri.id[e], m->body[b].name, mat);
+  else
+    snprintf(buf, n, "triangle %d (material %s)", m->tri.id[e], mat);
+  return buf;
+}

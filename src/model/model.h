@@ -16,6 +16,7 @@
 #ifndef YF_MODEL_H
 #define YF_MODEL_H
 #include <stdint.h>
+#include <stddef.h>
 
 #define YF_NAME_MAX 48
 /* The largest |coordinate| [m] and |velocity| [m/s] accepted: areas, stiffnesses and energies
@@ -133,6 +134,10 @@ void model_reserve(YfModel *m, int nodes, int tris);
 /* Append a node / triangle; return its index.  Grows arrays geometrically. */
 int model_add_node(YfModel *m, double x, double y, int id, int body);
 int model_add_tri(YfModel *m, int n0, int n1, int n2, int mat, int id, int body);
+/* A triangle as messages name it: "triangle ID (material M)", or "triangle ID of body B (material
+ * M)" when the scene has several bodies and B is not M's name (Gmsh bodies keep their file's
+ * element tags, so two bodies share ids).  Written into buf (n bytes); returns buf. */
+const char *model_tri_label(const YfModel *m, int e, char *buf, size_t n);
 int model_add_material(YfModel *m, const char *name); /* zeroed, jset = -1, volfac 0.5 */
 int model_find_material(const YfModel *m, const char *name);  /* -1 if none */
 /* Add material given->name from the constants a deck gives (material.c): rho, volfac, visc,

@@ -129,7 +129,7 @@ double run_stable_dt(YfSim *s, char *limiter, size_t n) {
   }
   if (limiter) {
     if (which >= 0)
-      snprintf(limiter, n, "triangle %d (material %s)", m->tri.id[which], m->mat[m->tri.mat[which]].name);
+      model_tri_label(m, which, limiter, n);
     else if (nt > 0) /* rho 1e-300, or a 1e-160 m mesh: every limit underflows (it said "no triangles") */
       snprintf(limiter, n, "no triangle: every limit is beyond a double's range (density, moduli or size)");
     else
@@ -168,8 +168,10 @@ double run_stable_dt(YfSim *s, char *limiter, size_t n) {
       char what[192];
       if (P[bi] >= K[bi]) joints_describe(s, jof[bi], what, sizeof what);
       else
-        snprintf(what, sizeof what, "contact penalty %.3g Pa at triangle %d (material %s)", pof[bi],
-                 m->tri.id[tof[bi]], m->mat[m->tri.mat[tof[bi]]].name);
+      {
+        char tl[160];
+        snprintf(what, sizeof what, "contact penalty %.3g Pa at %s", pof[bi], model_tri_label(m, tof[bi], tl, sizeof tl));
+      }
       snprintf(limiter, n, "%s", what);
     }
   }
@@ -194,9 +196,11 @@ void run_prepare(YfSim *s) {
     material_consts(s);
     for (int i = 0; i < m->node.n; i++) m->node.m[i] = 0.0;
     int bad = tri_prepare(m, R.tm);
-    if (bad >= 0)
-      yf_deck_error(NULL, "triangle %d has non-positive area (%g m^2): its corners must be counter-clockwise and distinct",
-                    m->tri.id[bad], 0.5 * m->tri.d0[bad]);
+    if (bad >= 0) {
+      char tl[160];
+      yf_deck_error(NULL, "%s has non-positive area (%g m^2): its corners must be counter-clockwise and distinct",
+                    model_tri_label(m, bad, tl, sizeof tl), 0.5 * m->tri.d0[bad]);
+    }
     build_gather(m);
     R.nblk = (m->tri.n + BLOCK - 1) / BLOCK;
     free(R.blk); free(R.blk_bad); free(R.blk_badJ);
@@ -469,6 +473,8 @@ static void stage_elements(YfSim *s) {
         static const char *const none[] = {""};
         thermo_nonfinite(s, NULL, none, 0);
       }
+      char tl[160];
+      model_tri_label(m, e, tl, sizeof tl);
       {
         /* corners so far from the origin that doubles cannot tell them apart (a body moved
          * 1e85 m by a huge velocity): the area is rounding, not an inversion */
@@ -477,25 +483,24 @@ static void stage_elements(YfSim *s) {
         for (int k = 0; k < 3; k++) far = fmax(far, fmax(fabs(m->node.x[v[k]]), fabs(m->node.y[v[k]])));
         double size = sqrt(fabs(m->tri.d0[e]));
         if (far * DBL_EPSILON > 1e-3 * size)
-          yf_numeric_error(s->step + 1, "triangle %d (material %s), %.3g m across, is %.3g m from the origin: beyond "
+          yf_numeric_error(s->step + 1, "%s, %.3g m across, is %.3g m from the origin: beyond "
                            "the range the arithmetic holds (doubles keep 16 digits, so its corners cannot be told "
-                           "apart); are the velocities (or coordinates) far too large?", m->tri.id[e],
-                           m->mat[m->tri.mat[e]].name, size, far);
+                           "apart); are the velocities (or coordinates) far too large?", tl, size, far);
       }
       char ov[400];
       energy_overlap_note(s, ov, sizeof ov); /* bodies that start overlapping: the likelier cause */
       if (R.blk_badJ[b] <= 0)
-        yf_numeric_error(s->step + 1, "triangle %d (material %s) inverted: J = %.6g (area ratio current/initial); "
+        yf_numeric_error(s->step + 1, "%s inverted: J = %.6g (area ratio current/initial); "
                          "the time step (%.6g s, stable limit %.6g s of the undeformed mesh, set by %s) may be too "
                          "large for the mesh as compressed (its limit is lower: try a smaller 'timestep auto "
                          "safety'%s), or the body is crushed beyond what the law allows%s",
-                         m->tri.id[e], m->mat[m->tri.mat[e]].name, R.blk_badJ[b], s->dt, s->dt_limit, s->dt_limiter,
+                         tl, R.blk_badJ[b], s->dt, s->dt_limit, s->dt_limiter,
                          /* a Y2D deck's step is its DCSTEC, which `yfdem DECK.y` has no timestep command for */
                          s->y2d ? ", or a smaller DCSTEC in the .y deck" : "", ov);
       /* a non-finite stress is an overflow of a growing instability: say what limits the step */
-      yf_numeric_error(s->step + 1, "triangle %d (material %s): stress is not finite (not a number, or beyond a double): the motion "
-                       "blew up (time step %.6g s, stable limit %.6g s set by %s)%s", m->tri.id[e],
-                       m->mat[m->tri.mat[e]].name, s->dt, s->dt_limit, s->dt_limiter, ov);
+      yf_numeric_error(s->step + 1, "%s: stress is not finite (not a number, or beyond a double): the motion "
+                       "blew up (time step %.6g s, stable limit %.6g s set by %s)%s", tl, s->dt, s->dt_limit,
+                       s->dt_limiter, ov);
     }
     power += R.blk[b];
   }
