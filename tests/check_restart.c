@@ -1082,6 +1082,54 @@ START_TEST(test_restart_between_runs_dt_auto) {
 }
 END_TEST
 
+/* Within a run the continued run keeps the restart's dt, as the uninterrupted run kept the dt of its
+ * start; but under timestep auto the uninterrupted deck's NEXT run computed its dt anew, and the
+ * continued deck's next run kept the old one (auto stayed off after read_restart): on the bar above
+ * the second run's dt was 1.81e-7 s against 1.62e-6 s, another state (2026-11-29).  Now timestep
+ * auto comes back when the continued run ends: restarts from step 200 (within the first run of
+ * 300) and from step 300 (on its last step, as 'restart every' writes when it divides the run)
+ * continue both runs to the uninterrupted bits and dt; and a one-run deck continued from its last
+ * step keeps that run's dt (its 'run 300 upto' does no step and computes none). */
+START_TEST(test_restart_within_run_dt_auto) {
+  mk_tmpdir();
+  static const char BAR[] =
+      "material rock elastic rho 2500 E 1e10 nu 0.2 plane_stress\nmesh rect bar rock 0 0 0.01 0.01 1 1\n"
+      "jointprop cj ft 1e6 fs 1e6 gf 1 pen 1e12\nfracture bar cj\nregion left box -1 -1 1e-9 1\n"
+      "region right box 0.0099999 -1 1 1\ngroup left node region left\ngroup right node region right\n"
+      "fix hold left fixed xy\nvelocity right set 5 0\ntimestep auto\nthermo 100\n";
+  char text[2048], h_full[17], h[17], h_one[17];
+  snprintf(text, sizeof text, "%srestart every 300 end.rst\nrun 300\nrun 300\n", BAR);
+  write_text("full.deck", text);
+  expect_ok("full.deck", 1, h_full);
+  snprintf(text, sizeof text, "%srestart every 200 mid.rst\nrun 250\n", BAR); /* stopped within the first run */
+  write_text("part.deck", text);
+  expect_ok("part.deck", 1, h);
+  char *dt_full = summary_value("full.deck", "dt");
+  const char *from[2] = {"mid.rst.a", "end.rst.a"}; /* steps 200 and 300 */
+  for (int k = 0; k < 2; k++) {
+    snprintf(text, sizeof text, "%sread_restart %s\nrun 300 upto\nrun 300\n", BAR, from[k]);
+    write_text("cont.deck", text);
+    expect_ok("cont.deck", 1, h);
+    char *dt_cont = summary_value("cont.deck", "dt");
+    ck_assert_msg(!strcmp(dt_cont, dt_full), "from %s: continued dt %s, uninterrupted %s", from[k], dt_cont, dt_full);
+    ck_assert_msg(!strcmp(h, h_full), "from %s: continued %s != uninterrupted %s", from[k], h, h_full);
+    free(dt_cont);
+  }
+  /* one run only: its continuation from its last step ends as it did, dt and all */
+  snprintf(text, sizeof text, "%srestart every 300 one.rst\nrun 300\n", BAR);
+  write_text("one.deck", text);
+  expect_ok("one.deck", 1, h_one);
+  snprintf(text, sizeof text, "%sread_restart one.rst.a\nrun 300 upto\n", BAR);
+  write_text("onec.deck", text);
+  expect_ok("onec.deck", 1, h);
+  char *dt_one = summary_value("one.deck", "dt"), *dt_onec = summary_value("onec.deck", "dt");
+  ck_assert_msg(atof(dt_full) > 5 * atof(dt_one), "the joint did not set the first run's dt: %s, then %s", dt_one, dt_full);
+  ck_assert_msg(!strcmp(dt_one, dt_onec) && !strcmp(h, h_one), "one run: dt %s / %s, %s / %s", dt_one, dt_onec, h_one, h);
+  free(dt_full); free(dt_one); free(dt_onec);
+  rm_tmpdir();
+}
+END_TEST
+
 /* A deck is a plain text file the test writes (no scene). */
 static void write_text(const char *name, const char *text) { yft_put_file(tmpdir, name, text); }
 
@@ -1296,6 +1344,7 @@ Suite *restart_suite(void) {
   tcase_add_test(tc, test_restart_between_runs_continues);
   tcase_add_test(tc, test_interrupt_between_runs_continues);
   tcase_add_test(tc, test_restart_between_runs_dt_auto);
+  tcase_add_test(tc, test_restart_within_run_dt_auto);
   tcase_add_test(tc, test_interrupt_outside_run);
   tcase_add_test(tc, test_full_disk);
   tcase_add_test(tc, test_outputs_unwritable);

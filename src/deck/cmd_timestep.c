@@ -10,6 +10,7 @@
 void cmd_timestep(YfSim *s, const YfArgs *a) {
   arg_count(a, 1, 3);
   s->dt_warn_only = s->y2d != NULL; /* each timestep line says it anew (a Y2D deck's own rule stays) */
+  s->dt_resume = 0; /* the deck's own setting wins over the one a restart brought (read_restart) */
   if (!strcmp(a->w[0], "auto")) {
     s->dt_auto = 1;
     s->dt_pending = 1;

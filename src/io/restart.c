@@ -300,8 +300,9 @@ static void write_all(W *w, YfSim *s) {
    * this moment goes along.  Optional datasets: a restart without them continues within a run,
    * as every restart did before, and an older yfdem reads this one as such */
   put_l(w, g, "between_runs", !s->in_run);
-  put_l(w, g, "dt_auto", s->dt_auto);
-  put_d(w, g, "dt_safety", s->dt_safety);
+  /* the deck's setting, also within a run continued from a restart (which runs with auto off) */
+  put_l(w, g, "dt_auto", s->dt_resume ? 1 : s->dt_auto);
+  put_d(w, g, "dt_safety", s->dt_resume ? s->dt_resume_safety : s->dt_safety);
   gclose(g);
 
   g = group(w, "nodes");
@@ -639,12 +640,15 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   if (has_gb) get(&r, g, "gravity_base", H5T_NATIVE_DOUBLE, 3, gb);
   /* restarts before 2026-11-29 have no between_runs: they continue within a run */
   long between = H5Lexists(g, "between_runs", H5P_DEFAULT) > 0 ? get_l(&r, g, "between_runs") : 0;
-  long f_auto = between ? get_l(&r, g, "dt_auto") : 0;
-  double f_safety = between ? get_d(&r, g, "dt_safety") : 0.0;
+  /* the deck's time step setting (optional like between_runs): within a run it comes back when the
+   * continued run ends (s->dt_resume) */
+  const int has_auto = H5Lexists(g, "dt_auto", H5P_DEFAULT) > 0;
+  long f_auto = has_auto ? get_l(&r, g, "dt_auto") : 0;
+  double f_safety = has_auto ? get_d(&r, g, "dt_safety") : 0.5;
   H5Gclose(g);
   if (!(isfinite(gb[0]) && isfinite(gb[1]) && isfinite(gb[2]))) rfail(&r, "gravity_base out of range");
   if (between != 0 && between != 1) rfail(&r, "sim/between_runs is neither 0 nor 1");
-  if (between && (f_auto < 0 || f_auto > 1 || !(f_safety > 0 && f_safety <= 1.0))) rfail(&r, "sim/dt_auto or dt_safety out of range");
+  if (has_auto && (f_auto < 0 || f_auto > 1 || !(f_safety > 0 && f_safety <= 1.0))) rfail(&r, "sim/dt_auto or dt_safety out of range");
   /* dt 0: a restart written before the first run of a deck with timestep auto (no step set yet) */
   if (step < 0 || !(dt > 0 || (between && f_auto && dt == 0.0)) || time != time)
     rfail(&r, "step, time or dt out of range");
@@ -820,8 +824,13 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   /* within a run the uninterrupted run kept the dt of its start; between runs its next run took
    * the time step setting of that moment (timestep auto computes dt anew from the state reached:
    * broken joints no longer limit it).  A later `timestep` overrides either. */
-  s->dt_auto = (int)f_auto;
+  s->dt_auto = between ? (int)f_auto : 0;
   if (between) s->dt_safety = f_safety;
+  /* within a run under timestep auto: the uninterrupted deck's next run recomputed its dt (a
+   * joint that limited it may have broken), so the continued one does once this run ends (until
+   * 2026-11-29 auto stayed off for the rest of the deck: another state) */
+  s->dt_resume = !between && f_auto;
+  s->dt_resume_safety = f_safety;
   s->dt_pending = 0; /* dt is the restart's, as the deck read it at that point */
   s->dt_loc.file = NULL;
   s->last_step = last_step;

@@ -781,6 +781,11 @@ void run_steps(YfSim *s, long nsteps) {
     }
   }
   s->in_run = 0;
+  if (s->dt_resume) { /* a run continued from a restart written within it: the deck's timestep auto again */
+    s->dt_auto = 1;
+    s->dt_safety = s->dt_resume_safety;
+    s->dt_resume = 0;
+  }
   par_run_end(s); /* MPI: the last state whole on every rank, for what follows */
   run_energies(s);
   energy_check(s);

@@ -108,6 +108,11 @@ typedef struct YfSim {
   double dt;            /* [s]; 0 until set                                                 */
   int dt_auto;          /* 1: dt = safety * stable limit, recomputed at each run            */
   double dt_safety;     /* safety factor of auto (default 0.5)                              */
+  int dt_resume;        /* 1 after read_restart of a restart written within a run under timestep
+                         * auto: that run goes on with the restart's dt (auto off), and auto comes
+                         * back, with dt_resume_safety, when it ends, as the uninterrupted deck's
+                         * next run recomputed its dt; a timestep command clears it             */
+  double dt_resume_safety;
   int dt_pending;       /* 1: 'timestep auto' given and no run has computed its dt yet, so dt
                          * holds an older step (or 0) that the next run will not take        */
   double dt_limit;      /* last computed stable limit [s] and what limits it                */
