@@ -937,6 +937,50 @@ START_TEST(test_restart_on_frame_step) {
 }
 END_TEST
 
+/* A continued run that writes no frame: the earlier run went past its last restart (restarts at
+ * 250 and 500 of a run of 650, frames every 300: frame 2 at step 600), and the deck continued from
+ * 500 ends at 550, before any frame is due.  Frame 2 is of a step at or after the restart's, so it
+ * must leave both indexes, as in the uninterrupted run to 550 (frames 0 and 1).  The CSV index
+ * dropped it; the h5 index (and its crack index) kept listing it, since it was rewritten only at
+ * the continued run's next frame, and here there is none: ParaView showed a frame from beyond the
+ * run's end (the same after Ctrl-C past the last frame due). */
+START_TEST(test_restart_no_frame_after) {
+  char base[24], a[40], b[40];
+  two_dirs(base, a, b);
+  static const char DUMPS[] = "dump d h5 300 p.h5 fields u v stress\ndump c csv 300 p\n";
+  char tail[512], h[17], hf[17];
+  snprintf(tmpdir, sizeof tmpdir, "%s", a);
+  snprintf(tail, sizeof tail, "%srestart every 250 rs.restart\nrun 650\n", DUMPS);
+  write_deck("first.deck", NULL, tail);
+  expect_ok("first.deck", 2, h);
+  snprintf(tail, sizeof tail, "%sread_restart rs.restart\nrun 550 upto\n", DUMPS);
+  write_deck("cont.deck", NULL, tail);
+  expect_ok("cont.deck", 2, h);
+  snprintf(tmpdir, sizeof tmpdir, "%s", b);
+  snprintf(tail, sizeof tail, "%srun 550\n", DUMPS);
+  write_deck("full.deck", NULL, tail);
+  expect_ok("full.deck", 2, hf);
+  ck_assert_str_eq(h, hf);
+  static const char *const idx[] = {"p.xmf", "p_cracks.xmf", "p_frames.csv"};
+  for (int i = 0; i < 3; i++) {
+    char pa[64], pb[64];
+    snprintf(pa, sizeof pa, "%s/%s", a, idx[i]);
+    snprintf(pb, sizeof pb, "%s/%s", b, idx[i]);
+    char *ta = slurp(pa), *tb = slurp(pb);
+    ck_assert_msg(strstr(tb, "step") != NULL, "%s: the uninterrupted run wrote no frame", idx[i]);
+    int fa = 0, fb = 0; /* the frames each lists (a step per frame) */
+    for (const char *q = ta; (q = strstr(q, "step")); q++) fa++;
+    for (const char *q = tb; (q = strstr(q, "step")); q++) fb++;
+    ck_assert_msg(!strcmp(ta, tb), "%s of the continued run (%d mentions of a step) differs from the uninterrupted "
+                  "run's (%d)", idx[i], fa, fb);
+    free(ta);
+    free(tb);
+  }
+  snprintf(tmpdir, sizeof tmpdir, "%s", base);
+  rm_tmpdir();
+}
+END_TEST
+
 /* ---------------------------------------------------------------- restarts written between runs */
 
 static void write_text(const char *name, const char *text);
@@ -1293,6 +1337,7 @@ Suite *restart_suite(void) {
   tcase_add_test(tc, test_sigkill_frames_readable);
   tcase_add_test(tc, test_interrupt_continue_every_file);
   tcase_add_test(tc, test_restart_on_frame_step);
+  tcase_add_test(tc, test_restart_no_frame_after);
   tcase_add_test(tc, test_restart_between_runs_continues);
   tcase_add_test(tc, test_interrupt_between_runs_continues);
   tcase_add_test(tc, test_restart_between_runs_dt_auto);
