@@ -1318,6 +1318,46 @@ START_TEST(test_outputs_unwritable) {
 }
 END_TEST
 
+/* The same scene split otherwise by the reading deck (a `partition` line added, removed or
+ * changed): its triangles and nodes are numbered in another order, so the restart cannot be
+ * matched, but the deck did rebuild the scene: the refusal must say that the partition differs and
+ * which one continues it, where it said the triangle corners, materials, positions or joints differ
+ * and that the deck must rebuild the same scene.  The named partition continues it bitwise. */
+START_TEST(test_restart_other_partition) {
+  mk_tmpdir();
+  static const char A[] = "material m elastic rho 2500 E 1e9 nu 0.2 plane_stress pen_n 1e10\n"
+                          "mesh rect a m 0 0 1 0.2 20 4\n%s\nvelocity a set 1 0\ntimestep auto\n";
+  /* written with, read with, the advice the refusal must give */
+  static const char *const cases[][3] = {{"partition metis parts 4", "partition none", "'partition metis parts 4'"},
+                                         {"partition none", "partition metis parts 2", "'partition none'"},
+                                         {"partition metis parts 4", "partition metis parts 2",
+                                          "'partition metis parts 4'"},
+                                         {"partition metis parts 2", "partition metis parts 3", "'partition metis parts 2'"}};
+  for (int k = 0; k < 4; k++) {
+    char a[512], b[512], text[2048], h[17], h2[17];
+    snprintf(a, sizeof a, A, cases[k][0]);
+    snprintf(b, sizeof b, A, cases[k][1]);
+    snprintf(text, sizeof text, "%srun 50\nwrite_restart r.restart\nrun 50\n", a);
+    write_text("w.deck", text);
+    expect_ok("w.deck", 1, h);
+    snprintf(text, sizeof text, "%sread_restart r.restart\nrun 100 upto\n", b);
+    write_text("other.deck", text);
+    ck_assert_int_eq(run_deck("other.deck", 1, h2), YF_EXIT_DECK);
+    char *e = err_of("other.deck");
+    ck_assert_msg(strstr(e, "other.deck:6: error: read_restart:") && strstr(e, "numbered in another order") &&
+                  strstr(e, cases[k][2]) && !strstr(e, "must rebuild the same scene"),
+                  "written with '%s', read with '%s': %s", cases[k][0], cases[k][1], e);
+    free(e);
+    /* the advice taken: the deck of the writer's partition continues it as the uninterrupted run */
+    snprintf(text, sizeof text, "%sread_restart r.restart\nrun 100 upto\n", a);
+    write_text("same.deck", text);
+    expect_ok("same.deck", 1, h2);
+    ck_assert_str_eq(h, h2);
+  }
+  rm_tmpdir();
+}
+END_TEST
+
 Suite *restart_suite(void) {
   Suite *s = suite_create("restart");
   TCase *tc = tcase_create("restart");
@@ -1350,6 +1390,7 @@ Suite *restart_suite(void) {
   tcase_set_timeout(tc, 120);
   tcase_add_test(tc, test_restart_refuses_other_properties);
   tcase_add_test(tc, test_restart_scene_grown_after_partition);
+  tcase_add_test(tc, test_restart_other_partition);
   suite_add_tcase(s, tc);
   return s;
 }
