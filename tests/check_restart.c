@@ -937,6 +937,50 @@ START_TEST(test_restart_on_frame_step) {
 }
 END_TEST
 
+/* A continued run that writes no frame: the earlier run went past its last restart (restarts at
+ * 250 and 500 of a run of 650, frames every 300: frame 2 at step 600), and the deck continued from
+ * 500 ends at 550, before any frame is due.  Frame 2 is of a step at or after the restart's, so it
+ * must leave both indexes, as in the uninterrupted run to 550 (frames 0 and 1).  The CSV index
+ * dropped it; the h5 index (and its crack index) kept listing it, since it was rewritten only at
+ * the continued run's next frame, and here there is none: ParaView showed a frame from beyond the
+ * run's end (the same after Ctrl-C past the last frame due). */
+START_TEST(test_restart_no_frame_after) {
+  char base[24], a[40], b[40];
+  two_dirs(base, a, b);
+  static const char DUMPS[] = "dump d h5 300 p.h5 fields u v stress\ndump c csv 300 p\n";
+  char tail[512], h[17], hf[17];
+  snprintf(tmpdir, sizeof tmpdir, "%s", a);
+  snprintf(tail, sizeof tail, "%srestart every 250 rs.restart\nrun 650\n", DUMPS);
+  write_deck("first.deck", NULL, tail);
+  expect_ok("first.deck", 2, h);
+  snprintf(tail, sizeof tail, "%sread_restart rs.restart\nrun 550 upto\n", DUMPS);
+  write_deck("cont.deck", NULL, tail);
+  expect_ok("cont.deck", 2, h);
+  snprintf(tmpdir, sizeof tmpdir, "%s", b);
+  snprintf(tail, sizeof tail, "%srun 550\n", DUMPS);
+  write_deck("full.deck", NULL, tail);
+  expect_ok("full.deck", 2, hf);
+  ck_assert_str_eq(h, hf);
+  static const char *const idx[] = {"p.xmf", "p_cracks.xmf", "p_frames.csv"};
+  for (int i = 0; i < 3; i++) {
+    char pa[64], pb[64];
+    snprintf(pa, sizeof pa, "%s/%s", a, idx[i]);
+    snprintf(pb, sizeof pb, "%s/%s", b, idx[i]);
+    char *ta = slurp(pa), *tb = slurp(pb);
+    ck_assert_msg(strstr(tb, "step") != NULL, "%s: the uninterrupted run wrote no frame", idx[i]);
+    int fa = 0, fb = 0; /* the frames each lists (a step per frame) */
+    for (const char *q = ta; (q = strstr(q, "step")); q++) fa++;
+    for (const char *q = tb; (q = strstr(q, "step")); q++) fb++;
+    ck_assert_msg(!strcmp(ta, tb), "%s of the continued run (%d mentions of a step) differs from the uninterrupted "
+                  "run's (%d)", idx[i], fa, fb);
+    free(ta);
+    free(tb);
+  }
+  snprintf(tmpdir, sizeof tmpdir, "%s", base);
+  rm_tmpdir();
+}
+END_TEST
+
 /* ---------------------------------------------------------------- restarts written between runs */
 
 static void write_text(const char *name, const char *text);
@@ -1322,6 +1366,46 @@ START_TEST(test_outputs_unwritable) {
 }
 END_TEST
 
+/* The same scene split otherwise by the reading deck (a `partition` line added, removed or
+ * changed): its triangles and nodes are numbered in another order, so the restart cannot be
+ * matched, but the deck did rebuild the scene: the refusal must say that the partition differs and
+ * which one continues it, where it said the triangle corners, materials, positions or joints differ
+ * and that the deck must rebuild the same scene.  The named partition continues it bitwise. */
+START_TEST(test_restart_other_partition) {
+  mk_tmpdir();
+  static const char A[] = "material m elastic rho 2500 E 1e9 nu 0.2 plane_stress pen_n 1e10\n"
+                          "mesh rect a m 0 0 1 0.2 20 4\n%s\nvelocity a set 1 0\ntimestep auto\n";
+  /* written with, read with, the advice the refusal must give */
+  static const char *const cases[][3] = {{"partition metis parts 4", "partition none", "'partition metis parts 4'"},
+                                         {"partition none", "partition metis parts 2", "'partition none'"},
+                                         {"partition metis parts 4", "partition metis parts 2",
+                                          "'partition metis parts 4'"},
+                                         {"partition metis parts 2", "partition metis parts 3", "'partition metis parts 2'"}};
+  for (int k = 0; k < 4; k++) {
+    char a[512], b[512], text[2048], h[17], h2[17];
+    snprintf(a, sizeof a, A, cases[k][0]);
+    snprintf(b, sizeof b, A, cases[k][1]);
+    snprintf(text, sizeof text, "%srun 50\nwrite_restart r.restart\nrun 50\n", a);
+    write_text("w.deck", text);
+    expect_ok("w.deck", 1, h);
+    snprintf(text, sizeof text, "%sread_restart r.restart\nrun 100 upto\n", b);
+    write_text("other.deck", text);
+    ck_assert_int_eq(run_deck("other.deck", 1, h2), YF_EXIT_DECK);
+    char *e = err_of("other.deck");
+    ck_assert_msg(strstr(e, "other.deck:6: error: read_restart:") && strstr(e, "numbered in another order") &&
+                  strstr(e, cases[k][2]) && !strstr(e, "must rebuild the same scene"),
+                  "written with '%s', read with '%s': %s", cases[k][0], cases[k][1], e);
+    free(e);
+    /* the advice taken: the deck of the writer's partition continues it as the uninterrupted run */
+    snprintf(text, sizeof text, "%sread_restart r.restart\nrun 100 upto\n", a);
+    write_text("same.deck", text);
+    expect_ok("same.deck", 1, h2);
+    ck_assert_str_eq(h, h2);
+  }
+  rm_tmpdir();
+}
+END_TEST
+
 Suite *restart_suite(void) {
   Suite *s = suite_create("restart");
   TCase *tc = tcase_create("restart");
@@ -1341,6 +1425,7 @@ Suite *restart_suite(void) {
   tcase_add_test(tc, test_sigkill_frames_readable);
   tcase_add_test(tc, test_interrupt_continue_every_file);
   tcase_add_test(tc, test_restart_on_frame_step);
+  tcase_add_test(tc, test_restart_no_frame_after);
   tcase_add_test(tc, test_restart_between_runs_continues);
   tcase_add_test(tc, test_interrupt_between_runs_continues);
   tcase_add_test(tc, test_restart_between_runs_dt_auto);
@@ -1354,6 +1439,7 @@ Suite *restart_suite(void) {
   tcase_set_timeout(tc, 120);
   tcase_add_test(tc, test_restart_refuses_other_properties);
   tcase_add_test(tc, test_restart_scene_grown_after_partition);
+  tcase_add_test(tc, test_restart_other_partition);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -907,6 +907,11 @@ static long h5_adopt(YfDump *d, long before, long *last) {
   long kept = index_adopt(d->xmf, "<Grid Name=\"frame_", before, &d->grids, last);
   if (kept && index_adopt(d->cxmf, "<Grid Name=\"cracks_", before, &d->cgrids, NULL) != kept) d->cgrids.len = 0;
   if (kept) adopted_fields(d);
+  /* The index is rewritten now with the frames kept, as csv_adopt rewrites its own: a continued
+   * run that writes no frame (it ends before the next is due) left listed the earlier run's frames
+   * from the restart step on (an interrupt's own, or those past its last restart).  Rank 0 alone
+   * writes indexes (h5_frame). */
+  if (kept && yf_writer()) xmf_write(d);
   return kept;
 }
 

@@ -9,9 +9,11 @@
  *
  * Layout (HDF5 1.8 format, one dataset per array, no compression; a restart must be exact, not
  * small):
- *   /meta/{version, nnode, ntri, njoint, topo_hash, mat_hash, jset_hash, part_ntri, complete}
+ *   /meta/{version, nnode, ntri, njoint, topo_hash, mat_hash, jset_hash, part_ntri, part_n, complete}
  *          (part_ntri: the triangles the partition renumbered at the first run, -1 when it renumbered
- *          none; optional, for the message when a scene grew after it)
+ *          none; optional, for the message when a scene grew after it; part_n: the parts of that
+ *          partition, 1 when none; optional, for the message when the reading deck splits the
+ *          mesh otherwise)
  *   /sim/{step, time, dt, last_step, energy (7), elem_steps, wall_s, e_budget, gravity_base (3),
  *         between_runs, dt_auto, dt_safety}   (the last three optional: absent, within a run)
  *   /nodes/{x, y, x0, y0, vx, vy, fx, fy, m}                      (nnode each, [m], [m/s], [N/m], [kg/m])
@@ -265,6 +267,7 @@ static void write_all(W *w, YfSim *s) {
   uint64_t th = topo_hash(s);
   put(w, g, "topo_hash", H5T_NATIVE_UINT64, 1, &th);
   put_l(w, g, "part_ntri", m->tri_new ? m->ntri_new : -1);
+  put_l(w, g, "part_n", m->npart);
   {
     uint64_t *mh = yf_malloc((size_t)(m->nmat > 0 ? m->nmat : 1) * sizeof *mh, "restart material hashes");
     for (int k = 0; k < m->nmat; k++) mh[k] = mat_hash(&m->mat[k]);
@@ -554,6 +557,7 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   uint64_t f_th;
   get(&r, g, "topo_hash", H5T_NATIVE_UINT64, 1, &f_th);
   long f_part = H5Lexists(g, "part_ntri", H5P_DEFAULT) > 0 ? get_l(&r, g, "part_ntri") : -1;
+  long f_npart = H5Lexists(g, "part_n", H5P_DEFAULT) > 0 ? get_l(&r, g, "part_n") : 0;
   /* the properties' hashes (absent from restarts of before 2026-11-29: not checked then) */
   long f_nmat = dlen(g, "mat_hash"), f_nset = dlen(g, "jset_hash");
   uint64_t *f_mh = NULL, *f_jh = NULL;
@@ -587,6 +591,20 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
                     "makes them all before read_restart renumbers them together, in another order, so it cannot "
                     "continue it; give 'partition none' in the deck that writes the restart and in the one that "
                     "reads it", path, f_part, f_nt);
+    if (f_npart >= 1 && f_npart != m->npart) {
+      /* The same scene split otherwise (a `partition` line added, removed or changed between the
+       * two decks) numbers its triangles and nodes in another order: said as such, since the deck
+       * did rebuild the scene. */
+      char want[64];
+      if (f_npart == 1) snprintf(want, sizeof want, "partition none");
+      else snprintf(want, sizeof want, "partition metis parts %ld", f_npart);
+      yf_deck_error(loc, "read_restart: '%s' was written by a run whose mesh was split into %ld part%s (%s), and "
+                    "this deck splits it into %d (%s): the triangles and nodes are numbered in another order, so "
+                    "the restart cannot be matched; give this deck the partition of the one that wrote it ('%s' "
+                    "before its first run)", path, f_npart, f_npart == 1 ? "" : "s",
+                    f_npart == 1 ? "not renumbered" : "METIS", m->npart, m->npart == 1 ? "not renumbered" : "METIS",
+                    want);
+    }
     yf_deck_error(loc, "read_restart: '%s' was written for a different scene: same counts, but the triangle corners, "
                   "materials, initial positions or joints differ (the deck must rebuild the same scene)", path);
   }
