@@ -114,6 +114,19 @@ static void resolve_nodes(YfSim *s, YfBcItem *it) {
       }
     }
     if (target < 0) yf_deck_error(&it->sp.loc, "load '%s': no node to apply it to", it->id);
+    if (it->sp.node_id < 0) {
+      /* 'point at X Y' far off the mesh (mm typed on a mesh in m) loaded a node 1000 m away and the
+       * run ended ok; within one element of the body it is a point given to rounding.  Checked here,
+       * at the run, since a mesh given after the load command may be the one it points at. */
+      double d = sqrt((n->x0[target] - it->sp.px) * (n->x0[target] - it->sp.px) +
+                      (n->y0[target] - it->sp.py) * (n->y0[target] - it->sp.py));
+      double reach = mesh_longest_edge(&s->model);
+      if (d > reach)
+        yf_deck_error(&it->sp.loc, "load '%s': the point (%g, %g) is %g m from the nearest node (node %ld at (%g, %g)), "
+                      "farther than the longest triangle edge of the scene, %g m: it lies off the mesh (a coordinate "
+                      "in other units?); give a point on the body or within one element of it", it->id, it->sp.px,
+                      it->sp.py, d, (long)n->id[target], n->x0[target], n->y0[target], reach);
+    }
     int p = n->parent[target];
     for (int i = 0; i < n->n; i++)
       if (n->parent[i] == p && n->m[i] > 0) it->nn++;
