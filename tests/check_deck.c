@@ -804,6 +804,44 @@ START_TEST(error_group_name_an_expression_cannot_hold) {
 }
 END_TEST
 
+/* A point load or a 'group nearest' whose point lies far off the mesh (a coordinate in mm on a
+ * mesh in m) took the nearest node, 1000 m away, and the run ended ok with the force on a corner
+ * the deck never meant.  Off the mesh by more than the scene's longest triangle edge is a deck
+ * error at the word; a point within one element of the body (a corner given to rounding) still
+ * takes its nearest node, and the load acts there: the held end's reaction is the load. */
+START_TEST(error_point_off_the_mesh) {
+  static const char *const bar = "material m elastic rho 2500 E 3e10 nu 0.2 plane_stress\n"
+                                 "mesh rect b m 0 0 1 0.1 20 2\n"
+                                 "region left box -1 -1 1e-9 1\ngroup left node region left\n"
+                                 "fix c left fixed xy\ntimestep auto\n";
+  char deck[2048];
+  snprintf(deck, sizeof deck, "%sload tip point at 1000 100 0 -1000\nrun 10\n", bar);
+  Run r = run_child_text(deck);
+  ck_assert_msg(r.code == 1 && strstr(r.err, "e.deck:7: error: load 'tip': the point (1000, 100) is 1003.98 m from "
+                                             "the nearest node (node 63 at (1, 0.1))") &&
+                strstr(r.err, "longest triangle edge of the scene, 0.0707107 m"),
+                "exit %d: %s", r.code, r.err);
+  run_free(&r);
+  snprintf(deck, sizeof deck, "%sgroup g node nearest -500 0.05\nrun 10\n", bar);
+  r = run_child_text(deck);
+  ck_assert_msg(r.code == 1 && strstr(r.err, "e.deck:7: error: group: '-500': the point (-500, 0.05) is 500 m from "
+                                             "the nearest node"),
+                "exit %d: %s", r.code, r.err);
+  run_free(&r);
+  /* within one element of the corner (1, 0.1): the nearest node, held in equilibrium by the clamp */
+  snprintf(deck, sizeof deck, "%sload tip point at 1.02 0.12 0 -1000\ngroup g node nearest 1.02 0.12\n"
+           "damping mass 180\nrun 40000\nprint \"R $(fy_left) g $(x_g-ux_g) $(y_g-uy_g)\"\n", bar);
+  r = run_child_text(deck);
+  ck_assert_msg(r.code == 0, "exit %d: %s", r.code, r.err);
+  double R = 0, gx = 0, gy = 0;
+  const char *o = strstr(r.out, "R ");
+  ck_assert_msg(o && sscanf(o, "R %lf g %lf %lf", &R, &gx, &gy) == 3, "%s", r.out);
+  /* damped for 40000 steps at alpha 180 (about 2 omega_1): the ringing left is exp(-alpha t / 2) ~ 1e-7 */
+  ck_assert_msg(fabs(R + 1000) < 1e-3 && fabs(gx - 1) < 1e-12 && fabs(gy - 0.1) < 1e-12, "R %g at (%g, %g)", R, gx, gy);
+  run_free(&r);
+}
+END_TEST
+
 START_TEST(error_includes) {
   expect_error("variable a equal 1\n\ninclude missing.deck\n", 2,
                "e.deck:3: error: include: cannot open 'missing.deck': No such file or directory", NULL, NULL);
@@ -1099,6 +1137,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, line_endings_any);
   tcase_add_test(tc, variable_hiding_builtin_warned);
   tcase_add_test(tc, group_force_includes_gravity);
+  tcase_add_test(tc, error_point_off_the_mesh);
   tcase_add_exit_test(tc, exit_deck_error, 1);
   tcase_add_exit_test(tc, exit_missing_include, 2);
   suite_add_tcase(s, tc);

@@ -282,6 +282,41 @@ START_TEST(test_pressure_resultant) {
 }
 END_TEST
 
+/* A distributed load acts on every boundary edge with both ends in its group: a group made from a
+ * band region across a block's top (two cells deep) holds the top face and the upper segments of
+ * both sides, and a traction 1e5 Pa "on the top" of a 1 m block took 1.2e5 N/m, silently (the
+ * support's reaction is 1.2e5).  The run says what each distributed load covers, once, when it
+ * first acts: its edges, their length and its resultant at full amplitude, and the reaction it
+ * leads to is that resultant. */
+START_TEST(test_distributed_load_reported) {
+  const char *deck = "material m elastic rho 2500 E 3e10 nu 0.2 plane_stress\nmesh rect b m 0 0 1 1 10 10\n"
+                     "region band box -1 0.85 2 2\ngroup top node region band\n"
+                     "region bot box -1 -1 2 1e-9\ngroup bot node region bot\nfix h bot fixed xy\n"
+                     "history r ramp 0 0.005\nload t top traction 1e5 0 history r\nload p top pressure 2e5\n"
+                     "unload p\ndamping mass 3000\ntimestep auto safety 0.9\nrun 0\nrun 3000\nrun 10\n"
+                     "print \"R $(fx_bot)\"\n";
+  char *err = NULL, *dir = NULL;
+  int code = yft_run_binary("a.deck", deck, "-log log.txt", &err, &dir);
+  ck_assert_msg(code == 0, "exit %d: %s", code, err);
+  char path[512];
+  snprintf(path, sizeof path, "%s/log.txt", dir);
+  char *log = yft_slurp(path, 0);
+  ck_assert_ptr_nonnull(log);
+  /* 10 top edges + 1 at the top of each side: 12 edges, 1.2 m, 1.2e5 N/m; said once in three runs */
+  const char *line = "load t: 12 boundary edges of group top, 1.2 m long; resultant (120000, 0) N/m at full amplitude\n";
+  const char *at = strstr(log, line);
+  ck_assert_msg(at && !strstr(at + 1, "load t:"), "%s", log);
+  ck_assert_msg(!strstr(log, "load p:"), "an unloaded load reported: %s", log);
+  const char *r = strstr(log, "\nR ");
+  double R = 0;
+  ck_assert_msg(r && sscanf(r, "\nR %lf", &R) == 1, "%s", log);
+  ck_assert_double_eq_tol(R, 1.2e5, 1e-6 * 1.2e5);
+  free(log);
+  free(err);
+  free(dir);
+}
+END_TEST
+
 /* Gravity on a free body: after n steps v = g n dt exactly (uniform acceleration, no stress). */
 START_TEST(test_gravity_free_fall) {
   quiet();
@@ -309,6 +344,7 @@ Suite *physics_suite(void) {
   tcase_add_test(b, test_fixed_nodes_never_move);
   tcase_add_test(b, test_prescribed_displacement_exact);
   tcase_add_test(b, test_pressure_resultant);
+  tcase_add_test(b, test_distributed_load_reported);
   tcase_add_test(b, test_gravity_free_fall);
   suite_add_tcase(s, b);
   return s;

@@ -2,6 +2,7 @@
  * adds what the model's selections (group_select_*, model/region.c) pick to the group.
  */
 #include <limits.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -128,7 +129,17 @@ void cmd_group(YfSim *sim, const YfArgs *a) {
       if (style != S_NODE) arg_error(a, 1, "'nearest' selects a node: use 'group NAME node nearest X Y'");
       arg_count(a, 5, 5);
       double px = arg_coord(a, 3, "x"), py = arg_coord(a, 4, "y");
-      group_select_nearest(m, px, py, ns);
+      int nd;
+      double d = group_select_nearest(m, px, py, ns, &nd), reach = mesh_longest_edge(m);
+      /* a point far off the mesh (mm typed on a mesh in m) took a node 1000 m away, silently;
+       * within one element of the body it is a point given to rounding (no triangles yet: no
+       * measure of the mesh, so no check) */
+      if (nd >= 0 && reach > 0 && d > reach)
+        arg_error(a, fabs(px - m->node.x0[nd]) >= fabs(py - m->node.y0[nd]) ? 3 : 4,
+                  "the point (%g, %g) is %g m from the nearest node (node %ld at (%g, %g)), farther than the longest "
+                  "triangle edge of the scene, %g m: it lies off the mesh (a coordinate in other units?); give a point "
+                  "on the body or within one element of it", px, py, d, (long)m->node.id[nd], m->node.x0[nd],
+                  m->node.y0[nd], reach);
     }
   }
 

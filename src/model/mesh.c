@@ -163,6 +163,18 @@ int mesh_next_tri_id(const YfModel *m) {
   return (int)mx + 1;
 }
 
+double mesh_longest_edge(const YfModel *m) {
+  const double *X = m->node.x0, *Y = m->node.y0;
+  double l2 = 0.0;
+  for (int t = 0; t < m->tri.n; t++)
+    for (int k = 0; k < 3; k++) {
+      int a = m->tri.v[3 * t + k], b = m->tri.v[3 * t + (k + 1) % 3];
+      double dx = X[b] - X[a], dy = Y[b] - Y[a], d = dx * dx + dy * dy;
+      if (d > l2) l2 = d;
+    }
+  return sqrt(l2);
+}
+
 int mesh_node_root(const YfModel *m, int i) {
   /* parent chains are one step long in practice; the bound guards against a corrupt cycle */
   for (int k = 0; k < 64 && m->node.parent[i] != i; k++) i = m->node.parent[i];

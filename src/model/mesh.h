@@ -90,6 +90,9 @@ int mesh_next_node_id(const YfModel *m);
 int mesh_next_tri_id(const YfModel *m);
 /* Root of a node's copy chain (node.parent followed to its fixed point). */
 int mesh_node_root(const YfModel *m, int i);
+/* The longest triangle edge of the scene at the initial positions [m] (0 without triangles): how
+ * far a point given by coordinates may lie from every node and still be on (or at) the mesh. */
+double mesh_longest_edge(const YfModel *m);
 /* The nodes and triangles of m were renumbered (old index i is now nnew[i], tnew[i]): the inline
  * id maps follow. */
 void mesh_renumbered(const YfModel *m, const int *tnew, const int *nnew);

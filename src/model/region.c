@@ -220,7 +220,7 @@ void group_select_body(const YfModel *m, int b, int want_n, int want_t, unsigned
     for (int t = 0; t < m->tri.n; t++) ts[t] = m->tri.body[t] == b;
 }
 
-void group_select_nearest(const YfModel *m, double px, double py, unsigned char *ns) {
+double group_select_nearest(const YfModel *m, double px, double py, unsigned char *ns, int *node) {
   const double *X = m->node.x0, *Y = m->node.y0;
   int nn = m->node.n, best = -1;
   double bd = INFINITY;
@@ -233,6 +233,8 @@ void group_select_nearest(const YfModel *m, double px, double py, unsigned char 
     int root = mesh_node_root(m, best);
     for (int i = 0; i < nn; i++) ns[i] = mesh_node_root(m, i) == root;
   }
+  *node = best;
+  return sqrt(bd);
 }
 
 void group_add(YfModel *m, int g, const unsigned char *ns, const unsigned char *ts, long count[4]) {

@@ -48,8 +48,9 @@ void group_select_region(const YfModel *m, int r, int b, int want_n, int want_t,
 void group_select_ids(const YfModel *m, const long *ids, int nid, int want_n, int want_t, unsigned char *ns,
                       unsigned char *ts, unsigned char *hit);
 void group_select_body(const YfModel *m, int b, int want_n, int want_t, unsigned char *ns, unsigned char *ts);
-/* The node nearest (px, py) [m], with its copies (fracturing bodies). */
-void group_select_nearest(const YfModel *m, double px, double py, unsigned char *ns);
+/* The node nearest (px, py) [m], with its copies (fracturing bodies); its index in *node (-1 when
+ * the scene has no node); returns its distance from the point [m] (INFINITY without nodes). */
+double group_select_nearest(const YfModel *m, double px, double py, unsigned char *ns, int *node);
 /* count: nodes and triangles flagged, then the group's nodes and triangles as it now stands. */
 void group_add(YfModel *m, int g, const unsigned char *ns, const unsigned char *ts, long count[4]);
 

@@ -38,7 +38,7 @@ typedef struct YfBc {
   int *owner;           /* per node component (2 per node): the fix that prescribes it (the
                            last given), -1 none                                            */
   unsigned char *warned; /* per item: its overlap with a later fix (bit 0), a jump at a run's
-                            start (bit 1) was reported                                       */
+                            start (bit 1), a distributed load's edges (bit 2) were reported  */
   int warned_n;
 } YfBc;
 
@@ -114,6 +114,19 @@ static void resolve_nodes(YfSim *s, YfBcItem *it) {
       }
     }
     if (target < 0) yf_deck_error(&it->sp.loc, "load '%s': no node to apply it to", it->id);
+    if (it->sp.node_id < 0) {
+      /* 'point at X Y' far off the mesh (mm typed on a mesh in m) loaded a node 1000 m away and the
+       * run ended ok; within one element of the body it is a point given to rounding.  Checked here,
+       * at the run, since a mesh given after the load command may be the one it points at. */
+      double d = sqrt((n->x0[target] - it->sp.px) * (n->x0[target] - it->sp.px) +
+                      (n->y0[target] - it->sp.py) * (n->y0[target] - it->sp.py));
+      double reach = mesh_longest_edge(&s->model);
+      if (d > reach)
+        yf_deck_error(&it->sp.loc, "load '%s': the point (%g, %g) is %g m from the nearest node (node %ld at (%g, %g)), "
+                      "farther than the longest triangle edge of the scene, %g m: it lies off the mesh (a coordinate "
+                      "in other units?); give a point on the body or within one element of it", it->id, it->sp.px,
+                      it->sp.py, d, (long)n->id[target], n->x0[target], n->y0[target], reach);
+    }
     int p = n->parent[target];
     for (int i = 0; i < n->n; i++)
       if (n->parent[i] == p && n->m[i] > 0) it->nn++;
@@ -236,6 +249,38 @@ static void warn_jumps(YfSim *s, YfBc *b) {
   }
 }
 
+/* What a distributed load covers, said once when it first acts (as 'group' says its counts): every
+ * boundary edge with both ends in the group takes it, so a group from a band region across a
+ * block's top held the sides' upper segments too, and a traction "on the top" of a 1 m block took
+ * 1.2 m of edges, which nothing showed.  The resultant is at full amplitude on the current edges. */
+static void report_edges(YfSim *s, YfBc *b) {
+  const YfNodes *n = &s->model.node;
+  for (int i = 0; i < b->n; i++) {
+    YfBcItem *it = &b->item[i];
+    if ((it->sp.kind != BC_TRACTION && it->sp.kind != BC_PRESSURE) || !it->ne || b->warned[i] & 4) continue;
+    double len = 0.0, rx = 0.0, ry = 0.0;
+    for (int e = 0; e < it->ne; e++) {
+      int j = it->edges[2 * e], k = it->edges[2 * e + 1];
+      double dx = n->x[k] - n->x[j], dy = n->y[k] - n->y[j], L = sqrt(dx * dx + dy * dy);
+      len += L;
+      if (it->sp.kind == BC_TRACTION) {
+        rx += it->sp.a[0] * L;
+        ry += it->sp.a[1] * L;
+      } else { /* as bc_apply_loads: inward, p times the outward normal (dy, -dx) reversed */
+        rx -= it->sp.a[0] * dy;
+        ry += it->sp.a[0] * dx;
+      }
+    }
+    /* a closed or symmetric boundary sums to round-off: print it as the zero it is */
+    double big = fabs(it->sp.kind == BC_TRACTION ? fmax(fabs(it->sp.a[0]), fabs(it->sp.a[1])) : it->sp.a[0]) * len;
+    if (fabs(rx) < 1e-12 * big) rx = 0.0;
+    if (fabs(ry) < 1e-12 * big) ry = 0.0;
+    sim_printf(s, "load %s: %d boundary edge%s of group %s, %.6g m long; resultant (%.6g, %.6g) N/m at full amplitude\n",
+               it->id, it->ne, it->ne == 1 ? "" : "s", s->model.group[it->sp.group].name, len, rx + 0.0, ry + 0.0);
+    b->warned[i] |= 4;
+  }
+}
+
 void bc_prepare(YfSim *s) {
   YfBc *b = bc_get(s);
   int nn = s->model.node.n;
@@ -262,6 +307,7 @@ void bc_prepare(YfSim *s) {
   }
   warn_overridden(s, b);
   warn_jumps(s, b);
+  report_edges(s, b);
 }
 
 const YfBcSpec *bc_spec(const YfSim *s, int i, const char **id) {
