@@ -555,6 +555,8 @@ START_TEST(test_gmsh_malformed) {
   bad_msh("z.msh", "0.5 0.5 0\n", "0.5 0.5 0.1\n", 29, "needs a flat mesh, in one plane z = constant");
   bad_msh("ent.msh", "2 2 2 2\n", "2 7 2 2\n", 38, "surface 7, which $Entities does not define");
   bad_msh("start.msh", "$MeshFormat\n", "$Mesh\n", 1, "must start with $MeshFormat");
+  /* an unknown section never closed: it said "section Nodez is not closed", without its '$' */
+  bad_msh("nodez.msh", "$Nodes", "$Nodez", 16, "section $Nodez is not closed by $EndNodez (truncated file?)");
 }
 END_TEST
 
@@ -755,6 +757,27 @@ START_TEST(test_gmsh_no_entities_unnamed) {
   EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "unknown material");
   snprintf(cmd, sizeof cmd, "gmsh blk %s", tmp_path("plain.msh"));
   EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "surface 1 of", "in no physical group");
+  free_sim(s);
+}
+END_TEST
+
+/* Unnamed physical groups of one tag in two dimensions are named phys_<tag>_<dimension>, both of
+ * them: the first named took the dimension and the second, finding the first named, did not (a
+ * physical curve 1 made phys_1_curve, and surface 1, phys_1). */
+START_TEST(test_gmsh_unnamed_shared_tag) {
+  static const char *const sub[][2] = {{"3\n1 10 \"base\"\n2 1 \"soft\"\n", "1\n"}, {"1 0 0 0 1 0 0 1 10 0\n", "1 0 0 0 1 0 0 1 1 0\n"}};
+  char *txt = sq4_with(sub, 2);
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  model_add_material(m, "soft");
+  model_add_material(m, "hard");
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s material soft", write_tmp("unnamed.msh", txt));
+  run(s, cmd_mesh, "mesh", cmd);
+  ck_assert_int_eq(count_nodes(m, group_of(m, "phys_1_curve")), 2);
+  ck_assert_int_eq(count_tris(m, group_of(m, "phys_1_surface")), 2);
+  ck_assert_int_eq(count_tris(m, group_of(m, "hard")), 2);
+  ck_assert_int_eq(m->ngroup, 4);
   free_sim(s);
 }
 END_TEST
@@ -1081,6 +1104,7 @@ Suite *mesh_suite(void) {
   tcase_add_test(tc, test_gmsh_entities_after_elements);
   tcase_add_test(tc, test_gmsh_deck_errors);
   tcase_add_test(tc, test_gmsh_no_entities_unnamed);
+  tcase_add_test(tc, test_gmsh_unnamed_shared_tag);
   suite_add_tcase(s, tc);
   tc = tcase_create("inline");
   tcase_add_test(tc, test_inline_commands);

@@ -163,7 +163,7 @@ static void msh_skip_section(Msh *r) {
   snprintf(end, sizeof end, "$End%s", r->tok + 1);
   while (msh_next(r))
     if (!strcmp(r->tok, end)) return;
-  msh_fail(r, line0, "section %s is not closed by %s (truncated file?)", r->tok[0] ? r->tok : end + 4, end);
+  msh_fail(r, line0, "section $%s is not closed by %s (truncated file?)", end + 4, end);
 }
 
 static const char *elem_name(long type) {
@@ -656,16 +656,20 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       nph++;
     }
   }
+  /* unnamed: phys_<tag>, with the dimension added when another unnamed group shares the tag
+   * (Gmsh numbers physical curves and surfaces independently, so tag 1 is often both).  Which
+   * share is settled before any is named: naming as it went, the first of two got the dimension
+   * (phys_9_curve) and the second, finding the first named, did not (phys_9, not phys_9_surface) */
+  int *shared = yf_calloc((size_t)(nph ? nph : 1), sizeof *shared, "physical groups");
+  for (int j = 0; j < nph; j++)
+    for (int q = 0; q < nph && !ph[j].name[0]; q++)
+      if (q != j && ph[q].tag == ph[j].tag && !ph[q].name[0]) shared[j] = 1;
   for (int j = 0; j < nph; j++) {
     if (ph[j].name[0]) continue;
-    /* unnamed: phys_<tag>, with the dimension added when another unnamed group shares the tag
-     * (Gmsh numbers physical curves and surfaces independently, so tag 1 is often both) */
-    int shared = 0;
-    for (int q = 0; q < nph; q++)
-      if (q != j && ph[q].tag == ph[j].tag && !ph[q].name[0]) shared = 1;
-    if (shared) snprintf(ph[j].name, sizeof ph[j].name, "phys_%ld_%s", ph[j].tag, dim_word[ph[j].dim]);
+    if (shared[j]) snprintf(ph[j].name, sizeof ph[j].name, "phys_%ld_%s", ph[j].tag, dim_word[ph[j].dim]);
     else snprintf(ph[j].name, sizeof ph[j].name, "phys_%ld", ph[j].tag);
   }
+  free(shared);
 
   /* ---- materials of the surfaces ---- */
   char buf[512];
