@@ -29,6 +29,7 @@
 #include "query.h"
 #include "region.h"
 #include "sim.h"
+#include "summary.h"
 #include "yftest.h"
 
 /* ------------------------------------------------------------------ helpers */
@@ -522,7 +523,7 @@ static void bad_msh(const char *name, const char *from, const char *to, int line
 }
 
 START_TEST(test_gmsh_malformed) {
-  bad_msh("v22.msh", "4.1 0 8", "2.2 0 8", 2, "MSH version 2.2 is not supported");
+  bad_msh("v30.msh", "4.1 0 8", "3.0 0 8", 2, "MSH version 3.0 is not supported");
   bad_msh("bin.msh", "4.1 0 8", "4.1 1 8", 2, "binary .msh files are not supported");
   bad_msh("trunc.msh", "4 2 3 5\n", NULL, 40, "unexpected end of file");
   bad_msh("trunc2.msh", "1 0 0\n", NULL, 23, "unexpected end of file");
@@ -779,6 +780,302 @@ START_TEST(test_gmsh_unnamed_shared_tag) {
   ck_assert_int_eq(count_tris(m, group_of(m, "hard")), 2);
   ck_assert_int_eq(m->ngroup, 4);
   free_sim(s);
+}
+END_TEST
+
+/* ------------------------------------------------------------------ gmsh MSH 2.2 */
+
+/* A body read from FILE (absolute) by 'mesh gmsh sq FILE ARGS', with materials soft, hard, rock
+ * and steel (indices 0..3). */
+static YfSim *gmsh_scene(const char *file, const char *args) {
+  YfSim *s = new_sim();
+  model_add_material(&s->model, "soft");
+  model_add_material(&s->model, "hard");
+  model_add_material(&s->model, "rock");
+  model_add_material(&s->model, "steel");
+  char cmd[1400];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s %s", file, args);
+  run(s, cmd_mesh, "mesh", cmd);
+  return s;
+}
+
+/* The scenes two files of one mesh must give alike: the same nodes (ids = file tags, places, in
+ * the same order), triangles (corners, materials, and ids unless tri_ids is 0: a 2.2 file
+ * numbers the copies of an element in several physical groups, so its tags are not 4.1's), area,
+ * and groups of the same names with the same members. */
+static void same_scene(const YfModel *a, const YfModel *b, int tri_ids) {
+  ck_assert_int_eq(a->node.n, b->node.n);
+  ck_assert_int_eq(a->tri.n, b->tri.n);
+  for (int i = 0; i < a->node.n; i++) {
+    ck_assert_int_eq(a->node.id[i], b->node.id[i]);
+    ck_assert(a->node.x0[i] == b->node.x0[i] && a->node.y0[i] == b->node.y0[i]);
+  }
+  for (int t = 0; t < a->tri.n; t++) {
+    for (int k = 0; k < 3; k++) ck_assert_int_eq(a->tri.v[3 * t + k], b->tri.v[3 * t + k]);
+    ck_assert_int_eq(a->tri.mat[t], b->tri.mat[t]);
+    if (tri_ids) ck_assert_int_eq(a->tri.id[t], b->tri.id[t]);
+  }
+  ck_assert(total_area(a, -1) == total_area(b, -1));
+  ck_assert_int_eq(a->ngroup, b->ngroup);
+  for (int g = 0; g < a->ngroup; g++) {
+    int h = model_group((YfModel *)b, a->group[g].name, 0);
+    ck_assert_msg(h >= 0, "group %s is missing", a->group[g].name);
+    for (int i = 0; i < a->node.n; i++)
+      ck_assert_msg((a->node.gmask[i] >> g & 1) == (b->node.gmask[i] >> h & 1), "group %s, node %d",
+                    a->group[g].name, a->node.id[i]);
+    for (int t = 0; t < a->tri.n; t++)
+      ck_assert_msg((a->tri.gmask[t] >> g & 1) == (b->tri.gmask[t] >> h & 1), "group %s, triangle %d",
+                    a->group[g].name, t);
+  }
+}
+
+/* state_hash after a short run of deck text with FILE for %s */
+static uint64_t run_hash(const char *deck_fmt, const char *file, double *ux) {
+  char deck[4096], err[256] = "";
+  snprintf(deck, sizeof deck, deck_fmt, file);
+  YfSim *s = yft_run(deck);
+  uint64_t h = sim_state_hash(s);
+  ck_assert_msg(sim_query(s, "ux_right", ux, err, sizeof err) == 1, "%s", err);
+  sim_free(s);
+  return h;
+}
+
+/* two_squares.msh saved by Gmsh as MSH 2.2 (decks/meshes/make_msh22.py) gives the 4.1 file's
+ * scene, and the same bits after a run; the 2.2 file was refused ("MSH version 2.2 is not
+ * supported"). */
+START_TEST(test_gmsh_msh22_same_scene) {
+  YfSim *a = gmsh_scene(repo_path("decks/meshes/two_squares.msh"), "");
+  YfSim *b = gmsh_scene(repo_path("decks/meshes/two_squares_22.msh"), "");
+  check_two_squares(&b->model, 1.0, 2, 3);
+  same_scene(&a->model, &b->model, 1);
+  free_sim(a);
+  free_sim(b);
+  static const char *deck = "material granite elastic rho 2700 E 50e9 nu 0.25 plane_strain damping 0.1\n"
+                            "material steel elastic rho 7800 E 200e9 nu 0.3 plane_strain damping 0.1\n"
+                            "mesh gmsh block %s material rock=granite steel=steel scale 0.1\n"
+                            "fix base bottom fixed xy\nload push right pressure 1e6\ntimestep auto\nrun 300\n";
+  double ux41, ux22;
+  uint64_t h41 = run_hash(deck, repo_path("decks/meshes/two_squares.msh"), &ux41);
+  uint64_t h22 = run_hash(deck, repo_path("decks/meshes/two_squares_22.msh"), &ux22);
+  ck_assert_msg(h41 == h22, "state_hash %016llx (4.1) and %016llx (2.2)", (unsigned long long)h41,
+                (unsigned long long)h22);
+  ck_assert(ux41 < 0 && ux22 == ux41); /* the pushed side moved (inwards) */
+}
+END_TEST
+
+/* Physical groups that overlap: MSH 2.2 writes an element once per physical group it is in, each
+ * copy with its own tag (surface 2's 22 triangles three times, in steel, whole and 9).  The copies
+ * are one triangle, in each of their groups: 44 triangles, as the 4.1 file of the same mesh gives,
+ * not 110 (overlapping triangles, each in one group).  Unnamed groups of one tag in two dimensions
+ * get the same names (phys_9_curve, phys_9_surface), points and curves in two groups are in both. */
+START_TEST(test_gmsh_msh22_overlapping_groups) {
+  YfSim *a = gmsh_scene(repo_path("decks/meshes/overlap.msh"), "");
+  /* unnamed groups of tag 9 in two dimensions: both names say the dimension (the surface was
+   * named phys_9, the curve, named first, having taken phys_9_curve) */
+  ck_assert_int_eq(count_tris(&a->model, group_of(&a->model, "phys_9_surface")), 22);
+  ck_assert_int_eq(count_nodes(&a->model, group_of(&a->model, "phys_9_curve")), 8);
+  YfSim *b = gmsh_scene(repo_path("decks/meshes/overlap_22.msh"), "");
+  YfModel *m = &b->model;
+  check_two_squares(m, 1.0, 2, 3);
+  same_scene(&a->model, m, 0);
+  int gw = group_of(m, "whole"), g9 = group_of(m, "phys_9_surface"), gc = group_of(m, "phys_9_curve");
+  ck_assert_int_eq(count_tris(m, gw), 44);
+  ck_assert_int_eq(count_tris(m, g9), 22);
+  ck_assert_int_eq(count_nodes(m, gc), 8); /* curves 1 and 3: the bottom's left half (3 nodes), the right side (5) */
+  ck_assert_int_eq(count_nodes(m, group_of(m, "half")), 3);
+  /* points 1 and 6, but only 6 has a point element in two_squares.msh: Gmsh writes that one */
+  ck_assert_int_eq(count_nodes(m, group_of(m, "pins")), 1);
+  /* a triangle keeps its first copy's tag; the tags of its later copies are no ids */
+  run(b, cmd_group, "group", "t1 tri id 19");
+  ck_assert_int_eq(count_tris(m, group_of(m, "t1")), 1);
+  EXPECT_FAIL(b, cmd_group, "group", "t2 tri id 20", 1, "no triangle has this id");
+  free_sim(a);
+  free_sim(b);
+  /* the material of a triangle in several physical surfaces: that of the first of them that has
+   * one, in the file's order, as in 4.1 (surface 2 is in steel, whole, 9: here whole's) */
+  const char *f[2] = {repo_path("decks/meshes/overlap.msh"), NULL};
+  f[0] = strdup(f[0]);
+  f[1] = strdup(repo_path("decks/meshes/overlap_22.msh"));
+  YfSim *ab[2];
+  for (int k = 0; k < 2; k++) {
+    ab[k] = new_sim();
+    model_add_material(&ab[k]->model, "soft");
+    model_add_material(&ab[k]->model, "hard");
+    char cmd[1400];
+    snprintf(cmd, sizeof cmd, "gmsh sq %s material 9=hard whole=soft", f[k]);
+    run(ab[k], cmd_mesh, "mesh", cmd);
+    free((void *)f[k]);
+  }
+  same_scene(&ab[0]->model, &ab[1]->model, 0);
+  for (int t = 0; t < 44; t++) ck_assert_int_eq(ab[1]->model.tri.mat[t], 0);
+  free_sim(ab[0]);
+  free_sim(ab[1]);
+  static const char *deck = "material granite elastic rho 2700 E 50e9 nu 0.25 plane_strain damping 0.1\n"
+                            "material steel elastic rho 7800 E 200e9 nu 0.3 plane_strain damping 0.1\n"
+                            "mesh gmsh block %s material whole=granite 9=steel scale 0.1\n"
+                            "fix base half fixed xy\nfix pin pins fixed y\nload push phys_9_curve pressure 1e6\n"
+                            "timestep auto\nrun 300\n";
+  double ux41, ux22;
+  uint64_t h41 = run_hash(deck, repo_path("decks/meshes/overlap.msh"), &ux41);
+  uint64_t h22 = run_hash(deck, repo_path("decks/meshes/overlap_22.msh"), &ux22);
+  ck_assert_msg(h41 == h22, "state_hash %016llx (4.1) and %016llx (2.2)", (unsigned long long)h41,
+                (unsigned long long)h22);
+  ck_assert(ux41 < 0 && ux22 == ux41);
+}
+END_TEST
+
+/* square4.msh written as MSH 2.2 by hand (line numbers below refer to it) */
+static const char *SQ22 =
+    "$MeshFormat\n"                 /* 1 */
+    "2.2 0 8\n"                     /* 2 */
+    "$EndMeshFormat\n"              /* 3 */
+    "$PhysicalNames\n"              /* 4 */
+    "3\n"                           /* 5 */
+    "1 10 \"base\"\n"               /* 6 */
+    "2 1 \"soft\"\n"                /* 7 */
+    "2 2 \"hard\"\n"                /* 8 */
+    "$EndPhysicalNames\n"           /* 9 */
+    "$Nodes\n"                      /* 10 */
+    "5\n"                           /* 11 */
+    "1 0 0 0\n"                     /* 12 */
+    "2 1 0 0\n"                     /* 13 */
+    "3 1 1 0\n"                     /* 14 */
+    "4 0 1 0\n"                     /* 15 */
+    "5 0.5 0.5 0\n"                 /* 16 */
+    "$EndNodes\n"                   /* 17 */
+    "$Elements\n"                   /* 18 */
+    "5\n"                           /* 19 */
+    "1 1 2 10 1 1 2\n"              /* 20 */
+    "2 2 2 1 1 1 2 5\n"             /* 21 */
+    "3 2 2 1 1 3 5 4\n"             /* 22 */
+    "4 2 2 2 2 2 3 5\n"             /* 23 */
+    "5 2 2 2 2 4 1 5\n"             /* 24 */
+    "$EndElements\n";               /* 25 */
+
+/* SQ22 with the first occurrence of `from` replaced by `to` (or cut after it when to is NULL). */
+static const char *variant22(const char *name, const char *from, const char *to) {
+  static char buf[4096];
+  const char *p = strstr(SQ22, from);
+  ck_assert_ptr_nonnull(p);
+  size_t k = (size_t)(p - SQ22);
+  if (to) snprintf(buf, sizeof buf, "%.*s%s%s", (int)k, SQ22, to, p + strlen(from));
+  else snprintf(buf, sizeof buf, "%.*s", (int)(k + strlen(from)), SQ22);
+  return write_tmp(name, buf);
+}
+
+static void bad_msh22(const char *name, const char *from, const char *to, int line, const char *msg) {
+  YfSim *s = new_sim();
+  model_add_material(&s->model, "soft");
+  model_add_material(&s->model, "hard");
+  const char *path = variant22(name, from, to);
+  char cmd[1024], where[700];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s", path);
+  snprintf(where, sizeof where, "%s:%d: error:", path, line);
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, where, msg, "mesh gmsh at test.deck:7");
+  free_sim(s);
+}
+
+/* The hand-written 2.2 square gives square4.msh's scene; copies of a triangle in another physical
+ * group need not follow it nor share its orientation; elements with physical tag 0, or no tags,
+ * are those of entities in no physical group in 4.1: points and lines skipped (even of types yfdem
+ * does not read), triangles taken, with the default material. */
+START_TEST(test_gmsh_msh22_hand_written) {
+  YfSim *a = gmsh_scene(repo_path("decks/meshes/square4.msh"), "");
+  YfSim *b = gmsh_scene(variant22("sq22.msh", "$", "$"), "");
+  check_square4(&b->model, 0, 1);
+  same_scene(&a->model, &b->model, 1);
+  free_sim(b);
+  /* triangle 3 again, later, turned, in physical surface 7 too; and a copy with physical tag 0 */
+  char buf[4096];
+  snprintf(buf, sizeof buf, "%s", SQ22);
+  char *e = strstr(buf, "$EndElements");
+  snprintf(e, sizeof buf - (size_t)(e - buf), "6 2 2 7 1 5 4 3\n7 2 2 0 1 4 3 5\n$EndElements\n");
+  buf[strstr(buf, "$Elements\n5") - buf + 10] = '7';
+  b = gmsh_scene(write_tmp("copy22.msh", buf), "");
+  YfModel *m = &b->model;
+  check_square4(m, 0, 1);
+  int g7 = group_of(m, "phys_7");
+  ck_assert_int_eq(count_tris(m, g7), 1);
+  for (int t = 0; t < 4; t++) ck_assert_int_eq((int)(m->tri.gmask[t] >> g7 & 1), m->tri.id[t] == 3);
+  free_sim(b);
+  /* physical tag 0 (Gmsh's Mesh.SaveAll in 2.2), or no tags at all */
+  static const char *const none[][2] = {{"1 1 2 10 1 1 2\n", "1 1 2 0 1 1 2\n"}, {"2 2 2 1 1", "2 2 2 0 1"},
+                                        {"3 2 2 1 1", "3 2 0"}, {"4 2 2 2 2", "4 2 2 0 2"},
+                                        {"5 2 2 2 2", "5 2 2 0 2"}};
+  snprintf(buf, sizeof buf, "%s", SQ22);
+  for (size_t k = 0; k < sizeof none / sizeof none[0]; k++) {
+    char *p = strstr(buf, none[k][0]), rest[4096];
+    ck_assert_ptr_nonnull(p);
+    snprintf(rest, sizeof rest, "%s", p + strlen(none[k][0]));
+    snprintf(p, sizeof buf - (size_t)(p - buf), "%s%s", none[k][1], rest);
+  }
+  /* and a 3-node line (type 8) in no physical group, skipped as 4.1 skips it */
+  e = strstr(buf, "$EndElements");
+  snprintf(e, sizeof buf - (size_t)(e - buf), "6 8 2 0 3 1 2 5\n$EndElements\n");
+  buf[strstr(buf, "$Elements\n5") - buf + 10] = '6';
+  const char *plain = write_tmp("plain22.msh", buf);
+  b = gmsh_scene(plain, "material hard");
+  m = &b->model;
+  ck_assert_int_eq(m->tri.n, 4);
+  assert_all_ccw(m);
+  ck_assert_double_eq_tol(total_area(m, -1), 1.0, 1e-15);
+  for (int t = 0; t < 4; t++) ck_assert_int_eq(m->tri.mat[t], 1);
+  ck_assert_int_eq(m->ngroup, 1); /* the body's: no group of a physical tag 0 */
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "gmsh sq2 %s", plain);
+  EXPECT_FAIL(b, cmd_mesh, "mesh", cmd, 1, "test.deck:7: error: mesh gmsh: triangle 2 (elementary surface 1) of",
+              "is in no physical group (physical tag 0): give a default material with 'material MAT'");
+  free_sim(b);
+  free_sim(a);
+}
+END_TEST
+
+START_TEST(test_gmsh_msh22_malformed) {
+  /* cut anywhere: the file says where and that it looks cut */
+  bad_msh22("t1.msh", "3 2 2 1 1 3 5", NULL, 22, "unexpected end of file in element 3, 3 of 5 elements (truncated file?)");
+  bad_msh22("t2.msh", "3 1 1 0\n", NULL, 15, "unexpected end of file while reading a node tag (truncated file?)");
+  bad_msh22("t3.msh", "$Elements\n5", NULL, 19, "unexpected end of file in '5' while reading the number of elements "
+            "(truncated file?)");
+  bad_msh22("t4.msh", "5 2 2 2 2 4 1 5\n", NULL, 25, "unexpected end of file: $EndElements is missing (truncated file?)");
+  bad_msh22("t5.msh", "4 2 2 2", NULL, 23, "unexpected end of file in '2' while reading the physical tag of an element "
+            "(truncated file?)");
+  bad_msh22("t6.msh", "5 0.5 0.", NULL, 16, "unexpected end of file in '0.' while reading a node y (truncated file?)");
+  /* counts that do not match the data */
+  bad_msh22("c1.msh", "$Elements\n5\n", "$Elements\n6\n", 25, "found '$EndElements' while reading an element tag: the "
+            "section holds less data than its counts declare");
+  bad_msh22("c2.msh", "$Elements\n5\n", "$Elements\n4\n", 24, "expected $EndElements, found '5' (more elements than the "
+            "count declares?)");
+  bad_msh22("c3.msh", "$Nodes\n5\n", "$Nodes\n6\n", 17, "found '$EndNodes' while reading a node tag");
+  bad_msh22("c4.msh", "$Nodes\n5\n", "$Nodes\n4\n", 16, "expected $EndNodes, found '5' (more nodes than the count declares?)");
+  bad_msh22("c5.msh", "$Nodes\n5\n", "$Nodes\n-5\n", 11, "bad number of nodes -5");
+  bad_msh22("c6.msh", "4 2 2 2 2 2 3 5\n", "4 2 -1 2 2 2 3 5\n", 23, "element 4 has -1 tags, expected 0 to 1000");
+  /* element types yfdem does not read */
+  bad_msh22("e1.msh", "4 2 2 2 2 2 3 5\n", "4 99 2 2 2 2 3 5\n", 23, "element 4 has type 99, no Gmsh element type yfdem "
+            "knows: yfdem reads 3-node triangles (type 2), 2-node lines (type 1) and points (type 15)");
+  bad_msh22("e2.msh", "4 2 2 2 2 2 3 5\n", "4 3 2 2 2 2 3 5 1\n", 23, "element type 3 (4-node quadrangle) in surface 2 "
+            "is not supported: yfdem reads 3-node triangles");
+  bad_msh22("e3.msh", "4 2 2 2 2 2 3 5\n", "4 9 2 2 2 2 3 5 1 1 1\n", 23, "element type 9 (6-node triangle) in surface 2 "
+            "is not supported");
+  bad_msh22("e4.msh", "4 2 2 2 2 2 3 5\n", "4 4 2 2 2 2 3 5 1\n", 23, "3D elements (4-node tetrahedron) in volume 2: "
+            "yfdem is 2D");
+  bad_msh22("e5.msh", "1 1 2 10 1 1 2\n", "1 8 2 10 1 1 2 5\n", 20, "element type 8 (3-node line) in curve 1 is not supported");
+  /* node references and node tags on an element's line */
+  bad_msh22("n1.msh", "5 2 2 2 2 4 1 5\n", "5 2 2 2 2 4 1 9\n", 24, "node 9 of element 5 is not defined in $Nodes");
+  bad_msh22("n2.msh", "1 1 2 10 1 1 2\n", "1 1 2 10 1 1 7\n", 20, "node 7 of element 1 is not defined in $Nodes");
+  bad_msh22("n3.msh", "4 2 2 2 2 2 3 5\n", "4 2 2 2 2 2 3\n", 23, "element 4 (3-node triangle) has 2 node tags on its "
+            "line, expected 3");
+  bad_msh22("n4.msh", "4 2 2 2 2 2 3 5\n", "4 2 2 2 2 2 3 5 1\n", 23, "element 4 (3-node triangle) has more than 3 node tags");
+  bad_msh22("n5.msh", "4 2 2 2 2 2 3 5\n", "4 2 2 2 2 2 3 x\n", 23, "expected an integer node tag in element 4, found 'x'");
+  /* nodes: the same rules as in 4.1 */
+  bad_msh22("d1.msh", "4 0 1 0\n", "3 0 1 0\n", 15, "node tag 3 is defined twice");
+  bad_msh22("d2.msh", "5 0.5 0.5 0\n", "5 0x1p-1 0.5 0\n", 16, "expected a number for a node x, found '0x1p-1'");
+  bad_msh22("d3.msh", "5 0.5 0.5 0\n", "5 0.5 0.5 0.1\n", 16, "node 5 has z = 0.1 where node 1 has z = 0: yfdem is 2D");
+  bad_msh22("d4.msh", "5 0.5 0.5 0\n", "5 0.5 0 0\n", 21, "triangle 2 has zero area");
+  bad_msh22("d5.msh", "4 0 1 0\n", "0 0 1 0\n", 15, "node tag 0 is not in 1..");
+  bad_msh22("d6.msh", "$Nodes", "$Nodez", 10, "section $Nodez is not closed by $EndNodez");
+  /* versions */
+  bad_msh22("v1.msh", "2.2 0 8", "3.0 0 8", 2, "MSH version 3.0 is not supported: yfdem reads MSH 4.1 and 2.2 ASCII");
+  bad_msh22("v2.msh", "2.2 0 8", "2.2 2 8", 2, "file type 2 is neither 0 (ASCII) nor 1 (binary)");
 }
 END_TEST
 
@@ -1105,6 +1402,10 @@ Suite *mesh_suite(void) {
   tcase_add_test(tc, test_gmsh_deck_errors);
   tcase_add_test(tc, test_gmsh_no_entities_unnamed);
   tcase_add_test(tc, test_gmsh_unnamed_shared_tag);
+  tcase_add_test(tc, test_gmsh_msh22_same_scene);
+  tcase_add_test(tc, test_gmsh_msh22_overlapping_groups);
+  tcase_add_test(tc, test_gmsh_msh22_hand_written);
+  tcase_add_test(tc, test_gmsh_msh22_malformed);
   suite_add_tcase(s, tc);
   tc = tcase_create("inline");
   tcase_add_test(tc, test_inline_commands);
