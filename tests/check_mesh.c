@@ -524,7 +524,8 @@ static void bad_msh(const char *name, const char *from, const char *to, int line
 
 START_TEST(test_gmsh_malformed) {
   bad_msh("v30.msh", "4.1 0 8", "3.0 0 8", 2, "MSH version 3.0 is not supported");
-  bad_msh("bin.msh", "4.1 0 8", "4.1 1 8", 2, "binary .msh files are not supported");
+  bad_msh("bin.msh", "4.1 0 8", "4.1 1 8", 2, "binary MSH 4.1 files are not supported: save as ASCII (Mesh.Binary = 0), "
+          "or as MSH 2.2");
   bad_msh("trunc.msh", "4 2 3 5\n", NULL, 40, "unexpected end of file");
   bad_msh("trunc2.msh", "1 0 0\n", NULL, 23, "unexpected end of file");
   /* cut inside a physical name: it said "unterminated physical name", or "has no name" */
@@ -1074,8 +1075,169 @@ START_TEST(test_gmsh_msh22_malformed) {
   bad_msh22("d5.msh", "4 0 1 0\n", "0 0 1 0\n", 15, "node tag 0 is not in 1..");
   bad_msh22("d6.msh", "$Nodes", "$Nodez", 10, "section $Nodez is not closed by $EndNodez");
   /* versions */
-  bad_msh22("v1.msh", "2.2 0 8", "3.0 0 8", 2, "MSH version 3.0 is not supported: yfdem reads MSH 4.1 and 2.2 ASCII");
+  bad_msh22("v1.msh", "2.2 0 8", "3.0 0 8", 2, "MSH version 3.0 is not supported: yfdem reads MSH 4.1 (ASCII) and MSH 2.2 (ASCII or binary); "
+            "save with gmsh -format msh41");
   bad_msh22("v2.msh", "2.2 0 8", "2.2 2 8", 2, "file type 2 is neither 0 (ASCII) nor 1 (binary)");
+}
+END_TEST
+
+/* SQ22 as binary MSH 2.2 (the ASCII header and names, the node and element data in binary; swap:
+ * in the other byte order than this machine's), into buf; its length.  off[] receives the offsets
+ * of: 0 the integer 1 of the header, 1 node 5's x, 2 the second element block's header, 3 the last
+ * node tag of element 5.  Line numbers: the header's integer on 3, the node count on 12, the element
+ * count on 16 (after the data of physical tag 10, a newline byte). */
+static size_t sq22_bin(char *buf, int swap, size_t off[4]) {
+  size_t n = 0;
+#define PUT_S(str) (memcpy(buf + n, str, strlen(str)), n += strlen(str))
+#define PUT_B(v)                                                                                   \
+  do {                                                                                             \
+    unsigned char b_[8];                                                                           \
+    memcpy(b_, &(v), sizeof(v));                                                                   \
+    for (size_t i_ = 0; i_ < sizeof(v); i_++) buf[n + i_] = (char)b_[swap ? sizeof(v) - 1 - i_ : i_]; \
+    n += sizeof(v);                                                                                \
+  } while (0)
+#define PUT_I(x) do { int32_t v_ = (x); PUT_B(v_); } while (0)
+  PUT_S("$MeshFormat\n2.2 1 8\n");
+  off[0] = n;
+  PUT_I(1);
+  PUT_S("\n$EndMeshFormat\n$PhysicalNames\n3\n1 10 \"base\"\n2 1 \"soft\"\n2 2 \"hard\"\n$EndPhysicalNames\n$Nodes\n5\n");
+  static const double xy[5][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0.5}};
+  for (int i = 0; i < 5; i++) {
+    PUT_I(i + 1);
+    if (i == 4) off[1] = n;
+    for (int k = 0; k < 3; k++) {
+      double c = k < 2 ? xy[i][k] : 0.0;
+      PUT_B(c);
+    }
+  }
+  PUT_S("\n$EndNodes\n$Elements\n5\n");
+  static const int line[] = {1, 1, 2, 1, 10, 1, 1, 2};
+  for (int k = 0; k < 8; k++) PUT_I(line[k]);
+  off[2] = n;
+  static const int tri[] = {2, 4, 2, 2, 1, 1, 1, 2, 5, 3, 1, 1, 3, 5, 4, 4, 2, 2, 2, 3, 5, 5, 2, 2, 4, 1, 5};
+  for (int k = 0; k < 27; k++) {
+    if (k == 26) off[3] = n;
+    PUT_I(tri[k]);
+  }
+  PUT_S("\n$EndElements\n");
+#undef PUT_S
+#undef PUT_B
+#undef PUT_I
+  return n;
+}
+
+static const char *write_bin(const char *name, const char *buf, size_t n) {
+  const char *p = tmp_path(name);
+  FILE *fp = fopen(p, "wb");
+  ck_assert_ptr_nonnull(fp);
+  ck_assert_uint_eq(fwrite(buf, 1, n, fp), n);
+  fclose(fp);
+  return p;
+}
+
+static void bad_bin(const char *name, const char *buf, size_t n, int line, const char *msg) {
+  YfSim *s = new_sim();
+  model_add_material(&s->model, "soft");
+  model_add_material(&s->model, "hard");
+  const char *path = write_bin(name, buf, n);
+  char cmd[1024], where[700];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s", path);
+  snprintf(where, sizeof where, "%s:%d: error:", path, line);
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, where, msg, "mesh gmsh at test.deck:7");
+  free_sim(s);
+}
+
+/* Binary MSH 2.2 (Mesh.Binary = 1), which was refused ("binary .msh files are not supported"): the
+ * binary file Gmsh writes of a mesh gives the scene and the bits of its ASCII files; a binary file
+ * in either byte order is read; a binary file cut anywhere says it looks cut, and wrong binary
+ * data is named (messages give the line of the section's count). */
+START_TEST(test_gmsh_msh22_binary) {
+  YfSim *a = gmsh_scene(repo_path("decks/meshes/overlap.msh"), "");
+  YfSim *b = gmsh_scene(repo_path("decks/meshes/overlap_22b.msh"), "");
+  YfSim *c = gmsh_scene(repo_path("decks/meshes/overlap_22.msh"), "");
+  check_two_squares(&b->model, 1.0, 2, 3);
+  same_scene(&a->model, &b->model, 0);
+  same_scene(&c->model, &b->model, 1);
+  free_sim(a);
+  free_sim(b);
+  free_sim(c);
+  static const char *deck = "material granite elastic rho 2700 E 50e9 nu 0.25 plane_strain damping 0.1\n"
+                            "material steel elastic rho 7800 E 200e9 nu 0.3 plane_strain damping 0.1\n"
+                            "mesh gmsh block %s material whole=granite 9=steel scale 0.1\n"
+                            "fix base half fixed xy\nfix pin pins fixed y\nload push phys_9_curve pressure 1e6\n"
+                            "timestep auto\nrun 300\n";
+  double ux41, uxb;
+  uint64_t h41 = run_hash(deck, repo_path("decks/meshes/overlap.msh"), &ux41);
+  uint64_t hb = run_hash(deck, repo_path("decks/meshes/overlap_22b.msh"), &uxb);
+  ck_assert_msg(h41 == hb, "state_hash %016llx (4.1) and %016llx (binary 2.2)", (unsigned long long)h41,
+                (unsigned long long)hb);
+  ck_assert(ux41 < 0 && uxb == ux41);
+
+  /* both byte orders give square4's scene */
+  static char buf[2048];
+  size_t off[4];
+  a = gmsh_scene(repo_path("decks/meshes/square4.msh"), "");
+  for (int swap = 0; swap < 2; swap++) {
+    size_t n = sq22_bin(buf, swap, off);
+    b = gmsh_scene(write_bin("sqb.msh", buf, n), "");
+    check_square4(&b->model, 0, 1);
+    same_scene(&a->model, &b->model, 1);
+    free_sim(b);
+  }
+  free_sim(a);
+
+  /* cut at any byte: exit 1, and the message says the file looks cut (the whole file less its
+   * last newline is whole) */
+  size_t n = sq22_bin(buf, 0, off);
+  b = gmsh_scene(write_bin("sqb.msh", buf, n - 1), "");
+  ck_assert_int_eq(b->model.tri.n, 4);
+  free_sim(b);
+  for (size_t k = strlen("$MeshFormat"); k + 1 < n; k++) {
+    YfSim *s = new_sim();
+    model_add_material(&s->model, "soft");
+    model_add_material(&s->model, "hard");
+    char cmd[1024], *err;
+    snprintf(cmd, sizeof cmd, "gmsh sq %s", write_bin("cut.msh", buf, k));
+    int rc = run_child(s, cmd_mesh, "mesh", cmd, &err);
+    ck_assert_msg(rc == 1 && strstr(err, "cut.msh:") && strstr(err, "(truncated file?)"),
+                  "cut after %zu of %zu bytes: exit %d: %s", k, n, rc, err);
+    free_sim(s);
+  }
+
+  /* wrong binary data */
+  char bad[2048];
+  memcpy(bad, buf, n);
+  int32_t two = 2;
+  memcpy(bad + off[0], &two, 4);
+  bad_bin("b1.msh", bad, n, 3, "the binary integer after the version line is 2, not 1 in either byte order");
+  memcpy(bad, buf, n);
+  bad[strlen("$MeshFormat\n2.2 1 ")] = '4';
+  bad_bin("b2.msh", bad, n, 2, "data size 4: yfdem reads binary files of 8-byte reals");
+  memcpy(bad, buf, n);
+  double nan_ = NAN;
+  memcpy(bad + off[1], &nan_, 8);
+  bad_bin("b3.msh", bad, n, 12, "node 5 has a coordinate that is not a finite number");
+  memcpy(bad, buf, n);
+  int32_t nine = 9;
+  memcpy(bad + off[3], &nine, 4);
+  bad_bin("b4.msh", bad, n, 16, "node 9 of element 5 is not defined in $Nodes");
+  memcpy(bad, buf, n);
+  int32_t t99 = 99;
+  memcpy(bad + off[2], &t99, 4);
+  bad_bin("b5.msh", bad, n, 16, "an element block of type 99, no Gmsh element type yfdem knows (binary data, element 2 of 5)");
+  memcpy(bad, buf, n);
+  int32_t five = 5;
+  memcpy(bad + off[2] + 4, &five, 4);
+  bad_bin("b6.msh", bad, n, 16, "an element block of 5 elements with 2 tags each, after 1 of the 5 elements (binary data): "
+          "the counts are wrong");
+  memcpy(bad, buf, n);
+  int32_t zero = 0;
+  memcpy(bad + off[1] - 4, &zero, 4);
+  bad_bin("b7.msh", bad, n, 12, "node 5 of the binary data: tag 0 is not in 1..");
+  /* binary data in a file that says ASCII */
+  memcpy(bad, buf, n);
+  bad[strlen("$MeshFormat\n2.2 ")] = '0';
+  bad_bin("b8.msh", bad, n, 3, "the file contains binary data although $MeshFormat says ASCII");
 }
 END_TEST
 
@@ -1406,6 +1568,8 @@ Suite *mesh_suite(void) {
   tcase_add_test(tc, test_gmsh_msh22_overlapping_groups);
   tcase_add_test(tc, test_gmsh_msh22_hand_written);
   tcase_add_test(tc, test_gmsh_msh22_malformed);
+  tcase_add_test(tc, test_gmsh_msh22_binary);
+  tcase_set_timeout(tc, 30); /* the binary test reads its file cut at each of ~450 bytes, in a child each */
   suite_add_tcase(s, tc);
   tc = tcase_create("inline");
   tcase_add_test(tc, test_inline_commands);

@@ -1,4 +1,5 @@
-/* gmsh.c: reader of Gmsh MSH 4.1 and 2.2 ASCII meshes (the `mesh gmsh` command's parser).
+/* gmsh.c: reader of Gmsh MSH 4.1 ASCII and MSH 2.2 ASCII or binary meshes (the `mesh gmsh`
+ * command's parser).
  *
  * The file is read whole into memory and walked token by token, keeping the line of each token
  * so that every complaint names FILE.msh:LINE (and the deck line of the mesh command).  Sections
@@ -31,6 +32,9 @@
  * path and the same mesh in either version gives the same scene (same nodes in the same order,
  * triangles, materials, groups); only the ids of triangles with copies differ (the first copy's
  * tag).  Elements of physical tag 0 are those of 4.1 entities without physical groups.
+ * Binary 2.2 keeps the ASCII layout around the data of $Nodes (tag and x y z of each node) and
+ * $Elements (blocks of one element type); the data is read in the byte order the header's integer
+ * 1 tells, and complaints about it name the line of the section's count.
  */
 #include <ctype.h>
 #include <errno.h>
@@ -53,6 +57,7 @@ typedef struct {
   int tokline;         /* line of the last token               */
   char tok[256];
   const char *section; /* for messages                         */
+  int bin, swap;       /* binary MSH 2.2; its data in the other byte order */
 } Msh;
 
 typedef struct {
@@ -205,9 +210,66 @@ static void unsupported(Msh *r, int line, long type, int dim, long etag) {
            type, elem_name(type), dim_word[dim], etag);
 }
 
+/* Binary MSH 2.2: after an ASCII count, the rest of its line, then the binary data. */
+static void bin_begin(Msh *r, const char *what) {
+  if (!msh_eol(r))
+    msh_fail(r, r->line, "expected the end of the line before the binary data of %s, found '%c'", what, r->buf[r->pos]);
+  if (r->pos >= r->len) msh_fail(r, r->line, "unexpected end of file before the binary data of %s (truncated file?)", what);
+  r->pos++;
+  r->line++;
+}
+
+/* The next n bytes of binary data (newline bytes in them still count as lines, as an editor
+ * shows them); refused when the file ends first. */
+static const unsigned char *bin_bytes(Msh *r, size_t n, const char *what) {
+  if (r->len - r->pos < n)
+    msh_fail(r, r->line, "unexpected end of file in the binary data of %s (truncated file?)", what);
+  const unsigned char *p = (const unsigned char *)r->buf + r->pos;
+  for (const char *q = r->buf + r->pos; (q = memchr(q, '\n', (size_t)(r->buf + r->pos + n - q))); q++) r->line++;
+  r->pos += n;
+  return p;
+}
+
+static void bin_swap(unsigned char *b, int n) {
+  for (int i = 0; i < n / 2; i++) {
+    unsigned char t = b[i];
+    b[i] = b[n - 1 - i];
+    b[n - 1 - i] = t;
+  }
+}
+
+static long bin_int(const Msh *r, const unsigned char *p) {
+  unsigned char b[4];
+  memcpy(b, p, 4);
+  if (r->swap) bin_swap(b, 4);
+  int32_t v;
+  memcpy(&v, b, 4);
+  return v;
+}
+
+static double bin_double(const Msh *r, const unsigned char *p) {
+  unsigned char b[8];
+  memcpy(b, p, 8);
+  if (r->swap) bin_swap(b, 8);
+  double v;
+  memcpy(&v, b, 8);
+  return v;
+}
+
+/* Nodes of a Gmsh element type (a binary element block does not say it), or -1. */
+static int elem_nodes(long type) {
+  static const signed char n[32] = {-1, 2, 3, 4, 4, 8, 6, 5, 3, 6, 9, 10, 27, 18, 14, 1,
+                                    8, 20, 15, 13, 9, 10, 12, 15, 15, 21, 4, 5, 6, 20, 35, 56};
+  return type >= 0 && type < 32 ? n[type] : -1;
+}
+
 static char *slurp(const char *path, const YfLoc *from, size_t *len) {
   char *buf = yf_read_file(path, len, "mesh file");
   if (!buf) yf_io_error(from, "mesh gmsh: cannot open '%s': %s", path, strerror(errno));
+  /* a binary MSH 2.2 file is left as it is: its CR bytes are data */
+  char ver[16];
+  int ft;
+  if (sscanf(buf, " $MeshFormat %15s %d", ver, &ft) == 2 && ft == 1 && !strcmp(ver, "2.2")) return buf;
   /* a CR alone ends a line (classic Mac text), as in every text yfdem reads; CRLF is left */
   for (size_t i = 0; i < *len; i++)
     if (buf[i] == '\r') { /* CRs before a LF (CRLF, CR CR LF) stay blanks */
@@ -269,13 +331,9 @@ static void nodes_alloc(Msh *r, int hline, long ntot, long **ntag, double **nx, 
   *used = yf_calloc((size_t)(ntot ? ntot : 1), sizeof **used, "mesh nodes");
 }
 
-/* x y z of node i (tag), then `extra` parametric coordinates: scaled into nx, ny, z into f. */
-static void node_xyz(Msh *r, double scale, Flat *f, long i, long tag, double *nx, double *ny, int extra) {
-  double x = msh_double(r, "a node x");
-  int cline = r->tokline;
-  double y = msh_double(r, "a node y");
-  double z = msh_double(r, "a node z");
-  for (int k = 0; k < extra; k++) msh_double(r, "a parametric coordinate");
+/* Node i (tag) at x y z (file line cline): scaled into nx, ny, z into f. */
+static void node_put(Msh *r, double scale, Flat *f, long i, long tag, double *nx, double *ny, double x, double y,
+                     double z, int cline) {
   nx[i] = x * scale;
   ny[i] = y * scale;
   if (!(fabs(nx[i]) <= YF_RANGE_MAX && fabs(ny[i]) <= YF_RANGE_MAX))
@@ -289,6 +347,16 @@ static void node_xyz(Msh *r, double scale, Flat *f, long i, long tag, double *nx
     f->zline = cline;
     f->zntag = tag;
   }
+}
+
+/* x y z of node i (tag), then `extra` parametric coordinates. */
+static void node_xyz(Msh *r, double scale, Flat *f, long i, long tag, double *nx, double *ny, int extra) {
+  double x = msh_double(r, "a node x");
+  int cline = r->tokline;
+  double y = msh_double(r, "a node y");
+  double z = msh_double(r, "a node z");
+  for (int k = 0; k < extra; k++) msh_double(r, "a parametric coordinate");
+  node_put(r, scale, f, i, tag, nx, ny, x, y, z, cline);
 }
 
 static void nodes_flat(Msh *r, const Flat *f, long tag0) {
@@ -409,22 +477,38 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       int vline = r->tokline;
       double v;
       if (!yf_parse_double(ver, &v) || (fabs(v - 4.1) > 1e-9 && fabs(v - 2.2) > 1e-9))
-        msh_fail(r, vline, "MSH version %s is not supported: yfdem reads MSH 4.1 and 2.2 ASCII (save with "
-                 "gmsh -format msh41, or Mesh.MshFileVersion = 4.1)", ver);
+        msh_fail(r, vline, "MSH version %s is not supported: yfdem reads MSH 4.1 (ASCII) and MSH 2.2 (ASCII or "
+                 "binary); save with gmsh -format msh41, or Mesh.MshFileVersion = 4.1", ver);
       msh2 = fabs(v - 2.2) <= 1e-9;
       long ft = msh_long(r, "the file type");
-      if (ft == 1)
-        msh_fail(r, r->tokline, "binary .msh files are not supported: save as ASCII (Mesh.Binary = 0)");
-      if (ft != 0) msh_fail(r, r->tokline, "file type %ld is neither 0 (ASCII) nor 1 (binary)", ft);
-      msh_long(r, "the data size");
-      msh_expect(r, "$EndMeshFormat", "");
-      /* an ASCII mesh has no NUL bytes; a binary one mislabelled as ASCII would be misread */
-      const char *nul = memchr(r->buf, '\0', r->len);
+      if (ft == 1 && !msh2)
+        msh_fail(r, r->tokline, "binary MSH 4.1 files are not supported: save as ASCII (Mesh.Binary = 0), or as "
+                 "MSH 2.2 (binary or not)");
+      if (ft != 0 && ft != 1) msh_fail(r, r->tokline, "file type %ld is neither 0 (ASCII) nor 1 (binary)", ft);
+      long ds = msh_long(r, "the data size");
+      r->bin = ft == 1;
+      if (r->bin) {
+        /* the size of a real, then the integer 1 written in binary, which tells the byte order */
+        if (ds != 8)
+          msh_fail(r, r->tokline, "data size %ld: yfdem reads binary files of 8-byte reals (as Gmsh writes them)", ds);
+        bin_begin(r, "$MeshFormat");
+        const unsigned char *one = bin_bytes(r, 4, "$MeshFormat");
+        long v1 = bin_int(r, one);
+        if (v1 != 1) {
+          r->swap = 1;
+          if (bin_int(r, one) != 1)
+            msh_fail(r, r->line, "the binary integer after the version line is %ld, not 1 in either byte order", v1);
+        }
+      }
+      /* an ASCII mesh has no NUL bytes; a binary one mislabelled as ASCII would be misread (and
+       * said "expected $EndMeshFormat, found ''" at its binary integer 1) */
+      const char *nul = r->bin ? NULL : memchr(r->buf, '\0', r->len);
       if (nul) {
         int line = 1;
         for (const char *p = r->buf; p < nul; p++) line += *p == '\n';
         msh_fail(r, line, "the file contains binary data although $MeshFormat says ASCII");
       }
+      msh_expect(r, "$EndMeshFormat", "");
       have_fmt = 1;
 
     } else if (!strcmp(r->tok, "$PhysicalNames")) {
@@ -539,7 +623,22 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       if (ntot < 0 || ntot > INT_MAX / 4) msh_fail(r, hline, "bad number of nodes %ld", ntot);
       nodes_alloc(r, hline, ntot, &ntag, &nx, &ny, &used);
       Flat f = {0};
+      if (r->bin) bin_begin(r, "$Nodes");
       for (; nn < ntot; nn++) {
+        if (r->bin) { /* int tag, 3 doubles; messages name the line of the count */
+          const unsigned char *p = bin_bytes(r, 28, "$Nodes");
+          long t = bin_int(r, p);
+          double c[3];
+          for (int k = 0; k < 3; k++) c[k] = bin_double(r, p + 4 + 8 * k);
+          if (t <= 0 || t > INT_MAX) msh_fail(r, hline, "node %ld of the binary data: tag %ld is not in 1..%d", nn + 1, t, INT_MAX);
+          if (!idmap_put(&nmap, t, (int)nn)) msh_fail(r, hline, "node tag %ld is defined twice (binary data)", t);
+          if (!isfinite(c[0]) || !isfinite(c[1]) || !isfinite(c[2]))
+            msh_fail(r, hline, "node %ld has a coordinate that is not a finite number (%g, %g, %g) (binary data)", t,
+                     c[0], c[1], c[2]);
+          ntag[nn] = t;
+          node_put(r, o->scale, &f, nn, t, nx, ny, c[0], c[1], c[2], hline);
+          continue;
+        }
         long t = msh_long(r, "a node tag");
         if (t <= 0 || t > INT_MAX) msh_fail(r, r->tokline, "node tag %ld is not in 1..%d", t, INT_MAX);
         if (!idmap_put(&nmap, t, (int)nn)) msh_fail(r, r->tokline, "node tag %ld is defined twice", t);
@@ -598,25 +697,55 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       r->section = "$Elements";
       if (!have_nodes) msh_fail(r, r->tokline, "$Elements comes before $Nodes");
       long ntot = msh_long(r, "the number of elements");
+      int hline = r->tokline;
       if (ntot < 0 || ntot > INT_MAX / 4) msh_fail(r, r->tokline, "bad number of elements %ld", ntot);
+      /* binary: blocks of elements of one type and tag count, each a header (type, count, tags)
+       * and the elements (tag, tags, node tags); messages name the line of the count */
+      long bleft = 0, btype = 0, bntg = 0;
+      if (r->bin) bin_begin(r, "$Elements");
       /* triangles as read, copies included: corners (counter-clockwise), tag, elementary tag, physical tag */
       long nraw = 0, capraw = 0;
       int *rv = NULL;
       long *rtag = NULL, *retag = NULL, *rphys = NULL;
       for (long i = 0; i < ntot; i++) {
-        long tag = msh_long(r, "an element tag");
-        int line = r->tokline;
-        long type = msh_long(r, "the element type");
-        long ntg = msh_long(r, "the number of tags of an element");
-        if (ntg < 0 || ntg > 1000)
-          msh_fail(r, r->tokline, "element %ld has %ld tags, expected 0 to 1000 (Gmsh writes 2: the physical "
-                   "group and the elementary entity)", tag, ntg);
-        long phys = 0, etag = 0;
-        for (long k = 0; k < ntg; k++) {
-          long t = msh_long(r, k == 0 ? "the physical tag of an element" : k == 1 ? "the elementary tag of an element"
-                                      : "a partition tag of an element");
-          if (k == 0) phys = labs(t);
-          else if (k == 1) etag = t;
+        long tag, type, phys = 0, etag = 0, nt[3];
+        int line, k = 0;
+        if (r->bin) {
+          if (!bleft) {
+            const unsigned char *p = bin_bytes(r, 12, "$Elements");
+            btype = bin_int(r, p), bleft = bin_int(r, p + 4), bntg = bin_int(r, p + 8);
+            if (elem_nodes(btype) < 0)
+              msh_fail(r, hline, "an element block of type %ld, no Gmsh element type yfdem knows (binary data, element %ld "
+                       "of %ld): yfdem reads 3-node triangles (type 2), 2-node lines (type 1) and points (type 15)",
+                       btype, i + 1, ntot);
+            if (bleft <= 0 || bleft > ntot - i || bntg < 0 || bntg > 1000)
+              msh_fail(r, hline, "an element block of %ld elements with %ld tags each, after %ld of the %ld elements "
+                       "(binary data): the counts are wrong", bleft, bntg, i, ntot);
+          }
+          int nv = elem_nodes(btype);
+          const unsigned char *p = bin_bytes(r, (size_t)(1 + bntg + nv) * 4, "$Elements");
+          tag = bin_int(r, p);
+          type = btype;
+          if (bntg > 0) phys = labs(bin_int(r, p + 4));
+          if (bntg > 1) etag = bin_int(r, p + 8);
+          for (k = 0; k < nv && k < 3; k++) nt[k] = bin_int(r, p + 4 * (1 + bntg + k));
+          if (nv > 3) k = nv;
+          bleft--;
+          line = hline;
+        } else {
+          tag = msh_long(r, "an element tag");
+          line = r->tokline;
+          type = msh_long(r, "the element type");
+          long ntg = msh_long(r, "the number of tags of an element");
+          if (ntg < 0 || ntg > 1000)
+            msh_fail(r, r->tokline, "element %ld has %ld tags, expected 0 to 1000 (Gmsh writes 2: the physical "
+                     "group and the elementary entity)", tag, ntg);
+          for (long q = 0; q < ntg; q++) {
+            long t = msh_long(r, q == 0 ? "the physical tag of an element" : q == 1 ? "the elementary tag of an element"
+                                        : "a partition tag of an element");
+            if (q == 0) phys = labs(t);
+            else if (q == 1) etag = t;
+          }
         }
         int edim = elem_dim(type);
         if (edim < 0)
@@ -637,9 +766,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
         } else {
           keep = 2, want = 1;
         }
-        long nt[3];
-        int k = 0;
-        while (!msh_eol(r)) {
+        while (!r->bin && !msh_eol(r)) {
           msh_next(r);
           if (!keep) continue;
           if (k >= want)
@@ -651,7 +778,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
             msh_fail(r, line, "expected an integer node tag in element %ld, found '%s'", tag, r->tok);
           k++;
         }
-        if (r->pos >= r->len)
+        if (!r->bin && r->pos >= r->len)
           msh_fail(r, r->line, "unexpected end of file in element %ld, %ld of %ld elements (truncated file?)",
                    tag, i + 1, ntot);
         if (!keep) continue;
