@@ -1081,6 +1081,36 @@ START_TEST(test_gmsh_msh22_malformed) {
 }
 END_TEST
 
+/* $ParametricNodes (Mesh.SaveParametric in 2.2: each node's entity and its u, or u v, follow x y z)
+ * gives the scene of $Nodes; it was skipped as an unknown section ("$Elements comes before
+ * $Nodes"). Node lines hold what their section says, no more. */
+START_TEST(test_gmsh_msh22_parametric) {
+  YfSim *a = gmsh_scene(repo_path("decks/meshes/two_squares_param.msh"), "");
+  YfSim *b = gmsh_scene(repo_path("decks/meshes/two_squares_22p.msh"), "");
+  check_two_squares(&b->model, 1.0, 2, 3);
+  same_scene(&a->model, &b->model, 1);
+  free_sim(a);
+  free_sim(b);
+  static const char *par = "$ParametricNodes\n5\n1 0 0 0 0 1\n2 1 0 0 0 2\n3 1 1 0 1 2 0.5\n4 0 1 0\n"
+                           "5 0.5 0.5 0 2 1 0.5 0.5\n$EndParametricNodes\n";
+  const char *nodes = "$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 0.5 0.5 0\n$EndNodes\n";
+  b = gmsh_scene(variant22("par22.msh", nodes, par), "");
+  check_square4(&b->model, 0, 1);
+  free_sim(b);
+  char bad[400];
+  snprintf(bad, sizeof bad, "%s", par);
+  *strstr(bad, " 0.5\n$End") = '\0';
+  strcat(bad, "\n$EndParametricNodes\n");
+  bad_msh22("par1.msh", nodes, bad, 17, "found '$EndParametricNodes' while reading a parametric coordinate");
+  snprintf(bad, sizeof bad, "%s", par);
+  bad[strstr(bad, "5 0.5 0.5 0 2") - bad + 12] = '5';
+  bad_msh22("par2.msh", nodes, bad, 16, "$ParametricNodes: node 5: entity dimension 5 is not 0..3");
+  bad_msh22("par3.msh", "5 0.5 0.5 0\n", "5 0.5 0.5 0 7\n", 16, "$Nodes: node 5: '7' after its x y z on its line");
+  bad_msh22("par4.msh", "$EndNodes\n", "$EndNodes\n$ParametricNodes\n0\n$EndParametricNodes\n", 18,
+            "a second $Nodes or $ParametricNodes section");
+}
+END_TEST
+
 /* SQ22 as binary MSH 2.2 (the ASCII header and names, the node and element data in binary; swap:
  * in the other byte order than this machine's), into buf; its length.  off[] receives the offsets
  * of: 0 the integer 1 of the header, 1 node 5's x, 2 the second element block's header, 3 the last
@@ -1566,6 +1596,7 @@ Suite *mesh_suite(void) {
   tcase_add_test(tc, test_gmsh_unnamed_shared_tag);
   tcase_add_test(tc, test_gmsh_msh22_same_scene);
   tcase_add_test(tc, test_gmsh_msh22_overlapping_groups);
+  tcase_add_test(tc, test_gmsh_msh22_parametric);
   tcase_add_test(tc, test_gmsh_msh22_hand_written);
   tcase_add_test(tc, test_gmsh_msh22_malformed);
   tcase_add_test(tc, test_gmsh_msh22_binary);

@@ -31,7 +31,8 @@
  * elements show and merges the copies of a triangle (same corners), so that the rest is the 4.1
  * path and the same mesh in either version gives the same scene (same nodes in the same order,
  * triangles, materials, groups); only the ids of triangles with copies differ (the first copy's
- * tag).  Elements of physical tag 0 are those of 4.1 entities without physical groups.
+ * tag).  Elements of physical tag 0 are those of 4.1 entities without physical groups.  The
+ * nodes are in $Nodes, or in $ParametricNodes (each node's entity and u, or u v, after x y z).
  * Binary 2.2 keeps the ASCII layout around the data of $Nodes (tag and x y z of each node) and
  * $Elements (blocks of one element type); the data is read in the byte order the header's integer
  * 1 tells, and complaints about it name the line of the section's count.
@@ -614,10 +615,15 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       if (part) have_pent = 1;
       else have_ent = 1;
 
-    } else if (!strcmp(r->tok, "$Nodes") && msh2) {
-      /* MSH 2.2: the count, then one "tag x y z" line per node */
-      if (have_nodes) msh_fail(r, r->tokline, "a second $Nodes section");
-      r->section = "$Nodes";
+    } else if ((!strcmp(r->tok, "$Nodes") || !strcmp(r->tok, "$ParametricNodes")) && msh2) {
+      /* MSH 2.2: the count, then one "tag x y z" line per node; $ParametricNodes (Gmsh's
+       * Mesh.SaveParametric) adds the node's entity, "dim tag", and its u (curves) or u v
+       * (surfaces) */
+      int par = !strcmp(r->tok, "$ParametricNodes");
+      if (have_nodes) msh_fail(r, r->tokline, "a second %s section", par ? "$Nodes or $ParametricNodes" : "$Nodes");
+      r->section = par ? "$ParametricNodes" : "$Nodes";
+      if (par && r->bin)
+        msh_fail(r, r->tokline, "binary $ParametricNodes are not supported: save without Mesh.SaveParametric, or as ASCII");
       long ntot = msh_long(r, "the number of nodes");
       int hline = r->tokline;
       if (ntot < 0 || ntot > INT_MAX / 4) msh_fail(r, hline, "bad number of nodes %ld", ntot);
@@ -644,8 +650,21 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
         if (!idmap_put(&nmap, t, (int)nn)) msh_fail(r, r->tokline, "node tag %ld is defined twice", t);
         ntag[nn] = t;
         node_xyz(r, o->scale, &f, nn, t, nx, ny, 0);
+        if (par && !msh_eol(r)) {
+          int line = r->line;
+          long dim = msh_long(r, "the dimension of a node's entity");
+          if (dim < 0 || dim > 3) msh_fail(r, line, "node %ld: entity dimension %ld is not 0..3", t, dim);
+          msh_long(r, "the tag of a node's entity");
+          for (long k = 0; k < (dim == 1 || dim == 2 ? dim : 0); k++) msh_double(r, "a parametric coordinate");
+        }
+        if (!msh_eol(r)) {
+          int line = r->line;
+          msh_next(r);
+          msh_fail(r, line, "node %ld: '%s' after its %s on its line", t, r->tok,
+                   par ? "coordinates, entity and parametric coordinates" : "x y z");
+        }
       }
-      msh_expect(r, "$EndNodes", " (more nodes than the count declares?)");
+      msh_expect(r, par ? "$EndParametricNodes" : "$EndNodes", " (more nodes than the count declares?)");
       nodes_flat(r, &f, nn ? ntag[0] : 0);
       have_nodes = 1;
 
