@@ -1216,6 +1216,28 @@ START_TEST(test_gmsh_msh22_binary) {
   }
   free_sim(a);
 
+  /* a section yfdem skips, with binary data (a $NodeData of meshio's): a run of 400 bytes without a
+   * blank was "a word longer than 255 characters"; an end marker inside a word is no end */
+  {
+    size_t n = sq22_bin(buf, 0, off);
+    char *e = memmem(buf, n, "$Elements\n", 10);
+    ck_assert_ptr_nonnull(e);
+    static char sec[1024];
+    size_t k = (size_t)snprintf(sec, sizeof sec, "$NodeData\n1\n\"u\"\n1\n0\n3\n0\n1\n5\n");
+    memset(sec + k, 0x41, 400);
+    memcpy(sec + k + 200, "$EndNodeData", 12);
+    k += 400;
+    k += (size_t)snprintf(sec + k, sizeof sec - k, "\n$EndNodeData\n");
+    static char big[4096];
+    size_t h = (size_t)(e - buf);
+    memcpy(big, buf, h);
+    memcpy(big + h, sec, k);
+    memcpy(big + h + k, e, n - h);
+    YfSim *s = gmsh_scene(write_bin("sqbd.msh", big, n + k), "");
+    check_square4(&s->model, 0, 1);
+    free_sim(s);
+  }
+
   /* cut at any byte: exit 1, and the message says the file looks cut (the whole file less its
    * last newline is whole) */
   size_t n = sq22_bin(buf, 0, off);

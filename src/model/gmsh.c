@@ -177,8 +177,19 @@ static void msh_skip_section(Msh *r) {
   char end[300];
   int line0 = r->tokline;
   snprintf(end, sizeof end, "$End%s", r->tok + 1);
-  while (msh_next(r))
-    if (!strcmp(r->tok, end)) return;
+  size_t n = strlen(end);
+  /* the marker as a word, found by a plain search: read as words, the binary data of a section
+   * (a $NodeData in a binary file) held runs of bytes longer than a word may be ("a word longer
+   * than 255 characters") */
+  const char *lim = r->buf + r->len;
+  for (const char *p = r->buf + r->pos; (p = memmem(p, (size_t)(lim - p), end, n)); p++) {
+    if (p > r->buf && !isspace((unsigned char)p[-1])) continue;
+    if (p + n < lim && !isspace((unsigned char)p[n])) continue;
+    for (const char *q = r->buf + r->pos; (q = memchr(q, '\n', (size_t)(p - q))); q++) r->line++;
+    r->pos = (size_t)(p + n - r->buf);
+    r->tokline = r->line;
+    return;
+  }
   msh_fail(r, line0, "section $%s is not closed by %s (truncated file?)", end + 4, end);
 }
 
