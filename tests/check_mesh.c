@@ -1023,6 +1023,10 @@ START_TEST(test_gmsh_msh22_hand_written) {
   for (int t = 0; t < 4; t++) ck_assert_int_eq(m->tri.mat[t], 1);
   ck_assert_int_eq(m->ngroup, 1); /* the body's: no group of a physical tag 0 */
   char cmd[1200];
+  /* the names of $PhysicalNames with no element in a group: Gmsh's SaveAll; said, no longer silent */
+  snprintf(cmd, sizeof cmd, "gmsh sq3 %s material hard", plain);
+  EXPECT_FAIL(b, cmd_mesh, "mesh", cmd, 0, "test.deck:7: warning: mesh gmsh:", "names 3 physical groups in $PhysicalNames "
+              "but no element is in one (physical tag 0 throughout, as Gmsh's Mesh.SaveAll writes MSH 2.2)");
   snprintf(cmd, sizeof cmd, "gmsh sq2 %s", plain);
   EXPECT_FAIL(b, cmd_mesh, "mesh", cmd, 1, "test.deck:7: error: mesh gmsh: triangle 2 (elementary surface 1) of",
               "is in no physical group (physical tag 0): give a default material with 'material MAT'");

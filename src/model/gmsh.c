@@ -472,6 +472,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
 
   int have_fmt = 0, have_ent = 0, have_pent = 0, have_nodes = 0, have_elems = 0;
   int msh2 = 0; /* MSH 2.2: other $Nodes and $Elements layouts, no $Entities */
+  long nphys22 = 0; /* MSH 2.2: elements in a physical group */
 
   while (msh_next(r)) {
     r->section = NULL;
@@ -777,6 +778,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
             else if (q == 1) etag = t;
           }
         }
+        nphys22 += phys != 0;
         int edim = elem_dim(type);
         if (edim < 0)
           msh_fail(r, line, "element %ld has type %ld, no Gmsh element type yfdem knows: yfdem reads 3-node "
@@ -1067,6 +1069,12 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
   if (!have_fmt) msh_fail(r, r->line, "not a Gmsh mesh: the file is empty");
   if (!have_nodes) msh_fail(r, r->line, "no $Nodes section (truncated file?)");
   if (!have_elems) msh_fail(r, r->line, "no $Elements section (truncated file?)");
+  /* Gmsh's Mesh.SaveAll writes every element of a 2.2 file with physical tag 0, the names kept:
+   * without a word the groups the user named were missing, or "no physical surface 'rock'" */
+  if (msh2 && npn > 0 && !nphys22)
+    yf_warn(&o->from, "mesh gmsh: '%s' names %d physical group%s in $PhysicalNames but no element is in one "
+            "(physical tag 0 throughout, as Gmsh's Mesh.SaveAll writes MSH 2.2), so none becomes a group: save "
+            "without Mesh.SaveAll, or as MSH 4.1", path, npn, npn == 1 ? "" : "s");
   if (ntri == 0)
     msh_fail(r, r->line, "no 3-node triangles in the file (mesh in 2D with gmsh -2)");
 
