@@ -556,6 +556,8 @@ START_TEST(test_gmsh_malformed) {
           "element type 3 (4-node quadrangle) in surface 2 is not supported");
   bad_msh("z.msh", "0.5 0.5 0\n", "0.5 0.5 0.1\n", 29, "needs a flat mesh, in one plane z = constant");
   bad_msh("ent.msh", "2 2 2 2\n", "2 7 2 2\n", 38, "surface 7, which $Entities does not define");
+  bad_msh("phys.msh", "2 0 0 0 1 1 0 1 2 0\n", "2 0 0 0 1 1 0 1 -9223372036854775808 0\n", 14,
+          "a physical tag -9223372036854775808 is not in -2147483647..2147483647");
   bad_msh("start.msh", "$MeshFormat\n", "$Mesh\n", 1, "must start with $MeshFormat");
   /* an unknown section never closed: it said "section Nodez is not closed", without its '$' */
   bad_msh("nodez.msh", "$Nodes", "$Nodez", 16, "section $Nodez is not closed by $EndNodez (truncated file?)");
@@ -1053,6 +1055,8 @@ START_TEST(test_gmsh_msh22_malformed) {
   bad_msh22("c3.msh", "$Nodes\n5\n", "$Nodes\n6\n", 17, "found '$EndNodes' while reading a node tag");
   bad_msh22("c4.msh", "$Nodes\n5\n", "$Nodes\n4\n", 16, "expected $EndNodes, found '5' (more nodes than the count declares?)");
   bad_msh22("c5.msh", "$Nodes\n5\n", "$Nodes\n-5\n", 11, "bad number of nodes -5");
+  bad_msh22("c7.msh", "4 2 2 2 2 2 3 5\n", "4 2 2 -9223372036854775808 2 2 3 5\n", 23, "the physical tag of an element "
+            "-9223372036854775808 is not in -2147483647..2147483647");
   bad_msh22("c6.msh", "4 2 2 2 2 2 3 5\n", "4 2 -1 2 2 2 3 5\n", 23, "element 4 has -1 tags, expected 0 to 1000");
   /* element types yfdem does not read */
   bad_msh22("e1.msh", "4 2 2 2 2 2 3 5\n", "4 99 2 2 2 2 3 5\n", 23, "element 4 has type 99, no Gmsh element type yfdem "

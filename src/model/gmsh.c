@@ -163,6 +163,14 @@ static double msh_double(Msh *r, const char *what) {
   return v;
 }
 
+/* A physical tag, its sign dropped (in $Entities it gives an orientation), in 0..INT_MAX: labs of
+ * the smallest long is undefined. */
+static long msh_phys(Msh *r, const char *what) {
+  long t = msh_long(r, what);
+  if (t < -INT_MAX || t > INT_MAX) msh_fail(r, r->tokline, "%s %ld is not in -%d..%d", what, t, INT_MAX, INT_MAX);
+  return labs(t);
+}
+
 static void msh_expect(Msh *r, const char *word, const char *why) {
   if (!msh_next(r))
     msh_fail(r, r->line, "unexpected end of file: %s is missing (truncated file?)", word);
@@ -613,7 +621,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
           e->off = npool;
           e->nphys = (int)np;
           e->mat = -1;
-          for (long k = 0; k < np; k++) pool[npool++] = labs(msh_long(r, "a physical tag"));
+          for (long k = 0; k < np; k++) pool[npool++] = msh_phys(r, "a physical tag");
           if (d > 0) {
             long nb = msh_long(r, "the number of bounding entities");
             if (nb < 0 || nb > 100000000) msh_fail(r, r->tokline, "bad number of bounding entities %ld", nb);
@@ -772,10 +780,9 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
             msh_fail(r, r->tokline, "element %ld has %ld tags, expected 0 to 1000 (Gmsh writes 2: the physical "
                      "group and the elementary entity)", tag, ntg);
           for (long q = 0; q < ntg; q++) {
-            long t = msh_long(r, q == 0 ? "the physical tag of an element" : q == 1 ? "the elementary tag of an element"
-                                        : "a partition tag of an element");
-            if (q == 0) phys = labs(t);
-            else if (q == 1) etag = t;
+            if (q == 0) phys = msh_phys(r, "the physical tag of an element");
+            else if (q == 1) etag = msh_long(r, "the elementary tag of an element");
+            else msh_long(r, "a partition tag of an element");
           }
         }
         nphys22 += phys != 0;
