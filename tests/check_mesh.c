@@ -29,6 +29,7 @@
 #include "query.h"
 #include "region.h"
 #include "sim.h"
+#include "summary.h"
 #include "yftest.h"
 
 /* ------------------------------------------------------------------ helpers */
@@ -522,8 +523,9 @@ static void bad_msh(const char *name, const char *from, const char *to, int line
 }
 
 START_TEST(test_gmsh_malformed) {
-  bad_msh("v22.msh", "4.1 0 8", "2.2 0 8", 2, "MSH version 2.2 is not supported");
-  bad_msh("bin.msh", "4.1 0 8", "4.1 1 8", 2, "binary .msh files are not supported");
+  bad_msh("v30.msh", "4.1 0 8", "3.0 0 8", 2, "MSH version 3.0 is not supported");
+  bad_msh("bin.msh", "4.1 0 8", "4.1 1 8", 2, "binary MSH 4.1 files are not supported: save as ASCII (Mesh.Binary = 0), "
+          "or as MSH 2.2");
   bad_msh("trunc.msh", "4 2 3 5\n", NULL, 40, "unexpected end of file");
   bad_msh("trunc2.msh", "1 0 0\n", NULL, 23, "unexpected end of file");
   /* cut inside a physical name: it said "unterminated physical name", or "has no name" */
@@ -554,7 +556,11 @@ START_TEST(test_gmsh_malformed) {
           "element type 3 (4-node quadrangle) in surface 2 is not supported");
   bad_msh("z.msh", "0.5 0.5 0\n", "0.5 0.5 0.1\n", 29, "needs a flat mesh, in one plane z = constant");
   bad_msh("ent.msh", "2 2 2 2\n", "2 7 2 2\n", 38, "surface 7, which $Entities does not define");
+  bad_msh("phys.msh", "2 0 0 0 1 1 0 1 2 0\n", "2 0 0 0 1 1 0 1 -9223372036854775808 0\n", 14,
+          "a physical tag -9223372036854775808 is not in -2147483647..2147483647");
   bad_msh("start.msh", "$MeshFormat\n", "$Mesh\n", 1, "must start with $MeshFormat");
+  /* an unknown section never closed: it said "section Nodez is not closed", without its '$' */
+  bad_msh("nodez.msh", "$Nodes", "$Nodez", 16, "section $Nodez is not closed by $EndNodez (truncated file?)");
 }
 END_TEST
 
@@ -756,6 +762,542 @@ START_TEST(test_gmsh_no_entities_unnamed) {
   snprintf(cmd, sizeof cmd, "gmsh blk %s", tmp_path("plain.msh"));
   EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "surface 1 of", "in no physical group");
   free_sim(s);
+}
+END_TEST
+
+/* Unnamed physical groups of one tag in two dimensions are named phys_<tag>_<dimension>, both of
+ * them: the first named took the dimension and the second, finding the first named, did not (a
+ * physical curve 1 made phys_1_curve, and surface 1, phys_1). */
+START_TEST(test_gmsh_unnamed_shared_tag) {
+  static const char *const sub[][2] = {{"3\n1 10 \"base\"\n2 1 \"soft\"\n", "1\n"}, {"1 0 0 0 1 0 0 1 10 0\n", "1 0 0 0 1 0 0 1 1 0\n"}};
+  char *txt = sq4_with(sub, 2);
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  model_add_material(m, "soft");
+  model_add_material(m, "hard");
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s material soft", write_tmp("unnamed.msh", txt));
+  run(s, cmd_mesh, "mesh", cmd);
+  ck_assert_int_eq(count_nodes(m, group_of(m, "phys_1_curve")), 2);
+  ck_assert_int_eq(count_tris(m, group_of(m, "phys_1_surface")), 2);
+  ck_assert_int_eq(count_tris(m, group_of(m, "hard")), 2);
+  ck_assert_int_eq(m->ngroup, 4);
+  free_sim(s);
+}
+END_TEST
+
+/* ------------------------------------------------------------------ gmsh MSH 2.2 */
+
+/* A body read from FILE (absolute) by 'mesh gmsh sq FILE ARGS', with materials soft, hard, rock
+ * and steel (indices 0..3). */
+static YfSim *gmsh_scene(const char *file, const char *args) {
+  YfSim *s = new_sim();
+  model_add_material(&s->model, "soft");
+  model_add_material(&s->model, "hard");
+  model_add_material(&s->model, "rock");
+  model_add_material(&s->model, "steel");
+  char cmd[1400];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s %s", file, args);
+  run(s, cmd_mesh, "mesh", cmd);
+  return s;
+}
+
+/* The scenes two files of one mesh must give alike: the same nodes (ids = file tags, places, in
+ * the same order), triangles (corners, materials, and ids unless tri_ids is 0: a 2.2 file
+ * numbers the copies of an element in several physical groups, so its tags are not 4.1's), area,
+ * and groups of the same names with the same members. */
+static void same_scene(const YfModel *a, const YfModel *b, int tri_ids) {
+  ck_assert_int_eq(a->node.n, b->node.n);
+  ck_assert_int_eq(a->tri.n, b->tri.n);
+  for (int i = 0; i < a->node.n; i++) {
+    ck_assert_int_eq(a->node.id[i], b->node.id[i]);
+    ck_assert(a->node.x0[i] == b->node.x0[i] && a->node.y0[i] == b->node.y0[i]);
+  }
+  for (int t = 0; t < a->tri.n; t++) {
+    for (int k = 0; k < 3; k++) ck_assert_int_eq(a->tri.v[3 * t + k], b->tri.v[3 * t + k]);
+    ck_assert_int_eq(a->tri.mat[t], b->tri.mat[t]);
+    if (tri_ids) ck_assert_int_eq(a->tri.id[t], b->tri.id[t]);
+  }
+  ck_assert(total_area(a, -1) == total_area(b, -1));
+  ck_assert_int_eq(a->ngroup, b->ngroup);
+  for (int g = 0; g < a->ngroup; g++) {
+    int h = model_group((YfModel *)b, a->group[g].name, 0);
+    ck_assert_msg(h >= 0, "group %s is missing", a->group[g].name);
+    for (int i = 0; i < a->node.n; i++)
+      ck_assert_msg((a->node.gmask[i] >> g & 1) == (b->node.gmask[i] >> h & 1), "group %s, node %d",
+                    a->group[g].name, a->node.id[i]);
+    for (int t = 0; t < a->tri.n; t++)
+      ck_assert_msg((a->tri.gmask[t] >> g & 1) == (b->tri.gmask[t] >> h & 1), "group %s, triangle %d",
+                    a->group[g].name, t);
+  }
+}
+
+/* state_hash after a short run of deck text with FILE for %s */
+static uint64_t run_hash(const char *deck_fmt, const char *file, double *ux) {
+  char deck[4096], err[256] = "";
+  snprintf(deck, sizeof deck, deck_fmt, file);
+  YfSim *s = yft_run(deck);
+  uint64_t h = sim_state_hash(s);
+  ck_assert_msg(sim_query(s, "ux_right", ux, err, sizeof err) == 1, "%s", err);
+  sim_free(s);
+  return h;
+}
+
+/* two_squares.msh saved by Gmsh as MSH 2.2 (decks/meshes/make_msh22.py) gives the 4.1 file's
+ * scene, and the same bits after a run; the 2.2 file was refused ("MSH version 2.2 is not
+ * supported"). */
+START_TEST(test_gmsh_msh22_same_scene) {
+  YfSim *a = gmsh_scene(repo_path("decks/meshes/two_squares.msh"), "");
+  YfSim *b = gmsh_scene(repo_path("decks/meshes/two_squares_22.msh"), "");
+  check_two_squares(&b->model, 1.0, 2, 3);
+  same_scene(&a->model, &b->model, 1);
+  free_sim(a);
+  free_sim(b);
+  static const char *deck = "material granite elastic rho 2700 E 50e9 nu 0.25 plane_strain damping 0.1\n"
+                            "material steel elastic rho 7800 E 200e9 nu 0.3 plane_strain damping 0.1\n"
+                            "mesh gmsh block %s material rock=granite steel=steel scale 0.1\n"
+                            "fix base bottom fixed xy\nload push right pressure 1e6\ntimestep auto\nrun 300\n";
+  double ux41, ux22;
+  uint64_t h41 = run_hash(deck, repo_path("decks/meshes/two_squares.msh"), &ux41);
+  uint64_t h22 = run_hash(deck, repo_path("decks/meshes/two_squares_22.msh"), &ux22);
+  ck_assert_msg(h41 == h22, "state_hash %016llx (4.1) and %016llx (2.2)", (unsigned long long)h41,
+                (unsigned long long)h22);
+  ck_assert(ux41 < 0 && ux22 == ux41); /* the pushed side moved (inwards) */
+}
+END_TEST
+
+/* Physical groups that overlap: MSH 2.2 writes an element once per physical group it is in, each
+ * copy with its own tag (surface 2's 22 triangles three times, in steel, whole and 9).  The copies
+ * are one triangle, in each of their groups: 44 triangles, as the 4.1 file of the same mesh gives,
+ * not 110 (overlapping triangles, each in one group).  Unnamed groups of one tag in two dimensions
+ * get the same names (phys_9_curve, phys_9_surface), points and curves in two groups are in both. */
+START_TEST(test_gmsh_msh22_overlapping_groups) {
+  YfSim *a = gmsh_scene(repo_path("decks/meshes/overlap.msh"), "");
+  /* unnamed groups of tag 9 in two dimensions: both names say the dimension (the surface was
+   * named phys_9, the curve, named first, having taken phys_9_curve) */
+  ck_assert_int_eq(count_tris(&a->model, group_of(&a->model, "phys_9_surface")), 22);
+  ck_assert_int_eq(count_nodes(&a->model, group_of(&a->model, "phys_9_curve")), 8);
+  YfSim *b = gmsh_scene(repo_path("decks/meshes/overlap_22.msh"), "");
+  YfModel *m = &b->model;
+  check_two_squares(m, 1.0, 2, 3);
+  same_scene(&a->model, m, 0);
+  int gw = group_of(m, "whole"), g9 = group_of(m, "phys_9_surface"), gc = group_of(m, "phys_9_curve");
+  ck_assert_int_eq(count_tris(m, gw), 44);
+  ck_assert_int_eq(count_tris(m, g9), 22);
+  ck_assert_int_eq(count_nodes(m, gc), 8); /* curves 1 and 3: the bottom's left half (3 nodes), the right side (5) */
+  ck_assert_int_eq(count_nodes(m, group_of(m, "half")), 3);
+  /* points 1 and 6, but only 6 has a point element in two_squares.msh: Gmsh writes that one */
+  ck_assert_int_eq(count_nodes(m, group_of(m, "pins")), 1);
+  /* a triangle keeps its first copy's tag; the tags of its later copies are no ids */
+  run(b, cmd_group, "group", "t1 tri id 19");
+  ck_assert_int_eq(count_tris(m, group_of(m, "t1")), 1);
+  EXPECT_FAIL(b, cmd_group, "group", "t2 tri id 20", 1, "no triangle has this id");
+  free_sim(a);
+  free_sim(b);
+  /* the material of a triangle in several physical surfaces: that of the first of them that has
+   * one, in the file's order, as in 4.1 (surface 2 is in steel, whole, 9: here whole's) */
+  const char *f[2] = {repo_path("decks/meshes/overlap.msh"), NULL};
+  f[0] = strdup(f[0]);
+  f[1] = strdup(repo_path("decks/meshes/overlap_22.msh"));
+  YfSim *ab[2];
+  for (int k = 0; k < 2; k++) {
+    ab[k] = new_sim();
+    model_add_material(&ab[k]->model, "soft");
+    model_add_material(&ab[k]->model, "hard");
+    char cmd[1400];
+    snprintf(cmd, sizeof cmd, "gmsh sq %s material 9=hard whole=soft", f[k]);
+    run(ab[k], cmd_mesh, "mesh", cmd);
+    free((void *)f[k]);
+  }
+  same_scene(&ab[0]->model, &ab[1]->model, 0);
+  for (int t = 0; t < 44; t++) ck_assert_int_eq(ab[1]->model.tri.mat[t], 0);
+  free_sim(ab[0]);
+  free_sim(ab[1]);
+  static const char *deck = "material granite elastic rho 2700 E 50e9 nu 0.25 plane_strain damping 0.1\n"
+                            "material steel elastic rho 7800 E 200e9 nu 0.3 plane_strain damping 0.1\n"
+                            "mesh gmsh block %s material whole=granite 9=steel scale 0.1\n"
+                            "fix base half fixed xy\nfix pin pins fixed y\nload push phys_9_curve pressure 1e6\n"
+                            "timestep auto\nrun 300\n";
+  double ux41, ux22;
+  uint64_t h41 = run_hash(deck, repo_path("decks/meshes/overlap.msh"), &ux41);
+  uint64_t h22 = run_hash(deck, repo_path("decks/meshes/overlap_22.msh"), &ux22);
+  ck_assert_msg(h41 == h22, "state_hash %016llx (4.1) and %016llx (2.2)", (unsigned long long)h41,
+                (unsigned long long)h22);
+  ck_assert(ux41 < 0 && ux22 == ux41);
+}
+END_TEST
+
+/* square4.msh written as MSH 2.2 by hand (line numbers below refer to it) */
+static const char *SQ22 =
+    "$MeshFormat\n"                 /* 1 */
+    "2.2 0 8\n"                     /* 2 */
+    "$EndMeshFormat\n"              /* 3 */
+    "$PhysicalNames\n"              /* 4 */
+    "3\n"                           /* 5 */
+    "1 10 \"base\"\n"               /* 6 */
+    "2 1 \"soft\"\n"                /* 7 */
+    "2 2 \"hard\"\n"                /* 8 */
+    "$EndPhysicalNames\n"           /* 9 */
+    "$Nodes\n"                      /* 10 */
+    "5\n"                           /* 11 */
+    "1 0 0 0\n"                     /* 12 */
+    "2 1 0 0\n"                     /* 13 */
+    "3 1 1 0\n"                     /* 14 */
+    "4 0 1 0\n"                     /* 15 */
+    "5 0.5 0.5 0\n"                 /* 16 */
+    "$EndNodes\n"                   /* 17 */
+    "$Elements\n"                   /* 18 */
+    "5\n"                           /* 19 */
+    "1 1 2 10 1 1 2\n"              /* 20 */
+    "2 2 2 1 1 1 2 5\n"             /* 21 */
+    "3 2 2 1 1 3 5 4\n"             /* 22 */
+    "4 2 2 2 2 2 3 5\n"             /* 23 */
+    "5 2 2 2 2 4 1 5\n"             /* 24 */
+    "$EndElements\n";               /* 25 */
+
+/* SQ22 with the first occurrence of `from` replaced by `to` (or cut after it when to is NULL). */
+static const char *variant22(const char *name, const char *from, const char *to) {
+  static char buf[4096];
+  const char *p = strstr(SQ22, from);
+  ck_assert_ptr_nonnull(p);
+  size_t k = (size_t)(p - SQ22);
+  if (to) snprintf(buf, sizeof buf, "%.*s%s%s", (int)k, SQ22, to, p + strlen(from));
+  else snprintf(buf, sizeof buf, "%.*s", (int)(k + strlen(from)), SQ22);
+  return write_tmp(name, buf);
+}
+
+static void bad_msh22(const char *name, const char *from, const char *to, int line, const char *msg) {
+  YfSim *s = new_sim();
+  model_add_material(&s->model, "soft");
+  model_add_material(&s->model, "hard");
+  const char *path = variant22(name, from, to);
+  char cmd[1024], where[700];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s", path);
+  snprintf(where, sizeof where, "%s:%d: error:", path, line);
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, where, msg, "mesh gmsh at test.deck:7");
+  free_sim(s);
+}
+
+/* The hand-written 2.2 square gives square4.msh's scene; copies of a triangle in another physical
+ * group need not follow it nor share its orientation; elements with physical tag 0, or no tags,
+ * are those of entities in no physical group in 4.1: points and lines skipped (even of types yfdem
+ * does not read), triangles taken, with the default material. */
+START_TEST(test_gmsh_msh22_hand_written) {
+  YfSim *a = gmsh_scene(repo_path("decks/meshes/square4.msh"), "");
+  YfSim *b = gmsh_scene(variant22("sq22.msh", "$", "$"), ""); /* SQ22 as it is */
+  check_square4(&b->model, 0, 1);
+  same_scene(&a->model, &b->model, 1);
+  free_sim(b);
+  /* triangle 3 again, later, turned, in physical surface 7 too; and a copy with physical tag 0 */
+  char buf[4096];
+  snprintf(buf, sizeof buf, "%s", SQ22);
+  char *e = strstr(buf, "$EndElements");
+  snprintf(e, sizeof buf - (size_t)(e - buf), "6 2 2 7 1 5 4 3\n7 2 2 0 1 4 3 5\n$EndElements\n");
+  buf[strstr(buf, "$Elements\n5") - buf + 10] = '7';
+  b = gmsh_scene(write_tmp("copy22.msh", buf), "");
+  YfModel *m = &b->model;
+  check_square4(m, 0, 1);
+  int g7 = group_of(m, "phys_7");
+  ck_assert_int_eq(count_tris(m, g7), 1);
+  for (int t = 0; t < 4; t++) ck_assert_int_eq((int)(m->tri.gmask[t] >> g7 & 1), m->tri.id[t] == 3);
+  free_sim(b);
+  /* physical tag 0 (Gmsh's Mesh.SaveAll in 2.2), or no tags at all */
+  static const char *const none[][2] = {{"1 1 2 10 1 1 2\n", "1 1 2 0 1 1 2\n"}, {"2 2 2 1 1", "2 2 2 0 1"},
+                                        {"3 2 2 1 1", "3 2 0"}, {"4 2 2 2 2", "4 2 2 0 2"},
+                                        {"5 2 2 2 2", "5 2 2 0 2"}};
+  snprintf(buf, sizeof buf, "%s", SQ22);
+  for (size_t k = 0; k < sizeof none / sizeof none[0]; k++) {
+    char *p = strstr(buf, none[k][0]), rest[4096];
+    ck_assert_ptr_nonnull(p);
+    snprintf(rest, sizeof rest, "%s", p + strlen(none[k][0]));
+    snprintf(p, sizeof buf - (size_t)(p - buf), "%s%s", none[k][1], rest);
+  }
+  /* and a 3-node line (type 8) in no physical group, skipped as 4.1 skips it */
+  e = strstr(buf, "$EndElements");
+  snprintf(e, sizeof buf - (size_t)(e - buf), "6 8 2 0 3 1 2 5\n$EndElements\n");
+  buf[strstr(buf, "$Elements\n5") - buf + 10] = '6';
+  const char *plain = write_tmp("plain22.msh", buf);
+  b = gmsh_scene(plain, "material hard");
+  m = &b->model;
+  ck_assert_int_eq(m->tri.n, 4);
+  assert_all_ccw(m);
+  ck_assert_double_eq_tol(total_area(m, -1), 1.0, 1e-15);
+  for (int t = 0; t < 4; t++) ck_assert_int_eq(m->tri.mat[t], 1);
+  ck_assert_int_eq(m->ngroup, 1); /* the body's: no group of a physical tag 0 */
+  char cmd[1200];
+  /* the names of $PhysicalNames with no element in a group: Gmsh's SaveAll; said, no longer silent */
+  snprintf(cmd, sizeof cmd, "gmsh sq3 %s material hard", plain);
+  EXPECT_FAIL(b, cmd_mesh, "mesh", cmd, 0, "test.deck:7: warning: mesh gmsh:", "names 3 physical groups in $PhysicalNames "
+              "but no element is in one (physical tag 0 throughout, as Gmsh's Mesh.SaveAll writes MSH 2.2)");
+  snprintf(cmd, sizeof cmd, "gmsh sq2 %s", plain);
+  EXPECT_FAIL(b, cmd_mesh, "mesh", cmd, 1, "test.deck:7: error: mesh gmsh: triangle 2 (elementary surface 1) of",
+              "is in no physical group (physical tag 0): give a default material with 'material MAT'");
+  free_sim(b);
+  free_sim(a);
+}
+END_TEST
+
+START_TEST(test_gmsh_msh22_malformed) {
+  /* cut anywhere: the file says where and that it looks cut */
+  bad_msh22("t1.msh", "3 2 2 1 1 3 5", NULL, 22, "unexpected end of file in element 3, 3 of 5 elements (truncated file?)");
+  bad_msh22("t2.msh", "3 1 1 0\n", NULL, 15, "unexpected end of file while reading a node tag (truncated file?)");
+  bad_msh22("t3.msh", "$Elements\n5", NULL, 19, "unexpected end of file in '5' while reading the number of elements "
+            "(truncated file?)");
+  bad_msh22("t4.msh", "5 2 2 2 2 4 1 5\n", NULL, 25, "unexpected end of file: $EndElements is missing (truncated file?)");
+  bad_msh22("t5.msh", "4 2 2 2", NULL, 23, "unexpected end of file in '2' while reading the physical tag of an element "
+            "(truncated file?)");
+  bad_msh22("t6.msh", "5 0.5 0.", NULL, 16, "unexpected end of file in '0.' while reading a node y (truncated file?)");
+  /* counts that do not match the data */
+  bad_msh22("c1.msh", "$Elements\n5\n", "$Elements\n6\n", 25, "found '$EndElements' while reading an element tag: the "
+            "section holds less data than its counts declare");
+  bad_msh22("c2.msh", "$Elements\n5\n", "$Elements\n4\n", 24, "expected $EndElements, found '5' (more elements than the "
+            "count declares?)");
+  bad_msh22("c3.msh", "$Nodes\n5\n", "$Nodes\n6\n", 17, "found '$EndNodes' while reading a node tag");
+  bad_msh22("c4.msh", "$Nodes\n5\n", "$Nodes\n4\n", 16, "expected $EndNodes, found '5' (more nodes than the count declares?)");
+  bad_msh22("c5.msh", "$Nodes\n5\n", "$Nodes\n-5\n", 11, "bad number of nodes -5");
+  bad_msh22("c7.msh", "4 2 2 2 2 2 3 5\n", "4 2 2 -9223372036854775808 2 2 3 5\n", 23, "the physical tag of an element "
+            "-9223372036854775808 is not in -2147483647..2147483647");
+  bad_msh22("c6.msh", "4 2 2 2 2 2 3 5\n", "4 2 -1 2 2 2 3 5\n", 23, "element 4 has -1 tags, expected 0 to 1000");
+  /* element types yfdem does not read */
+  bad_msh22("e1.msh", "4 2 2 2 2 2 3 5\n", "4 99 2 2 2 2 3 5\n", 23, "element 4 has type 99, no Gmsh element type yfdem "
+            "knows: yfdem reads 3-node triangles (type 2), 2-node lines (type 1) and points (type 15)");
+  bad_msh22("e2.msh", "4 2 2 2 2 2 3 5\n", "4 3 2 2 2 2 3 5 1\n", 23, "element type 3 (4-node quadrangle) in surface 2 "
+            "is not supported: yfdem reads 3-node triangles");
+  bad_msh22("e3.msh", "4 2 2 2 2 2 3 5\n", "4 9 2 2 2 2 3 5 1 1 1\n", 23, "element type 9 (6-node triangle) in surface 2 "
+            "is not supported");
+  bad_msh22("e4.msh", "4 2 2 2 2 2 3 5\n", "4 4 2 2 2 2 3 5 1\n", 23, "3D elements (4-node tetrahedron) in volume 2: "
+            "yfdem is 2D");
+  bad_msh22("e5.msh", "1 1 2 10 1 1 2\n", "1 8 2 10 1 1 2 5\n", 20, "element type 8 (3-node line) in curve 1 is not supported");
+  /* node references and node tags on an element's line */
+  bad_msh22("n1.msh", "5 2 2 2 2 4 1 5\n", "5 2 2 2 2 4 1 9\n", 24, "node 9 of element 5 is not defined in $Nodes");
+  bad_msh22("n2.msh", "1 1 2 10 1 1 2\n", "1 1 2 10 1 1 7\n", 20, "node 7 of element 1 is not defined in $Nodes");
+  bad_msh22("n3.msh", "4 2 2 2 2 2 3 5\n", "4 2 2 2 2 2 3\n", 23, "element 4 (3-node triangle) has 2 node tags on its "
+            "line, expected 3");
+  bad_msh22("n4.msh", "4 2 2 2 2 2 3 5\n", "4 2 2 2 2 2 3 5 1\n", 23, "element 4 (3-node triangle) has more than 3 node tags");
+  bad_msh22("n5.msh", "4 2 2 2 2 2 3 5\n", "4 2 2 2 2 2 3 x\n", 23, "expected an integer node tag in element 4, found 'x'");
+  /* nodes: the same rules as in 4.1 */
+  bad_msh22("d1.msh", "4 0 1 0\n", "3 0 1 0\n", 15, "node tag 3 is defined twice");
+  bad_msh22("d2.msh", "5 0.5 0.5 0\n", "5 0x1p-1 0.5 0\n", 16, "expected a number for a node x, found '0x1p-1'");
+  bad_msh22("d3.msh", "5 0.5 0.5 0\n", "5 0.5 0.5 0.1\n", 16, "node 5 has z = 0.1 where node 1 has z = 0: yfdem is 2D");
+  bad_msh22("d4.msh", "5 0.5 0.5 0\n", "5 0.5 0 0\n", 21, "triangle 2 has zero area");
+  bad_msh22("d5.msh", "4 0 1 0\n", "0 0 1 0\n", 15, "node tag 0 is not in 1..");
+  bad_msh22("d6.msh", "$Nodes", "$Nodez", 10, "section $Nodez is not closed by $EndNodez");
+  /* versions */
+  bad_msh22("v1.msh", "2.2 0 8", "3.0 0 8", 2, "MSH version 3.0 is not supported: yfdem reads MSH 4.1 (ASCII) and MSH 2.2 (ASCII or binary); "
+            "save with gmsh -format msh41");
+  bad_msh22("v2.msh", "2.2 0 8", "2.2 2 8", 2, "file type 2 is neither 0 (ASCII) nor 1 (binary)");
+}
+END_TEST
+
+/* $ParametricNodes (Mesh.SaveParametric in 2.2: each node's entity and its u, or u v, follow x y z)
+ * gives the scene of $Nodes; it was skipped as an unknown section ("$Elements comes before
+ * $Nodes"). Node lines hold what their section says, no more. */
+START_TEST(test_gmsh_msh22_parametric) {
+  YfSim *a = gmsh_scene(repo_path("decks/meshes/two_squares_param.msh"), "");
+  YfSim *b = gmsh_scene(repo_path("decks/meshes/two_squares_22p.msh"), "");
+  check_two_squares(&b->model, 1.0, 2, 3);
+  same_scene(&a->model, &b->model, 1);
+  free_sim(a);
+  free_sim(b);
+  static const char *par = "$ParametricNodes\n5\n1 0 0 0 0 1\n2 1 0 0 0 2\n3 1 1 0 1 2 0.5\n4 0 1 0\n"
+                           "5 0.5 0.5 0 2 1 0.5 0.5\n$EndParametricNodes\n";
+  const char *nodes = "$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 0.5 0.5 0\n$EndNodes\n";
+  b = gmsh_scene(variant22("par22.msh", nodes, par), "");
+  check_square4(&b->model, 0, 1);
+  free_sim(b);
+  char bad[400];
+  snprintf(bad, sizeof bad, "%s", par);
+  *strstr(bad, " 0.5\n$End") = '\0';
+  strcat(bad, "\n$EndParametricNodes\n");
+  bad_msh22("par1.msh", nodes, bad, 17, "found '$EndParametricNodes' while reading a parametric coordinate");
+  snprintf(bad, sizeof bad, "%s", par);
+  bad[strstr(bad, "5 0.5 0.5 0 2") - bad + 12] = '5';
+  bad_msh22("par2.msh", nodes, bad, 16, "$ParametricNodes: node 5: entity dimension 5 is not 0..3");
+  bad_msh22("par3.msh", "5 0.5 0.5 0\n", "5 0.5 0.5 0 7\n", 16, "$Nodes: node 5: '7' after its x y z on its line");
+  bad_msh22("par4.msh", "$EndNodes\n", "$EndNodes\n$ParametricNodes\n0\n$EndParametricNodes\n", 18,
+            "a second $Nodes or $ParametricNodes section");
+}
+END_TEST
+
+/* SQ22 as binary MSH 2.2 (the ASCII header and names, the node and element data in binary; swap:
+ * in the other byte order than this machine's), into buf; its length.  off[] receives the offsets
+ * of: 0 the integer 1 of the header, 1 node 5's x, 2 the second element block's header, 3 the last
+ * node tag of element 5.  Line numbers: the header's integer on 3, the node count on 12, the element
+ * count on 16 (after the data of physical tag 10, a newline byte). */
+static size_t sq22_bin(char *buf, int swap, size_t off[4]) {
+  size_t n = 0;
+#define PUT_S(str) (memcpy(buf + n, str, strlen(str)), n += strlen(str))
+#define PUT_B(v)                                                                                   \
+  do {                                                                                             \
+    unsigned char b_[8];                                                                           \
+    memcpy(b_, &(v), sizeof(v));                                                                   \
+    for (size_t i_ = 0; i_ < sizeof(v); i_++) buf[n + i_] = (char)b_[swap ? sizeof(v) - 1 - i_ : i_]; \
+    n += sizeof(v);                                                                                \
+  } while (0)
+#define PUT_I(x) do { int32_t v_ = (x); PUT_B(v_); } while (0)
+  PUT_S("$MeshFormat\n2.2 1 8\n");
+  off[0] = n;
+  PUT_I(1);
+  PUT_S("\n$EndMeshFormat\n$PhysicalNames\n3\n1 10 \"base\"\n2 1 \"soft\"\n2 2 \"hard\"\n$EndPhysicalNames\n$Nodes\n5\n");
+  static const double xy[5][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0.5}};
+  for (int i = 0; i < 5; i++) {
+    PUT_I(i + 1);
+    if (i == 4) off[1] = n;
+    for (int k = 0; k < 3; k++) {
+      double c = k < 2 ? xy[i][k] : 0.0;
+      PUT_B(c);
+    }
+  }
+  PUT_S("\n$EndNodes\n$Elements\n5\n");
+  static const int line[] = {1, 1, 2, 1, 10, 1, 1, 2};
+  for (int k = 0; k < 8; k++) PUT_I(line[k]);
+  off[2] = n;
+  static const int tri[] = {2, 4, 2, 2, 1, 1, 1, 2, 5, 3, 1, 1, 3, 5, 4, 4, 2, 2, 2, 3, 5, 5, 2, 2, 4, 1, 5};
+  for (int k = 0; k < 27; k++) {
+    if (k == 26) off[3] = n;
+    PUT_I(tri[k]);
+  }
+  PUT_S("\n$EndElements\n");
+#undef PUT_S
+#undef PUT_B
+#undef PUT_I
+  return n;
+}
+
+static const char *write_bin(const char *name, const char *buf, size_t n) {
+  const char *p = tmp_path(name);
+  FILE *fp = fopen(p, "wb");
+  ck_assert_ptr_nonnull(fp);
+  ck_assert_uint_eq(fwrite(buf, 1, n, fp), n);
+  fclose(fp);
+  return p;
+}
+
+static void bad_bin(const char *name, const char *buf, size_t n, int line, const char *msg) {
+  YfSim *s = new_sim();
+  model_add_material(&s->model, "soft");
+  model_add_material(&s->model, "hard");
+  const char *path = write_bin(name, buf, n);
+  char cmd[1024], where[700];
+  snprintf(cmd, sizeof cmd, "gmsh sq %s", path);
+  snprintf(where, sizeof where, "%s:%d: error:", path, line);
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, where, msg, "mesh gmsh at test.deck:7");
+  free_sim(s);
+}
+
+/* Binary MSH 2.2 (Mesh.Binary = 1), which was refused ("binary .msh files are not supported"): the
+ * binary file Gmsh writes of a mesh gives the scene and the bits of its ASCII files; a binary file
+ * in either byte order is read; a binary file cut anywhere says it looks cut, and wrong binary
+ * data is named (messages give the line of the section's count). */
+START_TEST(test_gmsh_msh22_binary) {
+  YfSim *a = gmsh_scene(repo_path("decks/meshes/overlap.msh"), "");
+  YfSim *b = gmsh_scene(repo_path("decks/meshes/overlap_22b.msh"), "");
+  YfSim *c = gmsh_scene(repo_path("decks/meshes/overlap_22.msh"), "");
+  check_two_squares(&b->model, 1.0, 2, 3);
+  same_scene(&a->model, &b->model, 0);
+  same_scene(&c->model, &b->model, 1);
+  free_sim(a);
+  free_sim(b);
+  free_sim(c);
+  static const char *deck = "material granite elastic rho 2700 E 50e9 nu 0.25 plane_strain damping 0.1\n"
+                            "material steel elastic rho 7800 E 200e9 nu 0.3 plane_strain damping 0.1\n"
+                            "mesh gmsh block %s material whole=granite 9=steel scale 0.1\n"
+                            "fix base half fixed xy\nfix pin pins fixed y\nload push phys_9_curve pressure 1e6\n"
+                            "timestep auto\nrun 300\n";
+  double ux41, uxb;
+  uint64_t h41 = run_hash(deck, repo_path("decks/meshes/overlap.msh"), &ux41);
+  uint64_t hb = run_hash(deck, repo_path("decks/meshes/overlap_22b.msh"), &uxb);
+  ck_assert_msg(h41 == hb, "state_hash %016llx (4.1) and %016llx (binary 2.2)", (unsigned long long)h41,
+                (unsigned long long)hb);
+  ck_assert(ux41 < 0 && uxb == ux41);
+
+  /* both byte orders give square4's scene */
+  static char buf[2048];
+  size_t off[4];
+  a = gmsh_scene(repo_path("decks/meshes/square4.msh"), "");
+  for (int swap = 0; swap < 2; swap++) {
+    size_t n = sq22_bin(buf, swap, off);
+    b = gmsh_scene(write_bin("sqb.msh", buf, n), "");
+    check_square4(&b->model, 0, 1);
+    same_scene(&a->model, &b->model, 1);
+    free_sim(b);
+  }
+  free_sim(a);
+
+  /* a section yfdem skips, with binary data (a $NodeData of meshio's): a run of 400 bytes without a
+   * blank was "a word longer than 255 characters"; an end marker inside a word is no end */
+  {
+    size_t n = sq22_bin(buf, 0, off);
+    char *e = memmem(buf, n, "$Elements\n", 10);
+    ck_assert_ptr_nonnull(e);
+    static char sec[1024];
+    size_t k = (size_t)snprintf(sec, sizeof sec, "$NodeData\n1\n\"u\"\n1\n0\n3\n0\n1\n5\n");
+    memset(sec + k, 0x41, 400);
+    memcpy(sec + k + 200, "$EndNodeData", 12);
+    k += 400;
+    k += (size_t)snprintf(sec + k, sizeof sec - k, "\n$EndNodeData\n");
+    static char big[4096];
+    size_t h = (size_t)(e - buf);
+    memcpy(big, buf, h);
+    memcpy(big + h, sec, k);
+    memcpy(big + h + k, e, n - h);
+    YfSim *s = gmsh_scene(write_bin("sqbd.msh", big, n + k), "");
+    check_square4(&s->model, 0, 1);
+    free_sim(s);
+  }
+
+  /* cut at any byte: exit 1, and the message says the file looks cut (the whole file less its
+   * last newline is whole) */
+  size_t n = sq22_bin(buf, 0, off);
+  b = gmsh_scene(write_bin("sqb.msh", buf, n - 1), "");
+  ck_assert_int_eq(b->model.tri.n, 4);
+  free_sim(b);
+  for (size_t k = strlen("$MeshFormat"); k + 1 < n; k++) {
+    YfSim *s = new_sim();
+    model_add_material(&s->model, "soft");
+    model_add_material(&s->model, "hard");
+    char cmd[1024], *err;
+    snprintf(cmd, sizeof cmd, "gmsh sq %s", write_bin("cut.msh", buf, k));
+    int rc = run_child(s, cmd_mesh, "mesh", cmd, &err);
+    ck_assert_msg(rc == 1 && strstr(err, "cut.msh:") && strstr(err, "(truncated file?)"),
+                  "cut after %zu of %zu bytes: exit %d: %s", k, n, rc, err);
+    free_sim(s);
+  }
+
+  /* wrong binary data */
+  char bad[2048];
+  memcpy(bad, buf, n);
+  int32_t two = 2;
+  memcpy(bad + off[0], &two, 4);
+  bad_bin("b1.msh", bad, n, 3, "the binary integer after the version line is 2, not 1 in either byte order");
+  memcpy(bad, buf, n);
+  bad[strlen("$MeshFormat\n2.2 1 ")] = '4';
+  bad_bin("b2.msh", bad, n, 2, "data size 4: yfdem reads binary files of 8-byte reals");
+  memcpy(bad, buf, n);
+  double nan_ = NAN;
+  memcpy(bad + off[1], &nan_, 8);
+  bad_bin("b3.msh", bad, n, 12, "node 5 has a coordinate that is not a finite number");
+  memcpy(bad, buf, n);
+  int32_t nine = 9;
+  memcpy(bad + off[3], &nine, 4);
+  bad_bin("b4.msh", bad, n, 16, "node 9 of element 5 is not defined in $Nodes");
+  memcpy(bad, buf, n);
+  int32_t t99 = 99;
+  memcpy(bad + off[2], &t99, 4);
+  bad_bin("b5.msh", bad, n, 16, "an element block of type 99, no Gmsh element type yfdem knows (binary data, element 2 of 5)");
+  memcpy(bad, buf, n);
+  int32_t five = 5;
+  memcpy(bad + off[2] + 4, &five, 4);
+  bad_bin("b6.msh", bad, n, 16, "an element block of 5 elements with 2 tags each, after 1 of the 5 elements (binary data): "
+          "the counts are wrong");
+  memcpy(bad, buf, n);
+  int32_t zero = 0;
+  memcpy(bad + off[1] - 4, &zero, 4);
+  bad_bin("b7.msh", bad, n, 12, "node 5 of the binary data: tag 0 is not in 1..");
+  /* binary data in a file that says ASCII */
+  memcpy(bad, buf, n);
+  bad[strlen("$MeshFormat\n2.2 ")] = '0';
+  bad_bin("b8.msh", bad, n, 3, "the file contains binary data although $MeshFormat says ASCII");
 }
 END_TEST
 
@@ -1081,6 +1623,14 @@ Suite *mesh_suite(void) {
   tcase_add_test(tc, test_gmsh_entities_after_elements);
   tcase_add_test(tc, test_gmsh_deck_errors);
   tcase_add_test(tc, test_gmsh_no_entities_unnamed);
+  tcase_add_test(tc, test_gmsh_unnamed_shared_tag);
+  tcase_add_test(tc, test_gmsh_msh22_same_scene);
+  tcase_add_test(tc, test_gmsh_msh22_overlapping_groups);
+  tcase_add_test(tc, test_gmsh_msh22_parametric);
+  tcase_add_test(tc, test_gmsh_msh22_hand_written);
+  tcase_add_test(tc, test_gmsh_msh22_malformed);
+  tcase_add_test(tc, test_gmsh_msh22_binary);
+  tcase_set_timeout(tc, 30); /* the binary test reads its file cut at each of ~450 bytes, in a child each */
   suite_add_tcase(s, tc);
   tc = tcase_create("inline");
   tcase_add_test(tc, test_inline_commands);

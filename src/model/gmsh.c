@@ -1,4 +1,5 @@
-/* gmsh.c: reader of Gmsh MSH 4.1 ASCII meshes (the `mesh gmsh` command's parser).
+/* gmsh.c: reader of Gmsh MSH 4.1 ASCII and MSH 2.2 ASCII or binary meshes (the `mesh gmsh`
+ * command's parser).
  *
  * The file is read whole into memory and walked token by token, keeping the line of each token
  * so that every complaint names FILE.msh:LINE (and the deck line of the mesh command).  Sections
@@ -23,6 +24,18 @@
  *     and element tags become the user ids.
  * Each element must sit on one line (as Gmsh writes them), which lets the reader check the
  * number of node tags of every element.
+ *
+ * MSH 2.2 has no $Entities: each element line carries its physical tag (0: none) and elementary
+ * tag, and an element in several physical groups is written once per group, each copy with its
+ * own tag.  The reader makes an entity of each (dimension, elementary tag, physical tags) the
+ * elements show and merges the copies of a triangle (same corners), so that the rest is the 4.1
+ * path and the same mesh in either version gives the same scene (same nodes in the same order,
+ * triangles, materials, groups); only the ids of triangles with copies differ (the first copy's
+ * tag).  Elements of physical tag 0 are those of 4.1 entities without physical groups.  The
+ * nodes are in $Nodes, or in $ParametricNodes (each node's entity and u, or u v, after x y z).
+ * Binary 2.2 keeps the ASCII layout around the data of $Nodes (tag and x y z of each node) and
+ * $Elements (blocks of one element type); the data is read in the byte order the header's integer
+ * 1 tells, and complaints about it name the line of the section's count.
  */
 #include <ctype.h>
 #include <errno.h>
@@ -45,6 +58,7 @@ typedef struct {
   int tokline;         /* line of the last token               */
   char tok[256];
   const char *section; /* for messages                         */
+  int bin, swap;       /* binary MSH 2.2; its data in the other byte order */
 } Msh;
 
 typedef struct {
@@ -54,6 +68,8 @@ typedef struct {
   int ntri;       /* triangles read in this entity (surfaces) */
   int mat;        /* resolved material (surfaces with triangles) */
   uint64_t bits;  /* group bits of its physical groups */
+  int next;       /* MSH 2.2: the next entity of the same dimension and elementary tag, or -1 */
+  long el;        /* MSH 2.2: its first element's tag (for messages) */
 } Ent;
 
 typedef struct {
@@ -147,6 +163,14 @@ static double msh_double(Msh *r, const char *what) {
   return v;
 }
 
+/* A physical tag, its sign dropped (in $Entities it gives an orientation), in 0..INT_MAX: labs of
+ * the smallest long is undefined. */
+static long msh_phys(Msh *r, const char *what) {
+  long t = msh_long(r, what);
+  if (t < -INT_MAX || t > INT_MAX) msh_fail(r, r->tokline, "%s %ld is not in -%d..%d", what, t, INT_MAX, INT_MAX);
+  return labs(t);
+}
+
 static void msh_expect(Msh *r, const char *word, const char *why) {
   if (!msh_next(r))
     msh_fail(r, r->line, "unexpected end of file: %s is missing (truncated file?)", word);
@@ -161,9 +185,20 @@ static void msh_skip_section(Msh *r) {
   char end[300];
   int line0 = r->tokline;
   snprintf(end, sizeof end, "$End%s", r->tok + 1);
-  while (msh_next(r))
-    if (!strcmp(r->tok, end)) return;
-  msh_fail(r, line0, "section %s is not closed by %s (truncated file?)", r->tok[0] ? r->tok : end + 4, end);
+  size_t n = strlen(end);
+  /* the marker as a word, found by a plain search: read as words, the binary data of a section
+   * (a $NodeData in a binary file) held runs of bytes longer than a word may be ("a word longer
+   * than 255 characters") */
+  const char *lim = r->buf + r->len;
+  for (const char *p = r->buf + r->pos; (p = memmem(p, (size_t)(lim - p), end, n)); p++) {
+    if (p > r->buf && !isspace((unsigned char)p[-1])) continue;
+    if (p + n < lim && !isspace((unsigned char)p[n])) continue;
+    for (const char *q = r->buf + r->pos; (q = memchr(q, '\n', (size_t)(p - q))); q++) r->line++;
+    r->pos = (size_t)(p + n - r->buf);
+    r->tokline = r->line;
+    return;
+  }
+  msh_fail(r, line0, "section $%s is not closed by %s (truncated file?)", end + 4, end);
 }
 
 static const char *elem_name(long type) {
@@ -195,9 +230,66 @@ static void unsupported(Msh *r, int line, long type, int dim, long etag) {
            type, elem_name(type), dim_word[dim], etag);
 }
 
+/* Binary MSH 2.2: after an ASCII count, the rest of its line, then the binary data. */
+static void bin_begin(Msh *r, const char *what) {
+  if (!msh_eol(r))
+    msh_fail(r, r->line, "expected the end of the line before the binary data of %s, found '%c'", what, r->buf[r->pos]);
+  if (r->pos >= r->len) msh_fail(r, r->line, "unexpected end of file before the binary data of %s (truncated file?)", what);
+  r->pos++;
+  r->line++;
+}
+
+/* The next n bytes of binary data (newline bytes in them still count as lines, as an editor
+ * shows them); refused when the file ends first. */
+static const unsigned char *bin_bytes(Msh *r, size_t n, const char *what) {
+  if (r->len - r->pos < n)
+    msh_fail(r, r->line, "unexpected end of file in the binary data of %s (truncated file?)", what);
+  const unsigned char *p = (const unsigned char *)r->buf + r->pos;
+  for (const char *q = r->buf + r->pos; (q = memchr(q, '\n', (size_t)(r->buf + r->pos + n - q))); q++) r->line++;
+  r->pos += n;
+  return p;
+}
+
+static void bin_swap(unsigned char *b, int n) {
+  for (int i = 0; i < n / 2; i++) {
+    unsigned char t = b[i];
+    b[i] = b[n - 1 - i];
+    b[n - 1 - i] = t;
+  }
+}
+
+static long bin_int(const Msh *r, const unsigned char *p) {
+  unsigned char b[4];
+  memcpy(b, p, 4);
+  if (r->swap) bin_swap(b, 4);
+  int32_t v;
+  memcpy(&v, b, 4);
+  return v;
+}
+
+static double bin_double(const Msh *r, const unsigned char *p) {
+  unsigned char b[8];
+  memcpy(b, p, 8);
+  if (r->swap) bin_swap(b, 8);
+  double v;
+  memcpy(&v, b, 8);
+  return v;
+}
+
+/* Nodes of a Gmsh element type (a binary element block does not say it), or -1. */
+static int elem_nodes(long type) {
+  static const signed char n[32] = {-1, 2, 3, 4, 4, 8, 6, 5, 3, 6, 9, 10, 27, 18, 14, 1,
+                                    8, 20, 15, 13, 9, 10, 12, 15, 15, 21, 4, 5, 6, 20, 35, 56};
+  return type >= 0 && type < 32 ? n[type] : -1;
+}
+
 static char *slurp(const char *path, const YfLoc *from, size_t *len) {
   char *buf = yf_read_file(path, len, "mesh file");
   if (!buf) yf_io_error(from, "mesh gmsh: cannot open '%s': %s", path, strerror(errno));
+  /* a binary MSH 2.2 file is left as it is: its CR bytes are data */
+  char ver[16];
+  int ft;
+  if (sscanf(buf, " $MeshFormat %15s %d", ver, &ft) == 2 && ft == 1 && !strcmp(ver, "2.2")) return buf;
   /* a CR alone ends a line (classic Mac text), as in every text yfdem reads; CRLF is left */
   for (size_t i = 0; i < *len; i++)
     if (buf[i] == '\r') { /* CRs before a LF (CRLF, CR CR LF) stay blanks */
@@ -240,8 +332,119 @@ static void warn_coincident(const char *path, const YfLoc *from, const double *n
   free(ix);
 }
 
+/* Flatness of the nodes read so far.  The mesh must lie in a plane z = constant (a section drawn
+ * at z = 5 is as 2D as one at z = 0: its z is dropped); the first node's z is the plane's. */
+typedef struct {
+  double zmax, ext, zref, zat;
+  int zline;
+  long zntag;
+} Flat;
+
+/* Room for ntot nodes, once the memory they need is known to be there. */
+static void nodes_alloc(Msh *r, int hline, long ntot, long **ntag, double **nx, double **ny, int **used) {
+  if ((double)ntot * (25.0 + YF_BYTES_PER_NODE) > yf_mem_cap()) /* before allocating */
+    msh_fail(r, hline, "%ld nodes need about %.3g GB of memory, more than the %.3g GB available", ntot,
+             (double)ntot * (25.0 + YF_BYTES_PER_NODE) / 1e9, yf_mem_cap() / 1e9);
+  *ntag = yf_malloc((size_t)(ntot ? ntot : 1) * sizeof **ntag, "mesh nodes");
+  *nx = yf_malloc((size_t)(ntot ? ntot : 1) * sizeof **nx, "mesh nodes");
+  *ny = yf_malloc((size_t)(ntot ? ntot : 1) * sizeof **ny, "mesh nodes");
+  *used = yf_calloc((size_t)(ntot ? ntot : 1), sizeof **used, "mesh nodes");
+}
+
+/* Node i (tag) at x y z (file line cline): scaled into nx, ny, z into f. */
+static void node_put(Msh *r, double scale, Flat *f, long i, long tag, double *nx, double *ny, double x, double y,
+                     double z, int cline) {
+  nx[i] = x * scale;
+  ny[i] = y * scale;
+  if (!(fabs(nx[i]) <= YF_RANGE_MAX && fabs(ny[i]) <= YF_RANGE_MAX))
+    msh_fail(r, cline, "node %ld at (%g, %g) m is beyond +-%g m, the range the arithmetic holds "
+             "(areas and energies multiply coordinates)", tag, nx[i], ny[i], YF_RANGE_MAX);
+  f->ext = fmax(f->ext, fmax(fabs(x), fabs(y)));
+  if (i == 0) f->zref = z;
+  if (fabs(z - f->zref) > f->zmax) {
+    f->zmax = fabs(z - f->zref);
+    f->zat = z;
+    f->zline = cline;
+    f->zntag = tag;
+  }
+}
+
+/* x y z of node i (tag), then `extra` parametric coordinates. */
+static void node_xyz(Msh *r, double scale, Flat *f, long i, long tag, double *nx, double *ny, int extra) {
+  double x = msh_double(r, "a node x");
+  int cline = r->tokline;
+  double y = msh_double(r, "a node y");
+  double z = msh_double(r, "a node z");
+  for (int k = 0; k < extra; k++) msh_double(r, "a parametric coordinate");
+  node_put(r, scale, f, i, tag, nx, ny, x, y, z, cline);
+}
+
+static void nodes_flat(Msh *r, const Flat *f, long tag0) {
+  if (f->zmax > 1e-9 * fmax(f->ext, fabs(f->zref)))
+    msh_fail(r, f->zline, "node %ld has z = %g where node %ld has z = %g: yfdem is 2D and needs a flat mesh, in "
+             "one plane z = constant (such as z = 0)", f->zntag, f->zat, tag0, f->zref);
+}
+
 static int ent_find(const YfIdMap *emap, int dim, long tag) {
   return idmap_get(emap, (long long)tag * 4 + dim);
+}
+
+/* Dimension of a Gmsh element type (MSH 2.2 element lines do not say it), or -1 for a type
+ * yfdem does not know. */
+static int elem_dim(long type) {
+  switch (type) {
+  case 15: return 0;
+  case 1: case 8: case 26: case 27: case 28: return 1;
+  case 2: case 3: case 9: case 10: case 16: case 20: case 21: case 22: case 23: case 24: case 25: return 2;
+  case 4: case 5: case 6: case 7: case 11: case 12: case 13: case 14: case 17: case 18: case 19: case 29:
+  case 30: case 31: return 3;
+  default: return -1;
+  }
+}
+
+/* MSH 2.2 has no $Entities: an entity here is what the elements tell, one per dimension,
+ * elementary tag and set of physical tags (phys[0..np)), so that the rest of the reader treats
+ * it as a 4.1 entity with those physical groups.  Found or made; `el` is the element asking. */
+static int ent22(Ent **ent, int *nent, int *capent, long **pool, int *npool, int *cappool, YfIdMap *emap,
+                 int dim, long etag, const long *phys, int np, long el) {
+  long long key = (long long)etag * 4 + dim;
+  int e = idmap_get(emap, key), last = -1;
+  for (; e >= 0; last = e, e = (*ent)[e].next) {
+    const Ent *q = &(*ent)[e];
+    if (q->nphys == np && (!np || !memcmp(*pool + q->off, phys, (size_t)np * sizeof *phys))) return e;
+  }
+  if (*nent == *capent) {
+    *capent = *capent ? 2 * *capent : 64;
+    *ent = yf_realloc(*ent, (size_t)*capent * sizeof **ent, "entities");
+  }
+  if (*npool + np > *cappool) {
+    while (*npool + np > *cappool) *cappool = *cappool ? 2 * *cappool : 256;
+    *pool = yf_realloc(*pool, (size_t)*cappool * sizeof **pool, "physical tags");
+  }
+  e = (*nent)++;
+  Ent *q = &(*ent)[e];
+  memset(q, 0, sizeof *q);
+  q->dim = dim;
+  q->tag = etag;
+  q->off = *npool;
+  q->nphys = np;
+  q->mat = -1;
+  q->next = -1;
+  q->el = el;
+  if (np) memcpy(*pool + *npool, phys, (size_t)np * sizeof *phys); /* phys may be NULL when np is 0 */
+  *npool += np;
+  if (last >= 0) (*ent)[last].next = e;
+  else idmap_put(emap, key, e);
+  return e;
+}
+
+/* Triangles of a MSH 2.2 file by their corners (sorted), then by their order in the file. */
+static int by_corners(const void *a, const void *b, void *ctx) {
+  const int *c = ctx;
+  long i = *(const long *)a, j = *(const long *)b;
+  for (int k = 0; k < 3; k++)
+    if (c[3 * i + k] != c[3 * j + k]) return c[3 * i + k] < c[3 * j + k] ? -1 : 1;
+  return i < j ? -1 : i > j;
 }
 
 int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
@@ -276,6 +479,8 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
   int *pair = NULL; /* 2 per pair: entity, local node */
 
   int have_fmt = 0, have_ent = 0, have_pent = 0, have_nodes = 0, have_elems = 0;
+  int msh2 = 0; /* MSH 2.2: other $Nodes and $Elements layouts, no $Entities */
+  long nphys22 = 0; /* MSH 2.2: elements in a physical group */
 
   while (msh_next(r)) {
     r->section = NULL;
@@ -292,22 +497,39 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       memcpy(ver, r->tok, sizeof ver);
       int vline = r->tokline;
       double v;
-      if (!yf_parse_double(ver, &v) || fabs(v - 4.1) > 1e-9)
-        msh_fail(r, vline, "MSH version %s is not supported: yfdem reads MSH 4.1 ASCII (save with "
-                 "gmsh -format msh41, or Mesh.MshFileVersion = 4.1)", ver);
+      if (!yf_parse_double(ver, &v) || (fabs(v - 4.1) > 1e-9 && fabs(v - 2.2) > 1e-9))
+        msh_fail(r, vline, "MSH version %s is not supported: yfdem reads MSH 4.1 (ASCII) and MSH 2.2 (ASCII or "
+                 "binary); save with gmsh -format msh41, or Mesh.MshFileVersion = 4.1", ver);
+      msh2 = fabs(v - 2.2) <= 1e-9;
       long ft = msh_long(r, "the file type");
-      if (ft == 1)
-        msh_fail(r, r->tokline, "binary .msh files are not supported: save as ASCII (Mesh.Binary = 0)");
-      if (ft != 0) msh_fail(r, r->tokline, "file type %ld is neither 0 (ASCII) nor 1 (binary)", ft);
-      msh_long(r, "the data size");
-      msh_expect(r, "$EndMeshFormat", "");
-      /* an ASCII mesh has no NUL bytes; a binary one mislabelled as ASCII would be misread */
-      const char *nul = memchr(r->buf, '\0', r->len);
+      if (ft == 1 && !msh2)
+        msh_fail(r, r->tokline, "binary MSH 4.1 files are not supported: save as ASCII (Mesh.Binary = 0), or as "
+                 "MSH 2.2 (binary or not)");
+      if (ft != 0 && ft != 1) msh_fail(r, r->tokline, "file type %ld is neither 0 (ASCII) nor 1 (binary)", ft);
+      long ds = msh_long(r, "the data size");
+      r->bin = ft == 1;
+      if (r->bin) {
+        /* the size of a real, then the integer 1 written in binary, which tells the byte order */
+        if (ds != 8)
+          msh_fail(r, r->tokline, "data size %ld: yfdem reads binary files of 8-byte reals (as Gmsh writes them)", ds);
+        bin_begin(r, "$MeshFormat");
+        const unsigned char *one = bin_bytes(r, 4, "$MeshFormat");
+        long v1 = bin_int(r, one);
+        if (v1 != 1) {
+          r->swap = 1;
+          if (bin_int(r, one) != 1)
+            msh_fail(r, r->line, "the binary integer after the version line is %ld, not 1 in either byte order", v1);
+        }
+      }
+      /* an ASCII mesh has no NUL bytes; a binary one mislabelled as ASCII would be misread (and
+       * said "expected $EndMeshFormat, found ''" at its binary integer 1) */
+      const char *nul = r->bin ? NULL : memchr(r->buf, '\0', r->len);
       if (nul) {
         int line = 1;
         for (const char *p = r->buf; p < nul; p++) line += *p == '\n';
         msh_fail(r, line, "the file contains binary data although $MeshFormat says ASCII");
       }
+      msh_expect(r, "$EndMeshFormat", "");
       have_fmt = 1;
 
     } else if (!strcmp(r->tok, "$PhysicalNames")) {
@@ -344,7 +566,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       }
       msh_expect(r, "$EndPhysicalNames", " (more names than the count declares?)");
 
-    } else if (!strcmp(r->tok, "$Entities") || !strcmp(r->tok, "$PartitionedEntities")) {
+    } else if (!msh2 && (!strcmp(r->tok, "$Entities") || !strcmp(r->tok, "$PartitionedEntities"))) {
       /* a mesh partitioned in Gmsh keeps its elements in partition entities, listed in
        * $PartitionedEntities with the physical tags of their parents: elements refer to those */
       int part = !strcmp(r->tok, "$PartitionedEntities");
@@ -399,7 +621,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
           e->off = npool;
           e->nphys = (int)np;
           e->mat = -1;
-          for (long k = 0; k < np; k++) pool[npool++] = labs(msh_long(r, "a physical tag"));
+          for (long k = 0; k < np; k++) pool[npool++] = msh_phys(r, "a physical tag");
           if (d > 0) {
             long nb = msh_long(r, "the number of bounding entities");
             if (nb < 0 || nb > 100000000) msh_fail(r, r->tokline, "bad number of bounding entities %ld", nb);
@@ -413,6 +635,59 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       if (part) have_pent = 1;
       else have_ent = 1;
 
+    } else if ((!strcmp(r->tok, "$Nodes") || !strcmp(r->tok, "$ParametricNodes")) && msh2) {
+      /* MSH 2.2: the count, then one "tag x y z" line per node; $ParametricNodes (Gmsh's
+       * Mesh.SaveParametric) adds the node's entity, "dim tag", and its u (curves) or u v
+       * (surfaces) */
+      int par = !strcmp(r->tok, "$ParametricNodes");
+      if (have_nodes) msh_fail(r, r->tokline, "a second %s section", par ? "$Nodes or $ParametricNodes" : "$Nodes");
+      r->section = par ? "$ParametricNodes" : "$Nodes";
+      if (par && r->bin)
+        msh_fail(r, r->tokline, "binary $ParametricNodes are not supported: save without Mesh.SaveParametric, or as ASCII");
+      long ntot = msh_long(r, "the number of nodes");
+      int hline = r->tokline;
+      if (ntot < 0 || ntot > INT_MAX / 4) msh_fail(r, hline, "bad number of nodes %ld", ntot);
+      nodes_alloc(r, hline, ntot, &ntag, &nx, &ny, &used);
+      Flat f = {0};
+      if (r->bin) bin_begin(r, "$Nodes");
+      for (; nn < ntot; nn++) {
+        if (r->bin) { /* int tag, 3 doubles; messages name the line of the count */
+          const unsigned char *p = bin_bytes(r, 28, "$Nodes");
+          long t = bin_int(r, p);
+          double c[3];
+          for (int k = 0; k < 3; k++) c[k] = bin_double(r, p + 4 + 8 * k);
+          if (t <= 0 || t > INT_MAX) msh_fail(r, hline, "node %ld of the binary data: tag %ld is not in 1..%d", nn + 1, t, INT_MAX);
+          if (!idmap_put(&nmap, t, (int)nn)) msh_fail(r, hline, "node tag %ld is defined twice (binary data)", t);
+          if (!isfinite(c[0]) || !isfinite(c[1]) || !isfinite(c[2]))
+            msh_fail(r, hline, "node %ld has a coordinate that is not a finite number (%g, %g, %g) (binary data)", t,
+                     c[0], c[1], c[2]);
+          ntag[nn] = t;
+          node_put(r, o->scale, &f, nn, t, nx, ny, c[0], c[1], c[2], hline);
+          continue;
+        }
+        long t = msh_long(r, "a node tag");
+        if (t <= 0 || t > INT_MAX) msh_fail(r, r->tokline, "node tag %ld is not in 1..%d", t, INT_MAX);
+        if (!idmap_put(&nmap, t, (int)nn)) msh_fail(r, r->tokline, "node tag %ld is defined twice", t);
+        ntag[nn] = t;
+        node_xyz(r, o->scale, &f, nn, t, nx, ny, 0);
+        if (par && !msh_eol(r)) {
+          int line = r->line;
+          long dim = msh_long(r, "the dimension of a node's entity");
+          if (dim < 0 || dim > 3) msh_fail(r, line, "node %ld: entity dimension %ld is not 0..3", t, dim);
+          msh_long(r, "the tag of a node's entity");
+          for (long k = 0; k < (dim == 1 || dim == 2 ? dim : 0); k++) msh_double(r, "a parametric coordinate");
+        }
+        if (!msh_eol(r)) {
+          int line = r->line;
+          msh_next(r);
+          msh_fail(r, line, "node %ld: '%s' after its %s on its line", t, r->tok,
+                   par ? "coordinates, entity and parametric coordinates" : "x y z");
+        }
+      }
+      msh_expect(r, par ? "$EndParametricNodes" : "$EndNodes", " (more nodes than the count declares?)");
+      nodes_flat(r, &f, nn ? ntag[0] : 0);
+      have_nodes = 1;
+
     } else if (!strcmp(r->tok, "$Nodes")) {
       if (have_nodes) msh_fail(r, r->tokline, "a second $Nodes section");
       r->section = "$Nodes";
@@ -423,18 +698,8 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       msh_long(r, "the largest node tag");
       if (nblk < 0 || ntot < 0 || ntot > INT_MAX / 4)
         msh_fail(r, r->tokline, "bad counts in the $Nodes header (%ld blocks, %ld nodes)", nblk, ntot);
-      if ((double)ntot * (25.0 + YF_BYTES_PER_NODE) > yf_mem_cap()) /* before allocating */
-        msh_fail(r, hline, "%ld nodes need about %.3g GB of memory, more than the %.3g GB available", ntot,
-                 (double)ntot * (25.0 + YF_BYTES_PER_NODE) / 1e9, yf_mem_cap() / 1e9);
-      ntag = yf_malloc((size_t)ntot * sizeof *ntag, "mesh nodes");
-      nx = yf_malloc((size_t)ntot * sizeof *nx, "mesh nodes");
-      ny = yf_malloc((size_t)ntot * sizeof *ny, "mesh nodes");
-      used = yf_calloc((size_t)ntot, sizeof *used, "mesh nodes");
-      /* z: the mesh must be flat, in a plane z = constant (a section drawn at z = 5 is as 2D as one
-       * at z = 0: its z is dropped); the first node's z is the plane's */
-      double zmax = 0.0, ext = 0.0, zref = 0.0, zat = 0.0;
-      int zline = 0;
-      long zntag = 0;
+      nodes_alloc(r, hline, ntot, &ntag, &nx, &ny, &used);
+      Flat f = {0};
       for (long b = 0; b < nblk; b++) {
         long edim = msh_long(r, "the entity dimension of a node block");
         int bline = r->tokline;
@@ -453,35 +718,214 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
           ntag[nn + i] = t;
         }
         int extra = par ? (int)edim : 0; /* parametric u (curves), u v (surfaces) */
-        for (long i = 0; i < nin; i++) {
-          double x = msh_double(r, "a node x");
-          int cline = r->tokline;
-          double y = msh_double(r, "a node y");
-          double z = msh_double(r, "a node z");
-          for (int k = 0; k < extra; k++) msh_double(r, "a parametric coordinate");
-          nx[nn + i] = x * o->scale;
-          ny[nn + i] = y * o->scale;
-          if (!(fabs(nx[nn + i]) <= YF_RANGE_MAX && fabs(ny[nn + i]) <= YF_RANGE_MAX))
-            msh_fail(r, cline, "node %ld at (%g, %g) m is beyond +-%g m, the range the arithmetic holds "
-                     "(areas and energies multiply coordinates)", ntag[nn + i], nx[nn + i], ny[nn + i], YF_RANGE_MAX);
-          ext = fmax(ext, fmax(fabs(x), fabs(y)));
-          if (nn + i == 0) zref = z;
-          if (fabs(z - zref) > zmax) {
-            zmax = fabs(z - zref);
-            zat = z;
-            zline = cline;
-            zntag = ntag[nn + i];
-          }
-        }
+        for (long i = 0; i < nin; i++) node_xyz(r, o->scale, &f, nn + i, ntag[nn + i], nx, ny, extra);
         nn += nin;
       }
       if (nn != ntot)
         msh_fail(r, hline, "the blocks hold %ld nodes but the header declares %ld", nn, ntot);
       msh_expect(r, "$EndNodes", " (the header's block count does not match the data?)");
-      if (zmax > 1e-9 * fmax(ext, fabs(zref)))
-        msh_fail(r, zline, "node %ld has z = %g where node %ld has z = %g: yfdem is 2D and needs a flat mesh, in "
-                 "one plane z = constant (such as z = 0)", zntag, zat, ntag[0], zref);
+      nodes_flat(r, &f, nn ? ntag[0] : 0);
       have_nodes = 1;
+
+    } else if (!strcmp(r->tok, "$Elements") && msh2) {
+      /* MSH 2.2: the count, then one line per element: tag, type, the number of tags, the tags,
+       * the node tags.  The first tag is the physical group (0: none), the second the elementary
+       * entity; partitions follow in a partitioned mesh.  An element in several physical groups
+       * is written once per group, each copy with an element tag of its own. */
+      if (have_elems) msh_fail(r, r->tokline, "a second $Elements section");
+      r->section = "$Elements";
+      if (!have_nodes) msh_fail(r, r->tokline, "$Elements comes before $Nodes");
+      long ntot = msh_long(r, "the number of elements");
+      int hline = r->tokline;
+      if (ntot < 0 || ntot > INT_MAX / 4) msh_fail(r, r->tokline, "bad number of elements %ld", ntot);
+      /* binary: blocks of elements of one type and tag count, each a header (type, count, tags)
+       * and the elements (tag, tags, node tags); messages name the line of the count */
+      long bleft = 0, btype = 0, bntg = 0;
+      if (r->bin) bin_begin(r, "$Elements");
+      /* triangles as read, copies included: corners (counter-clockwise), tag, elementary tag, physical tag */
+      long nraw = 0, capraw = 0;
+      int *rv = NULL;
+      long *rtag = NULL, *retag = NULL, *rphys = NULL;
+      for (long i = 0; i < ntot; i++) {
+        long tag, type, phys = 0, etag = 0, nt[3];
+        int line, k = 0;
+        if (r->bin) {
+          if (!bleft) {
+            const unsigned char *p = bin_bytes(r, 12, "$Elements");
+            btype = bin_int(r, p), bleft = bin_int(r, p + 4), bntg = bin_int(r, p + 8);
+            if (elem_nodes(btype) < 0)
+              msh_fail(r, hline, "an element block of type %ld, no Gmsh element type yfdem knows (binary data, element %ld "
+                       "of %ld): yfdem reads 3-node triangles (type 2), 2-node lines (type 1) and points (type 15)",
+                       btype, i + 1, ntot);
+            if (bleft <= 0 || bleft > ntot - i || bntg < 0 || bntg > 1000)
+              msh_fail(r, hline, "an element block of %ld elements with %ld tags each, after %ld of the %ld elements "
+                       "(binary data): the counts are wrong", bleft, bntg, i, ntot);
+          }
+          int nv = elem_nodes(btype);
+          const unsigned char *p = bin_bytes(r, (size_t)(1 + bntg + nv) * 4, "$Elements");
+          tag = bin_int(r, p);
+          type = btype;
+          if (bntg > 0) phys = labs(bin_int(r, p + 4));
+          if (bntg > 1) etag = bin_int(r, p + 8);
+          for (k = 0; k < nv && k < 3; k++) nt[k] = bin_int(r, p + 4 * (1 + bntg + k));
+          if (nv > 3) k = nv;
+          bleft--;
+          line = hline;
+        } else {
+          tag = msh_long(r, "an element tag");
+          line = r->tokline;
+          type = msh_long(r, "the element type");
+          long ntg = msh_long(r, "the number of tags of an element");
+          if (ntg < 0 || ntg > 1000)
+            msh_fail(r, r->tokline, "element %ld has %ld tags, expected 0 to 1000 (Gmsh writes 2: the physical "
+                     "group and the elementary entity)", tag, ntg);
+          for (long q = 0; q < ntg; q++) {
+            if (q == 0) phys = msh_phys(r, "the physical tag of an element");
+            else if (q == 1) etag = msh_long(r, "the elementary tag of an element");
+            else msh_long(r, "a partition tag of an element");
+          }
+        }
+        nphys22 += phys != 0;
+        int edim = elem_dim(type);
+        if (edim < 0)
+          msh_fail(r, line, "element %ld has type %ld, no Gmsh element type yfdem knows: yfdem reads 3-node "
+                   "triangles (type 2), 2-node lines (type 1) and points (type 15)", tag, type);
+        if (edim == 3)
+          msh_fail(r, line, "3D elements (%s) in volume %ld: yfdem is 2D (mesh with gmsh -2)", elem_name(type), etag);
+        int keep; /* 1: triangles, 2: group nodes, 0: skip (as 4.1 skips points and curves in no group) */
+        int want; /* node tags per element */
+        if (edim == 2) {
+          if (type != 2) unsupported(r, line, type, 2, etag);
+          keep = 1, want = 3;
+        } else if (!phys) {
+          keep = 0, want = 0;
+        } else if (edim == 1) {
+          if (type != 1) unsupported(r, line, type, 1, etag);
+          keep = 2, want = 2;
+        } else {
+          keep = 2, want = 1;
+        }
+        while (!r->bin && !msh_eol(r)) {
+          msh_next(r);
+          if (!keep) continue;
+          if (k >= want)
+            msh_fail(r, line, "element %ld (%s) has more than %d node tags on its line", tag, elem_name(type), want);
+          char *end;
+          errno = 0;
+          nt[k] = strtol(r->tok, &end, 10);
+          if (end == r->tok || *end != '\0' || errno == ERANGE)
+            msh_fail(r, line, "expected an integer node tag in element %ld, found '%s'", tag, r->tok);
+          k++;
+        }
+        if (!r->bin && r->pos >= r->len)
+          msh_fail(r, r->line, "unexpected end of file in element %ld, %ld of %ld elements (truncated file?)",
+                   tag, i + 1, ntot);
+        if (!keep) continue;
+        if (k < want)
+          msh_fail(r, line, "element %ld (%s) has %d node tags on its line, expected %d", tag, elem_name(type), k, want);
+        int v[3];
+        for (int j = 0; j < want; j++) {
+          v[j] = idmap_get(&nmap, nt[j]);
+          if (v[j] < 0) msh_fail(r, line, "node %ld of element %ld is not defined in $Nodes", nt[j], tag);
+        }
+        if (keep == 2) {
+          int ei = ent22(&ent, &nent, &capent, &pool, &npool, &cappool, &emap, edim, etag, &phys, 1, tag);
+          if (npair + want > cappair) {
+            cappair = cappair ? 2 * cappair : 256;
+            pair = yf_realloc(pair, (size_t)cappair * 2 * sizeof *pair, "group nodes");
+          }
+          for (int j = 0; j < want; j++) {
+            pair[2 * npair] = ei;
+            pair[2 * npair + 1] = v[j];
+            npair++;
+          }
+          continue;
+        }
+        if (tag <= 0 || tag > INT_MAX) msh_fail(r, line, "element tag %ld is not in 1..%d", tag, INT_MAX);
+        double d;
+        if (mesh_tri_degenerate(nx[v[0]], ny[v[0]], nx[v[1]], ny[v[1]], nx[v[2]], ny[v[2]], &d))
+          msh_fail(r, line, "triangle %ld has zero area (nodes %ld %ld %ld; area %g m^2 after scale)", tag,
+                   nt[0], nt[1], nt[2], 0.5 * fabs(d));
+        if (d < 0) { /* clockwise in the file: swap two corners */
+          int s = v[1];
+          v[1] = v[2];
+          v[2] = s;
+        }
+        if (nraw == capraw) {
+          capraw = capraw ? 2 * capraw : 1024;
+          rv = yf_realloc(rv, (size_t)capraw * 3 * sizeof *rv, "mesh triangles");
+          rtag = yf_realloc(rtag, (size_t)capraw * sizeof *rtag, "mesh triangles");
+          retag = yf_realloc(retag, (size_t)capraw * sizeof *retag, "mesh triangles");
+          rphys = yf_realloc(rphys, (size_t)capraw * sizeof *rphys, "mesh triangles");
+        }
+        memcpy(rv + 3 * nraw, v, sizeof v);
+        rtag[nraw] = tag;
+        retag[nraw] = etag;
+        rphys[nraw] = phys;
+        nraw++;
+      }
+      msh_expect(r, "$EndElements", " (more elements than the count declares?)");
+
+      /* The copies of a triangle (one per physical group) share their corners: sort by corners
+       * to find them, keep the first copy (its tag and place), in all the copies' groups.  The
+       * triangle's entity is the one of its elementary tag and that set of physical groups. */
+      int *key = yf_malloc((size_t)(nraw ? 3 * nraw : 1) * sizeof *key, "mesh triangles");
+      long *ord = yf_malloc((size_t)(nraw ? nraw : 1) * sizeof *ord, "mesh triangles");
+      long *run = yf_malloc((size_t)(nraw ? nraw : 1) * sizeof *run, "mesh triangles");
+      for (long t = 0; t < nraw; t++) {
+        int a = rv[3 * t], b = rv[3 * t + 1], c = rv[3 * t + 2], s;
+        if (a > b) s = a, a = b, b = s;
+        if (b > c) s = b, b = c, c = s;
+        if (a > b) s = a, a = b, b = s;
+        key[3 * t] = a, key[3 * t + 1] = b, key[3 * t + 2] = c;
+        ord[t] = t;
+      }
+      qsort_r(ord, (size_t)nraw, sizeof *ord, by_corners, key);
+      /* run[t]: for the first copy, where its copies start in ord; -1 for the later copies */
+      for (long j = 0; j < nraw; j++) {
+        long j0 = j;
+        while (j + 1 < nraw && !memcmp(key + 3 * ord[j + 1], key + 3 * ord[j0], 3 * sizeof *key)) run[ord[++j]] = -1;
+        run[ord[j0]] = j0;
+      }
+      long *phl = NULL;
+      int capphl = 0;
+      for (long t = 0; t < nraw; t++) {
+        if (run[t] < 0) continue;
+        int np = 0;
+        for (long j = run[t]; j < nraw && !memcmp(key + 3 * ord[j], key + 3 * t, 3 * sizeof *key); j++) {
+          long p = rphys[ord[j]];
+          int seen = !p;
+          for (int q = 0; q < np && !seen; q++) seen = phl[q] == p;
+          if (seen) continue;
+          if (np == capphl) {
+            capphl = capphl ? 2 * capphl : 8;
+            phl = yf_realloc(phl, (size_t)capphl * sizeof *phl, "physical tags");
+          }
+          phl[np++] = p;
+        }
+        int ei = ent22(&ent, &nent, &capent, &pool, &npool, &cappool, &emap, 2, retag[t], phl, np, rtag[t]);
+        if (ntri == captri) {
+          captri = captri ? 2 * captri : 1024;
+          tv = yf_realloc(tv, (size_t)captri * 3 * sizeof *tv, "mesh triangles");
+          tent = yf_realloc(tent, (size_t)captri * sizeof *tent, "mesh triangles");
+          ttag = yf_realloc(ttag, (size_t)captri * sizeof *ttag, "mesh triangles");
+        }
+        memcpy(tv + 3 * ntri, rv + 3 * t, 3 * sizeof *tv);
+        tent[ntri] = ei;
+        ttag[ntri] = rtag[t];
+        ntri++;
+        ent[ei].ntri++;
+        for (int j = 0; j < 3; j++) used[rv[3 * t + j]] = 1;
+      }
+      free(phl);
+      free(run);
+      free(ord);
+      free(key);
+      free(rv);
+      free(rtag);
+      free(retag);
+      free(rphys);
+      have_elems = 1;
 
     } else if (!strcmp(r->tok, "$Elements")) {
       if (have_elems) msh_fail(r, r->tokline, "a second $Elements section");
@@ -632,6 +1076,12 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
   if (!have_fmt) msh_fail(r, r->line, "not a Gmsh mesh: the file is empty");
   if (!have_nodes) msh_fail(r, r->line, "no $Nodes section (truncated file?)");
   if (!have_elems) msh_fail(r, r->line, "no $Elements section (truncated file?)");
+  /* Gmsh's Mesh.SaveAll writes every element of a 2.2 file with physical tag 0, the names kept:
+   * without a word the groups the user named were missing, or "no physical surface 'rock'" */
+  if (msh2 && npn > 0 && !nphys22)
+    yf_warn(&o->from, "mesh gmsh: '%s' names %d physical group%s in $PhysicalNames but no element is in one "
+            "(physical tag 0 throughout, as Gmsh's Mesh.SaveAll writes MSH 2.2), so none becomes a group: save "
+            "without Mesh.SaveAll, or as MSH 4.1", path, npn, npn == 1 ? "" : "s");
   if (ntri == 0)
     msh_fail(r, r->line, "no 3-node triangles in the file (mesh in 2D with gmsh -2)");
 
@@ -656,16 +1106,20 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       nph++;
     }
   }
+  /* unnamed: phys_<tag>, with the dimension added when another unnamed group shares the tag
+   * (Gmsh numbers physical curves and surfaces independently, so tag 1 is often both).  Which
+   * share is settled before any is named: naming as it went, the first of two got the dimension
+   * (phys_9_curve) and the second, finding the first named, did not (phys_9, not phys_9_surface) */
+  int *shared = yf_calloc((size_t)(nph ? nph : 1), sizeof *shared, "physical groups");
+  for (int j = 0; j < nph; j++)
+    for (int q = 0; q < nph && !ph[j].name[0]; q++)
+      if (q != j && ph[q].tag == ph[j].tag && !ph[q].name[0]) shared[j] = 1;
   for (int j = 0; j < nph; j++) {
     if (ph[j].name[0]) continue;
-    /* unnamed: phys_<tag>, with the dimension added when another unnamed group shares the tag
-     * (Gmsh numbers physical curves and surfaces independently, so tag 1 is often both) */
-    int shared = 0;
-    for (int q = 0; q < nph; q++)
-      if (q != j && ph[q].tag == ph[j].tag && !ph[q].name[0]) shared = 1;
-    if (shared) snprintf(ph[j].name, sizeof ph[j].name, "phys_%ld_%s", ph[j].tag, dim_word[ph[j].dim]);
+    if (shared[j]) snprintf(ph[j].name, sizeof ph[j].name, "phys_%ld_%s", ph[j].tag, dim_word[ph[j].dim]);
     else snprintf(ph[j].name, sizeof ph[j].name, "phys_%ld", ph[j].tag);
   }
+  free(shared);
 
   /* ---- materials of the surfaces ---- */
   char buf[512];
@@ -709,6 +1163,10 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
         yf_deck_error(&o->from, "mesh gmsh: no material for physical surface '%s' of '%s': define a "
                       "material of that name or add 'material %s=MAT' (known materials: %s)", phname,
                       path, phname, mesh_material_names(m, buf, sizeof buf));
+      if (msh2)
+        yf_deck_error(&o->from, "mesh gmsh: triangle %ld (elementary surface %ld) of '%s' is in no physical group "
+                      "(physical tag 0): give a default material with 'material MAT' (known materials: %s)",
+                      ent[e].el, ent[e].tag, path, mesh_material_names(m, buf, sizeof buf));
       yf_deck_error(&o->from, "mesh gmsh: surface %ld of '%s' is in no physical group: give a default "
                     "material with 'material MAT' (known materials: %s)", ent[e].tag, path,
                     mesh_material_names(m, buf, sizeof buf));
