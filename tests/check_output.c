@@ -1169,6 +1169,99 @@ START_TEST(test_csv_index_full_disk) {
 }
 END_TEST
 
+/* An output named on a FIFO that no process reads: exit 2 at once, naming the file and why.  It
+ * waited for a reader for ever at the output's first write (a record's first row, the log at the
+ * start), deaf to Ctrl-C and SIGTERM, since a plain open of a FIFO blocks until a reader opens it.
+ * With a reader the rows still stream through it (the reader gets the record's rows whole). */
+START_TEST(test_fifo_without_reader) {
+  static const struct { const char *setup, *lines, *args, *file; } cases[] = {
+      {"mkfifo r.csv", "record r 1 r.csv step ke\n", "", "r.csv"},
+      {"mkfifo c_frames.csv", "dump c csv 1 c\n", "", "c_frames.csv"},
+      {"mkfifo b.csv", "fracture_log b.csv\n", "", "b.csv"},
+      {"mkfifo m.csv", "metrics body bar\nmetrics log m.csv\n", "", "m.csv"},
+      {"mkdir yd && mkfifo yd/summary.csv", "dump y y2dref yd summary 1\n", "", "yd/summary.csv"},
+      {"mkfifo lg", "", "-log lg", "lg"},
+      {"mkfifo s.json", "", "-summary s.json", "s.json"},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+    char deck[1024];
+    snprintf(deck, sizeof deck, "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect bar m 0 0 1 0.1 4 2\n"
+             "jointprop cj ft 1e5 fs 1e5 gf 1 pen 1e10 law munjiza\nfracture bar cj\ntimestep auto\n%srun 4\n",
+             cases[k].lines);
+    char *dir = yft_deck_dir("f.deck", deck), cmd[2048];
+    /* KILL after 20 s: a process stuck in open() would outlive the test */
+    snprintf(cmd, sizeof cmd, "cd %s && %s && timeout -s KILL 20 %s %s f.deck >/dev/null 2>err.txt", dir,
+             cases[k].setup, yft_binary(), cases[k].args);
+    int st = system(cmd), code = WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+    char p[600];
+    snprintf(p, sizeof p, "%s/err.txt", dir);
+    char *e = yft_slurp(p, 1);
+    char want[128];
+    snprintf(want, sizeof want, "'%s': no process reads this FIFO", cases[k].file);
+    ck_assert_msg(code == YF_EXIT_IO && strstr(e, want), "%s: exit %d (137: killed waiting): %s", cases[k].file, code, e);
+    free(e);
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    if (system(cmd)) {}
+    free(dir);
+  }
+  /* with its reader: the record's rows go through whole */
+  char *dir = yft_deck_dir("f.deck", "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                                     "mesh rect bar m 0 0 1 0.1 4 2\ntimestep auto\nrecord r 1 r.csv step ke\nrun 4\n");
+  char cmd[2048];
+  snprintf(cmd, sizeof cmd, "cd %s && mkfifo r.csv && { cat r.csv > got.txt & } && sleep 0.2 && "
+           "timeout -s KILL 20 %s f.deck >/dev/null 2>err.txt; rc=$?; wait; exit $rc", dir, yft_binary());
+  int st = system(cmd);
+  char p[600];
+  snprintf(p, sizeof p, "%s/err.txt", dir);
+  char *e = yft_slurp(p, 1);
+  ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) == 0, "with a reader: status %d: %s", st, e);
+  free(e);
+  snprintf(p, sizeof p, "%s/got.txt", dir);
+  char *got = yft_slurp(p, 1);
+  ck_assert_msg(!strncmp(got, "step,time,step,ke\n0,0,0,0\n", 26) && strstr(got, "\n4,"), "the reader got: %s", got);
+  free(got);
+  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+  if (system(cmd)) {}
+  free(dir);
+}
+END_TEST
+
+/* An output sent to yfdem's own standard output (/dev/stdout, with 'yfdem ... > out.txt') is
+ * appended to what was printed: it was opened with truncation, which cut out.txt to zero under
+ * the stream's position: the lines printed before the output's first write were lost or became a
+ * run of NUL bytes (grep took out.txt for a binary file). */
+START_TEST(test_output_to_own_stdout) {
+  static const struct { const char *line, *args, *want; } cases[] = {
+      {"record r 1 /dev/stdout step ke\n", "", "step,time,step,ke\n0,0,0,0\n"},
+      {"", "-summary /dev/stdout", "\"status\": \"ok\""},
+      {"", "-log /dev/stdout", "run 2\n"},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+    char deck[512];
+    snprintf(deck, sizeof deck, "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect bar m 0 0 1 0.1 4 2\n"
+             "timestep auto\n%srun 2\n", cases[k].line);
+    char *dir = yft_deck_dir("f.deck", deck), cmd[2048], p[600];
+    snprintf(cmd, sizeof cmd, "cd %s && %s %s f.deck >out.txt 2>&1", dir, yft_binary(), cases[k].args);
+    int st = system(cmd);
+    snprintf(p, sizeof p, "%s/out.txt", dir);
+    size_t n = 0;
+    FILE *f = fopen(p, "rb");
+    ck_assert_ptr_nonnull(f);
+    char *text = calloc(1, 1 << 20);
+    n = fread(text, 1, (1 << 20) - 1, f);
+    fclose(f);
+    ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) == 0, "case %zu: status %d: %s", k, st, text);
+    ck_assert_msg(strlen(text) == n, "case %zu: a NUL byte at %zu of %zu in out.txt", k, strlen(text), n);
+    ck_assert_msg(strstr(text, "timestep auto: dt =") && strstr(text, cases[k].want),
+                  "case %zu: out.txt lacks the lines printed before, or the output:\n%s", k, text);
+    free(text);
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    if (system(cmd)) {}
+    free(dir);
+  }
+}
+END_TEST
+
 Suite *output_suite(void) {
   Suite *su = suite_create("output");
   TCase *tc = tcase_create("h5");
@@ -1198,6 +1291,8 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_summary_nonfinite);
   tcase_add_test(tc, test_summary_escaping);
   tcase_add_test(tc, test_state_hash);
+  tcase_add_test(tc, test_fifo_without_reader);
+  tcase_add_test(tc, test_output_to_own_stdout);
   suite_add_tcase(su, tc);
   return su;
 }

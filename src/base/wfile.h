@@ -17,6 +17,11 @@ typedef struct {
   const char *path;
 } YfWFile;
 
+/* fopen(path, "w") that never waits: a FIFO with no reader fails at once with ENXIO. */
+FILE *yf_fopen_w(const char *path);
+/* strerror, with ENXIO (from the opens here: a FIFO that no process reads) said as such. */
+const char *yf_strerror(int e);
+
 /* Open for writing; 0, or -1 with errno set (nothing to close). */
 int yf_wfile_open(YfWFile *w, const char *path);
 /* Flush (and fsync when sync), close and rename; bad: the caller saw a write fail.  0, or -1

@@ -590,7 +590,7 @@ static void write_log(YfSim *s) {
   if (!yf_writer()) return;
   YfWFile w;
   if (yf_wfile_open(&w, M.log_path) != 0) { /* runs from the exit path too: there the other outputs are still written */
-    yf_output_error("metrics log: cannot write '%s': %s", M.log_path, strerror(errno));
+    yf_output_error("metrics log: cannot write '%s': %s", M.log_path, yf_strerror(errno));
     return;
   }
   FILE *f = w.f;
@@ -610,7 +610,7 @@ static void write_log(YfSim *s) {
     fprintf(f, "%ld,%s,%s,%s,%s,%s,%s,%s,%s,%ld,%s,%s,%s,%d,%s,%ld,%s,%s,%s\n", q->step, v[0], v[1], v[2], v[3], v[4],
             v[5], v[6], v[7], q->broken, v[8], v[9], v[10], q->frags, s1, q->opened, ol[0], ol[1], ol[2]);
   }
-  if (yf_wfile_close(&w, 0, 0) != 0) yf_output_error("metrics log: cannot write '%s': %s", M.log_path, strerror(errno));
+  if (yf_wfile_close(&w, 0, 0) != 0) yf_output_error("metrics log: cannot write '%s': %s", M.log_path, yf_strerror(errno));
 }
 
 int metrics_flush_log(YfSim *s, char *err, size_t nerr) {

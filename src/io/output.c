@@ -494,7 +494,7 @@ static int index_try(YfDump *d, const char *path, const char *tmp, const char *s
   size_t plen[3] = {(size_t)hl, t->len, sizeof tail - 1};
   int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) {
-    snprintf(msg, nmsg, "dump %s: cannot create '%s': %s", d->id, tmp, strerror(errno));
+    snprintf(msg, nmsg, "dump %s: cannot create '%s': %s", d->id, tmp, yf_strerror(errno));
     return -1;
   }
   yf_tmp_live(tmp); /* a second Ctrl-C removes it */
@@ -519,7 +519,7 @@ static int index_try(YfDump *d, const char *path, const char *tmp, const char *s
   int rc = rename(tmp, path);
   yf_tmp_live(NULL);
   if (rc != 0) {
-    snprintf(msg, nmsg, "dump %s: cannot rename '%s' to '%s': %s", d->id, tmp, path, strerror(errno));
+    snprintf(msg, nmsg, "dump %s: cannot rename '%s' to '%s': %s", d->id, tmp, path, yf_strerror(errno));
     return -1;
   }
   return 0;
@@ -763,7 +763,7 @@ static void h5_frame(YfSim *s, YfDump *d) {
   if (d->nframe > d->first) unlink(d->cur);
   if (rename(d->cur_tmp, d->cur) != 0)
     yf_io_error(NULL, "dump %s: cannot rename '%s' to '%s': %s", d->id, d->cur_tmp, d->cur,
-                strerror(errno));
+                yf_strerror(errno));
   yf_tmp_live(NULL);
   const double at[2] = {n ? nd->x[0] : 0.0, n ? nd->y[0] : 0.0};
   xmf_add_frame(d, s->time, s->step, n, nt, fc != NULL, ncrack, at);
@@ -778,7 +778,7 @@ static void csv_frame(YfSim *s, YfDump *d) {
   if (d->csv_index.fd < 0) {
     char *ip = str_printf("%s_frames.csv", d->path);
     if (yf_rows_open(&d->csv_index, ip, d->created) != 0)
-      yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, strerror(errno));
+      yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, yf_strerror(errno));
     if (!d->created) {
       yf_rows_printf(&d->csv_index, "frame,step,time,file\n");
       if (yf_rows_end(&d->csv_index) != 0) {
@@ -786,7 +786,7 @@ static void csv_frame(YfSim *s, YfDump *d) {
         int e = errno;
         if (d->csv_index.end >= 0) unlink(ip);
         errno = e;
-        yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, ip, strerror(errno));
+        yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, ip, yf_strerror(errno));
       }
     }
     d->created = 1;
@@ -795,18 +795,18 @@ static void csv_frame(YfSim *s, YfDump *d) {
   /* whole or not at all (PATH.tmp renamed, wfile.h), as h5 frames: on a full disk a frame cut
    * mid-row was left under its own name */
   YfWFile w;
-  if (yf_wfile_open(&w, path) != 0) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, path, strerror(errno));
+  if (yf_wfile_open(&w, path) != 0) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, path, yf_strerror(errno));
   FILE *f = w.f;
   fprintf(f, "id,x,y,ux,uy,vx,vy\n");
   for (int i = 0; i < nd->n; i++)
     fprintf(f, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", nd->id[i], nd->x[i], nd->y[i],
             nd->x[i] - nd->x0[i], nd->y[i] - nd->y0[i], nd->vx[i], nd->vy[i]);
-  if (yf_wfile_close(&w, 0, 0) != 0) yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, path, strerror(errno));
+  if (yf_wfile_close(&w, 0, 0) != 0) yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, path, yf_strerror(errno));
   const char *base = strrchr(path, '/');
   /* whole or not at all: on a full disk the index ends at the row before */
   yf_rows_printf(&d->csv_index, "%ld,%ld,%.17g,%s\n", d->nframe, s->step, s->time, base ? base + 1 : path);
   if (yf_rows_end(&d->csv_index) != 0)
-    yf_io_error(NULL, "dump %s: cannot write '%s_frames.csv': %s", d->id, d->path, strerror(errno));
+    yf_io_error(NULL, "dump %s: cannot write '%s_frames.csv': %s", d->id, d->path, yf_strerror(errno));
   free(path);
 }
 
@@ -933,11 +933,11 @@ static long csv_adopt(YfDump *d, long before, long *last) {
     /* the kept rows go in whole (PATH.tmp renamed, wfile.h): a full disk leaves the earlier index,
      * not one cut short; the new rows are appended (csv_frame) */
     YfWFile w;
-    if (yf_wfile_open(&w, ip) != 0) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, strerror(errno));
+    if (yf_wfile_open(&w, ip) != 0) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, yf_strerror(errno));
     fwrite(t, 1, (size_t)(keep_end - t), w.f);
-    if (yf_wfile_close(&w, 0, 0) != 0) yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, ip, strerror(errno));
+    if (yf_wfile_close(&w, 0, 0) != 0) yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, ip, yf_strerror(errno));
     if (yf_rows_open(&d->csv_index, ip, 1) != 0)
-      yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, strerror(errno));
+      yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, yf_strerror(errno));
     d->created = 1;
   }
   free(t);
