@@ -1169,6 +1169,37 @@ START_TEST(test_csv_index_full_disk) {
 }
 END_TEST
 
+/* A frame or an index that cannot be renamed into place (a directory there; an immutable file
+ * does the same): exit 2 naming it, and no NAME.tmp left beside the frames (README: "no
+ * half-written NAME.tmp is left"); it was, complete but under its .tmp name.  The index lists only
+ * frames that are there. */
+START_TEST(test_rename_refused_no_tmp_left) {
+  static const char *const in_way[] = {"out_000002.h5", "out_cracks.xmf"};
+  for (int k = 0; k < 2; k++) {
+    char *dir = yft_deck_dir("f.deck", "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                                       "mesh rect bar m 0 0 1 0.1 4 2\njointprop cj ft 1e5 fs 1e5 gf 1 pen 1e10 law munjiza\n"
+                                       "fracture bar cj\ntimestep auto\ndump a h5 1 out.h5\nrun 4\n");
+    char cmd[2048], p[600];
+    snprintf(cmd, sizeof cmd, "cd %s && mkdir %s && %s f.deck >/dev/null 2>err.txt", dir, in_way[k], yft_binary());
+    int st = system(cmd), code = WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+    snprintf(p, sizeof p, "%s/err.txt", dir);
+    char *e = yft_slurp(p, 1), want[128];
+    snprintf(want, sizeof want, "to '%s': Is a directory", in_way[k]);
+    ck_assert_msg(code == YF_EXIT_IO && strstr(e, want), "%s in the way: exit %d: %s", in_way[k], code, e);
+    free(e);
+    snprintf(cmd, sizeof cmd, "cd %s && ls | grep '\\.tmp$'", dir);
+    ck_assert_msg(system(cmd) != 0, "%s in the way: a .tmp file was left", in_way[k]);
+    /* every frame out.xmf lists is there */
+    snprintf(cmd, sizeof cmd, "cd %s && [ ! -e out.xmf ] || for f in $(grep -o 'out_[0-9]*\\.h5' out.xmf | sort -u); do "
+             "[ -f $f ] || exit 1; done", dir);
+    ck_assert_msg(system(cmd) == 0, "%s in the way: out.xmf lists a frame that is not there", in_way[k]);
+    snprintf(cmd, sizeof cmd, "chmod -R u+w %s; rm -rf %s", dir, dir);
+    if (system(cmd)) {}
+    free(dir);
+  }
+}
+END_TEST
+
 /* An output named on a FIFO that no process reads: exit 2 at once, naming the file and why.  It
  * waited for a reader for ever at the output's first write (a record's first row, the log at the
  * start), deaf to Ctrl-C and SIGTERM, since a plain open of a FIFO blocks until a reader opens it.
@@ -1292,6 +1323,7 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_summary_escaping);
   tcase_add_test(tc, test_state_hash);
   tcase_add_test(tc, test_fifo_without_reader);
+  tcase_add_test(tc, test_rename_refused_no_tmp_left);
   tcase_add_test(tc, test_output_to_own_stdout);
   suite_add_tcase(su, tc);
   return su;

@@ -518,8 +518,10 @@ static int index_try(YfDump *d, const char *path, const char *tmp, const char *s
   }
   int rc = rename(tmp, path);
   yf_tmp_live(NULL);
-  if (rc != 0) {
-    snprintf(msg, nmsg, "dump %s: cannot rename '%s' to '%s': %s", d->id, tmp, path, yf_strerror(errno));
+  if (rc != 0) { /* (a directory or an immutable file in the way): no NAME.tmp left behind */
+    int e = errno;
+    unlink(tmp);
+    snprintf(msg, nmsg, "dump %s: cannot rename '%s' to '%s': %s", d->id, tmp, path, yf_strerror(e));
     return -1;
   }
   return 0;
@@ -761,9 +763,11 @@ static void h5_frame(YfSim *s, YfDump *d) {
    * same directory.  The first frame of this process (0, or the first after the frames of a
    * continued series) keeps the atomic replace: the earlier run's index still lists it. */
   if (d->nframe > d->first) unlink(d->cur);
-  if (rename(d->cur_tmp, d->cur) != 0)
-    yf_io_error(NULL, "dump %s: cannot rename '%s' to '%s': %s", d->id, d->cur_tmp, d->cur,
-                yf_strerror(errno));
+  if (rename(d->cur_tmp, d->cur) != 0) { /* (a directory or an immutable file in the way) */
+    int e = errno;
+    unlink(d->cur_tmp); /* no NAME.tmp left behind (README) */
+    yf_io_error(NULL, "dump %s: cannot rename '%s' to '%s': %s", d->id, d->cur_tmp, d->cur, yf_strerror(e));
+  }
   yf_tmp_live(NULL);
   const double at[2] = {n ? nd->x[0] : 0.0, n ? nd->y[0] : 0.0};
   xmf_add_frame(d, s->time, s->step, n, nt, fc != NULL, ncrack, at);
