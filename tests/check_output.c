@@ -601,6 +601,36 @@ START_TEST(test_dump_prefix_names_a_file) {
 }
 END_TEST
 
+/* Two outputs on one file through a link to a folder: 'link/out.h5' with link -> . is out.h5,
+ * and sub/../out.h5 through a linked sub is where the link points.  They were told apart by their
+ * text, and both dumps wrote the same frames and index, each over the other's. */
+START_TEST(test_claims_through_links) {
+  static const struct { const char *setup, *lines, *want; } cases[] = {
+      {"ln -s . here", "dump a h5 1 here/out.h5\ndump b h5 1 out.h5", "dump: 'out.h5': a file of it is already written by dump 'a'"},
+      {"mkdir sub && ln -s sub l", "dump a csv 1 l/c\nrecord b 1 sub/c_frames.csv step ke",
+       "record: 'sub/c_frames.csv': already written by dump 'a'"},
+      {"mkdir -p sub/x && ln -s sub/x l", "dump a h5 1 l/../out.h5\ndump b h5 1 sub/out.h5",
+       "dump: 'sub/out.h5': a file of it is already written by dump 'a'"},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+    char deck[512], cmd[1600], p[600];
+    snprintf(deck, sizeof deck, "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect bar m 0 0 1 0.1 4 2\n"
+             "timestep auto\n%s\nrun 2\n", cases[k].lines);
+    char *dir = yft_deck_dir("f.deck", deck);
+    snprintf(cmd, sizeof cmd, "cd %s && %s && %s f.deck >/dev/null 2>err.txt", dir, cases[k].setup, yft_binary());
+    int st = system(cmd), rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    snprintf(p, sizeof p, "%s/err.txt", dir);
+    char *err = yft_slurp(p, 1), want[400];
+    snprintf(want, sizeof want, "f.deck:5: error: %s", cases[k].want);
+    ck_assert_msg(rc == YF_EXIT_DECK && strstr(err, want), "%s: exit %d, want '%s': %s", cases[k].lines, rc, want, err);
+    free(err);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    ck_assert_int_eq(system(cmd), 0);
+    free(dir);
+  }
+}
+END_TEST
+
 /* ---------------------------------------------------------------- I/O errors */
 
 static YfSim *cleanup_sim;
@@ -1308,6 +1338,7 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_fc_in_every_frame_after);
   tcase_add_test(tc, test_deck_dump_errors);
   tcase_add_test(tc, test_dump_prefix_names_a_file);
+  tcase_add_test(tc, test_claims_through_links);
   tcase_add_test(tc, test_io_error);
   tcase_add_test(tc, test_kill_midway);
   suite_add_tcase(su, tc);

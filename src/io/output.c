@@ -1155,7 +1155,22 @@ static struct YfOutput *out_get(YfSim *s) {
 static char *clean_path(const char *path) {
   char cwd[4096] = "";
   if (path[0] != '/' && !getcwd(cwd, sizeof cwd)) cwd[0] = 0;
-  char *in = str_printf("%s/%s", cwd, path), *out = yf_malloc(strlen(in) + 2, "path");
+  char *in = str_printf("%s/%s", cwd, path);
+  /* the folder as the file system resolves it, when it exists: 'link/out.h5' with link -> . is
+   * out.h5 (two dumps wrote the same frames through a link to their folder).  The file itself is
+   * not resolved: /dev/stdout and /dev/stderr are two outputs though both may reach a terminal. */
+  char *slash = strrchr(in, '/'), real[PATH_MAX];
+  if (slash && slash > in) {
+    *slash = 0;
+    if (realpath(in, real)) {
+      char *r = str_printf("%s/%s", real, slash + 1);
+      free(in);
+      in = r;
+    } else {
+      *slash = '/';
+    }
+  }
+  char *out = yf_malloc(strlen(in) + 2, "path");
   size_t n = 0;
   for (char *p = in; *p;) {
     while (*p == '/') p++;
