@@ -631,6 +631,34 @@ START_TEST(test_claims_through_links) {
 }
 END_TEST
 
+/* A record of an expression with a comma, and a csv dump whose PREFIX has one: each is one CSV
+ * field, quoted (RFC 4180).  The header 'step,time,max(ke,strain)' had one column more than its
+ * rows, and a row of the index PREFIX_frames.csv one field more than its header, so a CSV reader
+ * (pandas, Python's csv) paired values with the wrong names. */
+START_TEST(test_csv_fields_with_commas) {
+  char *err, *dir;
+  int rc = yft_run_binary("f.deck", "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                          "mesh rect bar m 0 0 1 0.1 4 2\ntimestep auto\nvelocity bar set 1 0\n"
+                          "dump c csv 1 \"a,b\"\nrecord r 1 r.csv \"max(ke,strain)\" ke\nrun 1\n", "", &err, &dir);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  char p[600];
+  snprintf(p, sizeof p, "%s/r.csv", dir);
+  char *r = yft_slurp(p, 1);
+  /* 1000 kg/m^3 x 0.1 m^2 at 1 m/s: ke = 50 J/m */
+  ck_assert_msg(!strncmp(r, "step,time,\"max(ke,strain)\",ke\n0,0,50,50\n", 39), "r.csv:\n%s", r);
+  snprintf(p, sizeof p, "%s/a,b_frames.csv", dir);
+  char *ix = yft_slurp(p, 1);
+  ck_assert_msg(!strncmp(ix, "frame,step,time,file\n0,0,0,\"a,b_000000.csv\"\n", 44), "a,b_frames.csv:\n%s", ix);
+  free(r);
+  free(ix);
+  free(err);
+  char cmd[700];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  ck_assert_int_eq(system(cmd), 0);
+  free(dir);
+}
+END_TEST
+
 /* ---------------------------------------------------------------- I/O errors */
 
 static YfSim *cleanup_sim;
@@ -1339,6 +1367,7 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_deck_dump_errors);
   tcase_add_test(tc, test_dump_prefix_names_a_file);
   tcase_add_test(tc, test_claims_through_links);
+  tcase_add_test(tc, test_csv_fields_with_commas);
   tcase_add_test(tc, test_io_error);
   tcase_add_test(tc, test_kill_midway);
   suite_add_tcase(su, tc);

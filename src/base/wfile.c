@@ -47,6 +47,21 @@ FILE *yf_fopen_w(const char *path) {
   return f;
 }
 
+char *yf_csv_field(const char *s) {
+  size_t n = strlen(s), q = 0;
+  int quote = strpbrk(s, ",\"\r\n") != NULL;
+  for (const char *c = s; *c; c++) q += *c == '"';
+  char *out = yf_malloc(n + q + 3, "CSV field"), *o = out;
+  if (quote) *o++ = '"';
+  for (const char *c = s; *c; c++) {
+    if (*c == '"') *o++ = '"';
+    *o++ = *c;
+  }
+  if (quote) *o++ = '"';
+  *o = 0;
+  return out;
+}
+
 const char *yf_strerror(int e) {
   return e == ENXIO ? "no process reads this FIFO (start its reader first, or name a file)" : strerror(e);
 }

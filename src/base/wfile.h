@@ -19,6 +19,10 @@ typedef struct {
 
 /* fopen(path, "w") that never waits: a FIFO with no reader fails at once with ENXIO. */
 FILE *yf_fopen_w(const char *path);
+/* s as one CSV field (allocated): as it is, or in double quotes (its quotes doubled, RFC 4180)
+ * when it holds a comma, a quote or a line break ('max(ke,strain)' was two header columns over
+ * one value, a file 'a,b_000000.csv' two fields of the csv dump's index). */
+char *yf_csv_field(const char *s);
 /* strerror, with ENXIO (from the opens here: a FIFO that no process reads) said as such. */
 const char *yf_strerror(int e);
 

@@ -208,9 +208,13 @@ void cmd_record(YfSim *s, const YfArgs *a) {
 /* The file's header line, "step,time,K1,K2,...\n" (allocated). */
 static char *record_head(const Record *r) {
   size_t n = sizeof "step,time\n";
-  for (int i = 0; i < r->q.n; i++) n += 1 + strlen(r->q.w[i]);
+  for (int i = 0; i < r->q.n; i++) n += 3 + 2 * strlen(r->q.w[i]); /* quoted, its quotes doubled */
   char *h = yf_malloc(n, "record header"), *o = h + sprintf(h, "step,time");
-  for (int i = 0; i < r->q.n; i++) o += sprintf(o, ",%s", r->q.w[i]);
+  for (int i = 0; i < r->q.n; i++) {
+    char *f = yf_csv_field(r->q.w[i]); /* an expression with a comma is one column */
+    o += sprintf(o, ",%s", f);
+    free(f);
+  }
   strcpy(o, "\n");
   return h;
 }

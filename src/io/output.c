@@ -808,7 +808,9 @@ static void csv_frame(YfSim *s, YfDump *d) {
   if (yf_wfile_close(&w, 0, 0) != 0) yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, path, yf_strerror(errno));
   const char *base = strrchr(path, '/');
   /* whole or not at all: on a full disk the index ends at the row before */
-  yf_rows_printf(&d->csv_index, "%ld,%ld,%.17g,%s\n", d->nframe, s->step, s->time, base ? base + 1 : path);
+  char *field = yf_csv_field(base ? base + 1 : path); /* a PREFIX with a comma: still one field */
+  yf_rows_printf(&d->csv_index, "%ld,%ld,%.17g,%s\n", d->nframe, s->step, s->time, field);
+  free(field);
   if (yf_rows_end(&d->csv_index) != 0)
     yf_io_error(NULL, "dump %s: cannot write '%s_frames.csv': %s", d->id, d->path, yf_strerror(errno));
   free(path);
