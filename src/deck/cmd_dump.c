@@ -175,6 +175,7 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
     snprintf(what, sizeof what, "dump %s", id);
     arg_writable(a, what, "%s_000000%s", stem, ext);
     arg_writable(a, what, "%s", xmf);
+    arg_writable(a, what, "%s_cracks.xmf", stem); /* (a folder of that name failed the first frame) */
     sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN%s (index %s)%s\n", id, every, stem, ext, xmf,
                output_dump_mpio(s, k) ? "; every rank writes its rows (parallel HDF5; YFDEM_H5_MPIIO=0: gathered to rank 0)" : "");
   } else {
