@@ -659,6 +659,42 @@ START_TEST(test_csv_fields_with_commas) {
 }
 END_TEST
 
+/* An h5 dump's file name goes into its XDMF index, XML, which holds UTF-8 text only: a Latin-1
+ * name ('\xe9t\xe9.h5') made an index that is not well-formed, and ParaView's reader aborted on
+ * it.  It is refused at its line (nothing written); a UTF-8 name with spaces, accents and XML's
+ * special characters is written, escaped, into the index. */
+START_TEST(test_h5_name_not_utf8) {
+  static const char head[] = "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect bar m 0 0 1 0.1 4 2\n"
+                             "timestep auto\n";
+  char deck[512], *err, *dir;
+  snprintf(deck, sizeof deck, "%sdump d h5 1 \xe9t\xe9.h5\nrun 1\n", head);
+  int rc = yft_run_binary("f.deck", deck, "-log none", &err, &dir);
+  ck_assert_msg(rc == YF_EXIT_DECK && strstr(err, "f.deck:4: error: dump: ") &&
+                strstr(err, "the file name is not UTF-8 text (byte 1 of it is 0xe9)"), "exit %d: %s", rc, err);
+  static const char *const keep[] = {"f.deck", "stderr.txt", NULL};
+  char left[400];
+  other_entries(dir, keep, left, sizeof left);
+  ck_assert_msg(!left[0], "left %s", left);
+  free(err);
+  char cmd[700];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  ck_assert_int_eq(system(cmd), 0);
+  free(dir);
+  snprintf(deck, sizeof deck, "%sdump d h5 1 \"r\xc3\xa9s ultats&<x>.h5\"\nrun 1\n", head);
+  rc = yft_run_binary("f.deck", deck, "-log none", &err, &dir);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  char p[700];
+  snprintf(p, sizeof p, "%s/r\xc3\xa9s ultats&<x>.xmf", dir);
+  char *x = yft_slurp(p, 1);
+  ck_assert_msg(strstr(x, ">r\xc3\xa9s ultats&amp;&lt;x&gt;_000001.h5:/x</DataItem>"), "index:\n%.600s", x);
+  free(x);
+  free(err);
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  ck_assert_int_eq(system(cmd), 0);
+  free(dir);
+}
+END_TEST
+
 /* ---------------------------------------------------------------- I/O errors */
 
 static YfSim *cleanup_sim;
@@ -1369,6 +1405,7 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_dump_prefix_names_a_file);
   tcase_add_test(tc, test_claims_through_links);
   tcase_add_test(tc, test_csv_fields_with_commas);
+  tcase_add_test(tc, test_h5_name_not_utf8);
   tcase_add_test(tc, test_io_error);
   tcase_add_test(tc, test_kill_midway);
   suite_add_tcase(su, tc);
