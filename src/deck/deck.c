@@ -1327,9 +1327,12 @@ void arg_claim(struct YfSim *s, const YfArgs *a, int i, const char *owner, const
 
 void arg_regular(const YfArgs *a, int i, const char *path) {
   struct stat st;
+  /* what is in the way on the disk is an I/O error (exit 2), as a folder in the way of every other
+   * output is (it was a deck error, exit 1, and a folder at FILE.a of 'restart every' exit 2) */
   if (!stat(path, &st) && !S_ISREG(st.st_mode))
-    arg_error(a, i, "'%s' is not a regular file: a restart is written whole to a temporary file and renamed over "
-              "it, which would replace it (write_restart onto a device replaced the device)", path);
+    yf_io_error(&a->loc, "%s: '%s': '%s' is not a regular file: a restart is written whole to a temporary file and "
+                "renamed over it, which would replace it (write_restart onto a device replaced the device)", a->cmd,
+                a->w[i], path);
 }
 
 /* The files were hidden or named by their endings alone: `dump d h5 10 .` wrote ._000000.h5 and
