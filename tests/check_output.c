@@ -1295,6 +1295,31 @@ START_TEST(test_rename_refused_no_tmp_left) {
 }
 END_TEST
 
+/* A y2dref dump whose table is a folder in its folder (yd/probes.csv/): exit 2 at the dump's line
+ * naming the table.  It was found at the run's first step, without the line, after the other
+ * outputs began (summary.csv was checked at the line, but named the folder: "cannot write in
+ * directory 'yd'"). */
+START_TEST(test_y2dref_table_in_way) {
+  static const char *const table[] = {"summary.csv", "probes.csv", "broken.csv"};
+  for (int k = 0; k < 3; k++) {
+    char *dir = yft_deck_dir("f.deck", "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                                       "mesh rect bar m 0 0 1 0.1 4 2\ntimestep auto\n"
+                                       "dump y y2dref yd summary 1 probes 1 1:0\nrun 2\n");
+    char cmd[1600], p[600];
+    snprintf(cmd, sizeof cmd, "cd %s && mkdir -p yd/%s && %s f.deck >/dev/null 2>err.txt", dir, table[k], yft_binary());
+    int st = system(cmd), rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    snprintf(p, sizeof p, "%s/err.txt", dir);
+    char *err = yft_slurp(p, 1), want[200];
+    snprintf(want, sizeof want, "f.deck:4: error: dump y: cannot write 'yd/%s': Is a directory", table[k]);
+    ck_assert_msg(rc == YF_EXIT_IO && strstr(err, want), "%s: exit %d: %s", table[k], rc, err);
+    free(err);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    ck_assert_int_eq(system(cmd), 0);
+    free(dir);
+  }
+}
+END_TEST
+
 /* An output named on a FIFO that no process reads: exit 2 at once, naming the file and why.  It
  * waited for a reader for ever at the output's first write (a record's first row, the log at the
  * start), deaf to Ctrl-C and SIGTERM, since a plain open of a FIFO blocks until a reader opens it.
@@ -1422,6 +1447,7 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_state_hash);
   tcase_add_test(tc, test_fifo_without_reader);
   tcase_add_test(tc, test_rename_refused_no_tmp_left);
+  tcase_add_test(tc, test_y2dref_table_in_way);
   tcase_add_test(tc, test_output_to_own_stdout);
   suite_add_tcase(su, tc);
   return su;

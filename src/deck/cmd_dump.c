@@ -136,6 +136,8 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
     if (bad) {
       int e = errno;
       output_remove_dump(s, id); /* r goes with it: the folder's name from the deck's word */
+      if (bad >= 3) /* a table in the way: named, not the folder */
+        yf_io_error(&a->loc, "dump %s: cannot write '%s/%s': %s", id, a->w[2], files[bad - 3], strerror(e));
       yf_io_error(&a->loc, "dump %s: cannot %s '%s': %s", id, bad == 1 ? "create directory" : "write in directory",
                   a->w[2], strerror(e));
     }

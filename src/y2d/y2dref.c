@@ -165,9 +165,13 @@ int y2dref_dir_check(const char *dir) {
     p[i] = c;
   }
   if (!rc && !missing) { /* there already: its files can be written in it */
-    char f[4096];
-    snprintf(f, sizeof f, "%s/%s", dir, Y2DREF_SUMMARY);
-    if (!yf_can_create(f)) rc = 2;
+    static const char *const tables[] = {Y2DREF_SUMMARY, Y2DREF_PROBES, Y2DREF_BROKEN};
+    for (int k = 0; k < 3 && !rc; k++) { /* (a folder named probes.csv failed the run's first step) */
+      char f[4096];
+      struct stat st;
+      snprintf(f, sizeof f, "%s/%s", dir, tables[k]);
+      if (!yf_can_create(f)) rc = lstat(f, &st) == 0 ? 3 + k : 2;
+    }
   }
   int e = errno;
   free(p);
