@@ -1413,6 +1413,45 @@ START_TEST(test_output_to_own_stdout) {
 }
 END_TEST
 
+/* The log on a full disk: exit 2 with the cause when it fills, and a summary (elsewhere) that says
+ * io_error with that reason.  The run went on to its end, its summary said "ok" next to exit 2,
+ * and the message gave a stale errno ("No such file or directory"). */
+START_TEST(test_log_full_disk) {
+  mk_tmpdir();
+  yft_put_file(tmpdir, "d.deck", "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 0.2 4 2\n"
+                                 "timestep auto\nthermo 1\nrun 20000\n");
+  char cmd[2048];
+  snprintf(cmd, sizeof cmd, "unshare -rm sh -c 'mkdir -p %s/t && mount -t tmpfs -o size=64k tmpfs %s/t' 2>/dev/null",
+           tmpdir, tmpdir);
+  if (system(cmd) != 0) { /* no mount namespace here: nothing to fill */
+    rm_tmpdir();
+    return;
+  }
+  snprintf(cmd, sizeof cmd,
+           "cd %s && unshare -rm sh -c 'mkdir -p t && mount -t tmpfs -o size=16k tmpfs t && "
+           "OMP_NUM_THREADS=1 %s -in d.deck -log t/log.txt -summary s.json >/dev/null 2>err.txt; echo $? > code'",
+           tmpdir, yft_binary());
+  ck_assert_int_eq(system(cmd), 0);
+  char p[300];
+  snprintf(p, sizeof p, "%s/code", tmpdir);
+  char *c = slurp(p), *e, *js;
+  snprintf(p, sizeof p, "%s/err.txt", tmpdir);
+  e = slurp(p);
+  snprintf(p, sizeof p, "%s/s.json", tmpdir);
+  js = slurp(p);
+  ck_assert_msg(atoi(c) == YF_EXIT_IO && strstr(e, "-log: cannot write 't/log.txt': No space left on device"),
+                "exit %s: %s", c, e);
+  ck_assert_msg(js && strstr(js, "\"status\": \"io_error\"") && strstr(js, "No space left on device"), "summary: %s", js);
+  /* it stopped when the log filled (16 KB hold about 130 thermo lines), not at the run's end */
+  const char *st = strstr(js, "\"steps\": ");
+  ck_assert_msg(st && atol(st + 9) < 20000, "summary: %s", js);
+  free(c);
+  free(e);
+  free(js);
+  rm_tmpdir();
+}
+END_TEST
+
 Suite *output_suite(void) {
   Suite *su = suite_create("output");
   TCase *tc = tcase_create("h5");
@@ -1439,6 +1478,7 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_y2dref_full_disk);
   tcase_add_test(tc, test_record_full_disk);
   tcase_add_test(tc, test_csv_index_full_disk);
+  tcase_add_test(tc, test_log_full_disk);
   suite_add_tcase(su, tc);
   tc = tcase_create("summary");
   tcase_add_test(tc, test_summary_keys);
