@@ -1320,6 +1320,30 @@ START_TEST(test_y2dref_table_in_way) {
 }
 END_TEST
 
+/* A folder where a frame or the index is written before its rename (out.xmf.tmp/): the error at
+ * the dump's line names it; it said "cannot write 'out.xmf': Is a directory" with no out.xmf
+ * there. */
+START_TEST(test_tmp_in_way_named) {
+  static const char *const tmp[] = {"out.xmf.tmp", "out_000000.h5.tmp", "r.a.tmp"};
+  for (int k = 0; k < 3; k++) {
+    char *dir = yft_deck_dir("f.deck", "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                                       "mesh rect bar m 0 0 1 0.1 4 2\ntimestep auto\n"
+                                       "dump d h5 1 out.h5\nrestart every 2 r\nrun 2\n");
+    char cmd[1600], p[600];
+    snprintf(cmd, sizeof cmd, "cd %s && mkdir %s && %s f.deck >/dev/null 2>err.txt", dir, tmp[k], yft_binary());
+    int st = system(cmd), rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    snprintf(p, sizeof p, "%s/err.txt", dir);
+    char *err = yft_slurp(p, 1), want[200];
+    snprintf(want, sizeof want, "'%s', where it is written before it is renamed, is in the way: Is a directory", tmp[k]);
+    ck_assert_msg(rc == YF_EXIT_IO && strstr(err, want), "%s: exit %d: %s", tmp[k], rc, err);
+    free(err);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    ck_assert_int_eq(system(cmd), 0);
+    free(dir);
+  }
+}
+END_TEST
+
 /* An output named on a FIFO that no process reads: exit 2 at once, naming the file and why.  It
  * waited for a reader for ever at the output's first write (a record's first row, the log at the
  * start), deaf to Ctrl-C and SIGTERM, since a plain open of a FIFO blocks until a reader opens it.
@@ -1488,6 +1512,7 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_fifo_without_reader);
   tcase_add_test(tc, test_rename_refused_no_tmp_left);
   tcase_add_test(tc, test_y2dref_table_in_way);
+  tcase_add_test(tc, test_tmp_in_way_named);
   tcase_add_test(tc, test_output_to_own_stdout);
   suite_add_tcase(su, tc);
   return su;

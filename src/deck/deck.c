@@ -1363,5 +1363,15 @@ void arg_writable(const YfArgs *a, const char *what, const char *fmt, ...) {
   va_start(ap, fmt);
   vsnprintf(path, sizeof path, fmt, ap);
   va_end(ap);
-  if (!yf_can_create(path)) yf_io_error(&a->loc, "%s: cannot write '%s': %s", what, path, strerror(errno));
+  if (yf_can_create(path)) return;
+  int e = errno;
+  /* the file is written as PATH.tmp first: what is in the way may be that, not PATH (a folder
+   * out.xmf.tmp was reported as "cannot write 'out.xmf': Is a directory", with no out.xmf there) */
+  struct stat st;
+  char tmp[4200];
+  snprintf(tmp, sizeof tmp, "%s.tmp", path);
+  if (lstat(path, &st) != 0 && lstat(tmp, &st) == 0)
+    yf_io_error(&a->loc, "%s: cannot write '%s': '%s', where it is written before it is renamed, is in the way: %s",
+                what, path, tmp, strerror(e));
+  yf_io_error(&a->loc, "%s: cannot write '%s': %s", what, path, strerror(e));
 }
