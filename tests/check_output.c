@@ -680,6 +680,15 @@ START_TEST(test_h5_name_not_utf8) {
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
   ck_assert_int_eq(system(cmd), 0);
   free(dir);
+  /* the dump's id names the series in the index: the same */
+  snprintf(deck, sizeof deck, "%sdump \xe9 h5 1 out.h5\nrun 1\n", head);
+  rc = yft_run_binary("f.deck", deck, "-log none", &err, &dir);
+  ck_assert_msg(rc == YF_EXIT_DECK && strstr(err, "f.deck:4: error: dump: ") &&
+                strstr(err, "the dump id is not UTF-8 text (byte 1 of it is 0xe9)"), "exit %d: %s", rc, err);
+  free(err);
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  ck_assert_int_eq(system(cmd), 0);
+  free(dir);
   snprintf(deck, sizeof deck, "%sdump d h5 1 \"r\xc3\xa9s ultats&<x>.h5\"\nrun 1\n", head);
   rc = yft_run_binary("f.deck", deck, "-log none", &err, &dir);
   ck_assert_msg(rc == 0, "exit %d: %s", rc, err);

@@ -179,6 +179,10 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
   const char *base = strrchr(path, '/');
   if (style == YF_DUMP_H5 && strchr(base ? base + 1 : path, ':'))
     arg_error(a, 3, "the file name may not contain ':' (XDMF uses it to separate file and dataset)");
+  long badid = style == YF_DUMP_H5 ? not_xml_text(id) : -1; /* the index's series is named by it */
+  if (badid >= 0)
+    arg_error(a, 0, "the dump id is not UTF-8 text (byte %ld of it is 0x%02x): the XDMF index names its series by it, "
+              "in XML, which holds UTF-8 text only; give an ASCII id", badid + 1, (unsigned char)id[badid]);
   long bad = style == YF_DUMP_H5 ? not_xml_text(base ? base + 1 : path) : -1;
   if (bad >= 0)
     arg_error(a, 3, "the file name is not UTF-8 text (byte %ld of it is 0x%02x): the XDMF index names its frame files in "
