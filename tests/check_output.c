@@ -963,6 +963,29 @@ START_TEST(test_summary_escaping) {
 }
 END_TEST
 
+/* A metrics region named with a Latin-1 byte: its name is a key inside the summary's
+ * crack_length_by_region, written as it was, so the summary was not UTF-8 (Python's json.load
+ * failed on it); it is escaped as every summary string is (U+FFFD for the byte). */
+START_TEST(test_summary_region_name_escaped) {
+  char *err, *dir;
+  int rc = yft_run_binary("f.deck", "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect bar m 0 0 1 0.1 4 2\n"
+                          "jointprop cj ft 1e5 fs 1e5 gf 1 pen 1e10 law munjiza\nfracture bar cj\n"
+                          "region r box -1 -1 2 2\nmetrics body bar\nmetrics region z\xe9 r\ntimestep auto\nrun 1\n",
+                          "-summary s.json -log none", &err, &dir);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  char p[600];
+  snprintf(p, sizeof p, "%s/s.json", dir);
+  char *j = slurp(p);
+  ck_assert_msg(!strchr(j, '\xe9') && strstr(j, "\"crack_length_by_region\": {\"z\\ufffd\": {\"I\": 0"), "summary:\n%s", j);
+  free(j);
+  free(err);
+  char cmd[700];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  ck_assert_int_eq(system(cmd), 0);
+  free(dir);
+}
+END_TEST
+
 START_TEST(test_state_hash) {
   YfSim s;
   build(&s, 3);
@@ -1517,6 +1540,7 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_summary_keys);
   tcase_add_test(tc, test_summary_nonfinite);
   tcase_add_test(tc, test_summary_escaping);
+  tcase_add_test(tc, test_summary_region_name_escaped);
   tcase_add_test(tc, test_state_hash);
   tcase_add_test(tc, test_fifo_without_reader);
   tcase_add_test(tc, test_rename_refused_no_tmp_left);

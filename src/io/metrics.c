@@ -548,11 +548,15 @@ static void region_lengths(const YfSim *s, const YfBreak *rec, int n, const char
   }
   Str js = {0};
   sput(&js, "{");
-  for (int r = 0; r < M.nreg; r++)
+  for (int r = 0; r < M.nreg; r++) {
+    char nm[4 * sizeof M.reg[r].name + 8]; /* the deck's name as a JSON string: a Latin-1 byte or a quote in it made
+                                           the summary unreadable (not UTF-8, or not JSON) */
+    summary_json_string(nm, sizeof nm, M.reg[r].name);
     sput(&js,
-         "%s\"%s\": {\"I\": %.17g, \"II\": %.17g, \"mixed\": %.17g, \"total\": %.17g, \"inclined\": %.17g, "
+         "%s%s: {\"I\": %.17g, \"II\": %.17g, \"mixed\": %.17g, \"total\": %.17g, \"inclined\": %.17g, "
          "\"vertical\": %.17g, \"horizontal\": %.17g, \"count\": %d}",
-         r ? ", " : "", M.reg[r].name, rl[r][0], rl[r][1], rl[r][2], rl[r][3], rl[r][4], rl[r][5], rl[r][6], (int)rl[r][7]);
+         r ? ", " : "", nm, rl[r][0], rl[r][1], rl[r][2], rl[r][3], rl[r][4], rl[r][5], rl[r][6], (int)rl[r][7]);
+  }
   sput(&js, "}");
   snprintf(key, sizeof key, "%scrack_length_by_region", pfx);
   if (js.b) summary_add_raw(key, js.b);
