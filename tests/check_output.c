@@ -1376,6 +1376,36 @@ START_TEST(test_tmp_in_way_named) {
 }
 END_TEST
 
+/* A run continued by read_restart takes up its outputs' earlier rows by reading them: a record on
+ * /dev/stdout piped to another program ('yfdem c.deck | tee') was read too, which waited for ever
+ * for a writer (yfdem itself), hanging the run at its start.  Only a regular file is taken up. */
+START_TEST(test_continued_run_output_on_pipe) {
+  static const char head[] = "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect bar m 0 0 1 0.1 4 2\n"
+                             "timestep auto\nvelocity bar set 1 0\nrecord r 1 /dev/stdout step ke\n";
+  char deck[512];
+  snprintf(deck, sizeof deck, "%srun 5\nwrite_restart r.h5\n", head);
+  char *dir = yft_deck_dir("a.deck", deck);
+  snprintf(deck, sizeof deck, "%sread_restart r.h5\nrun 8 upto\n", head);
+  yft_put_file(dir, "c.deck", deck);
+  char cmd[2048], p[600];
+  snprintf(cmd, sizeof cmd, "cd %s && %s a.deck >/dev/null 2>&1 && { timeout -s KILL 20 %s c.deck 2>err.txt; "
+           "echo $? > code; } | cat > out.txt", dir, yft_binary(), yft_binary());
+  ck_assert_int_eq(system(cmd), 0);
+  snprintf(p, sizeof p, "%s/code", dir);
+  char *code = yft_slurp(p, 1);
+  snprintf(p, sizeof p, "%s/out.txt", dir);
+  char *out = yft_slurp(p, 1);
+  /* 1000 kg/m^3 x 0.1 m^2 at 1 m/s: ke = 50 J/m */
+  ck_assert_msg(atoi(code) == 0 && strstr(out, "step,time,step,ke\n") && strstr(out, "\n8,"),
+                "exit %s (137: killed waiting), stdout:\n%s", code, out);
+  free(code);
+  free(out);
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  ck_assert_int_eq(system(cmd), 0);
+  free(dir);
+}
+END_TEST
+
 /* An output named on a FIFO that no process reads: exit 2 at once, naming the file and why.  It
  * waited for a reader for ever at the output's first write (a record's first row, the log at the
  * start), deaf to Ctrl-C and SIGTERM, since a plain open of a FIFO blocks until a reader opens it.
@@ -1537,6 +1567,7 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_log_full_disk);
   suite_add_tcase(su, tc);
   tc = tcase_create("summary");
+  tcase_set_timeout(tc, 120); /* (the FIFO and pipe cases kill a yfdem stuck waiting after 20 s) */
   tcase_add_test(tc, test_summary_keys);
   tcase_add_test(tc, test_summary_nonfinite);
   tcase_add_test(tc, test_summary_escaping);
@@ -1547,6 +1578,7 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_y2dref_table_in_way);
   tcase_add_test(tc, test_tmp_in_way_named);
   tcase_add_test(tc, test_output_to_own_stdout);
+  tcase_add_test(tc, test_continued_run_output_on_pipe);
   suite_add_tcase(su, tc);
   return su;
 }

@@ -62,6 +62,12 @@ char *yf_csv_field(const char *s) {
   return out;
 }
 
+char *yf_read_output(const char *path, size_t *len, const char *what) {
+  struct stat st;
+  if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) return NULL;
+  return yf_read_file(path, len, what);
+}
+
 const char *yf_strerror(int e) {
   return e == ENXIO ? "no process reads this FIFO (start its reader first, or name a file)" : strerror(e);
 }

@@ -23,6 +23,11 @@ FILE *yf_fopen_w(const char *path);
  * when it holds a comma, a quote or a line break ('max(ke,strain)' was two header columns over
  * one value, a file 'a,b_000000.csv' two fields of the csv dump's index). */
 char *yf_csv_field(const char *s);
+/* The text of an output written earlier, for a continued run to take up (yf_read_file), or NULL
+ * when PATH is not a regular file: a FIFO, a terminal or /dev/stdout (a pipe) has nothing to take
+ * up, and reading it waited for ever for a writer (a continued run's record on /dev/stdout piped
+ * to tee hung at the run's start). */
+char *yf_read_output(const char *path, size_t *len, const char *what);
 /* strerror, with ENXIO (from the opens here: a FIFO that no process reads) said as such. */
 const char *yf_strerror(int e);
 

@@ -257,7 +257,7 @@ static void record_open(Record *r, const char *keep) {
 static int adopt(Record *r, long before) {
   r->adopted = 1;
   size_t len;
-  char *t = yf_read_file(r->path, &len, "record file");
+  char *t = yf_read_output(r->path, &len, "record file");
   if (!t) return 0;
   char *h = record_head(r);
   size_t hl = strlen(h);

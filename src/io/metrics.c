@@ -124,7 +124,7 @@ static const char log_head[] = "step,time,kinetic,strain,external_work,damping,j
  * is missing or not one yfdem wrote starts afresh. */
 static void adopt_log(const YfSim *s) {
   size_t len;
-  char *t = yf_read_file(M.log_path, &len, "metrics log");
+  char *t = yf_read_output(M.log_path, &len, "metrics log");
   if (!t) return;
   if (!strncmp(t, log_head, sizeof log_head - 1)) {
     size_t n = yf_rows_before(t + sizeof log_head - 1, s->step);

@@ -837,7 +837,7 @@ static long adopt_before(const YfSim *s, const YfDump *d) { return s->restored_b
  * last one (LONG_MIN: none). */
 static long index_adopt(const char *path, const char *frame_tag, long before, YfText *out, long *last) {
   size_t len;
-  char *t = yf_read_file(path, &len, "index text");
+  char *t = yf_read_output(path, &len, "index text");
   if (!t) return 0;
   static const char open_tag[] = "CollectionType=\"Temporal\">\n", close_tag[] = "    </Grid>\n  </Domain>",
                     step_tag[] = "<Information Name=\"step\" Value=\"";
@@ -920,7 +920,7 @@ static long h5_adopt(YfDump *d, long before, long *last) {
 static long csv_adopt(YfDump *d, long before, long *last) {
   char *ip = str_printf("%s_frames.csv", d->path);
   size_t len;
-  char *t = yf_read_file(ip, &len, "index text");
+  char *t = yf_read_output(ip, &len, "index text");
   long kept = 0;
   char *keep_end = NULL;
   static const char head[] = "frame,step,time,file\n";

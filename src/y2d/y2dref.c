@@ -86,7 +86,7 @@ static void check_write(YfRows *w, const YfY2dRef *r, const char *name) {
  * another (its header differs: other probes), to be begun afresh. */
 static int adopt_csv(YfY2dRef *r, YfRows *w, const char *path) {
   size_t len;
-  char *t = r->cont_step >= 0 ? yf_read_file(path, &len, "y2dref table") : NULL;
+  char *t = r->cont_step >= 0 ? yf_read_output(path, &len, "y2dref table") : NULL;
   if (!t) return 0;
   if (len < w->len || memcmp(t, w->row, w->len) != 0) {
     free(t);
