@@ -21,6 +21,7 @@
 #include "report.h"
 #include "run.h"
 #include "sim.h"
+#include "wfile.h"
 #include "summary.h"
 #include "threads.h"
 #include "y2d_model.h"
@@ -63,18 +64,23 @@ static void usage(FILE *fp) {
 static void finish(int code, const char *message) {
   output_close_all(&g_sim);
   run_summary_update(&g_sim);
+  /* the log's state before the summary's: a log that failed makes the summary say io_error */
+  if (g_sim.log && !g_sim.log_failed && (fflush(g_sim.log) != 0 || ferror(g_sim.log))) {
+    g_sim.log_failed = errno ? errno : EIO;
+    yf_output_error("-log: cannot write '%s': %s", g_log_path, strerror(g_sim.log_failed));
+  }
   code = yf_exit_code(code);
   message = yf_last_message();
   if (g_sim.summary_path[0] && summary_write(&g_sim, g_sim.summary_path, code, message) < 0)
-    yf_output_error("-summary: cannot write '%s': %s", g_sim.summary_path, strerror(errno));
+    yf_output_error("-summary: cannot write '%s': %s", g_sim.summary_path, yf_strerror(errno));
   if (g_sim.log) {
     message = yf_last_message();
-    if (message && *message) fprintf(g_sim.log, "%s\n", message);
+    if (message && *message && !g_sim.log_failed) fprintf(g_sim.log, "%s\n", message);
     yf_set_log(NULL);
-    int bad = ferror(g_sim.log);
-    if (fclose(g_sim.log) != 0) bad = 1;
+    int bad = ferror(g_sim.log) || fflush(g_sim.log) != 0, e = errno;
+    if (fclose(g_sim.log) != 0 && !bad) bad = 1, e = errno;
     g_sim.log = NULL;
-    if (bad) yf_output_error("-log: cannot write '%s': %s", g_log_path, strerror(errno ? errno : EIO));
+    if (bad && !g_sim.log_failed) yf_output_error("-log: cannot write '%s': %s", g_log_path, strerror(e ? e : EIO));
   }
 }
 
@@ -241,7 +247,7 @@ int main(int argc, char **argv) {
       snprintf(g_sim.summary_path, sizeof g_sim.summary_path, "%s", argv[++i]);
       if (!yf_can_create(g_sim.summary_path)) { /* now, not after the run */
         g_sim.summary_path[0] = 0;
-        yf_io_error(NULL, "-summary: cannot write '%s': %s", argv[i], strerror(errno));
+        yf_io_error(NULL, "-summary: cannot write '%s': %s", argv[i], yf_strerror(errno));
       }
     } else if (!strcmp(o, "-threads") && i + 1 < argc) {
       const char *v = argv[++i];
@@ -319,10 +325,11 @@ int main(int argc, char **argv) {
   }
   if (strcmp(log_path, "none") != 0 && yf_writer()) { /* MPI: rank 0 writes the log */
     g_log_path = log_path;
-    g_sim.log = fopen(log_path, "w");
+    g_sim.log_name = log_path;
+    g_sim.log = yf_fopen_w(log_path); /* a FIFO with no reader: an error, not a wait (wfile.h) */
     if (!g_sim.log)
       yf_io_error(NULL, "cannot open log file '%s': %s (give another with -log FILE, or -log none)", log_path,
-                  strerror(errno));
+                  yf_strerror(errno));
     yf_set_log(g_sim.log);
   }
   deck_set_echo(g_deck, echo);

@@ -290,6 +290,17 @@ START_TEST(test_inverted_element_numerical_failure) {
 }
 END_TEST
 
+/* A state that overflows is the run's numerical failure (exit 3, its step) whatever output reads
+ * it first: a record of 'strain' every step met the overflow before the step's own checks and
+ * called it a deck error at the record line (exit 1, "expression 'strain': strain gives a
+ * non-finite result"), the summary saying deck_error. */
+START_TEST(test_record_reads_overflow_numerical_failure) {
+  const char *deck = BAR "group tipn node nearest 1 0.1\nvelocity tipn set -3000 -3000\ntimestep auto\n"
+                         "record rec 1 rec.csv step strain ke\nrun 100\n";
+  expect_fail(deck, 3, "numerical failure at step 1:", "strain energy");
+}
+END_TEST
+
 /* issue 20: nothing printed or written holds inf or nan.  A metrics log with no fracturing body
  * has no sigma1_max to give (it was -inf on every row): the field is empty.  A velocity so large
  * that the body leaves what doubles can resolve is named as such (it printed inf and -nan thermo
@@ -494,6 +505,7 @@ Suite *errors_suite(void) {
   tcase_add_test(t, test_sizes_beyond_doubles);
   tcase_add_test(t, test_inverted_element_numerical_failure);
   tcase_add_test(t, test_never_inf_nan);
+  tcase_add_test(t, test_record_reads_overflow_numerical_failure);
   tcase_add_test(t, test_gmsh_coincident_nodes_warned);
   tcase_add_test(t, test_material_constants);
   tcase_add_test(t, test_point_load_on_node_without_triangle);

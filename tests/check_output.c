@@ -601,6 +601,109 @@ START_TEST(test_dump_prefix_names_a_file) {
 }
 END_TEST
 
+/* Two outputs on one file through a link to a folder: 'link/out.h5' with link -> . is out.h5,
+ * and sub/../out.h5 through a linked sub is where the link points.  They were told apart by their
+ * text, and both dumps wrote the same frames and index, each over the other's. */
+START_TEST(test_claims_through_links) {
+  static const struct { const char *setup, *lines, *want; } cases[] = {
+      {"ln -s . here", "dump a h5 1 here/out.h5\ndump b h5 1 out.h5", "dump: 'out.h5': a file of it is already written by dump 'a'"},
+      {"mkdir sub && ln -s sub l", "dump a csv 1 l/c\nrecord b 1 sub/c_frames.csv step ke",
+       "record: 'sub/c_frames.csv': already written by dump 'a'"},
+      {"mkdir -p sub/x && ln -s sub/x l", "dump a h5 1 l/../out.h5\ndump b h5 1 sub/out.h5",
+       "dump: 'sub/out.h5': a file of it is already written by dump 'a'"},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+    char deck[512], cmd[1600], p[600];
+    snprintf(deck, sizeof deck, "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect bar m 0 0 1 0.1 4 2\n"
+             "timestep auto\n%s\nrun 2\n", cases[k].lines);
+    char *dir = yft_deck_dir("f.deck", deck);
+    snprintf(cmd, sizeof cmd, "cd %s && %s && %s f.deck >/dev/null 2>err.txt", dir, cases[k].setup, yft_binary());
+    int st = system(cmd), rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    snprintf(p, sizeof p, "%s/err.txt", dir);
+    char *err = yft_slurp(p, 1), want[400];
+    snprintf(want, sizeof want, "f.deck:5: error: %s", cases[k].want);
+    ck_assert_msg(rc == YF_EXIT_DECK && strstr(err, want), "%s: exit %d, want '%s': %s", cases[k].lines, rc, want, err);
+    free(err);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    ck_assert_int_eq(system(cmd), 0);
+    free(dir);
+  }
+}
+END_TEST
+
+/* A record of an expression with a comma, and a csv dump whose PREFIX has one: each is one CSV
+ * field, quoted (RFC 4180).  The header 'step,time,max(ke,strain)' had one column more than its
+ * rows, and a row of the index PREFIX_frames.csv one field more than its header, so a CSV reader
+ * (pandas, Python's csv) paired values with the wrong names. */
+START_TEST(test_csv_fields_with_commas) {
+  char *err, *dir;
+  int rc = yft_run_binary("f.deck", "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                          "mesh rect bar m 0 0 1 0.1 4 2\ntimestep auto\nvelocity bar set 1 0\n"
+                          "dump c csv 1 \"a,b\"\nrecord r 1 r.csv \"max(ke,strain)\" ke\nrun 1\n", "", &err, &dir);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  char p[600];
+  snprintf(p, sizeof p, "%s/r.csv", dir);
+  char *r = yft_slurp(p, 1);
+  /* 1000 kg/m^3 x 0.1 m^2 at 1 m/s: ke = 50 J/m */
+  ck_assert_msg(!strncmp(r, "step,time,\"max(ke,strain)\",ke\n0,0,50,50\n", 39), "r.csv:\n%s", r);
+  snprintf(p, sizeof p, "%s/a,b_frames.csv", dir);
+  char *ix = yft_slurp(p, 1);
+  ck_assert_msg(!strncmp(ix, "frame,step,time,file\n0,0,0,\"a,b_000000.csv\"\n", 44), "a,b_frames.csv:\n%s", ix);
+  free(r);
+  free(ix);
+  free(err);
+  char cmd[700];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  ck_assert_int_eq(system(cmd), 0);
+  free(dir);
+}
+END_TEST
+
+/* An h5 dump's file name goes into its XDMF index, XML, which holds UTF-8 text only: a Latin-1
+ * name ('\xe9t\xe9.h5') made an index that is not well-formed, and ParaView's reader aborted on
+ * it.  It is refused at its line (nothing written); a UTF-8 name with spaces, accents and XML's
+ * special characters is written, escaped, into the index. */
+START_TEST(test_h5_name_not_utf8) {
+  static const char head[] = "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect bar m 0 0 1 0.1 4 2\n"
+                             "timestep auto\n";
+  char deck[512], *err, *dir;
+  snprintf(deck, sizeof deck, "%sdump d h5 1 \xe9t\xe9.h5\nrun 1\n", head);
+  int rc = yft_run_binary("f.deck", deck, "-log none", &err, &dir);
+  ck_assert_msg(rc == YF_EXIT_DECK && strstr(err, "f.deck:4: error: dump: ") &&
+                strstr(err, "the file name is not UTF-8 text (byte 1 of it is 0xe9)"), "exit %d: %s", rc, err);
+  static const char *const keep[] = {"f.deck", "stderr.txt", NULL};
+  char left[400];
+  other_entries(dir, keep, left, sizeof left);
+  ck_assert_msg(!left[0], "left %s", left);
+  free(err);
+  char cmd[700];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  ck_assert_int_eq(system(cmd), 0);
+  free(dir);
+  /* the dump's id names the series in the index: the same */
+  snprintf(deck, sizeof deck, "%sdump \xe9 h5 1 out.h5\nrun 1\n", head);
+  rc = yft_run_binary("f.deck", deck, "-log none", &err, &dir);
+  ck_assert_msg(rc == YF_EXIT_DECK && strstr(err, "f.deck:4: error: dump: ") &&
+                strstr(err, "the dump id is not UTF-8 text (byte 1 of it is 0xe9)"), "exit %d: %s", rc, err);
+  free(err);
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  ck_assert_int_eq(system(cmd), 0);
+  free(dir);
+  snprintf(deck, sizeof deck, "%sdump d h5 1 \"r\xc3\xa9s ultats&<x>.h5\"\nrun 1\n", head);
+  rc = yft_run_binary("f.deck", deck, "-log none", &err, &dir);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  char p[700];
+  snprintf(p, sizeof p, "%s/r\xc3\xa9s ultats&<x>.xmf", dir);
+  char *x = yft_slurp(p, 1);
+  ck_assert_msg(strstr(x, ">r\xc3\xa9s ultats&amp;&lt;x&gt;_000001.h5:/x</DataItem>"), "index:\n%.600s", x);
+  free(x);
+  free(err);
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  ck_assert_int_eq(system(cmd), 0);
+  free(dir);
+}
+END_TEST
+
 /* ---------------------------------------------------------------- I/O errors */
 
 static YfSim *cleanup_sim;
@@ -857,6 +960,29 @@ START_TEST(test_summary_escaping) {
   free(j);
   free_sim(&s);
   rm_tmpdir();
+}
+END_TEST
+
+/* A metrics region named with a Latin-1 byte: its name is a key inside the summary's
+ * crack_length_by_region, written as it was, so the summary was not UTF-8 (Python's json.load
+ * failed on it); it is escaped as every summary string is (U+FFFD for the byte). */
+START_TEST(test_summary_region_name_escaped) {
+  char *err, *dir;
+  int rc = yft_run_binary("f.deck", "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect bar m 0 0 1 0.1 4 2\n"
+                          "jointprop cj ft 1e5 fs 1e5 gf 1 pen 1e10 law munjiza\nfracture bar cj\n"
+                          "region r box -1 -1 2 2\nmetrics body bar\nmetrics region z\xe9 r\ntimestep auto\nrun 1\n",
+                          "-summary s.json -log none", &err, &dir);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  char p[600];
+  snprintf(p, sizeof p, "%s/s.json", dir);
+  char *j = slurp(p);
+  ck_assert_msg(!strchr(j, '\xe9') && strstr(j, "\"crack_length_by_region\": {\"z\\ufffd\": {\"I\": 0"), "summary:\n%s", j);
+  free(j);
+  free(err);
+  char cmd[700];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  ck_assert_int_eq(system(cmd), 0);
+  free(dir);
 }
 END_TEST
 
@@ -1169,6 +1295,249 @@ START_TEST(test_csv_index_full_disk) {
 }
 END_TEST
 
+/* A frame or an index that cannot be renamed into place (a directory there; an immutable file
+ * does the same): exit 2 naming it, and no NAME.tmp left beside the frames (README: "no
+ * half-written NAME.tmp is left"); it was, complete but under its .tmp name.  The index lists only
+ * frames that are there.  A folder named as the crack index is refused at the dump's line, as one
+ * named as the index is (it failed the first frame, that frame's file left unlisted). */
+START_TEST(test_rename_refused_no_tmp_left) {
+  static const char *const in_way[] = {"out_000002.h5", "out_cracks.xmf"};
+  for (int k = 0; k < 2; k++) {
+    char *dir = yft_deck_dir("f.deck", "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                                       "mesh rect bar m 0 0 1 0.1 4 2\njointprop cj ft 1e5 fs 1e5 gf 1 pen 1e10 law munjiza\n"
+                                       "fracture bar cj\ntimestep auto\ndump a h5 1 out.h5\nrun 4\n");
+    char cmd[2048], p[600];
+    snprintf(cmd, sizeof cmd, "cd %s && mkdir %s && %s f.deck >/dev/null 2>err.txt", dir, in_way[k], yft_binary());
+    int st = system(cmd), code = WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+    snprintf(p, sizeof p, "%s/err.txt", dir);
+    char *e = yft_slurp(p, 1), want[128];
+    snprintf(want, sizeof want, "%s'%s': Is a directory", k ? "f.deck:6: error: dump a: cannot write " : "to ", in_way[k]);
+    ck_assert_msg(code == YF_EXIT_IO && strstr(e, want), "%s in the way: exit %d: %s", in_way[k], code, e);
+    free(e);
+    snprintf(cmd, sizeof cmd, "cd %s && ls | grep '\\.tmp$'", dir);
+    ck_assert_msg(system(cmd) != 0, "%s in the way: a .tmp file was left", in_way[k]);
+    /* every frame out.xmf lists is there */
+    snprintf(cmd, sizeof cmd, "cd %s && [ ! -e out.xmf ] || for f in $(grep -o 'out_[0-9]*\\.h5' out.xmf | sort -u); do "
+             "[ -f $f ] || exit 1; done", dir);
+    ck_assert_msg(system(cmd) == 0, "%s in the way: out.xmf lists a frame that is not there", in_way[k]);
+    snprintf(cmd, sizeof cmd, "chmod -R u+w %s; rm -rf %s", dir, dir);
+    if (system(cmd)) {}
+    free(dir);
+  }
+}
+END_TEST
+
+/* A y2dref dump whose table is a folder in its folder (yd/probes.csv/): exit 2 at the dump's line
+ * naming the table.  It was found at the run's first step, without the line, after the other
+ * outputs began (summary.csv was checked at the line, but named the folder: "cannot write in
+ * directory 'yd'"). */
+START_TEST(test_y2dref_table_in_way) {
+  static const char *const table[] = {"summary.csv", "probes.csv", "broken.csv"};
+  for (int k = 0; k < 3; k++) {
+    char *dir = yft_deck_dir("f.deck", "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                                       "mesh rect bar m 0 0 1 0.1 4 2\ntimestep auto\n"
+                                       "dump y y2dref yd summary 1 probes 1 1:0\nrun 2\n");
+    char cmd[1600], p[600];
+    snprintf(cmd, sizeof cmd, "cd %s && mkdir -p yd/%s && %s f.deck >/dev/null 2>err.txt", dir, table[k], yft_binary());
+    int st = system(cmd), rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    snprintf(p, sizeof p, "%s/err.txt", dir);
+    char *err = yft_slurp(p, 1), want[200];
+    snprintf(want, sizeof want, "f.deck:4: error: dump y: cannot write 'yd/%s': Is a directory", table[k]);
+    ck_assert_msg(rc == YF_EXIT_IO && strstr(err, want), "%s: exit %d: %s", table[k], rc, err);
+    free(err);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    ck_assert_int_eq(system(cmd), 0);
+    free(dir);
+  }
+}
+END_TEST
+
+/* A folder where a frame or the index is written before its rename (out.xmf.tmp/): the error at
+ * the dump's line names it; it said "cannot write 'out.xmf': Is a directory" with no out.xmf
+ * there. */
+START_TEST(test_tmp_in_way_named) {
+  static const char *const tmp[] = {"out.xmf.tmp", "out_000000.h5.tmp", "r.a.tmp"};
+  for (int k = 0; k < 3; k++) {
+    char *dir = yft_deck_dir("f.deck", "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                                       "mesh rect bar m 0 0 1 0.1 4 2\ntimestep auto\n"
+                                       "dump d h5 1 out.h5\nrestart every 2 r\nrun 2\n");
+    char cmd[1600], p[600];
+    snprintf(cmd, sizeof cmd, "cd %s && mkdir %s && %s f.deck >/dev/null 2>err.txt", dir, tmp[k], yft_binary());
+    int st = system(cmd), rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    snprintf(p, sizeof p, "%s/err.txt", dir);
+    char *err = yft_slurp(p, 1), want[200];
+    snprintf(want, sizeof want, "'%s', where it is written before it is renamed, is in the way: Is a directory", tmp[k]);
+    ck_assert_msg(rc == YF_EXIT_IO && strstr(err, want), "%s: exit %d: %s", tmp[k], rc, err);
+    free(err);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    ck_assert_int_eq(system(cmd), 0);
+    free(dir);
+  }
+}
+END_TEST
+
+/* A run continued by read_restart takes up its outputs' earlier rows by reading them: a record on
+ * /dev/stdout piped to another program ('yfdem c.deck | tee') was read too, which waited for ever
+ * for a writer (yfdem itself), hanging the run at its start.  Only a regular file is taken up. */
+START_TEST(test_continued_run_output_on_pipe) {
+  static const char head[] = "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect bar m 0 0 1 0.1 4 2\n"
+                             "timestep auto\nvelocity bar set 1 0\nrecord r 1 /dev/stdout step ke\n";
+  char deck[512];
+  snprintf(deck, sizeof deck, "%srun 5\nwrite_restart r.h5\n", head);
+  char *dir = yft_deck_dir("a.deck", deck);
+  snprintf(deck, sizeof deck, "%sread_restart r.h5\nrun 8 upto\n", head);
+  yft_put_file(dir, "c.deck", deck);
+  char cmd[2048], p[600];
+  snprintf(cmd, sizeof cmd, "cd %s && %s a.deck >/dev/null 2>&1 && { timeout -s KILL 20 %s c.deck 2>err.txt; "
+           "echo $? > code; } | cat > out.txt", dir, yft_binary(), yft_binary());
+  ck_assert_int_eq(system(cmd), 0);
+  snprintf(p, sizeof p, "%s/code", dir);
+  char *code = yft_slurp(p, 1);
+  snprintf(p, sizeof p, "%s/out.txt", dir);
+  char *out = yft_slurp(p, 1);
+  /* 1000 kg/m^3 x 0.1 m^2 at 1 m/s: ke = 50 J/m */
+  ck_assert_msg(atoi(code) == 0 && strstr(out, "step,time,step,ke\n") && strstr(out, "\n8,"),
+                "exit %s (137: killed waiting), stdout:\n%s", code, out);
+  free(code);
+  free(out);
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  ck_assert_int_eq(system(cmd), 0);
+  free(dir);
+}
+END_TEST
+
+/* An output named on a FIFO that no process reads: exit 2 at once, naming the file and why.  It
+ * waited for a reader for ever at the output's first write (a record's first row, the log at the
+ * start), deaf to Ctrl-C and SIGTERM, since a plain open of a FIFO blocks until a reader opens it.
+ * With a reader the rows still stream through it (the reader gets the record's rows whole). */
+START_TEST(test_fifo_without_reader) {
+  static const struct { const char *setup, *lines, *args, *file; } cases[] = {
+      {"mkfifo r.csv", "record r 1 r.csv step ke\n", "", "r.csv"},
+      {"mkfifo c_frames.csv", "dump c csv 1 c\n", "", "c_frames.csv"},
+      {"mkfifo b.csv", "fracture_log b.csv\n", "", "b.csv"},
+      {"mkfifo m.csv", "metrics body bar\nmetrics log m.csv\n", "", "m.csv"},
+      {"mkdir yd && mkfifo yd/summary.csv", "dump y y2dref yd summary 1\n", "", "yd/summary.csv"},
+      {"mkfifo lg", "", "-log lg", "lg"},
+      {"mkfifo s.json", "", "-summary s.json", "s.json"},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+    char deck[1024];
+    snprintf(deck, sizeof deck, "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect bar m 0 0 1 0.1 4 2\n"
+             "jointprop cj ft 1e5 fs 1e5 gf 1 pen 1e10 law munjiza\nfracture bar cj\ntimestep auto\n%srun 4\n",
+             cases[k].lines);
+    char *dir = yft_deck_dir("f.deck", deck), cmd[2048];
+    /* KILL after 20 s: a process stuck in open() would outlive the test */
+    snprintf(cmd, sizeof cmd, "cd %s && %s && timeout -s KILL 20 %s %s f.deck >/dev/null 2>err.txt", dir,
+             cases[k].setup, yft_binary(), cases[k].args);
+    int st = system(cmd), code = WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+    char p[600];
+    snprintf(p, sizeof p, "%s/err.txt", dir);
+    char *e = yft_slurp(p, 1);
+    char want[128];
+    snprintf(want, sizeof want, "'%s': no process reads this FIFO", cases[k].file);
+    ck_assert_msg(code == YF_EXIT_IO && strstr(e, want), "%s: exit %d (137: killed waiting): %s", cases[k].file, code, e);
+    free(e);
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    if (system(cmd)) {}
+    free(dir);
+  }
+  /* with its reader: the record's rows go through whole */
+  char *dir = yft_deck_dir("f.deck", "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\n"
+                                     "mesh rect bar m 0 0 1 0.1 4 2\ntimestep auto\nrecord r 1 r.csv step ke\nrun 4\n");
+  char cmd[2048];
+  snprintf(cmd, sizeof cmd, "cd %s && mkfifo r.csv && { cat r.csv > got.txt & } && sleep 0.2 && "
+           "timeout -s KILL 20 %s f.deck >/dev/null 2>err.txt; rc=$?; wait; exit $rc", dir, yft_binary());
+  int st = system(cmd);
+  char p[600];
+  snprintf(p, sizeof p, "%s/err.txt", dir);
+  char *e = yft_slurp(p, 1);
+  ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) == 0, "with a reader: status %d: %s", st, e);
+  free(e);
+  snprintf(p, sizeof p, "%s/got.txt", dir);
+  char *got = yft_slurp(p, 1);
+  ck_assert_msg(!strncmp(got, "step,time,step,ke\n0,0,0,0\n", 26) && strstr(got, "\n4,"), "the reader got: %s", got);
+  free(got);
+  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+  if (system(cmd)) {}
+  free(dir);
+}
+END_TEST
+
+/* An output sent to yfdem's own standard output (/dev/stdout, with 'yfdem ... > out.txt') is
+ * appended to what was printed: it was opened with truncation, which cut out.txt to zero under
+ * the stream's position: the lines printed before the output's first write were lost or became a
+ * run of NUL bytes (grep took out.txt for a binary file). */
+START_TEST(test_output_to_own_stdout) {
+  static const struct { const char *line, *args, *want; } cases[] = {
+      {"record r 1 /dev/stdout step ke\n", "", "step,time,step,ke\n0,0,0,0\n"},
+      {"", "-summary /dev/stdout", "\"status\": \"ok\""},
+      {"", "-log /dev/stdout", "run 2\n"},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+    char deck[512];
+    snprintf(deck, sizeof deck, "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect bar m 0 0 1 0.1 4 2\n"
+             "timestep auto\n%srun 2\n", cases[k].line);
+    char *dir = yft_deck_dir("f.deck", deck), cmd[2048], p[600];
+    snprintf(cmd, sizeof cmd, "cd %s && %s %s f.deck >out.txt 2>&1", dir, yft_binary(), cases[k].args);
+    int st = system(cmd);
+    snprintf(p, sizeof p, "%s/out.txt", dir);
+    size_t n = 0;
+    FILE *f = fopen(p, "rb");
+    ck_assert_ptr_nonnull(f);
+    char *text = calloc(1, 1 << 20);
+    n = fread(text, 1, (1 << 20) - 1, f);
+    fclose(f);
+    ck_assert_msg(WIFEXITED(st) && WEXITSTATUS(st) == 0, "case %zu: status %d: %s", k, st, text);
+    ck_assert_msg(strlen(text) == n, "case %zu: a NUL byte at %zu of %zu in out.txt", k, strlen(text), n);
+    ck_assert_msg(strstr(text, "timestep auto: dt =") && strstr(text, cases[k].want),
+                  "case %zu: out.txt lacks the lines printed before, or the output:\n%s", k, text);
+    free(text);
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    if (system(cmd)) {}
+    free(dir);
+  }
+}
+END_TEST
+
+/* The log on a full disk: exit 2 with the cause when it fills, and a summary (elsewhere) that says
+ * io_error with that reason.  The run went on to its end, its summary said "ok" next to exit 2,
+ * and the message gave a stale errno ("No such file or directory"). */
+START_TEST(test_log_full_disk) {
+  mk_tmpdir();
+  yft_put_file(tmpdir, "d.deck", "material m elastic rho 1000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 0.2 4 2\n"
+                                 "timestep auto\nthermo 1\nrun 20000\n");
+  char cmd[2048];
+  snprintf(cmd, sizeof cmd, "unshare -rm sh -c 'mkdir -p %s/t && mount -t tmpfs -o size=64k tmpfs %s/t' 2>/dev/null",
+           tmpdir, tmpdir);
+  if (system(cmd) != 0) { /* no mount namespace here: nothing to fill */
+    rm_tmpdir();
+    return;
+  }
+  snprintf(cmd, sizeof cmd,
+           "cd %s && unshare -rm sh -c 'mkdir -p t && mount -t tmpfs -o size=16k tmpfs t && "
+           "OMP_NUM_THREADS=1 %s -in d.deck -log t/log.txt -summary s.json >/dev/null 2>err.txt; echo $? > code'",
+           tmpdir, yft_binary());
+  ck_assert_int_eq(system(cmd), 0);
+  char p[300];
+  snprintf(p, sizeof p, "%s/code", tmpdir);
+  char *c = slurp(p), *e, *js;
+  snprintf(p, sizeof p, "%s/err.txt", tmpdir);
+  e = slurp(p);
+  snprintf(p, sizeof p, "%s/s.json", tmpdir);
+  js = slurp(p);
+  ck_assert_msg(atoi(c) == YF_EXIT_IO && strstr(e, "-log: cannot write 't/log.txt': No space left on device"),
+                "exit %s: %s", c, e);
+  ck_assert_msg(js && strstr(js, "\"status\": \"io_error\"") && strstr(js, "No space left on device"), "summary: %s", js);
+  /* it stopped when the log filled (16 KB hold about 130 thermo lines), not at the run's end */
+  const char *st = strstr(js, "\"steps\": ");
+  ck_assert_msg(st && atol(st + 9) < 20000, "summary: %s", js);
+  free(c);
+  free(e);
+  free(js);
+  rm_tmpdir();
+}
+END_TEST
+
 Suite *output_suite(void) {
   Suite *su = suite_create("output");
   TCase *tc = tcase_create("h5");
@@ -1184,6 +1553,9 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_fc_in_every_frame_after);
   tcase_add_test(tc, test_deck_dump_errors);
   tcase_add_test(tc, test_dump_prefix_names_a_file);
+  tcase_add_test(tc, test_claims_through_links);
+  tcase_add_test(tc, test_csv_fields_with_commas);
+  tcase_add_test(tc, test_h5_name_not_utf8);
   tcase_add_test(tc, test_io_error);
   tcase_add_test(tc, test_kill_midway);
   suite_add_tcase(su, tc);
@@ -1192,12 +1564,21 @@ Suite *output_suite(void) {
   tcase_add_test(tc, test_y2dref_full_disk);
   tcase_add_test(tc, test_record_full_disk);
   tcase_add_test(tc, test_csv_index_full_disk);
+  tcase_add_test(tc, test_log_full_disk);
   suite_add_tcase(su, tc);
   tc = tcase_create("summary");
+  tcase_set_timeout(tc, 120); /* (the FIFO and pipe cases kill a yfdem stuck waiting after 20 s) */
   tcase_add_test(tc, test_summary_keys);
   tcase_add_test(tc, test_summary_nonfinite);
   tcase_add_test(tc, test_summary_escaping);
+  tcase_add_test(tc, test_summary_region_name_escaped);
   tcase_add_test(tc, test_state_hash);
+  tcase_add_test(tc, test_fifo_without_reader);
+  tcase_add_test(tc, test_rename_refused_no_tmp_left);
+  tcase_add_test(tc, test_y2dref_table_in_way);
+  tcase_add_test(tc, test_tmp_in_way_named);
+  tcase_add_test(tc, test_output_to_own_stdout);
+  tcase_add_test(tc, test_continued_run_output_on_pipe);
   suite_add_tcase(su, tc);
   return su;
 }

@@ -44,10 +44,29 @@ except ImportError as e:  # pragma: no cover
 MODE_COLOR = {"I": "#d62728", "II": "#1f77b4", "mixed": "#2ca02c"}
 
 
+def listed_frames(xmf):
+    """The frame files the index STEM.xmf lists, in its order (None when it cannot be read).  A
+    rerun leaves the frames of an earlier, longer run on disk, unlisted (README, Output): picked up
+    by a glob, they were drawn as frames of this run."""
+    import xml.etree.ElementTree as ET
+    try:
+        root = ET.parse(xmf).getroot()
+    except (OSError, ET.ParseError):
+        return None
+    out = []
+    for g in root.iter("Grid"):
+        item = g.find("Geometry/DataItem")
+        if g.get("GridType") == "Uniform" and item is not None and item.text and ":/" in item.text:
+            out.append(os.path.join(os.path.dirname(xmf), item.text.strip().rsplit(":/", 1)[0]))
+    return out
+
+
 def frames(stem):
-    """Sorted frame files of a dump stem (STEM_NNNNNN.h5)."""
+    """Frame files of a dump stem: those its index STEM.xmf lists, else the STEM_NNNNNN.h5 there."""
     stem = stem[:-3] if stem.endswith(".h5") else stem
-    fs = sorted(glob.glob(stem + "_[0-9][0-9][0-9][0-9][0-9][0-9].h5"))
+    fs = listed_frames(stem + ".xmf") if os.path.exists(stem + ".xmf") else None
+    if fs is None:
+        fs = sorted(glob.glob(stem + "_[0-9][0-9][0-9][0-9][0-9][0-9].h5"))
     if not fs:
         sys.exit("yfplot: no frames %s_NNNNNN.h5 (write them with `dump ID h5 N %s.h5`)" % (stem, stem))
     return fs

@@ -10,6 +10,68 @@
 #include "err.h"
 #include "wfile.h"
 
+/* open for writing without waiting: a FIFO that no process reads makes a plain open wait for
+ * a reader for ever, deaf to Ctrl-C (a record or log named on a FIFO hung the run at its first
+ * row, 2026-11-29); O_NONBLOCK fails it at once with ENXIO instead (yf_strerror says why), and
+ * is cleared after the open so that writes wait for a slow reader as they would on a pipe.  On
+ * a regular file, a terminal or /dev/null it changes nothing. */
+static int open_w(const char *path, int flags) {
+  /* the file yfdem's own standard output or error goes to (/dev/stdout, 2>&1, a shell's
+   * '> out.txt'): written through a copy of that descriptor, sharing its offset.  Opened anew it
+   * was truncated under the stream's position (the lines printed before became a run of NUL bytes
+   * and grep took out.txt for binary), or, opened to append, its rows were written over by the
+   * lines printed after them. */
+  struct stat st, so;
+  if (stat(path, &st) == 0)
+    for (int k = 1; k <= 2; k++)
+      if (fstat(k, &so) == 0 && so.st_dev == st.st_dev && so.st_ino == st.st_ino) {
+        fflush(k == 1 ? stdout : stderr);
+        return fcntl(k, F_DUPFD_CLOEXEC, 3);
+      }
+  int fd = open(path, O_WRONLY | O_CLOEXEC | O_NONBLOCK | flags, 0666);
+  if (fd < 0) return -1;
+  int fl = fcntl(fd, F_GETFL);
+  if (fl != -1) fcntl(fd, F_SETFL, fl & ~O_NONBLOCK);
+  return fd;
+}
+
+FILE *yf_fopen_w(const char *path) {
+  int fd = open_w(path, O_CREAT | O_TRUNC);
+  if (fd < 0) return NULL;
+  FILE *f = fdopen(fd, "w");
+  if (!f) {
+    int e = errno;
+    close(fd);
+    errno = e;
+  }
+  return f;
+}
+
+char *yf_csv_field(const char *s) {
+  size_t n = strlen(s), q = 0;
+  int quote = strpbrk(s, ",\"\r\n") != NULL;
+  for (const char *c = s; *c; c++) q += *c == '"';
+  char *out = yf_malloc(n + q + 3, "CSV field"), *o = out;
+  if (quote) *o++ = '"';
+  for (const char *c = s; *c; c++) {
+    if (*c == '"') *o++ = '"';
+    *o++ = *c;
+  }
+  if (quote) *o++ = '"';
+  *o = 0;
+  return out;
+}
+
+char *yf_read_output(const char *path, size_t *len, const char *what) {
+  struct stat st;
+  if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) return NULL;
+  return yf_read_file(path, len, what);
+}
+
+const char *yf_strerror(int e) {
+  return e == ENXIO ? "no process reads this FIFO (start its reader first, or name a file)" : strerror(e);
+}
+
 int yf_wfile_open(YfWFile *w, const char *path) {
   struct stat st;
   w->path = path;
@@ -21,7 +83,7 @@ int yf_wfile_open(YfWFile *w, const char *path) {
       errno = EISDIR;
       return -1;
     }
-    w->f = fopen(path, "w");
+    w->f = yf_fopen_w(path);
     return w->f ? 0 : -1;
   }
   size_t n = strlen(path);
@@ -58,11 +120,16 @@ int yf_wfile_close(YfWFile *w, int bad, int sync) {
 
 int yf_rows_open(YfRows *r, const char *path, int append) {
   r->end = -1;
-  r->fd = open(path, O_WRONLY | O_CREAT | O_CLOEXEC | (append ? O_APPEND : O_TRUNC), 0666);
+  r->fd = open_w(path, O_CREAT | (append ? O_APPEND : O_TRUNC));
   if (r->fd < 0) return -1;
   struct stat st;
-  /* only a regular file can be cut back; its rows start where it ends now */
-  if (fstat(r->fd, &st) == 0 && S_ISREG(st.st_mode)) r->end = (long long)st.st_size;
+  /* only a regular file can be cut back; its rows start where it ends now.  Not the file of
+   * standard output (open_w): the lines printed between the rows would be cut with a row. */
+  struct stat so;
+  int shared = 0;
+  for (int k = 1; k <= 2; k++)
+    shared |= fstat(k, &so) == 0 && fstat(r->fd, &st) == 0 && so.st_dev == st.st_dev && so.st_ino == st.st_ino;
+  if (!shared && fstat(r->fd, &st) == 0 && S_ISREG(st.st_mode)) r->end = (long long)st.st_size;
   return 0;
 }
 

@@ -17,6 +17,20 @@ typedef struct {
   const char *path;
 } YfWFile;
 
+/* fopen(path, "w") that never waits: a FIFO with no reader fails at once with ENXIO. */
+FILE *yf_fopen_w(const char *path);
+/* s as one CSV field (allocated): as it is, or in double quotes (its quotes doubled, RFC 4180)
+ * when it holds a comma, a quote or a line break ('max(ke,strain)' was two header columns over
+ * one value, a file 'a,b_000000.csv' two fields of the csv dump's index). */
+char *yf_csv_field(const char *s);
+/* The text of an output written earlier, for a continued run to take up (yf_read_file), or NULL
+ * when PATH is not a regular file: a FIFO, a terminal or /dev/stdout (a pipe) has nothing to take
+ * up, and reading it waited for ever for a writer (a continued run's record on /dev/stdout piped
+ * to tee hung at the run's start). */
+char *yf_read_output(const char *path, size_t *len, const char *what);
+/* strerror, with ENXIO (from the opens here: a FIFO that no process reads) said as such. */
+const char *yf_strerror(int e);
+
 /* Open for writing; 0, or -1 with errno set (nothing to close). */
 int yf_wfile_open(YfWFile *w, const char *path);
 /* Flush (and fsync when sync), close and rename; bad: the caller saw a write fail.  0, or -1

@@ -63,6 +63,27 @@ static struct YfY2dRef *parse_y2dref(YfSim *s, const YfArgs *a) {
   return r;
 }
 
+/* Offset of the first byte of s that XML 1.0 text cannot hold (UTF-8 that is malformed, overlong,
+ * a surrogate or beyond U+10FFFF; a control character other than tab), or -1 when there is none.
+ * A Latin-1 name ('\xe9t\xe9.h5') went into the index as it was: not well-formed XML. */
+static long not_xml_text(const char *s) {
+  const unsigned char *u = (const unsigned char *)s;
+  for (long i = 0; u[i];) {
+    unsigned c = u[i];
+    int n = c < 0x80 ? 0 : (c & 0xE0) == 0xC0 ? 1 : (c & 0xF0) == 0xE0 ? 2 : (c & 0xF8) == 0xF0 ? 3 : -1;
+    if (n < 0 || (n == 0 && c < 0x20 && c != '\t')) return i;
+    unsigned cp = n == 0 ? c : n == 1 ? c & 0x1F : n == 2 ? c & 0x0F : c & 0x07;
+    for (int k = 1; k <= n; k++) {
+      if ((u[i + k] & 0xC0) != 0x80) return i;
+      cp = (cp << 6) | (u[i + k] & 0x3F);
+    }
+    static const unsigned least[4] = {0, 0x80, 0x800, 0x10000};
+    if (cp < least[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF) || cp == 0xFFFE || cp == 0xFFFF) return i;
+    i += n + 1;
+  }
+  return -1;
+}
+
 /* The files a dump writes, claimed for it (output_claim): frames STEM_NNNNNN EXT, the index
  * (index, or NULL) and STEM SIDE (its crack index, or a csv dump's index).  A file another
  * output writes: the dump is taken back and the line refused. */
@@ -115,6 +136,8 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
     if (bad) {
       int e = errno;
       output_remove_dump(s, id); /* r goes with it: the folder's name from the deck's word */
+      if (bad >= 3) /* a table in the way: named, not the folder */
+        yf_io_error(&a->loc, "dump %s: cannot write '%s/%s': %s", id, a->w[2], files[bad - 3], strerror(e));
       yf_io_error(&a->loc, "dump %s: cannot %s '%s': %s", id, bad == 1 ? "create directory" : "write in directory",
                   a->w[2], strerror(e));
     }
@@ -156,6 +179,15 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
   const char *base = strrchr(path, '/');
   if (style == YF_DUMP_H5 && strchr(base ? base + 1 : path, ':'))
     arg_error(a, 3, "the file name may not contain ':' (XDMF uses it to separate file and dataset)");
+  long badid = style == YF_DUMP_H5 ? not_xml_text(id) : -1; /* the index's series is named by it */
+  if (badid >= 0)
+    arg_error(a, 0, "the dump id is not UTF-8 text (byte %ld of it is 0x%02x): the XDMF index names its series by it, "
+              "in XML, which holds UTF-8 text only; give an ASCII id", badid + 1, (unsigned char)id[badid]);
+  long bad = style == YF_DUMP_H5 ? not_xml_text(base ? base + 1 : path) : -1;
+  if (bad >= 0)
+    arg_error(a, 3, "the file name is not UTF-8 text (byte %ld of it is 0x%02x): the XDMF index names its frame files in "
+              "XML, which holds UTF-8 text only (ParaView's reader aborted on such an index); rename it, e.g. in "
+              "ASCII", bad + 1, (unsigned char)(base ? base + 1 : path)[bad]);
   if (output_find_dump(s, id) >= 0) arg_error(a, 0, "a dump with this id exists (undump it first)");
   if (output_ndump(s) >= YF_MAX_DUMPS) arg_error(a, 0, "at most %d dumps at a time", YF_MAX_DUMPS);
   int k = output_add_dump(s, id, style, every, path, fields, compress);
@@ -175,6 +207,7 @@ void cmd_dump(YfSim *s, const YfArgs *a) {
     snprintf(what, sizeof what, "dump %s", id);
     arg_writable(a, what, "%s_000000%s", stem, ext);
     arg_writable(a, what, "%s", xmf);
+    arg_writable(a, what, "%s_cracks.xmf", stem); /* (a folder of that name failed the first frame) */
     sim_printf(s, "dump %s: every %ld steps to %s_NNNNNN%s (index %s)%s\n", id, every, stem, ext, xmf,
                output_dump_mpio(s, k) ? "; every rank writes its rows (parallel HDF5; YFDEM_H5_MPIIO=0: gathered to rank 0)" : "");
   } else {

@@ -1346,9 +1346,12 @@ void arg_claim(struct YfSim *s, const YfArgs *a, int i, const char *owner, const
 
 void arg_regular(const YfArgs *a, int i, const char *path) {
   struct stat st;
+  /* what is in the way on the disk is an I/O error (exit 2), as a folder in the way of every other
+   * output is (it was a deck error, exit 1, and a folder at FILE.a of 'restart every' exit 2) */
   if (!stat(path, &st) && !S_ISREG(st.st_mode))
-    arg_error(a, i, "'%s' is not a regular file: a restart is written whole to a temporary file and renamed over "
-              "it, which would replace it (write_restart onto a device replaced the device)", path);
+    yf_io_error(&a->loc, "%s: '%s': '%s' is not a regular file: a restart is written whole to a temporary file and "
+                "renamed over it, which would replace it (write_restart onto a device replaced the device)", a->cmd,
+                a->w[i], path);
 }
 
 /* The files were hidden or named by their endings alone: `dump d h5 10 .` wrote ._000000.h5 and
@@ -1379,5 +1382,15 @@ void arg_writable(const YfArgs *a, const char *what, const char *fmt, ...) {
   va_start(ap, fmt);
   vsnprintf(path, sizeof path, fmt, ap);
   va_end(ap);
-  if (!yf_can_create(path)) yf_io_error(&a->loc, "%s: cannot write '%s': %s", what, path, strerror(errno));
+  if (yf_can_create(path)) return;
+  int e = errno;
+  /* the file is written as PATH.tmp first: what is in the way may be that, not PATH (a folder
+   * out.xmf.tmp was reported as "cannot write 'out.xmf': Is a directory", with no out.xmf there) */
+  struct stat st;
+  char tmp[4200];
+  snprintf(tmp, sizeof tmp, "%s.tmp", path);
+  if (lstat(path, &st) != 0 && lstat(tmp, &st) == 0)
+    yf_io_error(&a->loc, "%s: cannot write '%s': '%s', where it is written before it is renamed, is in the way: %s",
+                what, path, tmp, strerror(e));
+  yf_io_error(&a->loc, "%s: cannot write '%s': %s", what, path, strerror(e));
 }

@@ -26,6 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 #include "par.h"
 #include "thermo_style.h"
 #include "deck.h"
@@ -183,7 +184,7 @@ void cmd_record(YfSim *s, const YfArgs *a) {
   const char *file = arg_word(a, 2, "file");
   if (!file[0]) arg_error(a, 2, "empty file name");
   /* a missing folder: now, at this line (the file itself is created at its first row) */
-  if (!yf_can_create(file)) yf_io_error(&a->loc, "record %s: cannot write '%s': %s", id, file, strerror(errno));
+  if (!yf_can_create(file)) yf_io_error(&a->loc, "record %s: cannot write '%s': %s", id, file, yf_strerror(errno));
   char owner[YF_NAME_MAX + 16];
   snprintf(owner, sizeof owner, "record '%s'", id);
   arg_claim(s, a, 2, owner, file, NULL, 0);
@@ -207,27 +208,45 @@ void cmd_record(YfSim *s, const YfArgs *a) {
 /* The file's header line, "step,time,K1,K2,...\n" (allocated). */
 static char *record_head(const Record *r) {
   size_t n = sizeof "step,time\n";
-  for (int i = 0; i < r->q.n; i++) n += 1 + strlen(r->q.w[i]);
+  for (int i = 0; i < r->q.n; i++) n += 3 + 2 * strlen(r->q.w[i]); /* quoted, its quotes doubled */
   char *h = yf_malloc(n, "record header"), *o = h + sprintf(h, "step,time");
-  for (int i = 0; i < r->q.n; i++) o += sprintf(o, ",%s", r->q.w[i]);
+  for (int i = 0; i < r->q.n; i++) {
+    char *f = yf_csv_field(r->q.w[i]); /* an expression with a comma is one column */
+    o += sprintf(o, ",%s", f);
+    free(f);
+  }
   strcpy(o, "\n");
   return h;
 }
 
 static void record_open(Record *r, const char *keep) {
+  struct stat st;
+  if (lstat(r->path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
+    /* a FIFO, a device, a link such as /dev/stdout: opened once, header and rows through the one
+     * descriptor (written whole, then opened again to append, a FIFO's reader saw the end of its
+     * input after the header and the rows found no reader) */
+    if (yf_rows_open(&r->out, r->path, 0) != 0)
+      yf_io_error(&r->q.loc, "record %s: cannot create '%s': %s", r->id, r->path, yf_strerror(errno));
+    char *h = record_head(r);
+    yf_rows_printf(&r->out, "%s%s", h, keep ? keep : "");
+    free(h);
+    if (yf_rows_end(&r->out) != 0)
+      yf_io_error(&r->q.loc, "record %s: cannot write '%s': %s", r->id, r->path, yf_strerror(errno));
+    return;
+  }
   /* whole or not at all: a full disk leaves the earlier file (and its rows a continued run keeps)
    * rather than a header cut short */
   YfWFile w;
   if (yf_wfile_open(&w, r->path) != 0)
-    yf_io_error(&r->q.loc, "record %s: cannot create '%s': %s", r->id, r->path, strerror(errno));
+    yf_io_error(&r->q.loc, "record %s: cannot create '%s': %s", r->id, r->path, yf_strerror(errno));
   char *h = record_head(r);
   fputs(h, w.f);
   free(h);
   if (keep) fputs(keep, w.f);
   if (yf_wfile_close(&w, 0, 0) != 0)
-    yf_io_error(&r->q.loc, "record %s: cannot write '%s': %s", r->id, r->path, strerror(errno));
+    yf_io_error(&r->q.loc, "record %s: cannot write '%s': %s", r->id, r->path, yf_strerror(errno));
   if (yf_rows_open(&r->out, r->path, 1) != 0)
-    yf_io_error(&r->q.loc, "record %s: cannot create '%s': %s", r->id, r->path, strerror(errno));
+    yf_io_error(&r->q.loc, "record %s: cannot create '%s': %s", r->id, r->path, yf_strerror(errno));
 }
 
 /* A run continued by read_restart continues each record's file as the dumps continue their
@@ -238,7 +257,7 @@ static void record_open(Record *r, const char *keep) {
 static int adopt(Record *r, long before) {
   r->adopted = 1;
   size_t len;
-  char *t = yf_read_file(r->path, &len, "record file");
+  char *t = yf_read_output(r->path, &len, "record file");
   if (!t) return 0;
   char *h = record_head(r);
   size_t hl = strlen(h);
@@ -271,7 +290,7 @@ static void record_row(YfSim *s, Record *r) {
   yf_rows_printf(&r->out, "\n");
   /* whole or not at all: on a full disk the file ends at the row before */
   if (yf_rows_end(&r->out) != 0)
-    yf_io_error(&r->q.loc, "record %s: cannot write '%s': %s", r->id, r->path, strerror(errno));
+    yf_io_error(&r->q.loc, "record %s: cannot write '%s': %s", r->id, r->path, yf_strerror(errno));
   r->last_step = s->step;
 }
 

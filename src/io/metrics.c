@@ -124,7 +124,7 @@ static const char log_head[] = "step,time,kinetic,strain,external_work,damping,j
  * is missing or not one yfdem wrote starts afresh. */
 static void adopt_log(const YfSim *s) {
   size_t len;
-  char *t = yf_read_file(M.log_path, &len, "metrics log");
+  char *t = yf_read_output(M.log_path, &len, "metrics log");
   if (!t) return;
   if (!strncmp(t, log_head, sizeof log_head - 1)) {
     size_t n = yf_rows_before(t + sizeof log_head - 1, s->step);
@@ -548,11 +548,15 @@ static void region_lengths(const YfSim *s, const YfBreak *rec, int n, const char
   }
   Str js = {0};
   sput(&js, "{");
-  for (int r = 0; r < M.nreg; r++)
+  for (int r = 0; r < M.nreg; r++) {
+    char nm[4 * sizeof M.reg[r].name + 8]; /* the deck's name as a JSON string: a Latin-1 byte or a quote in it made
+                                           the summary unreadable (not UTF-8, or not JSON) */
+    summary_json_string(nm, sizeof nm, M.reg[r].name);
     sput(&js,
-         "%s\"%s\": {\"I\": %.17g, \"II\": %.17g, \"mixed\": %.17g, \"total\": %.17g, \"inclined\": %.17g, "
+         "%s%s: {\"I\": %.17g, \"II\": %.17g, \"mixed\": %.17g, \"total\": %.17g, \"inclined\": %.17g, "
          "\"vertical\": %.17g, \"horizontal\": %.17g, \"count\": %d}",
-         r ? ", " : "", M.reg[r].name, rl[r][0], rl[r][1], rl[r][2], rl[r][3], rl[r][4], rl[r][5], rl[r][6], (int)rl[r][7]);
+         r ? ", " : "", nm, rl[r][0], rl[r][1], rl[r][2], rl[r][3], rl[r][4], rl[r][5], rl[r][6], (int)rl[r][7]);
+  }
   sput(&js, "}");
   snprintf(key, sizeof key, "%scrack_length_by_region", pfx);
   if (js.b) summary_add_raw(key, js.b);
@@ -590,7 +594,7 @@ static void write_log(YfSim *s) {
   if (!yf_writer()) return;
   YfWFile w;
   if (yf_wfile_open(&w, M.log_path) != 0) { /* runs from the exit path too: there the other outputs are still written */
-    yf_output_error("metrics log: cannot write '%s': %s", M.log_path, strerror(errno));
+    yf_output_error("metrics log: cannot write '%s': %s", M.log_path, yf_strerror(errno));
     return;
   }
   FILE *f = w.f;
@@ -610,7 +614,7 @@ static void write_log(YfSim *s) {
     fprintf(f, "%ld,%s,%s,%s,%s,%s,%s,%s,%s,%ld,%s,%s,%s,%d,%s,%ld,%s,%s,%s\n", q->step, v[0], v[1], v[2], v[3], v[4],
             v[5], v[6], v[7], q->broken, v[8], v[9], v[10], q->frags, s1, q->opened, ol[0], ol[1], ol[2]);
   }
-  if (yf_wfile_close(&w, 0, 0) != 0) yf_output_error("metrics log: cannot write '%s': %s", M.log_path, strerror(errno));
+  if (yf_wfile_close(&w, 0, 0) != 0) yf_output_error("metrics log: cannot write '%s': %s", M.log_path, yf_strerror(errno));
 }
 
 int metrics_flush_log(YfSim *s, char *err, size_t nerr) {

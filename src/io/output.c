@@ -494,7 +494,7 @@ static int index_try(YfDump *d, const char *path, const char *tmp, const char *s
   size_t plen[3] = {(size_t)hl, t->len, sizeof tail - 1};
   int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) {
-    snprintf(msg, nmsg, "dump %s: cannot create '%s': %s", d->id, tmp, strerror(errno));
+    snprintf(msg, nmsg, "dump %s: cannot create '%s': %s", d->id, tmp, yf_strerror(errno));
     return -1;
   }
   yf_tmp_live(tmp); /* a second Ctrl-C removes it */
@@ -518,8 +518,10 @@ static int index_try(YfDump *d, const char *path, const char *tmp, const char *s
   }
   int rc = rename(tmp, path);
   yf_tmp_live(NULL);
-  if (rc != 0) {
-    snprintf(msg, nmsg, "dump %s: cannot rename '%s' to '%s': %s", d->id, tmp, path, strerror(errno));
+  if (rc != 0) { /* (a directory or an immutable file in the way): no NAME.tmp left behind */
+    int e = errno;
+    unlink(tmp);
+    snprintf(msg, nmsg, "dump %s: cannot rename '%s' to '%s': %s", d->id, tmp, path, yf_strerror(e));
     return -1;
   }
   return 0;
@@ -761,9 +763,11 @@ static void h5_frame(YfSim *s, YfDump *d) {
    * same directory.  The first frame of this process (0, or the first after the frames of a
    * continued series) keeps the atomic replace: the earlier run's index still lists it. */
   if (d->nframe > d->first) unlink(d->cur);
-  if (rename(d->cur_tmp, d->cur) != 0)
-    yf_io_error(NULL, "dump %s: cannot rename '%s' to '%s': %s", d->id, d->cur_tmp, d->cur,
-                strerror(errno));
+  if (rename(d->cur_tmp, d->cur) != 0) { /* (a directory or an immutable file in the way) */
+    int e = errno;
+    unlink(d->cur_tmp); /* no NAME.tmp left behind (README) */
+    yf_io_error(NULL, "dump %s: cannot rename '%s' to '%s': %s", d->id, d->cur_tmp, d->cur, yf_strerror(e));
+  }
   yf_tmp_live(NULL);
   const double at[2] = {n ? nd->x[0] : 0.0, n ? nd->y[0] : 0.0};
   xmf_add_frame(d, s->time, s->step, n, nt, fc != NULL, ncrack, at);
@@ -778,7 +782,7 @@ static void csv_frame(YfSim *s, YfDump *d) {
   if (d->csv_index.fd < 0) {
     char *ip = str_printf("%s_frames.csv", d->path);
     if (yf_rows_open(&d->csv_index, ip, d->created) != 0)
-      yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, strerror(errno));
+      yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, yf_strerror(errno));
     if (!d->created) {
       yf_rows_printf(&d->csv_index, "frame,step,time,file\n");
       if (yf_rows_end(&d->csv_index) != 0) {
@@ -786,7 +790,7 @@ static void csv_frame(YfSim *s, YfDump *d) {
         int e = errno;
         if (d->csv_index.end >= 0) unlink(ip);
         errno = e;
-        yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, ip, strerror(errno));
+        yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, ip, yf_strerror(errno));
       }
     }
     d->created = 1;
@@ -795,18 +799,20 @@ static void csv_frame(YfSim *s, YfDump *d) {
   /* whole or not at all (PATH.tmp renamed, wfile.h), as h5 frames: on a full disk a frame cut
    * mid-row was left under its own name */
   YfWFile w;
-  if (yf_wfile_open(&w, path) != 0) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, path, strerror(errno));
+  if (yf_wfile_open(&w, path) != 0) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, path, yf_strerror(errno));
   FILE *f = w.f;
   fprintf(f, "id,x,y,ux,uy,vx,vy\n");
   for (int i = 0; i < nd->n; i++)
     fprintf(f, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", nd->id[i], nd->x[i], nd->y[i],
             nd->x[i] - nd->x0[i], nd->y[i] - nd->y0[i], nd->vx[i], nd->vy[i]);
-  if (yf_wfile_close(&w, 0, 0) != 0) yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, path, strerror(errno));
+  if (yf_wfile_close(&w, 0, 0) != 0) yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, path, yf_strerror(errno));
   const char *base = strrchr(path, '/');
   /* whole or not at all: on a full disk the index ends at the row before */
-  yf_rows_printf(&d->csv_index, "%ld,%ld,%.17g,%s\n", d->nframe, s->step, s->time, base ? base + 1 : path);
+  char *field = yf_csv_field(base ? base + 1 : path); /* a PREFIX with a comma: still one field */
+  yf_rows_printf(&d->csv_index, "%ld,%ld,%.17g,%s\n", d->nframe, s->step, s->time, field);
+  free(field);
   if (yf_rows_end(&d->csv_index) != 0)
-    yf_io_error(NULL, "dump %s: cannot write '%s_frames.csv': %s", d->id, d->path, strerror(errno));
+    yf_io_error(NULL, "dump %s: cannot write '%s_frames.csv': %s", d->id, d->path, yf_strerror(errno));
   free(path);
 }
 
@@ -831,7 +837,7 @@ static long adopt_before(const YfSim *s, const YfDump *d) { return s->restored_b
  * last one (LONG_MIN: none). */
 static long index_adopt(const char *path, const char *frame_tag, long before, YfText *out, long *last) {
   size_t len;
-  char *t = yf_read_file(path, &len, "index text");
+  char *t = yf_read_output(path, &len, "index text");
   if (!t) return 0;
   static const char open_tag[] = "CollectionType=\"Temporal\">\n", close_tag[] = "    </Grid>\n  </Domain>",
                     step_tag[] = "<Information Name=\"step\" Value=\"";
@@ -919,7 +925,7 @@ static long h5_adopt(YfDump *d, long before, long *last) {
 static long csv_adopt(YfDump *d, long before, long *last) {
   char *ip = str_printf("%s_frames.csv", d->path);
   size_t len;
-  char *t = yf_read_file(ip, &len, "index text");
+  char *t = yf_read_output(ip, &len, "index text");
   long kept = 0;
   char *keep_end = NULL;
   static const char head[] = "frame,step,time,file\n";
@@ -938,11 +944,11 @@ static long csv_adopt(YfDump *d, long before, long *last) {
     /* the kept rows go in whole (PATH.tmp renamed, wfile.h): a full disk leaves the earlier index,
      * not one cut short; the new rows are appended (csv_frame) */
     YfWFile w;
-    if (yf_wfile_open(&w, ip) != 0) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, strerror(errno));
+    if (yf_wfile_open(&w, ip) != 0) yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, yf_strerror(errno));
     fwrite(t, 1, (size_t)(keep_end - t), w.f);
-    if (yf_wfile_close(&w, 0, 0) != 0) yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, ip, strerror(errno));
+    if (yf_wfile_close(&w, 0, 0) != 0) yf_io_error(NULL, "dump %s: cannot write '%s': %s", d->id, ip, yf_strerror(errno));
     if (yf_rows_open(&d->csv_index, ip, 1) != 0)
-      yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, strerror(errno));
+      yf_io_error(NULL, "dump %s: cannot create '%s': %s", d->id, ip, yf_strerror(errno));
     d->created = 1;
   }
   free(t);
@@ -1156,7 +1162,22 @@ static struct YfOutput *out_get(YfSim *s) {
 static char *clean_path(const char *path) {
   char cwd[4096] = "";
   if (path[0] != '/' && !getcwd(cwd, sizeof cwd)) cwd[0] = 0;
-  char *in = str_printf("%s/%s", cwd, path), *out = yf_malloc(strlen(in) + 2, "path");
+  char *in = str_printf("%s/%s", cwd, path);
+  /* the folder as the file system resolves it, when it exists: 'link/out.h5' with link -> . is
+   * out.h5 (two dumps wrote the same frames through a link to their folder).  The file itself is
+   * not resolved: /dev/stdout and /dev/stderr are two outputs though both may reach a terminal. */
+  char *slash = strrchr(in, '/'), real[PATH_MAX];
+  if (slash && slash > in) {
+    *slash = 0;
+    if (realpath(in, real)) {
+      char *r = str_printf("%s/%s", real, slash + 1);
+      free(in);
+      in = r;
+    } else {
+      *slash = '/';
+    }
+  }
+  char *out = yf_malloc(strlen(in) + 2, "path");
   size_t n = 0;
   for (char *p = in; *p;) {
     while (*p == '/') p++;

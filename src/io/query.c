@@ -8,6 +8,7 @@
  * at rest, minus the supports' reaction), mass_G [kg/m].  Means are plain
  * averages over the group's nodes (copies of a node in a fracturing body count separately).
  */
+#include <math.h>
 #include <string.h>
 #include "contact.h"
 #include "energy.h"
@@ -102,7 +103,26 @@ int sim_query_known(YfSim *s, const char *name) {
   return r >= 0 && model_group(&s->model, name + strlen(red[r]) + 1, 0) >= 0 ? 2 : 0;
 }
 
+/* A quantity of the state that is not finite: the state overflowed, the run's numerical failure
+ * (exit 3, its step), not the deck's (a record of 'strain' every step reads the overflow before
+ * the step's own checks and was a deck error at the record's line).  A node beyond the range is
+ * named first, as a thermo line does. */
+static int nonfinite(YfSim *s, const char *name) {
+  run_check_nodes(s, 0, s->model.node.n);
+  const char *what = !strcmp(name, "strain") ? " (the strain energy)" : !strcmp(name, "ke") ? " (the kinetic energy)" : "";
+  yf_numeric_error(s->step, "'%s'%s is not finite: the state overflows the range of a double (the masses, moduli or "
+                   "velocities are too large for the arithmetic)", name, what);
+}
+
+static int query(YfSim *s, const char *name, double *val, char *err, size_t errlen);
+
 int sim_query(YfSim *s, const char *name, double *val, char *err, size_t errlen) {
+  int r = query(s, name, val, err, errlen);
+  if (r == 1 && !isfinite(*val) && s->model.prepared) return nonfinite(s, name);
+  return r;
+}
+
+static int query(YfSim *s, const char *name, double *val, char *err, size_t errlen) {
   /* masses (so the kinetic energy) and the stable limit exist once a run has prepared the scene:
    * before, they read 0 silently ('timestep $(0.5*dt_limit)' became 0) */
   if (!s->model.prepared && (!strcmp(name, "ke") || !strcmp(name, "dt_limit") || !strncmp(name, "mass_", 5))) {

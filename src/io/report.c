@@ -88,7 +88,7 @@ static void write_log(YfSim *s, const char *path, const YfBreak *rec, int nrec) 
   if (!yf_writer()) return;
   YfWFile w;
   if (yf_wfile_open(&w, path) != 0) { /* runs from the exit path too: there the other outputs are still written */
-    yf_output_error("fracture_log: cannot write '%s': %s", path, strerror(errno));
+    yf_output_error("fracture_log: cannot write '%s': %s", path, yf_strerror(errno));
     return;
   }
   FILE *f = w.f;
@@ -98,7 +98,7 @@ static void write_log(YfSim *s, const char *path, const YfBreak *rec, int nrec) 
     fprintf(f, "%ld,%.17g,%.17g,%.17g,%s,%d,%d,%.17g,%d\n", b->step, b->time, b->x, b->y, mode_name(b->mode),
             s->model.tri.id[b->triA], s->model.tri.id[b->triB], b->length, b->joint);
   }
-  if (yf_wfile_close(&w, 0, 0) != 0) yf_output_error("fracture_log: cannot write '%s': %s", path, strerror(errno));
+  if (yf_wfile_close(&w, 0, 0) != 0) yf_output_error("fracture_log: cannot write '%s': %s", path, yf_strerror(errno));
 }
 
 void joints_summary(YfSim *s) {

@@ -54,11 +54,16 @@ void sim_printf(YfSim *s, const char *fmt, ...) {
         yf_output_error("cannot write to standard output: %s (its reader has ended, or its disk is full)", strerror(e));
     }
   }
-  if (s && s->log) {
+  if (s && s->log && !s->log_failed) {
     va_start(ap, fmt);
     vfprintf(s->log, fmt, ap);
     va_end(ap);
-    fflush(s->log);
+    /* a log that cannot be written (a full disk) ends the run with exit 2 as any output does: it
+     * ran on to the end and a summary saying "ok", with the error (and a stale errno) at the exit */
+    if (fflush(s->log) != 0 || ferror(s->log)) {
+      s->log_failed = errno ? errno : EIO;
+      yf_output_error("-log: cannot write '%s': %s", s->log_name ? s->log_name : "log.yfdem", strerror(s->log_failed));
+    }
   }
 }
 

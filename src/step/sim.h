@@ -171,6 +171,8 @@ typedef struct YfSim {
   /* options */
   char summary_path[1024];
   FILE *log;            /* -log FILE (also gets every message), NULL if none                */
+  const char *log_name; /* its name, for the message when it cannot be written               */
+  int log_failed;       /* errno of the log's failed write (said once; nothing more goes in) */
   int progress;         /* progress bar on stderr when it is a terminal                     */
 } YfSim;
 

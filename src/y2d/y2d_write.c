@@ -442,7 +442,7 @@ void y2d_write(YfSim *s, const char *path, long steps, long every, const YfLoc *
   const int w = yf_writer();
   YfWFile wf;
   if (yf_wfile_open(&wf, w ? path : "/dev/null") != 0)
-    yf_io_error(loc, "write_y2d: cannot write '%s': %s", path, strerror(errno));
+    yf_io_error(loc, "write_y2d: cannot write '%s': %s", path, yf_strerror(errno));
   FILE *f = wf.f;
   fprintf(f, "/* written by yfdem write_y2d from %s line %d */\n", loc && loc->file ? loc->file : "?", loc ? loc->line : 0);
   fprintf(f, "/* %d nodes, %d triangles, %d element properties, %d BC sets%s */\n", nn, nt, np, nset,
@@ -559,7 +559,7 @@ void y2d_write(YfSim *s, const char *path, long steps, long every, const YfLoc *
       }
   }
   fprintf(f, "$YDOIT\n$YSTOP\n");
-  if (yf_wfile_close(&wf, 0, 0) != 0) yf_io_error(loc, "write_y2d: cannot write '%s': %s", path, strerror(errno));
+  if (yf_wfile_close(&wf, 0, 0) != 0) yf_io_error(loc, "write_y2d: cannot write '%s': %s", path, yf_strerror(errno));
   (void)par_any(0); /* MPI: the file is whole before any rank goes on */
   sim_printf(s, "write_y2d: %s: %d nodes, %d triangles, %d properties, %d BC sets, %d joint set(s), dt %.6g s, %ld steps, "
              "output every %ld steps\n", path, nn, nt, np, nset, njs, dt, steps, icoutf);

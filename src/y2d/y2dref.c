@@ -75,7 +75,7 @@ int y2dref_ncorner_steps(const YfY2dRef *r) { return r->ncsteps; }
 
 /* A row (or rows) gathered in w goes into file NAME of the dump whole, or the run ends (exit 2). */
 static void check_write(YfRows *w, const YfY2dRef *r, const char *name) {
-  if (yf_rows_end(w) != 0) yf_io_error(NULL, "dump y2dref: cannot write '%s/%s': %s", r->dir, name, strerror(errno));
+  if (yf_rows_end(w) != 0) yf_io_error(NULL, "dump y2dref: cannot write '%s/%s': %s", r->dir, name, yf_strerror(errno));
 }
 
 /* In a run continued by read_restart (r->cont_step >= 0), the table the earlier run left at PATH,
@@ -86,7 +86,7 @@ static void check_write(YfRows *w, const YfY2dRef *r, const char *name) {
  * another (its header differs: other probes), to be begun afresh. */
 static int adopt_csv(YfY2dRef *r, YfRows *w, const char *path) {
   size_t len;
-  char *t = r->cont_step >= 0 ? yf_read_file(path, &len, "y2dref table") : NULL;
+  char *t = r->cont_step >= 0 ? yf_read_output(path, &len, "y2dref table") : NULL;
   if (!t) return 0;
   if (len < w->len || memcmp(t, w->row, w->len) != 0) {
     free(t);
@@ -95,12 +95,12 @@ static int adopt_csv(YfY2dRef *r, YfRows *w, const char *path) {
   char *keep = t + w->len;
   keep[yf_rows_before(keep, r->cont_step)] = 0;
   YfWFile f;
-  if (yf_wfile_open(&f, path) != 0) yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, strerror(errno));
+  if (yf_wfile_open(&f, path) != 0) yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, yf_strerror(errno));
   fwrite(w->row, 1, w->len, f.f);
   fputs(keep, f.f);
   free(t);
-  if (yf_wfile_close(&f, 0, 0) != 0) yf_io_error(NULL, "dump y2dref: cannot write '%s': %s", path, strerror(errno));
-  if (yf_rows_open(w, path, 1) != 0) yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, strerror(errno));
+  if (yf_wfile_close(&f, 0, 0) != 0) yf_io_error(NULL, "dump y2dref: cannot write '%s': %s", path, yf_strerror(errno));
+  if (yf_rows_open(w, path, 1) != 0) yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, yf_strerror(errno));
   w->len = 0; /* the header is there */
   return 1;
 }
@@ -112,7 +112,7 @@ static int open_csv(YfY2dRef *r, YfRows *w, const char *name) {
   snprintf(path, sizeof path, "%s/%s", r->dir, name);
   if (!r->created && adopt_csv(r, w, path)) return 1;
   if (yf_rows_open(w, path, r->created) != 0)
-    yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, strerror(errno));
+    yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, yf_strerror(errno));
   if (r->created) { /* reopened: its header is there */
     w->len = 0;
     return 0;
@@ -122,7 +122,7 @@ static int open_csv(YfY2dRef *r, YfRows *w, const char *name) {
     int e = errno;
     if (w->end >= 0) unlink(path);
     errno = e;
-    yf_io_error(NULL, "dump y2dref: cannot write '%s': %s", path, strerror(errno));
+    yf_io_error(NULL, "dump y2dref: cannot write '%s': %s", path, yf_strerror(errno));
   }
   return 0;
 }
@@ -135,7 +135,7 @@ static void mkdir_p(const char *dir) {
     mkdir(p, 0777);
     *q = '/';
   }
-  if (mkdir(p, 0777) != 0 && errno != EEXIST) yf_io_error(NULL, "dump y2dref: cannot create directory '%s': %s", p, strerror(errno));
+  if (mkdir(p, 0777) != 0 && errno != EEXIST) yf_io_error(NULL, "dump y2dref: cannot create directory '%s': %s", p, yf_strerror(errno));
   free(p);
 }
 
@@ -165,9 +165,13 @@ int y2dref_dir_check(const char *dir) {
     p[i] = c;
   }
   if (!rc && !missing) { /* there already: its files can be written in it */
-    char f[4096];
-    snprintf(f, sizeof f, "%s/%s", dir, Y2DREF_SUMMARY);
-    if (!yf_can_create(f)) rc = 2;
+    static const char *const tables[] = {Y2DREF_SUMMARY, Y2DREF_PROBES, Y2DREF_BROKEN};
+    for (int k = 0; k < 3 && !rc; k++) { /* (a folder named probes.csv failed the run's first step) */
+      char f[4096];
+      struct stat st;
+      snprintf(f, sizeof f, "%s/%s", dir, tables[k]);
+      if (!yf_can_create(f)) rc = lstat(f, &st) == 0 ? 3 + k : 2;
+    }
   }
   int e = errno;
   free(p);
@@ -222,7 +226,7 @@ static void write_corners(YfSim *s, YfY2dRef *r) {
   snprintf(path, sizeof path, "%s/" Y2DREF_CORNERS "%07ld.csv", r->dir, s->step);
   /* whole or not at all (PATH.tmp renamed, wfile.h), as the csv dump's frames */
   YfWFile w;
-  if (yf_wfile_open(&w, path) != 0) yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, strerror(errno));
+  if (yf_wfile_open(&w, path) != 0) yf_io_error(NULL, "dump y2dref: cannot create '%s': %s", path, yf_strerror(errno));
   FILE *f = w.f;
   fputs("elem,corner,node,ux,uy,vx,vy\n", f);
   const YfNodes *n = &s->model.node;
@@ -236,7 +240,7 @@ static void write_corners(YfSim *s, YfY2dRef *r) {
       fprintf(f, "%d,%d,%d,%.16e,%.16e,%.16e,%.16e\n", t->id[e], c, y2d_input_node(s, i), n->x[i] - n->x0[i],
               n->y[i] - n->y0[i], n->vx[i], n->vy[i]);
     }
-  if (yf_wfile_close(&w, 0, 0) != 0) yf_io_error(NULL, "dump y2dref: cannot write '%s': %s", path, strerror(errno));
+  if (yf_wfile_close(&w, 0, 0) != 0) yf_io_error(NULL, "dump y2dref: cannot write '%s': %s", path, yf_strerror(errno));
 }
 
 static void write_summary(YfSim *s, YfY2dRef *r) {

@@ -37,7 +37,8 @@ int y2dref_nprobe(const struct YfY2dRef *r);
 int y2dref_ncorner_steps(const struct YfY2dRef *r);
 /* Whether directory dir can be made (as the first frame makes it) or, when it is there, written in:
  * 0 yes, 1 it cannot be made (a file on its path, no permission), 2 it is there but cannot be
- * written in; errno set when not 0.  Checked at the dump's deck line, so that the deck's line
+ * written in, 3, 4, 5: its summary, probes or broken table is there and cannot be written (a
+ * folder of that name); errno set when not 0.  Checked at the dump's deck line, so that the deck's line
  * names the fault before the run and before any other output is written.  Nothing is left behind. */
 int y2dref_dir_check(const char *dir);
 /* Directory written by the dump. */
