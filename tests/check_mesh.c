@@ -711,6 +711,38 @@ START_TEST(test_gmsh_shared_ids_warned) {
 }
 END_TEST
 
+/* One file, two bodies: `shift DX DY` [m] moves the second after its scale, so an impactor and its
+ * target can come from one mesh (without it the copies lay on each other and a run with contact
+ * between them blew up at its start).  Every node of 'two' is at 2 x its twin's position plus
+ * (3, -1); a shift given twice, with one number, or not a number is an error at its word. */
+START_TEST(test_gmsh_shift) {
+  YfSim *s = new_sim();
+  YfModel *m = &s->model;
+  model_add_material(m, "soft");
+  model_add_material(m, "hard");
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "gmsh one %s", repo_path("decks/meshes/square4.msh"));
+  run(s, cmd_mesh, "mesh", cmd);
+  const int n1 = m->node.n;
+  snprintf(cmd, sizeof cmd, "gmsh two %s shift 3 -1 scale 2", repo_path("decks/meshes/square4.msh"));
+  run(s, cmd_mesh, "mesh", cmd);
+  ck_assert_int_eq(m->node.n, 2 * n1);
+  for (int i = 0; i < n1; i++) {
+    ck_assert_int_eq(m->node.id[n1 + i], m->node.id[i]);
+    ck_assert_double_eq(m->node.x[n1 + i], 2.0 * m->node.x[i] + 3.0);
+    ck_assert_double_eq(m->node.y[n1 + i], 2.0 * m->node.y[i] - 1.0);
+    ck_assert_double_eq(m->node.x0[n1 + i], m->node.x[n1 + i]);
+  }
+  snprintf(cmd, sizeof cmd, "gmsh three %s shift 1 1 shift 2 2", repo_path("decks/meshes/square4.msh"));
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "'shift': given twice", NULL);
+  snprintf(cmd, sizeof cmd, "gmsh three %s shift 1", repo_path("decks/meshes/square4.msh"));
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "'shift': expects DX DY [m] after it", NULL);
+  snprintf(cmd, sizeof cmd, "gmsh three %s shift 1 up", repo_path("decks/meshes/square4.msh"));
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, "'up'", NULL);
+  free_sim(s);
+}
+END_TEST
+
 START_TEST(test_gmsh_deck_errors) {
   YfSim *s = new_sim();
   model_add_material(&s->model, "soft");
@@ -1618,6 +1650,7 @@ Suite *mesh_suite(void) {
   tcase_add_test(tc, test_gmsh_malformed);
   tcase_add_test(tc, test_gmsh_partitioned);
   tcase_add_test(tc, test_gmsh_shared_ids_warned);
+  tcase_add_test(tc, test_gmsh_shift);
   tcase_add_test(tc, test_gmsh_flat_plane_off_zero);
   tcase_add_test(tc, test_gmsh_too_many_groups);
   tcase_add_test(tc, test_gmsh_entities_after_elements);

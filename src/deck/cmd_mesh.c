@@ -47,7 +47,7 @@ static void cmd_mesh_rect(YfModel *m, const YfArgs *a) {
   if (b == -1) arg_error(a, 7, "user ids would overflow");
 }
 
-/* mesh gmsh BODY FILE.msh [material PHYS=MAT ... | material MAT ...] [scale S]
+/* mesh gmsh BODY FILE.msh [material PHYS=MAT ... | material MAT ...] [scale S] [shift DX DY]
  *
  * After `material`, words PHYS=MAT map a physical surface (by name or tag) to a material and a
  * bare word MAT sets the default material (used by surfaces with no mapping and no material of
@@ -63,13 +63,14 @@ static void cmd_mesh_gmsh(YfModel *m, const YfArgs *a) {
   o.scale = 1.0;
   o.from = a->loc;
   o.map = yf_calloc((size_t)a->n, sizeof *o.map, "material mappings");
-  int first_map_mat = -1, seen_scale = 0;
+  int first_map_mat = -1, seen_scale = 0, seen_shift = 0;
   for (int i = 3; i < a->n;) {
     if (!strcmp(a->w[i], "material")) {
       i++;
-      if (i >= a->n || !strcmp(a->w[i], "scale"))
+      if (i >= a->n || !strcmp(a->w[i], "scale") || !strcmp(a->w[i], "shift"))
         arg_error(a, i - 1, "expects PHYS=MAT mappings or a material name after it");
-      for (; i < a->n && strcmp(a->w[i], "scale") != 0 && strcmp(a->w[i], "material") != 0; i++) {
+      for (; i < a->n && strcmp(a->w[i], "scale") != 0 && strcmp(a->w[i], "shift") != 0 &&
+             strcmp(a->w[i], "material") != 0; i++) {
         char *eq = strchr(a->w[i], '=');
         char buf[512];
         if (!eq) {
@@ -100,8 +101,17 @@ static void cmd_mesh_gmsh(YfModel *m, const YfArgs *a) {
       if (i + 1 >= a->n) arg_error(a, i, "expects a factor after it");
       o.scale = arg_pos(a, i + 1, "scale");
       i += 2;
+    } else if (!strcmp(a->w[i], "shift")) {
+      /* after the scale, in metres: two bodies from one file (an impactor and its target) are
+       * placed apart, as LAMMPS's displace_atoms moves a copy */
+      if (seen_shift) arg_error(a, i, "given twice");
+      seen_shift = 1;
+      if (i + 2 >= a->n) arg_error(a, i, "expects DX DY [m] after it");
+      o.dx = arg_coord(a, i + 1, "DX");
+      o.dy = arg_coord(a, i + 2, "DY");
+      i += 3;
     } else {
-      arg_error(a, i, "unknown keyword (expected material or scale)");
+      arg_error(a, i, "unknown keyword (expected material, scale or shift)");
     }
   }
   if (o.defmat < 0) o.defmat = first_map_mat;

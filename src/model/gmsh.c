@@ -1208,7 +1208,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
   for (long i = 0; i < nn; i++) {
     l2m[i] = -1;
     if (!used[i]) continue;
-    l2m[i] = model_add_node(m, nx[i], ny[i], (int)ntag[i], b);
+    l2m[i] = model_add_node(m, nx[i] + o->dx, ny[i] + o->dy, (int)ntag[i], b);
     m->node.gmask[l2m[i]] |= bbit;
   }
   for (long t = 0; t < ntri; t++) {

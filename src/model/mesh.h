@@ -67,6 +67,7 @@ typedef struct {
   YfPhysMat *map;       /* PHYS=MAT mappings                                                  */
   int nmap;
   double scale;         /* coordinates are multiplied by this                                 */
+  double dx, dy;        /* ... then moved by this [m] (a second body from the same file)        */
   YfLoc from;           /* the deck line of the mesh command (for messages)                   */
 } YfGmshOpts;
 
