@@ -554,6 +554,72 @@ START_TEST(test_joint_split_not_dt) {
 }
 END_TEST
 
+/* Mohr-Coulomb joints (cohesion 1 MPa, friction 0.6) in a direct shear test under a 2 MPa pressure
+ * ramp stopped at step 7275 (exit 3) with "energy split wrong", whose advice blamed f_t and f_s far
+ * apart and sent users to 'damage reversible', which stops too (energy from nowhere).  The cause is
+ * the law (ALGORITHMS 3.5): f_s = c - sigma mu scales the whole shear curve, so it derives from no
+ * potential.  Physics first: a joint taken round a closed loop in (slip, opening) returns to its
+ * state (damage 0) having done net work: 0 to rounding without friction, more than 5 % of the loop's
+ * shear energy scale with mu 0.6, of opposite sign round the opposite loop.  So no state estimate
+ * of the stored energy can make the split right, and the check now names the Mohr-Coulomb set. */
+static double mc_loop_work(double mu, int dir) {
+  YfJointProp p;
+  joint_prop_default(&p);
+  p.ft = 1e9;
+  p.fs = 1e9;
+  p.gf = 100;
+  p.pen = 3e11;
+  p.law = YF_SOFT_LINEAR;
+  p.coh = 1e6;
+  p.phi = mu;
+  p.y2d_floor = 0;
+  p.hreg = 0;
+  const double h = 0.005, s1 = 0.8 * 2 * h * 1e6 / p.pen, o1 = -2e6 * h / p.pen;
+  double c[5][2] = {{0, 0}, {s1, 0}, {s1, o1}, {0, o1}, {0, 0}};
+  if (dir < 0) { c[1][0] = 0; c[1][1] = o1; c[3][0] = s1; c[3][1] = 0; }
+  double fs = joint_fs_init(&p), dmg[3] = {0, 0, 0}, W = 0, fp[2] = {0, 0}, up[2] = {0, 0};
+  const int n = 4000;
+  for (int leg = 0; leg < 4; leg++)
+    for (int i = 1; i <= n; i++) {
+      double t = (double)i / n, ux = c[leg][0] + t * (c[leg + 1][0] - c[leg][0]),
+             uy = c[leg][1] + t * (c[leg + 1][1] - c[leg][1]);
+      double x[4] = {ux, h + ux, h, 0}, y[4] = {uy, uy, 0, 0}, f[8];
+      joint_force(&p, x, y, &fs, dmg, f, NULL);
+      double fa[2] = {f[0] + f[2], f[1] + f[3]}; /* the joint's force on side A (nodes 0, 1) */
+      W += 0.5 * (fa[0] + fp[0]) * (ux - up[0]) + 0.5 * (fa[1] + fp[1]) * (uy - up[1]);
+      fp[0] = fa[0]; fp[1] = fa[1]; up[0] = ux; up[1] = uy;
+    }
+  ck_assert(dmg[0] == 0 && dmg[1] == 0 && dmg[2] == 0);
+  return W / (1e6 * s1 * h); /* per the loop's shear energy scale f_s s h */
+}
+
+START_TEST(test_mohr_coulomb_energy_named) {
+  double w0 = mc_loop_work(0.0, 1), w1 = mc_loop_work(0.6, 1), w2 = mc_loop_work(0.6, -1);
+  fprintf(stderr, "energy: joint loop work / f_s s h: mu 0 %.3g, mu 0.6 %.4g, reversed %.4g\n", w0, w1, w2);
+  ck_assert_double_lt(fabs(w0), 1e-6);
+  ck_assert_double_gt(w1, 0.05);
+  ck_assert_double_lt(fabs(w1 + w2), 1e-6 * fabs(w1));
+  static const char *const deck =
+      "material m elastic rho 2500 E 3e10 nu 0.2 plane_strain\nmesh rect blk m 0 0 0.1 0.1 20 20 pattern right\n"
+      "region band box -1 0.045 1 0.055\n"
+      "jointprop j ft 1e9 fs 1e9 gf 100 pen 3e11 law linear cohesion 1e6 friction 0.6 floor none%s\n"
+      "fracture blk j region band\nregion bot box -1 -1 1 1e-9\ngroup bot node region bot\n"
+      "region top box -1 0.0999999 1 1\ngroup top node region top\nfix hold bot fixed xy\n"
+      "history c ramp 0 0.002\nload p top pressure 2e6 history c\ndamping mass 3000\n"
+      "timestep auto safety 0.5\nrun 10000\n";
+  for (int k = 0; k < 2; k++) {
+    char d[2048], *err, *dir;
+    snprintf(d, sizeof d, deck, k ? " damage reversible" : "");
+    int rc = yft_run_binary("mc.deck", d, "-log none", &err, &dir);
+    ck_assert_msg(rc == 3, "case %d: exit %d: %s", k, rc, err);
+    ck_assert_msg(strstr(err, "Mohr-Coulomb shear strength of jointprop j"), "%s", err);
+    ck_assert_msg(!strstr(err, "f_t and f_s differ widely") && !strstr(err, "reduce it"), "%s", err);
+    free(err);
+    free(dir);
+  }
+}
+END_TEST
+
 /* A displacement fix given before the first run without a ramp (a pull of 1e-4 m from t = 0) makes
  * its nodes jump in the first step too, and the energy check stopped the run (exit 3) after a
  * warning whose advice was wrong for it: "a history cannot help", "add the fix before the run
@@ -787,6 +853,7 @@ Suite *energy_suite(void) {
   tcase_add_test(tc, test_gravity_changed_between_runs);
   tcase_add_test(tc, test_displacement_jump_warned);
   tcase_add_test(tc, test_joint_split_not_dt);
+  tcase_add_test(tc, test_mohr_coulomb_energy_named);
   tcase_add_test(tc, test_displacement_without_ramp_advice);
   tcase_add_test(tc, test_joined_skip_advice);
   tcase_add_test(tc, test_overlapping_fixes);
