@@ -568,9 +568,12 @@ START_TEST(test_deck_errors) {
       MAT JP "mesh rect b m 0 0 1 1 2 2\nfracture b k\n",                /* unknown jointprop */
       MAT JP "mesh rect b m 0 0 1 1 2 2\nfracture b j region nowhere\n", /* unknown region */
       MAT JP "mesh rect b m 0 0 1 1 2 2\ntimestep auto\nrun 1\nfracture b j\n", /* after a run */
+      /* friction without cohesion: Mohr-Coulomb is off (c = 0), the friction was ignored in silence */
+      MAT "jointprop j ft 3e6 fs 3e6 gf 100 pen 1e11 friction 0.6\nmesh rect b m 0 0 1 1 2 2\nfracture b j\n",
   };
-  const char *want[] = {"pen", "law", "body", "jointprop", "region", "before the first run"};
-  for (int i = 0; i < 6; i++) {
+  const char *want[] = {"pen", "law", "body", "jointprop", "region", "before the first run",
+                        "'friction': friction acts only with 'cohesion C'"};
+  for (int i = 0; i < 7; i++) {
     char *err = NULL, *dir = NULL;
     int code = yft_run_binary("bad.deck", bad[i], NULL, &err, &dir);
     ck_assert_int_eq(code, 1);

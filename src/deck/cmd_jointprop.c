@@ -62,6 +62,7 @@ void cmd_jointprop(YfSim *s, const YfArgs *a) {
   int given[4] = {0, 0, 0, 0}, het = YF_HET_NONE;
   double het_par = 0;
   unsigned long seed = 1;
+  int fric_at = 0; /* word of 'friction', to name it when there is no cohesion */
   static const char *const keys[] = {"ft", "fs", "gf", "pen", "law", "cohesion", "friction", "damage", "floor",
                                      "weibull", "normal", "seed", "tangent", NULL};
   static const char *const laws[] = {"munjiza", "munjiza_gf", "linear", "bilinear", "table", NULL};
@@ -94,7 +95,7 @@ void cmd_jointprop(YfSim *s, const YfArgs *a) {
       break;
     }
     case 5: p.coh = arg_pos(a, i + 1, "cohesion"); break;
-    case 6: p.phi = arg_nonneg(a, i + 1, "friction"); break;
+    case 6: p.phi = arg_nonneg(a, i + 1, "friction"); fric_at = i; break;
     case 7: p.irreversible = arg_choice(a, i + 1, "damage", dmg); break;
     case 8: p.y2d_floor = arg_choice(a, i + 1, "floor", floors) == 0; break;
     case 9:
@@ -121,6 +122,10 @@ void cmd_jointprop(YfSim *s, const YfArgs *a) {
   if (!given[2]) arg_error(a, 0, "missing 'gf GF' (fracture energy, J/m^2)");
   if (!given[3]) arg_error(a, 0, "missing 'pen P' (joint penalty, Pa; about 10-100 x E)");
   if (!given[1] && !(p.coh > 0)) arg_error(a, 0, "missing 'fs FS' (shear strength, Pa) or 'cohesion C'");
+  /* Mohr-Coulomb is on only with a cohesion (ALGORITHMS 3.5): a friction alone was ignored in silence */
+  if (p.phi > 0 && !(p.coh > 0))
+    arg_error(a, fric_at, "friction acts only with 'cohesion C' (Mohr-Coulomb f_s = C - sigma MU, C > 0 Pa); "
+              "add cohesion C or drop friction");
   if (!given[1]) p.fs = 0;
   joints_add_set(s, name, &p, het, het_par, seed, &a->loc);
 }
