@@ -584,6 +584,39 @@ START_TEST(test_deck_errors) {
 }
 END_TEST
 
+/* 'normal CV' redraws the factors at or below 0: a truncated normal, whose mean is
+ * 1 + CV phi(1/CV) / Phi(1/CV) = 2.017 at CV 2, not the 1 the README promised; it was silent.  The
+ * drawn factors' mean matches the truncated mean within 4 standard errors, and the deck now warns
+ * with that mean (none at CV 0.3, mean 1.0005). */
+START_TEST(test_normal_wide_warned) {
+  const char *deck = MAT "jointprop j ft 3e6 fs 3e6 gf 100 pen 1e11 law linear normal %s seed 3\n"
+                         "mesh rect bar m 0 0 1 1 30 30 pattern alt\nfracture bar j\n";
+  char d[1024];
+  snprintf(d, sizeof d, deck, "2");
+  quiet();
+  YfSim *s = yft_run(d);
+  run_prepare(s);
+  const YfJoints *J = s->joints;
+  double m = 0, m2 = 0;
+  for (int j = 0; j < J->n; j++) { m += J->k[j]; m2 += J->k[j] * J->k[j]; }
+  m /= J->n;
+  double se = sqrt((m2 / J->n - m * m) / J->n);
+  fprintf(stderr, "joint: normal 2: %d factors, mean %.4g +- %.2g (truncated normal 2.017)\n", J->n, m, se);
+  ck_assert_double_lt(fabs(m - 2.017), 4 * se);
+  sim_free(s);
+  for (int k = 0; k < 2; k++) {
+    char *err, *dir;
+    snprintf(d, sizeof d, deck, k ? "0.3" : "2");
+    int rc = yft_run_binary("n.deck", d, "-log none", &err, &dir);
+    ck_assert_int_eq(rc, 0);
+    if (k) ck_assert_msg(!strstr(err, "warning"), "%s", err);
+    else ck_assert_msg(strstr(err, "n.deck:2: warning") && strstr(err, "mean is 2.02, not 1"), "%s", err);
+    free(err);
+    free(dir);
+  }
+}
+END_TEST
+
 /* The summary keys and the fracture log of a deck run. */
 START_TEST(test_summary_and_log) {
   char *err = NULL, *dir = NULL;
@@ -662,6 +695,7 @@ Suite *joint_suite(void) {
   tcase_add_test(tc, test_force_stage_bitwise);
   tcase_add_test(tc, test_stable_dt_bound);
   tcase_add_test(tc, test_deck_errors);
+  tcase_add_test(tc, test_normal_wide_warned);
   tcase_add_test(tc, test_summary_and_log);
   tcase_add_test(tc, test_floor_warned);
   suite_add_tcase(s, tc);

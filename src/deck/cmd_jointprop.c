@@ -1,6 +1,7 @@
 /* cmd_jointprop.c: the `jointprop` deck command (a row of commands.def): reads the words (and a
  * softening table file) into a YfJointProp and adds a joint set (joints_add_set, joint.h).
  */
+#include <math.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -107,6 +108,15 @@ void cmd_jointprop(YfSim *s, const YfArgs *a) {
       if (k == 9 && het_par < 0.01)
         arg_error(a, i + 1, "a Weibull modulus below 0.01 spreads the strengths beyond what doubles hold (its mean-1 "
                   "scale 1/Gamma(1 + 1/M) underflows); concrete and rock have 5-20");
+      /* the normal draw is redrawn until > 0 (joints.c): a truncated normal, whose mean
+       * 1 + CV phi(1/CV) / Phi(1/CV) leaves 1 by more than 1 % above CV 0.42 */
+      if (k == 10) {
+        double z = 1.0 / het_par, mean = 1.0 + het_par * exp(-0.5 * z * z) / sqrt(2.0 * M_PI) / (0.5 * erfc(-z / sqrt(2.0)));
+        if (mean > 1.01)
+          yf_warn(&a->loc, "jointprop %s: normal %g: factors at or below 0 are drawn again, so their mean is %.3g, not "
+                  "1 (%.2g %% of draws fall there); for a scatter this wide use 'weibull M'", name, het_par, mean,
+                  100.0 * 0.5 * erfc(z / sqrt(2.0)));
+      }
       break;
     case 11: seed = (unsigned long)arg_int(a, i + 1, "seed", 0, 4294967295L); break;
     case 12: {
