@@ -385,6 +385,80 @@ static void nodes_flat(Msh *r, const Flat *f, long tag0) {
              "one plane z = constant (such as z = 0)", f->zntag, f->zat, tag0, f->zref);
 }
 
+/* Node tag k of element tag (of type, on file line line) from the word just read; want: how many
+ * its line must hold. */
+static void elem_tag_word(Msh *r, long line, long tag, int type, int want, int k, long *nt) {
+  if (k >= want) msh_fail(r, line, "element %ld (%s) has more than %d node tags on its line", tag, elem_name(type), want);
+  char *end;
+  errno = 0;
+  nt[k] = strtol(r->tok, &end, 10);
+  if (end == r->tok || *end != '\0' || errno == ERANGE)
+    msh_fail(r, line, "expected an integer node tag in element %ld, found '%s'", tag, r->tok);
+}
+
+/* The want corners of element tag as node indices (v), from its k node tags nt. */
+static void elem_corners(Msh *r, long line, const YfIdMap *nmap, const long *nt, int k, int want, long tag,
+                         int type, int *v) {
+  if (k < want)
+    msh_fail(r, line, "element %ld (%s) has %d node tags on its line, expected %d", tag, elem_name(type), k, want);
+  for (int j = 0; j < want; j++) {
+    v[j] = idmap_get(nmap, nt[j]);
+    if (v[j] < 0) msh_fail(r, line, "node %ld of element %ld is not defined in $Nodes", nt[j], tag);
+  }
+}
+
+/* A point or line element's nodes as (entity, node) pairs, for its physical groups. */
+static void pair_add(int **pair, long *npair, long *cappair, int ei, const int *v, int want) {
+  if (*npair + want > *cappair) {
+    *cappair = *cappair ? 2 * *cappair : 256;
+    *pair = yf_realloc(*pair, (size_t)*cappair * 2 * sizeof **pair, "group nodes");
+  }
+  for (int j = 0; j < want; j++) {
+    (*pair)[2 * *npair] = ei;
+    (*pair)[2 * *npair + 1] = v[j];
+    (*npair)++;
+  }
+}
+
+/* A triangle's tag and area checked (positions nx, ny after scale), its corners v made
+ * counter-clockwise. */
+static void tri_checked(Msh *r, long line, long tag, const long *nt, const double *nx, const double *ny, int *v) {
+  if (tag <= 0 || tag > INT_MAX) msh_fail(r, line, "element tag %ld is not in 1..%d", tag, INT_MAX);
+  double d;
+  if (mesh_tri_degenerate(nx[v[0]], ny[v[0]], nx[v[1]], ny[v[1]], nx[v[2]], ny[v[2]], &d))
+    msh_fail(r, line, "triangle %ld has zero area (nodes %ld %ld %ld; area %g m^2 after scale)", tag, nt[0], nt[1],
+             nt[2], 0.5 * fabs(d));
+  if (d < 0) { /* clockwise in the file: swap two corners */
+    int t = v[1];
+    v[1] = v[2];
+    v[2] = t;
+  }
+}
+
+/* What to do with an element of dimension edim and type in entity etag (physical: the entity is in
+ * a physical group): 1 a triangle, 2 its nodes join the groups, 0 skipped (points and curves in
+ * no group); *want: node tags per element.  3D and higher-order elements are refused. */
+static int elem_keep(Msh *r, long line, int edim, long type, long etag, int physical, int *want) {
+  if (edim == 3) msh_fail(r, line, "3D elements (%s) in volume %ld: yfdem is 2D (mesh with gmsh -2)", elem_name(type), etag);
+  if (edim == 2) {
+    if (type != 2) unsupported(r, line, type, 2, etag);
+    *want = 3;
+    return 1;
+  }
+  if (!physical) {
+    *want = 0;
+    return 0;
+  }
+  if (edim == 1) {
+    if (type != 1) unsupported(r, line, type, 1, etag);
+    *want = 2;
+    return 2;
+  }
+  if (type != 15) unsupported(r, line, type, 0, etag);
+  *want = 1;
+  return 2;
+}
+
 static int ent_find(const YfIdMap *emap, int dim, long tag) {
   return idmap_get(emap, (long long)tag * 4 + dim);
 }
@@ -790,67 +864,26 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
         if (edim < 0)
           msh_fail(r, line, "element %ld has type %ld, no Gmsh element type yfdem knows: yfdem reads 3-node "
                    "triangles (type 2), 2-node lines (type 1) and points (type 15)", tag, type);
-        if (edim == 3)
-          msh_fail(r, line, "3D elements (%s) in volume %ld: yfdem is 2D (mesh with gmsh -2)", elem_name(type), etag);
-        int keep; /* 1: triangles, 2: group nodes, 0: skip (as 4.1 skips points and curves in no group) */
-        int want; /* node tags per element */
-        if (edim == 2) {
-          if (type != 2) unsupported(r, line, type, 2, etag);
-          keep = 1, want = 3;
-        } else if (!phys) {
-          keep = 0, want = 0;
-        } else if (edim == 1) {
-          if (type != 1) unsupported(r, line, type, 1, etag);
-          keep = 2, want = 2;
-        } else {
-          keep = 2, want = 1;
-        }
+        int want; /* node tags per element; keep as 4.1 keeps (points and curves in no group skipped) */
+        const int keep = elem_keep(r, line, edim, type, etag, phys != 0, &want);
         while (!r->bin && !msh_eol(r)) {
           msh_next(r);
           if (!keep) continue;
-          if (k >= want)
-            msh_fail(r, line, "element %ld (%s) has more than %d node tags on its line", tag, elem_name(type), want);
-          char *end;
-          errno = 0;
-          nt[k] = strtol(r->tok, &end, 10);
-          if (end == r->tok || *end != '\0' || errno == ERANGE)
-            msh_fail(r, line, "expected an integer node tag in element %ld, found '%s'", tag, r->tok);
+          elem_tag_word(r, line, tag, type, want, k, nt);
           k++;
         }
         if (!r->bin && r->pos >= r->len)
           msh_fail(r, r->line, "unexpected end of file in element %ld, %ld of %ld elements (truncated file?)",
                    tag, i + 1, ntot);
         if (!keep) continue;
-        if (k < want)
-          msh_fail(r, line, "element %ld (%s) has %d node tags on its line, expected %d", tag, elem_name(type), k, want);
         int v[3];
-        for (int j = 0; j < want; j++) {
-          v[j] = idmap_get(&nmap, nt[j]);
-          if (v[j] < 0) msh_fail(r, line, "node %ld of element %ld is not defined in $Nodes", nt[j], tag);
-        }
+        elem_corners(r, line, &nmap, nt, k, want, tag, type, v);
         if (keep == 2) {
           int ei = ent22(&ent, &nent, &capent, &pool, &npool, &cappool, &emap, edim, etag, &phys, 1, tag);
-          if (npair + want > cappair) {
-            cappair = cappair ? 2 * cappair : 256;
-            pair = yf_realloc(pair, (size_t)cappair * 2 * sizeof *pair, "group nodes");
-          }
-          for (int j = 0; j < want; j++) {
-            pair[2 * npair] = ei;
-            pair[2 * npair + 1] = v[j];
-            npair++;
-          }
+          pair_add(&pair, &npair, &cappair, ei, v, want);
           continue;
         }
-        if (tag <= 0 || tag > INT_MAX) msh_fail(r, line, "element tag %ld is not in 1..%d", tag, INT_MAX);
-        double d;
-        if (mesh_tri_degenerate(nx[v[0]], ny[v[0]], nx[v[1]], ny[v[1]], nx[v[2]], ny[v[2]], &d))
-          msh_fail(r, line, "triangle %ld has zero area (nodes %ld %ld %ld; area %g m^2 after scale)", tag,
-                   nt[0], nt[1], nt[2], 0.5 * fabs(d));
-        if (d < 0) { /* clockwise in the file: swap two corners */
-          int s = v[1];
-          v[1] = v[2];
-          v[2] = s;
-        }
+        tri_checked(r, line, tag, nt, nx, ny, v);
         if (nraw == capraw) {
           capraw = capraw ? 2 * capraw : 1024;
           rv = yf_realloc(rv, (size_t)capraw * 3 * sizeof *rv, "mesh triangles");
@@ -960,23 +993,8 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
                                dim_word[edim], etag);
         }
         int physical = ei >= 0 && ent[ei].nphys > 0;
-        int keep; /* 1: triangles, 2: group nodes, 0: skip */
         int want; /* node tags per element */
-        if (edim == 3)
-          msh_fail(r, bline, "3D elements (%s) in volume %ld: yfdem is 2D (mesh with gmsh -2)",
-                   elem_name(type), etag);
-        if (edim == 2) {
-          if (type != 2) unsupported(r, bline, type, 2, etag);
-          keep = 1, want = 3;
-        } else if (!physical) {
-          keep = 0, want = 0;
-        } else if (edim == 1) {
-          if (type != 1) unsupported(r, bline, type, 1, etag);
-          keep = 2, want = 2;
-        } else {
-          if (type != 15) unsupported(r, bline, type, 0, etag);
-          keep = 2, want = 1;
-        }
+        const int keep = elem_keep(r, bline, edim, type, etag, physical, &want); /* 1 triangles, 2 group nodes, 0 skip */
         if (ei < 0 && keep == 1) {
           /* no $Entities: remember the surface so triangles still know where they came from */
           ei = ent_find(&emap, 2, etag);
@@ -1001,14 +1019,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
           while (!msh_eol(r)) {
             msh_next(r);
             if (!keep) continue;
-            if (k >= want)
-              msh_fail(r, line, "element %ld (%s) has more than %d node tags on its line", tag,
-                       elem_name(type), want);
-            char *end;
-            errno = 0;
-            nt[k] = strtol(r->tok, &end, 10);
-            if (end == r->tok || *end != '\0' || errno == ERANGE)
-              msh_fail(r, line, "expected an integer node tag in element %ld, found '%s'", tag, r->tok);
+            elem_tag_word(r, line, tag, type, want, k, nt);
             k++;
           }
           /* a file cut inside an element's line said "has 0 node tags", not that it was cut */
@@ -1016,36 +1027,13 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
             msh_fail(r, r->line, "unexpected end of file in element %ld, %ld of %ld elements into its block "
                      "(truncated file?)", tag, i + 1, nin);
           if (!keep) continue;
-          if (k < want)
-            msh_fail(r, line, "element %ld (%s) has %d node tags on its line, expected %d", tag,
-                     elem_name(type), k, want);
           int v[3];
-          for (int j = 0; j < want; j++) {
-            v[j] = idmap_get(&nmap, nt[j]);
-            if (v[j] < 0) msh_fail(r, line, "node %ld of element %ld is not defined in $Nodes", nt[j], tag);
-          }
+          elem_corners(r, line, &nmap, nt, k, want, tag, type, v);
           if (keep == 2) {
-            if (npair + want > cappair) {
-              cappair = cappair ? 2 * cappair : 256;
-              pair = yf_realloc(pair, (size_t)cappair * 2 * sizeof *pair, "group nodes");
-            }
-            for (int j = 0; j < want; j++) {
-              pair[2 * npair] = ei;
-              pair[2 * npair + 1] = v[j];
-              npair++;
-            }
+            pair_add(&pair, &npair, &cappair, ei, v, want);
             continue;
           }
-          if (tag <= 0 || tag > INT_MAX) msh_fail(r, line, "element tag %ld is not in 1..%d", tag, INT_MAX);
-          double d;
-          if (mesh_tri_degenerate(nx[v[0]], ny[v[0]], nx[v[1]], ny[v[1]], nx[v[2]], ny[v[2]], &d))
-            msh_fail(r, line, "triangle %ld has zero area (nodes %ld %ld %ld; area %g m^2 after scale)", tag,
-                     nt[0], nt[1], nt[2], 0.5 * fabs(d));
-          if (d < 0) { /* clockwise in the file: swap two corners */
-            int s = v[1];
-            v[1] = v[2];
-            v[2] = s;
-          }
+          tri_checked(r, line, tag, nt, nx, ny, v);
           if (ntri == captri) {
             captri = captri ? 2 * captri : 1024;
             tv = yf_realloc(tv, (size_t)captri * 3 * sizeof *tv, "mesh triangles");
