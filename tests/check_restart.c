@@ -1085,6 +1085,14 @@ START_TEST(test_interrupt_between_runs_continues) {
 }
 END_TEST
 
+/* A two-triangle bar whose one joint, pulled apart, sets the first run's stable step under
+ * timestep auto and then breaks, so a later run computes a step 9 x larger. */
+static const char BAR[] =
+    "material rock elastic rho 2500 E 1e10 nu 0.2 plane_stress\nmesh rect bar rock 0 0 0.01 0.01 1 1\n"
+    "jointprop cj ft 1e6 fs 1e6 gf 1 pen 1e12\nfracture bar cj\nregion left box -1 -1 1e-9 1\n"
+    "region right box 0.0099999 -1 1 1\ngroup left node region left\ngroup right node region right\n"
+    "fix hold left fixed xy\nvelocity right set 5 0\ntimestep auto\nthermo 100\n";
+
 /* Between runs under timestep auto the uninterrupted deck's next run computes its dt anew, from
  * the state reached: here the one joint of a two-triangle bar, whose penalty sets the first run's
  * limit, breaks, and the second run's dt is the triangles' (9 x larger).  The continued run does
@@ -1093,11 +1101,6 @@ END_TEST
  * (it was refused: "dt out of range"). */
 START_TEST(test_restart_between_runs_dt_auto) {
   mk_tmpdir();
-  static const char BAR[] =
-      "material rock elastic rho 2500 E 1e10 nu 0.2 plane_stress\nmesh rect bar rock 0 0 0.01 0.01 1 1\n"
-      "jointprop cj ft 1e6 fs 1e6 gf 1 pen 1e12\nfracture bar cj\nregion left box -1 -1 1e-9 1\n"
-      "region right box 0.0099999 -1 1 1\ngroup left node region left\ngroup right node region right\n"
-      "fix hold left fixed xy\nvelocity right set 5 0\ntimestep auto\nthermo 100\n";
   char text[2048], h_full[17], h[17];
   snprintf(text, sizeof text, "%srun 300\nrun 300\n", BAR);
   write_text("full.deck", text);
@@ -1136,11 +1139,6 @@ END_TEST
  * step keeps that run's dt (its 'run 300 upto' does no step and computes none). */
 START_TEST(test_restart_within_run_dt_auto) {
   mk_tmpdir();
-  static const char BAR[] =
-      "material rock elastic rho 2500 E 1e10 nu 0.2 plane_stress\nmesh rect bar rock 0 0 0.01 0.01 1 1\n"
-      "jointprop cj ft 1e6 fs 1e6 gf 1 pen 1e12\nfracture bar cj\nregion left box -1 -1 1e-9 1\n"
-      "region right box 0.0099999 -1 1 1\ngroup left node region left\ngroup right node region right\n"
-      "fix hold left fixed xy\nvelocity right set 5 0\ntimestep auto\nthermo 100\n";
   char text[2048], h_full[17], h[17], h_one[17];
   snprintf(text, sizeof text, "%srestart every 300 end.rst\nrun 300\nrun 300\n", BAR);
   write_text("full.deck", text);
