@@ -1,9 +1,9 @@
-/* gmsh.c: reader of Gmsh MSH 4.1 ASCII and MSH 2.2 ASCII or binary meshes (the `mesh gmsh`
- * command's parser).
+/* gmsh.c: reader of Gmsh MSH 4.1 and 2.2 meshes, ASCII or binary, and MSH 2.0 and 2.1 ASCII (the
+ * `mesh gmsh` command's parser).
  *
  * The file is read whole into memory and walked token by token, keeping the line of each token
  * so that every complaint names FILE.msh:LINE (and the deck line of the mesh command).  Sections
- * used: $MeshFormat (must say 4.1, ASCII), $PhysicalNames, $Entities (which entity belongs to
+ * used: $MeshFormat (4.1, 2.2, 2.1 or 2.0), $PhysicalNames, $Entities (which entity belongs to
  * which physical groups), $PartitionedEntities (the same for the partition entities that hold the
  * elements of a mesh partitioned in Gmsh; its partitions are ignored), $Nodes (with or without
  * parametric coordinates) and $Elements; any other section is skipped.
@@ -35,7 +35,15 @@
  * nodes are in $Nodes, or in $ParametricNodes (each node's entity and u, or u v, after x y z).
  * Binary 2.2 keeps the ASCII layout around the data of $Nodes (tag and x y z of each node) and
  * $Elements (blocks of one element type); the data is read in the byte order the header's integer
- * 1 tells, and complaints about it name the line of the section's count.
+ * 1 tells, and complaints about it name the line of the section's count.  MSH 2.0 and 2.1 (Gmsh
+ * 2.0 to 2.4) are 2.2 but for an element's tags after the second (its partition), which are
+ * skipped; their binary form is refused.
+ *
+ * Binary 4.1 has the ASCII values of 4.1 in binary ($PhysicalNames stays ASCII): counts and node
+ * and element tags as 8-byte size_t, entity tags, dimensions, element types and physical tags as
+ * 4-byte ints, coordinates as doubles, in the header's byte order.  Its sections are read by the
+ * ASCII code through rd_size/rd_int/rd_double; an element's node tags are as many as its type has
+ * (ASCII: the words on its line), and complaints name the byte as well as the line.
  */
 #include <ctype.h>
 #include <errno.h>
