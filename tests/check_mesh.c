@@ -1545,6 +1545,10 @@ START_TEST(test_gmsh_msh41_binary_hand_written) {
   bad_bin41("c7.msh", bad, n, off[3], "$Nodes: node tag 0 is not in 1..");
   PATCH(off[3], (uint64_t)4);
   bad_bin41("c8.msh", bad, n, off[3], "$Nodes: node tag 4 is defined twice");
+  /* a count the rest of the file cannot hold is refused before its memory is taken */
+  size_t cnt = (size_t)((char *)memmem(buf, n, "$Nodes\n", 7) - buf) + 7 + 8; /* the number of nodes */
+  PATCH(cnt, (uint64_t)100000000);
+  bad_bin41("c7b.msh", bad, n, cnt - 8, "$Nodes: 100000000 nodes take at least 3200000000 bytes, more than the");
   PATCH(off[4], (double)NAN);
   bad_bin41("c9.msh", bad, n, off[4], "$Nodes: a node x is not a finite number");
   PATCH(off[4] + 8, (double)INFINITY);

@@ -408,6 +408,13 @@ typedef struct {
 
 /* Room for ntot nodes, once the memory they need is known to be there. */
 static void nodes_alloc(Msh *r, int hline, long ntot, long **ntag, double **nx, double **ny, int **used) {
+  /* binary: the least a node takes in the file, a size_t (4.1) or int (2.2) tag and 3 doubles.  A
+   * count beyond what the rest of the file holds (a flipped byte of the count, a cut file) is
+   * refused before its memory is taken (ASCII: the data read says where it ends) */
+  size_t per = r->b41 ? 32 : 28, left = r->len - r->pos;
+  if (r->bin && (double)ntot * (double)per > (double)left)
+    msh_fail(r, hline, "%ld nodes take at least %.0f bytes, more than the %zu left in the file: a wrong count, or "
+             "(truncated file?)", ntot, (double)ntot * (double)per, left);
   if ((double)ntot * (25.0 + YF_BYTES_PER_NODE) > yf_mem_cap()) /* before allocating */
     msh_fail(r, hline, "%ld nodes need about %.3g GB of memory, more than the %.3g GB available", ntot,
              (double)ntot * (25.0 + YF_BYTES_PER_NODE) / 1e9, yf_mem_cap() / 1e9);
@@ -842,11 +849,13 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       rd_begin(r);
       long nblk = rd_size(r, "the number of entity blocks");
       int hline = r->tokline;
+      size_t hat = r->binat; /* binary: complaints about the header name its first byte */
       long ntot = rd_size(r, "the number of nodes");
       rd_size(r, "the smallest node tag");
       rd_size(r, "the largest node tag");
       if (nblk < 0 || ntot < 0 || ntot > INT_MAX / 4)
         msh_fail(r, r->tokline, "bad counts in the $Nodes header (%ld blocks, %ld nodes)", nblk, ntot);
+      r->binat = hat;
       nodes_alloc(r, hline, ntot, &ntag, &nx, &ny, &used);
       Flat f = {0};
       for (long b = 0; b < nblk; b++) {
@@ -870,6 +879,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
         for (long i = 0; i < nin; i++) node_xyz(r, o->scale, &f, nn + i, ntag[nn + i], nx, ny, extra);
         nn += nin;
       }
+      r->binat = hat;
       if (nn != ntot)
         msh_fail(r, hline, "the blocks hold %ld nodes but the header declares %ld", nn, ntot);
       rd_end(r);
@@ -1043,6 +1053,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       rd_begin(r);
       long nblk = rd_size(r, "the number of entity blocks");
       int hline = r->tokline;
+      size_t hat = r->binat; /* binary: complaints about the header name its first byte */
       long ntot = rd_size(r, "the number of elements");
       rd_size(r, "the smallest element tag");
       rd_size(r, "the largest element tag");
@@ -1136,6 +1147,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
         }
         ne += nin;
       }
+      r->binat = hat;
       if (ne != ntot)
         msh_fail(r, hline, "the blocks hold %ld elements but the header declares %ld", ne, ntot);
       rd_end(r);
