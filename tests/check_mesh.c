@@ -1211,7 +1211,8 @@ static const char *write_bin(const char *name, const char *buf, size_t n) {
   return p;
 }
 
-static void bad_bin(const char *name, const char *buf, size_t n, int line, const char *msg) {
+/* A binary file (buf, n) that must fail: exit 1 at line, with msg, and `also` unless NULL. */
+static void bad_bin_also(const char *name, const char *buf, size_t n, int line, const char *msg, const char *also) {
   YfSim *s = new_sim();
   model_add_material(&s->model, "soft");
   model_add_material(&s->model, "hard");
@@ -1219,8 +1220,30 @@ static void bad_bin(const char *name, const char *buf, size_t n, int line, const
   char cmd[1024], where[700];
   snprintf(cmd, sizeof cmd, "gmsh sq %s", path);
   snprintf(where, sizeof where, "%s:%d: error:", path, line);
-  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, where, msg, "mesh gmsh at test.deck:7");
+  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, where, msg, "mesh gmsh at test.deck:7", also);
   free_sim(s);
+}
+
+static void bad_bin(const char *name, const char *buf, size_t n, int line, const char *msg) {
+  bad_bin_also(name, buf, n, line, msg, NULL);
+}
+
+/* Every cut of a file (n bytes in buf) at offsets from k0 by step: exit 1, the file named, and the
+ * message says it looks cut. */
+static void cuts_fail(const char *buf, size_t n, size_t k0, size_t step) {
+  for (size_t k = k0; k + 1 < n; k += step) {
+    YfSim *s = new_sim();
+    model_add_material(&s->model, "soft");
+    model_add_material(&s->model, "hard");
+    model_add_material(&s->model, "rock");
+    model_add_material(&s->model, "steel");
+    char cmd[1024], *err;
+    snprintf(cmd, sizeof cmd, "gmsh sq %s", write_bin("cut.msh", buf, k));
+    int rc = run_child(s, cmd_mesh, "mesh", cmd, &err);
+    ck_assert_msg(rc == 1 && strstr(err, "cut.msh:") && strstr(err, "(truncated file?)"),
+                  "cut after %zu of %zu bytes: exit %d: %s", k, n, rc, err);
+    free_sim(s);
+  }
 }
 
 /* Binary MSH 2.2 (Mesh.Binary = 1), which was refused ("binary .msh files are not supported"): the
@@ -1290,17 +1313,7 @@ START_TEST(test_gmsh_msh22_binary) {
   b = gmsh_scene(write_bin("sqb.msh", buf, n - 1), "");
   ck_assert_int_eq(b->model.tri.n, 4);
   free_sim(b);
-  for (size_t k = strlen("$MeshFormat"); k + 1 < n; k++) {
-    YfSim *s = new_sim();
-    model_add_material(&s->model, "soft");
-    model_add_material(&s->model, "hard");
-    char cmd[1024], *err;
-    snprintf(cmd, sizeof cmd, "gmsh sq %s", write_bin("cut.msh", buf, k));
-    int rc = run_child(s, cmd_mesh, "mesh", cmd, &err);
-    ck_assert_msg(rc == 1 && strstr(err, "cut.msh:") && strstr(err, "(truncated file?)"),
-                  "cut after %zu of %zu bytes: exit %d: %s", k, n, rc, err);
-    free_sim(s);
-  }
+  cuts_fail(buf, n, strlen("$MeshFormat"), 1);
 
   /* wrong binary data */
   char bad[2048];
@@ -1426,30 +1439,7 @@ static void bad_bin41(const char *name, const char *buf, size_t n, size_t at, co
   for (size_t k = 0; k < at; k++) line += buf[k] == '\n';
   char byte[64];
   snprintf(byte, sizeof byte, "(binary data at byte %zu)", at);
-  YfSim *s = new_sim();
-  model_add_material(&s->model, "soft");
-  model_add_material(&s->model, "hard");
-  const char *path = write_bin(name, buf, n);
-  char cmd[1024], where[700];
-  snprintf(cmd, sizeof cmd, "gmsh sq %s", path);
-  snprintf(where, sizeof where, "%s:%d: error:", path, line);
-  EXPECT_FAIL(s, cmd_mesh, "mesh", cmd, 1, where, msg, byte, "mesh gmsh at test.deck:7");
-  free_sim(s);
-}
-
-/* Every cut of file (n bytes in buf) at offsets from k0 by step: exit 1, the file named, and the
- * message says it looks cut. */
-static void cuts_fail(const char *buf, size_t n, size_t k0, size_t step) {
-  for (size_t k = k0; k + 1 < n; k += step) {
-    YfSim *s = new_sim();
-    for (int i = 0; i < 4; i++) model_add_material(&s->model, (const char *[]){"soft", "hard", "rock", "steel"}[i]);
-    char cmd[1024], *err;
-    snprintf(cmd, sizeof cmd, "gmsh sq %s", write_bin("cut41.msh", buf, k));
-    int rc = run_child(s, cmd_mesh, "mesh", cmd, &err);
-    ck_assert_msg(rc == 1 && strstr(err, "cut41.msh:") && strstr(err, "(truncated file?)"),
-                  "cut after %zu of %zu bytes: exit %d: %s", k, n, rc, err);
-    free_sim(s);
-  }
+  bad_bin_also(name, buf, n, line, msg, byte);
 }
 
 /* Binary MSH 4.1 (gmsh -bin, Mesh.Binary = 1), which was refused ("binary MSH 4.1 files are not

@@ -1112,7 +1112,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
           int k = 0;
           for (int j = 0; r->b41 && j < nv; j++) {
             long w = rd_size(r, "a node tag of an element");
-            if (keep) nt[k++] = w; /* nv is want for the types kept */
+            if (keep && k < 3) nt[k++] = w; /* nv is want for the types kept */
           }
           while (!r->b41 && !msh_eol(r)) {
             msh_next(r);
