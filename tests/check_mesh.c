@@ -1589,7 +1589,7 @@ START_TEST(test_gmsh_msh41_binary_cut) {
 }
 END_TEST
 
-/* MSH 2.0 and 2.1 (Gmsh 2.0 to 2.4) lay out $Nodes and $Elements as 2.2 does; an element's tags
+/* MSH 2.0 and 2.1 (early Gmsh 2 releases) lay out $Nodes and $Elements as 2.2 does; an element's tags
  * after the physical and elementary ones are its partition (2.2: the number of partitions and
  * their list), which the reader skips.  They were refused ("MSH version 2.1 is not supported");
  * they give 2.2's scene.  Binary 2.0 and 2.1 stay refused. */

@@ -35,8 +35,8 @@
  * nodes are in $Nodes, or in $ParametricNodes (each node's entity and u, or u v, after x y z).
  * Binary 2.2 keeps the ASCII layout around the data of $Nodes (tag and x y z of each node) and
  * $Elements (blocks of one element type); the data is read in the byte order the header's integer
- * 1 tells, and complaints about it name the line of the section's count.  MSH 2.0 and 2.1 (Gmsh
- * 2.0 to 2.4) are 2.2 but for an element's tags after the second (its partition), which are
+ * 1 tells, and complaints about it name the line of the section's count.  MSH 2.0 and 2.1 (early
+ * Gmsh 2 releases) are 2.2 but for an element's tags after the second (its partition), which are
  * skipped; their binary form is refused.
  *
  * Binary 4.1 has the ASCII values of 4.1 in binary ($PhysicalNames stays ASCII): counts and node
@@ -644,7 +644,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       memcpy(ver, r->tok, sizeof ver);
       int vline = r->tokline;
       double v;
-      /* MSH 2.0 and 2.1 (Gmsh 2.0 to 2.4) write $Nodes and $Elements as 2.2 does; only the tags
+      /* MSH 2.0 and 2.1 (early Gmsh 2 releases) write $Nodes and $Elements as 2.2 does; only the tags
        * after an element's first two (physical, elementary) differ, its partition where 2.2 has
        * the number of partitions and their list, and the reader skips them */
       int v2old = yf_parse_double(ver, &v) && (fabs(v - 2.0) <= 1e-9 || fabs(v - 2.1) <= 1e-9);
