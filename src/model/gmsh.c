@@ -1,9 +1,9 @@
-/* gmsh.c: reader of Gmsh MSH 4.1 ASCII and MSH 2.2 ASCII or binary meshes (the `mesh gmsh`
- * command's parser).
+/* gmsh.c: reader of Gmsh MSH 4.1 and 2.2 meshes, ASCII or binary, and MSH 2.0 and 2.1 ASCII (the
+ * `mesh gmsh` command's parser).
  *
  * The file is read whole into memory and walked token by token, keeping the line of each token
  * so that every complaint names FILE.msh:LINE (and the deck line of the mesh command).  Sections
- * used: $MeshFormat (must say 4.1, ASCII), $PhysicalNames, $Entities (which entity belongs to
+ * used: $MeshFormat (4.1, 2.2, 2.1 or 2.0), $PhysicalNames, $Entities (which entity belongs to
  * which physical groups), $PartitionedEntities (the same for the partition entities that hold the
  * elements of a mesh partitioned in Gmsh; its partitions are ignored), $Nodes (with or without
  * parametric coordinates) and $Elements; any other section is skipped.
@@ -35,7 +35,15 @@
  * nodes are in $Nodes, or in $ParametricNodes (each node's entity and u, or u v, after x y z).
  * Binary 2.2 keeps the ASCII layout around the data of $Nodes (tag and x y z of each node) and
  * $Elements (blocks of one element type); the data is read in the byte order the header's integer
- * 1 tells, and complaints about it name the line of the section's count.
+ * 1 tells, and complaints about it name the line of the section's count.  MSH 2.0 and 2.1 (early
+ * Gmsh 2 releases) are 2.2 but for an element's tags after the second (its partition), which are
+ * skipped; their binary form is refused.
+ *
+ * Binary 4.1 has the ASCII values of 4.1 in binary ($PhysicalNames stays ASCII): counts and node
+ * and element tags as 8-byte size_t, entity tags, dimensions, element types and physical tags as
+ * 4-byte ints, coordinates as doubles, in the header's byte order.  Its sections are read by the
+ * ASCII code through rd_size/rd_int/rd_double; an element's node tags are as many as its type has
+ * (ASCII: the words on its line), and complaints name the byte as well as the line.
  */
 #include <ctype.h>
 #include <errno.h>
@@ -58,7 +66,10 @@ typedef struct {
   int tokline;         /* line of the last token               */
   char tok[256];
   const char *section; /* for messages                         */
-  int bin, swap;       /* binary MSH 2.2; its data in the other byte order */
+  int bin, swap;       /* binary file; its data in the other byte order */
+  int b41;             /* binary MSH 4.1: the rd_* readers take binary values */
+  int inbin;           /* in a binary MSH 4.1 section's data: messages give the byte */
+  size_t binat;        /* where the last binary value starts (0-based byte offset) */
 } Msh;
 
 typedef struct {
@@ -93,6 +104,11 @@ static void msh_fail(const Msh *r, int line, const char *fmt, ...) {
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
+  /* a line of binary data means little (its newline bytes are data): the byte is where to look */
+  if (r->inbin) {
+    size_t k = strlen(msg);
+    snprintf(msg + k, sizeof msg - k, " (binary data at byte %zu)", r->binat);
+  }
   YfLoc loc = {r->fname, line};
   if (r->from && r->from->file)
     yf_deck_error(&loc, "%s%s%s (read by mesh gmsh at %s:%d)", r->section ? r->section : "",
@@ -165,8 +181,9 @@ static double msh_double(Msh *r, const char *what) {
 
 /* A physical tag, its sign dropped (in $Entities it gives an orientation), in 0..INT_MAX: labs of
  * the smallest long is undefined. */
+static long rd_int(Msh *r, const char *what);
 static long msh_phys(Msh *r, const char *what) {
-  long t = msh_long(r, what);
+  long t = rd_int(r, what);
   if (t < -INT_MAX || t > INT_MAX) msh_fail(r, r->tokline, "%s %ld is not in -%d..%d", what, t, INT_MAX, INT_MAX);
   return labs(t);
 }
@@ -276,6 +293,55 @@ static double bin_double(const Msh *r, const unsigned char *p) {
   return v;
 }
 
+/* The values of MSH 4.1 sections, ASCII or binary (r->b41).  Binary MSH 4.1 writes counts and
+ * node and element tags as size_t (the header's data size: 8 bytes), entity tags, dimensions,
+ * types and physical tags as 4-byte ints, and reals as 8-byte doubles, all in the byte order of
+ * the header's integer 1; ASCII writes them all as words.  One reader serves both. */
+static const unsigned char *rd_bin(Msh *r, size_t n) {
+  r->binat = r->pos;
+  r->tokline = r->line;
+  return bin_bytes(r, n, r->section ? r->section : "the file");
+}
+
+/* A count or a node or element tag (binary: size_t). */
+static long rd_size(Msh *r, const char *what) {
+  if (!r->b41) return msh_long(r, what);
+  unsigned char b[8];
+  memcpy(b, rd_bin(r, 8), 8);
+  if (r->swap) bin_swap(b, 8);
+  uint64_t v;
+  memcpy(&v, b, 8);
+  if (v > LONG_MAX) msh_fail(r, r->tokline, "%s is %llu, beyond %ld", what, (unsigned long long)v, LONG_MAX);
+  return (long)v;
+}
+
+/* An entity tag, dimension, element type, flag or physical tag (binary: int). */
+static long rd_int(Msh *r, const char *what) {
+  if (!r->b41) return msh_long(r, what);
+  return bin_int(r, rd_bin(r, 4));
+}
+
+/* A coordinate (binary: double, refused unless finite as the deck refuses "inf" and "nan"). */
+static double rd_double(Msh *r, const char *what) {
+  if (!r->b41) return msh_double(r, what);
+  double v = bin_double(r, rd_bin(r, 8));
+  if (!isfinite(v)) msh_fail(r, r->tokline, "%s is not a finite number", what);
+  return v;
+}
+
+/* Into the binary data of a MSH 4.1 section (r->section), after its name's line. */
+static void rd_begin(Msh *r) {
+  if (!r->b41) return;
+  bin_begin(r, r->section);
+  r->inbin = 1;
+  r->binat = r->pos;
+}
+
+/* Out of it, at the newline Gmsh writes before the end marker. */
+static void rd_end(Msh *r) {
+  r->inbin = 0;
+}
+
 /* Nodes of a Gmsh element type (a binary element block does not say it), or -1. */
 static int elem_nodes(long type) {
   static const signed char n[32] = {-1, 2, 3, 4, 4, 8, 6, 5, 3, 6, 9, 10, 27, 18, 14, 1,
@@ -286,10 +352,10 @@ static int elem_nodes(long type) {
 static char *slurp(const char *path, const YfLoc *from, size_t *len) {
   char *buf = yf_read_file(path, len, "mesh file");
   if (!buf) yf_io_error(from, "mesh gmsh: cannot open '%s': %s", path, strerror(errno));
-  /* a binary MSH 2.2 file is left as it is: its CR bytes are data */
+  /* a binary file is left as it is: its CR bytes are data */
   char ver[16];
   int ft;
-  if (sscanf(buf, " $MeshFormat %15s %d", ver, &ft) == 2 && ft == 1 && !strcmp(ver, "2.2")) return buf;
+  if (sscanf(buf, " $MeshFormat %15s %d", ver, &ft) == 2 && ft == 1) return buf;
   /* a CR alone ends a line (classic Mac text), as in every text yfdem reads; CRLF is left */
   for (size_t i = 0; i < *len; i++)
     if (buf[i] == '\r') { /* CRs before a LF (CRLF, CR CR LF) stay blanks */
@@ -342,6 +408,13 @@ typedef struct {
 
 /* Room for ntot nodes, once the memory they need is known to be there. */
 static void nodes_alloc(Msh *r, int hline, long ntot, long **ntag, double **nx, double **ny, int **used) {
+  /* binary: the least a node takes in the file, a size_t (4.1) or int (2.2) tag and 3 doubles.  A
+   * count beyond what the rest of the file holds (a flipped byte of the count, a cut file) is
+   * refused before its memory is taken (ASCII: the data read says where it ends) */
+  size_t per = r->b41 ? 32 : 28, left = r->len - r->pos;
+  if (r->bin && (double)ntot * (double)per > (double)left)
+    msh_fail(r, hline, "%ld nodes take at least %.0f bytes, more than the %zu left in the file: a wrong count, or "
+             "(truncated file?)", ntot, (double)ntot * (double)per, left);
   if ((double)ntot * (25.0 + YF_BYTES_PER_NODE) > yf_mem_cap()) /* before allocating */
     msh_fail(r, hline, "%ld nodes need about %.3g GB of memory, more than the %.3g GB available", ntot,
              (double)ntot * (25.0 + YF_BYTES_PER_NODE) / 1e9, yf_mem_cap() / 1e9);
@@ -371,11 +444,11 @@ static void node_put(Msh *r, double scale, Flat *f, long i, long tag, double *nx
 
 /* x y z of node i (tag), then `extra` parametric coordinates. */
 static void node_xyz(Msh *r, double scale, Flat *f, long i, long tag, double *nx, double *ny, int extra) {
-  double x = msh_double(r, "a node x");
+  double x = rd_double(r, "a node x");
   int cline = r->tokline;
-  double y = msh_double(r, "a node y");
-  double z = msh_double(r, "a node z");
-  for (int k = 0; k < extra; k++) msh_double(r, "a parametric coordinate");
+  double y = rd_double(r, "a node y");
+  double z = rd_double(r, "a node z");
+  for (int k = 0; k < extra; k++) rd_double(r, "a parametric coordinate");
   node_put(r, scale, f, i, tag, nx, ny, x, y, z, cline);
 }
 
@@ -571,21 +644,27 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       memcpy(ver, r->tok, sizeof ver);
       int vline = r->tokline;
       double v;
-      if (!yf_parse_double(ver, &v) || (fabs(v - 4.1) > 1e-9 && fabs(v - 2.2) > 1e-9))
-        msh_fail(r, vline, "MSH version %s is not supported: yfdem reads MSH 4.1 (ASCII) and MSH 2.2 (ASCII or "
-                 "binary); save with gmsh -format msh41, or Mesh.MshFileVersion = 4.1", ver);
-      msh2 = fabs(v - 2.2) <= 1e-9;
+      /* MSH 2.0 and 2.1 (early Gmsh 2 releases) write $Nodes and $Elements as 2.2 does; only the tags
+       * after an element's first two (physical, elementary) differ, its partition where 2.2 has
+       * the number of partitions and their list, and the reader skips them */
+      int v2old = yf_parse_double(ver, &v) && (fabs(v - 2.0) <= 1e-9 || fabs(v - 2.1) <= 1e-9);
+      if (!yf_parse_double(ver, &v) || (fabs(v - 4.1) > 1e-9 && fabs(v - 2.2) > 1e-9 && !v2old))
+        msh_fail(r, vline, "MSH version %s is not supported: yfdem reads MSH 4.1 and 2.2 (ASCII or binary) and "
+                 "2.0 and 2.1 (ASCII); save with gmsh -format msh41, or Mesh.MshFileVersion = 4.1", ver);
+      msh2 = v < 3;
       long ft = msh_long(r, "the file type");
-      if (ft == 1 && !msh2)
-        msh_fail(r, r->tokline, "binary MSH 4.1 files are not supported: save as ASCII (Mesh.Binary = 0), or as "
-                 "MSH 2.2 (binary or not)");
+      if (ft == 1 && v2old)
+        msh_fail(r, r->tokline, "binary MSH %s files are not supported: save as MSH 4.1 or 2.2 (binary or not), or "
+                 "as ASCII (Mesh.Binary = 0)", ver);
       if (ft != 0 && ft != 1) msh_fail(r, r->tokline, "file type %ld is neither 0 (ASCII) nor 1 (binary)", ft);
       long ds = msh_long(r, "the data size");
       r->bin = ft == 1;
+      r->b41 = r->bin && !msh2;
       if (r->bin) {
         /* the size of a real, then the integer 1 written in binary, which tells the byte order */
         if (ds != 8)
-          msh_fail(r, r->tokline, "data size %ld: yfdem reads binary files of 8-byte reals (as Gmsh writes them)", ds);
+          msh_fail(r, r->tokline, "data size %ld: yfdem reads binary files of 8-byte reals and (MSH 4.1) 8-byte "
+                   "size_t (as Gmsh writes them)", ds);
         bin_begin(r, "$MeshFormat");
         const unsigned char *one = bin_bytes(r, 4, "$MeshFormat");
         long v1 = bin_int(r, one);
@@ -652,33 +731,34 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
                  "element blocks name its entities", r->tok);
       r->section = part ? "$PartitionedEntities" : "$Entities";
       YfIdMap *map = part ? &pmap : &emap;
+      rd_begin(r);
       if (part) {
-        long npart = msh_long(r, "the number of partitions");
+        long npart = rd_size(r, "the number of partitions");
         if (npart < 0) msh_fail(r, r->tokline, "bad number of partitions %ld", npart);
-        long nghost = msh_long(r, "the number of ghost entities");
+        long nghost = rd_size(r, "the number of ghost entities");
         if (nghost < 0 || nghost > 100000000) msh_fail(r, r->tokline, "bad number of ghost entities %ld", nghost);
-        for (long k = 0; k < 2 * nghost; k++) msh_long(r, k % 2 ? "a ghost entity's partition" : "a ghost entity tag");
+        for (long k = 0; k < 2 * nghost; k++) rd_int(r, k % 2 ? "a ghost entity's partition" : "a ghost entity tag");
       }
       long cnt[4];
       for (int d = 0; d < 4; d++) {
-        cnt[d] = msh_long(r, "the number of entities");
+        cnt[d] = rd_size(r, "the number of entities");
         if (cnt[d] < 0 || cnt[d] > 100000000) msh_fail(r, r->tokline, "bad entity count %ld", cnt[d]);
       }
       for (int d = 0; d < 4; d++)
         for (long i = 0; i < cnt[d]; i++) {
           char what[64];
           snprintf(what, sizeof what, "a %s entity", dim_word[d]);
-          long tag = msh_long(r, what);
+          long tag = rd_int(r, what);
           int line = r->tokline;
           if (part) { /* parent dimension and tag, the partitions it belongs to */
-            msh_long(r, "the parent's dimension");
-            msh_long(r, "the parent's tag");
-            long np = msh_long(r, "the number of partitions of an entity");
+            rd_int(r, "the parent's dimension");
+            rd_int(r, "the parent's tag");
+            long np = rd_size(r, "the number of partitions of an entity");
             if (np < 0 || np > 100000000) msh_fail(r, r->tokline, "bad number of partitions %ld", np);
-            for (long k = 0; k < np; k++) msh_long(r, "a partition tag");
+            for (long k = 0; k < np; k++) rd_int(r, "a partition tag");
           }
-          for (int k = 0; k < (d == 0 ? 3 : 6); k++) msh_double(r, d == 0 ? "a point coordinate" : "a bounding box");
-          long np = msh_long(r, "the number of physical tags");
+          for (int k = 0; k < (d == 0 ? 3 : 6); k++) rd_double(r, d == 0 ? "a point coordinate" : "a bounding box");
+          long np = rd_size(r, "the number of physical tags");
           if (np < 0 || np > 100000) msh_fail(r, r->tokline, "bad number of physical tags %ld", np);
           if (nent == capent) {
             capent = capent ? 2 * capent : 64;
@@ -697,14 +777,15 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
           e->mat = -1;
           for (long k = 0; k < np; k++) pool[npool++] = msh_phys(r, "a physical tag");
           if (d > 0) {
-            long nb = msh_long(r, "the number of bounding entities");
+            long nb = rd_size(r, "the number of bounding entities");
             if (nb < 0 || nb > 100000000) msh_fail(r, r->tokline, "bad number of bounding entities %ld", nb);
-            for (long k = 0; k < nb; k++) msh_long(r, "a bounding entity tag");
+            for (long k = 0; k < nb; k++) rd_int(r, "a bounding entity tag");
           }
           if (!idmap_put(map, (long long)tag * 4 + d, nent))
             msh_fail(r, line, "%s %ld is defined twice", dim_word[d], tag);
           nent++;
         }
+      rd_end(r);
       msh_expect(r, part ? "$EndPartitionedEntities" : "$EndEntities", " (more entities than the counts declare?)");
       if (part) have_pent = 1;
       else have_ent = 1;
@@ -765,28 +846,31 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
     } else if (!strcmp(r->tok, "$Nodes")) {
       if (have_nodes) msh_fail(r, r->tokline, "a second $Nodes section");
       r->section = "$Nodes";
-      long nblk = msh_long(r, "the number of entity blocks");
+      rd_begin(r);
+      long nblk = rd_size(r, "the number of entity blocks");
       int hline = r->tokline;
-      long ntot = msh_long(r, "the number of nodes");
-      msh_long(r, "the smallest node tag");
-      msh_long(r, "the largest node tag");
+      size_t hat = r->binat; /* binary: complaints about the header name its first byte */
+      long ntot = rd_size(r, "the number of nodes");
+      rd_size(r, "the smallest node tag");
+      rd_size(r, "the largest node tag");
       if (nblk < 0 || ntot < 0 || ntot > INT_MAX / 4)
         msh_fail(r, r->tokline, "bad counts in the $Nodes header (%ld blocks, %ld nodes)", nblk, ntot);
+      r->binat = hat;
       nodes_alloc(r, hline, ntot, &ntag, &nx, &ny, &used);
       Flat f = {0};
       for (long b = 0; b < nblk; b++) {
-        long edim = msh_long(r, "the entity dimension of a node block");
+        long edim = rd_int(r, "the entity dimension of a node block");
         int bline = r->tokline;
         if (edim < 0 || edim > 3) msh_fail(r, bline, "entity dimension %ld is not 0..3", edim);
-        msh_long(r, "the entity tag of a node block");
-        long par = msh_long(r, "the parametric flag");
+        rd_int(r, "the entity tag of a node block");
+        long par = rd_int(r, "the parametric flag");
         if (par != 0 && par != 1) msh_fail(r, r->tokline, "parametric flag %ld is neither 0 nor 1", par);
-        long nin = msh_long(r, "the number of nodes in a block");
+        long nin = rd_size(r, "the number of nodes in a block");
         if (nin < 0 || nin > ntot - nn)
           msh_fail(r, r->tokline, "node block %ld declares %ld nodes, more than the %ld left of the "
                    "header's total %ld", b + 1, nin, ntot - nn, ntot);
         for (long i = 0; i < nin; i++) {
-          long t = msh_long(r, "a node tag");
+          long t = rd_size(r, "a node tag");
           if (t <= 0 || t > INT_MAX) msh_fail(r, r->tokline, "node tag %ld is not in 1..%d", t, INT_MAX);
           if (!idmap_put(&nmap, t, (int)(nn + i))) msh_fail(r, r->tokline, "node tag %ld is defined twice", t);
           ntag[nn + i] = t;
@@ -795,8 +879,10 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
         for (long i = 0; i < nin; i++) node_xyz(r, o->scale, &f, nn + i, ntag[nn + i], nx, ny, extra);
         nn += nin;
       }
+      r->binat = hat;
       if (nn != ntot)
         msh_fail(r, hline, "the blocks hold %ld nodes but the header declares %ld", nn, ntot);
+      rd_end(r);
       msh_expect(r, "$EndNodes", " (the header's block count does not match the data?)");
       nodes_flat(r, &f, nn ? ntag[0] : 0);
       have_nodes = 1;
@@ -964,21 +1050,23 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       if (have_elems) msh_fail(r, r->tokline, "a second $Elements section");
       r->section = "$Elements";
       if (!have_nodes) msh_fail(r, r->tokline, "$Elements comes before $Nodes");
-      long nblk = msh_long(r, "the number of entity blocks");
+      rd_begin(r);
+      long nblk = rd_size(r, "the number of entity blocks");
       int hline = r->tokline;
-      long ntot = msh_long(r, "the number of elements");
-      msh_long(r, "the smallest element tag");
-      msh_long(r, "the largest element tag");
+      size_t hat = r->binat; /* binary: complaints about the header name its first byte */
+      long ntot = rd_size(r, "the number of elements");
+      rd_size(r, "the smallest element tag");
+      rd_size(r, "the largest element tag");
       if (nblk < 0 || ntot < 0 || ntot > INT_MAX / 4)
         msh_fail(r, r->tokline, "bad counts in the $Elements header (%ld blocks, %ld elements)", nblk, ntot);
       long ne = 0;
       for (long b = 0; b < nblk; b++) {
-        long edim = msh_long(r, "the entity dimension of an element block");
+        long edim = rd_int(r, "the entity dimension of an element block");
         int bline = r->tokline;
         if (edim < 0 || edim > 3) msh_fail(r, bline, "entity dimension %ld is not 0..3", edim);
-        long etag = msh_long(r, "the entity tag of an element block");
-        long type = msh_long(r, "the element type");
-        long nin = msh_long(r, "the number of elements in a block");
+        long etag = rd_int(r, "the entity tag of an element block");
+        long type = rd_int(r, "the element type");
+        long nin = rd_size(r, "the number of elements in a block");
         if (nin < 0 || nin > ntot - ne)
           msh_fail(r, r->tokline, "element block %ld declares %ld elements, more than the %ld left of "
                    "the header's total %ld", b + 1, nin, ntot - ne, ntot);
@@ -1011,19 +1099,29 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
             idmap_put(&emap, (long long)etag * 4 + 2, ei);
           }
         }
+        /* binary: the node tags of an element are as many as its type has (ASCII: its line's words) */
+        const int nv = elem_nodes(type);
+        if (r->b41 && nv < 0)
+          msh_fail(r, bline, "element type %ld in %s %ld is no Gmsh element type yfdem knows, so its binary data "
+                   "cannot be read past: yfdem reads 3-node triangles (type 2), 2-node lines (type 1) and points "
+                   "(type 15)", type, dim_word[edim], etag);
         for (long i = 0; i < nin; i++) {
-          long tag = msh_long(r, "an element tag");
+          long tag = rd_size(r, "an element tag");
           int line = r->tokline;
           long nt[3];
           int k = 0;
-          while (!msh_eol(r)) {
+          for (int j = 0; r->b41 && j < nv; j++) {
+            long w = rd_size(r, "a node tag of an element");
+            if (keep && k < 3) nt[k++] = w; /* nv is want for the types kept */
+          }
+          while (!r->b41 && !msh_eol(r)) {
             msh_next(r);
             if (!keep) continue;
             elem_tag_word(r, line, tag, type, want, k, nt);
             k++;
           }
           /* a file cut inside an element's line said "has 0 node tags", not that it was cut */
-          if (r->pos >= r->len)
+          if (!r->b41 && r->pos >= r->len)
             msh_fail(r, r->line, "unexpected end of file in element %ld, %ld of %ld elements into its block "
                      "(truncated file?)", tag, i + 1, nin);
           if (!keep) continue;
@@ -1049,8 +1147,10 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
         }
         ne += nin;
       }
+      r->binat = hat;
       if (ne != ntot)
         msh_fail(r, hline, "the blocks hold %ld elements but the header declares %ld", ne, ntot);
+      rd_end(r);
       msh_expect(r, "$EndElements", " (the header's block count does not match the data?)");
       have_elems = 1;
 
