@@ -106,10 +106,12 @@ A key or group Y2D does not read is refused with FILE:LINE and the nearest key, 
 group of the Y-Geo derivative, as yfdem names them (exit 1, nothing written), and so are a comment inside a value list and one longer than 100 tokens.  Every
 other refusal of yfdem's reader (src/y2d/y2d_read.c) is the converter's too, in its words at its FILE:LINE:
 the .y is first read by `read_y2d` (reads and checks, computes nothing) of the yfdem in $YFDEM, else the
-one built beside tools/, else the first on PATH; without a yfdem, only the checks above are made.
+one built beside tools/, else the first on PATH; without a yfdem, only the checks above are made (a
+"note:" line on stderr says so and what to build); a $YFDEM that names no executable file: exit 2.
 """
 import argparse
 import difflib
+import functools
 import math
 import os
 import re
@@ -865,13 +867,34 @@ def nothing_computed(src, out, ctl):
     return out + '.deck', [(why, WARN)]
 
 
+class NoYfdem(Exception):
+    """$YFDEM names no executable file: bad usage (exit 2), said before anything is read or written."""
+
+
 def find_yfdem():
     """yfdem's binary for reader_check: $YFDEM, else the one built beside tools/ (the repository's root),
-    else the first on PATH; None when there is none."""
+    else the first on PATH; None when there is none (a note on stderr says where it looked and what to
+    build).  A $YFDEM that names no executable file is refused (NoYfdem): the converter used another
+    yfdem, or none, without a word (2026-11-29)."""
+    return _find_yfdem(os.environ.get('YFDEM'), os.environ.get('PATH'))
+
+
+@functools.lru_cache(maxsize=None)
+def _find_yfdem(given, path):
+    """find_yfdem for one $YFDEM and $PATH: looked up (and the note written) once per run."""
     here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    for cand in (os.environ.get('YFDEM'), os.path.join(here, 'yfdem'), shutil.which('yfdem')):
+    if given:
+        if os.path.isfile(given) and os.access(given, os.X_OK):
+            return given
+        raise NoYfdem('YFDEM=%s: %s; build yfdem with `make -j2 yfdem` in %s, or unset YFDEM (then %s, '
+                      'else the yfdem on PATH)' % (given, 'not an executable file' if os.path.exists(given)
+                                                   else 'no such file', here, os.path.join(here, 'yfdem')))
+    for cand in (os.path.join(here, 'yfdem'), shutil.which('yfdem')):
         if cand and os.path.isfile(cand) and os.access(cand, os.X_OK):
             return cand
+    sys.stderr.write('note: no yfdem found (YFDEM unset, no %s, none on PATH): the .y is checked by the converter '
+                     'alone, not by yfdem\'s reader; build it with `make -j2 yfdem` in %s\n'
+                     % (os.path.join(here, 'yfdem'), here))
     return None
 
 
@@ -1334,6 +1357,11 @@ def main():
     ap.add_argument('--allow-differences', action='store_true',
                     help='exit 0 although the converted deck does not run the same physics (the warnings stay)')
     a = ap.parse_args()
+    try:
+        find_yfdem()
+    except NoYfdem as e:
+        sys.stderr.write('error: %s\n' % e)
+        sys.exit(2)
     try:
         path, notes = convert(a.deck, a.out)
     except (DeckError, OSError, KeyError, IndexError, ValueError) as e:
