@@ -729,7 +729,9 @@ END_TEST
 
 /* IWFAST below 0: yfdem takes only flagged triangles into contact, as for IWFAST > 0 (y2d_model.c: all of them
  * with IWFAST 0 only), but the warning about boundary nodes left unflagged was given for IWFAST > 0 only: tiny.y
- * with IWFAST -1 and no I1NOBF flag ran without contact and without a word (2026-11-29 sweep). */
+ * with IWFAST -1 and no I1NOBF flag ran without contact and without a word (2026-11-29 sweep).  The count is of
+ * nodes: tiny.y's square has 4, all on its boundary; the warning said "8 boundary node(s)", each node counted once
+ * per boundary edge it ends (2026-11-29 sweep-y2d4). */
 START_TEST(test_iwfast_negative_warned) {
   char *text = yft_slurp("tests/y2d/tiny.y", 0);
   ck_assert_ptr_nonnull(text);
@@ -741,7 +743,7 @@ START_TEST(test_iwfast_negative_warned) {
   free(text);
   char *err = NULL;
   int code = yft_run_binary("neg.y", deck, "-log none", &err, NULL);
-  ck_assert_msg(code == 0 && strstr(err, "boundary node(s) of unjointed bodies have /YD/YDN/I1NOBF != 1") &&
+  ck_assert_msg(code == 0 && strstr(err, ": 4 boundary node(s) of unjointed bodies have /YD/YDN/I1NOBF != 1") &&
                 strstr(err, "IWFAST = -1"), "exit %d: %s", code, err);
   free(err);
 }

@@ -1537,18 +1537,22 @@ static void check_deck(YfY2d *y) {
     }
     long ne, nflag = 0, first = -1;
     Edge *ed = edge_list(y, sel, &ne);
+    /* a node ends two boundary edges (or more): counted once, where it is first met */
+    unsigned char *seen = yf_calloc((size_t)y->nnopo + 1, 1, "y2d boundary nodes");
     for (long i = 0; i < ne; i++) {
       int single = (i == 0 || ed[i].lo != ed[i - 1].lo || ed[i].hi != ed[i - 1].hi) &&
                    (i + 1 == ne || ed[i].lo != ed[i + 1].lo || ed[i].hi != ed[i + 1].hi);
       if (!single) continue;
       for (int q = 0; q < 2; q++) {
         int n = q ? ed[i].hi : ed[i].lo;
-        if (y->i1nobf[n] != 1) {
+        if (y->i1nobf[n] != 1 && !seen[n]) {
+          seen[n] = 1;
           if (first < 0) first = n;
           nflag++;
         }
       }
     }
+    free(seen);
     free(ed);
     free(sel);
     if (nflag) {
