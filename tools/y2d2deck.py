@@ -1329,7 +1329,12 @@ def convert(src, out):
         note('ICSHTF %d: no progress lines in Y2D; written as thermo 0 (start and end only)' % icshtf)
     L.append(SYNTAX['thermo'].format(n=icshtf if 0 < icshtf <= 2000000000 else 0))
     icoutf = int(g('YDC/ICOUTF', 10))
-    if 0 < icoutf <= nsteps:
+    if icoutf <= 0:
+        # Y2D's rule (FORMAT.md 3.1, yfdem's reader too): ICOUTF <= 0 is 10, frames every 10 steps (the
+        # converted deck had none, 2026-11-29)
+        note('ICOUTF %d: Y2D writes a frame every 10 steps (ICOUTF <= 0 is 10): dump every 10' % icoutf)
+        icoutf = 10
+    if icoutf <= nsteps:
         L.append(SYNTAX['dump'].format(n=icoutf, file=deck_word(base + '.h5')))
     L.append(SYNTAX['run'].format(n=max(nsteps, 0)))
     if 'YDO/NOHYS' in K:
