@@ -749,6 +749,47 @@ START_TEST(test_iwfast_negative_warned) {
 }
 END_TEST
 
+/* Y2D writes an animation frame every ICOUTF steps (FORMAT.md 1.5, 7; ICOUTF <= 0 is 10); `yfdem DECK.y` writes
+ * none, and said nothing: a Y2D user's `yfdem beam.y` with ICOUTF 100 ended with no file to open (2026-11-29
+ * sweep-y2d4).  Now a warning at ICOUTF's line says so and how to get frames (the converter, or read_y2d with a
+ * dump), whenever Y2D would write a frame after step 0: tiny.y (10 steps) with ICOUTF 5 and 0 (= 10) warns,
+ * with ICOUTF 11 (above the run) it does not, and a native deck that reads it (its own dumps) does not. */
+static int icoutf_warned(const char *icoutf, int native) {
+  char *text = yft_slurp("tests/y2d/tiny.y", 0);
+  ck_assert_ptr_nonnull(text);
+  char deck[4096];
+  snprintf(deck, sizeof deck, "/YD/YDC/ICOUTF %s\n%s", icoutf, text);
+  free(text);
+  char *err = NULL, *dir = NULL;
+  int code;
+  if (native) {
+    char *d = yft_deck_dir("t.y", deck), cmd[8192];
+    yft_put_file(d, "t.deck", "read_y2d t.y\nrun\n");
+    snprintf(cmd, sizeof cmd, "cd '%s' && '%s' -in t.deck -log none >/dev/null 2>err.txt", d, yft_binary());
+    code = WEXITSTATUS(system(cmd));
+    char path[4200];
+    snprintf(path, sizeof path, "%s/err.txt", d);
+    err = yft_slurp(path, 1);
+    free(d);
+  } else {
+    code = yft_run_binary("t.y", deck, "-log none", &err, &dir);
+    free(dir);
+  }
+  ck_assert_msg(code == 0, "ICOUTF %s: exit %d: %s", icoutf, code, err);
+  int warned = strstr(err, "t.y:1: warning: /YD/YDC/ICOUTF = ") && strstr(err, "writes no frames") &&
+               strstr(err, "tools/y2d2deck.py") && strstr(err, "read_y2d");
+  free(err);
+  return warned;
+}
+
+START_TEST(test_icoutf_frames_warned) {
+  ck_assert_msg(icoutf_warned("5", 0), "ICOUTF 5 of 10 steps: no warning");
+  ck_assert_msg(icoutf_warned("0", 0), "ICOUTF 0 (= 10) of 10 steps: no warning");
+  ck_assert_msg(!icoutf_warned("11", 0), "ICOUTF 11 of 10 steps: warned");
+  ck_assert_msg(!icoutf_warned("5", 1), "read_y2d in a native deck: warned");
+}
+END_TEST
+
 /* Y2D prints a progress line every ICSHTF steps (FORMAT.md 1.5); `yfdem DECK.y` printed the thermo
  * line at the run's start and end only, so a long batch run's log showed nothing until it ended
  * (2026-11-29 sweep).  Now the thermo line comes every ICSHTF steps: tiny.y run for 10 steps with
@@ -812,6 +853,7 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_frozen_set);
   tcase_add_test(tc, test_iwfast_negative_warned);
   tcase_add_test(tc, test_progress_every_icshtf);
+  tcase_add_test(tc, test_icoutf_frames_warned);
   tcase_add_test(tc, test_spare_properties);
   tcase_add_test(tc, test_spare_joint_sets);
   tcase_add_test(tc, test_value_lines);
