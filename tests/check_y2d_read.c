@@ -749,6 +749,39 @@ START_TEST(test_iwfast_negative_warned) {
 }
 END_TEST
 
+/* A negative D1PELA (a material of negative Poisson's ratio) is run by yfdem (the native material takes it,
+ * write_y2d writes it), but Y2D's consistency check refuses it and computes nothing (FORMAT.md 6: "no negative
+ * D1PEFR, D1PEKS, D1PELA, ..."): `yfdem DECK.y` ran tiny.y with D1PELA -2e8 without a word, a deck Y2D itself
+ * does not run (2026-11-29 sweep-y2d4).  Now a warning at D1PELA's line says so; D1PELA 1e9 and -0 do not warn. */
+static char *lambda_run(const char *lambda, int *code) {
+  char *text = yft_slurp("tests/y2d/tiny.y", 0);
+  ck_assert_ptr_nonnull(text);
+  char *k = strstr(text, "/YD/YDPE/D1PELA 1 1e9\n");
+  ck_assert_ptr_nonnull(k);
+  char deck[4096];
+  snprintf(deck, sizeof deck, "%.*s/YD/YDPE/D1PELA 1 %s\n%s", (int)(k - text), text, lambda,
+           k + strlen("/YD/YDPE/D1PELA 1 1e9\n"));
+  free(text);
+  char *err = NULL;
+  *code = yft_run_binary("lam.y", deck, "-log none", &err, NULL);
+  return err;
+}
+
+START_TEST(test_negative_lambda_warned) {
+  int code;
+  char *err = lambda_run("-2e8", &code);
+  ck_assert_msg(code == 0 && strstr(err, "lam.y:25: warning: /YD/YDPE/D1PELA: property 0 has the negative value -2e+08") &&
+                strstr(err, "Y2D refuses"), "exit %d: %s", code, err);
+  free(err);
+  const char *fine[] = {"1e9", "-0"};
+  for (int i = 0; i < 2; i++) {
+    err = lambda_run(fine[i], &code);
+    ck_assert_msg(code == 0 && !strstr(err, "D1PELA"), "D1PELA %s: exit %d: %s", fine[i], code, err);
+    free(err);
+  }
+}
+END_TEST
+
 /* Y2D writes an animation frame every ICOUTF steps (FORMAT.md 1.5, 7; ICOUTF <= 0 is 10); `yfdem DECK.y` writes
  * none, and said nothing: a Y2D user's `yfdem beam.y` with ICOUTF 100 ended with no file to open (2026-11-29
  * sweep-y2d4).  Now a warning at ICOUTF's line says so and how to get frames (the converter, or read_y2d with a
@@ -854,6 +887,7 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_iwfast_negative_warned);
   tcase_add_test(tc, test_progress_every_icshtf);
   tcase_add_test(tc, test_icoutf_frames_warned);
+  tcase_add_test(tc, test_negative_lambda_warned);
   tcase_add_test(tc, test_spare_properties);
   tcase_add_test(tc, test_spare_joint_sets);
   tcase_add_test(tc, test_value_lines);

@@ -1411,7 +1411,16 @@ static void check_deck(YfY2d *y) {
   check_nonneg(y, Y2D_PE_D1PEFR, y->d1pefr, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PEKS, y->d1peks, y->nprop, "property");
   /* D1PELA may be negative (a material of negative Poisson's ratio, as write_y2d writes it): the
-   * bulk modulus it must keep positive depends on read_y2d's volfac, checked there (y2d_model.c) */
+   * bulk modulus it must keep positive depends on read_y2d's volfac, checked there (y2d_model.c).  Y2D's
+   * own check refuses it (FORMAT.md 6): said, once, at the first such value */
+  for (long p = 0; p < y->nprop; p++)
+    if (y->d1pela[p] < 0) {
+      YfLoc l = value_loc(y, Y2D_PE_D1PELA, p);
+      yf_warn(&l, "%s: property %ld has the negative value %g: yfdem runs it (negative Poisson's ratio), but Y2D "
+              "refuses a negative D1PELA in its check after $YDOIT (Yck) and computes nothing", keydefs[Y2D_PE_D1PELA].full,
+              p, y->d1pela[p]);
+      break;
+    }
   check_nonneg(y, Y2D_PE_D1PEMU, y->d1pemu, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PERO, y->d1pero, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PEPE, y->d1pepe, y->nprop, "property");
