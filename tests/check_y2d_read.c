@@ -749,6 +749,46 @@ START_TEST(test_iwfast_negative_warned) {
 }
 END_TEST
 
+/* Characters that look like ASCII but are not, as decks copied from a word processor, a PDF or a web page hold
+ * them: a no-break space (U+00A0) between a key and its value or inside a list, a minus sign (U+2212), a
+ * full-width digit.  The messages quoted the token, which looked right: "'200 ' is not a number", "'0 0' is not
+ * a number", "'-9.81' is not a number", "unexpected token ' /YD/YDC/MCSTEP'", and for a key glued to its value
+ * by a no-break space "/YD/YDC/MCSTEP 200 read as /YD/YDC/MCSTEP" then "missing its value" (2026-11-29
+ * sweep-y2d4).  Each message now names the character, its code point and where it is in the token. */
+START_TEST(test_non_ascii_named) {
+  char *text = yft_slurp("tests/y2d/tiny.y", 0);
+  ck_assert_ptr_nonnull(text);
+  static const struct {
+    const char *from, *to, *want1, *want2;
+    int line;
+  } v[] = {
+      {"/YD/YDC/MCSTEP 10\n", "/YD/YDC/MCSTEP 10\xc2\xa0\n", "U+00A0 (a no-break space) at byte 3", "is not a number", 2},
+      {"/YD/YDE/I1ELPR 2 0 0", "/YD/YDE/I1ELPR 2 0\xc2\xa0""0", "U+00A0 (a no-break space) at byte 2", "is not a number", 10},
+      {"/YD/YDC/MCSTEP 10\n", "/YD/YDC/MCSTEP\xc2\xa0""10\n", "U+00A0 (a no-break space) at byte 15", "read as /YD/YDC/MCSTEP", 2},
+      {"/YD/YDC/MCSTEP 10\n", "\xc2\xa0/YD/YDC/MCSTEP 10\n", "U+00A0 (a no-break space) at byte 1", "unexpected token", 2},
+      {"/YD/YDPE/D1PERO 1 2000", "/YD/YDPE/D1PERO 1 \xe2\x88\x92""2000", "U+2212 (a minus sign, not the ASCII '-') at byte 1",
+       "is not a number", 24},
+      {"/YD/YDPE/D1PERO 1 2000", "/YD/YDPE/D1PERO 1 \xef\xbc\x92""000", "U+FF12 (a full-width digit) at byte 1",
+       "is not a number", 24},
+      {"/YD/YDPE/D1PERO 1 2000", "/YD/YDPE/D1PERO 1 2000\xe9", "the byte 0xe9 (not ASCII, not UTF-8) at byte 5",
+       "is not a number", 24},
+  };
+  for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) {
+    const char *at = strstr(text, v[i].from);
+    ck_assert_ptr_nonnull(at);
+    char deck[4096], want[64];
+    snprintf(deck, sizeof deck, "%.*s%s%s", (int)(at - text), text, v[i].to, at + strlen(v[i].from));
+    char *err = NULL;
+    int code = yft_run_binary("na.y", deck, "-log none", &err, NULL);
+    snprintf(want, sizeof want, "na.y:%d: ", v[i].line);
+    ck_assert_msg(strstr(err, want) && strstr(err, v[i].want1) && strstr(err, v[i].want2) &&
+                      strstr(err, "retype it in ASCII"), "case %zu: exit %d: %s", i, code, err);
+    free(err);
+  }
+  free(text);
+}
+END_TEST
+
 /* A negative D1PELA (a material of negative Poisson's ratio) is run by yfdem (the native material takes it,
  * write_y2d writes it), but Y2D's consistency check refuses it and computes nothing (FORMAT.md 6: "no negative
  * D1PEFR, D1PEKS, D1PELA, ..."): `yfdem DECK.y` ran tiny.y with D1PELA -2e8 without a word, a deck Y2D itself
@@ -888,6 +928,7 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_progress_every_icshtf);
   tcase_add_test(tc, test_icoutf_frames_warned);
   tcase_add_test(tc, test_negative_lambda_warned);
+  tcase_add_test(tc, test_non_ascii_named);
   tcase_add_test(tc, test_spare_properties);
   tcase_add_test(tc, test_spare_joint_sets);
   tcase_add_test(tc, test_value_lines);
