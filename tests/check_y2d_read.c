@@ -749,6 +749,20 @@ START_TEST(test_iwfast_negative_warned) {
 }
 END_TEST
 
+/* `yfdem NAME` on tests/y2d/tiny.y with its text `from` replaced by `to`: the exit code; its stderr in *err
+ * (caller frees). */
+static int tiny_with(const char *name, const char *from, const char *to, char **err) {
+  char *text = yft_slurp("tests/y2d/tiny.y", 0);
+  ck_assert_ptr_nonnull(text);
+  const char *at = strstr(text, from);
+  ck_assert_msg(at != NULL, "tiny.y has no '%s'", from);
+  char deck[4096];
+  snprintf(deck, sizeof deck, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
+  free(text);
+  *err = NULL;
+  return yft_run_binary(name, deck, "-log none", err, NULL);
+}
+
 /* Characters that look like ASCII but are not, as decks copied from a word processor, a PDF or a web page hold
  * them: a no-break space (U+00A0) between a key and its value or inside a list, a minus sign (U+2212), a
  * full-width digit.  The messages quoted the token, which looked right: "'200 ' is not a number", "'0 0' is not
@@ -756,8 +770,6 @@ END_TEST
  * by a no-break space "/YD/YDC/MCSTEP 200 read as /YD/YDC/MCSTEP" then "missing its value" (2026-11-29
  * sweep-y2d4).  Each message now names the character, its code point and where it is in the token. */
 START_TEST(test_non_ascii_named) {
-  char *text = yft_slurp("tests/y2d/tiny.y", 0);
-  ck_assert_ptr_nonnull(text);
   static const struct {
     const char *from, *to, *want1, *want2;
     int line;
@@ -774,18 +786,13 @@ START_TEST(test_non_ascii_named) {
        "is not a number", 24},
   };
   for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) {
-    const char *at = strstr(text, v[i].from);
-    ck_assert_ptr_nonnull(at);
-    char deck[4096], want[64];
-    snprintf(deck, sizeof deck, "%.*s%s%s", (int)(at - text), text, v[i].to, at + strlen(v[i].from));
-    char *err = NULL;
-    int code = yft_run_binary("na.y", deck, "-log none", &err, NULL);
+    char *err, want[64];
+    int code = tiny_with("na.y", v[i].from, v[i].to, &err);
     snprintf(want, sizeof want, "na.y:%d: ", v[i].line);
     ck_assert_msg(strstr(err, want) && strstr(err, v[i].want1) && strstr(err, v[i].want2) &&
                       strstr(err, "retype it in ASCII"), "case %zu: exit %d: %s", i, code, err);
     free(err);
   }
-  free(text);
 }
 END_TEST
 
@@ -794,16 +801,9 @@ END_TEST
  * D1PEFR, D1PEKS, D1PELA, ..."): `yfdem DECK.y` ran tiny.y with D1PELA -2e8 without a word, a deck Y2D itself
  * does not run (2026-11-29 sweep-y2d4).  Now a warning at D1PELA's line says so; D1PELA 1e9 and -0 do not warn. */
 static char *lambda_run(const char *lambda, int *code) {
-  char *text = yft_slurp("tests/y2d/tiny.y", 0);
-  ck_assert_ptr_nonnull(text);
-  char *k = strstr(text, "/YD/YDPE/D1PELA 1 1e9\n");
-  ck_assert_ptr_nonnull(k);
-  char deck[4096];
-  snprintf(deck, sizeof deck, "%.*s/YD/YDPE/D1PELA 1 %s\n%s", (int)(k - text), text, lambda,
-           k + strlen("/YD/YDPE/D1PELA 1 1e9\n"));
-  free(text);
-  char *err = NULL;
-  *code = yft_run_binary("lam.y", deck, "-log none", &err, NULL);
+  char to[64], *err;
+  snprintf(to, sizeof to, "/YD/YDPE/D1PELA 1 %s\n", lambda);
+  *code = tiny_with("lam.y", "/YD/YDPE/D1PELA 1 1e9\n", to, &err);
   return err;
 }
 
