@@ -923,7 +923,10 @@ def reader_check(src):
     for k, line in enumerate(lines):
         m = re.match(r'^(.*?:\d+): error: (.*)$', line) or re.match(r'^()error: (.*)$', line)
         if m:
-            head = ('%s: ' % m.group(1)) if m.group(1) else ('%s: ' % src)
+            # '<stdin>:1' is the one-line deck piped to yfdem here, not the user's: the .y is named instead
+            # ("error: <stdin>:1: cannot open Y2D deck 'x.y'", 2026-11-29)
+            own = m.group(1) and not m.group(1).startswith('<stdin>:')
+            head = ('%s: ' % m.group(1)) if own else ('%s: ' % src)
             raise DeckError('\n'.join([head + m.group(2)] + lines[k + 1:]))
     raise DeckError('%s: refused by yfdem\'s reader (exit %d): %s' % (src, p.returncode, ' '.join(lines)[-300:]))
 
@@ -1371,6 +1374,12 @@ def main():
         path, notes = convert(a.deck, a.out)
     except (DeckError, OSError, KeyError, IndexError, ValueError) as e:
         msg = str(e) if not isinstance(e, KeyError) else 'required key %s missing' % e
+        if isinstance(e, OSError) and e.filename:
+            # the file and the system's reason, not Python's "[Errno 2] ...: 'OUT.nodes'" after the deck's name
+            # (a missing output folder was reported as an error of the .y, 2026-11-29)
+            sys.stderr.write('error: cannot %s %s: %s\n' % ('read' if os.path.abspath(e.filename) == os.path.abspath(
+                a.deck) else 'write', e.filename, e.strerror or msg))
+            sys.exit(EXIT_ERROR)
         # a DeckError names its file and line first (an included file's, maybe): no second name
         sys.stderr.write('error: %s\n' % msg if isinstance(e, DeckError) else 'error: %s: %s\n' % (a.deck, msg))
         sys.exit(EXIT_ERROR)
