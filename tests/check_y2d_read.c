@@ -729,7 +729,9 @@ END_TEST
 
 /* IWFAST below 0: yfdem takes only flagged triangles into contact, as for IWFAST > 0 (y2d_model.c: all of them
  * with IWFAST 0 only), but the warning about boundary nodes left unflagged was given for IWFAST > 0 only: tiny.y
- * with IWFAST -1 and no I1NOBF flag ran without contact and without a word (2026-11-29 sweep). */
+ * with IWFAST -1 and no I1NOBF flag ran without contact and without a word (2026-11-29 sweep).  The count is of
+ * nodes: tiny.y's square has 4, all on its boundary; the warning said "8 boundary node(s)", each node counted once
+ * per boundary edge it ends (2026-11-29 sweep-y2d4). */
 START_TEST(test_iwfast_negative_warned) {
   char *text = yft_slurp("tests/y2d/tiny.y", 0);
   ck_assert_ptr_nonnull(text);
@@ -741,9 +743,123 @@ START_TEST(test_iwfast_negative_warned) {
   free(text);
   char *err = NULL;
   int code = yft_run_binary("neg.y", deck, "-log none", &err, NULL);
-  ck_assert_msg(code == 0 && strstr(err, "boundary node(s) of unjointed bodies have /YD/YDN/I1NOBF != 1") &&
+  ck_assert_msg(code == 0 && strstr(err, ": 4 boundary node(s) of unjointed bodies have /YD/YDN/I1NOBF != 1") &&
                 strstr(err, "IWFAST = -1"), "exit %d: %s", code, err);
   free(err);
+}
+END_TEST
+
+/* `yfdem NAME` on tests/y2d/tiny.y with its text `from` replaced by `to`: the exit code; its stderr in *err
+ * (caller frees). */
+static int tiny_with(const char *name, const char *from, const char *to, char **err) {
+  char *text = yft_slurp("tests/y2d/tiny.y", 0);
+  ck_assert_ptr_nonnull(text);
+  const char *at = strstr(text, from);
+  ck_assert_msg(at != NULL, "tiny.y has no '%s'", from);
+  char deck[4096];
+  snprintf(deck, sizeof deck, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
+  free(text);
+  *err = NULL;
+  return yft_run_binary(name, deck, "-log none", err, NULL);
+}
+
+/* Characters that look like ASCII but are not, as decks copied from a word processor, a PDF or a web page hold
+ * them: a no-break space (U+00A0) between a key and its value or inside a list, a minus sign (U+2212), a
+ * full-width digit.  The messages quoted the token, which looked right: "'200 ' is not a number", "'0 0' is not
+ * a number", "'-9.81' is not a number", "unexpected token ' /YD/YDC/MCSTEP'", and for a key glued to its value
+ * by a no-break space "/YD/YDC/MCSTEP 200 read as /YD/YDC/MCSTEP" then "missing its value" (2026-11-29
+ * sweep-y2d4).  Each message now names the character, its code point and where it is in the token. */
+START_TEST(test_non_ascii_named) {
+  static const struct {
+    const char *from, *to, *want1, *want2;
+    int line;
+  } v[] = {
+      {"/YD/YDC/MCSTEP 10\n", "/YD/YDC/MCSTEP 10\xc2\xa0\n", "U+00A0 (a no-break space) at byte 3", "is not a number", 2},
+      {"/YD/YDE/I1ELPR 2 0 0", "/YD/YDE/I1ELPR 2 0\xc2\xa0""0", "U+00A0 (a no-break space) at byte 2", "is not a number", 10},
+      {"/YD/YDC/MCSTEP 10\n", "/YD/YDC/MCSTEP\xc2\xa0""10\n", "U+00A0 (a no-break space) at byte 15", "read as /YD/YDC/MCSTEP", 2},
+      {"/YD/YDC/MCSTEP 10\n", "\xc2\xa0/YD/YDC/MCSTEP 10\n", "U+00A0 (a no-break space) at byte 1", "unexpected token", 2},
+      {"/YD/YDPE/D1PERO 1 2000", "/YD/YDPE/D1PERO 1 \xe2\x88\x92""2000", "U+2212 (a minus sign, not the ASCII '-') at byte 1",
+       "is not a number", 24},
+      {"/YD/YDPE/D1PERO 1 2000", "/YD/YDPE/D1PERO 1 \xef\xbc\x92""000", "U+FF12 (a full-width digit) at byte 1",
+       "is not a number", 24},
+      {"/YD/YDPE/D1PERO 1 2000", "/YD/YDPE/D1PERO 1 2000\xe9", "the byte 0xe9 (not ASCII, not UTF-8) at byte 5",
+       "is not a number", 24},
+  };
+  for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) {
+    char *err, want[64];
+    int code = tiny_with("na.y", v[i].from, v[i].to, &err);
+    snprintf(want, sizeof want, "na.y:%d: ", v[i].line);
+    ck_assert_msg(strstr(err, want) && strstr(err, v[i].want1) && strstr(err, v[i].want2) &&
+                      strstr(err, "retype it in ASCII"), "case %zu: exit %d: %s", i, code, err);
+    free(err);
+  }
+}
+END_TEST
+
+/* A negative D1PELA (a material of negative Poisson's ratio) is run by yfdem (the native material takes it,
+ * write_y2d writes it), but Y2D's consistency check refuses it and computes nothing (FORMAT.md 6: "no negative
+ * D1PEFR, D1PEKS, D1PELA, ..."): `yfdem DECK.y` ran tiny.y with D1PELA -2e8 without a word, a deck Y2D itself
+ * does not run (2026-11-29 sweep-y2d4).  Now a warning at D1PELA's line says so; D1PELA 1e9 and -0 do not warn. */
+static char *lambda_run(const char *lambda, int *code) {
+  char to[64], *err;
+  snprintf(to, sizeof to, "/YD/YDPE/D1PELA 1 %s\n", lambda);
+  *code = tiny_with("lam.y", "/YD/YDPE/D1PELA 1 1e9\n", to, &err);
+  return err;
+}
+
+START_TEST(test_negative_lambda_warned) {
+  int code;
+  char *err = lambda_run("-2e8", &code);
+  ck_assert_msg(code == 0 && strstr(err, "lam.y:25: warning: /YD/YDPE/D1PELA: property 0 has the negative value -2e+08") &&
+                strstr(err, "Y2D refuses"), "exit %d: %s", code, err);
+  free(err);
+  const char *fine[] = {"1e9", "-0"};
+  for (int i = 0; i < 2; i++) {
+    err = lambda_run(fine[i], &code);
+    ck_assert_msg(code == 0 && !strstr(err, "D1PELA"), "D1PELA %s: exit %d: %s", fine[i], code, err);
+    free(err);
+  }
+}
+END_TEST
+
+/* Y2D writes an animation frame every ICOUTF steps (FORMAT.md 1.5, 7; ICOUTF <= 0 is 10); `yfdem DECK.y` writes
+ * none, and said nothing: a Y2D user's `yfdem beam.y` with ICOUTF 100 ended with no file to open (2026-11-29
+ * sweep-y2d4).  Now a warning at ICOUTF's line says so and how to get frames (the converter, or read_y2d with a
+ * dump), whenever Y2D would write a frame after step 0: tiny.y (10 steps) with ICOUTF 5 and 0 (= 10) warns,
+ * with ICOUTF 11 (above the run) it does not, and a native deck that reads it (its own dumps) does not. */
+static int icoutf_warned(const char *icoutf, int native) {
+  char *text = yft_slurp("tests/y2d/tiny.y", 0);
+  ck_assert_ptr_nonnull(text);
+  char deck[4096];
+  snprintf(deck, sizeof deck, "/YD/YDC/ICOUTF %s\n%s", icoutf, text);
+  free(text);
+  char *err = NULL, *dir = NULL;
+  int code;
+  if (native) {
+    char *d = yft_deck_dir("t.y", deck), cmd[8192];
+    yft_put_file(d, "t.deck", "read_y2d t.y\nrun\n");
+    snprintf(cmd, sizeof cmd, "cd '%s' && '%s' -in t.deck -log none >/dev/null 2>err.txt", d, yft_binary());
+    code = WEXITSTATUS(system(cmd));
+    char path[4200];
+    snprintf(path, sizeof path, "%s/err.txt", d);
+    err = yft_slurp(path, 1);
+    free(d);
+  } else {
+    code = yft_run_binary("t.y", deck, "-log none", &err, &dir);
+    free(dir);
+  }
+  ck_assert_msg(code == 0, "ICOUTF %s: exit %d: %s", icoutf, code, err);
+  int warned = strstr(err, "t.y:1: warning: /YD/YDC/ICOUTF = ") && strstr(err, "writes no frames") &&
+               strstr(err, "tools/y2d2deck.py") && strstr(err, "read_y2d");
+  free(err);
+  return warned;
+}
+
+START_TEST(test_icoutf_frames_warned) {
+  ck_assert_msg(icoutf_warned("5", 0), "ICOUTF 5 of 10 steps: no warning");
+  ck_assert_msg(icoutf_warned("0", 0), "ICOUTF 0 (= 10) of 10 steps: no warning");
+  ck_assert_msg(!icoutf_warned("11", 0), "ICOUTF 11 of 10 steps: warned");
+  ck_assert_msg(!icoutf_warned("5", 1), "read_y2d in a native deck: warned");
 }
 END_TEST
 
@@ -810,6 +926,9 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_frozen_set);
   tcase_add_test(tc, test_iwfast_negative_warned);
   tcase_add_test(tc, test_progress_every_icshtf);
+  tcase_add_test(tc, test_icoutf_frames_warned);
+  tcase_add_test(tc, test_negative_lambda_warned);
+  tcase_add_test(tc, test_non_ascii_named);
   tcase_add_test(tc, test_spare_properties);
   tcase_add_test(tc, test_spare_joint_sets);
   tcase_add_test(tc, test_value_lines);

@@ -106,10 +106,12 @@ A key or group Y2D does not read is refused with FILE:LINE and the nearest key, 
 group of the Y-Geo derivative, as yfdem names them (exit 1, nothing written), and so are a comment inside a value list and one longer than 100 tokens.  Every
 other refusal of yfdem's reader (src/y2d/y2d_read.c) is the converter's too, in its words at its FILE:LINE:
 the .y is first read by `read_y2d` (reads and checks, computes nothing) of the yfdem in $YFDEM, else the
-one built beside tools/, else the first on PATH; without a yfdem, only the checks above are made.
+one built beside tools/, else the first on PATH; without a yfdem, only the checks above are made (a
+"note:" line on stderr says so and what to build); a $YFDEM that names no executable file: exit 2.
 """
 import argparse
 import difflib
+import functools
 import math
 import os
 import re
@@ -865,13 +867,34 @@ def nothing_computed(src, out, ctl):
     return out + '.deck', [(why, WARN)]
 
 
+class NoYfdem(Exception):
+    """$YFDEM names no executable file: bad usage (exit 2), said before anything is read or written."""
+
+
 def find_yfdem():
     """yfdem's binary for reader_check: $YFDEM, else the one built beside tools/ (the repository's root),
-    else the first on PATH; None when there is none."""
+    else the first on PATH; None when there is none (a note on stderr says where it looked and what to
+    build).  A $YFDEM that names no executable file is refused (NoYfdem): the converter used another
+    yfdem, or none, without a word (2026-11-29)."""
+    return _find_yfdem(os.environ.get('YFDEM'), os.environ.get('PATH'))
+
+
+@functools.lru_cache(maxsize=None)
+def _find_yfdem(given, path):
+    """find_yfdem for one $YFDEM and $PATH: looked up (and the note written) once per run."""
     here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    for cand in (os.environ.get('YFDEM'), os.path.join(here, 'yfdem'), shutil.which('yfdem')):
+    if given:
+        if os.path.isfile(given) and os.access(given, os.X_OK):
+            return given
+        raise NoYfdem('YFDEM=%s: %s; build yfdem with `make -j2 yfdem` in %s, or unset YFDEM (then %s, '
+                      'else the yfdem on PATH)' % (given, 'not an executable file' if os.path.exists(given)
+                                                   else 'no such file', here, os.path.join(here, 'yfdem')))
+    for cand in (os.path.join(here, 'yfdem'), shutil.which('yfdem')):
         if cand and os.path.isfile(cand) and os.access(cand, os.X_OK):
             return cand
+    sys.stderr.write('note: no yfdem found (YFDEM unset, no %s, none on PATH): the .y is checked by the converter '
+                     'alone, not by yfdem\'s reader; build it with `make -j2 yfdem` in %s\n'
+                     % (os.path.join(here, 'yfdem'), here))
     return None
 
 
@@ -900,7 +923,10 @@ def reader_check(src):
     for k, line in enumerate(lines):
         m = re.match(r'^(.*?:\d+): error: (.*)$', line) or re.match(r'^()error: (.*)$', line)
         if m:
-            head = ('%s: ' % m.group(1)) if m.group(1) else ('%s: ' % src)
+            # '<stdin>:1' is the one-line deck piped to yfdem here, not the user's: the .y is named instead
+            # ("error: <stdin>:1: cannot open Y2D deck 'x.y'", 2026-11-29)
+            own = m.group(1) and not m.group(1).startswith('<stdin>:')
+            head = ('%s: ' % m.group(1)) if own else ('%s: ' % src)
             raise DeckError('\n'.join([head + m.group(2)] + lines[k + 1:]))
     raise DeckError('%s: refused by yfdem\'s reader (exit %d): %s' % (src, p.returncode, ' '.join(lines)[-300:]))
 
@@ -1306,7 +1332,12 @@ def convert(src, out):
         note('ICSHTF %d: no progress lines in Y2D; written as thermo 0 (start and end only)' % icshtf)
     L.append(SYNTAX['thermo'].format(n=icshtf if 0 < icshtf <= 2000000000 else 0))
     icoutf = int(g('YDC/ICOUTF', 10))
-    if 0 < icoutf <= nsteps:
+    if icoutf <= 0:
+        # Y2D's rule (FORMAT.md 3.1, yfdem's reader too): ICOUTF <= 0 is 10, frames every 10 steps (the
+        # converted deck had none, 2026-11-29)
+        note('ICOUTF %d: Y2D writes a frame every 10 steps (ICOUTF <= 0 is 10): dump every 10' % icoutf)
+        icoutf = 10
+    if icoutf <= nsteps:
         L.append(SYNTAX['dump'].format(n=icoutf, file=deck_word(base + '.h5')))
     L.append(SYNTAX['run'].format(n=max(nsteps, 0)))
     if 'YDO/NOHYS' in K:
@@ -1335,9 +1366,20 @@ def main():
                     help='exit 0 although the converted deck does not run the same physics (the warnings stay)')
     a = ap.parse_args()
     try:
+        find_yfdem()
+    except NoYfdem as e:
+        sys.stderr.write('error: %s\n' % e)
+        sys.exit(2)
+    try:
         path, notes = convert(a.deck, a.out)
     except (DeckError, OSError, KeyError, IndexError, ValueError) as e:
         msg = str(e) if not isinstance(e, KeyError) else 'required key %s missing' % e
+        if isinstance(e, OSError) and e.filename:
+            # the file and the system's reason, not Python's "[Errno 2] ...: 'OUT.nodes'" after the deck's name
+            # (a missing output folder was reported as an error of the .y, 2026-11-29)
+            sys.stderr.write('error: cannot %s %s: %s\n' % ('read' if os.path.abspath(e.filename) == os.path.abspath(
+                a.deck) else 'write', e.filename, e.strerror or msg))
+            sys.exit(EXIT_ERROR)
         # a DeckError names its file and line first (an included file's, maybe): no second name
         sys.stderr.write('error: %s\n' % msg if isinstance(e, DeckError) else 'error: %s: %s\n' % (a.deck, msg))
         sys.exit(EXIT_ERROR)

@@ -747,8 +747,19 @@ void y2d_run_file(YfSim *s, const char *path) {
   /* Y2D prints a progress line every ICSHTF steps (FORMAT.md 1.5): the thermo line takes its place,
    * so a batch run's log shows the run going, as Y2D's does (only `yfdem DECK.y`: a native deck
    * that reads a .y keeps its own thermo) */
-  const long every = deck_of(s->y2d)->icshtf;
+  const YfY2d *y = deck_of(s->y2d);
+  const long every = y->icshtf;
   if (every > 0) s->thermo_every = every;
   long n = s->last_step - s->step;
+  /* Y2D writes an animation frame every ICOUTF steps (the reader made <= 0 into 10); `yfdem DECK.y` writes
+   * none: said where Y2D would write one after step 0, with the two ways to frames (a native deck that
+   * reads the .y keeps its own dumps: not said there) */
+  if (y->icoutf > 0 && y->icoutf <= n) {
+    YfLoc l = y->given[Y2D_C_ICOUTF] ? y->where[Y2D_C_ICOUTF] : y->end;
+    yf_warn(&l, "/YD/YDC/ICOUTF = %ld: Y2D writes an animation frame every %ld steps; `yfdem %s` writes no frames "
+            "(its results: the thermo lines and -summary FILE). For frames ParaView opens: tools/y2d2deck.py %s OUT "
+            "(OUT.deck dumps every %ld steps), or a deck: read_y2d %s, dump d1 h5 %ld out.h5, run", y->icoutf, y->icoutf,
+            path, path, y->icoutf, path, y->icoutf);
+  }
   run_steps(s, n > 0 ? n : 0);
 }

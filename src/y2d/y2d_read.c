@@ -434,10 +434,52 @@ static void short_list(Rd *r, int key, const YfLoc *kloc, const char *what, long
                 got, where);
 }
 
+/* The first non-ASCII character of token t, named, for the messages that quote t: "" when t is ASCII.
+ * Decks copied from a word processor, a PDF or a web page hold look-alikes (a no-break space between a
+ * key and its value, a minus sign U+2212, full-width digits) that the quoted token hides: "'200 ' is not a
+ * number".  Y2D splits tokens at ASCII white space only and reads keys and numbers in ASCII. */
+static const char *non_ascii_note(const char *t) {
+  static char note[256]; /* the reader is one thread; the message is printed before the next call */
+  const unsigned char *u = (const unsigned char *)t;
+  size_t i = 0;
+  while (u[i] && u[i] < 0x80) i++;
+  if (!u[i]) return "";
+  /* decode one UTF-8 sequence (2 to 4 bytes, continuation bytes 10xxxxxx) */
+  int len = u[i] >= 0xf0 && u[i] < 0xf5 ? 4 : u[i] >= 0xe0 ? 3 : u[i] >= 0xc2 && u[i] < 0xe0 ? 2 : 0;
+  long cp = len == 4 ? (u[i] & 0x07) : len == 3 ? (u[i] & 0x0f) : (u[i] & 0x1f);
+  for (int k = 1; k < len; k++) {
+    if ((u[i + (size_t)k] & 0xc0) != 0x80) {
+      len = 0;
+      break;
+    }
+    cp = cp << 6 | (u[i + (size_t)k] & 0x3f);
+  }
+  char what[96];
+  if (!len)
+    snprintf(what, sizeof what, "the byte 0x%02x (not ASCII, not UTF-8)", u[i]);
+  else
+    snprintf(what, sizeof what, "U+%04lX (%s)", cp,
+             cp == 0xa0 ? "a no-break space"
+             : cp == 0x202f ? "a narrow no-break space"
+             : cp >= 0x2000 && cp <= 0x200a ? "a Unicode space"
+             : cp == 0x200b ? "a zero-width space"
+             : cp == 0x3000 ? "an ideographic space"
+             : cp == 0xfeff ? "a zero-width no-break space"
+             : cp == 0x2212 ? "a minus sign, not the ASCII '-'"
+             : cp >= 0x2010 && cp <= 0x2015 ? "a dash, not the ASCII '-'"
+             : cp >= 0xff10 && cp <= 0xff19 ? "a full-width digit"
+             : cp == 0x2018 || cp == 0x2019 || cp == 0x201c || cp == 0x201d ? "a typographic quote"
+                                                                             : "not ASCII");
+  snprintf(note, sizeof note, "it holds %s at byte %zu: Y2D splits tokens at ASCII white space only and reads keys "
+           "and numbers in ASCII; retype it in ASCII", what, i + 1);
+  return note;
+}
+
 /* Why token t is not a number, and what is: for the messages of read_int and read_real.  The
  * forms users bring from other programs get their own words: a Fortran 'd' exponent (1.d5, which
  * Y2D's %le reads as 1. followed by a stray token 'd5'), a value beyond a double (1e400), words. */
 static const char *not_number_why(const char *t) {
+  if (*non_ascii_note(t)) return non_ascii_note(t);
   char buf[64];
   size_t n = strlen(t);
   if (n < sizeof buf) {
@@ -486,8 +528,8 @@ static long read_int(Rd *r, int key, const YfLoc *kloc, const char *what, long w
     if (parse_real_tok(t, &d))
       yf_deck_error(&r->loc, "%s: '%s' is not an integer (the anchor would misread it; an integer is digits "
                     "only: 3000, not 3000.0 or 3e3)", keydefs[key].full, t);
-    yf_deck_error(&r->loc, "%s: '%s' is not a number (an integer is wanted here, digits only: e.g. 3000)",
-                  keydefs[key].full, t);
+    yf_deck_error(&r->loc, "%s: '%s' is not a number (%s)", keydefs[key].full, t,
+                  *non_ascii_note(t) ? non_ascii_note(t) : "an integer is wanted here, digits only: e.g. 3000");
   }
   return v;
 }
@@ -828,8 +870,8 @@ static void do_key(Rd *r, const char *tok) {
     size_t ml = kd->match ? (size_t)kd->match : strlen(kd->name);
     if (!strncmp(name, kd->name, ml)) {
       if (strcmp(name, kd->name) && strlen(name) != ml)
-        yf_warn(&kloc, "%s read as %s (the anchor compares only the first %zu characters)", t,
-                kd->full, ml);
+        yf_warn(&kloc, "%s read as %s (the anchor compares only the first %zu characters)%s%s", t,
+                kd->full, ml, *non_ascii_note(t) ? "; " : "", non_ascii_note(t));
       read_key(r, k, &kloc);
       return;
     }
@@ -846,6 +888,8 @@ static void do_key(Rd *r, const char *tok) {
   for (int k = 0; k < Y2D_NKEYS && nn < 64; k++)
     if (!strcmp(keydefs[k].group, groups[gi])) names[nn++] = keydefs[k].name;
   const char *near = name[0] ? yf_nearest(name, names, nn) : NULL;
+  if (*non_ascii_note(t))
+    yf_deck_error(&kloc, "%s: unknown key in /YD/%s/ (%s)", t, groups[gi], non_ascii_note(t));
   if (near)
     yf_deck_error(&kloc, "%s: unknown key in /YD/%s/ (did you mean %s?)", t, groups[gi], near);
   char list[1024];
@@ -991,6 +1035,7 @@ static void read_tokens(Rd *r) {
       if (!strncasecmp(t, "/YD/", 4) || !strncasecmp(t, "$Y", 2)) /* Y2D compares keys case by case */
         yf_deck_error(&r->loc, "unexpected token '%s': keys and control words are upper case (/YD/YDC/MCSTEP, "
                       "$YDOIT), as Y2D reads them", t);
+      if (*non_ascii_note(t)) yf_deck_error(&r->loc, "unexpected token '%s': %s", t, non_ascii_note(t));
       yf_deck_error(&r->loc, "unexpected token '%s': expected a key /YD/<GROUP>/<NAME>, a "
                     "comment '/* ... */' or $YDOIT, $YSTOP, $YINCL", t);
     }
@@ -1411,7 +1456,16 @@ static void check_deck(YfY2d *y) {
   check_nonneg(y, Y2D_PE_D1PEFR, y->d1pefr, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PEKS, y->d1peks, y->nprop, "property");
   /* D1PELA may be negative (a material of negative Poisson's ratio, as write_y2d writes it): the
-   * bulk modulus it must keep positive depends on read_y2d's volfac, checked there (y2d_model.c) */
+   * bulk modulus it must keep positive depends on read_y2d's volfac, checked there (y2d_model.c).  Y2D's
+   * own check refuses it (FORMAT.md 6): said, once, at the first such value */
+  for (long p = 0; p < y->nprop; p++)
+    if (y->d1pela[p] < 0) {
+      YfLoc l = value_loc(y, Y2D_PE_D1PELA, p);
+      yf_warn(&l, "%s: property %ld has the negative value %g: yfdem runs it (negative Poisson's ratio), but Y2D "
+              "refuses a negative D1PELA in its check after $YDOIT (Yck) and computes nothing", keydefs[Y2D_PE_D1PELA].full,
+              p, y->d1pela[p]);
+      break;
+    }
   check_nonneg(y, Y2D_PE_D1PEMU, y->d1pemu, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PERO, y->d1pero, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PEPE, y->d1pepe, y->nprop, "property");
@@ -1537,18 +1591,22 @@ static void check_deck(YfY2d *y) {
     }
     long ne, nflag = 0, first = -1;
     Edge *ed = edge_list(y, sel, &ne);
+    /* a node ends two boundary edges (or more): counted once, where it is first met */
+    unsigned char *seen = yf_calloc((size_t)y->nnopo + 1, 1, "y2d boundary nodes");
     for (long i = 0; i < ne; i++) {
       int single = (i == 0 || ed[i].lo != ed[i - 1].lo || ed[i].hi != ed[i - 1].hi) &&
                    (i + 1 == ne || ed[i].lo != ed[i + 1].lo || ed[i].hi != ed[i + 1].hi);
       if (!single) continue;
       for (int q = 0; q < 2; q++) {
         int n = q ? ed[i].hi : ed[i].lo;
-        if (y->i1nobf[n] != 1) {
+        if (y->i1nobf[n] != 1 && !seen[n]) {
+          seen[n] = 1;
           if (first < 0) first = n;
           nflag++;
         }
       }
     }
+    free(seen);
     free(ed);
     free(sel);
     if (nflag) {
