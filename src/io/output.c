@@ -110,6 +110,7 @@ typedef struct YfDump {
   long last_step;     /* step of the last frame (LONG_MIN: none)                       */
   uint64_t end_key;   /* sim_state_hash when a run ended on the step of its last frame   */
   long end_step;      /* ... that step (LONG_MIN: none)                                 */
+  int rewrite;        /* the frame being written replaces the last one (frame_retract)  */
   YfText grids;       /* XDMF <Grid> elements of the frames so far (STEM.xmf)          */
   YfText cgrids;      /* the crack series' <Grid> elements (STEM_cracks.xmf)           */
   char *cxmf, *cxmf_tmp; /* STEM_cracks.xmf and its .tmp                               */
@@ -812,9 +813,10 @@ static void csv_frame(YfSim *s, YfDump *d) {
   const char *base = strrchr(path, '/');
   /* whole or not at all: on a full disk the index ends at the row before */
   char *field = yf_csv_field(base ? base + 1 : path); /* a PREFIX with a comma: still one field */
-  yf_rows_printf(&d->csv_index, "%ld,%ld,%.17g,%s\n", d->nframe, s->step, s->time, field);
+  /* a frame written again (frame_retract) keeps its row: the same frame, step, time and file */
+  if (!d->rewrite) yf_rows_printf(&d->csv_index, "%ld,%ld,%.17g,%s\n", d->nframe, s->step, s->time, field);
   free(field);
-  if (yf_rows_end(&d->csv_index) != 0)
+  if (!d->rewrite && yf_rows_end(&d->csv_index) != 0)
     yf_io_error(NULL, "dump %s: cannot write '%s_frames.csv': %s", d->id, d->path, yf_strerror(errno));
   free(path);
 }
@@ -997,6 +999,7 @@ static void write_frame(YfSim *s, YfDump *d) {
   if (!yf_writer() && !d->mpio) { /* an MPI rank other than 0: the same bookkeeping, no file */
     d->nframe++;
     d->last_step = s->step;
+    d->rewrite = 0;
     return;
   }
   if (continuing(s, d)) {
@@ -1008,10 +1011,12 @@ static void write_frame(YfSim *s, YfDump *d) {
   else csv_frame(s, d);
   d->nframe++;
   d->last_step = s->step;
+  d->rewrite = 0;
 }
 
 /* The last frame's entries leave the indexes' text (its file is written again under its number):
- * the frame of the step a run ended on, when the deck changed the scene before the next run. */
+ * the frame of the step a run ended on, when the deck changed the scene before the next run.  A
+ * csv index keeps its row, which names the same frame (csv_frame). */
 static void frame_retract(YfDump *d) {
   static const char *const tag[2] = {"      <Grid Name=\"frame_", "      <Grid Name=\"cracks_"};
   YfText *t[2] = {&d->grids, &d->cgrids};
@@ -1022,16 +1027,17 @@ static void frame_retract(YfDump *d) {
     if (last) t[k]->len = (size_t)(last - t[k]->s), t[k]->s[t[k]->len] = 0;
   }
   d->nframe--;
+  d->rewrite = 1;
 }
 
 /* A run begins on the step of the dump's last frame (written when the run before ended there, or
  * kept from the series a restart continues): the frame stays unless the deck changed the scene
  * since (a body added, a `velocity ... set`), in which case it is written again, so that the frame
  * of the run's first step shows the state the run starts from, as it does when no frame was due
- * on it (the thermo line and record row of that step are the new state's).  h5 only: a csv
- * index takes its rows for good, and a y2dref dump runs a Y2D deck's single run. */
+ * on it (the thermo line and record row of that step are the new state's).  h5 and csv (a
+ * y2dref dump's tables take their rows for good: it runs a Y2D deck's single run). */
 static int scene_changed(const YfSim *s, const YfDump *d, int restored) {
-  if (d->style != YF_DUMP_H5 || d->last_step != s->step) return 0;
+  if (d->style == YF_DUMP_Y2DREF || d->last_step != s->step) return 0;
   if (restored) return restart_scene_changed(s);
   return d->end_step == s->step && sim_state_hash(s) != d->end_key;
 }
@@ -1104,7 +1110,7 @@ void output_run_end(YfSim *s) {
     /* the state the run ended in, for the next run's start (scene_changed); at a run's end the
      * state is whole on every rank (par_run_end), so every rank decides alike (after an interrupt
      * no run follows) */
-    if (d->style == YF_DUMP_H5 && d->last_step == s->step) {
+    if (d->style != YF_DUMP_Y2DREF && d->last_step == s->step) {
       d->end_key = sim_state_hash(s);
       d->end_step = s->step;
     }
