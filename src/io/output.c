@@ -1020,6 +1020,7 @@ static void write_frame(YfSim *s, YfDump *d) {
 static void frame_retract(YfDump *d) {
   static const char *const tag[2] = {"      <Grid Name=\"frame_", "      <Grid Name=\"cracks_"};
   YfText *t[2] = {&d->grids, &d->cgrids};
+  const int had_cracks = d->cgrids.len > 0;
   for (int k = 0; k < 2; k++) {
     if (!t[k]->len) continue; /* (an MPI rank other than 0 keeps no index text) */
     const char *last = NULL;
@@ -1028,6 +1029,14 @@ static void frame_retract(YfDump *d) {
   }
   d->nframe--;
   d->rewrite = 1;
+  /* The indexes leave the frame before its file is replaced (rank 0 writes them): a run killed
+   * in between lists no frame whose file differs from its entry (README: every frame an index
+   * lists is complete).  An index left with no frame lists none for that moment. */
+  if (d->style != YF_DUMP_H5 || !yf_writer()) return;
+  char msg[3 * PATH_MAX];
+  if ((had_cracks && !d->cgrids.len && index_try(d, d->cxmf, d->cxmf_tmp, " cracks", &d->cgrids, msg, sizeof msg)) ||
+      xmf_try(d, msg, sizeof msg))
+    yf_io_error(NULL, "%s", msg);
 }
 
 /* A run begins on the step of the dump's last frame (written when the run before ended there, or
