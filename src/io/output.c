@@ -1043,7 +1043,7 @@ static void frame_retract(YfDump *d) {
  * kept from the series a restart continues): the frame stays unless the deck changed the scene
  * since (a body added, a `velocity ... set`), in which case it is written again, so that the frame
  * of the run's first step shows the state the run starts from, as it does when no frame was due
- * on it (the thermo line and record row of that step are the new state's).  h5 and csv (a
+ * on it (the thermo line of that step is the new state's).  h5 and csv (a
  * y2dref dump's tables take their rows for good: it runs a Y2D deck's single run). */
 static int scene_changed(const YfSim *s, const YfDump *d, int restored) {
   if (d->style == YF_DUMP_Y2DREF || d->last_step != s->step) return 0;
