@@ -235,7 +235,9 @@ def cmd_cracks(a):
         draw_cracks(ax, fr, shown, tf, lw=0.7, what="opened", skip=done)
         draw_cracks(ax, fr, breaks, tf)
         nb = len(done)
-        no = sum(1 for b in shown if b["time"] <= tf)
+        # opened: past the peak and not broken at this frame (a broken joint opened first: counted
+        # once, as broken), as drawn and as the frame's /cracks/state 1 that ParaView shows
+        no = sum(1 for b in shown if b["time"] <= tf and (b["triA"], b["triB"]) not in done)
         nfr = len(np.unique(lab[fr["body"] == a.body]))
         # side by side, the panels are narrow: the counts go on a second line of the title
         pieces = "%d piece%s of the body" % (nfr, "" if nfr == 1 else "s")

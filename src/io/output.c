@@ -78,6 +78,7 @@
 #include "err.h"
 #include "y2dref.h"
 #include "run.h"
+#include "summary.h" /* sim_state_hash: did the deck change the scene between runs? */
 
 /* A growing text: the <Grid> elements of an index. */
 typedef struct {
@@ -107,6 +108,9 @@ typedef struct YfDump {
   int had_fc, fc_asked; /* a frame had the contact force / the deck's fields named fc    */
   long first;         /* number of this process's first frame (> 0: a continued series) */
   long last_step;     /* step of the last frame (LONG_MIN: none)                       */
+  uint64_t end_key;   /* sim_state_hash when a run ended on the step of its last frame   */
+  long end_step;      /* ... that step (LONG_MIN: none)                                 */
+  int rewrite;        /* the frame being written replaces the last one (frame_retract)  */
   YfText grids;       /* XDMF <Grid> elements of the frames so far (STEM.xmf)          */
   YfText cgrids;      /* the crack series' <Grid> elements (STEM_cracks.xmf)           */
   char *cxmf, *cxmf_tmp; /* STEM_cracks.xmf and its .tmp                               */
@@ -809,9 +813,10 @@ static void csv_frame(YfSim *s, YfDump *d) {
   const char *base = strrchr(path, '/');
   /* whole or not at all: on a full disk the index ends at the row before */
   char *field = yf_csv_field(base ? base + 1 : path); /* a PREFIX with a comma: still one field */
-  yf_rows_printf(&d->csv_index, "%ld,%ld,%.17g,%s\n", d->nframe, s->step, s->time, field);
+  /* a frame written again (frame_retract) keeps its row: the same frame, step, time and file */
+  if (!d->rewrite) yf_rows_printf(&d->csv_index, "%ld,%ld,%.17g,%s\n", d->nframe, s->step, s->time, field);
   free(field);
-  if (yf_rows_end(&d->csv_index) != 0)
+  if (!d->rewrite && yf_rows_end(&d->csv_index) != 0)
     yf_io_error(NULL, "dump %s: cannot write '%s_frames.csv': %s", d->id, d->path, yf_strerror(errno));
   free(path);
 }
@@ -994,6 +999,7 @@ static void write_frame(YfSim *s, YfDump *d) {
   if (!yf_writer() && !d->mpio) { /* an MPI rank other than 0: the same bookkeeping, no file */
     d->nframe++;
     d->last_step = s->step;
+    d->rewrite = 0;
     return;
   }
   if (continuing(s, d)) {
@@ -1005,6 +1011,44 @@ static void write_frame(YfSim *s, YfDump *d) {
   else csv_frame(s, d);
   d->nframe++;
   d->last_step = s->step;
+  d->rewrite = 0;
+}
+
+/* The last frame's entries leave the indexes' text (its file is written again under its number):
+ * the frame of the step a run ended on, when the deck changed the scene before the next run.  A
+ * csv index keeps its row, which names the same frame (csv_frame). */
+static void frame_retract(YfDump *d) {
+  static const char *const tag[2] = {"      <Grid Name=\"frame_", "      <Grid Name=\"cracks_"};
+  YfText *t[2] = {&d->grids, &d->cgrids};
+  const int had_cracks = d->cgrids.len > 0;
+  for (int k = 0; k < 2; k++) {
+    if (!t[k]->len) continue; /* (an MPI rank other than 0 keeps no index text) */
+    const char *last = NULL;
+    for (const char *q = t[k]->s; (q = strstr(q, tag[k])); q++) last = q;
+    if (last) t[k]->len = (size_t)(last - t[k]->s), t[k]->s[t[k]->len] = 0;
+  }
+  d->nframe--;
+  d->rewrite = 1;
+  /* The indexes leave the frame before its file is replaced (rank 0 writes them): a run killed
+   * in between lists no frame whose file differs from its entry (README: every frame an index
+   * lists is complete).  An index left with no frame lists none for that moment. */
+  if (d->style != YF_DUMP_H5 || !yf_writer()) return;
+  char msg[3 * PATH_MAX];
+  if ((had_cracks && !d->cgrids.len && index_try(d, d->cxmf, d->cxmf_tmp, " cracks", &d->cgrids, msg, sizeof msg)) ||
+      xmf_try(d, msg, sizeof msg))
+    yf_io_error(NULL, "%s", msg);
+}
+
+/* A run begins on the step of the dump's last frame (written when the run before ended there, or
+ * kept from the series a restart continues): the frame stays unless the deck changed the scene
+ * since (a body added, a `velocity ... set`), in which case it is written again, so that the frame
+ * of the run's first step shows the state the run starts from, as it does when no frame was due
+ * on it (the thermo line of that step is the new state's).  h5 and csv (a
+ * y2dref dump's tables take their rows for good: it runs a Y2D deck's single run). */
+static int scene_changed(const YfSim *s, const YfDump *d, int restored) {
+  if (d->style == YF_DUMP_Y2DREF || d->last_step != s->step) return 0;
+  if (restored) return restart_scene_changed(s);
+  return d->end_step == s->step && sim_state_hash(s) != d->end_key;
 }
 
 void output_run_begin(YfSim *s) {
@@ -1012,7 +1056,13 @@ void output_run_begin(YfSim *s) {
   if (!o) return;
   for (int i = 0; i < o->ndump; i++) {
     YfDump *d = o->dump[i];
-    if (d->last_step == s->step) continue;
+    if (d->last_step == s->step) {
+      if (scene_changed(s, d, 0)) {
+        frame_retract(d);
+        write_frame(s, d);
+      }
+      continue;
+    }
     /* A restart written between runs: the uninterrupted deck's next run began with a frame unless
      * the dump had one of this step already (due on the last step of the run before), and the
      * earlier run's index then holds it (an interrupt between runs writes none).  The series is
@@ -1026,7 +1076,8 @@ void output_run_begin(YfSim *s) {
       at = par_bcast_long(at);
       if (at == s->step) {
         d->last_step = s->step;
-        continue;
+        if (!scene_changed(s, d, 1)) continue;
+        frame_retract(d);
       }
       write_frame(s, d);
       continue;
@@ -1062,7 +1113,17 @@ void output_run_end(YfSim *s) {
    * written now (csv indexes stay open for the next run; output_close_all closes them). */
   struct YfOutput *o = s->out;
   if (!o) return;
-  for (int i = 0; i < o->ndump; i++) xmf_flush(o->dump[i]);
+  for (int i = 0; i < o->ndump; i++) {
+    YfDump *d = o->dump[i];
+    xmf_flush(d);
+    /* the state the run ended in, for the next run's start (scene_changed); at a run's end the
+     * state is whole on every rank (par_run_end), so every rank decides alike (after an interrupt
+     * no run follows) */
+    if (d->style != YF_DUMP_Y2DREF && d->last_step == s->step) {
+      d->end_key = sim_state_hash(s);
+      d->end_step = s->step;
+    }
+  }
 }
 
 void output_write_all(YfSim *s) {
@@ -1300,6 +1361,7 @@ int output_add_dump(YfSim *s, const char *id, int style, long every, const char 
   d->file = -1;
   d->csv_index.fd = -1;
   d->last_step = LONG_MIN;
+  d->end_step = LONG_MIN;
   d->mpio = style == YF_DUMP_H5 && !compress && output_mpio();
   d->fc_asked = (fields & YF_FIELD_ALL) != YF_FIELD_ALL && (fields & YF_FIELD_FC);
   if (style == YF_DUMP_H5) {

@@ -52,6 +52,7 @@
 #include "run.h"
 #include "energy.h"
 #include "metrics.h"
+#include "summary.h" /* sim_state_hash */
 
 /* 2: the Coulomb friction law's memory is s = F_t / sqrt(k_t) (contact_pair.h), no longer F_t.
  * A version 1 file is read when none of its Coulomb couples holds friction memory (the rest of
@@ -64,11 +65,17 @@ typedef struct YfRestart {
   char *base;      /* FILE of `restart every N FILE`                        */
   int next;        /* 0: FILE.a is written next, 1: FILE.b                   */
   char *last;      /* last restart file written (for messages)              */
+  uint64_t read_key; /* sim_state_hash of the state read_restart restored (output.c: a scene
+                        changed after it rewrites the frame of its step)            */
 } YfRestart;
 
 static YfRestart *rget(YfSim *s) {
   if (!s->restart) s->restart = yf_calloc(1, sizeof(YfRestart), "restart settings");
   return s->restart;
+}
+
+int restart_scene_changed(const YfSim *s) {
+  return s->restored && s->restart && sim_state_hash(s) != s->restart->read_key;
 }
 
 void restart_free(YfSim *s) {
@@ -839,6 +846,7 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   s->dt = dt;
   s->restored = 1;
   s->restored_between = (int)between;
+  rget(s)->read_key = sim_state_hash(s);
   /* within a run the uninterrupted run kept the dt of its start; between runs its next run took
    * the time step setting of that moment (timestep auto computes dt anew from the state reached:
    * broken joints no longer limit it).  A later `timestep` overrides either. */

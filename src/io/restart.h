@@ -49,6 +49,9 @@ int restart_write(YfSim *s, const char *path, char *err, size_t nerr);
 void restart_before_write(int (*fn)(YfSim *s, char *err, size_t nerr));
 /* Read a restart into a scene built by the deck (see above); errors exit (deck / I/O). */
 void restart_read(YfSim *s, const char *path, const YfLoc *loc);
+/* 1 when the nodes' positions or velocities (or their number) differ from those read_restart
+ * restored: the deck changed the scene after it (a body added, a velocity set). */
+int restart_scene_changed(const YfSim *s);
 /* The file read_restart PATH reads (PATH, else the newer valid of PATH.a / PATH.b; malloc'd), or
  * NULL when there is none. */
 char *restart_pick_file(const char *path);
