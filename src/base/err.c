@@ -363,6 +363,10 @@ size_t yf_skip_bom(char *s) {
   return 3;
 }
 
+/* The one file being written as NAME.tmp (yf_tmp_live), for a second Ctrl-C to remove. */
+static char tmp_path[4096];
+static volatile sig_atomic_t tmp_set;
+
 int yf_can_create(const char *path) {
   /* MPI: only the writer (rank 0) writes files, so only it checks (the probe's PATH.tmp is the
    * name the real write uses: other ranks must not create or remove it) */
@@ -380,12 +384,17 @@ int yf_can_create(const char *path) {
   size_t n = strlen(path) + 5;
   char *tmp = yf_malloc(n, "path");
   snprintf(tmp, n, "%s.tmp", path);
+  /* a second Ctrl-C during the probe removes it too (unless a file being written holds the one
+   * slot: the probe is then not in a file's write) */
+  int mine = !tmp_set;
+  if (mine) yf_tmp_live(tmp);
   FILE *f = fopen(tmp, "w");
   int ok = f != NULL, err = errno;
   if (f) {
     fclose(f);
     remove(tmp);
   }
+  if (mine) yf_tmp_live(NULL);
   free(tmp);
   errno = err;
   return ok;
@@ -422,8 +431,6 @@ long yf_getline(char **line, size_t *cap, FILE *fp) {
   return (long)n;
 }
 
-static char tmp_path[4096];
-static volatile sig_atomic_t tmp_set;
 
 void yf_tmp_live(const char *path) {
   tmp_set = 0;

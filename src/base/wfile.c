@@ -90,10 +90,13 @@ int yf_wfile_open(YfWFile *w, const char *path) {
   w->tmp = yf_malloc(n + 5, "path");
   memcpy(w->tmp, path, n);
   memcpy(w->tmp + n, ".tmp", 5);
+  /* live before it exists: a second Ctrl-C between fopen's creating it and a later registration
+   * left it behind (habits:test_second_interrupt_leaves_no_tmp, under load) */
+  yf_tmp_live(w->tmp);
   w->f = fopen(w->tmp, "w");
-  if (w->f) yf_tmp_live(w->tmp);
   if (!w->f) {
     int e = errno;
+    yf_tmp_live(NULL);
     free(w->tmp);
     w->tmp = NULL;
     errno = e;

@@ -496,12 +496,13 @@ static int index_try(YfDump *d, const char *path, const char *tmp, const char *s
                     name, suffix);
   const char *part[3] = {head, t->s ? t->s : "", tail};
   size_t plen[3] = {(size_t)hl, t->len, sizeof tail - 1};
+  yf_tmp_live(tmp); /* a second Ctrl-C removes it: live before open creates it (no window) */
   int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) {
+    yf_tmp_live(NULL);
     snprintf(msg, nmsg, "dump %s: cannot create '%s': %s", d->id, tmp, yf_strerror(errno));
     return -1;
   }
-  yf_tmp_live(tmp); /* a second Ctrl-C removes it */
 #ifdef __linux__
   (void)fallocate(fd, 0, 0, (off_t)(plen[0] + plen[1] + plen[2])); /* an optimisation only */
 #endif
