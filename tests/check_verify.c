@@ -324,7 +324,7 @@ END_TEST
  * plane strain and plane stress and S waves in both, nu 0.25, on rollers (uniaxial strain), 200
  * cells along (h = 5 mm).  The half-amplitude point of a step front on the lumped-mass lattice lags
  * x / c by a distance that grows as h^(2/3) x^(1/3) (the front's Airy spreading): measured at
- * x = 0.5 m -0.58 / -0.44 / -0.29 % of x / c for P at h = 5 / 2.5 / 1.25 mm, -0.28 % for S at 5 mm
+ * x = 0.5 m -0.58 / -0.43 / -0.29 % of x / c for P at h = 5 / 2.5 / 1.25 mm, -0.28 % for S at 5 mm
  * (docs/VERIFICATION.md); so 1 %, which still tells plane strain from plane stress (c_P 6.1 %
  * apart) and P from S. */
 START_TEST(test_wave_speed) {
