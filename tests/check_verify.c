@@ -24,16 +24,17 @@ static double q(YfSim *s, const char *name) {
 
 /* decks/verify/sliding_block.deck with the given variables; returns the block's mean acceleration
  * along the slope 2 u / t^2 [m/s^2] and sets *u to its displacement u [m]. */
-static double slide_time; /* the time the last slide() reached [s] */
+static double slide_time;             /* the time the last slide() reached [s] */
+static const char *slide_damp = "0"; /* the material's damping beta for slide() (the deck's damp) */
 static double slide(const char *slope, const char *phi, const char *nx, const char *pen, const char *law,
                     const char *T, double *u) {
-  const char *vars[] = {"slope", slope, "phi", phi, "nx", nx, "pen", pen, "law", law, "T", T, NULL};
+  const char *vars[] = {"slope", slope, "phi", phi, "nx", nx, "pen", pen, "law", law, "T", T, "damp", slide_damp, NULL};
   YfSim *s = yft_run_deck("decks/verify/sliding_block.deck", vars);
   *u = q(s, "ux_blk");
   slide_time = s->time;
   double a = 2.0 * *u / (s->time * s->time);
-  fprintf(stderr, "sliding block: slope %s phi %s nx %s pen %s %s T %s: u %.6e m, a %.6f m/s^2\n", slope, phi, nx, pen,
-          law, T, *u, a);
+  fprintf(stderr, "sliding block: slope %s phi %s nx %s pen %s %s damp %s T %s: u %.6e m, a %.6f m/s^2\n", slope, phi, nx,
+          pen, law, slide_damp, T, *u, a);
   return a;
 }
 
@@ -111,6 +112,33 @@ START_TEST(test_slide_holds_long) {
   slide("20", "40", "4", "10", "coulomb", "0.3", &u);
   ck_assert_double_ge(slide_time, 0.3 * (1 - 1e-9));
   ck_assert_double_lt(fabs(u), 1e-6);
+}
+END_TEST
+
+/* The near-cone rows with the block's deformation damped (the deck's damp 2: Y2D's material
+ * damping, which acts on the strain rate and so does not drag the sliding): what drives the
+ * undamped misses is the block's ringing (docs/VERIFICATION.md), and without it the rows meet
+ * rigid-block theory.  Holding (40.1 on 40, 30.1 on 30): the block settles in the drop by
+ * 6.4e-6 and 2.7e-6 m, then does not move; asserted: |u(0.1 s)| < 1e-5 m and u(0.1) - u(0.05)
+ * below 1e-8 m, the elastic give of contact and block (a few 1e-7 m in all, test_slide_holds)
+ * divided by the 100 of these runs' ringing that damping leaves.  Sliding (mu 1 on 50, undamped
+ * +54 %): +0.58 % at 0.1 s (+0.19 % at 0.3 s), the settling's offset of 3.5e-5 m on 6.1 mm;
+ * bound 1 %; the 3DEC case stays within 0.1 % (+0.001 %). */
+START_TEST(test_slide_damped_meets_theory) {
+  slide_damp = "2";
+  double u, u0;
+  slide("40", "40.1", "4", "10", "coulomb", "0.05", &u0);
+  slide("40", "40.1", "4", "10", "coulomb", "0.1", &u);
+  ck_assert_double_lt(fabs(u), 1e-5);
+  ck_assert_double_lt(fabs(u - u0), 1e-8);
+  slide("30", "30.1", "4", "10", "coulomb", "0.05", &u0);
+  slide("30", "30.1", "4", "10", "coulomb", "0.1", &u);
+  ck_assert_double_lt(fabs(u), 1e-5);
+  ck_assert_double_lt(fabs(u - u0), 1e-8);
+  double a = slide("50", "45", "4", "10", "coulomb", "0.1", &u);
+  ck_assert_double_eq_tol(a, a_theory(50, 45), 0.01 * a_theory(50, 45));
+  a = slide("40", "20", "4", "10", "coulomb", "0.1", &u);
+  ck_assert_double_eq_tol(a, a_theory(40, 20), 0.001 * a_theory(40, 20));
 }
 END_TEST
 
@@ -398,6 +426,7 @@ Suite *verify_suite(void) {
   tcase_add_loop_test(t, test_slide_mu, 0, 4);
   tcase_add_test(t, test_slide_holds);
   tcase_add_test(t, test_slide_holds_long);
+  tcase_add_test(t, test_slide_damped_meets_theory);
   suite_add_tcase(s, t);
   t = tcase_create("mode1_gf");
   tcase_set_timeout(t, 120);
