@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include "deck.h"
+#include "run.h"
 #include "yftest.h"
 
 static YfSim t_sim;
@@ -129,6 +130,20 @@ int yft_node_at(const YfSim *s, double x, double y) {
     if (d < bd) { bd = d; best = i; }
   }
   return best;
+}
+
+double yft_front_arrival(YfSim *s, int probe, int comp, double t_max) {
+  const double *v = comp ? s->model.node.vy : s->model.node.vx;
+  double tprev = s->time, vprev = v[probe];
+  while (s->time < t_max) {
+    run_steps(s, 1);
+    /* velocities live at half steps: v_{n+1/2} belongs to t - dt/2 */
+    double vn = v[probe], t = s->time - 0.5 * s->dt;
+    if (vn >= 0.5) return tprev + (0.5 - vprev) / (vn - vprev) * (t - tprev);
+    tprev = t;
+    vprev = vn;
+  }
+  return -1;
 }
 
 

@@ -28,6 +28,10 @@ void yft_put_file(const char *dir, const char *name, const char *text);
 int yft_child_run(void (*fn)(void *), void *arg, char *msg, size_t n);
 /* Node nearest to (x, y) in the initial configuration. */
 int yft_node_at(const YfSim *s, double x, double y);
+/* The time [s] at which the velocity of node `probe` in component comp (0 x, 1 y), behind a step
+ * front of unit velocity, first reaches 1/2 (interpolated between steps), stepping s until t_max;
+ * -1 if it has not by then. */
+double yft_front_arrival(YfSim *s, int probe, int comp, double t_max);
 /* Whole file as a string (caller frees); NULL when it cannot be opened, or "" when
  * empty_if_missing is set. */
 char *yft_slurp(const char *path, int empty_if_missing);
