@@ -879,6 +879,23 @@ static uint64_t run_hash(const char *deck_fmt, const char *file, double *ux) {
   return h;
 }
 
+/* overlap.msh's scene pushed on its tag-9 curve, its half fixed, for 300 steps (%s: the file) */
+static const char *const OVERLAP_DECK = "material granite elastic rho 2700 E 50e9 nu 0.25 plane_strain damping 0.1\n"
+                                        "material steel elastic rho 7800 E 200e9 nu 0.3 plane_strain damping 0.1\n"
+                                        "mesh gmsh block %s material whole=granite 9=steel scale 0.1\n"
+                                        "fix base half fixed xy\nfix pin pins fixed y\nload push phys_9_curve pressure 1e6\n"
+                                        "timestep auto\nrun 300\n";
+
+/* The deck (its %s the mesh file) run on the files a and b (names for the message) gives the same
+ * state_hash, and the pushed side (query ux_right) moved inwards, by the same amount. */
+static void same_run(const char *deck, const char *a, const char *b, const char *what) {
+  double uxa, uxb;
+  uint64_t ha = run_hash(deck, repo_path(a), &uxa);
+  uint64_t hb = run_hash(deck, repo_path(b), &uxb);
+  ck_assert_msg(ha == hb, "state_hash %016llx and %016llx (%s)", (unsigned long long)ha, (unsigned long long)hb, what);
+  ck_assert(uxa < 0 && uxb == uxa);
+}
+
 /* two_squares.msh saved by Gmsh as MSH 2.2 (decks/meshes/make_msh22.py) gives the 4.1 file's
  * scene, and the same bits after a run; the 2.2 file was refused ("MSH version 2.2 is not
  * supported"). */
@@ -893,12 +910,7 @@ START_TEST(test_gmsh_msh22_same_scene) {
                             "material steel elastic rho 7800 E 200e9 nu 0.3 plane_strain damping 0.1\n"
                             "mesh gmsh block %s material rock=granite steel=steel scale 0.1\n"
                             "fix base bottom fixed xy\nload push right pressure 1e6\ntimestep auto\nrun 300\n";
-  double ux41, ux22;
-  uint64_t h41 = run_hash(deck, repo_path("decks/meshes/two_squares.msh"), &ux41);
-  uint64_t h22 = run_hash(deck, repo_path("decks/meshes/two_squares_22.msh"), &ux22);
-  ck_assert_msg(h41 == h22, "state_hash %016llx (4.1) and %016llx (2.2)", (unsigned long long)h41,
-                (unsigned long long)h22);
-  ck_assert(ux41 < 0 && ux22 == ux41); /* the pushed side moved (inwards) */
+  same_run(deck, "decks/meshes/two_squares.msh", "decks/meshes/two_squares_22.msh", "4.1 and 2.2");
 }
 END_TEST
 
@@ -949,17 +961,7 @@ START_TEST(test_gmsh_msh22_overlapping_groups) {
   for (int t = 0; t < 44; t++) ck_assert_int_eq(ab[1]->model.tri.mat[t], 0);
   free_sim(ab[0]);
   free_sim(ab[1]);
-  static const char *deck = "material granite elastic rho 2700 E 50e9 nu 0.25 plane_strain damping 0.1\n"
-                            "material steel elastic rho 7800 E 200e9 nu 0.3 plane_strain damping 0.1\n"
-                            "mesh gmsh block %s material whole=granite 9=steel scale 0.1\n"
-                            "fix base half fixed xy\nfix pin pins fixed y\nload push phys_9_curve pressure 1e6\n"
-                            "timestep auto\nrun 300\n";
-  double ux41, ux22;
-  uint64_t h41 = run_hash(deck, repo_path("decks/meshes/overlap.msh"), &ux41);
-  uint64_t h22 = run_hash(deck, repo_path("decks/meshes/overlap_22.msh"), &ux22);
-  ck_assert_msg(h41 == h22, "state_hash %016llx (4.1) and %016llx (2.2)", (unsigned long long)h41,
-                (unsigned long long)h22);
-  ck_assert(ux41 < 0 && ux22 == ux41);
+  same_run(OVERLAP_DECK, "decks/meshes/overlap.msh", "decks/meshes/overlap_22.msh", "4.1 and 2.2");
 }
 END_TEST
 
@@ -1260,17 +1262,7 @@ START_TEST(test_gmsh_msh22_binary) {
   free_sim(a);
   free_sim(b);
   free_sim(c);
-  static const char *deck = "material granite elastic rho 2700 E 50e9 nu 0.25 plane_strain damping 0.1\n"
-                            "material steel elastic rho 7800 E 200e9 nu 0.3 plane_strain damping 0.1\n"
-                            "mesh gmsh block %s material whole=granite 9=steel scale 0.1\n"
-                            "fix base half fixed xy\nfix pin pins fixed y\nload push phys_9_curve pressure 1e6\n"
-                            "timestep auto\nrun 300\n";
-  double ux41, uxb;
-  uint64_t h41 = run_hash(deck, repo_path("decks/meshes/overlap.msh"), &ux41);
-  uint64_t hb = run_hash(deck, repo_path("decks/meshes/overlap_22b.msh"), &uxb);
-  ck_assert_msg(h41 == hb, "state_hash %016llx (4.1) and %016llx (binary 2.2)", (unsigned long long)h41,
-                (unsigned long long)hb);
-  ck_assert(ux41 < 0 && uxb == ux41);
+  same_run(OVERLAP_DECK, "decks/meshes/overlap.msh", "decks/meshes/overlap_22b.msh", "4.1 and binary 2.2");
 
   /* both byte orders give square4's scene */
   static char buf[2048];
@@ -1469,17 +1461,7 @@ START_TEST(test_gmsh_msh41_binary_same_scene) {
     free_sim(a);
     free_sim(b);
   }
-  static const char *deck = "material granite elastic rho 2700 E 50e9 nu 0.25 plane_strain damping 0.1\n"
-                            "material steel elastic rho 7800 E 200e9 nu 0.3 plane_strain damping 0.1\n"
-                            "mesh gmsh block %s material whole=granite 9=steel scale 0.1\n"
-                            "fix base half fixed xy\nfix pin pins fixed y\nload push phys_9_curve pressure 1e6\n"
-                            "timestep auto\nrun 300\n";
-  double ux41, uxb;
-  uint64_t h41 = run_hash(deck, repo_path("decks/meshes/overlap.msh"), &ux41);
-  uint64_t hb = run_hash(deck, repo_path("decks/meshes/overlap_b.msh"), &uxb);
-  ck_assert_msg(h41 == hb, "state_hash %016llx (4.1) and %016llx (binary 4.1)", (unsigned long long)h41,
-                (unsigned long long)hb);
-  ck_assert(ux41 < 0 && uxb == ux41); /* the pushed side moved (inwards) */
+  same_run(OVERLAP_DECK, "decks/meshes/overlap.msh", "decks/meshes/overlap_b.msh", "4.1 and binary 4.1");
 }
 END_TEST
 
