@@ -47,12 +47,12 @@ typedef struct {
   double work_t; /* work of the tangential forces against the relative motion, sum F_t w dt
                     [J/m]; > 0 when friction takes energy from the motion (stick + slip)      */
   double dissip; /* frictional dissipation of this step: |F_t| |g_trial - g| on sliding edges
-                    [J/m] (0 while sticking); the booking of Y2D's law                        */
+                    [J/m] (0 while sticking); a diagnostic (booked: work_c - spring)       */
   double energy; /* estimate of the normal penalty energy: sum over edges of
                     1.5 p_n L int h_k P(s)^2 ds, h_k = height of the target over the edge that
                     gives the minimum (exact for a flat penetration of one edge), plus the
-                    Coulomb law's spring energy (spring below) [J/m]                          */
-  /* The Coulomb law's booking (contact.c): what its springs do not store is dissipated, i.e.
+                    friction springs' energy (spring below) [J/m]                             */
+  /* The friction booking (contact.c), both laws: what the springs do not store is dissipated, i.e.
    * the centred work of their forces less the change of their energy.  The integrator moves a
    * node by (v_(n-1/2) + v_(n+1/2)) dt / 2 under the force of step n, so the work it books into
    * the kinetic energy is, summed by parts over the steps, sum_n (F_(n-1) + F_n) / 2 w_n dt
@@ -63,9 +63,9 @@ typedef struct {
   double *gprev; /* in/out, optional (NULL: none): F_t of each contactor edge at the last call,
                     as g (3 per direction, contact_pair_force: 6); 0 where an edge is apart.
                     Read for work_c only: the forces do not depend on it                       */
-  double work_c; /* centred work of the Coulomb springs' forces, sum 0.5 (F_t,prev + F_t) w dt,
+  double work_c; /* centred work of the friction springs' forces, sum 0.5 (F_t,prev + F_t) w dt,
                     F_t,prev from gprev (0 without it) [J/m]                                    */
-  double spring; /* energy the Coulomb springs hold after this call, sum 0.5 s^2 L [J/m]       */
+  double spring; /* energy the springs hold after this call: Coulomb 0.5 s^2 L, Y2D 0.5 F_t^2 / p_t [J/m] */
 } YfContactInfo;
 
 /* One direction: contactor triangle C acting on target triangle T (ALGORITHMS 6.1-6.5).

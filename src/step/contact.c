@@ -34,7 +34,8 @@
  * integrator books into the motion) and the energy they hold after the step; the dissipation of
  * a step is the work less the change of the springs' total energy (espring: that of the last
  * step), so a spring that lets go (apart, screened, dropped, forgotten) is dissipated too, and
- * the balance sees the springs' work, not their energy estimate.  Y2D's law books |F_t| slip.
+ * the balance sees the springs' work, not their energy estimate.  Y2D's law is booked the same
+ * way (its spring 0.5 F_t^2 / p_t, its force's work where the force acts: contact_pair.c).
  *
  * Units: SI, 2D per unit thickness: forces N/m, penalties Pa, energies J/m.
  */
@@ -750,9 +751,9 @@ typedef struct {
 /* The kernel on the marked couples ka..kb-1, hits numbered from h, new friction slots from slot;
  * contact energy, friction dissipation before the springs' release and spring energy summed in
  * couple order into sum[0..NSUM-1] (and, when ed is not NULL, each touching couple's NSUM values
- * written to ed in order: the pieces of a block shared by two ranks).  A Coulomb couple's
+ * written to ed in order: the pieces of a block shared by two ranks).  A couple's
  * dissipation is its centred work less its springs' energy now (the caller adds that of the last
- * step, espring); a Y2D couple's is |F_t| slip. */
+ * step, espring), whatever the law. */
 enum { NSUM = 3 };
 static void kernel_run(const KernelPass *P, int ka, int kb, int h, int slot, double *sum, int *rmo, double *ed) {
   double e = 0.0, d = 0.0, sp = 0.0;
@@ -792,7 +793,7 @@ static void kernel_run(const KernelPass *P, int ka, int kb, int h, int slot, dou
     int hit = contact_pair_force_rec(tg + (size_t)YF_TRI_GEOM * (tm ? tm[tj] : tj), vxa, vya,
                                      tg + (size_t)YF_TRI_GEOM * (tm ? tm[ti] : ti), vxb,
                                      vyb, pn, pt, mu, law, P->dt, gk, fa, fb, &d2, &info);
-    double dc = law == YF_FRIC_Y2D ? info.dissip : info.work_c - info.spring;
+    double dc = info.work_c - info.spring;
     e += info.energy;
     d += dc;
     sp += info.spring;
