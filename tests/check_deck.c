@@ -550,7 +550,7 @@ START_TEST(error_expressions_and_variables) {
                "  print \"x = $(2*(3+))\"", "                    ^");
   expect_error("variable a equal 1/(v_b-2)\nvariable b equal 2\nprint ${a}\n", 1,
                "e.deck:3: error: variable 'a' = '1/(v_b-2)': division by zero", "  print ${a}", "        ^");
-  expect_error("print ${nope}\n", 1, "e.deck:1: error: unknown variable 'nope'", NULL, NULL);
+  expect_error("print ${nope}\n", 1, "e.deck:1: error: unknown variable 'nope' (no variable is defined)", NULL, NULL);
   expect_error("print $q\n", 1, "e.deck:1: error: unknown variable 'q' (write ${name} for longer names)", NULL, NULL);
   expect_error("variable a equal v_b\nvariable b equal v_a+1\nprint ${a}\n", 1,
                "e.deck:3: error: variable 'a': equal-style variables nested deeper than 64 (does it refer to itself?)",
@@ -564,10 +564,10 @@ START_TEST(error_expressions_and_variables) {
   expect_error("variable a index 1 2\nvariable a equal 3\n", 1,
                "e.deck:2: error: variable: variable 'a': already defined as index-style, cannot redefine as "
                "equal-style (use 'variable a delete' first)", NULL, NULL);
-  expect_error("next i\n", 1, "e.deck:1: error: next: variable 'i': no such variable", NULL, NULL);
+  expect_error("next i\n", 1, "e.deck:1: error: next: variable 'i': no such variable (no variable is defined)", NULL, NULL);
   expect_error("jump SELF nowhere\n", 1, "e.deck:1: error: jump: label 'nowhere': no 'label nowhere' in e.deck",
                NULL, NULL);
-  expect_error("if \"v_q > 1\" then \"print x\"\n", 1, "e.deck:1: error: if: condition 'v_q > 1': unknown variable 'q'",
+  expect_error("if \"v_q > 1\" then \"print x\"\n", 1, "e.deck:1: error: if: condition 'v_q > 1': unknown variable 'q' (no variable is defined)",
                "  if \"v_q > 1\" then \"print x\"", "      ^");
   expect_error("if 1 \"print x\"\n", 1, "e.deck:1: error: if: 'print x': expected 'then' after the condition", NULL,
                NULL);
@@ -839,6 +839,30 @@ START_TEST(error_point_off_the_mesh) {
   /* damped for 40000 steps at alpha 180 (about 2 omega_1): the ringing left is exp(-alpha t / 2) ~ 1e-7 */
   ck_assert_msg(fabs(R + 1000) < 1e-3 && fabs(gx - 1) < 1e-12 && fabs(gy - 0.1) < 1e-12, "R %g at (%g, %g)", R, gx, gy);
   run_free(&r);
+}
+END_TEST
+
+/* An unknown variable's message says what the deck could have meant: the variable of another case
+ * or a near spelling, a thermo keyword for a bare name in an expression, else the variables there
+ * are (the message named the unknown one only). */
+START_TEST(error_unknown_variable_hints) {
+  expect_error("variable nx equal 10\nvariable ny equal 2\nprint ${nX}\n", 1,
+               "e.deck:3: error: unknown variable 'nX' (did you mean 'nx'?)", "  print ${nX}", "        ^");
+  expect_error("variable length equal 2\nprint $(v_lenght/2)\n", 1,
+               "e.deck:2: error: expression 'v_lenght/2': unknown variable 'lenght' (did you mean 'length'?)", NULL, NULL);
+  expect_error("print $(2*kee)\n", 1, "e.deck:1: error: expression '2*kee': unknown variable 'kee' (did you mean 'ke'?)",
+               "  print $(2*kee)", "            ^");
+  expect_error("variable a equal 1\nvariable b index x y\nprint ${zzz}\n", 1,
+               "e.deck:3: error: unknown variable 'zzz' (variables: a, b)", NULL, NULL);
+  expect_error("variable count loop 2\nnext cuont\n", 1,
+               "e.deck:2: error: next: variable 'cuont': no such variable (did you mean 'count'?)", NULL, NULL);
+  /* v_NAME reads variables only: no thermo keyword is offered for it */
+  expect_error("print $(v_kee)\n", 1, "e.deck:1: error: expression 'v_kee': unknown variable 'kee' (no variable is defined)",
+               NULL, NULL);
+  /* pi stays the evaluator's own */
+  YfDeck *d = run_here("variable r equal 2\n");
+  ck_assert_double_eq_tol(val(d, "pi*v_r^2"), 4 * M_PI, 1e-15);
+  deck_free(d);
 }
 END_TEST
 
@@ -1125,6 +1149,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, error_unknown_command);
   tcase_add_test(tc, error_lines_after_continuation_and_include);
   tcase_add_test(tc, error_expressions_and_variables);
+  tcase_add_test(tc, error_unknown_variable_hints);
   tcase_add_test(tc, error_includes);
   tcase_add_test(tc, error_long_names);
   tcase_add_test(tc, error_long_variable_names);

@@ -30,6 +30,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include "deck.h"
 #include "output.h"
@@ -347,6 +348,47 @@ static const char *name_fault(const char *s) {
 
 static int lookup_cb(void *ctx, const char *name, double *val, char *err, size_t errlen);
 
+/* What an unknown variable NAME could have been, for its message: " (did you mean 'nx'?)", else
+ * the variables there are (" (variables: nx, ny)") or " (no variable is defined)".  bare: NAME
+ * stands alone in an expression, where the simulation's names (step, ke, ...) are read too.
+ * ("unknown variable 'nX'" alone left the user to find the deck's spelling of it.) */
+static void unknown_hint(const YfDeck *d, const char *name, int bare, char *buf, size_t n) {
+  static const char *const own[] = {"step", "time", "dt", "pi", NULL};
+  const char *const *kw = sim_query_keywords();
+  int nk = 0, nown = 0, k = 0;
+  while (kw[nk]) nk++;
+  while (own[nown]) nown++;
+  const char **names = yf_malloc((size_t)(d->nvars + nk + nown + 1) * sizeof *names, "variable names");
+  for (int i = 0; i < d->nvars; i++) names[k++] = d->vars[i].name;
+  if (bare) {
+    for (int i = 0; i < nown; i++) names[k++] = own[i];
+    for (int i = 0; i < nk; i++) names[k++] = kw[i];
+  }
+  /* one or two letters are near to any short name: no guess for them but a change of case (nX
+   * for nx), the list says enough */
+  const char *near = strlen(name) >= 3 ? yf_nearest(name, names, k) : NULL;
+  for (int i = 0; i < k && !near; i++)
+    if (!strcasecmp(name, names[i])) near = names[i];
+  free(names);
+  if (near) {
+    snprintf(buf, n, " (did you mean '%s'?)", near);
+    return;
+  }
+  if (!d->nvars) {
+    snprintf(buf, n, " (no variable is defined)");
+    return;
+  }
+  size_t len = (size_t)snprintf(buf, n, " (variables: ");
+  for (int i = 0; i < d->nvars && len < n; i++) {
+    if (len + strlen(d->vars[i].name) + 8 > n || i == 12) {
+      len += (size_t)snprintf(buf + len, n - len, "...");
+      break;
+    }
+    len += (size_t)snprintf(buf + len, n - len, "%s%s", i ? ", " : "", d->vars[i].name);
+  }
+  if (len < n) snprintf(buf + len, n - len, ")");
+}
+
 /* Evaluate expr; on failure write "expression 'expr': why" into err and return 0. */
 static int eval_quiet(YfDeck *d, const char *expr, double *out, ExprError *e) {
   return expr_eval(expr, lookup_cb, d, out, e);
@@ -441,7 +483,11 @@ static int lookup_cb(void *ctx, const char *written, double *val, char *err, siz
     int q = sim_query(d->sim, name, val, err, errlen); /* thermo keywords, group averages */
     if (q) return q;
   }
-  return 0;
+  if (!prefixed && (!strcmp(name, "pi") || !strcmp(name, "PI"))) return 0; /* the evaluator's own */
+  char hint[300];
+  unknown_hint(d, name, !prefixed, hint, sizeof hint);
+  snprintf(err, errlen, "unknown variable '%s'%s", name, hint);
+  return -1;
 }
 
 /* Evaluate or fail with "expression 'e': why" and the expression with a caret. */
@@ -529,7 +575,11 @@ static char *substitute(YfDeck *d, const char *in, const YfLoc *loc) {
       memcpy(name, p + 2, len);
       name[len] = 0;
       char *t = var_text(d, name, loc, in, col);
-      if (!t) fail_ctx(loc, in, col, "unknown variable '%s'", name);
+      if (!t) {
+        char hint[300];
+        unknown_hint(d, name, 0, hint, sizeof hint);
+        fail_ctx(loc, in, col, "unknown variable '%s'%s", name, hint);
+      }
       buf_put(&b, t);
       free(t);
       p = e;
@@ -1182,7 +1232,11 @@ void deck_cmd_next(struct YfSim *sim, const YfArgs *a) {
   int done = 0;
   for (int i = 0; i < a->n; i++) {
     DeckVar *v = var_find(d, a->w[i]);
-    if (!v) arg_fail(a, i, "variable", "no such variable");
+    if (!v) {
+      char hint[300];
+      unknown_hint(d, a->w[i], 0, hint, sizeof hint);
+      arg_fail(a, i, "variable", "no such variable%s", hint);
+    }
     if (v->style != VAR_INDEX && v->style != VAR_LOOP)
       arg_fail(a, i, "variable", "is %s-style; next needs an index or loop variable", var_styles[v->style]);
   }
