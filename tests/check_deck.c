@@ -866,6 +866,40 @@ START_TEST(error_unknown_variable_hints) {
 }
 END_TEST
 
+/* print's LAMMPS keywords: a sweep's rows appended to a file, off the screen (they were printed as
+ * text, "... append res.txt screen no", and no file was written). */
+START_TEST(print_to_file) {
+  make_tmpdir();
+  Run r = run_child("variable E index 1e9 2e9 4e9\n"
+                    "label l\n"
+                    "print \"${E} $(1000/v_E)\" append res.txt screen no\n"
+                    "print \"last ${E}\" file last.txt\n"
+                    "next E\n"
+                    "jump SELF l\n"
+                    "print the file is ready\n"
+                    "print one screen yes\n",
+                    NULL, NULL);
+  ck_assert_msg(r.code == 0, "exit %d: %s", r.code, r.err);
+  /* 'file' writes anew, 'append' adds; the numbers as ${} and $() print them */
+  char path[512];
+  snprintf(path, sizeof path, "%s/res.txt", tdir);
+  char *res = read_all(path);
+  ck_assert_str_eq(res, "1e9 1e-06\n2e9 5e-07\n4e9 2.5e-07\n");
+  free(res);
+  snprintf(path, sizeof path, "%s/last.txt", tdir);
+  char *last = read_all(path);
+  ck_assert_str_eq(last, "last 4e9\n");
+  free(last);
+  /* screen no: not on the screen; words that are no keyword pairs stay text */
+  ck_assert_str_eq(r.out, "last 1e9\nlast 2e9\nlast 4e9\nthe file is ready\none\n");
+  run_free(&r);
+  expect_error("print a file nodir/x.txt\n", 2, "e.deck:1: error: print: cannot write 'nodir/x.txt': No such file or directory",
+               NULL, NULL);
+  expect_error("print a file f1 append f2\n", 1,
+               "e.deck:1: error: print: 'append': a print writes one file, and 'file f1' names a second", NULL, NULL);
+}
+END_TEST
+
 START_TEST(error_includes) {
   expect_error("variable a equal 1\n\ninclude missing.deck\n", 2,
                "e.deck:3: error: include: cannot open 'missing.deck': No such file or directory", NULL, NULL);
@@ -1150,6 +1184,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, error_lines_after_continuation_and_include);
   tcase_add_test(tc, error_expressions_and_variables);
   tcase_add_test(tc, error_unknown_variable_hints);
+  tcase_add_test(tc, print_to_file);
   tcase_add_test(tc, error_includes);
   tcase_add_test(tc, error_long_names);
   tcase_add_test(tc, error_long_variable_names);

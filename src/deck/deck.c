@@ -1306,12 +1306,63 @@ void deck_cmd_include(struct YfSim *sim, const YfArgs *a) {
   run_source(d, s, &a->loc);
 }
 
-/* print TEXT ... */
+/* Where print's keywords begin: the first word (after the text's first) from which on the words
+ * are pairs 'file F', 'append F', 'screen yes|no', 'universe yes|no' to the end of the line, as
+ * LAMMPS reads them; a->n when there are none (the words are all text, as before: 'print the file
+ * is ready' stays text, its 'is ready' is no pair). */
+static int print_keywords_from(const YfArgs *a) {
+  for (int i = 1; i + 1 < a->n; i++) {
+    if ((a->n - i) % 2) continue;
+    int ok = 1;
+    for (int k = i; k < a->n && ok; k += 2) {
+      const char *kw = a->w[k], *v = a->w[k + 1];
+      if (!strcmp(kw, "file") || !strcmp(kw, "append")) ok = v[0] != 0;
+      else if (!strcmp(kw, "screen") || !strcmp(kw, "universe")) ok = !strcmp(v, "yes") || !strcmp(v, "no");
+      else ok = 0;
+    }
+    if (ok) return i;
+  }
+  return a->n;
+}
+
+/* print TEXT ... [file F | append F] [screen yes|no] [universe yes|no]
+ * A LAMMPS deck's 'print "${E} $(uy_tip)" append results.txt screen no' printed its keywords on the
+ * screen and wrote no file: the results of a sweep were lost.  As in LAMMPS, 'file' writes the
+ * file anew at each print, 'append' adds a line to it, and 'screen no' keeps the text off the
+ * screen and the log.  The file is relative to the working directory, as every output is. */
 void deck_cmd_print(struct YfSim *sim, const YfArgs *a) {
   arg_count(a, 1, -1);
-  char *text = join_words(a, 0);
-  if (sim) sim_printf(sim, "%s\n", text);
-  else printf("%s\n", text);
+  int kw = print_keywords_from(a), screen = 1, fi = -1;
+  for (int k = kw; k < a->n; k += 2) {
+    if (!strcmp(a->w[k], "screen")) screen = !strcmp(a->w[k + 1], "yes");
+    else if (!strcmp(a->w[k], "file") || !strcmp(a->w[k], "append")) {
+      if (fi >= 0) arg_error(a, k, "a print writes one file, and '%s %s' names a second", a->w[fi], a->w[fi + 1]);
+      fi = k;
+    }
+  }
+  Buf b = {0};
+  for (int i = 0; i < kw; i++) {
+    if (i) buf_putc(&b, ' ');
+    buf_put(&b, a->w[i]);
+  }
+  char *text = buf_take(&b);
+  if (fi >= 0 && yf_writer()) { /* (first: a file that cannot be written stops before the screen shows the line) */
+    const char *path = a->w[fi + 1];
+    if (sim) { /* a dump or a log on the same file would interleave with it */
+      const char *by = output_claim(sim, "print", path, NULL, 0);
+      if (by && strcmp(by, "print")) arg_error(a, fi + 1, "already written by %s", by);
+    }
+    FILE *fp = fopen(path, a->w[fi][0] == 'a' ? "a" : "w");
+    if (!fp) yf_io_error(&a->loc, "print: cannot write '%s': %s", path, strerror(errno));
+    int bad = fprintf(fp, "%s\n", text) < 0;
+    int e = errno;
+    if (fclose(fp) != 0 || bad)
+      yf_io_error(&a->loc, "print: cannot write '%s': %s", path, strerror(bad ? e : errno));
+  }
+  if (screen) {
+    if (sim) sim_printf(sim, "%s\n", text);
+    else printf("%s\n", text);
+  }
   free(text);
 }
 
