@@ -324,6 +324,30 @@ START_TEST(loop_sum) {
 }
 END_TEST
 
+/* loop ... pad (LAMMPS): the values are written with the digits of the last one, so that files
+ * named by them sort in order; expressions read the number ('pad' was read as the last value). */
+START_TEST(loop_pad) {
+  YfDeck *d = run_here("variable s string x\n"
+                       "variable i loop 10 pad\n"
+                       "label a\n"
+                       "variable s string ${s}_${i}\n"
+                       "next i\n"
+                       "jump SELF a\n"
+                       "variable j loop 98 100 pad\n"
+                       "variable t string ${j}\n"
+                       "variable u equal v_j+1\n");
+  ck_assert_double_eq(val(d, "u"), 99.0); /* the number: 098 + 1 */
+  deck_free(d);
+  make_tmpdir();
+  Run r = run_child("variable s string x\nvariable i loop 10 pad\nlabel a\nvariable s string ${s}_${i}\nnext i\n"
+                    "jump SELF a\nvariable j loop 98 100 pad\nprint ${s}/${j}\n",
+                    NULL, NULL);
+  ck_assert_msg(r.code == 0, "exit %d: %s", r.code, r.err);
+  ck_assert_str_eq(r.out, "x_01_02_03_04_05_06_07_08_09_10/098\n");
+  run_free(&r);
+}
+END_TEST
+
 START_TEST(index_and_loop_ranges) {
   YfDeck *d = run_here("variable p string 1\n"
                        "variable n index 2 3 5\n"
@@ -1169,6 +1193,7 @@ Suite *deck_suite(void) {
   tcase_add_checked_fixture(tc, NULL, remove_tmpdir);
   tcase_add_test(tc, loop_sum);
   tcase_add_test(tc, index_and_loop_ranges);
+  tcase_add_test(tc, loop_pad);
   tcase_add_test(tc, equal_is_lazy);
   tcase_add_test(tc, cmdline_var_wins);
   tcase_add_test(tc, if_branches);

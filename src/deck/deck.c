@@ -80,6 +80,7 @@ typedef struct {
   char **vals;  /* index: the values                                       */
   int nvals, which;
   long cur, hi; /* loop: current and last value                            */
+  int pad;      /* loop ... pad: digits the value is written with (0: as it is) */
   int shadow_warned; /* read bare where a built-in of its name exists: warned */
 } DeckVar;
 
@@ -521,7 +522,7 @@ static char *var_text(YfDeck *d, const char *name, const YfLoc *loc, const char 
   }
   case VAR_STRING: return yf_strdup(v->text);
   case VAR_INDEX: return yf_strdup(v->vals[v->which]);
-  default: snprintf(buf, sizeof buf, "%ld", v->cur); return yf_strdup(buf);
+  default: snprintf(buf, sizeof buf, "%0*ld", v->pad, v->cur); return yf_strdup(buf);
   }
 }
 
@@ -1191,7 +1192,10 @@ void deck_cmd_variable(struct YfSim *sim, const YfArgs *a) {
   if (old && old->style != style)
     arg_fail(a, 0, "variable", "already defined as %s-style, cannot redefine as %s-style "
              "(use 'variable %s delete' first)", var_styles[old->style], var_styles[style], name);
-  arg_count(a, 3, style == VAR_LOOP ? 4 : -1);
+  /* loop N [N2] pad: LAMMPS's zero-padded values (out_01 ... out_10 sort as files); 'pad' was read
+   * as the last value ("not an integer") */
+  int pad = style == VAR_LOOP && a->n >= 4 && !strcmp(a->w[a->n - 1], "pad");
+  arg_count(a, 3, style == VAR_LOOP ? 4 + pad : -1);
   if (style == VAR_EQUAL) {
     char *text = join_words(a, 2);
     ExprError e;
@@ -1214,7 +1218,7 @@ void deck_cmd_variable(struct YfSim *sim, const YfArgs *a) {
     v->nvals = nv;
   } else {
     long lo = 1, hi;
-    if (a->n == 3) hi = arg_int(a, 2, "count", 1, LONG_MAX);
+    if (a->n - pad == 3) hi = arg_int(a, 2, "count", 1, LONG_MAX);
     else {
       lo = arg_int(a, 2, "first value", LONG_MIN / 2, LONG_MAX / 2);
       hi = arg_int(a, 3, "last value", lo, LONG_MAX / 2);
@@ -1222,6 +1226,10 @@ void deck_cmd_variable(struct YfSim *sim, const YfArgs *a) {
     DeckVar *v = var_new(d, name, VAR_LOOP);
     v->cur = lo;
     v->hi = hi;
+    if (pad) { /* as many digits as the last value has (LAMMPS) */
+      char digits[32];
+      v->pad = snprintf(digits, sizeof digits, "%ld", hi);
+    }
   }
 }
 
