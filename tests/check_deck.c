@@ -451,6 +451,35 @@ START_TEST(if_branches) {
 }
 END_TEST
 
+/* An if condition compares text only when a bare word of it names nothing and neither side is a
+ * number ("${mode} == fast"); a division by zero, a misspelt v_NAME or a misspelt name compared
+ * with a number was compared as text: silently false with ==, true with !=. */
+START_TEST(if_condition_errors_are_not_strings) {
+  YfDeck *d = run_here("variable mode string fast\n"
+                       "variable f equal 0\n"
+                       "if \"${mode} != slow\" then \"variable f equal 1\"\n"
+                       "variable g equal 0\n"
+                       "if \"a-b == a-b\" then \"variable g equal 1\"\n");
+  ck_assert_double_eq(val(d, "f"), 1.0);
+  ck_assert_double_eq(val(d, "g"), 1.0);
+  deck_free(d);
+  expect_error("variable nbroken equal 0\nif \"v_nbrokn == 0\" then \"print a\" else \"print b\"\n", 1,
+               "e.deck:2: error: if: condition 'v_nbrokn == 0': unknown variable 'nbrokn' (did you mean 'nbroken'?)",
+               NULL, NULL);
+  expect_error("variable nbroken equal 0\nif \"nbrokn == 0\" then \"print a\"\n", 1,
+               "e.deck:2: error: if: condition 'nbrokn == 0': unknown variable 'nbrokn' (did you mean 'nbroken'?)",
+               NULL, NULL);
+  expect_error("if \"1/0 == 1\" then \"print a\" else \"print b\"\n", 1,
+               "e.deck:1: error: if: condition '1/0 == 1': division by zero", "  if \"1/0 == 1\" then \"print a\" else \"print b\"",
+               "       ^");
+  expect_error("if \"sqrt(-1) != 2\" then \"print a\"\n", 1,
+               "e.deck:1: error: if: condition 'sqrt(-1) != 2': sqrt of negative number -1", NULL, NULL);
+  /* a variable whose own expression fails is that variable's error, not a text */
+  expect_error("variable r equal 1/v_z\nvariable z equal 0\nif \"v_r == x\" then \"print a\"\n", 1,
+               "e.deck:3: error: if: condition 'v_r == x': variable 'r' = '1/v_z': division by zero", NULL, NULL);
+}
+END_TEST
+
 START_TEST(include_relative) {
   make_tmpdir();
   write_file("sub/a.deck", "variable fromA equal 1\ninclude b.deck\nvariable afterB equal v_fromB+1\n");
@@ -1197,6 +1226,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, equal_is_lazy);
   tcase_add_test(tc, cmdline_var_wins);
   tcase_add_test(tc, if_branches);
+  tcase_add_test(tc, if_condition_errors_are_not_strings);
   tcase_add_test(tc, include_relative);
   tcase_add_test(tc, quit_stops);
   tcase_add_test(tc, substitution_and_quotes);

@@ -99,6 +99,8 @@ struct YfDeck {
   int exec_depth;  /* commands running inside other commands (if), see DECK_NEST_MAX */
   int subst_depth; /* $(...) being substituted inside $(...)                    */
   long ncmd;       /* commands run so far (an empty deck is worth a warning)     */
+  int unknown_bare; /* the expression being evaluated met a bare name that is nothing known
+                     * (not one written v_NAME, not inside a variable's own expression) */
 };
 
 /* Interned file names: never freed (a YfLoc may outlive the deck). */
@@ -485,6 +487,7 @@ static int lookup_cb(void *ctx, const char *written, double *val, char *err, siz
     if (q) return q;
   }
   if (!prefixed && (!strcmp(name, "pi") || !strcmp(name, "PI"))) return 0; /* the evaluator's own */
+  if (!prefixed && d->eval_depth == 0) d->unknown_bare = 1;
   char hint[300];
   unknown_hint(d, name, !prefixed, hint, sizeof hint);
   snprintf(err, errlen, "unknown variable '%s'%s", name, hint);
@@ -1375,14 +1378,19 @@ void deck_cmd_print(struct YfSim *sim, const YfArgs *a) {
 }
 
 /* Truth of an if condition.  Besides numeric expressions, "WORD == WORD" and "WORD != WORD"
- * compare strings when an expression cannot be formed (LAMMPS allows "${mode} == fast"). */
+ * compare strings (LAMMPS allows "${mode} == fast"): when the expression fails only because a
+ * bare word of it names nothing, and neither side is a number.  Any other failure is the deck's
+ * error: a division by zero, a misspelt v_NAME or a misspelt name compared with a number
+ * ("nbrokn == 0") were compared as text, silently false (or true with !=). */
 static int condition(YfDeck *d, const YfArgs *a, int i) {
   const char *cond = a->w[i];
-  double v;
+  double v, num;
   ExprError e;
+  d->unknown_bare = 0;
   if (eval_quiet(d, cond, &v, &e)) return v != 0.0;
   char l[256], op[8], r[256], extra[2];
-  if (sscanf(cond, "%255s %7s %255s %1s", l, op, r, extra) == 3 && (!strcmp(op, "==") || !strcmp(op, "!="))) {
+  if (d->unknown_bare && sscanf(cond, "%255s %7s %255s %1s", l, op, r, extra) == 3 &&
+      (!strcmp(op, "==") || !strcmp(op, "!=")) && !yf_parse_double(l, &num) && !yf_parse_double(r, &num)) {
     int eq = !strcmp(l, r);
     return op[0] == '=' ? eq : !eq;
   }
