@@ -507,6 +507,9 @@ static double eval_or_fail(YfDeck *d, const char *expr, const YfLoc *loc, const 
 }
 
 double deck_eval(YfDeck *d, const char *expr, const YfLoc *loc) { return eval_or_fail(d, expr, loc, NULL); }
+double deck_eval_as(YfDeck *d, const char *expr, const YfLoc *loc, const char *what) {
+  return eval_or_fail(d, expr, loc, what);
+}
 
 static void fmt_number(char *buf, size_t n, double v) { snprintf(buf, n, "%.15g", v == 0.0 ? 0.0 : v); }
 

@@ -56,6 +56,9 @@ void deck_set_echo(YfDeck *d, int on);
 char *deck_resolve_path(const YfArgs *a, const char *name);
 /* Evaluate an arithmetic expression with the current variables (used by 'variable' and $()). */
 double deck_eval(YfDeck *d, const char *expr, const YfLoc *loc);
+/* The same, its error message starting with what (e.g. "thermo_style column at step 50: "): an
+ * expression evaluated during a run, whose failure the deck line alone does not place. */
+double deck_eval_as(YfDeck *d, const char *expr, const YfLoc *loc, const char *what);
 
 /* ---- argument helpers for command handlers (all exit with a deck error on bad input) ---- */
 /* Require min <= a->n <= max (max < 0: unbounded); message shows the usage line. */
