@@ -618,8 +618,11 @@ START_TEST(error_expressions_and_variables) {
                "e.deck:2: error: variable: variable 'a': already defined as index-style, cannot redefine as "
                "equal-style (use 'variable a delete' first)", NULL, NULL);
   expect_error("next i\n", 1, "e.deck:1: error: next: variable 'i': no such variable (no variable is defined)", NULL, NULL);
-  expect_error("jump SELF nowhere\n", 1, "e.deck:1: error: jump: label 'nowhere': no 'label nowhere' in e.deck",
+  expect_error("jump SELF nowhere\n", 1, "e.deck:1: error: jump: label 'nowhere': no 'label nowhere' in e.deck (it has no label)",
                NULL, NULL);
+  /* the labels there are: a misspelt one was named alone */
+  expect_error("label loop_a\nlabel done\njump SELF loopa\n", 1,
+               "e.deck:3: error: jump: label 'loopa': no 'label loopa' in e.deck (its labels: loop_a, done)", NULL, NULL);
   expect_error("if \"v_q > 1\" then \"print x\"\n", 1, "e.deck:1: error: if: condition 'v_q > 1': unknown variable 'q' (no variable is defined)",
                "  if \"v_q > 1\" then \"print x\"", "      ^");
   expect_error("if 1 \"print x\"\n", 1, "e.deck:1: error: if: 'print x': expected 'then' after the condition", NULL,

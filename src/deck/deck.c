@@ -1265,8 +1265,9 @@ void deck_cmd_next(struct YfSim *sim, const YfArgs *a) {
   }
 }
 
-/* Index of the line after `label NAME` in s, or -1. */
-static int find_label(DeckSource *s, const char *label) {
+/* Index of the line after `label NAME` in s, or -1.  label NULL: none is found, and the names of
+ * the labels there are go into list (for the message of a label that is not there). */
+static int find_label(DeckSource *s, const char *label, Buf *list) {
   for (int i = 0; i < s->n; i++) {
     const char *t = s->lines[i].text;
     if (strncmp(t, "label", 5) || !isspace((unsigned char)t[5])) continue;
@@ -1275,7 +1276,11 @@ static int find_label(DeckSource *s, const char *label) {
     const char *why;
     int n = split_words(t, &w, &cols, &errcol, &why);
     if (n < 0) continue;
-    int hit = n >= 2 && !strcmp(w[1], label);
+    int hit = n >= 2 && label && !strcmp(w[1], label);
+    if (n >= 2 && list && list->n < 200) {
+      if (list->n) buf_put(list, ", ");
+      buf_put(list, w[1]);
+    }
     free_words(w, cols, n);
     if (hit) return i + 1;
   }
@@ -1300,8 +1305,13 @@ void deck_cmd_jump(struct YfSim *sim, const YfArgs *a) {
   }
   int pos = 0;
   if (a->n == 2) {
-    pos = find_label(s, a->w[1]);
-    if (pos < 0) arg_fail(a, 1, "label", "no 'label %s' in %s", a->w[1], s->name);
+    pos = find_label(s, a->w[1], NULL);
+    if (pos < 0) { /* what is there: a misspelt label was named alone */
+      Buf list = {0};
+      find_label(s, NULL, &list);
+      arg_fail(a, 1, "label", "no 'label %s' in %s (%s%s%s)", a->w[1], s->name, list.n ? "its labels: " : "it has no label",
+               list.n ? list.s : "", list.n >= 200 ? ", ..." : "");
+    }
   }
   f->src = s;
   f->pos = pos;
