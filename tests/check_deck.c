@@ -348,6 +348,30 @@ START_TEST(loop_pad) {
 }
 END_TEST
 
+/* Integers substitute whole up to 2^53: %.15g wrote 2^50 as 1.12589990684262e+15 (another
+ * integer) and 1e15 as 1e+15; other numbers keep 15 digits.  Where an integer is asked for, a
+ * fraction says how to round and an integer too large says so (both were "not an integer"). */
+START_TEST(integers_substitute_whole) {
+  make_tmpdir();
+  Run r = run_child("variable n equal 2^50\nprint \"${n} $(1e15) $(-2^53) $(1/3) $(2^53*4) $(1e300) $(0.1*3)\"\n", NULL, NULL);
+  ck_assert_msg(r.code == 0, "exit %d: %s", r.code, r.err);
+  ck_assert_str_eq(r.out, "1125899906842624 1000000000000000 -9007199254740992 0.333333333333333 3.6028797018964e+16 "
+                          "1e+300 0.3\n");
+  run_free(&r);
+  YfDeck *d = run_here("variable n equal 2^50+1\nvariable s string ${n}\n");
+  ck_assert_double_eq(val(d, "s"), 1125899906842625.0); /* read back exactly */
+  deck_free(d);
+  expect_error("variable T equal 0.123456\nvariable i loop $(v_T*1e4)\n", 1,
+               "e.deck:2: error: variable: count '1234.56': not an integer (round an expression: $(round(EXPR)), or "
+               "$(EXPR:%d))", NULL, NULL);
+  expect_error("variable i loop 99999999999999999999\n", 1,
+               "e.deck:1: error: variable: count '99999999999999999999': an integer beyond those read exactly (at most "
+               "9223372036854775807 written in digits, 2^53 = 9007199254740992 with an exponent or a '.')", NULL, NULL);
+  expect_error("variable i loop 2 1e300\n", 1, "e.deck:1: error: variable: last value '1e300': must be in [2, 4611686018427387903]",
+               NULL, NULL);
+}
+END_TEST
+
 START_TEST(index_and_loop_ranges) {
   YfDeck *d = run_here("variable p string 1\n"
                        "variable n index 2 3 5\n"
@@ -1226,6 +1250,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, loop_sum);
   tcase_add_test(tc, index_and_loop_ranges);
   tcase_add_test(tc, loop_pad);
+  tcase_add_test(tc, integers_substitute_whole);
   tcase_add_test(tc, equal_is_lazy);
   tcase_add_test(tc, cmdline_var_wins);
   tcase_add_test(tc, if_branches);

@@ -511,7 +511,13 @@ double deck_eval_as(YfDeck *d, const char *expr, const YfLoc *loc, const char *w
   return eval_or_fail(d, expr, loc, what);
 }
 
-static void fmt_number(char *buf, size_t n, double v) { snprintf(buf, n, "%.15g", v == 0.0 ? 0.0 : v); }
+/* A number as ${NAME} and $(EXPR) write it: 15 significant digits, except that an integer up to
+ * 2^53 (where doubles hold every integer) is written whole: %.15g wrote 2^50 as
+ * 1.12589990684262e+15, another integer, and a count of 1e15 or more as "1e+15". */
+static void fmt_number(char *buf, size_t n, double v) {
+  if (v == floor(v) && fabs(v) <= 9007199254740992.0) snprintf(buf, n, "%.0f", v == 0.0 ? 0.0 : v);
+  else snprintf(buf, n, "%.15g", v);
+}
 
 /* The text a ${name} reference stands for; NULL if the variable does not exist. */
 static char *var_text(YfDeck *d, const char *name, const YfLoc *loc, const char *line, int col) {
@@ -612,7 +618,7 @@ static char *substitute(YfDeck *d, const char *in, const YfLoc *loc) {
         expr = inner;
       }
       /* optional ":%fmt" at parenthesis depth 0 */
-      const char *fmt = "%.15g";
+      const char *fmt = NULL;
       int kind = 1;
       char *colon = NULL;
       int dd = 0;
@@ -645,8 +651,10 @@ static char *substitute(YfDeck *d, const char *in, const YfLoc *loc) {
         char lf[32];
         snprintf(lf, sizeof lf, "%.*sl%s", (int)strlen(fmt) - 1, fmt, fmt + strlen(fmt) - 1);
         snprintf(num, sizeof num, lf, (long)llround(v));
-      } else
+      } else if (colon)
         snprintf(num, sizeof num, fmt, v);
+      else
+        fmt_number(num, sizeof num, v);
       buf_put(&b, num);
       free(expr);
       p = e;
@@ -1126,8 +1134,18 @@ long arg_int(const YfArgs *a, int i, const char *what, long lo, long hi) {
   long v;
   if (!yf_parse_long(w, &v)) {
     double x;
-    if (yf_parse_double(w, &x)) arg_fail(a, i, what, "not an integer");
-    arg_fail(a, i, what, "not an integer%s", num_hint(w));
+    if (yf_parse_double(w, &x)) {
+      /* 'run $(v_T/dt)' gave 1234.56, and 'variable i loop 99999999999999999999' or a count that
+       * prints as 1e+16 is an integer: both were "not an integer", with no way out said */
+      if (x != floor(x))
+        arg_fail(a, i, what, "not an integer (round an expression: $(round(EXPR)), or $(EXPR:%%d))");
+      int below = x < (double)lo && lo != LONG_MIN, above = x > (double)hi && hi != LONG_MAX;
+      if (below || above) v = below ? lo - 1 : hi + 1; /* outside the range: its message, below */
+      else
+        arg_fail(a, i, what, "an integer beyond those read exactly (at most %ld written in digits, 2^53 = "
+                 "9007199254740992 with an exponent or a '.')", LONG_MAX);
+    } else
+      arg_fail(a, i, what, "not an integer%s", num_hint(w));
   }
   if (v < lo || v > hi) {
     if (hi == LONG_MAX) arg_fail(a, i, what, "must be >= %ld", lo);
