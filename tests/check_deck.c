@@ -601,6 +601,17 @@ START_TEST(error_unknown_command) {
                1, "e.deck:3: error: unknown command 'varaible' (did you mean 'variable'?)",
                "  varaible b equal 2", "  ^");
   expect_error("qwertyuiop\n", 1, "e.deck:1: error: unknown command 'qwertyuiop'", NULL, NULL);
+  /* LAMMPS commands say what yfdem does instead: 'log' was "did you mean 'load'?" */
+  expect_error("log log.case1.txt\n", 1,
+               "e.deck:1: error: unknown command 'log' (a LAMMPS command): yfdem names its log on the command line: "
+               "-log FILE (default log.yfdem) or -log none", NULL, NULL);
+  expect_error("units si\n", 1,
+               "e.deck:1: error: unknown command 'units' (a LAMMPS command): yfdem works in SI units always (m, kg, "
+               "s, N, Pa; loads and forces per metre of thickness): delete the line", "  units si", "  ^");
+  expect_error("shell mkdir out\n", 1,
+               "e.deck:1: error: unknown command 'shell' (a LAMMPS command): yfdem runs no shell commands from a "
+               "deck: make folders before the run (an output whose folder is missing is an error at its line)", NULL,
+               NULL);
 }
 END_TEST
 

@@ -855,6 +855,37 @@ const char *deck_nearest_command(const char *word) {
   return yf_nearest(word, names, nn);
 }
 
+/* LAMMPS commands that a LAMMPS user writes in a deck and yfdem spells otherwise, does otherwise
+ * or needs not: "unknown command 'log' (did you mean 'load'?)" led away from -log. */
+static const char *lammps_command_hint(const char *w) {
+  static const char *const hint[][2] = {
+      {"log", "yfdem names its log on the command line: -log FILE (default log.yfdem) or -log none"},
+      {"units", "yfdem works in SI units always (m, kg, s, N, Pa; loads and forces per metre of thickness): "
+                "delete the line"},
+      {"dimension", "yfdem is two-dimensional always (plane stress or plane strain, set by 'material'): delete the "
+                    "line"},
+      {"shell", "yfdem runs no shell commands from a deck: make folders before the run (an output whose folder is "
+                "missing is an error at its line)"},
+      {"clear", "yfdem builds one scene per deck: run one deck per case (-var NAME VALUE sets its parameters)"},
+      {"python", "a deck runs no Python: write the deck from Python (a YADE-style script) and run it, or sweep "
+                 "with tools/yfsweep.py"},
+      {"write_dump", "frames are written by 'dump' during runs (and at the start of each, so 'run 0' writes one); "
+                     "the state at once by write_restart or write_y2d"},
+      {"thermo_modify", "thermo lines reach the screen and the log at once; choose their columns with "
+                        "'thermo_style custom'"},
+      {"reset_timestep", "the step count runs on from run to run; 'run N upto' runs until step N"},
+      {"info", "print a variable with 'print \"${NAME}\"'; 'yfdem -h COMMAND' describes a command"},
+      {"atom_style", "yfdem's bodies are triangle meshes, not atoms: 'mesh', 'read_y2d', 'nodes'/'triangles'"},
+      {"read_data", "yfdem reads meshes: 'mesh gmsh BODY FILE.msh', 'read_y2d FILE.y', 'nodes'/'triangles'"},
+      {"pair_style", "bodies interact through 'contact' (penalty and friction) and break through "
+                     "'jointprop'/'fracture'"},
+      {"minimize", "yfdem is explicit dynamics: reach a static state with 'damping' and a 'run'"},
+  };
+  for (size_t k = 0; k < sizeof hint / sizeof hint[0]; k++)
+    if (!strcmp(w, hint[k][0])) return hint[k][1];
+  return NULL;
+}
+
 /* Substitute, split and dispatch one logical line. */
 static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
   if (d->exec_depth >= DECK_NEST_MAX)
@@ -897,6 +928,8 @@ static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
     if (!strncmp(w[0], "/YD/", 4) || !strncmp(w[0], "/*", 2) || !strncmp(w[0], "$Y", 2))
       fail_ctx(loc, line, cols[0], "unknown command '%s': this looks like a Y2D .y deck, which yfdem reads as one "
                "when its name ends in .y (yfdem FILE.y), or inside a deck with 'read_y2d FILE'", w[0]);
+    const char *lh = lammps_command_hint(w[0]);
+    if (lh) fail_ctx(loc, line, cols[0], "unknown command '%s' (a LAMMPS command): %s", w[0], lh);
     if (near) fail_ctx(loc, line, cols[0], "unknown command '%s' (did you mean '%s'?)", w[0], near);
     fail_ctx(loc, line, cols[0], "unknown command '%s'", w[0]);
   }
