@@ -1003,6 +1003,25 @@ START_TEST(error_includes) {
                     strstr(r.err, "includes itself, directly or through other files)"),
                 "stderr: %s", r.err);
   run_free(&r);
+  /* a file beside the working directory, not beside the deck (where LAMMPS would look): said so */
+  make_tmpdir();
+  write_file("common.deck", "variable c equal 1\n");
+  write_file("rows.txt", "0 0\n1 1\n");
+  write_file("cases/a.deck", "include common.deck\n");
+  write_file("cases/h.deck", "history h file rows.txt\n");
+  r = run_child("include cases/a.deck\n", NULL, NULL);
+  ck_assert_int_eq(r.code, 2);
+  ck_assert_str_eq(line_of(r.err, 0), "cases/a.deck:1: error: include: cannot open 'cases/common.deck': No such file or "
+                                      "directory (a deck's files are found from its own folder, 'cases'; the working "
+                                      "directory has a 'common.deck', which LAMMPS would read: give its path from the "
+                                      "deck's folder, or an absolute one)");
+  run_free(&r);
+  r = run_child("include cases/h.deck\n", NULL, NULL);
+  ck_assert_int_eq(r.code, 2);
+  ck_assert_msg(strstr(line_of(r.err, 0), "cases/h.deck:1: error: history: cannot open 'cases/rows.txt': No such file or "
+                                          "directory (a deck's files are found from its own folder, 'cases'"),
+                "stderr: %s", r.err);
+  run_free(&r);
 }
 END_TEST
 

@@ -1034,6 +1034,14 @@ void deck_run_file(YfDeck *d, const char *path, const YfLoc *from) {
 char *deck_resolve_path(const YfArgs *a, const char *name) {
   char *dir = dir_of(a->loc.file);
   char *p = join_path(dir, name);
+  /* LAMMPS reads a deck's files from the working directory: 'yfdem -in cases/a.deck' with
+   * 'include common.deck' beside the working directory's common.deck said only "cannot open
+   * 'cases/common.deck'" (a mesh, a table, a history file the same) */
+  struct stat st;
+  if (strcmp(p, name) && stat(p, &st) != 0 && errno == ENOENT && stat(name, &st) == 0)
+    yf_io_error(&a->loc, "%s: cannot open '%s': %s (a deck's files are found from its own folder, '%s'; the working "
+                "directory has a '%s', which LAMMPS would read: give its path from the deck's folder, or an absolute "
+                "one)", a->cmd, p, strerror(ENOENT), dir, name);
   free(dir);
   return p;
 }

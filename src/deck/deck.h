@@ -52,7 +52,8 @@ void deck_run_file(YfDeck *d, const char *path, const YfLoc *from);
 void deck_set_echo(YfDeck *d, int on);
 /* Directory of the deck currently being read ("." for stdin): handlers resolve relative
  * file names (mesh files, tables) against it.  Returns a malloc'd path joined with name,
- * or a copy of name when name is absolute. */
+ * or a copy of name when name is absolute.  An I/O error when the joined path does not exist
+ * but name does from the working directory (where a LAMMPS user expects it). */
 char *deck_resolve_path(const YfArgs *a, const char *name);
 /* Evaluate an arithmetic expression with the current variables (used by 'variable' and $()). */
 double deck_eval(YfDeck *d, const char *expr, const YfLoc *loc);
