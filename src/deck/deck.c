@@ -1429,12 +1429,12 @@ void deck_cmd_print(struct YfSim *sim, const YfArgs *a) {
     buf_put(&b, a->w[i]);
   }
   char *text = buf_take(&b);
+  if (fi >= 0 && sim) { /* a dump or a log on the same file would interleave with it (every rank claims) */
+    const char *by = output_claim(sim, "print", a->w[fi + 1], NULL, 0);
+    if (by && strcmp(by, "print")) arg_error(a, fi + 1, "already written by %s", by);
+  }
   if (fi >= 0 && yf_writer()) { /* (first: a file that cannot be written stops before the screen shows the line) */
     const char *path = a->w[fi + 1];
-    if (sim) { /* a dump or a log on the same file would interleave with it */
-      const char *by = output_claim(sim, "print", path, NULL, 0);
-      if (by && strcmp(by, "print")) arg_error(a, fi + 1, "already written by %s", by);
-    }
     FILE *fp = fopen(path, a->w[fi][0] == 'a' ? "a" : "w");
     if (!fp) yf_io_error(&a->loc, "print: cannot write '%s': %s", path, strerror(errno));
     int bad = fprintf(fp, "%s\n", text) < 0;
