@@ -986,6 +986,9 @@ START_TEST(print_to_file) {
   run_free(&r);
   expect_error("print a file nodir/x.txt\n", 2, "e.deck:1: error: print: cannot write 'nodir/x.txt': No such file or directory",
                NULL, NULL);
+  /* the file is claimed as outputs' files are: a dump's index on it would interleave */
+  expect_error("print a file o.xmf\ndump d h5 5 o.h5\n", 1, "e.deck:2: error: dump: 'o.h5': a file of it is already written by print",
+               NULL, NULL);
   expect_error("print a file f1 append f2\n", 1,
                "e.deck:1: error: print: 'append': a print writes one file, and 'file f1' names a second", NULL, NULL);
 }
