@@ -994,6 +994,29 @@ START_TEST(print_to_file) {
 }
 END_TEST
 
+/* An error shown on a substituted line shows the line as written too: '-var x ""' made a line one
+ * word short, and the message showed it with no trace of ${x}. */
+START_TEST(error_shows_line_as_written) {
+  make_tmpdir();
+  Run r = run_child("variable n equal 3\nvariable i loop ${x}\n", "x", "");
+  ck_assert_int_eq(r.code, 1);
+  ck_assert_str_eq(line_of(r.err, 0), "e.deck:2: error: variable: expected 3 to 4 arguments, got 2");
+  ck_assert_str_eq(line_of(r.err, 2), "  variable i loop ");
+  ck_assert_str_eq(line_of(r.err, 4), "  (as written: variable i loop ${x})");
+  run_free(&r);
+  expect_error("variable n equal 3\nvariable i loop $(v_n-5)\n", 1, "e.deck:2: error: variable: count '-2': must be >= 1",
+               "  variable i loop -2", "                  ^");
+  r = run_child_text("variable n equal 3\nvariable i loop $(v_n-5)\n");
+  ck_assert_str_eq(line_of(r.err, 3), "  (as written: variable i loop $(v_n-5))");
+  run_free(&r);
+  /* a line without substitution has no such line */
+  r = run_child_text("variable i loop 0\n");
+  ck_assert_int_eq(r.code, 1);
+  ck_assert_ptr_null(strstr(r.err, "as written"));
+  run_free(&r);
+}
+END_TEST
+
 START_TEST(error_includes) {
   expect_error("variable a equal 1\n\ninclude missing.deck\n", 2,
                "e.deck:3: error: include: cannot open 'missing.deck': No such file or directory", NULL, NULL);
@@ -1302,6 +1325,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, error_unknown_variable_hints);
   tcase_add_test(tc, print_to_file);
   tcase_add_test(tc, error_includes);
+  tcase_add_test(tc, error_shows_line_as_written);
   tcase_add_test(tc, error_long_names);
   tcase_add_test(tc, error_long_variable_names);
   tcase_add_test(tc, error_outputs_share_a_file);

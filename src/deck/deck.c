@@ -148,8 +148,14 @@ static const char *abbrev(const char *s, char *buf, size_t n) {
   return buf;
 }
 
+/* The line being run, as written and as substituted, while they differ (exec_line): an error
+ * shown on the substituted line also shows the written one, or which ${NAME} gave which word
+ * was lost ('-var L ""' made 'mesh rect ... ${L} ...' one word short, and the message showed the
+ * line without a trace of ${L}). */
+static const char *cur_written, *cur_substituted;
+
 /* Deck error with context: the message, then the line and a caret under column col (col < 0:
- * no caret; line NULL: no context). */
+ * no caret; line NULL: no context), then the line as written when line is its substitution. */
 static void fail_ctx(const YfLoc *loc, const char *line, int col, const char *fmt, ...)
     __attribute__((noreturn, format(printf, 4, 5)));
 static void fail_ctx(const YfLoc *loc, const char *line, int col, const char *fmt, ...) {
@@ -177,13 +183,20 @@ static void fail_ctx(const YfLoc *loc, const char *line, int col, const char *fm
   }
   if (from + width < len) { memcpy(ctx + k, "...", 3); k += 3; }
   ctx[k] = 0;
-  if (col < 0) yf_deck_error(loc, "%s\n%s", msg, ctx);
+  char written[200] = "";
+  if (line == cur_substituted && cur_written) {
+    size_t wl = strlen(cur_written);
+    snprintf(written, sizeof written, "\n  (as written: %.160s%s)", cur_written, wl > 160 ? "..." : "");
+    for (char *q = written + 1; *q; q++)
+      if (*q == '\t' || *q == '\n' || *q == '\r') *q = ' ';
+  }
+  if (col < 0) yf_deck_error(loc, "%s\n%s%s", msg, ctx, written);
   char caret[400];
   int c = 0, pad = 2 + (from > 0 ? 3 : 0) + (col - from);
   for (int i = 0; i < pad && c < (int)sizeof caret - 2; i++) caret[c++] = ' ';
   caret[c++] = '^';
   caret[c] = 0;
-  yf_deck_error(loc, "%s\n%s\n%s", msg, ctx, caret);
+  yf_deck_error(loc, "%s\n%s\n%s%s", msg, ctx, caret, written);
 }
 
 /* ------------------------------------------------------------------ words */
@@ -901,6 +914,10 @@ static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
     }
   }
   char *line = substitute(d, text, loc);
+  const char *was_written = cur_written, *was_substituted = cur_substituted;
+  int differs = strcmp(text, line) != 0;
+  cur_written = differs ? text : NULL;
+  cur_substituted = differs ? line : NULL;
   char **w;
   int *cols, errcol;
   const char *why;
@@ -909,6 +926,7 @@ static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
   if (n == 0) {
     free_words(w, cols, n);
     free(line);
+    cur_written = was_written, cur_substituted = was_substituted;
     return;
   }
   if (d->echo) {
@@ -945,6 +963,7 @@ static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
   d->exec_depth--;
   free_words(w, cols, n);
   free(line);
+  cur_written = was_written, cur_substituted = was_substituted;
 }
 
 /* Run the source from position pos on a new frame until its end, a quit, or an error. */
@@ -969,6 +988,7 @@ static void run_source(YfDeck *d, DeckSource *s, const YfLoc *from) {
 
 YfDeck *deck_new(struct YfSim *sim) {
   YfDeck *d = yf_calloc(1, sizeof *d, "deck");
+  cur_written = cur_substituted = NULL; /* (a harness that longjmps out of an error left them set) */
   d->sim = sim;
   if (sim) sim->deck = d;
   return d;
