@@ -213,6 +213,7 @@ START_TEST(expr_functions) {
   ck_assert_double_eq_tol(ev("acos(0)"), M_PI / 2, 1e-15);
   ck_assert_double_eq_tol(ev("atan(1)*4"), M_PI, 1e-15);
   ck_assert_double_eq_tol(ev("log(exp(2))"), 2.0, 1e-15);
+  ck_assert_double_eq_tol(ev("ln(exp(2))"), 2.0, 1e-15); /* LAMMPS's spelling of the natural log */
 }
 END_TEST
 
@@ -1017,6 +1018,24 @@ START_TEST(error_shows_line_as_written) {
 }
 END_TEST
 
+/* log() is natural here and base 10 in LAMMPS: the first log() of a deck says so, once, at its
+ * line (a LAMMPS deck's log(x) read 2.3 times its value in silence); ln() and log10() say nothing. */
+START_TEST(log_is_natural_noted) {
+  make_tmpdir();
+  Run r = run_child("variable a equal 1\nvariable b equal log(100)\nprint \"$(v_b) $(log(1))\"\n", NULL, NULL);
+  ck_assert_msg(r.code == 0, "exit %d: %s", r.code, r.err);
+  ck_assert_str_eq(r.out, "4.60517018598809 0\n");
+  ck_assert_str_eq(r.err, "e.deck:2: warning: log() is the natural logarithm (as in C and Python; LAMMPS's log() is "
+                          "base 10): write ln() for the natural one, log10() for base 10, and this note goes\n");
+  run_free(&r);
+  r = run_child_text("print \"$(ln(100)) $(log10(100))\"\n");
+  ck_assert_msg(r.code == 0, "exit %d: %s", r.code, r.err);
+  ck_assert_str_eq(r.out, "4.60517018598809 2\n");
+  ck_assert_str_eq(r.err, "");
+  run_free(&r);
+}
+END_TEST
+
 START_TEST(error_includes) {
   expect_error("variable a equal 1\n\ninclude missing.deck\n", 2,
                "e.deck:3: error: include: cannot open 'missing.deck': No such file or directory", NULL, NULL);
@@ -1326,6 +1345,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, print_to_file);
   tcase_add_test(tc, error_includes);
   tcase_add_test(tc, error_shows_line_as_written);
+  tcase_add_test(tc, log_is_natural_noted);
   tcase_add_test(tc, error_long_names);
   tcase_add_test(tc, error_long_variable_names);
   tcase_add_test(tc, error_outputs_share_a_file);

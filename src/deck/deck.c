@@ -99,6 +99,7 @@ struct YfDeck {
   int exec_depth;  /* commands running inside other commands (if), see DECK_NEST_MAX */
   int subst_depth; /* $(...) being substituted inside $(...)                    */
   long ncmd;       /* commands run so far (an empty deck is worth a warning)     */
+  int log_warned;   /* the note on log() (natural here, base 10 in LAMMPS) was given */
   int unknown_bare; /* the expression being evaluated met a bare name that is nothing known
                      * (not one written v_NAME, not inside a variable's own expression) */
 };
@@ -364,6 +365,27 @@ static const char *name_fault(const char *s) {
 
 static int lookup_cb(void *ctx, const char *name, double *val, char *err, size_t errlen);
 
+/* The deck line running now (file NULL when none). */
+static YfLoc here(const YfDeck *d) {
+  YfLoc l = {0};
+  if (d->depth > 0) {
+    const DeckFrame *f = &d->stack[d->depth - 1];
+    l.file = f->src->name;
+    l.line = f->pos > 0 ? f->src->lines[f->pos - 1].line : 0;
+  }
+  return l;
+}
+
+/* LAMMPS's log() is base 10; here, as in C and Python, it is the natural one: a LAMMPS deck's
+ * log(x) read 2.3 times its value, silently.  Said once, where it is first met. */
+static void note_log(YfDeck *d, const ExprError *e, const YfLoc *loc) {
+  if (!e->uses_log || d->log_warned) return;
+  d->log_warned = 1;
+  YfLoc l = loc ? *loc : here(d);
+  yf_warn(l.file ? &l : NULL, "log() is the natural logarithm (as in C and Python; LAMMPS's log() is base 10): "
+          "write ln() for the natural one, log10() for base 10, and this note goes");
+}
+
 /* What an unknown variable NAME could have been, for its message: " (did you mean 'nx'?)", else
  * the variables there are (" (variables: nx, ny)") or " (no variable is defined)".  bare: NAME
  * stands alone in an expression, where the simulation's names (step, ke, ...) are read too.
@@ -407,7 +429,9 @@ static void unknown_hint(const YfDeck *d, const char *name, int bare, char *buf,
 
 /* Evaluate expr; on failure write "expression 'expr': why" into err and return 0. */
 static int eval_quiet(YfDeck *d, const char *expr, double *out, ExprError *e) {
-  return expr_eval(expr, lookup_cb, d, out, e);
+  int ok = expr_eval(expr, lookup_cb, d, out, e);
+  if (ok) note_log(d, e, NULL);
+  return ok;
 }
 
 /* Numeric value of a variable: 1 ok, -1 error (err filled). */
@@ -467,12 +491,7 @@ static int lookup_cb(void *ctx, const char *written, double *val, char *err, siz
   if (v && !prefixed && !v->shadow_warned && builtin_name(d, name)) {
     /* 'variable time equal 0.01' then $(time): the variable wins, silently (pi read 3) */
     v->shadow_warned = 1;
-    YfLoc l = {0};
-    if (d->depth > 0) {
-      const DeckFrame *f = &d->stack[d->depth - 1];
-      l.file = f->src->name;
-      l.line = f->pos > 0 ? f->src->lines[f->pos - 1].line : 0;
-    }
+    YfLoc l = here(d);
     yf_warn(l.file ? &l : NULL, "'%s' in an expression reads your variable '%s', which hides the built-in '%s'; "
             "write v_%s to say you mean the variable, or rename the variable to read the built-in", name, name, name, name);
   }
@@ -1288,6 +1307,7 @@ void deck_cmd_variable(struct YfSim *sim, const YfArgs *a) {
     if (!expr_check(text, &e)) /* caret inside the line when the expression is one word */
       fail_ctx(&a->loc, a->line, a->n == 3 ? arg_inner_col(a, 2) + e.pos : arg_col(a, 2),
                "variable: expression '%s': %s", abbrev(text, ab, sizeof ab), e.msg);
+    note_log(d, &e, &a->loc);
     DeckVar *v = var_new(d, name, VAR_EQUAL);
     v->text = text;
   } else if (style == VAR_STRING) {

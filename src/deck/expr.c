@@ -95,17 +95,18 @@ static double call_function(Parser *P, const char *name, const char *at, double 
   /* name, arity (-2: two or more), implementation selected below */
   static const struct { const char *name; int nargs; } fns[] = {
       {"sqrt", 1}, {"sin", 1},   {"cos", 1},  {"tan", 1},   {"asin", 1}, {"acos", 1},
-      {"atan", 1}, {"atan2", 2}, {"exp", 1},  {"log", 1},   {"log10", 1}, {"abs", 1},
+      {"atan", 1}, {"atan2", 2}, {"exp", 1},  {"log", 1},   {"log10", 1}, {"ln", 1}, {"abs", 1},
       {"floor", 1}, {"ceil", 1}, {"round", 1}, {"min", -2}, {"max", -2}, {"pow", 2}, {NULL, 0}};
   int k;
   for (k = 0; fns[k].name; k++)
     if (!strcmp(fns[k].name, name)) break;
   if (!fns[k].name)
     fail_at(P, at, "unknown function '%s' (functions: sqrt sin cos tan asin acos atan atan2 exp log "
-                   "log10 abs floor ceil round min max pow)", name);
+                   "log10 ln abs floor ceil round min max pow)", name);
   if (fns[k].nargs == -2 && n < 2) fail_at(P, at, "%s() takes at least 2 arguments, got %d", name, n);
   if (fns[k].nargs > 0 && n != fns[k].nargs)
     fail_at(P, at, "%s() takes %d argument%s, got %d", name, fns[k].nargs, fns[k].nargs > 1 ? "s" : "", n);
+  if (!strcmp(name, "log")) P->e->uses_log = 1; /* (in a syntax check too: a variable's definition) */
   if (P->skip) return 0.0;
   double a = x[0], r = 0.0;
   if (!strcmp(name, "sqrt")) {
@@ -120,9 +121,9 @@ static double call_function(Parser *P, const char *name, const char *at, double 
   } else if (!strcmp(name, "atan")) r = atan(a);
   else if (!strcmp(name, "atan2")) r = atan2(a, x[1]);
   else if (!strcmp(name, "exp")) r = exp(a);
-  else if (!strcmp(name, "log") || !strcmp(name, "log10")) {
+  else if (!strcmp(name, "log") || !strcmp(name, "log10") || !strcmp(name, "ln")) {
     if (a <= 0) fail_at(P, at, "%s of non-positive number %.15g", name, a);
-    r = name[3] ? log10(a) : log(a);
+    r = !strcmp(name, "log10") ? log10(a) : log(a);
   } else if (!strcmp(name, "abs")) r = fabs(a);
   else if (!strcmp(name, "floor")) r = floor(a);
   else if (!strcmp(name, "ceil")) r = ceil(a);
@@ -350,6 +351,7 @@ static int run(const char *s, ExprLookupFn lookup, void *ctx, int skip, double *
   P.e = e;
   e->msg[0] = 0;
   e->pos = 0;
+  e->uses_log = 0;
   P.depth0 = expr_depth;
   if (setjmp(P.jb)) {
     expr_depth = P.depth0; /* the levels the longjmp skipped */
