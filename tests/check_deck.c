@@ -951,6 +951,13 @@ START_TEST(error_unknown_variable_hints) {
   /* v_NAME reads variables only: no thermo keyword is offered for it */
   expect_error("print $(v_kee)\n", 1, "e.deck:1: error: expression 'v_kee': unknown variable 'kee' (no variable is defined)",
                NULL, NULL);
+  /* a NaN or an infinity a generating script wrote is named as such, not as an unknown variable */
+  expect_error("variable E equal nan\nprint ${E}\n", 1,
+               "e.deck:2: error: variable 'E' = 'nan': 'nan' is not a finite number, and expressions hold finite "
+               "numbers only (did the script that wrote this deck compute a NaN?)", NULL, NULL);
+  expect_error("print $(2*-inf)\n", 1,
+               "e.deck:1: error: expression '2*-inf': 'inf' is not a finite number, and expressions hold finite numbers "
+               "only (did the script that wrote this deck compute a division by zero or an overflow?)", NULL, NULL);
   /* pi stays the evaluator's own */
   YfDeck *d = run_here("variable r equal 2\n");
   ck_assert_double_eq_tol(val(d, "pi*v_r^2"), 4 * M_PI, 1e-15);

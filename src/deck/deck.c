@@ -519,6 +519,12 @@ static int lookup_cb(void *ctx, const char *written, double *val, char *err, siz
     if (q) return q;
   }
   if (!prefixed && (!strcmp(name, "pi") || !strcmp(name, "PI"))) return 0; /* the evaluator's own */
+  if (!prefixed && (!strcasecmp(name, "nan") || !strcasecmp(name, "inf") || !strcasecmp(name, "infinity"))) {
+    /* a deck written by a script that computed a NaN: "unknown variable 'nan'" hid the cause */
+    snprintf(err, errlen, "'%s' is not a finite number, and expressions hold finite numbers only (did the script "
+             "that wrote this deck compute a %s?)", name, tolower((unsigned char)name[0]) == 'n' ? "NaN" : "division by zero or an overflow");
+    return -1;
+  }
   if (!prefixed && d->eval_depth == 0) d->unknown_bare = 1;
   char hint[300];
   unknown_hint(d, name, !prefixed, hint, sizeof hint);
