@@ -1043,6 +1043,64 @@ START_TEST(log_is_natural_noted) {
 }
 END_TEST
 
+/* Run the deck at path (relative to tdir, the child's working directory), its stdin from the file
+ * stdin_from when given; the exit code, stdout in *out. */
+static int run_path(const char *path, const char *stdin_from, char **out) {
+  char o[600];
+  snprintf(o, sizeof o, "%s/path_out.txt", tdir);
+  fflush(NULL);
+  pid_t pid = fork();
+  ck_assert_int_ge(pid, 0);
+  if (pid == 0) {
+    if (chdir(tdir) || !freopen(o, "w", stdout) || (stdin_from && !freopen(stdin_from, "r", stdin))) _exit(99);
+    YfSim sim;
+    sim_init(&sim);
+    YfDeck *d = deck_new(&sim);
+    deck_run_file(d, path, NULL);
+    deck_free(d);
+    exit(0);
+  }
+  int st = 0;
+  waitpid(pid, &st, 0);
+  *out = read_all(o);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+}
+
+/* A deck read through a pipe or /dev/stdin finds its files as a deck on standard input does (the
+ * working directory) or from the folder of the file behind /dev/stdin: '-in <(python3 gen.py)'
+ * (/dev/fd/63) looked for its includes in /dev/fd. */
+START_TEST(deck_through_a_pipe_finds_its_files) {
+  make_tmpdir();
+  write_file("parts/part.deck", "print \"part in parts\"\n");
+  write_file("sub/main.deck", "include part.deck\n");
+  write_file("sub/part.deck", "print \"part beside the deck\"\n");
+  char *out;
+  /* /dev/stdin from sub/main.deck: its includes from sub/, as with -in sub/main.deck */
+  int code = run_path("/dev/stdin", "sub/main.deck", &out);
+  ck_assert_msg(code == 0, "exit %d", code);
+  ck_assert_str_eq(out, "part beside the deck\n");
+  free(out);
+  /* a FIFO in sub/ (as bash's <(...) is one): its includes from the working directory */
+  char fifo[600];
+  snprintf(fifo, sizeof fifo, "%s/sub/gen.fifo", tdir);
+  ck_assert_int_eq(mkfifo(fifo, 0600), 0);
+  pid_t w = fork();
+  ck_assert_int_ge(w, 0);
+  if (w == 0) {
+    FILE *fp = fopen(fifo, "w");
+    if (!fp) _exit(1);
+    fputs("include parts/part.deck\n", fp);
+    fclose(fp);
+    _exit(0);
+  }
+  code = run_path("sub/gen.fifo", NULL, &out);
+  waitpid(w, NULL, 0);
+  ck_assert_msg(code == 0, "exit %d", code);
+  ck_assert_str_eq(out, "part in parts\n");
+  free(out);
+}
+END_TEST
+
 START_TEST(error_includes) {
   expect_error("variable a equal 1\n\ninclude missing.deck\n", 2,
                "e.deck:3: error: include: cannot open 'missing.deck': No such file or directory", NULL, NULL);
@@ -1338,6 +1396,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, if_branches);
   tcase_add_test(tc, if_condition_errors_are_not_strings);
   tcase_add_test(tc, include_relative);
+  tcase_add_test(tc, deck_through_a_pipe_finds_its_files);
   tcase_add_test(tc, quit_stops);
   tcase_add_test(tc, substitution_and_quotes);
   tcase_add_test(tc, echo_and_stdin);

@@ -793,6 +793,21 @@ static void parse_lines(DeckSource *s, const char *text, size_t len) {
 
 static char *dir_of(const char *path) {
   if (!path || path[0] == '<') return yf_strdup(".");
+  /* a deck read through a pipe ('-in <(python3 gen.py)' is /dev/fd/63, '-in /dev/stdin') found its
+   * includes and meshes in /dev/fd or /dev: a pipe's deck, like stdin's, reads from the working
+   * directory, and a file behind /dev/stdin from its own folder */
+  struct stat st;
+  if (!strncmp(path, "/dev/", 5) || !strncmp(path, "/proc/", 6)) {
+    char *real = realpath(path, NULL);
+    if (real && strncmp(real, "/dev/", 5) && strncmp(real, "/proc/", 6) && !stat(real, &st) && S_ISREG(st.st_mode)) {
+      char *dir = dir_of(real);
+      free(real);
+      return dir;
+    }
+    free(real);
+    return yf_strdup(".");
+  }
+  if (!stat(path, &st) && (S_ISFIFO(st.st_mode) || S_ISCHR(st.st_mode))) return yf_strdup(".");
   const char *slash = strrchr(path, '/');
   if (!slash) return yf_strdup(".");
   if (slash == path) return yf_strdup("/");
