@@ -32,6 +32,7 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include "deck.h"
 #include "output.h"
 #include "par.h"
@@ -291,12 +292,53 @@ static int named_in_sources(const YfDeck *d, const char *name) {
   return 0;
 }
 
+static DeckSource *source_load(YfDeck *d, const char *path, const YfLoc *from, const char *cmd);
+static char *dir_of(const char *path);
+static char *join_path(const char *dir, const char *name);
+
+/* Load the files that the loaded ones name in 'include FILE' or 'jump FILE' (FILE without '$',
+ * a readable regular file), and the files those name, so that their text is searched too: a -var
+ * used only in a file included after the first run was warned about as unused. */
+static void load_named_files(YfDeck *d) {
+  for (int added = 1, round = 0; added && round < DECK_INCLUDE_MAX; round++) {
+    added = 0;
+    for (DeckSource *s = d->sources; s; s = s->next)
+      for (int i = 0; i < s->n; i++) {
+        const char *t = s->lines[i].text;
+        if (strncmp(t, "include", 7) && strncmp(t, "jump", 4)) continue;
+        char **w;
+        int *cols, errcol;
+        const char *why;
+        int n = split_words(t, &w, &cols, &errcol, &why);
+        if (n < 0) continue;
+        if (n >= 2 && (!strcmp(w[0], "include") || !strcmp(w[0], "jump")) && !strchr(w[1], '$') &&
+            strcmp(w[1], "SELF")) {
+          char *dir = dir_of(s->name), *path = join_path(dir, w[1]);
+          int known = 0;
+          for (const DeckSource *k = d->sources; k && !known; k = k->next) known = !strcmp(k->name, path);
+          struct stat st;
+          if (!known && !stat(path, &st) && S_ISREG(st.st_mode) && !access(path, R_OK)) {
+            source_load(d, path, NULL, NULL);
+            added = 1;
+          }
+          free(dir);
+          free(path);
+        }
+        free_words(w, cols, n);
+      }
+  }
+}
+
 /* A -var NAME that the deck neither defines nor uses is most likely a typo (-var nz for nx): warn
  * once, before the first run, naming the deck's own variables.  A name that the deck's text
- * holds as a word further on (used only after the first run) is not warned about. */
+ * holds as a word further on (used only after the first run, or in a file it includes) is not
+ * warned about. */
 static void check_cmdline_vars(YfDeck *d) {
   if (d->vars_checked) return;
   d->vars_checked = 1;
+  int any = 0;
+  for (int i = 0; i < d->nvars && !any; i++) any = d->vars[i].cmdline && !d->vars[i].used;
+  if (any) load_named_files(d);
   size_t cap = 16;
   for (int i = 0; i < d->ndef; i++) cap += strlen(d->defnames[i]) + 2;
   char *list = yf_malloc(cap, "variable names");
