@@ -1101,6 +1101,28 @@ START_TEST(deck_through_a_pipe_finds_its_files) {
 }
 END_TEST
 
+/* Text beyond ASCII in a line: the caret stays under the character at fault (it counted bytes,
+ * so 'é' and '→' before it put it 4 columns right), and a character an expression cannot read is
+ * written whole, with its code and what to write for the ones word processors put in (its first
+ * byte alone was printed, a broken character). */
+START_TEST(error_unicode_lines) {
+  expect_error("print \"h\xc3\xa9llo \xe2\x86\x92 w\xc3\xb6rld\" $(1/0)\n", 1, "e.deck:1: error: expression '1/0': division by zero",
+               "  print \"h\xc3\xa9llo \xe2\x86\x92 w\xc3\xb6rld\" $(1/0)", "                           ^");
+  expect_error("print $(2 \xc3\x97 3)\n", 1,
+               "e.deck:1: error: expression '2 \xc3\x97 3': unexpected '\xc3\x97' (U+00D7, a multiplication sign: write *)", NULL,
+               NULL);
+  expect_error("variable E equal \xe2\x80\x9c" "1e9\xe2\x80\x9d\n", 1,
+               "e.deck:1: error: variable: expression '\xe2\x80\x9c" "1e9\xe2\x80\x9d': expected a number, a name or '(' but found "
+               "'\xe2\x80\x9c' (U+201C, a typographic quote: write \" or ')",
+               NULL, "                   ^");
+  expect_error("print $(2*\xe2\x88\x92" "3)\n", 1,
+               "e.deck:1: error: expression '2*\xe2\x88\x92" "3': expected a number, a name or '(' but found '\xe2\x88\x92' "
+               "(U+2212, a minus sign: write -)", NULL, NULL);
+  expect_error("print $(2\xa0+1)\n", 1, "e.deck:1: error: expression '2\xa0+1': unexpected byte 0xA0 (not UTF-8 text) after number",
+               NULL, NULL);
+}
+END_TEST
+
 START_TEST(error_includes) {
   expect_error("variable a equal 1\n\ninclude missing.deck\n", 2,
                "e.deck:3: error: include: cannot open 'missing.deck': No such file or directory", NULL, NULL);
@@ -1411,6 +1433,7 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, print_to_file);
   tcase_add_test(tc, error_includes);
   tcase_add_test(tc, error_shows_line_as_written);
+  tcase_add_test(tc, error_unicode_lines);
   tcase_add_test(tc, log_is_natural_noted);
   tcase_add_test(tc, error_long_names);
   tcase_add_test(tc, error_long_variable_names);

@@ -174,16 +174,20 @@ static void fail_ctx(const YfLoc *loc, const char *line, int col, const char *fm
   if (len > width && col > width / 2) from = col - width / 2;
   if (from > 0 && len - from < width) from = len - width > 0 ? len - width : 0;
   if (from > col && col >= 0) from = col;
+  /* the window starts and ends on whole UTF-8 characters (a cut one printed as a broken byte) */
+  while (from > 0 && from < len && ((unsigned char)line[from] & 0xC0) == 0x80) from--;
+  int to = from + width < len ? from + width : len;
+  while (to < len && to > from && ((unsigned char)line[to] & 0xC0) == 0x80) to--;
   char ctx[400];
   int k = 0;
   ctx[k++] = ' ';
   ctx[k++] = ' ';
   if (from > 0) { memcpy(ctx + k, "...", 3); k += 3; }
-  for (int i = from; i < len && i < from + width; i++) {
+  for (int i = from; i < to; i++) {
     char c = line[i];
     ctx[k++] = (c == '\t' || c == '\n' || c == '\r') ? ' ' : c;
   }
-  if (from + width < len) { memcpy(ctx + k, "...", 3); k += 3; }
+  if (to < len) { memcpy(ctx + k, "...", 3); k += 3; }
   ctx[k] = 0;
   char written[200] = "";
   if (line == cur_substituted && cur_written) {
@@ -194,7 +198,11 @@ static void fail_ctx(const YfLoc *loc, const char *line, int col, const char *fm
   }
   if (col < 0) yf_deck_error(loc, "%s\n%s%s", msg, ctx, written);
   char caret[400];
-  int c = 0, pad = 2 + (from > 0 ? 3 : 0) + (col - from);
+  /* the caret under the character: one column per UTF-8 character, not per byte ('é' and '→'
+   * before the fault put it 1 and 2 columns too far right) */
+  int chars = 0;
+  for (int i = from; i < col && i < len; i++) chars += ((unsigned char)line[i] & 0xC0) != 0x80;
+  int c = 0, pad = 2 + (from > 0 ? 3 : 0) + chars;
   for (int i = 0; i < pad && c < (int)sizeof caret - 2; i++) caret[c++] = ' ';
   caret[c++] = '^';
   caret[c] = 0;

@@ -49,10 +49,43 @@ static void skip_ws(Parser *P) {
   while (*P->p && isspace((unsigned char)*P->p)) P->p++;
 }
 
-/* Describe the token at p for messages: "'x'" or "end of expression". */
+/* Describe the token at p for messages: "'x'" or "end of expression".  A character beyond ASCII
+ * is written whole (its first byte alone printed a broken character), with its code and, for
+ * the ones a word processor puts in place of ASCII ones, what to write instead. */
 static void describe(const char *p, char *buf, size_t n) {
-  if (!*p) snprintf(buf, n, "end of expression");
-  else snprintf(buf, n, "'%c'", *p);
+  if (!*p) {
+    snprintf(buf, n, "end of expression");
+    return;
+  }
+  unsigned char c = (unsigned char)*p;
+  if (c < 0x80) {
+    snprintf(buf, n, "'%c'", *p);
+    return;
+  }
+  int len = c >= 0xF0 ? 4 : c >= 0xE0 ? 3 : c >= 0xC0 ? 2 : 1, ok = 1;
+  unsigned cp = len == 1 ? c : c & (0xFFu >> (len + 1));
+  for (int i = 1; i < len && ok; i++) {
+    ok = ((unsigned char)p[i] & 0xC0) == 0x80;
+    cp = (cp << 6) | ((unsigned char)p[i] & 0x3F);
+  }
+  if (len == 1 || !ok) {
+    snprintf(buf, n, "byte 0x%02X (not UTF-8 text)", c);
+    return;
+  }
+  static const struct { unsigned cp; const char *use; } alike[] = {
+      {0x201C, "a typographic quote: write \" or '"}, {0x201D, "a typographic quote: write \" or '"},
+      {0x2018, "a typographic quote: write ' or \""}, {0x2019, "a typographic quote: write ' or \""},
+      {0x00D7, "a multiplication sign: write *"},    {0x22C5, "a dot operator: write *"},
+      {0x00B7, "a middle dot: write *"},             {0x00F7, "a division sign: write /"},
+      {0x2212, "a minus sign: write -"},             {0x2013, "a dash: write -"},
+      {0x00A0, "a non-breaking space: write a space"}, {0x202F, "a non-breaking space: write a space"},
+      {0x2009, "a thin space: write a space"},       {0x00B2, "a superscript: write ^2"},
+      {0x00B3, "a superscript: write ^3"},           {0x03C0, "pi: write pi"},
+  };
+  const char *use = "expressions are ASCII";
+  for (size_t i = 0; i < sizeof alike / sizeof alike[0]; i++)
+    if (alike[i].cp == cp) use = alike[i].use;
+  snprintf(buf, n, "'%.*s' (U+%04X, %s)", len, p, cp, use);
 }
 
 /* A result must be finite unless we are skipping. */
@@ -80,6 +113,11 @@ static double parse_number(Parser *P) {
     q = r;
   }
   if (isalpha((unsigned char)*q) || *q == '_') fail_at(P, q, "unexpected '%c' after number", *q);
+  if ((unsigned char)*q >= 0x80) {
+    char d[160];
+    describe(q, d, sizeof d);
+    fail_at(P, q, "unexpected %s after number", d);
+  }
   char buf[128];
   size_t len = (size_t)(q - P->p);
   if (len >= sizeof buf) fail_at(P, P->p, "number too long");
@@ -204,7 +242,7 @@ static double parse_primary(Parser *P) {
   }
   if (!*at && P->open > 0) fail_at(P, at, "missing ')'");
   if (!*at) fail_at(P, at, "missing operand at the end");
-  char d[32];
+  char d[160];
   describe(at, d, sizeof d);
   fail_at(P, at, "expected a number, a name or '(' but found %s", d);
 }
@@ -363,7 +401,9 @@ static int run(const char *s, ExprLookupFn lookup, void *ctx, int skip, double *
   skip_ws(&P);
   if (*P.p) {
     if (*P.p == ')') fail_at(&P, P.p, "unmatched ')'");
-    fail_at(&P, P.p, "unexpected '%c'", *P.p);
+    char d[160];
+    describe(P.p, d, sizeof d);
+    fail_at(&P, P.p, "unexpected %s", d);
   }
   if (out) *out = v == 0.0 ? 0.0 : v; /* no "-0" in printed results */
   return 1;
