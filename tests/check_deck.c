@@ -958,6 +958,12 @@ START_TEST(error_unknown_variable_hints) {
   expect_error("print $(2*-inf)\n", 1,
                "e.deck:1: error: expression '2*-inf': 'inf' is not a finite number, and expressions hold finite numbers "
                "only (did the script that wrote this deck compute a division by zero or an overflow?)", NULL, NULL);
+  /* a loop variable used after the 'next' that deleted it (LAMMPS's rule) says so and where */
+  expect_error("variable i loop 2\nlabel l\nnext i\njump SELF l\nprint \"after: ${i}\"\n", 1,
+               "e.deck:5: error: unknown variable 'i' (the 'next i' at e.deck:3 deleted it when it ran past its last "
+               "value, as LAMMPS does; keep a value for after the loop in another variable)", NULL, NULL);
+  expect_error("variable i loop 2\nlabel l\nnext i\njump SELF l\nvariable i equal 1\nvariable i delete\nprint $(v_i)\n", 1,
+               "e.deck:7: error: expression 'v_i': unknown variable 'i' (no variable is defined)", NULL, NULL);
   /* pi stays the evaluator's own */
   YfDeck *d = run_here("variable r equal 2\n");
   ck_assert_double_eq_tol(val(d, "pi*v_r^2"), 4 * M_PI, 1e-15);

@@ -101,6 +101,9 @@ struct YfDeck {
   int subst_depth; /* $(...) being substituted inside $(...)                    */
   long ncmd;       /* commands run so far (an empty deck is worth a warning)     */
   int log_warned;   /* the note on log() (natural here, base 10 in LAMMPS) was given */
+  char **gone;      /* variables a 'next' deleted when it ran past their last value...  */
+  YfLoc *gone_at;   /* ...and where (named when one is used after that)               */
+  int ngone;
   int unknown_bare; /* the expression being evaluated met a bare name that is nothing known
                      * (not one written v_NAME, not inside a variable's own expression) */
 };
@@ -452,6 +455,12 @@ static void unknown_hint(const YfDeck *d, const char *name, int bare, char *buf,
     for (int i = 0; i < nown; i++) names[k++] = own[i];
     for (int i = 0; i < nk; i++) names[k++] = kw[i];
   }
+  for (int i = 0; i < d->ngone; i++)
+    if (!strcmp(d->gone[i], name)) { /* LAMMPS's rule, which surprises: say it */
+      snprintf(buf, n, " (the 'next %s' at %s:%d deleted it when it ran past its last value, as LAMMPS does; "
+               "keep a value for after the loop in another variable)", name, d->gone_at[i].file, d->gone_at[i].line);
+      return;
+    }
   /* one or two letters are near to any short name: no guess for them but a change of case (nX
    * for nx), the list says enough */
   const char *near = strlen(name) >= 3 ? yf_nearest(name, names, k) : NULL;
@@ -1090,6 +1099,9 @@ void deck_free(YfDeck *d) {
   free(d->vars);
   for (int i = 0; i < d->ndef; i++) free(d->defnames[i]);
   free(d->defnames);
+  for (int i = 0; i < d->ngone; i++) free(d->gone[i]);
+  free(d->gone);
+  free(d->gone_at);
   DeckSource *s = d->sources;
   while (s) {
     DeckSource *nx = s->next;
@@ -1358,6 +1370,13 @@ void deck_cmd_variable(struct YfSim *sim, const YfArgs *a) {
   if (style == 4) { /* delete */
     arg_count(a, 2, 2);
     var_delete(d, name);
+    for (int i = 0; i < d->ngone; i++) /* deleted by the deck now, not by a 'next' */
+      if (!strcmp(d->gone[i], name)) {
+        free(d->gone[i]);
+        d->gone[i] = d->gone[--d->ngone];
+        d->gone_at[i] = d->gone_at[d->ngone];
+        break;
+      }
     return;
   }
   if (old && old->cmdline) return; /* -var wins: the deck gives defaults */
@@ -1430,7 +1449,18 @@ void deck_cmd_next(struct YfSim *sim, const YfArgs *a) {
     else done |= ++v->cur > v->hi;
   }
   if (done) { /* LAMMPS: all listed variables are deleted and the next jump is skipped */
-    for (int i = 0; i < a->n; i++) var_delete(d, a->w[i]);
+    for (int i = 0; i < a->n; i++) {
+      var_delete(d, a->w[i]);
+      int k = 0;
+      while (k < d->ngone && strcmp(d->gone[k], a->w[i])) k++;
+      if (k == d->ngone) {
+        d->gone = yf_realloc(d->gone, (size_t)(k + 1) * sizeof *d->gone, "deck variables");
+        d->gone_at = yf_realloc(d->gone_at, (size_t)(k + 1) * sizeof *d->gone_at, "deck variables");
+        d->gone[k] = yf_strdup(a->w[i]);
+        d->ngone++;
+      }
+      d->gone_at[k] = a->loc; /* (its file name is interned: it outlives the line) */
+    }
     d->jump_skip = 1;
   }
 }
