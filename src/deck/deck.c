@@ -857,7 +857,9 @@ static char *dir_of(const char *path) {
    * directory, and a file behind /dev/stdin from its own folder */
   struct stat st;
   if (!strncmp(path, "/dev/", 5) || !strncmp(path, "/proc/", 6)) {
-    char *real = realpath(path, NULL);
+    /* (MPI: rank 0's /dev/stdin is the file, the others' /dev/null: the working directory on
+     * every rank, or the ranks would look for the deck's files in different places) */
+    char *real = par_size() > 1 ? NULL : realpath(path, NULL);
     if (real && strncmp(real, "/dev/", 5) && strncmp(real, "/proc/", 6) && !stat(real, &st) && S_ISREG(st.st_mode)) {
       char *dir = dir_of(real);
       free(real);
@@ -935,13 +937,21 @@ static DeckSource *source_from_stream(YfDeck *d, FILE *fp, const char *name, con
 static DeckSource *source_load(YfDeck *d, const char *path, const YfLoc *from, const char *cmd) {
   for (DeckSource *s = d->sources; s; s = s->next)
     if (!strcmp(s->name, path)) return s;
-  FILE *fp = yf_open_input(path, "rb");
-  if (!fp) {
+  /* MPI: a pipe or a device ('-in /dev/stdin', '-in <(...)', a FIFO) gives each rank other bytes
+   * (mpirun's other ranks read /dev/null): they ran different decks and the job hung.  As a deck
+   * on stdin, rank 0 reads it (its stat decides, for every rank) and sends it to all. */
+  struct stat st;
+  int shared = par_size() > 1 && (int)par_bcast_long(!stat(path, &st) && !S_ISREG(st.st_mode));
+  FILE *fp = shared && par_rank() != 0 ? NULL : yf_open_input(path, "rb");
+  if (!fp && !(shared && par_rank() != 0)) {
     if (cmd) yf_io_error(from, "%s: cannot open '%s': %s", cmd, path, strerror(errno));
     yf_io_error(from, "cannot open deck '%s': %s", path, strerror(errno));
   }
-  DeckSource *s = source_from_stream(d, fp, path, from);
-  fclose(fp);
+  static volatile int no_stop;
+  FILE *in = shared ? par_stdin(fp, d->sim ? &d->sim->interrupted : &no_stop) : fp;
+  DeckSource *s = source_from_stream(d, in, path, from);
+  if (in != fp) fclose(in);
+  if (fp) fclose(fp);
   return s;
 }
 
