@@ -213,6 +213,7 @@ START_TEST(expr_functions) {
   ck_assert_double_eq_tol(ev("acos(0)"), M_PI / 2, 1e-15);
   ck_assert_double_eq_tol(ev("atan(1)*4"), M_PI, 1e-15);
   ck_assert_double_eq_tol(ev("log(exp(2))"), 2.0, 1e-15);
+  ck_assert_double_eq_tol(ev("ln(exp(2))"), 2.0, 1e-15); /* LAMMPS's spelling of the natural log */
 }
 END_TEST
 
@@ -324,6 +325,54 @@ START_TEST(loop_sum) {
 }
 END_TEST
 
+/* loop ... pad (LAMMPS): the values are written with the digits of the last one, so that files
+ * named by them sort in order; expressions read the number ('pad' was read as the last value). */
+START_TEST(loop_pad) {
+  YfDeck *d = run_here("variable s string x\n"
+                       "variable i loop 10 pad\n"
+                       "label a\n"
+                       "variable s string ${s}_${i}\n"
+                       "next i\n"
+                       "jump SELF a\n"
+                       "variable j loop 98 100 pad\n"
+                       "variable t string ${j}\n"
+                       "variable u equal v_j+1\n");
+  ck_assert_double_eq(val(d, "u"), 99.0); /* the number: 098 + 1 */
+  deck_free(d);
+  make_tmpdir();
+  Run r = run_child("variable s string x\nvariable i loop 10 pad\nlabel a\nvariable s string ${s}_${i}\nnext i\n"
+                    "jump SELF a\nvariable j loop 98 100 pad\nprint ${s}/${j}\n",
+                    NULL, NULL);
+  ck_assert_msg(r.code == 0, "exit %d: %s", r.code, r.err);
+  ck_assert_str_eq(r.out, "x_01_02_03_04_05_06_07_08_09_10/098\n");
+  run_free(&r);
+}
+END_TEST
+
+/* Integers substitute whole up to 2^53: %.15g wrote 2^50 as 1.12589990684262e+15 (another
+ * integer) and 1e15 as 1e+15; other numbers keep 15 digits.  Where an integer is asked for, a
+ * fraction says how to round and an integer too large says so (both were "not an integer"). */
+START_TEST(integers_substitute_whole) {
+  make_tmpdir();
+  Run r = run_child("variable n equal 2^50\nprint \"${n} $(1e15) $(-2^53) $(1/3) $(2^53*4) $(1e300) $(0.1*3)\"\n", NULL, NULL);
+  ck_assert_msg(r.code == 0, "exit %d: %s", r.code, r.err);
+  ck_assert_str_eq(r.out, "1125899906842624 1000000000000000 -9007199254740992 0.333333333333333 3.6028797018964e+16 "
+                          "1e+300 0.3\n");
+  run_free(&r);
+  YfDeck *d = run_here("variable n equal 2^50+1\nvariable s string ${n}\n");
+  ck_assert_double_eq(val(d, "s"), 1125899906842625.0); /* read back exactly */
+  deck_free(d);
+  expect_error("variable T equal 0.123456\nvariable i loop $(v_T*1e4)\n", 1,
+               "e.deck:2: error: variable: count '1234.56': not an integer (round an expression: $(round(EXPR)), or "
+               "$(EXPR:%d))", NULL, NULL);
+  expect_error("variable i loop 99999999999999999999\n", 1,
+               "e.deck:1: error: variable: count '99999999999999999999': an integer beyond those read exactly (at most "
+               "9223372036854775807 written in digits, 2^53 = 9007199254740992 with an exponent or a '.')", NULL, NULL);
+  expect_error("variable i loop 2 1e300\n", 1, "e.deck:1: error: variable: last value '1e300': must be in [2, 4611686018427387903]",
+               NULL, NULL);
+}
+END_TEST
+
 START_TEST(index_and_loop_ranges) {
   YfDeck *d = run_here("variable p string 1\n"
                        "variable n index 2 3 5\n"
@@ -427,6 +476,35 @@ START_TEST(if_branches) {
 }
 END_TEST
 
+/* An if condition compares text only when a bare word of it names nothing and neither side is a
+ * number ("${mode} == fast"); a division by zero, a misspelt v_NAME or a misspelt name compared
+ * with a number was compared as text: silently false with ==, true with !=. */
+START_TEST(if_condition_errors_are_not_strings) {
+  YfDeck *d = run_here("variable mode string fast\n"
+                       "variable f equal 0\n"
+                       "if \"${mode} != slow\" then \"variable f equal 1\"\n"
+                       "variable g equal 0\n"
+                       "if \"a-b == a-b\" then \"variable g equal 1\"\n");
+  ck_assert_double_eq(val(d, "f"), 1.0);
+  ck_assert_double_eq(val(d, "g"), 1.0);
+  deck_free(d);
+  expect_error("variable nbroken equal 0\nif \"v_nbrokn == 0\" then \"print a\" else \"print b\"\n", 1,
+               "e.deck:2: error: if: condition 'v_nbrokn == 0': unknown variable 'nbrokn' (did you mean 'nbroken'?)",
+               NULL, NULL);
+  expect_error("variable nbroken equal 0\nif \"nbrokn == 0\" then \"print a\"\n", 1,
+               "e.deck:2: error: if: condition 'nbrokn == 0': unknown variable 'nbrokn' (did you mean 'nbroken'?)",
+               NULL, NULL);
+  expect_error("if \"1/0 == 1\" then \"print a\" else \"print b\"\n", 1,
+               "e.deck:1: error: if: condition '1/0 == 1': division by zero", "  if \"1/0 == 1\" then \"print a\" else \"print b\"",
+               "       ^");
+  expect_error("if \"sqrt(-1) != 2\" then \"print a\"\n", 1,
+               "e.deck:1: error: if: condition 'sqrt(-1) != 2': sqrt of negative number -1", NULL, NULL);
+  /* a variable whose own expression fails is that variable's error, not a text */
+  expect_error("variable r equal 1/v_z\nvariable z equal 0\nif \"v_r == x\" then \"print a\"\n", 1,
+               "e.deck:3: error: if: condition 'v_r == x': variable 'r' = '1/v_z': division by zero", NULL, NULL);
+}
+END_TEST
+
 START_TEST(include_relative) {
   make_tmpdir();
   write_file("sub/a.deck", "variable fromA equal 1\ninclude b.deck\nvariable afterB equal v_fromB+1\n");
@@ -524,6 +602,17 @@ START_TEST(error_unknown_command) {
                1, "e.deck:3: error: unknown command 'varaible' (did you mean 'variable'?)",
                "  varaible b equal 2", "  ^");
   expect_error("qwertyuiop\n", 1, "e.deck:1: error: unknown command 'qwertyuiop'", NULL, NULL);
+  /* LAMMPS commands say what yfdem does instead: 'log' was "did you mean 'load'?" */
+  expect_error("log log.case1.txt\n", 1,
+               "e.deck:1: error: unknown command 'log' (a LAMMPS command): yfdem names its log on the command line: "
+               "-log FILE (default log.yfdem) or -log none", NULL, NULL);
+  expect_error("units si\n", 1,
+               "e.deck:1: error: unknown command 'units' (a LAMMPS command): yfdem works in SI units always (m, kg, "
+               "s, N, Pa; loads and forces per metre of thickness): delete the line", "  units si", "  ^");
+  expect_error("shell mkdir out\n", 1,
+               "e.deck:1: error: unknown command 'shell' (a LAMMPS command): yfdem runs no shell commands from a "
+               "deck: make folders before the run (an output whose folder is missing is an error at its line)", NULL,
+               NULL);
 }
 END_TEST
 
@@ -550,7 +639,7 @@ START_TEST(error_expressions_and_variables) {
                "  print \"x = $(2*(3+))\"", "                    ^");
   expect_error("variable a equal 1/(v_b-2)\nvariable b equal 2\nprint ${a}\n", 1,
                "e.deck:3: error: variable 'a' = '1/(v_b-2)': division by zero", "  print ${a}", "        ^");
-  expect_error("print ${nope}\n", 1, "e.deck:1: error: unknown variable 'nope'", NULL, NULL);
+  expect_error("print ${nope}\n", 1, "e.deck:1: error: unknown variable 'nope' (no variable is defined)", NULL, NULL);
   expect_error("print $q\n", 1, "e.deck:1: error: unknown variable 'q' (write ${name} for longer names)", NULL, NULL);
   expect_error("variable a equal v_b\nvariable b equal v_a+1\nprint ${a}\n", 1,
                "e.deck:3: error: variable 'a': equal-style variables nested deeper than 64 (does it refer to itself?)",
@@ -564,10 +653,13 @@ START_TEST(error_expressions_and_variables) {
   expect_error("variable a index 1 2\nvariable a equal 3\n", 1,
                "e.deck:2: error: variable: variable 'a': already defined as index-style, cannot redefine as "
                "equal-style (use 'variable a delete' first)", NULL, NULL);
-  expect_error("next i\n", 1, "e.deck:1: error: next: variable 'i': no such variable", NULL, NULL);
-  expect_error("jump SELF nowhere\n", 1, "e.deck:1: error: jump: label 'nowhere': no 'label nowhere' in e.deck",
+  expect_error("next i\n", 1, "e.deck:1: error: next: variable 'i': no such variable (no variable is defined)", NULL, NULL);
+  expect_error("jump SELF nowhere\n", 1, "e.deck:1: error: jump: label 'nowhere': no 'label nowhere' in e.deck (it has no label)",
                NULL, NULL);
-  expect_error("if \"v_q > 1\" then \"print x\"\n", 1, "e.deck:1: error: if: condition 'v_q > 1': unknown variable 'q'",
+  /* the labels there are: a misspelt one was named alone */
+  expect_error("label loop_a\nlabel done\njump SELF loopa\n", 1,
+               "e.deck:3: error: jump: label 'loopa': no 'label loopa' in e.deck (its labels: loop_a, done)", NULL, NULL);
+  expect_error("if \"v_q > 1\" then \"print x\"\n", 1, "e.deck:1: error: if: condition 'v_q > 1': unknown variable 'q' (no variable is defined)",
                "  if \"v_q > 1\" then \"print x\"", "      ^");
   expect_error("if 1 \"print x\"\n", 1, "e.deck:1: error: if: 'print x': expected 'then' after the condition", NULL,
                NULL);
@@ -842,6 +934,201 @@ START_TEST(error_point_off_the_mesh) {
 }
 END_TEST
 
+/* An unknown variable's message says what the deck could have meant: the variable of another case
+ * or a near spelling, a thermo keyword for a bare name in an expression, else the variables there
+ * are (the message named the unknown one only). */
+START_TEST(error_unknown_variable_hints) {
+  expect_error("variable nx equal 10\nvariable ny equal 2\nprint ${nX}\n", 1,
+               "e.deck:3: error: unknown variable 'nX' (did you mean 'nx'?)", "  print ${nX}", "        ^");
+  expect_error("variable length equal 2\nprint $(v_lenght/2)\n", 1,
+               "e.deck:2: error: expression 'v_lenght/2': unknown variable 'lenght' (did you mean 'length'?)", NULL, NULL);
+  expect_error("print $(2*kee)\n", 1, "e.deck:1: error: expression '2*kee': unknown variable 'kee' (did you mean 'ke'?)",
+               "  print $(2*kee)", "            ^");
+  expect_error("variable a equal 1\nvariable b index x y\nprint ${zzz}\n", 1,
+               "e.deck:3: error: unknown variable 'zzz' (variables: a, b)", NULL, NULL);
+  expect_error("variable count loop 2\nnext cuont\n", 1,
+               "e.deck:2: error: next: variable 'cuont': no such variable (did you mean 'count'?)", NULL, NULL);
+  /* v_NAME reads variables only: no thermo keyword is offered for it */
+  expect_error("print $(v_kee)\n", 1, "e.deck:1: error: expression 'v_kee': unknown variable 'kee' (no variable is defined)",
+               NULL, NULL);
+  /* a NaN or an infinity a generating script wrote is named as such, not as an unknown variable */
+  expect_error("variable E equal nan\nprint ${E}\n", 1,
+               "e.deck:2: error: variable 'E' = 'nan': 'nan' is not a finite number, and expressions hold finite "
+               "numbers only (did the script that wrote this deck compute a NaN?)", NULL, NULL);
+  expect_error("print $(2*-inf)\n", 1,
+               "e.deck:1: error: expression '2*-inf': 'inf' is not a finite number, and expressions hold finite numbers "
+               "only (did the script that wrote this deck compute a division by zero or an overflow?)", NULL, NULL);
+  /* a loop variable used after the 'next' that deleted it (LAMMPS's rule) says so and where */
+  expect_error("variable i loop 2\nlabel l\nnext i\njump SELF l\nprint \"after: ${i}\"\n", 1,
+               "e.deck:5: error: unknown variable 'i' (the 'next i' at e.deck:3 deleted it when it ran past its last "
+               "value, as LAMMPS does; keep a value for after the loop in another variable)", NULL, NULL);
+  expect_error("variable i loop 2\nlabel l\nnext i\njump SELF l\nvariable i equal 1\nvariable i delete\nprint $(v_i)\n", 1,
+               "e.deck:7: error: expression 'v_i': unknown variable 'i' (no variable is defined)", NULL, NULL);
+  /* pi stays the evaluator's own */
+  YfDeck *d = run_here("variable r equal 2\n");
+  ck_assert_double_eq_tol(val(d, "pi*v_r^2"), 4 * M_PI, 1e-15);
+  deck_free(d);
+}
+END_TEST
+
+/* print's LAMMPS keywords: a sweep's rows appended to a file, off the screen (they were printed as
+ * text, "... append res.txt screen no", and no file was written). */
+START_TEST(print_to_file) {
+  make_tmpdir();
+  Run r = run_child("variable E index 1e9 2e9 4e9\n"
+                    "label l\n"
+                    "print \"${E} $(1000/v_E)\" append res.txt screen no\n"
+                    "print \"last ${E}\" file last.txt\n"
+                    "next E\n"
+                    "jump SELF l\n"
+                    "print the file is ready\n"
+                    "print one screen yes\n",
+                    NULL, NULL);
+  ck_assert_msg(r.code == 0, "exit %d: %s", r.code, r.err);
+  /* 'file' writes anew, 'append' adds; the numbers as ${} and $() print them */
+  char path[512];
+  snprintf(path, sizeof path, "%s/res.txt", tdir);
+  char *res = read_all(path);
+  ck_assert_str_eq(res, "1e9 1e-06\n2e9 5e-07\n4e9 2.5e-07\n");
+  free(res);
+  snprintf(path, sizeof path, "%s/last.txt", tdir);
+  char *last = read_all(path);
+  ck_assert_str_eq(last, "last 4e9\n");
+  free(last);
+  /* screen no: not on the screen; words that are no keyword pairs stay text */
+  ck_assert_str_eq(r.out, "last 1e9\nlast 2e9\nlast 4e9\nthe file is ready\none\n");
+  run_free(&r);
+  expect_error("print a file nodir/x.txt\n", 2, "e.deck:1: error: print: cannot write 'nodir/x.txt': No such file or directory",
+               NULL, NULL);
+  /* the file is claimed as outputs' files are: a dump's index on it would interleave */
+  expect_error("print a file o.xmf\ndump d h5 5 o.h5\n", 1, "e.deck:2: error: dump: 'o.h5': a file of it is already written by print",
+               NULL, NULL);
+  expect_error("print a file f1 append f2\n", 1,
+               "e.deck:1: error: print: 'append': a print writes one file, and 'file f1' names a second", NULL, NULL);
+}
+END_TEST
+
+/* An error shown on a substituted line shows the line as written too: '-var x ""' made a line one
+ * word short, and the message showed it with no trace of ${x}. */
+START_TEST(error_shows_line_as_written) {
+  make_tmpdir();
+  Run r = run_child("variable n equal 3\nvariable i loop ${x}\n", "x", "");
+  ck_assert_int_eq(r.code, 1);
+  ck_assert_str_eq(line_of(r.err, 0), "e.deck:2: error: variable: expected 3 to 4 arguments, got 2");
+  ck_assert_str_eq(line_of(r.err, 2), "  variable i loop ");
+  ck_assert_str_eq(line_of(r.err, 4), "  (as written: variable i loop ${x})");
+  run_free(&r);
+  expect_error("variable n equal 3\nvariable i loop $(v_n-5)\n", 1, "e.deck:2: error: variable: count '-2': must be >= 1",
+               "  variable i loop -2", "                  ^");
+  r = run_child_text("variable n equal 3\nvariable i loop $(v_n-5)\n");
+  ck_assert_str_eq(line_of(r.err, 3), "  (as written: variable i loop $(v_n-5))");
+  run_free(&r);
+  /* a line without substitution has no such line */
+  r = run_child_text("variable i loop 0\n");
+  ck_assert_int_eq(r.code, 1);
+  ck_assert_ptr_null(strstr(r.err, "as written"));
+  run_free(&r);
+}
+END_TEST
+
+/* log() is natural here and base 10 in LAMMPS: the first log() of a deck says so, once, at its
+ * line (a LAMMPS deck's log(x) read 2.3 times its value in silence); ln() and log10() say nothing. */
+START_TEST(log_is_natural_noted) {
+  make_tmpdir();
+  Run r = run_child("variable a equal 1\nvariable b equal log(100)\nprint \"$(v_b) $(log(1))\"\n", NULL, NULL);
+  ck_assert_msg(r.code == 0, "exit %d: %s", r.code, r.err);
+  ck_assert_str_eq(r.out, "4.60517018598809 0\n");
+  ck_assert_str_eq(r.err, "e.deck:2: warning: log() is the natural logarithm (as in C and Python; LAMMPS's log() is "
+                          "base 10): write ln() for the natural one, log10() for base 10, and this note goes\n");
+  run_free(&r);
+  r = run_child_text("print \"$(ln(100)) $(log10(100))\"\n");
+  ck_assert_msg(r.code == 0, "exit %d: %s", r.code, r.err);
+  ck_assert_str_eq(r.out, "4.60517018598809 2\n");
+  ck_assert_str_eq(r.err, "");
+  run_free(&r);
+}
+END_TEST
+
+/* Run the deck at path (relative to tdir, the child's working directory), its stdin from the file
+ * stdin_from when given; the exit code, stdout in *out. */
+static int run_path(const char *path, const char *stdin_from, char **out) {
+  char o[600];
+  snprintf(o, sizeof o, "%s/path_out.txt", tdir);
+  fflush(NULL);
+  pid_t pid = fork();
+  ck_assert_int_ge(pid, 0);
+  if (pid == 0) {
+    if (chdir(tdir) || !freopen(o, "w", stdout) || (stdin_from && !freopen(stdin_from, "r", stdin))) _exit(99);
+    YfSim sim;
+    sim_init(&sim);
+    YfDeck *d = deck_new(&sim);
+    deck_run_file(d, path, NULL);
+    deck_free(d);
+    exit(0);
+  }
+  int st = 0;
+  waitpid(pid, &st, 0);
+  *out = read_all(o);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+}
+
+/* A deck read through a pipe or /dev/stdin finds its files as a deck on standard input does (the
+ * working directory) or from the folder of the file behind /dev/stdin: '-in <(python3 gen.py)'
+ * (/dev/fd/63) looked for its includes in /dev/fd. */
+START_TEST(deck_through_a_pipe_finds_its_files) {
+  make_tmpdir();
+  write_file("parts/part.deck", "print \"part in parts\"\n");
+  write_file("sub/main.deck", "include part.deck\n");
+  write_file("sub/part.deck", "print \"part beside the deck\"\n");
+  char *out;
+  /* /dev/stdin from sub/main.deck: its includes from sub/, as with -in sub/main.deck */
+  int code = run_path("/dev/stdin", "sub/main.deck", &out);
+  ck_assert_msg(code == 0, "exit %d", code);
+  ck_assert_str_eq(out, "part beside the deck\n");
+  free(out);
+  /* a FIFO in sub/ (as bash's <(...) is one): its includes from the working directory */
+  char fifo[600];
+  snprintf(fifo, sizeof fifo, "%s/sub/gen.fifo", tdir);
+  ck_assert_int_eq(mkfifo(fifo, 0600), 0);
+  pid_t w = fork();
+  ck_assert_int_ge(w, 0);
+  if (w == 0) {
+    FILE *fp = fopen(fifo, "w");
+    if (!fp) _exit(1);
+    fputs("include parts/part.deck\n", fp);
+    fclose(fp);
+    _exit(0);
+  }
+  code = run_path("sub/gen.fifo", NULL, &out);
+  waitpid(w, NULL, 0);
+  ck_assert_msg(code == 0, "exit %d", code);
+  ck_assert_str_eq(out, "part in parts\n");
+  free(out);
+}
+END_TEST
+
+/* Text beyond ASCII in a line: the caret stays under the character at fault (it counted bytes,
+ * so 'é' and '→' before it put it 4 columns right), and a character an expression cannot read is
+ * written whole, with its code and what to write for the ones word processors put in (its first
+ * byte alone was printed, a broken character). */
+START_TEST(error_unicode_lines) {
+  expect_error("print \"h\xc3\xa9llo \xe2\x86\x92 w\xc3\xb6rld\" $(1/0)\n", 1, "e.deck:1: error: expression '1/0': division by zero",
+               "  print \"h\xc3\xa9llo \xe2\x86\x92 w\xc3\xb6rld\" $(1/0)", "                           ^");
+  expect_error("print $(2 \xc3\x97 3)\n", 1,
+               "e.deck:1: error: expression '2 \xc3\x97 3': unexpected '\xc3\x97' (U+00D7, a multiplication sign: write *)", NULL,
+               NULL);
+  expect_error("variable E equal \xe2\x80\x9c" "1e9\xe2\x80\x9d\n", 1,
+               "e.deck:1: error: variable: expression '\xe2\x80\x9c" "1e9\xe2\x80\x9d': expected a number, a name or '(' but found "
+               "'\xe2\x80\x9c' (U+201C, a typographic quote: write \" or ')",
+               NULL, "                   ^");
+  expect_error("print $(2*\xe2\x88\x92" "3)\n", 1,
+               "e.deck:1: error: expression '2*\xe2\x88\x92" "3': expected a number, a name or '(' but found '\xe2\x88\x92' "
+               "(U+2212, a minus sign: write -)", NULL, NULL);
+  expect_error("print $(2\xa0+1)\n", 1, "e.deck:1: error: expression '2\xa0+1': unexpected byte 0xA0 (not UTF-8 text) after number",
+               NULL, NULL);
+}
+END_TEST
+
 START_TEST(error_includes) {
   expect_error("variable a equal 1\n\ninclude missing.deck\n", 2,
                "e.deck:3: error: include: cannot open 'missing.deck': No such file or directory", NULL, NULL);
@@ -852,6 +1139,25 @@ START_TEST(error_includes) {
   ck_assert_int_eq(r.code, 1);
   ck_assert_msg(strstr(r.err, "error: include: nesting deeper than 32 levels ('r") &&
                     strstr(r.err, "includes itself, directly or through other files)"),
+                "stderr: %s", r.err);
+  run_free(&r);
+  /* a file beside the working directory, not beside the deck (where LAMMPS would look): said so */
+  make_tmpdir();
+  write_file("common.deck", "variable c equal 1\n");
+  write_file("rows.txt", "0 0\n1 1\n");
+  write_file("cases/a.deck", "include common.deck\n");
+  write_file("cases/h.deck", "history h file rows.txt\n");
+  r = run_child("include cases/a.deck\n", NULL, NULL);
+  ck_assert_int_eq(r.code, 2);
+  ck_assert_str_eq(line_of(r.err, 0), "cases/a.deck:1: error: include: cannot open 'cases/common.deck': No such file or "
+                                      "directory (a deck's files are found from its own folder, 'cases'; the working "
+                                      "directory has a 'common.deck', which LAMMPS would read: give its path from the "
+                                      "deck's folder, or an absolute one)");
+  run_free(&r);
+  r = run_child("include cases/h.deck\n", NULL, NULL);
+  ck_assert_int_eq(r.code, 2);
+  ck_assert_msg(strstr(line_of(r.err, 0), "cases/h.deck:1: error: history: cannot open 'cases/rows.txt': No such file or "
+                                          "directory (a deck's files are found from its own folder, 'cases'"),
                 "stderr: %s", r.err);
   run_free(&r);
 }
@@ -1111,10 +1417,14 @@ Suite *deck_suite(void) {
   tcase_add_checked_fixture(tc, NULL, remove_tmpdir);
   tcase_add_test(tc, loop_sum);
   tcase_add_test(tc, index_and_loop_ranges);
+  tcase_add_test(tc, loop_pad);
+  tcase_add_test(tc, integers_substitute_whole);
   tcase_add_test(tc, equal_is_lazy);
   tcase_add_test(tc, cmdline_var_wins);
   tcase_add_test(tc, if_branches);
+  tcase_add_test(tc, if_condition_errors_are_not_strings);
   tcase_add_test(tc, include_relative);
+  tcase_add_test(tc, deck_through_a_pipe_finds_its_files);
   tcase_add_test(tc, quit_stops);
   tcase_add_test(tc, substitution_and_quotes);
   tcase_add_test(tc, echo_and_stdin);
@@ -1125,7 +1435,12 @@ Suite *deck_suite(void) {
   tcase_add_test(tc, error_unknown_command);
   tcase_add_test(tc, error_lines_after_continuation_and_include);
   tcase_add_test(tc, error_expressions_and_variables);
+  tcase_add_test(tc, error_unknown_variable_hints);
+  tcase_add_test(tc, print_to_file);
   tcase_add_test(tc, error_includes);
+  tcase_add_test(tc, error_shows_line_as_written);
+  tcase_add_test(tc, error_unicode_lines);
+  tcase_add_test(tc, log_is_natural_noted);
   tcase_add_test(tc, error_long_names);
   tcase_add_test(tc, error_long_variable_names);
   tcase_add_test(tc, error_outputs_share_a_file);

@@ -161,10 +161,30 @@ END_TEST
 START_TEST(test_record_bad_quantity_no_file) {
   char *err, *dir;
   int rc = yft_run_binary("bad.deck", BAR "timestep auto\nrecord r1 1 r.csv ke nosuchq\nrun 5\n", NULL, &err, &dir);
-  ck_assert_msg(rc == 1 && strstr(err, "bad.deck:4: error: expression 'nosuchq': unknown variable"), "exit %d: %s", rc, err);
+  ck_assert_msg(rc == 1 && strstr(err, "bad.deck:4: error: record r1, at step 0: expression 'nosuchq': unknown variable"),
+                "exit %d: %s", rc, err);
   char p[600];
   snprintf(p, sizeof p, "%s/r.csv", dir);
   ck_assert_msg(!yft_exists(p), "a half-written r.csv is left");
+  free(err);
+  free(dir);
+}
+END_TEST
+
+/* A thermo column or a record quantity that fails during a run says at which step and for which
+ * output: "e.deck:4: error: expression '1/(3-step)': division by zero" named the line that set it
+ * up, and the step was left to guess from the last thermo line. */
+START_TEST(test_run_expression_error_names_step) {
+  char *err, *dir;
+  int rc = yft_run_binary("bad.deck", BAR "timestep auto\nthermo 1\nthermo_style custom step \"1/(3-step)\"\nrun 5\n",
+                          "-log none", &err, &dir);
+  ck_assert_msg(rc == 1 && strstr(err, "bad.deck:5: error: thermo_style, at step 3: expression '1/(3-step)': division by "
+                                       "zero"), "exit %d: %s", rc, err);
+  free(err);
+  free(dir);
+  rc = yft_run_binary("bad.deck", BAR "timestep auto\nrecord rr 1 r.csv \"1/(2-step)\"\nrun 5\n", "-log none", &err, &dir);
+  ck_assert_msg(rc == 1 && strstr(err, "bad.deck:4: error: record rr, at step 2: expression '1/(2-step)': division by zero"),
+                "exit %d: %s", rc, err);
   free(err);
   free(dir);
 }
@@ -500,6 +520,7 @@ Suite *errors_suite(void) {
   tcase_add_test(t, test_timestep_above_limit_refused);
   tcase_add_test(t, test_damping_above_two_over_dt_refused);
   tcase_add_test(t, test_record_bad_quantity_no_file);
+  tcase_add_test(t, test_run_expression_error_names_step);
   tcase_add_test(t, test_inputs_that_are_not_files);
   tcase_add_test(t, test_read_restart_after_run_refused);
   tcase_add_test(t, test_sizes_beyond_doubles);

@@ -117,6 +117,27 @@ START_TEST(test_var_unused_warns) {
   free(log);
   free(err);
   free(dir);
+  /* a name used only in a file included after the first run (and in one that file includes) is
+   * used: it was warned about as unused, though the include read it */
+  dir = yft_deck_dir("a.deck", BAR "run 1\ninclude post/report.deck\n");
+  char sub[700];
+  snprintf(sub, sizeof sub, "%s/post", dir);
+  ck_assert_int_eq(mkdir(sub, 0700), 0);
+  yft_put_file(dir, "post/report.deck", "print \"scale ${scale}\"\ninclude more.deck\n");
+  yft_put_file(dir, "post/more.deck", "print \"depth $(v_depth*2)\"\n");
+  char cmd[2048];
+  snprintf(cmd, sizeof cmd, "cd %s && %s -in a.deck -var scale 3 -var depth 2 -var sclae 1 > out.txt 2> err.txt", dir,
+           yft_binary());
+  ck_assert_int_eq(system(cmd), 0);
+  err = file_in(dir, "err.txt");
+  ck_assert_msg(strstr(err, "-var scale:") == NULL && strstr(err, "-var depth:") == NULL,
+                "a -var used in an included file warned:\n%s", err);
+  ck_assert_msg(strstr(err, "warning: -var sclae:") != NULL, "the typo was not warned about:\n%s", err);
+  char *out = file_in(dir, "out.txt");
+  ck_assert_msg(strstr(out, "scale 3\n") && strstr(out, "depth 4\n"), "stdout:\n%s", out);
+  free(out);
+  free(err);
+  free(dir);
 }
 END_TEST
 

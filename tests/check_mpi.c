@@ -1325,6 +1325,34 @@ START_TEST(interrupt_mpirun_chatty) {
 }
 END_TEST
 
+/* A deck through a pipe or a device ('-in /dev/stdin < deck', a FIFO) on 2 ranks: mpirun gives
+ * stdin to rank 0 only, so each rank read other bytes (rank 1 an empty deck from /dev/null) and
+ * the job hung with no output.  Rank 0 now reads such a deck and sends it to every rank, as a deck
+ * on stdin: the run ends with the serial run's bits, its loop and its include done. */
+START_TEST(deck_through_a_pipe_on_ranks) {
+  if (!mpi_ready()) return;
+  char *d = workdir();
+  write_file(d, "main.deck", "material m elastic rho 2000 E 1e9 nu 0.25 plane_stress\nmesh rect b m 0 0 1 1 4 4\n"
+                             "velocity b set 1 0\ntimestep auto\nvariable i loop 3\nlabel l\nrun 10\n"
+                             "print \"i=${i} step=$(step)\"\nnext i\njump SELF l\ninclude part.deck\n");
+  write_file(d, "part.deck", "run 5\nprint \"part ran\"\n");
+  ck_assert_int_eq(run_in(d, 0, 1, "-in main.deck -summary s0.json", NULL), 0);
+  int rc = run_in(d, 2, 1, "-in /dev/stdin -summary s1.json < main.deck", NULL);
+  ck_assert_msg(rc == 0, "mpirun exit %d (124: it hung)", rc);
+  ck_assert_int_eq(count_in(d, "out.txt", "i=3 step=30"), 1);
+  ck_assert_int_eq(count_in(d, "out.txt", "part ran"), 1);
+  char path[PATH_MAX + 64];
+  snprintf(path, sizeof path, "%s/s0.json", d);
+  char *ref = key_lines(path);
+  snprintf(path, sizeof path, "%s/s1.json", d);
+  char *got = key_lines(path);
+  ck_assert_str_eq(got, ref);
+  free(ref);
+  free(got);
+  drop_dir(d);
+}
+END_TEST
+
 /* Ctrl-C to mpirun where a deck spends its time between runs, and while a deck on stdin is still
  * arriving (a sweep of new decks, 2026-11-28):
  * - a loop of 100-step runs with a print after each: rank 0 waits on its output pipe, which
@@ -1452,6 +1480,11 @@ END_TEST
 
 Suite *mpi_suite(void) {
   Suite *s = suite_create("mpi");
+  /* decks that reach the ranks through a pipe (CK_RUN_CASE=pipe runs it alone) */
+  TCase *tp = tcase_create("pipe");
+  tcase_set_timeout(tp, 900);
+  tcase_add_test(tp, deck_through_a_pipe_on_ranks);
+  suite_add_tcase(s, tp);
   TCase *t = tcase_create("mpi");
   tcase_set_timeout(t, 900);
   tcase_add_test(t, matrix_column);

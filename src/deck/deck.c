@@ -30,7 +30,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include "deck.h"
 #include "output.h"
 #include "par.h"
@@ -79,6 +81,7 @@ typedef struct {
   char **vals;  /* index: the values                                       */
   int nvals, which;
   long cur, hi; /* loop: current and last value                            */
+  int pad;      /* loop ... pad: digits the value is written with (0: as it is) */
   int shadow_warned; /* read bare where a built-in of its name exists: warned */
 } DeckVar;
 
@@ -97,6 +100,12 @@ struct YfDeck {
   int exec_depth;  /* commands running inside other commands (if), see DECK_NEST_MAX */
   int subst_depth; /* $(...) being substituted inside $(...)                    */
   long ncmd;       /* commands run so far (an empty deck is worth a warning)     */
+  int log_warned;   /* the note on log() (natural here, base 10 in LAMMPS) was given */
+  char **gone;      /* variables a 'next' deleted when it ran past their last value...  */
+  YfLoc *gone_at;   /* ...and where (named when one is used after that)               */
+  int ngone;
+  int unknown_bare; /* the expression being evaluated met a bare name that is nothing known
+                     * (not one written v_NAME, not inside a variable's own expression) */
 };
 
 /* Interned file names: never freed (a YfLoc may outlive the deck). */
@@ -144,8 +153,14 @@ static const char *abbrev(const char *s, char *buf, size_t n) {
   return buf;
 }
 
+/* The line being run, as written and as substituted, while they differ (exec_line): an error
+ * shown on the substituted line also shows the written one, or which ${NAME} gave which word
+ * was lost ('-var L ""' made 'mesh rect ... ${L} ...' one word short, and the message showed the
+ * line without a trace of ${L}). */
+static const char *cur_written, *cur_substituted;
+
 /* Deck error with context: the message, then the line and a caret under column col (col < 0:
- * no caret; line NULL: no context). */
+ * no caret; line NULL: no context), then the line as written when line is its substitution. */
 static void fail_ctx(const YfLoc *loc, const char *line, int col, const char *fmt, ...)
     __attribute__((noreturn, format(printf, 4, 5)));
 static void fail_ctx(const YfLoc *loc, const char *line, int col, const char *fmt, ...) {
@@ -162,24 +177,39 @@ static void fail_ctx(const YfLoc *loc, const char *line, int col, const char *fm
   if (len > width && col > width / 2) from = col - width / 2;
   if (from > 0 && len - from < width) from = len - width > 0 ? len - width : 0;
   if (from > col && col >= 0) from = col;
+  /* the window starts and ends on whole UTF-8 characters (a cut one printed as a broken byte) */
+  while (from > 0 && from < len && ((unsigned char)line[from] & 0xC0) == 0x80) from--;
+  int to = from + width < len ? from + width : len;
+  while (to < len && to > from && ((unsigned char)line[to] & 0xC0) == 0x80) to--;
   char ctx[400];
   int k = 0;
   ctx[k++] = ' ';
   ctx[k++] = ' ';
   if (from > 0) { memcpy(ctx + k, "...", 3); k += 3; }
-  for (int i = from; i < len && i < from + width; i++) {
+  for (int i = from; i < to; i++) {
     char c = line[i];
     ctx[k++] = (c == '\t' || c == '\n' || c == '\r') ? ' ' : c;
   }
-  if (from + width < len) { memcpy(ctx + k, "...", 3); k += 3; }
+  if (to < len) { memcpy(ctx + k, "...", 3); k += 3; }
   ctx[k] = 0;
-  if (col < 0) yf_deck_error(loc, "%s\n%s", msg, ctx);
+  char written[200] = "";
+  if (line == cur_substituted && cur_written) {
+    size_t wl = strlen(cur_written);
+    snprintf(written, sizeof written, "\n  (as written: %.160s%s)", cur_written, wl > 160 ? "..." : "");
+    for (char *q = written + 1; *q; q++)
+      if (*q == '\t' || *q == '\n' || *q == '\r') *q = ' ';
+  }
+  if (col < 0) yf_deck_error(loc, "%s\n%s%s", msg, ctx, written);
   char caret[400];
-  int c = 0, pad = 2 + (from > 0 ? 3 : 0) + (col - from);
+  /* the caret under the character: one column per UTF-8 character, not per byte ('é' and '→'
+   * before the fault put it 1 and 2 columns too far right) */
+  int chars = 0;
+  for (int i = from; i < col && i < len; i++) chars += ((unsigned char)line[i] & 0xC0) != 0x80;
+  int c = 0, pad = 2 + (from > 0 ? 3 : 0) + chars;
   for (int i = 0; i < pad && c < (int)sizeof caret - 2; i++) caret[c++] = ' ';
   caret[c++] = '^';
   caret[c] = 0;
-  yf_deck_error(loc, "%s\n%s\n%s", msg, ctx, caret);
+  yf_deck_error(loc, "%s\n%s\n%s%s", msg, ctx, caret, written);
 }
 
 /* ------------------------------------------------------------------ words */
@@ -273,12 +303,53 @@ static int named_in_sources(const YfDeck *d, const char *name) {
   return 0;
 }
 
+static DeckSource *source_load(YfDeck *d, const char *path, const YfLoc *from, const char *cmd);
+static char *dir_of(const char *path);
+static char *join_path(const char *dir, const char *name);
+
+/* Load the files that the loaded ones name in 'include FILE' or 'jump FILE' (FILE without '$',
+ * a readable regular file), and the files those name, so that their text is searched too: a -var
+ * used only in a file included after the first run was warned about as unused. */
+static void load_named_files(YfDeck *d) {
+  for (int added = 1, round = 0; added && round < DECK_INCLUDE_MAX; round++) {
+    added = 0;
+    for (DeckSource *s = d->sources; s; s = s->next)
+      for (int i = 0; i < s->n; i++) {
+        const char *t = s->lines[i].text;
+        if (strncmp(t, "include", 7) && strncmp(t, "jump", 4)) continue;
+        char **w;
+        int *cols, errcol;
+        const char *why;
+        int n = split_words(t, &w, &cols, &errcol, &why);
+        if (n < 0) continue;
+        if (n >= 2 && (!strcmp(w[0], "include") || !strcmp(w[0], "jump")) && !strchr(w[1], '$') &&
+            strcmp(w[1], "SELF")) {
+          char *dir = dir_of(s->name), *path = join_path(dir, w[1]);
+          int known = 0;
+          for (const DeckSource *k = d->sources; k && !known; k = k->next) known = !strcmp(k->name, path);
+          struct stat st;
+          if (!known && !stat(path, &st) && S_ISREG(st.st_mode) && !access(path, R_OK)) {
+            source_load(d, path, NULL, NULL);
+            added = 1;
+          }
+          free(dir);
+          free(path);
+        }
+        free_words(w, cols, n);
+      }
+  }
+}
+
 /* A -var NAME that the deck neither defines nor uses is most likely a typo (-var nz for nx): warn
  * once, before the first run, naming the deck's own variables.  A name that the deck's text
- * holds as a word further on (used only after the first run) is not warned about. */
+ * holds as a word further on (used only after the first run, or in a file it includes) is not
+ * warned about. */
 static void check_cmdline_vars(YfDeck *d) {
   if (d->vars_checked) return;
   d->vars_checked = 1;
+  int any = 0;
+  for (int i = 0; i < d->nvars && !any; i++) any = d->vars[i].cmdline && !d->vars[i].used;
+  if (any) load_named_files(d);
   size_t cap = 16;
   for (int i = 0; i < d->ndef; i++) cap += strlen(d->defnames[i]) + 2;
   char *list = yf_malloc(cap, "variable names");
@@ -347,9 +418,79 @@ static const char *name_fault(const char *s) {
 
 static int lookup_cb(void *ctx, const char *name, double *val, char *err, size_t errlen);
 
+/* The deck line running now (file NULL when none). */
+static YfLoc here(const YfDeck *d) {
+  YfLoc l = {0};
+  if (d->depth > 0) {
+    const DeckFrame *f = &d->stack[d->depth - 1];
+    l.file = f->src->name;
+    l.line = f->pos > 0 ? f->src->lines[f->pos - 1].line : 0;
+  }
+  return l;
+}
+
+/* LAMMPS's log() is base 10; here, as in C and Python, it is the natural one: a LAMMPS deck's
+ * log(x) read 2.3 times its value, silently.  Said once, where it is first met. */
+static void note_log(YfDeck *d, const ExprError *e, const YfLoc *loc) {
+  if (!e->uses_log || d->log_warned) return;
+  d->log_warned = 1;
+  YfLoc l = loc ? *loc : here(d);
+  yf_warn(l.file ? &l : NULL, "log() is the natural logarithm (as in C and Python; LAMMPS's log() is base 10): "
+          "write ln() for the natural one, log10() for base 10, and this note goes");
+}
+
+/* What an unknown variable NAME could have been, for its message: " (did you mean 'nx'?)", else
+ * the variables there are (" (variables: nx, ny)") or " (no variable is defined)".  bare: NAME
+ * stands alone in an expression, where the simulation's names (step, ke, ...) are read too.
+ * ("unknown variable 'nX'" alone left the user to find the deck's spelling of it.) */
+static void unknown_hint(const YfDeck *d, const char *name, int bare, char *buf, size_t n) {
+  static const char *const own[] = {"step", "time", "dt", "pi", NULL};
+  const char *const *kw = sim_query_keywords();
+  int nk = 0, nown = 0, k = 0;
+  while (kw[nk]) nk++;
+  while (own[nown]) nown++;
+  const char **names = yf_malloc((size_t)(d->nvars + nk + nown + 1) * sizeof *names, "variable names");
+  for (int i = 0; i < d->nvars; i++) names[k++] = d->vars[i].name;
+  if (bare) {
+    for (int i = 0; i < nown; i++) names[k++] = own[i];
+    for (int i = 0; i < nk; i++) names[k++] = kw[i];
+  }
+  for (int i = 0; i < d->ngone; i++)
+    if (!strcmp(d->gone[i], name)) { /* LAMMPS's rule, which surprises: say it */
+      snprintf(buf, n, " (the 'next %s' at %s:%d deleted it when it ran past its last value, as LAMMPS does; "
+               "keep a value for after the loop in another variable)", name, d->gone_at[i].file, d->gone_at[i].line);
+      return;
+    }
+  /* one or two letters are near to any short name: no guess for them but a change of case (nX
+   * for nx), the list says enough */
+  const char *near = strlen(name) >= 3 ? yf_nearest(name, names, k) : NULL;
+  for (int i = 0; i < k && !near; i++)
+    if (!strcasecmp(name, names[i])) near = names[i];
+  free(names);
+  if (near) {
+    snprintf(buf, n, " (did you mean '%s'?)", near);
+    return;
+  }
+  if (!d->nvars) {
+    snprintf(buf, n, " (no variable is defined)");
+    return;
+  }
+  size_t len = (size_t)snprintf(buf, n, " (variables: ");
+  for (int i = 0; i < d->nvars && len < n; i++) {
+    if (len + strlen(d->vars[i].name) + 8 > n || i == 12) {
+      len += (size_t)snprintf(buf + len, n - len, "...");
+      break;
+    }
+    len += (size_t)snprintf(buf + len, n - len, "%s%s", i ? ", " : "", d->vars[i].name);
+  }
+  if (len < n) snprintf(buf + len, n - len, ")");
+}
+
 /* Evaluate expr; on failure write "expression 'expr': why" into err and return 0. */
 static int eval_quiet(YfDeck *d, const char *expr, double *out, ExprError *e) {
-  return expr_eval(expr, lookup_cb, d, out, e);
+  int ok = expr_eval(expr, lookup_cb, d, out, e);
+  if (ok) note_log(d, e, NULL);
+  return ok;
 }
 
 /* Numeric value of a variable: 1 ok, -1 error (err filled). */
@@ -409,12 +550,7 @@ static int lookup_cb(void *ctx, const char *written, double *val, char *err, siz
   if (v && !prefixed && !v->shadow_warned && builtin_name(d, name)) {
     /* 'variable time equal 0.01' then $(time): the variable wins, silently (pi read 3) */
     v->shadow_warned = 1;
-    YfLoc l = {0};
-    if (d->depth > 0) {
-      const DeckFrame *f = &d->stack[d->depth - 1];
-      l.file = f->src->name;
-      l.line = f->pos > 0 ? f->src->lines[f->pos - 1].line : 0;
-    }
+    YfLoc l = here(d);
     yf_warn(l.file ? &l : NULL, "'%s' in an expression reads your variable '%s', which hides the built-in '%s'; "
             "write v_%s to say you mean the variable, or rename the variable to read the built-in", name, name, name, name);
   }
@@ -441,7 +577,18 @@ static int lookup_cb(void *ctx, const char *written, double *val, char *err, siz
     int q = sim_query(d->sim, name, val, err, errlen); /* thermo keywords, group averages */
     if (q) return q;
   }
-  return 0;
+  if (!prefixed && (!strcmp(name, "pi") || !strcmp(name, "PI"))) return 0; /* the evaluator's own */
+  if (!prefixed && (!strcasecmp(name, "nan") || !strcasecmp(name, "inf") || !strcasecmp(name, "infinity"))) {
+    /* a deck written by a script that computed a NaN: "unknown variable 'nan'" hid the cause */
+    snprintf(err, errlen, "'%s' is not a finite number, and expressions hold finite numbers only (did the script "
+             "that wrote this deck compute a %s?)", name, tolower((unsigned char)name[0]) == 'n' ? "NaN" : "division by zero or an overflow");
+    return -1;
+  }
+  if (!prefixed && d->eval_depth == 0) d->unknown_bare = 1;
+  char hint[300];
+  unknown_hint(d, name, !prefixed, hint, sizeof hint);
+  snprintf(err, errlen, "unknown variable '%s'%s", name, hint);
+  return -1;
 }
 
 /* Evaluate or fail with "expression 'e': why" and the expression with a caret. */
@@ -457,8 +604,17 @@ static double eval_or_fail(YfDeck *d, const char *expr, const YfLoc *loc, const 
 }
 
 double deck_eval(YfDeck *d, const char *expr, const YfLoc *loc) { return eval_or_fail(d, expr, loc, NULL); }
+double deck_eval_as(YfDeck *d, const char *expr, const YfLoc *loc, const char *what) {
+  return eval_or_fail(d, expr, loc, what);
+}
 
-static void fmt_number(char *buf, size_t n, double v) { snprintf(buf, n, "%.15g", v == 0.0 ? 0.0 : v); }
+/* A number as ${NAME} and $(EXPR) write it: 15 significant digits, except that an integer up to
+ * 2^53 (where doubles hold every integer) is written whole: %.15g wrote 2^50 as
+ * 1.12589990684262e+15, another integer, and a count of 1e15 or more as "1e+15". */
+static void fmt_number(char *buf, size_t n, double v) {
+  if (v == floor(v) && fabs(v) <= 9007199254740992.0) snprintf(buf, n, "%.0f", v == 0.0 ? 0.0 : v);
+  else snprintf(buf, n, "%.15g", v);
+}
 
 /* The text a ${name} reference stands for; NULL if the variable does not exist. */
 static char *var_text(YfDeck *d, const char *name, const YfLoc *loc, const char *line, int col) {
@@ -475,7 +631,7 @@ static char *var_text(YfDeck *d, const char *name, const YfLoc *loc, const char 
   }
   case VAR_STRING: return yf_strdup(v->text);
   case VAR_INDEX: return yf_strdup(v->vals[v->which]);
-  default: snprintf(buf, sizeof buf, "%ld", v->cur); return yf_strdup(buf);
+  default: snprintf(buf, sizeof buf, "%0*ld", v->pad, v->cur); return yf_strdup(buf);
   }
 }
 
@@ -529,7 +685,11 @@ static char *substitute(YfDeck *d, const char *in, const YfLoc *loc) {
       memcpy(name, p + 2, len);
       name[len] = 0;
       char *t = var_text(d, name, loc, in, col);
-      if (!t) fail_ctx(loc, in, col, "unknown variable '%s'", name);
+      if (!t) {
+        char hint[300];
+        unknown_hint(d, name, 0, hint, sizeof hint);
+        fail_ctx(loc, in, col, "unknown variable '%s'%s", name, hint);
+      }
       buf_put(&b, t);
       free(t);
       p = e;
@@ -555,7 +715,7 @@ static char *substitute(YfDeck *d, const char *in, const YfLoc *loc) {
         expr = inner;
       }
       /* optional ":%fmt" at parenthesis depth 0 */
-      const char *fmt = "%.15g";
+      const char *fmt = NULL;
       int kind = 1;
       char *colon = NULL;
       int dd = 0;
@@ -588,8 +748,10 @@ static char *substitute(YfDeck *d, const char *in, const YfLoc *loc) {
         char lf[32];
         snprintf(lf, sizeof lf, "%.*sl%s", (int)strlen(fmt) - 1, fmt, fmt + strlen(fmt) - 1);
         snprintf(num, sizeof num, lf, (long)llround(v));
-      } else
+      } else if (colon)
         snprintf(num, sizeof num, fmt, v);
+      else
+        fmt_number(num, sizeof num, v);
       buf_put(&b, num);
       free(expr);
       p = e;
@@ -690,6 +852,23 @@ static void parse_lines(DeckSource *s, const char *text, size_t len) {
 
 static char *dir_of(const char *path) {
   if (!path || path[0] == '<') return yf_strdup(".");
+  /* a deck read through a pipe ('-in <(python3 gen.py)' is /dev/fd/63, '-in /dev/stdin') found its
+   * includes and meshes in /dev/fd or /dev: a pipe's deck, like stdin's, reads from the working
+   * directory, and a file behind /dev/stdin from its own folder */
+  struct stat st;
+  if (!strncmp(path, "/dev/", 5) || !strncmp(path, "/proc/", 6)) {
+    /* (MPI: rank 0's /dev/stdin is the file, the others' /dev/null: the working directory on
+     * every rank, or the ranks would look for the deck's files in different places) */
+    char *real = par_size() > 1 ? NULL : realpath(path, NULL);
+    if (real && strncmp(real, "/dev/", 5) && strncmp(real, "/proc/", 6) && !stat(real, &st) && S_ISREG(st.st_mode)) {
+      char *dir = dir_of(real);
+      free(real);
+      return dir;
+    }
+    free(real);
+    return yf_strdup(".");
+  }
+  if (!stat(path, &st) && (S_ISFIFO(st.st_mode) || S_ISCHR(st.st_mode))) return yf_strdup(".");
   const char *slash = strrchr(path, '/');
   if (!slash) return yf_strdup(".");
   if (slash == path) return yf_strdup("/");
@@ -758,13 +937,21 @@ static DeckSource *source_from_stream(YfDeck *d, FILE *fp, const char *name, con
 static DeckSource *source_load(YfDeck *d, const char *path, const YfLoc *from, const char *cmd) {
   for (DeckSource *s = d->sources; s; s = s->next)
     if (!strcmp(s->name, path)) return s;
-  FILE *fp = yf_open_input(path, "rb");
-  if (!fp) {
+  /* MPI: a pipe or a device ('-in /dev/stdin', '-in <(...)', a FIFO) gives each rank other bytes
+   * (mpirun's other ranks read /dev/null): they ran different decks and the job hung.  As a deck
+   * on stdin, rank 0 reads it (its stat decides, for every rank) and sends it to all. */
+  struct stat st;
+  int shared = par_size() > 1 && (int)par_bcast_long(!stat(path, &st) && !S_ISREG(st.st_mode));
+  FILE *fp = shared && par_rank() != 0 ? NULL : yf_open_input(path, "rb");
+  if (!fp && !(shared && par_rank() != 0)) {
     if (cmd) yf_io_error(from, "%s: cannot open '%s': %s", cmd, path, strerror(errno));
     yf_io_error(from, "cannot open deck '%s': %s", path, strerror(errno));
   }
-  DeckSource *s = source_from_stream(d, fp, path, from);
-  fclose(fp);
+  static volatile int no_stop;
+  FILE *in = shared ? par_stdin(fp, d->sim ? &d->sim->interrupted : &no_stop) : fp;
+  DeckSource *s = source_from_stream(d, in, path, from);
+  if (in != fp) fclose(in);
+  if (fp) fclose(fp);
   return s;
 }
 
@@ -790,6 +977,37 @@ const char *deck_nearest_command(const char *word) {
   return yf_nearest(word, names, nn);
 }
 
+/* LAMMPS commands that a LAMMPS user writes in a deck and yfdem spells otherwise, does otherwise
+ * or needs not: "unknown command 'log' (did you mean 'load'?)" led away from -log. */
+static const char *lammps_command_hint(const char *w) {
+  static const char *const hint[][2] = {
+      {"log", "yfdem names its log on the command line: -log FILE (default log.yfdem) or -log none"},
+      {"units", "yfdem works in SI units always (m, kg, s, N, Pa; loads and forces per metre of thickness): "
+                "delete the line"},
+      {"dimension", "yfdem is two-dimensional always (plane stress or plane strain, set by 'material'): delete the "
+                    "line"},
+      {"shell", "yfdem runs no shell commands from a deck: make folders before the run (an output whose folder is "
+                "missing is an error at its line)"},
+      {"clear", "yfdem builds one scene per deck: run one deck per case (-var NAME VALUE sets its parameters)"},
+      {"python", "a deck runs no Python: write the deck from Python (a YADE-style script) and run it, or sweep "
+                 "with tools/yfsweep.py"},
+      {"write_dump", "frames are written by 'dump' during runs (and at the start of each, so 'run 0' writes one); "
+                     "the state at once by write_restart or write_y2d"},
+      {"thermo_modify", "thermo lines reach the screen and the log at once; choose their columns with "
+                        "'thermo_style custom'"},
+      {"reset_timestep", "the step count runs on from run to run; 'run N upto' runs until step N"},
+      {"info", "print a variable with 'print \"${NAME}\"'; 'yfdem -h COMMAND' describes a command"},
+      {"atom_style", "yfdem's bodies are triangle meshes, not atoms: 'mesh', 'read_y2d', 'nodes'/'triangles'"},
+      {"read_data", "yfdem reads meshes: 'mesh gmsh BODY FILE.msh', 'read_y2d FILE.y', 'nodes'/'triangles'"},
+      {"pair_style", "bodies interact through 'contact' (penalty and friction) and break through "
+                     "'jointprop'/'fracture'"},
+      {"minimize", "yfdem is explicit dynamics: reach a static state with 'damping' and a 'run'"},
+  };
+  for (size_t k = 0; k < sizeof hint / sizeof hint[0]; k++)
+    if (!strcmp(w, hint[k][0])) return hint[k][1];
+  return NULL;
+}
+
 /* Substitute, split and dispatch one logical line. */
 static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
   if (d->exec_depth >= DECK_NEST_MAX)
@@ -805,6 +1023,10 @@ static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
     }
   }
   char *line = substitute(d, text, loc);
+  const char *was_written = cur_written, *was_substituted = cur_substituted;
+  int differs = strcmp(text, line) != 0;
+  cur_written = differs ? text : NULL;
+  cur_substituted = differs ? line : NULL;
   char **w;
   int *cols, errcol;
   const char *why;
@@ -813,6 +1035,7 @@ static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
   if (n == 0) {
     free_words(w, cols, n);
     free(line);
+    cur_written = was_written, cur_substituted = was_substituted;
     return;
   }
   if (d->echo) {
@@ -832,6 +1055,8 @@ static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
     if (!strncmp(w[0], "/YD/", 4) || !strncmp(w[0], "/*", 2) || !strncmp(w[0], "$Y", 2))
       fail_ctx(loc, line, cols[0], "unknown command '%s': this looks like a Y2D .y deck, which yfdem reads as one "
                "when its name ends in .y (yfdem FILE.y), or inside a deck with 'read_y2d FILE'", w[0]);
+    const char *lh = lammps_command_hint(w[0]);
+    if (lh) fail_ctx(loc, line, cols[0], "unknown command '%s' (a LAMMPS command): %s", w[0], lh);
     if (near) fail_ctx(loc, line, cols[0], "unknown command '%s' (did you mean '%s'?)", w[0], near);
     fail_ctx(loc, line, cols[0], "unknown command '%s'", w[0]);
   }
@@ -847,6 +1072,7 @@ static void exec_line(YfDeck *d, const char *text, const YfLoc *loc) {
   d->exec_depth--;
   free_words(w, cols, n);
   free(line);
+  cur_written = was_written, cur_substituted = was_substituted;
 }
 
 /* Run the source from position pos on a new frame until its end, a quit, or an error. */
@@ -871,6 +1097,7 @@ static void run_source(YfDeck *d, DeckSource *s, const YfLoc *from) {
 
 YfDeck *deck_new(struct YfSim *sim) {
   YfDeck *d = yf_calloc(1, sizeof *d, "deck");
+  cur_written = cur_substituted = NULL; /* (a harness that longjmps out of an error left them set) */
   d->sim = sim;
   if (sim) sim->deck = d;
   return d;
@@ -882,6 +1109,9 @@ void deck_free(YfDeck *d) {
   free(d->vars);
   for (int i = 0; i < d->ndef; i++) free(d->defnames[i]);
   free(d->defnames);
+  for (int i = 0; i < d->ngone; i++) free(d->gone[i]);
+  free(d->gone);
+  free(d->gone_at);
   DeckSource *s = d->sources;
   while (s) {
     DeckSource *nx = s->next;
@@ -936,6 +1166,14 @@ void deck_run_file(YfDeck *d, const char *path, const YfLoc *from) {
 char *deck_resolve_path(const YfArgs *a, const char *name) {
   char *dir = dir_of(a->loc.file);
   char *p = join_path(dir, name);
+  /* LAMMPS reads a deck's files from the working directory: 'yfdem -in cases/a.deck' with
+   * 'include common.deck' beside the working directory's common.deck said only "cannot open
+   * 'cases/common.deck'" (a mesh, a table, a history file the same) */
+  struct stat st;
+  if (strcmp(p, name) && stat(p, &st) != 0 && errno == ENOENT && stat(name, &st) == 0)
+    yf_io_error(&a->loc, "%s: cannot open '%s': %s (a deck's files are found from its own folder, '%s'; the working "
+                "directory has a '%s', which LAMMPS would read: give its path from the deck's folder, or an absolute "
+                "one)", a->cmd, p, strerror(ENOENT), dir, name);
   free(dir);
   return p;
 }
@@ -1069,8 +1307,18 @@ long arg_int(const YfArgs *a, int i, const char *what, long lo, long hi) {
   long v;
   if (!yf_parse_long(w, &v)) {
     double x;
-    if (yf_parse_double(w, &x)) arg_fail(a, i, what, "not an integer");
-    arg_fail(a, i, what, "not an integer%s", num_hint(w));
+    if (yf_parse_double(w, &x)) {
+      /* 'run $(v_T/dt)' gave 1234.56, and 'variable i loop 99999999999999999999' or a count that
+       * prints as 1e+16 is an integer: both were "not an integer", with no way out said */
+      if (x != floor(x))
+        arg_fail(a, i, what, "not an integer (round an expression: $(round(EXPR)), or $(EXPR:%%d))");
+      int below = x < (double)lo && lo != LONG_MIN, above = x > (double)hi && hi != LONG_MAX;
+      if (below || above) v = below ? lo - 1 : hi + 1; /* outside the range: its message, below */
+      else
+        arg_fail(a, i, what, "an integer beyond those read exactly (at most %ld written in digits, 2^53 = "
+                 "9007199254740992 with an exponent or a '.')", LONG_MAX);
+    } else
+      arg_fail(a, i, what, "not an integer%s", num_hint(w));
   }
   if (v < lo || v > hi) {
     if (hi == LONG_MAX) arg_fail(a, i, what, "must be >= %ld", lo);
@@ -1132,6 +1380,13 @@ void deck_cmd_variable(struct YfSim *sim, const YfArgs *a) {
   if (style == 4) { /* delete */
     arg_count(a, 2, 2);
     var_delete(d, name);
+    for (int i = 0; i < d->ngone; i++) /* deleted by the deck now, not by a 'next' */
+      if (!strcmp(d->gone[i], name)) {
+        free(d->gone[i]);
+        d->gone[i] = d->gone[--d->ngone];
+        d->gone_at[i] = d->gone_at[d->ngone];
+        break;
+      }
     return;
   }
   if (old && old->cmdline) return; /* -var wins: the deck gives defaults */
@@ -1141,7 +1396,10 @@ void deck_cmd_variable(struct YfSim *sim, const YfArgs *a) {
   if (old && old->style != style)
     arg_fail(a, 0, "variable", "already defined as %s-style, cannot redefine as %s-style "
              "(use 'variable %s delete' first)", var_styles[old->style], var_styles[style], name);
-  arg_count(a, 3, style == VAR_LOOP ? 4 : -1);
+  /* loop N [N2] pad: LAMMPS's zero-padded values (out_01 ... out_10 sort as files); 'pad' was read
+   * as the last value ("not an integer") */
+  int pad = style == VAR_LOOP && a->n >= 4 && !strcmp(a->w[a->n - 1], "pad");
+  arg_count(a, 3, style == VAR_LOOP ? 4 + pad : -1);
   if (style == VAR_EQUAL) {
     char *text = join_words(a, 2);
     ExprError e;
@@ -1149,6 +1407,7 @@ void deck_cmd_variable(struct YfSim *sim, const YfArgs *a) {
     if (!expr_check(text, &e)) /* caret inside the line when the expression is one word */
       fail_ctx(&a->loc, a->line, a->n == 3 ? arg_inner_col(a, 2) + e.pos : arg_col(a, 2),
                "variable: expression '%s': %s", abbrev(text, ab, sizeof ab), e.msg);
+    note_log(d, &e, &a->loc);
     DeckVar *v = var_new(d, name, VAR_EQUAL);
     v->text = text;
   } else if (style == VAR_STRING) {
@@ -1164,7 +1423,7 @@ void deck_cmd_variable(struct YfSim *sim, const YfArgs *a) {
     v->nvals = nv;
   } else {
     long lo = 1, hi;
-    if (a->n == 3) hi = arg_int(a, 2, "count", 1, LONG_MAX);
+    if (a->n - pad == 3) hi = arg_int(a, 2, "count", 1, LONG_MAX);
     else {
       lo = arg_int(a, 2, "first value", LONG_MIN / 2, LONG_MAX / 2);
       hi = arg_int(a, 3, "last value", lo, LONG_MAX / 2);
@@ -1172,6 +1431,10 @@ void deck_cmd_variable(struct YfSim *sim, const YfArgs *a) {
     DeckVar *v = var_new(d, name, VAR_LOOP);
     v->cur = lo;
     v->hi = hi;
+    if (pad) { /* as many digits as the last value has (LAMMPS) */
+      char digits[32];
+      v->pad = snprintf(digits, sizeof digits, "%ld", hi);
+    }
   }
 }
 
@@ -1182,7 +1445,11 @@ void deck_cmd_next(struct YfSim *sim, const YfArgs *a) {
   int done = 0;
   for (int i = 0; i < a->n; i++) {
     DeckVar *v = var_find(d, a->w[i]);
-    if (!v) arg_fail(a, i, "variable", "no such variable");
+    if (!v) {
+      char hint[300];
+      unknown_hint(d, a->w[i], 0, hint, sizeof hint);
+      arg_fail(a, i, "variable", "no such variable%s", hint);
+    }
     if (v->style != VAR_INDEX && v->style != VAR_LOOP)
       arg_fail(a, i, "variable", "is %s-style; next needs an index or loop variable", var_styles[v->style]);
   }
@@ -1192,13 +1459,25 @@ void deck_cmd_next(struct YfSim *sim, const YfArgs *a) {
     else done |= ++v->cur > v->hi;
   }
   if (done) { /* LAMMPS: all listed variables are deleted and the next jump is skipped */
-    for (int i = 0; i < a->n; i++) var_delete(d, a->w[i]);
+    for (int i = 0; i < a->n; i++) {
+      var_delete(d, a->w[i]);
+      int k = 0;
+      while (k < d->ngone && strcmp(d->gone[k], a->w[i])) k++;
+      if (k == d->ngone) {
+        d->gone = yf_realloc(d->gone, (size_t)(k + 1) * sizeof *d->gone, "deck variables");
+        d->gone_at = yf_realloc(d->gone_at, (size_t)(k + 1) * sizeof *d->gone_at, "deck variables");
+        d->gone[k] = yf_strdup(a->w[i]);
+        d->ngone++;
+      }
+      d->gone_at[k] = a->loc; /* (its file name is interned: it outlives the line) */
+    }
     d->jump_skip = 1;
   }
 }
 
-/* Index of the line after `label NAME` in s, or -1. */
-static int find_label(DeckSource *s, const char *label) {
+/* Index of the line after `label NAME` in s, or -1.  label NULL: none is found, and the names of
+ * the labels there are go into list (for the message of a label that is not there). */
+static int find_label(DeckSource *s, const char *label, Buf *list) {
   for (int i = 0; i < s->n; i++) {
     const char *t = s->lines[i].text;
     if (strncmp(t, "label", 5) || !isspace((unsigned char)t[5])) continue;
@@ -1207,7 +1486,11 @@ static int find_label(DeckSource *s, const char *label) {
     const char *why;
     int n = split_words(t, &w, &cols, &errcol, &why);
     if (n < 0) continue;
-    int hit = n >= 2 && !strcmp(w[1], label);
+    int hit = n >= 2 && label && !strcmp(w[1], label);
+    if (n >= 2 && list && list->n < 200) {
+      if (list->n) buf_put(list, ", ");
+      buf_put(list, w[1]);
+    }
     free_words(w, cols, n);
     if (hit) return i + 1;
   }
@@ -1232,8 +1515,13 @@ void deck_cmd_jump(struct YfSim *sim, const YfArgs *a) {
   }
   int pos = 0;
   if (a->n == 2) {
-    pos = find_label(s, a->w[1]);
-    if (pos < 0) arg_fail(a, 1, "label", "no 'label %s' in %s", a->w[1], s->name);
+    pos = find_label(s, a->w[1], NULL);
+    if (pos < 0) { /* what is there: a misspelt label was named alone */
+      Buf list = {0};
+      find_label(s, NULL, &list);
+      arg_fail(a, 1, "label", "no 'label %s' in %s (%s%s%s)", a->w[1], s->name, list.n ? "its labels: " : "it has no label",
+               list.n ? list.s : "", list.n >= 200 ? ", ..." : "");
+    }
   }
   f->src = s;
   f->pos = pos;
@@ -1252,24 +1540,80 @@ void deck_cmd_include(struct YfSim *sim, const YfArgs *a) {
   run_source(d, s, &a->loc);
 }
 
-/* print TEXT ... */
+/* Where print's keywords begin: the first word (after the text's first) from which on the words
+ * are pairs 'file F', 'append F', 'screen yes|no', 'universe yes|no' to the end of the line, as
+ * LAMMPS reads them; a->n when there are none (the words are all text, as before: 'print the file
+ * is ready' stays text, its 'is ready' is no pair). */
+static int print_keywords_from(const YfArgs *a) {
+  for (int i = 1; i + 1 < a->n; i++) {
+    if ((a->n - i) % 2) continue;
+    int ok = 1;
+    for (int k = i; k < a->n && ok; k += 2) {
+      const char *kw = a->w[k], *v = a->w[k + 1];
+      if (!strcmp(kw, "file") || !strcmp(kw, "append")) ok = v[0] != 0;
+      else if (!strcmp(kw, "screen") || !strcmp(kw, "universe")) ok = !strcmp(v, "yes") || !strcmp(v, "no");
+      else ok = 0;
+    }
+    if (ok) return i;
+  }
+  return a->n;
+}
+
+/* print TEXT ... [file F | append F] [screen yes|no] [universe yes|no]
+ * A LAMMPS deck's 'print "${E} $(uy_tip)" append results.txt screen no' printed its keywords on the
+ * screen and wrote no file: the results of a sweep were lost.  As in LAMMPS, 'file' writes the
+ * file anew at each print, 'append' adds a line to it, and 'screen no' keeps the text off the
+ * screen and the log.  The file is relative to the working directory, as every output is. */
 void deck_cmd_print(struct YfSim *sim, const YfArgs *a) {
   arg_count(a, 1, -1);
-  char *text = join_words(a, 0);
-  if (sim) sim_printf(sim, "%s\n", text);
-  else printf("%s\n", text);
+  int kw = print_keywords_from(a), screen = 1, fi = -1;
+  for (int k = kw; k < a->n; k += 2) {
+    if (!strcmp(a->w[k], "screen")) screen = !strcmp(a->w[k + 1], "yes");
+    else if (!strcmp(a->w[k], "file") || !strcmp(a->w[k], "append")) {
+      if (fi >= 0) arg_error(a, k, "a print writes one file, and '%s %s' names a second", a->w[fi], a->w[fi + 1]);
+      fi = k;
+    }
+  }
+  Buf b = {0};
+  for (int i = 0; i < kw; i++) {
+    if (i) buf_putc(&b, ' ');
+    buf_put(&b, a->w[i]);
+  }
+  char *text = buf_take(&b);
+  if (fi >= 0 && sim) { /* a dump or a log on the same file would interleave with it (every rank claims) */
+    const char *by = output_claim(sim, "print", a->w[fi + 1], NULL, 0);
+    if (by && strcmp(by, "print")) arg_error(a, fi + 1, "already written by %s", by);
+  }
+  if (fi >= 0 && yf_writer()) { /* (first: a file that cannot be written stops before the screen shows the line) */
+    const char *path = a->w[fi + 1];
+    FILE *fp = fopen(path, a->w[fi][0] == 'a' ? "a" : "w");
+    if (!fp) yf_io_error(&a->loc, "print: cannot write '%s': %s", path, strerror(errno));
+    int bad = fprintf(fp, "%s\n", text) < 0;
+    int e = errno;
+    if (fclose(fp) != 0 || bad)
+      yf_io_error(&a->loc, "print: cannot write '%s': %s", path, strerror(bad ? e : errno));
+  }
+  if (screen) {
+    if (sim) sim_printf(sim, "%s\n", text);
+    else printf("%s\n", text);
+  }
   free(text);
 }
 
 /* Truth of an if condition.  Besides numeric expressions, "WORD == WORD" and "WORD != WORD"
- * compare strings when an expression cannot be formed (LAMMPS allows "${mode} == fast"). */
+ * compare strings (LAMMPS allows "${mode} == fast"): when the expression fails only because a
+ * bare word of it names nothing, and neither side is a number.  Any other failure is the deck's
+ * error: a division by zero, a misspelt v_NAME or a misspelt name compared with a number
+ * ("nbrokn == 0") were compared as text, silently false (or true with !=). */
 static int condition(YfDeck *d, const YfArgs *a, int i) {
   const char *cond = a->w[i];
-  double v;
+  double v, num;
   ExprError e;
+  d->unknown_bare = 0;
   if (eval_quiet(d, cond, &v, &e)) return v != 0.0;
   char l[256], op[8], r[256], extra[2];
-  if (sscanf(cond, "%255s %7s %255s %1s", l, op, r, extra) == 3 && (!strcmp(op, "==") || !strcmp(op, "!="))) {
+  if (d->unknown_bare && sscanf(cond, "%255s %7s %255s %1s", l, op, r, extra) == 3 &&
+      (!strcmp(op, "==") || !strcmp(op, "!=")) && !yf_parse_double(l, &num) && !yf_parse_double(r, &num)) {
     int eq = !strcmp(l, r);
     return op[0] == '=' ? eq : !eq;
   }

@@ -52,10 +52,14 @@ void deck_run_file(YfDeck *d, const char *path, const YfLoc *from);
 void deck_set_echo(YfDeck *d, int on);
 /* Directory of the deck currently being read ("." for stdin): handlers resolve relative
  * file names (mesh files, tables) against it.  Returns a malloc'd path joined with name,
- * or a copy of name when name is absolute. */
+ * or a copy of name when name is absolute.  An I/O error when the joined path does not exist
+ * but name does from the working directory (where a LAMMPS user expects it). */
 char *deck_resolve_path(const YfArgs *a, const char *name);
 /* Evaluate an arithmetic expression with the current variables (used by 'variable' and $()). */
 double deck_eval(YfDeck *d, const char *expr, const YfLoc *loc);
+/* The same, its error message starting with what (e.g. "thermo_style column at step 50: "): an
+ * expression evaluated during a run, whose failure the deck line alone does not place. */
+double deck_eval_as(YfDeck *d, const char *expr, const YfLoc *loc, const char *what);
 
 /* ---- argument helpers for command handlers (all exit with a deck error on bad input) ---- */
 /* Require min <= a->n <= max (max < 0: unbounded); message shows the usage line. */

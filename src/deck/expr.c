@@ -49,10 +49,43 @@ static void skip_ws(Parser *P) {
   while (*P->p && isspace((unsigned char)*P->p)) P->p++;
 }
 
-/* Describe the token at p for messages: "'x'" or "end of expression". */
+/* Describe the token at p for messages: "'x'" or "end of expression".  A character beyond ASCII
+ * is written whole (its first byte alone printed a broken character), with its code and, for
+ * the ones a word processor puts in place of ASCII ones, what to write instead. */
 static void describe(const char *p, char *buf, size_t n) {
-  if (!*p) snprintf(buf, n, "end of expression");
-  else snprintf(buf, n, "'%c'", *p);
+  if (!*p) {
+    snprintf(buf, n, "end of expression");
+    return;
+  }
+  unsigned char c = (unsigned char)*p;
+  if (c < 0x80) {
+    snprintf(buf, n, "'%c'", *p);
+    return;
+  }
+  int len = c >= 0xF0 ? 4 : c >= 0xE0 ? 3 : c >= 0xC0 ? 2 : 1, ok = 1;
+  unsigned cp = len == 1 ? c : c & (0xFFu >> (len + 1));
+  for (int i = 1; i < len && ok; i++) {
+    ok = ((unsigned char)p[i] & 0xC0) == 0x80;
+    cp = (cp << 6) | ((unsigned char)p[i] & 0x3F);
+  }
+  if (len == 1 || !ok) {
+    snprintf(buf, n, "byte 0x%02X (not UTF-8 text)", c);
+    return;
+  }
+  static const struct { unsigned cp; const char *use; } alike[] = {
+      {0x201C, "a typographic quote: write \" or '"}, {0x201D, "a typographic quote: write \" or '"},
+      {0x2018, "a typographic quote: write ' or \""}, {0x2019, "a typographic quote: write ' or \""},
+      {0x00D7, "a multiplication sign: write *"},    {0x22C5, "a dot operator: write *"},
+      {0x00B7, "a middle dot: write *"},             {0x00F7, "a division sign: write /"},
+      {0x2212, "a minus sign: write -"},             {0x2013, "a dash: write -"},
+      {0x00A0, "a non-breaking space: write a space"}, {0x202F, "a non-breaking space: write a space"},
+      {0x2009, "a thin space: write a space"},       {0x00B2, "a superscript: write ^2"},
+      {0x00B3, "a superscript: write ^3"},           {0x03C0, "pi: write pi"},
+  };
+  const char *use = "expressions are ASCII";
+  for (size_t i = 0; i < sizeof alike / sizeof alike[0]; i++)
+    if (alike[i].cp == cp) use = alike[i].use;
+  snprintf(buf, n, "'%.*s' (U+%04X, %s)", len, p, cp, use);
 }
 
 /* A result must be finite unless we are skipping. */
@@ -80,6 +113,11 @@ static double parse_number(Parser *P) {
     q = r;
   }
   if (isalpha((unsigned char)*q) || *q == '_') fail_at(P, q, "unexpected '%c' after number", *q);
+  if ((unsigned char)*q >= 0x80) {
+    char d[160];
+    describe(q, d, sizeof d);
+    fail_at(P, q, "unexpected %s after number", d);
+  }
   char buf[128];
   size_t len = (size_t)(q - P->p);
   if (len >= sizeof buf) fail_at(P, P->p, "number too long");
@@ -95,17 +133,18 @@ static double call_function(Parser *P, const char *name, const char *at, double 
   /* name, arity (-2: two or more), implementation selected below */
   static const struct { const char *name; int nargs; } fns[] = {
       {"sqrt", 1}, {"sin", 1},   {"cos", 1},  {"tan", 1},   {"asin", 1}, {"acos", 1},
-      {"atan", 1}, {"atan2", 2}, {"exp", 1},  {"log", 1},   {"log10", 1}, {"abs", 1},
+      {"atan", 1}, {"atan2", 2}, {"exp", 1},  {"log", 1},   {"log10", 1}, {"ln", 1}, {"abs", 1},
       {"floor", 1}, {"ceil", 1}, {"round", 1}, {"min", -2}, {"max", -2}, {"pow", 2}, {NULL, 0}};
   int k;
   for (k = 0; fns[k].name; k++)
     if (!strcmp(fns[k].name, name)) break;
   if (!fns[k].name)
     fail_at(P, at, "unknown function '%s' (functions: sqrt sin cos tan asin acos atan atan2 exp log "
-                   "log10 abs floor ceil round min max pow)", name);
+                   "log10 ln abs floor ceil round min max pow)", name);
   if (fns[k].nargs == -2 && n < 2) fail_at(P, at, "%s() takes at least 2 arguments, got %d", name, n);
   if (fns[k].nargs > 0 && n != fns[k].nargs)
     fail_at(P, at, "%s() takes %d argument%s, got %d", name, fns[k].nargs, fns[k].nargs > 1 ? "s" : "", n);
+  if (!strcmp(name, "log")) P->e->uses_log = 1; /* (in a syntax check too: a variable's definition) */
   if (P->skip) return 0.0;
   double a = x[0], r = 0.0;
   if (!strcmp(name, "sqrt")) {
@@ -120,9 +159,9 @@ static double call_function(Parser *P, const char *name, const char *at, double 
   } else if (!strcmp(name, "atan")) r = atan(a);
   else if (!strcmp(name, "atan2")) r = atan2(a, x[1]);
   else if (!strcmp(name, "exp")) r = exp(a);
-  else if (!strcmp(name, "log") || !strcmp(name, "log10")) {
+  else if (!strcmp(name, "log") || !strcmp(name, "log10") || !strcmp(name, "ln")) {
     if (a <= 0) fail_at(P, at, "%s of non-positive number %.15g", name, a);
-    r = name[3] ? log10(a) : log(a);
+    r = !strcmp(name, "log10") ? log10(a) : log(a);
   } else if (!strcmp(name, "abs")) r = fabs(a);
   else if (!strcmp(name, "floor")) r = floor(a);
   else if (!strcmp(name, "ceil")) r = ceil(a);
@@ -203,7 +242,7 @@ static double parse_primary(Parser *P) {
   }
   if (!*at && P->open > 0) fail_at(P, at, "missing ')'");
   if (!*at) fail_at(P, at, "missing operand at the end");
-  char d[32];
+  char d[160];
   describe(at, d, sizeof d);
   fail_at(P, at, "expected a number, a name or '(' but found %s", d);
 }
@@ -350,6 +389,7 @@ static int run(const char *s, ExprLookupFn lookup, void *ctx, int skip, double *
   P.e = e;
   e->msg[0] = 0;
   e->pos = 0;
+  e->uses_log = 0;
   P.depth0 = expr_depth;
   if (setjmp(P.jb)) {
     expr_depth = P.depth0; /* the levels the longjmp skipped */
@@ -361,7 +401,9 @@ static int run(const char *s, ExprLookupFn lookup, void *ctx, int skip, double *
   skip_ws(&P);
   if (*P.p) {
     if (*P.p == ')') fail_at(&P, P.p, "unmatched ')'");
-    fail_at(&P, P.p, "unexpected '%c'", *P.p);
+    char d[160];
+    describe(P.p, d, sizeof d);
+    fail_at(&P, P.p, "unexpected %s", d);
   }
   if (out) *out = v == 0.0 ? 0.0 : v; /* no "-0" in printed results */
   return 1;

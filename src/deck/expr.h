@@ -17,7 +17,8 @@
  *
  * Comparisons and logical operators give 1 or 0.  Names are resolved through a callback (the deck's
  * variables, step/time/dt); `v_name` is the LAMMPS spelling of the variable `name`; pi and PI are
- * constants.  Every intermediate result must be finite: division by zero, sqrt of a negative,
+ * constants; ln() is log(), the natural logarithm (LAMMPS's spelling; its log() is base 10).
+ * Every intermediate result must be finite: division by zero, sqrt of a negative,
  * log of a non-positive number or an overflow is an error, reported with the character position.
  */
 #ifndef YF_EXPR_H
@@ -33,6 +34,8 @@
 typedef struct {
   char msg[512]; /* what went wrong, e.g. "missing ')'"             */
   int pos;       /* 0-based character offset in the expression text */
+  int uses_log;  /* set on success too: the expression calls log(), which LAMMPS reads as base 10
+                  * (here, as in C and Python, the natural one; ln() is that too) */
 } ExprError;
 
 /* Name lookup: return 1 and set *val if name is known, 0 if unknown, -1 on an error while

@@ -88,13 +88,16 @@ static void words_take(Words *q, const YfArgs *a, int from) {
   q->loc.file = q->file;
 }
 
-static double value(YfSim *s, const Words *q, int i, const double *std) {
+static double value(YfSim *s, const Words *q, int i, const double *std, const char *owner) {
   int k = std_index(q->w[i]);
   if (k >= 0 && std) return std[k];
   if (k == YF_TH_STEP) return (double)s->step;
   if (k == YF_TH_TIME) return s->time;
   if (!s->deck) yf_deck_error(&q->loc, "quantity '%s': no deck to evaluate it", q->w[i]);
-  return deck_eval(s->deck, q->w[i], &q->loc);
+  /* a column that fails mid-run (1/(1-step/50) at step 50) named the deck line only: say when */
+  char what[YF_NAME_MAX + 64];
+  snprintf(what, sizeof what, "%s, at step %ld: ", owner, s->step);
+  return deck_eval_as(s->deck, q->w[i], &q->loc, what);
 }
 
 /* thermo_style default | thermo_style custom K1 K2 ... */
@@ -133,7 +136,7 @@ static void thermo_line(YfSim *s, const double *std) {
   char line[REPORT_MAX_WORDS * 40] = "";
   size_t k = 0;
   for (int i = 0; i < P.th.n && k < sizeof line; i++) {
-    double v = value(s, &P.th, i, std);
+    double v = value(s, &P.th, i, std, "thermo_style");
     int j = std_index(P.th.w[i]);
     if (j == YF_TH_STEP || j == YF_TH_BROKEN || j == YF_TH_PAIRS)
       k += (size_t)snprintf(line + k, sizeof line - k, i ? " %13ld" : "%10ld", (long)v);
@@ -275,16 +278,18 @@ static int adopt(Record *r, long before) {
 }
 
 static void record_row(YfSim *s, Record *r) {
+  char owner[YF_NAME_MAX + 16];
+  snprintf(owner, sizeof owner, "record %s", r->id);
   if (r->out.fd < 0) {
     /* every quantity evaluates before the file is made: a mistake in one ('nosuchq') left a
      * header and half a row behind */
-    for (int i = 0; i < r->q.n; i++) (void)value(s, &r->q, i, NULL);
+    for (int i = 0; i < r->q.n; i++) (void)value(s, &r->q, i, NULL, owner);
     record_open(r, NULL);
   }
   /* the row's values first, then the row: a quantity failing mid-run (1/(step-1) at step 1) left
    * a row cut after its time */
   double vals[REPORT_MAX_WORDS];
-  for (int i = 0; i < r->q.n; i++) vals[i] = value(s, &r->q, i, NULL);
+  for (int i = 0; i < r->q.n; i++) vals[i] = value(s, &r->q, i, NULL, owner);
   yf_rows_printf(&r->out, "%ld,%.17g", s->step, s->time);
   for (int i = 0; i < r->q.n; i++) yf_rows_printf(&r->out, ",%.17g", vals[i] == 0.0 ? 0.0 : vals[i]);
   yf_rows_printf(&r->out, "\n");

@@ -81,6 +81,8 @@ static const char *const keywords[] = {"ke", "strain", "ext_work", "gravity_work
                                        "pairs", "ntri", "nnodes", "dt_limit", "crack_length", NULL};
 static const char *const red[] = {"ux", "uy", "vx", "vy", "x", "y", "fx", "fy", "mass", NULL};
 
+const char *const *sim_query_keywords(void) { return keywords; }
+
 static int keyword(const char *name) {
   for (int i = 0; keywords[i]; i++)
     if (!strcmp(name, keywords[i])) return i;

@@ -13,4 +13,8 @@ int sim_query(YfSim *s, const char *name, double *val, char *err, size_t errlen)
  * from bare expressions. */
 int sim_query_known(YfSim *s, const char *name);
 
+/* The keywords sim_query answers (ke, strain, ..., dt_limit), NULL-terminated: what an unknown
+ * name in an expression may have been meant as. */
+const char *const *sim_query_keywords(void);
+
 #endif
