@@ -20,7 +20,11 @@
  *   - r > tol and r exceeds the largest offset a stable step can show, max(1, s^2 / (1 - s^2))
  *     times the energy given (the energy given alone above the limit), or
  *   - r > tol and r rose to a new high, by tol/10 and by a quarter, at each of GROWING checks in
- *     a row (energy from nowhere, wherever it went: a bounded offset stops setting new highs), or
+ *     a row (energy from nowhere, wherever it went: a bounded offset stops setting new highs), and
+ *     stayed at the last of those highs (less tol/10) or above at the HELD checks after (a
+ *     bounded swing comes back down, energy from nowhere stays), or
+ *   - r rose slowly: its range over WINDOW checks, as a fraction of the energy given, lay wholly
+ *     above that of the window before at WINDOWS windows in a row, or
  *   - r > tol and more was dissipated (damping, fracture, friction) than the largest offset a
  *     stable step can show, and than the energy given: above the limit that is the energy given
  *     alone, and a step whose energy from nowhere the viscosity took as it came ended "ok" with a
@@ -65,7 +69,7 @@ static struct {
   long last_step;
   double r_max;      /* the largest residual of the checks so far */
   int streak;        /* consecutive checks above the tolerance with the residual still growing */
-  double hold;       /* after GROWING new highs: the streak's first high, which growth keeps above */
+  double hold;       /* after GROWING new highs: the last of them less tol/10, which growth keeps above */
   int held;          /* ... checks since then at which the residual stayed above it (0: none pending) */
   long win;          /* 1 + the window of WINDOW checks the residual's range below is of (0: none yet) */
   double wmin, wmax; /* the residual's lowest and highest at the checks of that window */
@@ -77,13 +81,15 @@ static struct {
 } E;
 
 /* Checks in a row (100 steps apart) at which a residual above the tolerance must reach a new high,
- * by a tenth of the tolerance each, and then checks at which it must stay above the first of those
- * highs, before the run is stopped (below the hard bound).  Energy from nowhere stays in the
- * balance (nothing takes it back); the half-step measure's offset of a stable step is an
- * oscillation, which checks at irregular steps meet at any phase: three of them can rise in a
- * row (a two-triangle square with a pulled corner, 0.85 x its exact limit: residual 0.11, 0.18,
- * 0.25 of the energy given at steps 107, 183, 322, then 0.22 and -0.08, in a band -0.24..0.50
- * for 1e5 steps), but they come back down. */
+ * by a tenth of the tolerance each, and then checks at which it must stay at the last of those
+ * highs (less a tenth of the tolerance), before the run is stopped (below the hard bound).
+ * Energy from nowhere stays in the balance (nothing takes it back); the half-step measure's
+ * offset of a stable step is an oscillation, which checks at irregular steps meet at any phase:
+ * three of them can rise in a row (a two-triangle square with a pulled corner, 0.85 x its exact
+ * limit: residual 0.11, 0.18, 0.25 of the energy given at steps 107, 183, 322, then 0.22 and
+ * -0.08, in a band -0.24..0.50 for 1e5 steps), but they come back down from a high.  Not to
+ * where they began: the offset's mean is positive (a free square of 8 triangles set moving at
+ * 0.9 x its limit: 0.21, 0.31, 0.47, then 0.29, 0.27, 0.40, in a band -0.16..0.72). */
 #define GROWING 3
 #define HELD 2
 /* Slow growth (by less than a quarter a check, which never sets GROWING highs in a row): the
@@ -275,11 +281,12 @@ static const char *mohr_coulomb_set(const YfSim *s) {
 static int grown(double r, double tol, double scale, long step) {
   int higher = r > E.r_max + fmax(0.1 * tol, 0.25 * fabs(E.r_max));
   int fast = 0, slow = 0;
-  if (E.streak >= GROWING) { /* the highs are to be held: a bounded swing comes back below the first */
+  if (E.streak >= GROWING) { /* the highs are to be held: a bounded swing comes back down */
     if (r >= E.hold) fast = ++E.held >= HELD;
     else E.streak = E.held = 0;
   } else if (r > tol && higher) {
-    if (E.streak++ == 0) E.hold = r;
+    E.streak++;
+    E.hold = r - 0.1 * tol;
   } else {
     E.streak = 0;
   }
