@@ -35,6 +35,19 @@
 #include "run.h"
 #include "yftest.h"
 
+/* The number a deck run by yft_run_binary in dir printed after "KEY " at the start of a line
+ * (its log.yfdem). */
+static double printed(const char *dir, const char *key) {
+  char path[4096], pat[64];
+  snprintf(path, sizeof path, "%s/log.yfdem", dir);
+  snprintf(pat, sizeof pat, "\n%s ", key);
+  char *log = yft_slurp(path, 0), *f = log ? strstr(log, pat) : NULL;
+  ck_assert_msg(f, "no '%s' line in %s", key, path);
+  double v = strtod(f + strlen(pat), NULL);
+  free(log);
+  return v;
+}
+
 /* Y2D's a_elastic_block with its DCSTEC replaced by dt and its MCSTEP by steps, in a temporary
  * file whose path is returned (caller frees). */
 static char *y2d_variant(const char *src, double dt, long steps) {
@@ -646,14 +659,9 @@ START_TEST(test_displacement_without_ramp_advice) {
            base, tail);
   rc = yft_run_binary("j.deck", deck, NULL, &err, &dir);
   ck_assert_msg(rc == 0 && !strstr(err, "warning"), "exit %d: %s", rc, err);
-  char path[4096];
-  snprintf(path, sizeof path, "%s/log.yfdem", dir);
-  char *log = yft_slurp(path, 0), *f = strstr(log, "\nF ");
-  ck_assert_msg(f, "%s", log);
-  double F = -strtod(f + 3, NULL), want = 10e9 / (1 - 0.3 * 0.3) * 1e-4 * 0.2;
+  double F = -printed(dir, "F"), want = 10e9 / (1 - 0.3 * 0.3) * 1e-4 * 0.2;
   fprintf(stderr, "energy: bar pulled by a ramped displacement fix: end force %.6g, E' A u / L %.6g\n", F, want);
   ck_assert_double_lt(fabs(F / want - 1), 5e-3);
-  free(log);
   free(err);
   free(dir);
 }
@@ -679,11 +687,11 @@ START_TEST(test_bounded_swing_not_stopped) {
       "material m elastic rho 1000 E 1e7 nu 0.25 plane_stress\nmesh rect sq m 0 0 0.1 0.1 1 1\n"
       "group c node nearest 0.1 0\nhistory h ramp 0 0.1\nfix mv c displacement 0.001 0 history h\n"
       "timestep auto\nrun 0\ntimestep $(v_F*dt_limit)\nthermo 100000\nrun 100000\n"
-      "print \"residual $(balance/ext_work) s $(dt/dt_limit)\"\n";
+      "print \"residual $(balance/ext_work)\"\nprint \"s $(dt/dt_limit)\"\n";
   static const char *const set =
       "material m elastic rho 1000 E 1e7 nu 0.25 plane_stress\nmesh rect sq m 0 0 0.1 0.1 2 2 pattern cross\n"
       "group c node nearest 0.1 0.1\nvelocity c set 0.01 0\ntimestep auto safety 0.9\nrun 0\n"
-      "variable k0 equal $(ke)\nthermo 100000\nrun 100000\nprint \"residual $(balance/v_k0) s $(dt/dt_limit)\"\n";
+      "variable k0 equal $(ke)\nthermo 100000\nrun 100000\nprint \"residual $(balance/v_k0)\"\nprint \"s $(dt/dt_limit)\"\n";
   /* lim: the printed limit over the exact one */
   static const struct { const char *deck, *args; double lim; } c[3] = {
       {pulled, "-var F 0.84", 6.36056e-4 / 6.87368e-4}, {pulled, "-var F 0.92", 6.36056e-4 / 6.87368e-4}, {set, "", 1.0}};
@@ -691,16 +699,11 @@ START_TEST(test_bounded_swing_not_stopped) {
     char *err, *dir;
     int rc = yft_run_binary("sq.deck", c[k].deck, c[k].args, &err, &dir);
     ck_assert_msg(rc == 0, "case %d: exit %d: %s", k, rc, err);
-    char path[4096];
-    snprintf(path, sizeof path, "%s/log.yfdem", dir);
-    char *log = yft_slurp(path, 0), *f = strstr(log, "\nresidual "), *d = f ? strstr(f, " s ") : NULL;
-    ck_assert_msg(f && d, "%s", log);
-    double r = strtod(f + 10, NULL), sr = strtod(d + 3, NULL) * c[k].lim;
+    double r = printed(dir, "residual"), sr = printed(dir, "s") * c[k].lim;
     fprintf(stderr, "energy: bounded swing, case %d %s (s = %.3g): residual %.3g of the energy given after 1e5 steps\n",
             k, c[k].args, sr, r);
     ck_assert_double_lt(sr, 1.0);
     ck_assert_double_lt(fabs(r), sr * sr / (1.0 - sr * sr));
-    free(log);
     free(err);
     free(dir);
   }
@@ -739,14 +742,9 @@ START_TEST(test_joined_skip_advice) {
   }
   int rc = yft_run_binary("s.deck", deck, "-var mode keep -var sf 0.5", &err, &dir);
   ck_assert_msg(rc == 0, "joined keep: exit %d: %s", rc, err);
-  char path[4096];
-  snprintf(path, sizeof path, "%s/log.yfdem", dir);
-  char *log = yft_slurp(path, 0), *f = strstr(log, "\nresidual ");
-  ck_assert_msg(f, "%s", log);
-  double r = strtod(f + 10, NULL);
+  double r = printed(dir, "residual");
   fprintf(stderr, "energy: jointed block on a base, joined keep: residual %.3g of the energy given\n", r);
   ck_assert_msg(fabs(r) < 1e-2, "joined keep: residual %g", r);
-  free(log);
   free(err);
   free(dir);
 }
