@@ -72,8 +72,10 @@ static struct {
   double hold;       /* after GROWING new highs: the last of them less tol/10, which growth keeps above */
   int held;          /* ... checks since then at which the residual stayed above it (0: none pending) */
   long win;          /* 1 + the window of WINDOW checks the residual's range below is of (0: none yet) */
-  double wmin, wmax; /* the residual's lowest and highest at the checks of that window */
-  double pmax;       /* the highest of the window before it */
+  double wmin, wmax; /* the residual's lowest and highest at the checks of that window ... */
+  int wn;            /* ... at wn checks */
+  double pmax;       /* the highest of the window before it, at pn checks (0: none) */
+  int pn;
   int wgrow;         /* consecutive windows that lay wholly above the one before, above the tolerance */
   int warned;        /* warn mode: one warning per run */
   double overlap;    /* contact energy of a start state taken as given (bodies that start overlapping) [J/m] */
@@ -88,7 +90,7 @@ static struct {
  * three of them can rise in a row (a two-triangle square with a pulled corner, 0.85 x its exact
  * limit: residual 0.11, 0.18, 0.25 of the energy given at steps 107, 183, 322, then 0.22 and
  * -0.08, in a band -0.24..0.50 for 1e5 steps), but they come back down from a high.  Not to
- * where they began: the offset's mean is positive (a free square of 8 triangles set moving at
+ * where they began: the offset's mean is positive (a free square of 16 triangles set moving at
  * 0.9 x its limit: 0.21, 0.31, 0.47, then 0.29, 0.27, 0.40, in a band -0.16..0.72). */
 #define GROWING 3
 #define HELD 2
@@ -120,6 +122,7 @@ void energy_restored(const YfSim *s, double budget) {
   E.r_max = E.r_end;
   E.win = 0;
   E.wgrow = 0;
+  E.pn = 0;
 }
 
 /* Gravity's work is a function of the state: sum m g . (x - x0). */
@@ -168,6 +171,7 @@ void energy_run_begin(YfSim *s, double e_floor) {
     E.r_max = energy_balance(s);
     E.win = 0;
     E.wgrow = 0;
+    E.pn = 0;
   }
   E.streak = 0;
   E.held = 0;
@@ -279,6 +283,10 @@ static const char *mohr_coulomb_set(const YfSim *s) {
  * checks) or slowly (its range over WINDOW checks above that of the window before, WINDOWS times
  * in a row). */
 static int grown(double r, double tol, double scale, long step) {
+  /* a new high of the residual, by a tenth of tol and by a quarter of the last high: the
+   * half-step measure of a stable motion swings within a bound (above tol when the step is near
+   * the limit) and checks at irregular steps meet its phases in any order, so small new highs come
+   * and go; an unstable mode's energy grows by a factor at every check */
   int higher = r > E.r_max + fmax(0.1 * tol, 0.25 * fabs(E.r_max));
   int fast = 0, slow = 0;
   if (E.streak >= GROWING) { /* the highs are to be held: a bounded swing comes back down */
@@ -293,16 +301,21 @@ static int grown(double r, double tol, double scale, long step) {
   long w = (step + 50) / 100 / WINDOW + 1;
   double q = r / (scale + E.floor), tq = tol / (scale + E.floor); /* fractions of the energy given */
   if (!(scale + E.floor > 0)) q = tq = 0.0;
-  if (w != E.win) { /* the window E.win is complete */
+  if (w != E.win) { /* the window E.win is complete; a window begun part way (a run from a restart)
+                     * has sampled too few phases to compare */
     if (E.win > 0) {
-      E.wgrow = E.win > 1 && E.wmin > tq && E.wmin > E.pmax + 0.1 * tq ? E.wgrow + 1 : 0;
+      int full = E.wn >= WINDOW / 2 && E.pn >= WINDOW / 2;
+      E.wgrow = full && E.wmin > tq && E.wmin > E.pmax + 0.1 * tq ? E.wgrow + 1 : 0;
       E.pmax = E.wmax;
+      E.pn = E.wn;
     }
     E.win = w;
     E.wmin = E.wmax = q;
+    E.wn = 1;
   } else {
     E.wmin = fmin(E.wmin, q);
     E.wmax = fmax(E.wmax, q);
+    E.wn++;
   }
   slow = E.wgrow >= WINDOWS;
   return fast || slow;
@@ -321,10 +334,6 @@ void energy_check(YfSim *s) {
    * at least the energy given (s <= 0.7), and that alone above the limit (no bound there) */
   double sr = s->dt_limit > 0 ? s->dt / s->dt_limit : 2.0;
   double hard = scale * (sr < 1.0 ? fmax(1.0, sr * sr / (1.0 - sr * sr)) : 1.0) + tol;
-  /* a new high of the residual, by a tenth of tol and by a quarter of the last high: the
-   * half-step measure of a stable motion swings within a bound (above tol when the step is near
-   * the limit) and checks at irregular steps meet its phases in any order, so small new highs come
-   * and go; an unstable mode's energy grows by a factor at every check */
   int finite = isfinite(r) && isfinite(ext);
   for (int i = 0; i < NT; i++) finite = finite && isfinite(t[i]);
   int growing = finite && grown(r, tol, scale, s->step);
