@@ -20,7 +20,11 @@
  *   - r > tol and r exceeds the largest offset a stable step can show, max(1, s^2 / (1 - s^2))
  *     times the energy given (the energy given alone above the limit), or
  *   - r > tol and r rose to a new high, by tol/10 and by a quarter, at each of GROWING checks in
- *     a row (energy from nowhere, wherever it went: a bounded offset stops setting new highs), or
+ *     a row (energy from nowhere, wherever it went: a bounded offset stops setting new highs), and
+ *     stayed at the last of those highs (less tol/10) or above at the HELD checks after (a
+ *     bounded swing comes back down, energy from nowhere stays), or
+ *   - r rose slowly: its range over WINDOW checks, as a fraction of the energy given, lay wholly
+ *     above that of the window before at WINDOWS windows in a row, or
  *   - r > tol and more was dissipated (damping, fracture, friction) than the largest offset a
  *     stable step can show, and than the energy given: above the limit that is the energy given
  *     alone, and a step whose energy from nowhere the viscosity took as it came ended "ok" with a
@@ -65,14 +69,40 @@ static struct {
   long last_step;
   double r_max;      /* the largest residual of the checks so far */
   int streak;        /* consecutive checks above the tolerance with the residual still growing */
+  double hold;       /* after GROWING new highs: the last of them less tol/10, which growth keeps above */
+  int held;          /* ... checks since then at which the residual stayed above it (0: none pending) */
+  long win;          /* 1 + the window of WINDOW checks the residual's range below is of (0: none yet) */
+  double wmin, wmax; /* the residual's lowest and highest at the checks of that window ... */
+  int wn;            /* ... at wn checks */
+  double pmax;       /* the highest of the window before it, at pn checks (0: none) */
+  int pn;
+  int wgrow;         /* consecutive windows that lay wholly above the one before, above the tolerance */
   int warned;        /* warn mode: one warning per run */
   double overlap;    /* contact energy of a start state taken as given (bodies that start overlapping) [J/m] */
   long overlap_step; /* ... at the first step of the run that started at this step */
 } E;
 
 /* Checks in a row (100 steps apart) at which a residual above the tolerance must reach a new high,
- * by a tenth of the tolerance each, before the run is stopped (below the hard bound). */
+ * by a tenth of the tolerance each, and then checks at which it must stay at the last of those
+ * highs (less a tenth of the tolerance), before the run is stopped (below the hard bound).
+ * Energy from nowhere stays in the balance (nothing takes it back); the half-step measure's
+ * offset of a stable step is an oscillation, which checks at irregular steps meet at any phase:
+ * three of them can rise in a row (a two-triangle square with a pulled corner, 0.85 x its exact
+ * limit: residual 0.11, 0.18, 0.25 of the energy given at steps 107, 183, 322, then 0.22 and
+ * -0.08, in a band -0.24..0.50 for 1e5 steps), but they come back down from a high.  Not to
+ * where they began: the offset's mean is positive (a free square of 16 triangles set moving at
+ * 0.9 x its limit: 0.21, 0.31, 0.47, then 0.29, 0.27, 0.40, in a band -0.16..0.72). */
 #define GROWING 3
+#define HELD 2
+/* Slow growth (by less than a quarter a check, which never sets GROWING highs in a row): the
+ * residual's range over WINDOW checks, as a fraction of the energy given, lies wholly above that of
+ * the window before, by a tenth of the tolerance, WINDOWS times in a row.  WINDOW irregular checks
+ * sample a bounded oscillation's band, its low phases too, so its windows overlap (the band is a
+ * fraction of the energy given: a load that ramps up widens it, and the fraction stays); energy
+ * made a little at every step lifts the whole range ('contact joined skip' at safety 0.1: 0.16-0.20,
+ * 0.22-0.26 after 0.13-0.15 of the energy given). */
+#define WINDOW 6
+#define WINDOWS 2
 
 void energy_reset(void) { memset(&E, 0, sizeof E); }
 double energy_get_budget(void) { return E.budget; }
@@ -90,6 +120,9 @@ void energy_restored(const YfSim *s, double budget) {
   energy_set_budget(budget);
   energy_run_end(s);
   E.r_max = E.r_end;
+  E.win = 0;
+  E.wgrow = 0;
+  E.pn = 0;
 }
 
 /* Gravity's work is a function of the state: sum m g . (x - x0). */
@@ -134,8 +167,14 @@ void energy_run_begin(YfSim *s, double e_floor) {
   E.last_step = s->step;
   /* the residual's highest so far is the scene's, not the run's (the residual goes on across
    * runs): a deck that runs in slices of 100 steps met a new "high" at every slice's first check */
-  if (!E.have_end || s->step == 0) E.r_max = energy_balance(s);
+  if (!E.have_end || s->step == 0) {
+    E.r_max = energy_balance(s);
+    E.win = 0;
+    E.wgrow = 0;
+    E.pn = 0;
+  }
   E.streak = 0;
+  E.held = 0;
   E.warned = 0;
 }
 
@@ -239,6 +278,49 @@ static const char *mohr_coulomb_set(const YfSim *s) {
   return NULL;
 }
 
+/* This check's residual r against the ones before (tol: the tolerance, scale: the energy given
+ * [J/m]): 1 when it has grown as energy from nowhere does, fast (GROWING new highs, then held HELD
+ * checks) or slowly (its range over WINDOW checks above that of the window before, WINDOWS times
+ * in a row). */
+static int grown(double r, double tol, double scale, long step) {
+  /* a new high of the residual, by a tenth of tol and by a quarter of the last high: the
+   * half-step measure of a stable motion swings within a bound (above tol when the step is near
+   * the limit) and checks at irregular steps meet its phases in any order, so small new highs come
+   * and go; an unstable mode's energy grows by a factor at every check */
+  int higher = r > E.r_max + fmax(0.1 * tol, 0.25 * fabs(E.r_max));
+  int fast = 0, slow = 0;
+  if (E.streak >= GROWING) { /* the highs are to be held: a bounded swing comes back down */
+    if (r >= E.hold) fast = ++E.held >= HELD;
+    else E.streak = E.held = 0;
+  } else if (r > tol && higher) {
+    E.streak++;
+    E.hold = r - 0.1 * tol;
+  } else {
+    E.streak = 0;
+  }
+  long w = (step + 50) / 100 / WINDOW + 1;
+  double q = r / (scale + E.floor), tq = tol / (scale + E.floor); /* fractions of the energy given */
+  if (!(scale + E.floor > 0)) q = tq = 0.0;
+  if (w != E.win) { /* the window E.win is complete; a window begun part way (a run from a restart)
+                     * has sampled too few phases to compare */
+    if (E.win > 0) {
+      int full = E.wn >= WINDOW / 2 && E.pn >= WINDOW / 2;
+      E.wgrow = full && E.wmin > tq && E.wmin > E.pmax + 0.1 * tq ? E.wgrow + 1 : 0;
+      E.pmax = E.wmax;
+      E.pn = E.wn;
+    }
+    E.win = w;
+    E.wmin = E.wmax = q;
+    E.wn = 1;
+  } else {
+    E.wmin = fmin(E.wmin, q);
+    E.wmax = fmax(E.wmax, q);
+    E.wn++;
+  }
+  slow = E.wgrow >= WINDOWS;
+  return fast || slow;
+}
+
 void energy_check(YfSim *s) {
   if (s->ebal_mode == YF_EBAL_OFF) return;
   double t[NT];
@@ -252,19 +334,15 @@ void energy_check(YfSim *s) {
    * at least the energy given (s <= 0.7), and that alone above the limit (no bound there) */
   double sr = s->dt_limit > 0 ? s->dt / s->dt_limit : 2.0;
   double hard = scale * (sr < 1.0 ? fmax(1.0, sr * sr / (1.0 - sr * sr)) : 1.0) + tol;
-  /* a new high of the residual, by a tenth of tol and by a quarter of the last high: the
-   * half-step measure of a stable motion swings within a bound (above tol when the step is near
-   * the limit) and checks at irregular steps meet its phases in any order, so small new highs come
-   * and go; an unstable mode's energy grows by a factor at every check */
-  int higher = r > E.r_max + fmax(0.1 * tol, 0.25 * fabs(E.r_max));
   int finite = isfinite(r) && isfinite(ext);
   for (int i = 0; i < NT; i++) finite = finite && isfinite(t[i]);
+  int growing = finite && grown(r, tol, scale, s->step);
   char what[640];
   what[0] = 0;
   int grew = -1;
   if (!finite) {
     snprintf(what, sizeof what, "the energies are not finite (the motion blew up)");
-  } else if (r > tol && (r > hard || diss > fmax(hard, given + tol) || E.streak + higher >= GROWING)) {
+  } else if (r > tol && (r > hard || diss > fmax(hard, given + tol) || growing)) {
     double best = -INFINITY;
     for (int i = 0; i < NT; i++)
       if (t[i] - E.last[i] > best) { best = t[i] - E.last[i]; grew = i; }
@@ -284,9 +362,8 @@ void energy_check(YfSim *s) {
                term_name[grew], t[grew], tol);
   }
   if (!what[0]) {
-    E.streak = r > tol && higher ? E.streak + 1 : 0;
     if (r > E.r_max) E.r_max = r;
-    if (E.streak == 0) { /* the reference of "grew most": the last check that was closed or steady */
+    if (E.streak == 0 && E.wgrow == 0) { /* the reference of "grew most": the last check that was closed or steady */
       memcpy(E.last, t, sizeof t);
       E.last_step = s->step;
     }
