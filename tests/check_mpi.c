@@ -1374,10 +1374,15 @@ START_TEST(interrupt_mpirun_outside_runs) {
              "timestep auto\nprint \"part 1 ran\"\nrun 10\n");
   write_file(d, "part2.deck", "print \"part 2 ran\"\nrun 10\n");
   /* (the pipeline's mpirun is a child of this shell's subshell: find it by the working directory) */
-  snprintf(cmd, sizeof cmd, "cd %s && rm -f s.json && ( (cat part1.deck; sleep 8; cat part2.deck) | OMPI_ALLOW_RUN_AS_ROOT=1 "
+  /* the Ctrl-C goes once a rank of this test runs (a loaded machine may take seconds to start
+   * them: a Ctrl-C before, which mpirun takes for its own, failed this test once), and long
+   * before the deck's second half comes */
+  snprintf(cmd, sizeof cmd, "cd %s && rm -f s.json && ( (cat part1.deck; sleep 12; cat part2.deck) | OMPI_ALLOW_RUN_AS_ROOT=1 "
            "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 timeout 120 mpirun -q --oversubscribe -np 2 %s -threads 1 "
-           "-summary s.json >out2.txt 2>err2.txt & sleep 3; for p in $(pgrep -x mpirun); do "
-           "[ \"$(readlink /proc/$p/cwd)\" = \"$(pwd -P)\" ] && kill -INT $p; done; wait )", d, MPIBIN);
+           "-summary s.json >out2.txt 2>err2.txt & for i in $(seq 120); do r=; for p in $(pgrep -x \"$(basename %s | cut "
+           "-c1-15)\"); do [ \"$(readlink /proc/$p/cwd)\" = \"$(pwd -P)\" ] && r=$p; done; [ -n \"$r\" ] && break; "
+           "sleep 0.25; done; sleep 2; for p in $(pgrep -x mpirun); do "
+           "[ \"$(readlink /proc/$p/cwd)\" = \"$(pwd -P)\" ] && kill -INT $p; done; wait )", d, MPIBIN, MPIBIN);
   ck_assert_int_eq(system(cmd), 0);
   ck_assert_int_eq(count_in(d, "out2.txt", "part 1 ran"), 0);
   snprintf(path, sizeof path, "%s/s.json", d);
