@@ -883,7 +883,8 @@ END_TEST
 
 /* contact_pair_dir as first written (plain scalar code, geometry from the corners), kept
  * verbatim as the reference of the optimised kernel: every force, friction memory, distance
- * and diagnostic must come out with the same bits. */
+ * and diagnostic must come out with the same bits.  Since 2026-11-29 its diagnostics book the
+ * friction force's work at the point where it acts and its spring's energy (contact_pair.c). */
 /* P(s) = min_k beta_k(s) at parameter s of the edge. */
 static inline double ref_pmin3(const double al[3], const double dl[3], double s)
 {
@@ -1048,9 +1049,21 @@ static int ref_dir(const double xt[3], const double yt[3], const double vxt[3], 
         fay += Ft * wa * tcy;
         fbx += Ft * wb * tcx;
         fby += Ft * wb * tcy;
+        /* the booking's slip rate: where the force acts, s = F_b / F */
+        vtx = vty = 0.0;
+        for (int k = 0; k < 3; k++) {
+          double bk = al[k] + wb * dl[k];
+          int v = (k + 2) % 3;
+          vtx += bk * vxt[v];
+          vty += bk * vyt[v];
+        }
+        vcx = (1.0 - wb) * vxc[a] + wb * vxc[b];
+        vcy = (1.0 - wb) * vyc[a] + wb * vyc[b];
+        w = (vtx - vcx) * tcx + (vty - vcy) * tcy;
       } else {
         Ft = 0.0; /* no normal force, nothing to share the tangential force with */
       }
+      if (info && pt > 0.0) info->energy += 0.5 * Ft * Ft / pt; /* the spring's energy */
     }
 
     fc[2 * a] += fax;
