@@ -1455,7 +1455,7 @@ static void check_deck(YfY2d *y) {
   }
   check_nonneg(y, Y2D_PE_D1PEFR, y->d1pefr, y->nprop, "property");
   check_nonneg(y, Y2D_PE_D1PEKS, y->d1peks, y->nprop, "property");
-  /* D1PELA may be negative (a material of negative Poisson's ratio, as write_y2d writes it): the
+  /* D1PELA may be negative (a material of negative Poisson's ratio, from another writer): the
    * bulk modulus it must keep positive depends on read_y2d's volfac, checked there (y2d_model.c).  Y2D's
    * own check refuses it (FORMAT.md 6): said, once, at the first such value */
   for (long p = 0; p < y->nprop; p++)

@@ -156,6 +156,12 @@ void y2d_write(YfSim *s, const char *path, long steps, long every, const YfLoc *
       yf_deck_error(loc, "write_y2d: material '%s' has friction %g with the coulomb friction law (the native default): "
                     "Y2D has only its own friction law (give the material 'friction_law y2d', or friction 0)",
                     mt->name, mt->fric);
+    /* Y2D checks its properties after $YDOIT and computes nothing with a negative D1PELA (FORMAT.md 6):
+     * an auxetic material (nu < 0) is one yfdem runs and Y2D refuses */
+    if (mt->lambda < 0)
+      yf_deck_error(loc, "write_y2d: material '%s' has Lame lambda %g Pa < 0 (nu %g): Y2D refuses a negative D1PELA "
+                    "and computes nothing (FORMAT.md 6); give it nu >= 0 to write it for Y2D", mt->name, mt->lambda,
+                    mt->nu);
   }
   /* fracture: whole bodies only, with joint sets Y2D has */
   int *bset = yf_malloc((size_t)(nb + 1) * sizeof(int), "write_y2d bodies");
