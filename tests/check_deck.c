@@ -1126,6 +1126,17 @@ START_TEST(error_unicode_lines) {
                "(U+2212, a minus sign: write -)", NULL, NULL);
   expect_error("print $(2\xa0+1)\n", 1, "e.deck:1: error: expression '2\xa0+1': unexpected byte 0xA0 (not UTF-8 text) after number",
                NULL, NULL);
+  /* look-alikes the Y2D reader named and the expressions did not (one table now, utf8name.h): a full-width
+   * digit, a zero-width space, an overlong encoding of '-' (not UTF-8 text, was decoded as '-') */
+  expect_error("print $(2*\xef\xbc\x93)\n", 1,
+               "e.deck:1: error: expression '2*\xef\xbc\x93': expected a number, a name or '(' but found '\xef\xbc\x93' "
+               "(U+FF13, a full-width digit: write 3)", NULL, NULL);
+  expect_error("print $(2\xe2\x80\x8b)\n", 1,
+               "e.deck:1: error: expression '2\xe2\x80\x8b': unexpected '\xe2\x80\x8b' (U+200B, a zero-width space: delete it) "
+               "after number", NULL, NULL);
+  expect_error("print $(2*\xc0\xad""3)\n", 1,
+               "e.deck:1: error: expression '2*\xc0\xad""3': expected a number, a name or '(' but found byte 0xC0 (not UTF-8 "
+               "text)", NULL, NULL);
 }
 END_TEST
 
