@@ -12,7 +12,7 @@ Exit status: 0 the converted deck runs the physics of `yfdem DECK.y`; 1 error (a
 read, a value that is not a number, or not an integer where Y2D reads one, a density, bulk modulus
 or joint strength, energy or penalty of a property or joint set in use that is not positive (and a shear
 modulus D1PEMU of 0, which yfdem DECK.y runs as Y2D does and no native material takes), no
-time step, MISTATE < 6 with contact, an element property out of range, NELNO other than 3, a 3D
+time step or one below the resolution of the start time DCTIME (DCTIME + DCSTEC == DCTIME), MISTATE < 6 with contact, an element property out of range, NELNO other than 3, a 3D
 deck, a clockwise triangle, a zero BC axis, a D2NCC short of NNOPO or with a triangle inverted or flat,
 a joint set out of range or not of type 3, a property
 type other than 1, 2, 4, a negative property value, a count above its capacity (NNOPO > MNOPO) or an
@@ -563,6 +563,15 @@ def validate(K, path):
     if g('YDC/MCSTEP') > g('YDC/NCSTEP') and not float(g('YDC/DCSTEC', 0)) > 0:
         raise DeckError('%s:%d: /YD/YDC/DCSTEC (the time step) is required and must be > 0 when /YD/YDC/MCSTEP > '
                         '/YD/YDC/NCSTEP' % K.at('YDC/DCSTEC', 0, K.at('YDC/MCSTEP', 0, end)))
+    # `yfdem DECK.y` starts its time at DCTIME, and its run refuses a step below the resolution of that time
+    # (src/step/run.c, the same words at DCSTEC's line): the time would stand still.  The converted deck starts at
+    # t = 0 and ran it (DCTIME 1e300, time tables shifted by -1e300), exit 0.  The rule is run.c's test, in the
+    # same doubles: DCTIME + DCSTEC == DCTIME (a DCSTEC of 0 is no step at all: refused above, or none is taken)
+    t0, dt = float(g('YDC/DCTIME', 0.0)), float(g('YDC/DCSTEC', 0.0))
+    if dt > 0 and t0 + dt == t0:
+        raise DeckError('%s:%d: timestep %.6g s is below the resolution of the time %.6g s (a double\'s): the time '
+                        'would not advance; use a step above %.3g s' % (
+                            K.at('YDC/DCSTEC', 0, end) + (dt, t0, math.nextafter(abs(t0), math.inf) - abs(t0))))
     if g('YDI/MICOUP') > 0 and g('YDI/MISTATE') < 6:
         raise DeckError('%s:%d: /YD/YDI/MISTATE = %d with /YD/YDI/MICOUP = %d: contact needs MISTATE >= 6 (sliding '
                         'state per couple and edge; the anchor crashes otherwise)' % (
