@@ -56,7 +56,8 @@ What is translated (native syntax = the SYNTAX dict below, one place to adapt):
                                 contact self contact_tris, contact buffer DIEZON joined keep
                                 surface all search travel shared keep; nothing when no triangle
                                 takes part; triangles of a property with D1PEPE 0 (no force with
-                                anyone: Y2D's pair penalty is the smaller D1PEPE) are left out
+                                anyone: Y2D's pair penalty is the smaller D1PEPE) take part with
+                                pen_n 0.0, their couples kept (and counted) as Y2D keeps them
   D2NVC                      -> velocity GROUP set VX VY, one group per distinct initial velocity
   BC sets (/YD/YDPN/, global frame only):
     kind 3 (velocity) amp 0 in x and y        -> fix ID GROUP fixed xy   (x or y alone likewise)
@@ -1110,13 +1111,14 @@ def convert(src, out):
         iwfast = g('YDC/IWFAST', 1)
         part = [e for e in range(ne) if iwfast == 0 or meshed[e] or any(nobf[v] == 1 for v in elto[e][:3])]
         # Y2D's pair penalty is the smaller D1PEPE of the two properties (ALGORITHMS 6): a triangle of a property
-        # with D1PEPE 0 gets no contact force from any couple, and a native contact rule refuses its material
-        # (no pen_n): left out of contact.  The converter kept it, and the converted deck was refused, 2026-11-29.
+        # with D1PEPE 0 gets no contact force from any couple, but its couples exist (Y2D's search is geometric,
+        # ALGORITHMS 5) and are counted, as yfdem DECK.y counts them.  Kept in contact: its material's 'pen_n 0.0',
+        # written out, is one a native contact rule takes (the converter left such triangles out, and its deck
+        # had fewer contact couples than yfdem DECK.y, 2026-11-29).
         nopen = sorted({elpr[e] for e in part if not float(pen_n[elpr[e]]) > 0})
         if nopen:
-            part = [e for e in part if float(pen_n[elpr[e]]) > 0]
             note('propert%s %s: D1PEPE 0, so no couple with %s triangles carries a contact force in Y2D (the pair '
-                 'penalty is the smaller D1PEPE): left out of contact' % (
+                 'penalty is the smaller D1PEPE): in contact with pen_n 0, the couples kept as Y2D keeps them' % (
                      'y' if len(nopen) == 1 else 'ies', ' '.join(map(str, nopen)), 'its' if len(nopen) == 1 else 'their'))
         L.append('# contact (Y2D MICOUP %d, buffer DIEZON, IWFAST %d: %d of %d triangles take part)'
                  % (g('YDI/MICOUP'), iwfast, len(part), ne))
