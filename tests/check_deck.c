@@ -324,18 +324,9 @@ START_TEST(loop_sum) {
   deck_free(d);
   /* the jump's label is substituted (LAMMPS substitutes every line it runs): `jump SELF l${i}` picks one of
    * the fixed labels l2, l3 in turn; each adds its own weight, so s = 10 (l2) + 100 (l3) */
-  d = run_here("variable s string 0\n"
-               "variable i index 2 3\n"
-               "label top\n"
-               "jump SELF l${i}\n"
-               "label l2\n"
-               "variable s string $(v_s + 10)\n"
-               "next i\n"
-               "jump SELF top\n"
-               "label l3\n"
-               "variable s string $(v_s + 100)\n"
-               "next i\n"
-               "jump SELF top\n"
+  d = run_here("variable s string 0\nvariable i index 2 3\nlabel top\njump SELF l${i}\n"
+               "label l2\nvariable s string $(v_s + 10)\nnext i\njump SELF top\n"
+               "label l3\nvariable s string $(v_s + 100)\nnext i\njump SELF top\n"
                "variable after equal 1\n");
   ck_assert_double_eq(val(d, "s"), 110.0);
   ck_assert_double_eq(val(d, "after"), 1.0);
