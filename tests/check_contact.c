@@ -457,6 +457,31 @@ START_TEST(test_participation_and_off) {
 }
 END_TEST
 
+/* A material of pen_n 0 written out (the converted Y2D deck of a property of D1PEPE 0): Y2D forms its couples by
+ * geometry alone (ALGORITHMS 5) and presses them with p_n = 0 (6: the smaller D1PEPE), so they exist and carry no
+ * force.  A contact rule refused the material (the converter then left its triangles out, and its deck counted
+ * fewer couples than yfdem DECK.y); a pen_n not written at all is still refused as forgotten (test_deck_errors).
+ * The blocks pass through each other untouched: no other force acts, so each keeps its momentum exactly. */
+START_TEST(test_zero_penalty_written_keeps_couples) {
+  quiet();
+  YfSim *s = yft_run("material m elastic rho 1000 E 1e8 nu 0.25 plane_strain pen_n 0 friction 0.3\n"
+                     "mesh rect a m 0 0 0.1 0.05 8 4\nmesh rect b m 0.101 0 0.201 0.05 8 4\n"
+                     "velocity a set 3 0\nvelocity b set -1 0\ncontact pair a b\ntimestep 1e-6\nrun 0\n");
+  Stat a0 = gstat(s, "a"), b0 = gstat(s, "b");
+  long most = 0;
+  for (int k = 0; k < 40; k++) { /* 10 ms at 4 m/s closing: 40 mm, past the 1 mm gap by 39 mm */
+    run_steps(s, 250);
+    if (contact_pairs(s) > most) most = contact_pairs(s);
+  }
+  Stat a = gstat(s, "a"), b = gstat(s, "b");
+  ck_assert_msg(most > 0, "no contact couple formed");
+  ck_assert_msg(a.xmax > b.xmin + 0.03, "the blocks did not overlap: a ends at %g, b starts at %g", a.xmax, b.xmin);
+  ck_assert_double_eq_tol(a.px, a0.px, 1e-12 * fabs(a0.px));
+  ck_assert_double_eq_tol(b.px, b0.px, 1e-12 * fabs(b0.px));
+  ck_assert_double_eq(s->energy.contact, 0.0);
+}
+END_TEST
+
 /* HDF5 dumps carry the contact force per node (field fc) while contact is on: it is in every
  * frame, with the node count's rows, zero in frame 0 (before the first contact evaluation; until
  * 2026-11-28 frame 0 had no fc, so ParaView's reader did not offer it) and nonzero during the
@@ -716,6 +741,7 @@ Suite *contact_suite(void) {
   tcase_add_test(t, test_joined_skip_counts);
   tcase_add_test(t, test_dump_contact_force_field);
   tcase_add_test(t, test_deck_errors);
+  tcase_add_test(t, test_zero_penalty_written_keeps_couples);
   tcase_add_test(t, test_self_contact_sets_the_step);
   tcase_add_test(t, test_impact_above_penalty_warned);
   tcase_add_test(t, test_oblique_impact_friction_balance);

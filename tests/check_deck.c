@@ -322,6 +322,15 @@ START_TEST(loop_sum) {
   ck_assert_double_eq(val(d, "c"), 10.0);     /* the body ran exactly 10 times */
   ck_assert_double_eq(val(d, "after"), 1.0);  /* the skipped jump fell through */
   deck_free(d);
+  /* the jump's label is substituted (LAMMPS substitutes every line it runs): `jump SELF l${i}` picks one of
+   * the fixed labels l2, l3 in turn; each adds its own weight, so s = 10 (l2) + 100 (l3) */
+  d = run_here("variable s string 0\nvariable i index 2 3\nlabel top\njump SELF l${i}\n"
+               "label l2\nvariable s string $(v_s + 10)\nnext i\njump SELF top\n"
+               "label l3\nvariable s string $(v_s + 100)\nnext i\njump SELF top\n"
+               "variable after equal 1\n");
+  ck_assert_double_eq(val(d, "s"), 110.0);
+  ck_assert_double_eq(val(d, "after"), 1.0);
+  deck_free(d);
 }
 END_TEST
 
@@ -659,6 +668,14 @@ START_TEST(error_expressions_and_variables) {
   /* the labels there are: a misspelt one was named alone */
   expect_error("label loop_a\nlabel done\njump SELF loopa\n", 1,
                "e.deck:3: error: jump: label 'loopa': no 'label loopa' in e.deck (its labels: loop_a, done)", NULL, NULL);
+  /* `label l${i}`: LAMMPS substitutes the jump's label but no line it skips looking for the label (input.cpp
+   * parse: "except if searching for a label"), so l${i} as written is not 'l2' and LAMMPS stops at the end of
+   * the file; yfdem matches labels the same way, and now says why a label it lists is not the one named */
+  expect_error("variable i loop 3\nlabel l${i}\nnext i\njump SELF l${i}\n", 1,
+               "e.deck:4: error: jump: label 'l2': no 'label l2' in e.deck (its labels: l${i}); labels are matched as "
+               "written: as in LAMMPS, no variable is substituted in the lines skipped looking for a label, so a label "
+               "holding '$' is not its value: give each label a fixed name (label l1, label l2, ...) and jump to l${i}",
+               NULL, NULL);
   expect_error("if \"v_q > 1\" then \"print x\"\n", 1, "e.deck:1: error: if: condition 'v_q > 1': unknown variable 'q' (no variable is defined)",
                "  if \"v_q > 1\" then \"print x\"", "      ^");
   expect_error("if 1 \"print x\"\n", 1, "e.deck:1: error: if: 'print x': expected 'then' after the condition", NULL,
@@ -1126,6 +1143,17 @@ START_TEST(error_unicode_lines) {
                "(U+2212, a minus sign: write -)", NULL, NULL);
   expect_error("print $(2\xa0+1)\n", 1, "e.deck:1: error: expression '2\xa0+1': unexpected byte 0xA0 (not UTF-8 text) after number",
                NULL, NULL);
+  /* look-alikes the Y2D reader named and the expressions did not (one table now, utf8name.h): a full-width
+   * digit, a zero-width space, an overlong encoding of '-' (not UTF-8 text, was decoded as '-') */
+  expect_error("print $(2*\xef\xbc\x93)\n", 1,
+               "e.deck:1: error: expression '2*\xef\xbc\x93': expected a number, a name or '(' but found '\xef\xbc\x93' "
+               "(U+FF13, a full-width digit: write 3)", NULL, NULL);
+  expect_error("print $(2\xe2\x80\x8b)\n", 1,
+               "e.deck:1: error: expression '2\xe2\x80\x8b': unexpected '\xe2\x80\x8b' (U+200B, a zero-width space: delete it) "
+               "after number", NULL, NULL);
+  expect_error("print $(2*\xc0\xad""3)\n", 1,
+               "e.deck:1: error: expression '2*\xc0\xad""3': expected a number, a name or '(' but found byte 0xC0 (not UTF-8 "
+               "text)", NULL, NULL);
 }
 END_TEST
 

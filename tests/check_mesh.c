@@ -1527,10 +1527,28 @@ START_TEST(test_gmsh_msh41_binary_hand_written) {
   bad_bin41("c7.msh", bad, n, off[3], "$Nodes: node tag 0 is not in 1..");
   PATCH(off[3], (uint64_t)4);
   bad_bin41("c8.msh", bad, n, off[3], "$Nodes: node tag 4 is defined twice");
-  /* a count the rest of the file cannot hold is refused before its memory is taken */
+  /* a count the rest of the file cannot hold is refused before its memory is taken, naming the count's bytes
+   * (not the header's first, the number of blocks: 2026-11-29) */
   size_t cnt = (size_t)((char *)memmem(buf, n, "$Nodes\n", 7) - buf) + 7 + 8; /* the number of nodes */
   PATCH(cnt, (uint64_t)100000000);
-  bad_bin41("c7b.msh", bad, n, cnt - 8, "$Nodes: 100000000 nodes take at least 3200000000 bytes, more than the");
+  bad_bin41("c7b.msh", bad, n, cnt, "$Nodes: 100000000 nodes take at least 3200000000 bytes, more than the");
+  /* a corrupt field of a block header is named with its own bytes (a field after the first named the block's
+   * first byte, or the header's): a node block's entity dimension 7, parametric flag 2; the $Elements header's
+   * element count above what yfdem takes, and -1 (a size_t: 2^64 - 1); an element block's count -1 */
+  PATCH(cnt + 24, (int32_t)7);
+  bad_bin41("c7c.msh", bad, n, cnt + 24, "$Nodes: entity dimension 7 is not 0..3");
+  PATCH(cnt + 32, (int32_t)2);
+  bad_bin41("c7d.msh", bad, n, cnt + 32, "$Nodes: parametric flag 2 is neither 0 nor 1");
+  size_t ecnt = (size_t)((char *)memmem(buf, n, "$Elements\n", 10) - buf) + 10 + 8; /* the number of elements */
+  PATCH(ecnt, (uint64_t)600000000);
+  bad_bin41("c7e.msh", bad, n, ecnt, "$Elements: bad counts in the $Elements header (3 blocks, 600000000 elements): the "
+            "number of elements, 600000000, is above 536870911");
+  PATCH(ecnt, (uint64_t)-1);
+  bad_bin41("c7f.msh", bad, n, ecnt, "$Elements: the number of elements is 18446744073709551615, beyond "
+            "9223372036854775807 (read as a signed integer: -1)");
+  PATCH(off[5] + 12, (uint64_t)-1);
+  bad_bin41("c7g.msh", bad, n, off[5] + 12, "$Elements: the number of elements in a block is 18446744073709551615, "
+            "beyond 9223372036854775807 (read as a signed integer: -1)");
   PATCH(off[4], (double)NAN);
   bad_bin41("c9.msh", bad, n, off[4], "$Nodes: a node x is not a finite number");
   PATCH(off[4] + 8, (double)INFINITY);
@@ -1539,10 +1557,12 @@ START_TEST(test_gmsh_msh41_binary_hand_written) {
   bad_bin41("c11.msh", bad, n, off[7], "$Elements: node 9 of element 5 is not defined in $Nodes");
   PATCH(off[5], (int32_t)7);
   bad_bin41("c12.msh", bad, n, off[5], "$Elements: entity dimension 7 is not 0..3");
+  /* the entity tag and the type, each at its own bytes (both named the block's count, after them, until 2026-11-29) */
   PATCH(off[5] + 4, (int32_t)7);
-  bad_bin41("c13.msh", bad, n, off[5] + 12, "$Elements: element block in surface 7, which $Entities does not define");
+  bad_bin41("c13.msh", bad, n, off[5] + 4, "$Elements: the entity tag of an element block is 7: surface 7, which $Entities "
+            "does not define");
   PATCH(off[5] + 8, (int32_t)3);
-  bad_bin41("c14.msh", bad, n, off[5] + 12, "$Elements: element type 3 (4-node quadrangle) in surface 1 is not supported");
+  bad_bin41("c14.msh", bad, n, off[5] + 8, "$Elements: element type 3 (4-node quadrangle) in surface 1 is not supported");
   PATCH(off[5] + 12, (uint64_t)5);
   bad_bin41("c15.msh", bad, n, off[5] + 12, "$Elements: element block 2 declares 5 elements, more than the 4 left");
   /* an element type of unknown size, in a curve of no physical group (its elements are skipped,
@@ -1553,7 +1573,7 @@ START_TEST(test_gmsh_msh41_binary_hand_written) {
   memcpy(bad + m + 8, buf + off[2] + 12, n - off[2] - 12);
   int32_t t99 = 99;
   memcpy(bad + off[6] - 4, &t99, 4);
-  bad_bin41("c16.msh", bad, n - 4, off[6] - 4 + 4, "$Elements: element type 99 in curve 1 is no Gmsh element type yfdem "
+  bad_bin41("c16.msh", bad, n - 4, off[6] - 4, "$Elements: element type 99 in curve 1 is no Gmsh element type yfdem "
             "knows, so its binary data cannot be read past");
 #undef PATCH
 }

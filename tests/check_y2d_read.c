@@ -784,6 +784,10 @@ START_TEST(test_non_ascii_named) {
        "is not a number", 24},
       {"/YD/YDPE/D1PERO 1 2000", "/YD/YDPE/D1PERO 1 2000\xe9", "the byte 0xe9 (not ASCII, not UTF-8) at byte 5",
        "is not a number", 24},
+      /* look-alikes the deck's expressions named and this reader did not (one table now, utf8name.h) */
+      {"/YD/YDPE/D1PERO 1 2000", "/YD/YDPE/D1PERO 1 2\xc3\x97""1000", "U+00D7 (a multiplication sign, not the ASCII '*') at byte 2",
+       "is not a number", 24},
+      {"/YD/YDPE/D1PERO 1 2000", "/YD/YDPE/D1PERO 1 2000\xc2\xb2", "U+00B2 (a superscript) at byte 5", "is not a number", 24},
   };
   for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) {
     char *err, want[64];

@@ -12,7 +12,7 @@ Exit status: 0 the converted deck runs the physics of `yfdem DECK.y`; 1 error (a
 read, a value that is not a number, or not an integer where Y2D reads one, a density, bulk modulus
 or joint strength, energy or penalty of a property or joint set in use that is not positive (and a shear
 modulus D1PEMU of 0, which yfdem DECK.y runs as Y2D does and no native material takes), no
-time step, MISTATE < 6 with contact, an element property out of range, NELNO other than 3, a 3D
+time step or one below the resolution of the start time DCTIME (DCTIME + DCSTEC == DCTIME), MISTATE < 6 with contact, an element property out of range, NELNO other than 3, a 3D
 deck, a clockwise triangle, a zero BC axis, a D2NCC short of NNOPO or with a triangle inverted or flat,
 a joint set out of range or not of type 3, a property
 type other than 1, 2, 4, a negative property value, a count above its capacity (NNOPO > MNOPO) or an
@@ -56,7 +56,8 @@ What is translated (native syntax = the SYNTAX dict below, one place to adapt):
                                 contact self contact_tris, contact buffer DIEZON joined keep
                                 surface all search travel shared keep; nothing when no triangle
                                 takes part; triangles of a property with D1PEPE 0 (no force with
-                                anyone: Y2D's pair penalty is the smaller D1PEPE) are left out
+                                anyone: Y2D's pair penalty is the smaller D1PEPE) take part with
+                                pen_n 0.0, their couples kept (and counted) as Y2D keeps them
   D2NVC                      -> velocity GROUP set VX VY, one group per distinct initial velocity
   BC sets (/YD/YDPN/, global frame only):
     kind 3 (velocity) amp 0 in x and y        -> fix ID GROUP fixed xy   (x or y alone likewise)
@@ -563,6 +564,15 @@ def validate(K, path):
     if g('YDC/MCSTEP') > g('YDC/NCSTEP') and not float(g('YDC/DCSTEC', 0)) > 0:
         raise DeckError('%s:%d: /YD/YDC/DCSTEC (the time step) is required and must be > 0 when /YD/YDC/MCSTEP > '
                         '/YD/YDC/NCSTEP' % K.at('YDC/DCSTEC', 0, K.at('YDC/MCSTEP', 0, end)))
+    # `yfdem DECK.y` starts its time at DCTIME, and its run refuses a step below the resolution of that time
+    # (src/step/run.c, the same words at DCSTEC's line): the time would stand still.  The converted deck starts at
+    # t = 0 and ran it (DCTIME 1e300, time tables shifted by -1e300), exit 0.  The rule is run.c's test, in the
+    # same doubles: DCTIME + DCSTEC == DCTIME (a DCSTEC of 0 is no step at all: refused above, or none is taken)
+    t0, dt = float(g('YDC/DCTIME', 0.0)), float(g('YDC/DCSTEC', 0.0))
+    if dt > 0 and t0 + dt == t0:
+        raise DeckError('%s:%d: timestep %.6g s is below the resolution of the time %.6g s (a double\'s): the time '
+                        'would not advance; use a step above %.3g s' % (
+                            K.at('YDC/DCSTEC', 0, end) + (dt, t0, math.nextafter(abs(t0), math.inf) - abs(t0))))
     if g('YDI/MICOUP') > 0 and g('YDI/MISTATE') < 6:
         raise DeckError('%s:%d: /YD/YDI/MISTATE = %d with /YD/YDI/MICOUP = %d: contact needs MISTATE >= 6 (sliding '
                         'state per couple and edge; the anchor crashes otherwise)' % (
@@ -1101,13 +1111,14 @@ def convert(src, out):
         iwfast = g('YDC/IWFAST', 1)
         part = [e for e in range(ne) if iwfast == 0 or meshed[e] or any(nobf[v] == 1 for v in elto[e][:3])]
         # Y2D's pair penalty is the smaller D1PEPE of the two properties (ALGORITHMS 6): a triangle of a property
-        # with D1PEPE 0 gets no contact force from any couple, and a native contact rule refuses its material
-        # (no pen_n): left out of contact.  The converter kept it, and the converted deck was refused, 2026-11-29.
+        # with D1PEPE 0 gets no contact force from any couple, but its couples exist (Y2D's search is geometric,
+        # ALGORITHMS 5) and are counted, as yfdem DECK.y counts them.  Kept in contact: its material's 'pen_n 0.0',
+        # written out, is one a native contact rule takes (the converter left such triangles out, and its deck
+        # had fewer contact couples than yfdem DECK.y, 2026-11-29).
         nopen = sorted({elpr[e] for e in part if not float(pen_n[elpr[e]]) > 0})
         if nopen:
-            part = [e for e in part if float(pen_n[elpr[e]]) > 0]
             note('propert%s %s: D1PEPE 0, so no couple with %s triangles carries a contact force in Y2D (the pair '
-                 'penalty is the smaller D1PEPE): left out of contact' % (
+                 'penalty is the smaller D1PEPE): in contact with pen_n 0, the couples kept as Y2D keeps them' % (
                      'y' if len(nopen) == 1 else 'ies', ' '.join(map(str, nopen)), 'its' if len(nopen) == 1 else 'their'))
         L.append('# contact (Y2D MICOUP %d, buffer DIEZON, IWFAST %d: %d of %d triangles take part)'
                  % (g('YDI/MICOUP'), iwfast, len(part), ne))

@@ -24,7 +24,8 @@ static void group_names(const YfModel *m, char *buf, size_t cap) {
   if (!buf[0]) snprintf(buf, cap, "none");
 }
 
-/* Group word i of a contact command: must exist and hold triangles whose materials have pen_n. */
+/* Group word i of a contact command: must exist and hold triangles whose materials have pen_n (a pen_n
+ * of 0 written out is meant: the couples exist and carry no force, as Y2D's of a property of D1PEPE 0). */
 static int rule_group(YfSim *s, const YfArgs *a, int i) {
   YfModel *m = &s->model;
   const char *name = arg_word(a, i, "group");
@@ -40,7 +41,7 @@ static int rule_group(YfSim *s, const YfArgs *a, int i) {
     if (!(m->tri.gmask[t] & bit)) continue;
     ntri++;
     const YfMaterial *mt = &m->mat[m->tri.mat[t]];
-    if (!(mt->pen_n > 0))
+    if (!(mt->pen_n > 0) && !mt->pen_n_given)
       arg_error(a, i, "material '%s' of its triangles has no normal contact penalty: add 'pen_n P' [Pa] "
                 "(typically 1-10 x E) to its material command", mt->name);
   }

@@ -7,6 +7,7 @@
 #include <string.h>
 #include "deck.h"
 #include "output.h"
+#include "utf8name.h"
 #include "y2d_model.h"
 #include "y2dref.h"
 
@@ -67,19 +68,11 @@ static struct YfY2dRef *parse_y2dref(YfSim *s, const YfArgs *a) {
  * a surrogate or beyond U+10FFFF; a control character other than tab), or -1 when there is none.
  * A Latin-1 name ('\xe9t\xe9.h5') went into the index as it was: not well-formed XML. */
 static long not_xml_text(const char *s) {
-  const unsigned char *u = (const unsigned char *)s;
-  for (long i = 0; u[i];) {
-    unsigned c = u[i];
-    int n = c < 0x80 ? 0 : (c & 0xE0) == 0xC0 ? 1 : (c & 0xF0) == 0xE0 ? 2 : (c & 0xF8) == 0xF0 ? 3 : -1;
-    if (n < 0 || (n == 0 && c < 0x20 && c != '\t')) return i;
-    unsigned cp = n == 0 ? c : n == 1 ? c & 0x1F : n == 2 ? c & 0x0F : c & 0x07;
-    for (int k = 1; k <= n; k++) {
-      if ((u[i + k] & 0xC0) != 0x80) return i;
-      cp = (cp << 6) | (u[i + k] & 0x3F);
-    }
-    static const unsigned least[4] = {0, 0x80, 0x800, 0x10000};
-    if (cp < least[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF) || cp == 0xFFFE || cp == 0xFFFF) return i;
-    i += n + 1;
+  for (long i = 0; s[i];) {
+    unsigned cp;
+    int n = yf_utf8_decode(s + i, &cp);
+    if (!n || (cp < 0x20 && cp != '\t') || cp == 0xFFFE || cp == 0xFFFF) return i;
+    i += n;
   }
   return -1;
 }

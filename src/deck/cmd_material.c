@@ -23,6 +23,7 @@ void cmd_material(YfSim *s, const YfArgs *a) {
   if (idx >= 0) arg_error(a, 0, "material already defined (each name once)");
   double rho = -1, E = -1, nu = -2, lam = 0, mu = -1, visc = 0, beta = 0, volfac = 0.5;
   double pn = 0, pt = -1, fr = 0;
+  int pn_given = 0;
   int plane = -1, law = YF_FRIC_COULOMB;
   /* the word of each keyword given, 0 when absent: messages point at the word at fault (any
    * number is a valid lambda, so no value can stand for "not given") */
@@ -50,7 +51,7 @@ void cmd_material(YfSim *s, const YfArgs *a) {
       volfac = arg_pos(a, i + 1, "volfac");
       if (volfac != 0.5 && volfac != 1.0) arg_error(a, i + 1, "volfac must be 0.5 (book Y2D) or 1 (Y-Geo)");
       break;
-    case 10: pn = arg_nonneg(a, i + 1, "pen_n"); break;
+    case 10: pn = arg_nonneg(a, i + 1, "pen_n"), pn_given = 1; break;
     case 11: pt = arg_nonneg(a, i + 1, "pen_t"); break;
     case 12: fr = arg_nonneg(a, i + 1, "friction"); break;
     case 13: {
@@ -93,7 +94,7 @@ void cmd_material(YfSim *s, const YfArgs *a) {
   if (law == YF_FRIC_COULOMB && pt >= 0 && pt > pn)
     arg_error(a, 0, "pen_t %g is above pen_n %g: with the coulomb friction law the tangential stiffness is pen_t / pen_n "
               "of the normal one and must not exceed it (give pen_t <= pen_n, or friction_law y2d)", pt, pn);
-  YfMaterial m = {.rho = rho, .volfac = volfac, .visc = visc, .beta = beta, .pen_n = pn,
+  YfMaterial m = {.rho = rho, .volfac = volfac, .visc = visc, .beta = beta, .pen_n = pn, .pen_n_given = pn_given,
                   .pen_t = pt < 0 ? pn : pt, .fric = fr, .fric_law = law};
   snprintf(m.name, sizeof m.name, "%s", name);
   if (given_e) {

@@ -1476,8 +1476,11 @@ void deck_cmd_next(struct YfSim *sim, const YfArgs *a) {
 }
 
 /* Index of the line after `label NAME` in s, or -1.  label NULL: none is found, and the names of
- * the labels there are go into list (for the message of a label that is not there). */
-static int find_label(DeckSource *s, const char *label, Buf *list) {
+ * the labels there are go into list (for the message of a label that is not there).  A label is
+ * matched as written: like LAMMPS, which substitutes no variable in the lines it skips looking
+ * for a label (a variable there may not be defined yet), `label l${i}` is not 'l2'; *dollar
+ * (when not NULL) is set when a label there holds a '$', for the message. */
+static int find_label(DeckSource *s, const char *label, Buf *list, int *dollar) {
   for (int i = 0; i < s->n; i++) {
     const char *t = s->lines[i].text;
     if (strncmp(t, "label", 5) || !isspace((unsigned char)t[5])) continue;
@@ -1487,6 +1490,7 @@ static int find_label(DeckSource *s, const char *label, Buf *list) {
     int n = split_words(t, &w, &cols, &errcol, &why);
     if (n < 0) continue;
     int hit = n >= 2 && label && !strcmp(w[1], label);
+    if (n >= 2 && dollar && strchr(w[1], '$')) *dollar = 1;
     if (n >= 2 && list && list->n < 200) {
       if (list->n) buf_put(list, ", ");
       buf_put(list, w[1]);
@@ -1515,12 +1519,17 @@ void deck_cmd_jump(struct YfSim *sim, const YfArgs *a) {
   }
   int pos = 0;
   if (a->n == 2) {
-    pos = find_label(s, a->w[1], NULL);
+    pos = find_label(s, a->w[1], NULL, NULL);
     if (pos < 0) { /* what is there: a misspelt label was named alone */
       Buf list = {0};
-      find_label(s, NULL, &list);
-      arg_fail(a, 1, "label", "no 'label %s' in %s (%s%s%s)", a->w[1], s->name, list.n ? "its labels: " : "it has no label",
-               list.n ? list.s : "", list.n >= 200 ? ", ..." : "");
+      int dollar = 0;
+      find_label(s, NULL, &list, &dollar);
+      arg_fail(a, 1, "label", "no 'label %s' in %s (%s%s%s)%s", a->w[1], s->name, list.n ? "its labels: " : "it has no label",
+               list.n ? list.s : "", list.n >= 200 ? ", ..." : "",
+               dollar ? "; labels are matched as written: as in LAMMPS, no variable is substituted in the lines "
+                        "skipped looking for a label, so a label holding '$' is not its value: give each label a "
+                        "fixed name (label l1, label l2, ...) and jump to l${i}"
+                      : "");
     }
   }
   f->src = s;

@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "expr.h"
+#include "utf8name.h"
 
 #define EXPR_MAX_ARGS 16
 /* Nesting of parentheses, function calls, unary signs and '^' exponents: each level is a few
@@ -51,40 +52,25 @@ static void skip_ws(Parser *P) {
 
 /* Describe the token at p for messages: "'x'" or "end of expression".  A character beyond ASCII
  * is written whole (its first byte alone printed a broken character), with its code and, for
- * the ones a word processor puts in place of ASCII ones, what to write instead. */
+ * the ones a word processor puts in place of ASCII ones (utf8name.h's table), what to write instead. */
 static void describe(const char *p, char *buf, size_t n) {
   if (!*p) {
     snprintf(buf, n, "end of expression");
     return;
   }
-  unsigned char c = (unsigned char)*p;
-  if (c < 0x80) {
+  unsigned cp;
+  int len = yf_utf8_decode(p, &cp);
+  if (len == 1) {
     snprintf(buf, n, "'%c'", *p);
     return;
   }
-  int len = c >= 0xF0 ? 4 : c >= 0xE0 ? 3 : c >= 0xC0 ? 2 : 1, ok = 1;
-  unsigned cp = len == 1 ? c : c & (0xFFu >> (len + 1));
-  for (int i = 1; i < len && ok; i++) {
-    ok = ((unsigned char)p[i] & 0xC0) == 0x80;
-    cp = (cp << 6) | ((unsigned char)p[i] & 0x3F);
-  }
-  if (len == 1 || !ok) {
-    snprintf(buf, n, "byte 0x%02X (not UTF-8 text)", c);
+  if (!len) {
+    snprintf(buf, n, "byte 0x%02X (not UTF-8 text)", cp);
     return;
   }
-  static const struct { unsigned cp; const char *use; } alike[] = {
-      {0x201C, "a typographic quote: write \" or '"}, {0x201D, "a typographic quote: write \" or '"},
-      {0x2018, "a typographic quote: write ' or \""}, {0x2019, "a typographic quote: write ' or \""},
-      {0x00D7, "a multiplication sign: write *"},    {0x22C5, "a dot operator: write *"},
-      {0x00B7, "a middle dot: write *"},             {0x00F7, "a division sign: write /"},
-      {0x2212, "a minus sign: write -"},             {0x2013, "a dash: write -"},
-      {0x00A0, "a non-breaking space: write a space"}, {0x202F, "a non-breaking space: write a space"},
-      {0x2009, "a thin space: write a space"},       {0x00B2, "a superscript: write ^2"},
-      {0x00B3, "a superscript: write ^3"},           {0x03C0, "pi: write pi"},
-  };
-  const char *use = "expressions are ASCII";
-  for (size_t i = 0; i < sizeof alike / sizeof alike[0]; i++)
-    if (alike[i].cp == cp) use = alike[i].use;
+  YfLookalike l;
+  char use[64] = "expressions are ASCII";
+  if (yf_lookalike(cp, &l)) snprintf(use, sizeof use, *l.ascii ? "%s: write %s" : "%s: delete it", l.name, l.ascii);
   snprintf(buf, n, "'%.*s' (U+%04X, %s)", len, p, cp, use);
 }
 

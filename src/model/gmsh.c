@@ -311,7 +311,9 @@ static long rd_size(Msh *r, const char *what) {
   if (r->swap) bin_swap(b, 8);
   uint64_t v;
   memcpy(&v, b, 8);
-  if (v > LONG_MAX) msh_fail(r, r->tokline, "%s is %llu, beyond %ld", what, (unsigned long long)v, LONG_MAX);
+  if (v > LONG_MAX) /* a negative count written as a signed integer reads as one beyond 2^63: said so */
+    msh_fail(r, r->tokline, "%s is %llu, beyond %ld (read as a signed integer: %lld)", what, (unsigned long long)v,
+             LONG_MAX, (long long)v);
   return (long)v;
 }
 
@@ -327,6 +329,35 @@ static double rd_double(Msh *r, const char *what) {
   double v = bin_double(r, rd_bin(r, 8));
   if (!isfinite(v)) msh_fail(r, r->tokline, "%s is not a finite number", what);
   return v;
+}
+
+/* The header of a MSH 4.1 $Nodes or $Elements section (what: "node" or "element"): the number of
+ * blocks, the number of nodes or elements, the smallest and the largest tag.  A count out of range is
+ * refused naming it and, in a binary file, its own bytes (the header's first byte was named for any).
+ * Returns the total; *nblk the number of blocks, *hline the header's line, *at_ntot where the total's
+ * bytes are, for the complaints about it once the blocks are read (r->binat is left there). */
+static long rd_header41(Msh *r, const char *what, long *nblk, int *hline, size_t *at_ntot) {
+  char total[48], lo[48], hi[48];
+  snprintf(total, sizeof total, "the number of %ss", what);
+  snprintf(lo, sizeof lo, "the smallest %s tag", what);
+  snprintf(hi, sizeof hi, "the largest %s tag", what);
+  *nblk = rd_size(r, "the number of entity blocks");
+  *hline = r->tokline;
+  const size_t at_nblk = r->binat;
+  const long ntot = rd_size(r, total);
+  *at_ntot = r->binat;
+  rd_size(r, lo);
+  rd_size(r, hi);
+  const int blocks = *nblk < 0; /* the field at fault: ASCII counts can be negative, binary ones too large */
+  r->binat = blocks ? at_nblk : *at_ntot;
+  if (blocks || ntot < 0 || ntot > INT_MAX / 4) {
+    char why[48] = "negative";
+    if (!blocks && ntot > 0) snprintf(why, sizeof why, "above %d", INT_MAX / 4);
+    msh_fail(r, *hline, "bad counts in the %s header (%ld blocks, %ld %ss): %s, %ld, is %s", r->section, *nblk, ntot,
+             what, blocks ? "the number of entity blocks" : total, blocks ? *nblk : ntot, why);
+  }
+  r->binat = *at_ntot;
+  return ntot;
 }
 
 /* Into the binary data of a MSH 4.1 section (r->section), after its name's line. */
@@ -847,15 +878,10 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       if (have_nodes) msh_fail(r, r->tokline, "a second $Nodes section");
       r->section = "$Nodes";
       rd_begin(r);
-      long nblk = rd_size(r, "the number of entity blocks");
-      int hline = r->tokline;
-      size_t hat = r->binat; /* binary: complaints about the header name its first byte */
-      long ntot = rd_size(r, "the number of nodes");
-      rd_size(r, "the smallest node tag");
-      rd_size(r, "the largest node tag");
-      if (nblk < 0 || ntot < 0 || ntot > INT_MAX / 4)
-        msh_fail(r, r->tokline, "bad counts in the $Nodes header (%ld blocks, %ld nodes)", nblk, ntot);
-      r->binat = hat;
+      long nblk;
+      int hline;
+      size_t at_ntot;
+      long ntot = rd_header41(r, "node", &nblk, &hline, &at_ntot);
       nodes_alloc(r, hline, ntot, &ntag, &nx, &ny, &used);
       Flat f = {0};
       for (long b = 0; b < nblk; b++) {
@@ -879,7 +905,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
         for (long i = 0; i < nin; i++) node_xyz(r, o->scale, &f, nn + i, ntag[nn + i], nx, ny, extra);
         nn += nin;
       }
-      r->binat = hat;
+      r->binat = at_ntot;
       if (nn != ntot)
         msh_fail(r, hline, "the blocks hold %ld nodes but the header declares %ld", nn, ntot);
       rd_end(r);
@@ -1051,37 +1077,39 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
       r->section = "$Elements";
       if (!have_nodes) msh_fail(r, r->tokline, "$Elements comes before $Nodes");
       rd_begin(r);
-      long nblk = rd_size(r, "the number of entity blocks");
-      int hline = r->tokline;
-      size_t hat = r->binat; /* binary: complaints about the header name its first byte */
-      long ntot = rd_size(r, "the number of elements");
-      rd_size(r, "the smallest element tag");
-      rd_size(r, "the largest element tag");
-      if (nblk < 0 || ntot < 0 || ntot > INT_MAX / 4)
-        msh_fail(r, r->tokline, "bad counts in the $Elements header (%ld blocks, %ld elements)", nblk, ntot);
+      long nblk;
+      int hline;
+      size_t at_ntot;
+      long ntot = rd_header41(r, "element", &nblk, &hline, &at_ntot);
       long ne = 0;
       for (long b = 0; b < nblk; b++) {
         long edim = rd_int(r, "the entity dimension of an element block");
         int bline = r->tokline;
         if (edim < 0 || edim > 3) msh_fail(r, bline, "entity dimension %ld is not 0..3", edim);
+        /* binary: where the block's entity tag and type are, for the complaints about them below (read
+         * on, the last value read was the block's count, and they named its bytes) */
         long etag = rd_int(r, "the entity tag of an element block");
+        size_t at_etag = r->binat;
         long type = rd_int(r, "the element type");
+        size_t at_type = r->binat;
         long nin = rd_size(r, "the number of elements in a block");
         if (nin < 0 || nin > ntot - ne)
           msh_fail(r, r->tokline, "element block %ld declares %ld elements, more than the %ld left of "
                    "the header's total %ld", b + 1, nin, ntot - ne, ntot);
         int ei = -1;
+        r->binat = at_etag; /* the entity's complaints name its tag's bytes, the type's its own */
         if (have_pent) {
           ei = ent_find(&pmap, (int)edim, etag);
-          if (ei < 0) msh_fail(r, bline, "element block in %s %ld, which $PartitionedEntities does not define",
-                               dim_word[edim], etag);
+          if (ei < 0) msh_fail(r, bline, "the entity tag of an element block is %ld: %s %ld, which $PartitionedEntities "
+                               "does not define", etag, dim_word[edim], etag);
         } else if (have_ent) {
           ei = ent_find(&emap, (int)edim, etag);
-          if (ei < 0) msh_fail(r, bline, "element block in %s %ld, which $Entities does not define",
-                               dim_word[edim], etag);
+          if (ei < 0) msh_fail(r, bline, "the entity tag of an element block is %ld: %s %ld, which $Entities does not "
+                               "define", etag, dim_word[edim], etag);
         }
         int physical = ei >= 0 && ent[ei].nphys > 0;
         int want; /* node tags per element */
+        r->binat = at_type;
         const int keep = elem_keep(r, bline, edim, type, etag, physical, &want); /* 1 triangles, 2 group nodes, 0 skip */
         if (ei < 0 && keep == 1) {
           /* no $Entities: remember the surface so triangles still know where they came from */
@@ -1147,7 +1175,7 @@ int gmsh_read(YfModel *m, const char *path, const YfGmshOpts *o) {
         }
         ne += nin;
       }
-      r->binat = hat;
+      r->binat = at_ntot;
       if (ne != ntot)
         msh_fail(r, hline, "the blocks hold %ld elements but the header declares %ld", ne, ntot);
       rd_end(r);

@@ -48,6 +48,8 @@ typedef struct {
   double beta;     /* if > 0: visc = 2 h beta sqrt(E rho), h = smallest edge of the material */
   /* contact (contact.c): penalties [Pa] and Coulomb friction coefficient      */
   double pen_n, pen_t, fric;
+  int pen_n_given; /* 1: the deck wrote pen_n, so a pen_n of 0 is meant (a Y2D property of D1PEPE 0, whose
+                      couples exist and carry no force); 0: a contact rule refuses pen_n 0 as forgotten */
   int fric_law;    /* YF_FRIC_* (contact_pair.h): 0 = Y2D's (read_y2d, zeroed default),
                       native `material` commands set the Coulomb law unless told y2d */
   int rigid;       /* reserved for Y2D type 2 triangles                          */

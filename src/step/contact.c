@@ -559,7 +559,7 @@ void contact_prepare(YfSim *s) {
   for (int k = 0; k < C->nitem; k++) {
     int t = C->item[k];
     const YfMaterial *mt = &m->mat[m->tri.mat[t]];
-    if (mt->pen_n > 0) continue;
+    if (mt->pen_n > 0 || mt->pen_n_given) continue; /* pen_n 0 written out: no force, meant */
     for (int r = 0; r < C->nrule; r++)
       if (C->rule[r].native && ((C->ma[t] | C->mb[t]) >> r & 1))
         yf_deck_error(C->rule[r].loc.file ? &C->rule[r].loc : NULL,

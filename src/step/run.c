@@ -701,7 +701,8 @@ void run_steps(YfSim *s, long nsteps) {
                   s->dt, limit, lim, limit);
   }
   /* time is a double: a step below its resolution at the current time leaves it where it is
-   * ('timestep 1e-300' after a run: the time stood still and the run ended "ok") */
+   * ('timestep 1e-300' after a run: the time stood still and the run ended "ok"); a Y2D deck's time starts
+   * at DCTIME, and tools/y2d2deck.py refuses DCTIME + DCSTEC == DCTIME with these words too */
   if (s->time + s->dt == s->time)
     yf_deck_error(s->dt_loc.file ? &s->dt_loc : NULL, "timestep %.6g s is below the resolution of the time %.6g s "
                   "(a double's): the time would not advance; use a step above %.3g s", s->dt, s->time,

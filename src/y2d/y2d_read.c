@@ -33,6 +33,7 @@
 #include "memcap.h"
 #include "model.h"
 #include "y2d_read.h"
+#include "utf8name.h"
 
 /* ------------------------------------------------------------------ key table */
 
@@ -437,39 +438,25 @@ static void short_list(Rd *r, int key, const YfLoc *kloc, const char *what, long
 /* The first non-ASCII character of token t, named, for the messages that quote t: "" when t is ASCII.
  * Decks copied from a word processor, a PDF or a web page hold look-alikes (a no-break space between a
  * key and its value, a minus sign U+2212, full-width digits) that the quoted token hides: "'200 ' is not a
- * number".  Y2D splits tokens at ASCII white space only and reads keys and numbers in ASCII. */
+ * number".  Y2D splits tokens at ASCII white space only and reads keys and numbers in ASCII.  The names
+ * come from utf8name.h's table, which the deck's expressions name from too. */
 static const char *non_ascii_note(const char *t) {
   static char note[256]; /* the reader is one thread; the message is printed before the next call */
   const unsigned char *u = (const unsigned char *)t;
   size_t i = 0;
   while (u[i] && u[i] < 0x80) i++;
   if (!u[i]) return "";
-  /* decode one UTF-8 sequence (2 to 4 bytes, continuation bytes 10xxxxxx) */
-  int len = u[i] >= 0xf0 && u[i] < 0xf5 ? 4 : u[i] >= 0xe0 ? 3 : u[i] >= 0xc2 && u[i] < 0xe0 ? 2 : 0;
-  long cp = len == 4 ? (u[i] & 0x07) : len == 3 ? (u[i] & 0x0f) : (u[i] & 0x1f);
-  for (int k = 1; k < len; k++) {
-    if ((u[i + (size_t)k] & 0xc0) != 0x80) {
-      len = 0;
-      break;
-    }
-    cp = cp << 6 | (u[i + (size_t)k] & 0x3f);
-  }
+  unsigned cp;
+  YfLookalike l;
   char what[96];
-  if (!len)
-    snprintf(what, sizeof what, "the byte 0x%02x (not ASCII, not UTF-8)", u[i]);
+  if (!yf_utf8_decode(t + i, &cp))
+    snprintf(what, sizeof what, "the byte 0x%02x (not ASCII, not UTF-8)", cp);
+  else if (!yf_lookalike(cp, &l))
+    snprintf(what, sizeof what, "U+%04X (not ASCII)", cp);
+  else if (strlen(l.ascii) == 1 && ispunct((unsigned char)l.ascii[0])) /* a sign's look-alike: name the sign */
+    snprintf(what, sizeof what, "U+%04X (%s, not the ASCII '%s')", cp, l.name, l.ascii);
   else
-    snprintf(what, sizeof what, "U+%04lX (%s)", cp,
-             cp == 0xa0 ? "a no-break space"
-             : cp == 0x202f ? "a narrow no-break space"
-             : cp >= 0x2000 && cp <= 0x200a ? "a Unicode space"
-             : cp == 0x200b ? "a zero-width space"
-             : cp == 0x3000 ? "an ideographic space"
-             : cp == 0xfeff ? "a zero-width no-break space"
-             : cp == 0x2212 ? "a minus sign, not the ASCII '-'"
-             : cp >= 0x2010 && cp <= 0x2015 ? "a dash, not the ASCII '-'"
-             : cp >= 0xff10 && cp <= 0xff19 ? "a full-width digit"
-             : cp == 0x2018 || cp == 0x2019 || cp == 0x201c || cp == 0x201d ? "a typographic quote"
-                                                                             : "not ASCII");
+    snprintf(what, sizeof what, "U+%04X (%s)", cp, l.name);
   snprintf(note, sizeof note, "it holds %s at byte %zu: Y2D splits tokens at ASCII white space only and reads keys "
            "and numbers in ASCII; retype it in ASCII", what, i + 1);
   return note;
