@@ -727,6 +727,34 @@ START_TEST(test_inverted_names_dcstec) {
 }
 END_TEST
 
+/* MCSTEP <= NCSTEP: Y2D computes no step, so a DCSTEC of 0 is no error there; `yfdem DECK.y` warned
+ * "no time step will be computed" and then stopped with "run: no time step set (use 'timestep DT' ...)",
+ * exit 1, no file:line and a native command's advice (2026-11-29 sweep).  Now it warns, computes
+ * nothing and ends ok with 0 steps, as with a DCSTEC given. */
+START_TEST(test_no_steps_no_dcstec) {
+  char *text = yft_slurp("tests/y2d/tiny.y", 0);
+  ck_assert_ptr_nonnull(text);
+  const char *mc = strstr(text, "/YD/YDC/MCSTEP 10\n"), *dt = strstr(text, "/YD/YDC/DCSTEC 1e-6\n");
+  ck_assert(mc && dt && mc < dt);
+  const size_t lm = strlen("/YD/YDC/MCSTEP 10\n"), ld = strlen("/YD/YDC/DCSTEC 1e-6\n");
+  char deck[4096];
+  snprintf(deck, sizeof deck, "%.*s/YD/YDC/MCSTEP 0\n%.*s/YD/YDC/DCSTEC 0\n%s", (int)(mc - text), text,
+           (int)(dt - mc - lm), mc + lm, dt + ld);
+  free(text);
+  char *err = NULL, *dir = NULL;
+  int code = yft_run_binary("idle.y", deck, "-log none -summary s.json", &err, &dir);
+  ck_assert_msg(code == 0 && strstr(err, "no time step will be computed") && !strstr(err, "error"), "exit %d: %s",
+                code, err);
+  char path[600];
+  snprintf(path, sizeof path, "%s/s.json", dir);
+  char *js = yft_slurp(path, 0);
+  ck_assert_msg(js && strstr(js, "\"status\": \"ok\"") && strstr(js, "\"steps\": 0,"), "%s", js ? js : "no summary");
+  free(js);
+  free(err);
+  free(dir);
+}
+END_TEST
+
 /* IWFAST below 0: yfdem takes only flagged triangles into contact, as for IWFAST > 0 (y2d_model.c: all of them
  * with IWFAST 0 only), but the warning about boundary nodes left unflagged was given for IWFAST > 0 only: tiny.y
  * with IWFAST -1 and no I1NOBF flag ran without contact and without a word (2026-11-29 sweep).  The count is of
@@ -942,6 +970,7 @@ Suite *y2d_read_suite(void) {
   tcase_add_loop_test(tc, test_bad_decks, 0, (int)(sizeof bad / sizeof bad[0]));
   tcase_add_test(tc, test_missing_deck);
   tcase_add_test(tc, test_inverted_names_dcstec);
+  tcase_add_test(tc, test_no_steps_no_dcstec);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -1337,7 +1337,14 @@ def convert(src, out):
              'command sets the step counter): its step numbers (summary, thermo lines, dump frames) are those of '
              'yfdem DECK.y less %d, and its thermo lines and dumps every N steps fall at its own multiples of N; '
              'the physics is the same' % (kf, kl, ncstep, ncstep, ncstep))
-    L.append(SYNTAX['timestep'].format(dt=dt))
+    # MCSTEP <= NCSTEP with DCSTEC 0 (validate allows it): Y2D and yfdem DECK.y compute nothing, and
+    # a native run, even of 0 steps, needs a time step: the converted deck builds the scene only
+    idle = nsteps <= 0 and not dt > 0
+    if idle:
+        note('/YD/YDC/MCSTEP <= /YD/YDC/NCSTEP and DCSTEC 0: Y2D computes nothing; the converted deck builds the '
+             'scene and has no timestep or run')
+    else:
+        L.append(SYNTAX['timestep'].format(dt=dt))
     icshtf = int(g('YDC/ICSHTF', 100))
     if not 0 < icshtf <= 2000000000:
         note('ICSHTF %d: no progress lines in Y2D; written as thermo 0 (start and end only)' % icshtf)
@@ -1350,7 +1357,8 @@ def convert(src, out):
         icoutf = 10
     if icoutf <= nsteps:
         L.append(SYNTAX['dump'].format(n=icoutf, file=deck_word(base + '.h5')))
-    L.append(SYNTAX['run'].format(n=max(nsteps, 0)))
+    if not idle:
+        L.append(SYNTAX['run'].format(n=max(nsteps, 0)))
     if 'YDO/NOHYS' in K:
         note('history output /YD/YDO/ not translated (output only)')
     head = ['# NOTES: DIFFERS = the converted deck does not run the physics of the .y there; WARNING = the same '

@@ -761,5 +761,9 @@ void y2d_run_file(YfSim *s, const char *path) {
             "(OUT.deck dumps every %ld steps), or a deck: read_y2d %s, dump d1 h5 %ld out.h5, run", y->icoutf, y->icoutf,
             path, path, y->icoutf, path, y->icoutf);
   }
+  /* MCSTEP <= NCSTEP: Y2D computes no step, and a deck that gives it no time step (DCSTEC 0) is
+   * not wrong for that (the reader warned at $YDOIT); a step-0 run would need one, so there is
+   * none, as after a $YSTOP before any $YDOIT */
+  if (n <= 0 && !(s->dt > 0)) return;
   run_steps(s, n > 0 ? n : 0);
 }
