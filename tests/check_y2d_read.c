@@ -755,6 +755,27 @@ START_TEST(test_no_steps_no_dcstec) {
 }
 END_TEST
 
+/* A native contact rule over the triangles of a Y2D property of D1PEPE 0: the penalty is the deck's own
+ * (Y2D's couples without force), so the rule takes them; it was refused with "add 'pen_n P' to its
+ * material command", a command the .y has no place for (2026-11-29). */
+START_TEST(test_zero_dcpepe_native_contact) {
+  char *text = yft_slurp("tests/y2d/tiny.y", 0);
+  ck_assert_ptr_nonnull(text);
+  const char *pe = strstr(text, "/YD/YDPE/D1PEPE 1 1e10\n");
+  ck_assert_ptr_nonnull(pe);
+  char y[4096], deck[1024];
+  snprintf(y, sizeof y, "%.*s/YD/YDPE/D1PEPE 1 0\n%s", (int)(pe - text), text, pe + strlen("/YD/YDPE/D1PEPE 1 1e10\n"));
+  free(text);
+  char *dir = yft_deck_dir("pe0.y", y);
+  snprintf(deck, sizeof deck, "read_y2d %s/pe0.y\ncontact self y2d\nrun 2\n", dir);
+  char *err = NULL;
+  int code = yft_run_binary("pe0.deck", deck, "-log none", &err, NULL);
+  ck_assert_msg(code == 0 && !strstr(err, "pen_n"), "exit %d: %s", code, err);
+  free(err);
+  free(dir);
+}
+END_TEST
+
 /* IWFAST below 0: yfdem takes only flagged triangles into contact, as for IWFAST > 0 (y2d_model.c: all of them
  * with IWFAST 0 only), but the warning about boundary nodes left unflagged was given for IWFAST > 0 only: tiny.y
  * with IWFAST -1 and no I1NOBF flag ran without contact and without a word (2026-11-29 sweep).  The count is of
@@ -971,6 +992,7 @@ Suite *y2d_read_suite(void) {
   tcase_add_test(tc, test_missing_deck);
   tcase_add_test(tc, test_inverted_names_dcstec);
   tcase_add_test(tc, test_no_steps_no_dcstec);
+  tcase_add_test(tc, test_zero_dcpepe_native_contact);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -535,6 +535,7 @@ static int load(YfSim *s, const char *path, double volfac, const YfLoc *from, in
 
     mt->visc = y->d1peks[p];
     mt->pen_n = y->d1pepe[p];
+    mt->pen_n_given = 1; /* D1PEPE 0 is Y2D's own value (couples without force): a native contact rule takes it */
     mt->pen_t = y->d1pept[p];
     mt->fric = y->d1pefr[p];
     model_lame_moduli(mt); /* E, nu: the energy check's round-off floor is 1e-16 E per unit area */
