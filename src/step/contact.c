@@ -99,7 +99,11 @@ typedef struct YfContact {
   int impact_warned;       /* contact_check_impact said it once                    */
   double first_travel;     /* >= 0: the next setup's travel counter, no forced search */
   int *mlaw;               /* per material: friction law YF_FRIC_* (contact_pair.h) */
-  int *jpart, *jidx;     /* joined skip: 3 per triangle, partner triangle and joint (-1 none) */
+  int joined_on;         /* joined skip mode with joints                                        */
+  int *jpart, *jidx;     /* joined skip: 3 per triangle jlo..jhi-1 (the lower triangles a search
+                            keeps couples of: every triangle on one process, a rank's own on
+                            ranks), partner triangle and joint (-1 none)                        */
+  int jlo, jhi;
   const unsigned char *jstate;
 
   /* couples */
@@ -165,6 +169,7 @@ static void free_prepared(YfContact *C) {
   free(C->mpn); free(C->mpt); free(C->mmu); free(C->mlaw);
   free(C->jpart); free(C->jidx);
   C->item = C->pnode = C->jpart = C->jidx = NULL;
+  C->joined_on = 0;
   C->ma = C->mb = NULL;
   C->cx = C->cy = C->cr = C->mpn = C->mpt = C->mmu = NULL;
   C->mlaw = NULL;
@@ -374,11 +379,36 @@ static unsigned char *boundary_nodes(const YfModel *m) {
   return bn;
 }
 
-static int joined_keep(int i, int j, void *ctx) {
+static int joined_keep(int i, int j, void *ctx) { /* i: the lower triangle, in jlo..jhi-1 */
   const YfContact *C = ctx;
+  const size_t q = 3 * (size_t)(i - C->jlo);
   for (int k = 0; k < 3; k++)
-    if (C->jpart[3 * i + k] == j && C->jstate[C->jidx[3 * i + k]] == 0) return 0;
+    if (C->jpart[q + k] == j && C->jstate[C->jidx[q + k]] == 0) return 0;
   return 1;
+}
+
+/* The joined partners of triangles lo..hi-1 (joined_keep; again when a re-cut moves a rank's). */
+static void joined_build(const YfSim *s, YfContact *C, int lo, int hi) {
+  const YfJoints *J = s->joints;
+  const size_t n3 = 3 * (size_t)(hi > lo ? hi - lo : 1);
+  free(C->jpart); free(C->jidx);
+  C->jpart = yf_malloc(n3 * sizeof(int), "contact joined");
+  C->jidx = yf_malloc(n3 * sizeof(int), "contact joined");
+  for (size_t k = 0; k < n3; k++) C->jpart[k] = C->jidx[k] = -1;
+  for (int j = 0; j < J->n; j++)
+    for (int side = 0; side < 2; side++) {
+      int t = J->tri[2 * j + side], o = J->tri[2 * j + 1 - side];
+      if (t < lo || t >= hi) continue;
+      int *p = C->jpart + 3 * (size_t)(t - lo);
+      for (int k = 0; k < 3; k++)
+        if (p[k] < 0) {
+          p[k] = o;
+          C->jidx[3 * (size_t)(t - lo) + k] = j;
+          break;
+        }
+    }
+  C->jlo = lo;
+  C->jhi = hi;
 }
 
 /* The contact penalty's share of the nodes' stiffness for the stable time step (contact.h). */
@@ -605,21 +635,11 @@ void contact_prepare(YfSim *s) {
 
   /* joined couples (skip mode) */
   if (C->joined_skip && s->joints && s->joints->n) {
-    const YfJoints *J = s->joints;
-    C->jpart = yf_malloc((size_t)3 * (nt > 0 ? nt : 1) * sizeof(int), "contact joined");
-    C->jidx = yf_malloc((size_t)3 * (nt > 0 ? nt : 1) * sizeof(int), "contact joined");
-    for (int k = 0; k < 3 * nt; k++) C->jpart[k] = C->jidx[k] = -1;
-    for (int j = 0; j < J->n; j++)
-      for (int side = 0; side < 2; side++) {
-        int t = J->tri[2 * j + side], o = J->tri[2 * j + 1 - side];
-        for (int k = 0; k < 3; k++)
-          if (C->jpart[3 * t + k] < 0) {
-            C->jpart[3 * t + k] = o;
-            C->jidx[3 * t + k] = j;
-            break;
-          }
-      }
-    C->jstate = J->state;
+    /* one process: every triangle's partners, made here; MPI: at the search, for the lower
+     * triangles it keeps couples of */
+    C->joined_on = 1;
+    if (par_size() == 1) joined_build(s, C, 0, nt);
+    C->jstate = s->joints->state;
     C->broken_seen = joints_broken(s);
   }
 
@@ -710,16 +730,18 @@ static void search(YfSim *s, YfContact *C) {
   f.mask = C->ma;
   f.mask2 = C->mb;
   f.tri_v = C->keep_shared ? NULL : m->tri.v;
-  if (C->jpart) {
-    f.keep = joined_keep;
-    f.ctx = C;
-  }
   /* MPI, couples laid out by ranks: a rank finds only the couples whose lower triangle it owns
    * (it evaluates those), the others' partners serving as upper triangles only */
   const int *tlo = par_tri_lo();
   if (tlo && (C->local || par_divided())) {
     f.lower_lo = tlo[par_rank()];
     f.lower_hi = tlo[par_rank() + 1];
+  }
+  if (C->joined_on) {
+    const int lo = f.lower_hi > f.lower_lo ? f.lower_lo : 0, hi = f.lower_hi > f.lower_lo ? f.lower_hi : m->tri.n;
+    if (!C->jpart || C->jlo != lo || C->jhi != hi) joined_build(s, C, lo, hi);
+    f.keep = joined_keep;
+    f.ctx = C;
   }
   if (par_divided()) { /* MPI: each rank its own triangles against its neighbours' (below) */
     search_ranks(s, C, &f);
@@ -1486,7 +1508,7 @@ void contact_step(YfSim *s) {
     vmax2 = contact_vmax2(C->npn, C->pnode, nd->vx, nd->vy);
   }
   int due = contact_trigger_step(&C->trig, dt, vmax2);
-  if (C->jpart) {
+  if (C->joined_on) {
     long nb = joints_broken(s);
     if (nb != C->broken_seen) { due = 1; C->broken_seen = nb; } /* newly free faces must see each other now */
   }
