@@ -878,12 +878,14 @@ END_TEST
  * items' discs, its couples' triangles) is made again when a re-cut moves the range, and a
  * restart read on another rank count makes it for the new ranges.  The one-sided rubble deck with
  * joined couples skipped (a couple of an intact joint is left out by its lower triangle's partner
- * list) and a fixed plate edge (each fix's own acting bits): re-balanced on 2 and 3 ranks, the
- * bits are ./yfdem's; written after the re-cut on 2 ranks and read on 3 and on 1, the run
- * continues bitwise. */
+ * list), a search at every step (so that searches follow the re-cut: the deck searches once by
+ * travel) and a fixed plate edge (each fix's own acting bits): re-balanced on 2 and 3 ranks, the
+ * bits and the couple count are ./yfdem's (partners kept for the first cut's range let in 5000
+ * joined couples after the re-cut, with the same state hash); written after the re-cut on 2 ranks
+ * and read on 3 and on 1, the run continues bitwise. */
 START_TEST(range_buffers_follow_recut) {
   if (!mpi_ready()) return;
-  static const char more[] = "contact joined skip\nregion pe box 0.163 -1 1 1\ngroup pe node region pe\nfix pe pe fixed x\n";
+  static const char more[] = "contact joined skip search every\nregion pe box 0.163 -1 1 1\ngroup pe node region pe\nfix pe pe fixed x\n";
   char *d = workdir(), path[PATH_MAX + 32], deck[sizeof REBAL_DECK + sizeof more + 128];
   snprintf(deck, sizeof deck, "%s%srun 100\n", REBAL_DECK, more);
   write_file(d, "full.deck", deck);
