@@ -458,6 +458,7 @@ static void layout(YfSim *s) {
   scratch_release();
 }
 
+static void tri_weights(const YfSim *s);
 void par_prepare(YfSim *s, int nblk, int block) {
   const YfModel *m = &s->model;
   int nt = m->tri.n, S = P.size;
@@ -490,6 +491,9 @@ void par_prepare(YfSim *s, int nblk, int block) {
   free(P.erec);
   P.erec = yf_malloc(3 * ((size_t)nblk + 1) * sizeof(double), "block records");
   layout(s);
+  /* the re-cut's weights now, while the run's buffers (the contact couples) are not yet made:
+   * their whole-scene scratch (4 B per node) at the first weighing set a rank's peak at 1e6 */
+  if (S > 1 && nt >= 4 * 256 * S) tri_weights(s);
 }
 
 void par_blocks(int *b0, int *b1) {
