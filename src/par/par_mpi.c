@@ -874,8 +874,9 @@ static void divide(YfSim *s) {
    * with the owner of its first joint's lower triangle), nodes the kinds read; listed are only
    * the nodes this rank receives (not its own, not shared), each once: a corner is met by
    * up to 6 triangles and a joint's node by 2 joints, and the list of every corner and joint node
-   * of a rank was 3 ints a triangle and 4 a joint (with the ghost array sized from it, 56 MB a rank at 1e6 on 2 ranks) where its
-   * ghosts are a few thousand; LISTED marks what is in it (cleared below) */
+   * of a rank was 3 ints a triangle and 4 a joint (with the ghost array sized from it, 56 MB a
+   * rank at 1e6 on 2 ranks) where its ghosts are a few thousand; LISTED marks what is in it
+   * (cleared below) */
   const int own0 = P.nlo[me], own1 = P.nlo[me + 1];
   int ns = 0;
   room((void **)&P.sneed, &P.csneed, 1024, sizeof(int));
