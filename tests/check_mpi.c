@@ -872,6 +872,46 @@ START_TEST(rebalance_contact_work) {
 }
 END_TEST
 
+
+/* What a rank holds for its own range only (docs/SCALING.md section 1: the force gather's lists
+ * for its nodes, the joined partners of its lower triangles under 'contact joined skip', its
+ * items' discs, its couples' triangles) is made again when a re-cut moves the range, and a
+ * restart read on another rank count makes it for the new ranges.  The one-sided rubble deck with
+ * joined couples skipped (a couple of an intact joint is left out by its lower triangle's partner
+ * list), a search at every step (so that searches follow the re-cut: the deck searches once by
+ * travel) and a fixed plate edge (each fix's own acting bits): re-balanced on 2 and 3 ranks, the
+ * bits and the couple count are ./yfdem's (partners kept for the first cut's range let in 5000
+ * joined couples after the re-cut, with the same state hash); written after the re-cut on 2 ranks
+ * and read on 3 and on 1, the run continues bitwise. */
+START_TEST(range_buffers_follow_recut) {
+  if (!mpi_ready()) return;
+  static const char more[] = "contact joined skip search every\nregion pe box 0.163 -1 1 1\ngroup pe node region pe\nfix pe pe fixed x\n";
+  char *d = workdir(), path[PATH_MAX + 32], deck[sizeof REBAL_DECK + sizeof more + 128];
+  snprintf(deck, sizeof deck, "%s%srun 100\n", REBAL_DECK, more);
+  write_file(d, "full.deck", deck);
+  snprintf(deck, sizeof deck, "%s%srun 50\nwrite_restart half.restart\n", REBAL_DECK, more);
+  write_file(d, "first.deck", deck);
+  snprintf(deck, sizeof deck, "%s%sread_restart half.restart\nrun 100 upto\n", REBAL_DECK, more);
+  write_file(d, "second.deck", deck);
+  ck_assert_int_eq(run_in(d, 0, 1, "-in full.deck -summary full.json", NULL), 0);
+  snprintf(path, sizeof path, "%s/full.json", d);
+  char *ref = key_lines(path);
+  for (int ranks = 2; ranks <= 3; ranks++) {
+    ranks_match(d, ranks, "-in full.deck -summary m.json", ref, "joined skip, a fix, re-balanced");
+    ck_assert_msg(count_in(d, "out.txt", "not re-balanced") == 0 && count_in(d, "out.txt", "re-balanced ") == 1,
+                  "%d ranks: the borders did not move: the test does not test a re-cut", ranks);
+  }
+  free(ref);
+  ck_assert_int_eq(run_in(d, 2, 1, "-in first.deck", NULL), 0);
+  ck_assert_msg(count_in(d, "out.txt", "re-balanced 1 time") == 1, "2 ranks, first half: not re-balanced");
+  for (int ranks = 3; ranks >= 1; ranks -= 2) {
+    ck_assert_int_eq(run_in(d, ranks, 1, "-in second.deck -summary cont.json", NULL), 0);
+    fprintf(stderr, "check_mpi: joined skip and a fix, re-cut on 2 ranks, restart read on %d: %s as ./yfdem's run\n",
+            ranks, same_hash_as_full(d, "joined skip, restart after a re-cut"));
+  }
+  drop_dir(d);
+}
+END_TEST
 /* Re-balancing an unpartitioned mesh (below 8192 triangles; found by a sweep of new decks,
  * 2026-11-29): a concrete block with a fracturing zone hit by a steel block, 1600 triangles
  * each.  On 2 ranks the first cut falls between the bodies, where the node order follows the
@@ -1490,6 +1530,10 @@ Suite *mpi_suite(void) {
   tcase_set_timeout(tp, 900);
   tcase_add_test(tp, deck_through_a_pipe_on_ranks);
   suite_add_tcase(s, tp);
+  TCase *tr = tcase_create("ranges"); /* what a rank sizes to its range, made again for a new one */
+  tcase_set_timeout(tr, 900);
+  tcase_add_test(tr, range_buffers_follow_recut);
+  suite_add_tcase(s, tr);
   TCase *t = tcase_create("mpi");
   tcase_set_timeout(t, 900);
   tcase_add_test(t, matrix_column);

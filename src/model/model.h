@@ -103,10 +103,13 @@ typedef struct {
   YfMaterial *mat;
   YfBody *body;
   YfGroup group[YF_MAX_GROUPS];
-  /* node -> force slot gather (CSR), built by model_prepare: the force of node i is the sum of
-   * slot[gather_slot[k]] for k in gather_off[i]..gather_off[i+1]-1, in that fixed order, so any
-   * thread count gives the same bits.  Slots 0..3*ntri-1 are triangle corners (tri.cf). */
+  /* node -> force slot gather (CSR), built by run_prepare for the nodes whose force this process
+   * sums, gather_n0 .. gather_n1-1 (every node on one process; an MPI rank's own range): the force
+   * of node i is the sum of slot[gather_slot[k]] for k in gather_off[i - gather_n0] ..
+   * gather_off[i - gather_n0 + 1] - 1, in that fixed order, so any thread count gives the same
+   * bits.  Slots 0..3*ntri-1 are triangle corners (tri.cf). */
   int *gather_off, *gather_slot;
+  int gather_n0, gather_n1;
   /* Extra force slots beyond the triangle corners (joints register 4 per joint): slot
    * 3*ntri + k adds (xslot_f[2k], xslot_f[2k+1]) to node xslot_node[k]. */
   int nxslot;

@@ -118,7 +118,7 @@ static struct {
   double bal_from, bal_to;  /* the first re-cut's weight imbalance before, the last's after     */
   double t_recut;           /* wall seconds of this run's re-cuts                              */
   int lay_id;               /* changes with the triangle ranges (par_prepare, a re-cut)         */
-  void *sc[4];              /* the layout's scratch: owner, seen, trank, jrank                 */
+  void *sc[4];              /* the layout's scratch: owner, seen, trank, jrank (scratch_release) */
   size_t sc_cap[4];
 } P;
 
@@ -230,13 +230,23 @@ void par_interrupted(void) {
   }
 }
 
-static void *scratch(int k, size_t bytes) { /* kept between calls: a re-cut touches no fresh page */
+/* Whole-scene scratch of a layout (4 B per node or triangle each: 34 MB a rank at 1e6), held
+ * only while the ranges are made (par_prepare, a re-cut's weights and layout): a run reads none. */
+static void *scratch(int k, size_t bytes) {
   if (bytes > P.sc_cap[k]) {
     free(P.sc[k]);
     P.sc[k] = yf_malloc(bytes, "rank layout");
     P.sc_cap[k] = bytes;
   }
   return P.sc[k];
+}
+
+static void scratch_release(void) {
+  for (int k = 0; k < 4; k++) {
+    free(P.sc[k]);
+    P.sc[k] = NULL;
+    P.sc_cap[k] = 0;
+  }
 }
 
 /* Node ranges and the slot halo from owner[] (node -> rank, -1: no triangle) and trank[]
@@ -445,8 +455,10 @@ static void layout(YfSim *s) {
   P.sn.n = -1;
   P.se.n = -1;
   count_ghosts(s);
+  scratch_release();
 }
 
+static void tri_weights(const YfSim *s);
 void par_prepare(YfSim *s, int nblk, int block) {
   const YfModel *m = &s->model;
   int nt = m->tri.n, S = P.size;
@@ -479,6 +491,9 @@ void par_prepare(YfSim *s, int nblk, int block) {
   free(P.erec);
   P.erec = yf_malloc(3 * ((size_t)nblk + 1) * sizeof(double), "block records");
   layout(s);
+  /* the re-cut's weights now, while the run's buffers (the contact couples) are not yet made:
+   * their whole-scene scratch (4 B per node) at the first weighing set a rank's peak at 1e6 */
+  if (S > 1 && nt >= 4 * 256 * S) tri_weights(s);
 }
 
 void par_blocks(int *b0, int *b1) {
@@ -671,7 +686,8 @@ static int owner_of(int i) { /* nlo[a] <= i < nlo[a + 1] */
   return a;
 }
 
-enum { GHOST = 8 }; /* the nmark bit above the kinds' YF_BC_*: this rank receives the node */
+enum { GHOST = 8, LISTED = 16 }; /* nmark bits above the kinds' YF_BC_*: this rank receives the node;
+                                  * in the list being made (divide) */
 
 /* Room for n items of `size` bytes in *p (capacity *cap, grown by half again, never shrunk): the
  * ghost lists change at each contact search; they allocate only when they outgrow their room. */
@@ -757,14 +773,19 @@ void par_ghost_exchange(YfNodes *n) {
 void par_contact_ghosts(YfNodes *n, const int *nodes, int nnodes) {
   if (!P.div) return;
   double t0 = yf_now();
-  room((void **)&P.cneed, &P.ccneed, nnodes + 1, sizeof(int));
-  memcpy(P.cneed, nodes, (size_t)nnodes * sizeof(int));
-  P.ncneed = nnodes;
+  /* the other ranks' nodes only (most of the couples' corners are this rank's own) */
+  const int n0 = P.nlo[P.rank], n1 = P.nlo[P.rank + 1];
+  int nf = 0;
+  for (int k = 0; k < nnodes; k++) nf += nodes[k] < n0 || nodes[k] >= n1;
+  room((void **)&P.cneed, &P.ccneed, nf + 1, sizeof(int));
+  P.ncneed = 0;
+  for (int k = 0; k < nnodes; k++)
+    if (nodes[k] < n0 || nodes[k] >= n1) P.cneed[P.ncneed++] = nodes[k];
   build_requests();
   P.t_comm += yf_now() - t0;
-  int nf = P.nodes_fresh;
+  int fresh = P.nodes_fresh;
   par_ghost_exchange(n); /* the new ghosts' state now: this step's couples read them */
-  P.nodes_fresh = nf;
+  P.nodes_fresh = fresh;
 }
 
 static void divide(YfSim *s);
@@ -850,12 +871,21 @@ static void divide(YfSim *s) {
   for (int q = 0; q < P.nshared; q++)
     if (P.shared[q] < P.nlo[me] || P.shared[q] >= P.nlo[me + 1]) P.extra[P.nextra++] = P.shared[q];
   /* the fixed ghosts: corners of this rank's triangles, nodes of its joint blocks (a block goes
-   * with the owner of its first joint's lower triangle), nodes the kinds read */
+   * with the owner of its first joint's lower triangle), nodes the kinds read; listed are only
+   * the nodes this rank receives (not its own, not shared), each once: a corner is met by
+   * up to 6 triangles and a joint's node by 2 joints, and the list of every corner and joint node
+   * of a rank was 3 ints a triangle and 4 a joint (with the ghost array sized from it, 56 MB a
+   * rank at 1e6 on 2 ranks) where its ghosts are a few thousand; LISTED marks what is in it
+   * (cleared below) */
+  const int own0 = P.nlo[me], own1 = P.nlo[me + 1];
   int ns = 0;
-  room((void **)&P.sneed, &P.csneed, 3 * (P.tlo[me + 1] - P.tlo[me]) + nn / 16 + 16, sizeof(int));
+  room((void **)&P.sneed, &P.csneed, 1024, sizeof(int));
   int *sn = P.sneed, cap = P.csneed;
-#define PUSH(i) do { if (ns == cap) sn = yf_realloc(sn, (size_t)(cap *= 2) * sizeof(int), "ghost nodes"); \
-                     sn[ns++] = (i); } while (0)
+#define PUSH(i) do { const int i_ = (i); \
+                     if ((i_ >= own0 && i_ < own1) || (P.nmark[i_] & (LISTED | YF_BC_SHARED))) break; \
+                     P.nmark[i_] |= LISTED; \
+                     if (ns == cap) sn = yf_realloc(sn, (size_t)(cap *= 2) * sizeof(int), "ghost nodes"); \
+                     sn[ns++] = i_; } while (0)
   for (int e2 = 3 * P.tlo[me]; e2 < 3 * P.tlo[me + 1]; e2++) PUSH(m->tri.v[e2]);
   const YfJoints *J = s->joints;
   if (J && J->n) {
@@ -870,6 +900,7 @@ static void divide(YfSim *s) {
   for (int i = 0; i < nn; i++)
     if (P.nmark[i] & YF_BC_READS) PUSH(i);
 #undef PUSH
+  for (int k = 0; k < ns; k++) P.nmark[sn[k]] &= (unsigned char)~LISTED;
   P.sneed = sn; /* (kept between calls, as the other ghost lists) */
   P.csneed = cap;
   P.nsneed = ns;
@@ -1163,6 +1194,7 @@ static void tri_weights(const YfSim *s) {
     }
     free(below);
   }
+  scratch_release();
   P.tw_nt = nt;
   P.tw_nn = nn;
   P.tw_nj = nj;

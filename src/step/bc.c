@@ -26,6 +26,8 @@ typedef struct {
   YfBcSpec sp;        /* as the deck command gave it                              */
   /* resolved at bc_prepare: */
   int nn, *nodes;     /* nodes acted on                                           */
+  unsigned char *acts; /* fixes: per node of the list, bit c set when this fix prescribes its
+                          component c (the last fix given that prescribes it acts there)    */
   int ne, *edges;     /* boundary edges (2 node indices each), CCW                */
   double *lf;         /* loads: force applied to each node this step (2 per node)  */
 } YfBcItem;
@@ -33,10 +35,8 @@ typedef struct {
 typedef struct YfBc {
   int n;
   YfBcItem *item;
-  unsigned char *flags; /* per node: bit 0 x prescribed, bit 1 y prescribed */
-  int flags_n;
-  int *owner;           /* per node component (2 per node): the fix that prescribes it (the
-                           last given), -1 none                                            */
+  int *owner;           /* at bc_prepare only (whole scene, 8 B per node, freed after): per
+                           node component, the fix that prescribes it (the last given), -1 none */
   unsigned char *warned; /* per item: its overlap with a later fix (bit 0), a jump at a run's
                             start (bit 1), a distributed load's edges (bit 2) were reported  */
   int warned_n;
@@ -70,7 +70,7 @@ int bc_remove(YfSim *s, const char *id, int load) {
     YfBcItem *it = &b->item[i];
     int isload = it->sp.kind >= BC_POINT;
     if (!strcmp(it->id, id) && isload == load) {
-      free(it->nodes); free(it->edges); free(it->lf);
+      free(it->nodes); free(it->acts); free(it->edges); free(it->lf);
       memmove(it, it + 1, (size_t)(b->n - i - 1) * sizeof *it);
       if (i < b->warned_n) {
         memmove(b->warned + i, b->warned + i + 1, (size_t)(b->warned_n - i - 1));
@@ -97,7 +97,9 @@ int bc_set_velocity(YfSim *s, int group, double vx, double vy) {
 static void resolve_nodes(YfSim *s, YfBcItem *it) {
   YfNodes *n = &s->model.node;
   free(it->nodes);
+  free(it->acts);
   it->nodes = NULL;
+  it->acts = NULL;
   it->nn = 0;
   if (it->sp.kind == BC_POINT) {
     /* The target node and all its copies (joint insertion) share the load equally. */
@@ -214,7 +216,7 @@ static void warn_jumps(YfSim *s, YfBc *b) {
       int j = it->nodes[k];
       const double x[2] = {n->x[j], n->y[j]}, x0[2] = {n->x0[j], n->y0[j]};
       for (int c = 0; c < 2; c++) {
-        if (!it->sp.has[c] || b->owner[2 * j + c] != i) continue;
+        if (!(it->acts[k] >> c & 1)) continue;
         double d = fabs(x0[c] + it->sp.a[c] * ph - x[c]);
         if (d > gap) { gap = d; at = j; }
         moved = fmax(moved, fabs(x[c] - x0[c]));
@@ -283,29 +285,40 @@ static void report_edges(YfSim *s, YfBc *b) {
 
 void bc_prepare(YfSim *s) {
   YfBc *b = bc_get(s);
-  int nn = s->model.node.n;
-  free(b->flags);
-  b->flags = yf_calloc((size_t)(nn ? nn : 1), 1, "bc flags");
-  b->flags_n = nn;
-  free(b->owner);
-  b->owner = yf_malloc((size_t)(nn ? nn : 1) * 2 * sizeof(int), "fix owners");
-  for (int j = 0; j < 2 * nn; j++) b->owner[j] = -1;
+  int nn = s->model.node.n, nfix = 0;
   if (b->warned_n < b->n) {
     b->warned = yf_realloc(b->warned, (size_t)b->n, "fix warnings");
     memset(b->warned + b->warned_n, 0, (size_t)(b->n - b->warned_n));
     b->warned_n = b->n;
   }
   for (int i = 0; i < b->n; i++) {
-    YfBcItem *it = &b->item[i];
-    resolve_nodes(s, it);
-    if (it->sp.kind <= BC_DISPLACEMENT)
-      for (int k = 0; k < it->nn; k++) {
-        b->flags[it->nodes[k]] |= (unsigned char)(it->sp.has[0] | (it->sp.has[1] << 1));
-        for (int c = 0; c < 2; c++)
-          if (it->sp.has[c]) b->owner[2 * it->nodes[k] + c] = i;
-      }
+    resolve_nodes(s, &b->item[i]);
+    nfix += b->item[i].sp.kind <= BC_DISPLACEMENT;
   }
-  warn_overridden(s, b);
+  /* which fix acts on each node component: a whole-scene table for this set-up only (a run keeps
+   * each fix's own bits, the size of its list, not 8 B per node of the scene) */
+  if (nfix) {
+    b->owner = yf_malloc((size_t)(nn ? nn : 1) * 2 * sizeof(int), "fix owners");
+    for (int j = 0; j < 2 * nn; j++) b->owner[j] = -1;
+    for (int i = 0; i < b->n; i++) {
+      const YfBcItem *it = &b->item[i];
+      if (it->sp.kind <= BC_DISPLACEMENT)
+        for (int k = 0; k < it->nn; k++)
+          for (int c = 0; c < 2; c++)
+            if (it->sp.has[c]) b->owner[2 * it->nodes[k] + c] = i;
+    }
+    for (int i = 0; i < b->n; i++) {
+      YfBcItem *it = &b->item[i];
+      if (it->sp.kind > BC_DISPLACEMENT) continue;
+      it->acts = yf_calloc((size_t)(it->nn ? it->nn : 1), 1, "fix components");
+      for (int k = 0; k < it->nn; k++)
+        for (int c = 0; c < 2; c++)
+          if (it->sp.has[c] && b->owner[2 * it->nodes[k] + c] == i) it->acts[k] |= (unsigned char)(1 << c);
+    }
+    warn_overridden(s, b);
+    free(b->owner);
+    b->owner = NULL;
+  }
   warn_jumps(s, b);
   report_edges(s, b);
 }
@@ -315,8 +328,6 @@ const YfBcSpec *bc_spec(const YfSim *s, int i, const char **id) {
   *id = it->id;
   return &it->sp;
 }
-
-const unsigned char *bc_node_flags(const YfSim *s) { return s->bc ? s->bc->flags : NULL; }
 
 /* MPI: every node of a fix or load is shared (par.h): the supports' and loads' work is summed
  * over them in list order, so every rank keeps them whole (lists resolved by bc_prepare). */
@@ -421,7 +432,7 @@ void bc_constrain_velocities(YfSim *s, const double *vx_old, const double *vy_ol
       if (n->m[j] <= 0) continue;
       double *v[2] = {&n->vx[j], &n->vy[j]};
       for (int c = 0; c < 2; c++) {
-        if (!it->sp.has[c] || s->bc->owner[2 * j + c] != i) continue;
+        if (!(it->acts[k] >> c & 1)) continue;
         double target = it->sp.kind == BC_VELOCITY ? it->sp.a[c] * ph : 0.0;
         /* reaction R = m (v_target - v_free)/dt acting over the step at the mean velocity of the
          * two half steps (the central-difference energy measure); with mass damping the free
@@ -451,7 +462,7 @@ void bc_constrain_positions(YfSim *s, const double *x_old, const double *y_old, 
         double *x[2] = {&n->x[j], &n->y[j]}, *v[2] = {&n->vx[j], &n->vy[j]};
         const double x0[2] = {n->x0[j], n->y0[j]}, xo[2] = {x_old[j], y_old[j]};
         for (int c = 0; c < 2; c++) {
-          if (!it->sp.has[c] || s->bc->owner[2 * j + c] != i) continue;
+          if (!(it->acts[k] >> c & 1)) continue;
           double target = x0[c] + it->sp.a[c] * ph;
           double vnew = (target - xo[c]) / s->dt;
           double R = react(s, n->m[j], vnew - *v[c]);
@@ -478,12 +489,11 @@ void bc_free(YfSim *s) {
   if (!s->bc) return;
   for (int i = 0; i < s->bc->n; i++) {
     free(s->bc->item[i].nodes);
+    free(s->bc->item[i].acts);
     free(s->bc->item[i].edges);
     free(s->bc->item[i].lf);
   }
   free(s->bc->item);
-  free(s->bc->flags);
-  free(s->bc->owner);
   free(s->bc->warned);
   free(s->bc);
   s->bc = NULL;

@@ -46,8 +46,6 @@ void bc_constrain_positions(YfSim *s, const double *x_old, const double *y_old, 
  * positions, as x_old + dt v (the operation of the plain position update). */
 void bc_save_old(YfSim *s, double *x_old, double *y_old, double *vx_old, double *vy_old);
 void bc_redo_positions(YfSim *s, const double *x_old, const double *y_old);
-/* Per-node flags: bit 0 x is prescribed, bit 1 y is prescribed (used by contact/energy). */
-const unsigned char *bc_node_flags(const YfSim *s);
 /* Time-step limit implied by anything in bc (none today): INFINITY. */
 void bc_free(YfSim *s);
 /* One fix or load as the deck gave it (write_y2d, y2d_write.c); i = 0..bc_count-1, in deck

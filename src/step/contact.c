@@ -91,13 +91,19 @@ typedef struct YfContact {
   int nitem, *item;      /* participating triangles, increasing                 */
   uint64_t *ma, *mb;     /* rule sides per triangle                             */
   int npn, *pnode;       /* nodes of participating triangles, increasing        */
-  double *cx, *cy, *cr;  /* per item: centroid and radius [m]                   */
+  double *cx, *cy, *cr;  /* per item: centroid and radius [m] (MPI, search by boxes: per item of
+                            the rank's own, from its first, search_ranks)     */
+  int cap_bounds;        /* room in cx, cy, cr                                   */
   int nmat;
   double *mpn, *mpt, *mmu; /* per material: pen_n, pen_t [Pa], friction         */
   int impact_warned;       /* contact_check_impact said it once                    */
   double first_travel;     /* >= 0: the next setup's travel counter, no forced search */
   int *mlaw;               /* per material: friction law YF_FRIC_* (contact_pair.h) */
-  int *jpart, *jidx;     /* joined skip: 3 per triangle, partner triangle and joint (-1 none) */
+  int joined_on;         /* joined skip mode with joints                                        */
+  int *jpart, *jidx;     /* joined skip: 3 per triangle jlo..jhi-1 (the lower triangles a search
+                            keeps couples of: every triangle on one process, a rank's own on
+                            ranks), partner triangle and joint (-1 none)                        */
+  int jlo, jhi;
   const unsigned char *jstate;
 
   /* couples */
@@ -163,6 +169,7 @@ static void free_prepared(YfContact *C) {
   free(C->mpn); free(C->mpt); free(C->mmu); free(C->mlaw);
   free(C->jpart); free(C->jidx);
   C->item = C->pnode = C->jpart = C->jidx = NULL;
+  C->joined_on = 0;
   C->ma = C->mb = NULL;
   C->cx = C->cy = C->cr = C->mpn = C->mpt = C->mmu = NULL;
   C->mlaw = NULL;
@@ -372,11 +379,36 @@ static unsigned char *boundary_nodes(const YfModel *m) {
   return bn;
 }
 
-static int joined_keep(int i, int j, void *ctx) {
+static int joined_keep(int i, int j, void *ctx) { /* i: the lower triangle, in jlo..jhi-1 */
   const YfContact *C = ctx;
+  const size_t q = 3 * (size_t)(i - C->jlo);
   for (int k = 0; k < 3; k++)
-    if (C->jpart[3 * i + k] == j && C->jstate[C->jidx[3 * i + k]] == 0) return 0;
+    if (C->jpart[q + k] == j && C->jstate[C->jidx[q + k]] == 0) return 0;
   return 1;
+}
+
+/* The joined partners of triangles lo..hi-1 (joined_keep; again when a re-cut moves a rank's). */
+static void joined_build(const YfSim *s, YfContact *C, int lo, int hi) {
+  const YfJoints *J = s->joints;
+  const size_t n3 = 3 * (size_t)(hi > lo ? hi - lo : 1);
+  free(C->jpart); free(C->jidx);
+  C->jpart = yf_malloc(n3 * sizeof(int), "contact joined");
+  C->jidx = yf_malloc(n3 * sizeof(int), "contact joined");
+  for (size_t k = 0; k < n3; k++) C->jpart[k] = C->jidx[k] = -1;
+  for (int j = 0; j < J->n; j++)
+    for (int side = 0; side < 2; side++) {
+      int t = J->tri[2 * j + side], o = J->tri[2 * j + 1 - side];
+      if (t < lo || t >= hi) continue;
+      int *p = C->jpart + 3 * (size_t)(t - lo);
+      for (int k = 0; k < 3; k++)
+        if (p[k] < 0) {
+          p[k] = o;
+          C->jidx[3 * (size_t)(t - lo) + k] = j;
+          break;
+        }
+    }
+  C->jlo = lo;
+  C->jhi = hi;
 }
 
 /* The contact penalty's share of the nodes' stiffness for the stable time step (contact.h). */
@@ -497,6 +529,19 @@ void contact_check_impact(YfSim *s, const YfLoc *loc) { check_impact(s, loc, 0);
 
 void contact_check_impact_run(YfSim *s) { check_impact(s, NULL, par_divided()); }
 
+/* Room for the discs (centroid, radius) of n items in C->cx, cy, cr; they exist once prepared
+ * (contact_has_state).  Ranks searching by bounding boxes hold their own items' only, which
+ * change at a re-cut: a margin keeps a rank from allocating again at every search. */
+static void bounds_room(YfContact *C, int n) {
+  if (C->cap_bounds >= n) return;
+  int cap = par_size() == 1 ? n : n + n / 8 + 256;
+  free(C->cx); free(C->cy); free(C->cr);
+  C->cx = yf_malloc((size_t)(cap + 1) * sizeof(double), "contact bounds");
+  C->cy = yf_malloc((size_t)(cap + 1) * sizeof(double), "contact bounds");
+  C->cr = yf_malloc((size_t)(cap + 1) * sizeof(double), "contact bounds");
+  C->cap_bounds = cap;
+}
+
 /* Room for n triangle records of the screen (YF_TRI_GEOM doubles each; their contents are made
  * again at every step).  MPI ranks keep those of their couples' triangles only, which change at
  * a search: a margin keeps a rank from allocating again at every search. */
@@ -579,7 +624,9 @@ void contact_prepare(YfSim *s) {
       if (L < hmin) hmin = L;
     }
   }
-  C->pnode = yf_malloc((size_t)(nn > 0 ? nn : 1) * sizeof(int), "contact nodes");
+  C->npn = 0;
+  for (int i = 0; i < nn; i++) C->npn += mark[i];
+  C->pnode = yf_malloc((size_t)(C->npn > 0 ? C->npn : 1) * sizeof(int), "contact nodes");
   C->npn = 0;
   for (int i = 0; i < nn; i++)
     if (mark[i]) C->pnode[C->npn++] = i;
@@ -588,27 +635,18 @@ void contact_prepare(YfSim *s) {
 
   /* joined couples (skip mode) */
   if (C->joined_skip && s->joints && s->joints->n) {
-    const YfJoints *J = s->joints;
-    C->jpart = yf_malloc((size_t)3 * (nt > 0 ? nt : 1) * sizeof(int), "contact joined");
-    C->jidx = yf_malloc((size_t)3 * (nt > 0 ? nt : 1) * sizeof(int), "contact joined");
-    for (int k = 0; k < 3 * nt; k++) C->jpart[k] = C->jidx[k] = -1;
-    for (int j = 0; j < J->n; j++)
-      for (int side = 0; side < 2; side++) {
-        int t = J->tri[2 * j + side], o = J->tri[2 * j + 1 - side];
-        for (int k = 0; k < 3; k++)
-          if (C->jpart[3 * t + k] < 0) {
-            C->jpart[3 * t + k] = o;
-            C->jidx[3 * t + k] = j;
-            break;
-          }
-      }
-    C->jstate = J->state;
+    /* one process: every triangle's partners, made here; MPI: at the search, for the lower
+     * triangles it keeps couples of */
+    C->joined_on = 1;
+    if (par_size() == 1) joined_build(s, C, 0, nt);
+    C->jstate = s->joints->state;
     C->broken_seen = joints_broken(s);
   }
 
-  C->cx = yf_malloc((size_t)(C->nitem + 1) * sizeof(double), "contact bounds");
-  C->cy = yf_malloc((size_t)(C->nitem + 1) * sizeof(double), "contact bounds");
-  C->cr = yf_malloc((size_t)(C->nitem + 1) * sizeof(double), "contact bounds");
+  /* one process: a disc for every item, made here (no allocation in the step); MPI: at the
+   * first search, for every item (replicated update) or the rank's own (search_ranks) */
+  C->cap_bounds = -1;
+  bounds_room(C, par_size() == 1 ? C->nitem : 0);
   if (C->cap_nodes < nn) {
     C->tmark = yf_realloc(C->tmark, (size_t)nn, "contact gather");
     C->fcn = yf_realloc(C->fcn, (size_t)2 * nn * sizeof(double), "contact node forces");
@@ -692,10 +730,6 @@ static void search(YfSim *s, YfContact *C) {
   f.mask = C->ma;
   f.mask2 = C->mb;
   f.tri_v = C->keep_shared ? NULL : m->tri.v;
-  if (C->jpart) {
-    f.keep = joined_keep;
-    f.ctx = C;
-  }
   /* MPI, couples laid out by ranks: a rank finds only the couples whose lower triangle it owns
    * (it evaluates those), the others' partners serving as upper triangles only */
   const int *tlo = par_tri_lo();
@@ -703,9 +737,16 @@ static void search(YfSim *s, YfContact *C) {
     f.lower_lo = tlo[par_rank()];
     f.lower_hi = tlo[par_rank() + 1];
   }
+  if (C->joined_on) {
+    const int lo = f.lower_hi > f.lower_lo ? f.lower_lo : 0, hi = f.lower_hi > f.lower_lo ? f.lower_hi : m->tri.n;
+    if (!C->jpart || C->jlo != lo || C->jhi != hi) joined_build(s, C, lo, hi);
+    f.keep = joined_keep;
+    f.ctx = C;
+  }
   if (par_divided()) { /* MPI: each rank its own triangles against its neighbours' (below) */
     search_ranks(s, C, &f);
   } else {
+    bounds_room(C, C->nitem);
     contact_search_bounds(C->nitem, C->item, m->tri.v, m->node.x, m->node.y, C->cx, C->cy, C->cr);
     contact_search(&C->work, C->nitem, C->item, C->cx, C->cy, C->cr, C->buffer, &f, &C->fresh);
   }
@@ -953,14 +994,17 @@ static void contact_ghosts(YfSim *s, YfContact *C) {
     DS.tloc = yf_malloc((size_t)nt * sizeof(int), "contact ghosts");
     DS.ntmk = nt;
   }
-  if (DS.crtri < C->nitem + 1) {
+  YF_ASSERT(C->local); /* the divided update runs in halo mode: this rank's couples only */
+  int nmk = 0;
+  for (int k = 0; k < 2 * np; k++)
+    if (!DS.tmk[ij[k]]) DS.tmk[ij[k]] = 1, nmk++;
+  /* the triangles of this rank's couples, not every item (a margin: they change at each search) */
+  if (DS.crtri < nmk + 1) {
     free(DS.rtri); free(DS.rnode);
-    DS.crtri = C->nitem + 1;
+    DS.crtri = nmk + nmk / 8 + 256;
     DS.rtri = yf_malloc((size_t)DS.crtri * sizeof(int), "contact ghosts");
     DS.rnode = yf_malloc(3 * (size_t)DS.crtri * sizeof(int), "contact ghosts");
   }
-  YF_ASSERT(C->local); /* the divided update runs in halo mode: this rank's couples only */
-  for (int k = 0; k < np; k++) DS.tmk[ij[2 * k]] = DS.tmk[ij[2 * k + 1]] = 1;
   int n = 0;
   for (int q = 0; q < C->nitem; q++) {
     int t = C->item[q];
@@ -997,7 +1041,7 @@ typedef struct { double t, cx, cy, r; } Disc;
 enum { CHUNK_MIN = 512, CHUNKS_MAX = 256, FAR_CUTS = 512 }; /* triangles per chunk, at least (but at a cut);
                                                               * chunks per rank by count, at most; far cuts */
 
-/* How far disc k reaches beyond its radius: the buffer, with a margin for rounding. */
+/* How far disc k (of C->cx..) reaches beyond its radius: the buffer, with a margin for rounding. */
 static double disc_pad(const YfContact *C, int k) {
   return (C->cr[k] + C->buffer) * (1.0 + 1e-6) + 1e-12 * (fabs(C->cx[k]) + fabs(C->cy[k]));
 }
@@ -1025,7 +1069,8 @@ static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f) {
   const int S = par_size(), me = par_rank(), *tlo = par_tri_lo();
   const int qa = first_at_least(C->item, C->nitem, tlo[me]), qb = first_at_least(C->item, C->nitem, tlo[me + 1]);
   const double buf = C->buffer;
-  contact_search_bounds(qb - qa, C->item + qa, m->tri.v, m->node.x, m->node.y, C->cx + qa, C->cy + qa, C->cr + qa);
+  bounds_room(C, qb - qa); /* the discs of this rank's items only: C->cx[q - qa] is item q's */
+  contact_search_bounds(qb - qa, C->item + qa, m->tri.v, m->node.x, m->node.y, C->cx, C->cy, C->cr);
   /* this rank's chunks: its items qa.. in order, cut every `per` items, at METIS part borders
    * (two parts need not be near each other) and where a disc lies beyond its chunk's box by more
    * than two of its diameters (a part's order can jump, a fragment can fly: at most FAR_CUTS such
@@ -1043,7 +1088,7 @@ static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f) {
   int *cs = DS.cst, nch = 0, nfar = 0, p = 0;
   double *mine = DS.cbx, *mpad = mine + 4 * ((size_t)cap + 1), *bc = NULL;
   for (int q = qa, k = 0; q < qb; q++, k++) {
-    const double x = C->cx[q], y = C->cy[q], r = C->cr[q], g = 4.0 * r;
+    const double x = C->cx[q - qa], y = C->cy[q - qa], r = C->cr[q - qa], g = 4.0 * r;
     int cut = q == qa || k == per;
     while (pt && p < m->npart && C->item[q] >= pt[p + 1]) p++, cut = 1;
     if (!cut && nfar < FAR_CUTS && (x < bc[0] - g || x > bc[2] + g || y < bc[1] - g || y > bc[3] + g)) cut = 1, nfar++;
@@ -1056,7 +1101,7 @@ static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f) {
       k = 0;
     }
     box_grow(bc, x - r, y - r, x + r, y + r);
-    mpad[nch - 1] = fmax(mpad[nch - 1], disc_pad(C, q));
+    mpad[nch - 1] = fmax(mpad[nch - 1], disc_pad(C, q - qa));
   }
   cs[nch] = qb;
   ds_ranks();
@@ -1094,12 +1139,12 @@ static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f) {
         for (int b = bo[r]; b < bo[r + 1]; b++)
           if (box_meets(mine + 4 * c, mpad[c], bx + 4 * b)) near[nn++] = b;
         for (int k = cs[c]; nn && k < cs[c + 1]; k++) {
-          const double pad = disc_pad(C, k), d[4] = {C->cx[k], C->cy[k], C->cx[k], C->cy[k]};
+          const double pad = disc_pad(C, k - qa), d[4] = {C->cx[k - qa], C->cy[k - qa], C->cx[k - qa], C->cy[k - qa]};
           int hit = 0;
           for (int z = 0; z < nn && !hit; z++) hit = box_meets(d, pad, bx + 4 * near[z]);
           if (!hit) continue;
           sb[r] += (int)sizeof(Disc);
-          if (pass) *o++ = (Disc){C->item[k], C->cx[k], C->cy[k], C->cr[k]};
+          if (pass) *o++ = (Disc){C->item[k], C->cx[k - qa], C->cy[k - qa], C->cr[k - qa]};
           else nsend++;
         }
       }
@@ -1124,7 +1169,7 @@ static void search_ranks(YfSim *s, YfContact *C, const YfSearchFilter *f) {
     if (r == me) {
       for (int k = qa; k < qb; k++, u++) {
         DS.uitem[u] = C->item[k];
-        DS.ucx[u] = C->cx[k]; DS.ucy[u] = C->cy[k]; DS.ucr[u] = C->cr[k];
+        DS.ucx[u] = C->cx[k - qa]; DS.ucy[u] = C->cy[k - qa]; DS.ucr[u] = C->cr[k - qa];
       }
       continue;
     }
@@ -1463,7 +1508,7 @@ void contact_step(YfSim *s) {
     vmax2 = contact_vmax2(C->npn, C->pnode, nd->vx, nd->vy);
   }
   int due = contact_trigger_step(&C->trig, dt, vmax2);
-  if (C->jpart) {
+  if (C->joined_on) {
     long nb = joints_broken(s);
     if (nb != C->broken_seen) { due = 1; C->broken_seen = nb; } /* newly free faces must see each other now */
   }

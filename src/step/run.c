@@ -49,22 +49,36 @@ static struct {
   double t_wall0;
 } R;
 
-/* Build the node -> slot gather lists (CSR): triangle corners (slots 0..3 ntri-1) then the extra
- * slots (joints).  Each node's slots are in increasing slot order, fixed for the whole run. */
-static void build_gather(YfModel *m) {
-  int nn = m->node.n, nt3 = 3 * m->tri.n, ns = nt3 + m->nxslot;
+/* Build the node -> slot gather lists (CSR) of nodes n0..n1-1: triangle corners (slots
+ * 0..3 ntri-1) then the extra slots (joints).  Each node's slots are in increasing slot order,
+ * fixed for the whole run.  An MPI rank sums its own nodes' forces only: lists for those alone
+ * (the whole scene's were 4 B per node and per slot: 48 MB at 1e6 with joints, on every rank). */
+static void build_gather(YfModel *m, int n0, int n1) {
+  int nr = n1 - n0, nt3 = 3 * m->tri.n, ns = nt3 + m->nxslot;
   free(m->gather_off);
   free(m->gather_slot);
-  m->gather_off = yf_calloc((size_t)nn + 1, sizeof(int), "gather offsets");
-  m->gather_slot = yf_malloc((size_t)(ns > 0 ? ns : 1) * sizeof(int), "gather slots");
-  for (int k = 0; k < ns; k++) m->gather_off[(k < nt3 ? m->tri.v[k] : m->xslot_node[k - nt3]) + 1]++;
-  for (int i = 0; i < nn; i++) m->gather_off[i + 1] += m->gather_off[i];
-  int *fill = yf_calloc((size_t)nn + 1, sizeof(int), "gather fill");
+  m->gather_off = yf_calloc((size_t)nr + 1, sizeof(int), "gather offsets");
   for (int k = 0; k < ns; k++) {
     int i = k < nt3 ? m->tri.v[k] : m->xslot_node[k - nt3];
-    m->gather_slot[m->gather_off[i] + fill[i]++] = k;
+    if (i >= n0 && i < n1) m->gather_off[i - n0 + 1]++;
+  }
+  for (int i = 0; i < nr; i++) m->gather_off[i + 1] += m->gather_off[i];
+  m->gather_slot = yf_malloc((size_t)(m->gather_off[nr] > 0 ? m->gather_off[nr] : 1) * sizeof(int), "gather slots");
+  int *fill = yf_calloc((size_t)nr + 1, sizeof(int), "gather fill");
+  for (int k = 0; k < ns; k++) {
+    int i = k < nt3 ? m->tri.v[k] : m->xslot_node[k - nt3];
+    if (i >= n0 && i < n1) m->gather_slot[m->gather_off[i - n0] + fill[i - n0]++] = k;
   }
   free(fill);
+  m->gather_n0 = n0;
+  m->gather_n1 = n1;
+}
+
+/* The gather lists for the nodes this process sums now (again when a re-cut moves them). */
+static void gather_for_ranks(YfModel *m) {
+  int n0 = 0, n1 = m->node.n;
+  par_nodes(&n0, &n1);
+  if (!m->gather_off || m->gather_n0 != n0 || m->gather_n1 != n1) build_gather(m, n0, n1);
 }
 
 static void material_consts(YfSim *s) {
@@ -201,7 +215,9 @@ void run_prepare(YfSim *s) {
       yf_deck_error(NULL, "%s has non-positive area (%g m^2): its corners must be counter-clockwise and distinct",
                     model_tri_label(m, bad, tl, sizeof tl), 0.5 * m->tri.d0[bad]);
     }
-    build_gather(m);
+    free(m->gather_off); /* a new scene: its gather lists are made for this rank's nodes below */
+    free(m->gather_slot);
+    m->gather_off = m->gather_slot = NULL;
     R.nblk = (m->tri.n + BLOCK - 1) / BLOCK;
     free(R.blk); free(R.blk_bad); free(R.blk_badJ);
     R.blk = yf_calloc((size_t)R.nblk, sizeof(double), "block sums");
@@ -212,6 +228,7 @@ void run_prepare(YfSim *s) {
     m->prepared = 1;
   }
   par_prepare(s, R.nblk, BLOCK); /* MPI: which triangles of the element stage this rank computes */
+  gather_for_ranks(m);
   for (int k = 0; k < s->nbc_kind; k++)
     if (s->bc_kind[k]->prepare) s->bc_kind[k]->prepare(s);
   contact_prepare(s);
@@ -518,15 +535,17 @@ static void stage_gather(YfSim *s) {
   YfModel *m = &s->model;
   YfNodes *n = &m->node;
   const int nn = n->n, nt3 = 3 * m->tri.n;
-  const int *off = m->gather_off, *slot = m->gather_slot;
+  const int *slot = m->gather_slot;
   const double *cf = m->tri.cf, *xf = m->xslot_f;
   int n0 = 0, n1 = nn;
   par_share_slots(m); /* MPI: the slots other ranks wrote on this rank's nodes */
   par_nodes(&n0, &n1); /* MPI: the nodes this rank owns (their forces go to every rank after contact) */
+  YF_ASSERT(m->gather_n0 == n0 && m->gather_n1 == n1);
+  const int *off = m->gather_off; /* node i's list: off[i - n0] .. off[i - n0 + 1] - 1 */
   #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
   for (int i = n0; i < n1; i++) {
     double fx = 0, fy = 0;
-    for (int k = off[i]; k < off[i + 1]; k++) {
+    for (int k = off[i - n0]; k < off[i - n0 + 1]; k++) {
       int q = slot[k];
       const double *f = q < nt3 ? cf + 2 * q : xf + 2 * (q - nt3);
       fx += f[0];
@@ -751,6 +770,7 @@ void run_steps(YfSim *s, long nsteps) {
       contact_check_impact_run(s); /* (MPI: every rank, a collective when the update is divided) */
     }
     par_balance(s); /* MPI: after a contact search, move the ranks' borders if their work is uneven */
+    gather_for_ranks(&s->model); /* (a re-cut moves the nodes whose forces this rank sums) */
     double t0 = yf_now();
     threads_after_step(t0 - ts); /* the next step's thread count (same bits on any) */
     ev.kind = YF_EV_STEP; /* frames, metrics samples and periodic restarts when due */
