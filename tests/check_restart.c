@@ -679,6 +679,44 @@ START_TEST(test_restart_old_friction_memory) {
 }
 END_TEST
 
+/* Format 3 holds the energy check's memory (/energy).  A version 2 file reads with the check
+ * starting afresh at its step, said once (the continued state is the same: the check stops runs,
+ * it does not change them); a version 3 file without /energy and a version of a later yfdem are
+ * refused as I/O errors naming the cause. */
+START_TEST(test_restart_older_formats) {
+  mk_tmpdir();
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  write_deck("w.deck", NULL, "run 10\nwrite_restart early.restart\nrun 10\n");
+  char h[17], h2[17];
+  expect_ok("w.deck", 1, h);
+  char path[256];
+  snprintf(path, sizeof path, "%s/early.restart", tmpdir);
+  set_version(path, 2);
+  write_deck("v2.deck", NULL, "read_restart early.restart\nrun 20 upto\n");
+  expect_ok("v2.deck", 1, h2);
+  ck_assert_str_eq(h2, h);
+  char *e = err_of("v2.deck");
+  const char *note = strstr(e, "early.restart' is of format version 2, which holds no memory of the energy check: "
+                               "the check starts afresh at step 10");
+  ck_assert_msg(note && strstr(e, "v2.deck:") && !strstr(strstr(note, "holds no memory") + 1, "holds no memory"), "%s", e);
+  free(e);
+  set_version(path, 4);
+  ck_assert_int_eq(run_deck("v2.deck", 1, h2), YF_EXIT_IO);
+  e = err_of("v2.deck");
+  ck_assert_msg(strstr(e, "format version 4, this yfdem reads 3"), "%s", e);
+  free(e);
+  set_version(path, 3);
+  hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+  ck_assert(f >= 0 && H5Ldelete(f, "/energy", H5P_DEFAULT) >= 0);
+  H5Fclose(f);
+  ck_assert_int_eq(run_deck("v2.deck", 1, h2), YF_EXIT_IO);
+  e = err_of("v2.deck");
+  ck_assert_msg(strstr(e, "not a usable yfdem restart (no group /energy)"), "%s", e);
+  free(e);
+  rm_tmpdir();
+}
+END_TEST
+
 /* ---------------------------------------------------------------- signals */
 
 /* Wait until file exists (bounded: 120 s, the machine may be loaded). */
@@ -1438,6 +1476,11 @@ Suite *restart_suite(void) {
   tcase_add_test(tc, test_restart_refuses_other_properties);
   tcase_add_test(tc, test_restart_scene_grown_after_partition);
   tcase_add_test(tc, test_restart_other_partition);
+  suite_add_tcase(s, tc);
+  /* the file's format and what a restart carries besides the state (a case of its own, quick) */
+  tc = tcase_create("restart_sweep");
+  tcase_set_timeout(tc, 120);
+  tcase_add_test(tc, test_restart_older_formats);
   suite_add_tcase(s, tc);
   return s;
 }

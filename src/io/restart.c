@@ -28,6 +28,8 @@
  *            Coulomb springs held then (the friction booking, contact.c); a file without them
  *            (written before they were kept) reads as no history: zero forces, and the
  *            springs' energy computed from g at the file's positions
+ *   /energy/{d (ENERGY_STATE_ND), l (ENERGY_STATE_NL)}   the energy check's memory (energy.c: its
+ *            highs, windows and streaks); version 3 on, required there
  * /meta/complete is written last; a file without it is refused.
  */
 #include <errno.h>
@@ -57,8 +59,11 @@
 /* 2: the Coulomb friction law's memory is s = F_t / sqrt(k_t) (contact_pair.h), no longer F_t.
  * A version 1 file is read when none of its Coulomb couples holds friction memory (the rest of
  * the layout is the same); otherwise it is refused (F_t cannot be turned into s without the
- * contact interval of the step it was written at). */
-#define RESTART_VERSION 2
+ * contact interval of the step it was written at).
+ * 3: /energy holds the energy check's memory (energy.h energy_state_save), so a continued run is
+ * stopped where the uninterrupted one is.  Versions 1 and 2 are read with the check starting
+ * afresh at the restart's step, and read_restart says so. */
+#define RESTART_VERSION 3
 
 typedef struct YfRestart {
   long every;      /* steps between periodic restarts (0: none)            */
@@ -382,6 +387,15 @@ static void write_all(W *w, YfSim *s) {
   put(w, g, "l", H5T_NATIVE_LONG, METRICS_STATE_NL, ml);
   gclose(g);
 
+  /* the energy check's memory (format 3) */
+  double ed[ENERGY_STATE_ND];
+  long el[ENERGY_STATE_NL];
+  energy_state_save(ed, el);
+  g = group(w, "energy");
+  put(w, g, "d", H5T_NATIVE_DOUBLE, ENERGY_STATE_ND, ed);
+  put(w, g, "l", H5T_NATIVE_LONG, ENERGY_STATE_NL, el);
+  gclose(g);
+
   YfContactState cs;
   if (contact_state_save(s, &cs)) {
     size_t np = (size_t)cs.n;
@@ -555,7 +569,7 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   hid_t g = ropen(&r, "meta");
   if (dlen(g, "complete") != 1 || get_l(&r, g, "complete") != 1) rfail(&r, "incomplete file: the writer was stopped");
   long ver = get_l(&r, g, "version");
-  if (ver != RESTART_VERSION && ver != 1) {
+  if (ver < 1 || ver > RESTART_VERSION) {
     char what[96];
     snprintf(what, sizeof what, "format version %ld, this yfdem reads %d", ver, RESTART_VERSION);
     rfail(&r, what);
@@ -839,6 +853,14 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
     H5Gclose(g);
     metrics_state_load(md, ml);
   }
+  double ed[ENERGY_STATE_ND];
+  long el[ENERGY_STATE_NL];
+  if (ver >= 3) {
+    g = ropen(&r, "energy");
+    get(&r, g, "d", H5T_NATIVE_DOUBLE, ENERGY_STATE_ND, ed);
+    get(&r, g, "l", H5T_NATIVE_LONG, ENERGY_STATE_NL, el);
+    H5Gclose(g);
+  }
   H5Fclose(r.file);
 
   s->step = step;
@@ -872,7 +894,11 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   /* the energies of this state (the file holds those last evaluated), as the residual the deck's
    * changes before the next run are measured from (energy.c) */
   run_energies_whole(s);
-  energy_restored(s, budget);
+  energy_restored(s, budget, ver >= 3 ? ed : NULL, ver >= 3 ? el : NULL);
+  if (ver < 3)
+    yf_warn(loc, "read_restart: '%s' is of format version %ld, which holds no memory of the energy check: the "
+            "check starts afresh at step %ld (a growth of the energy balance that began before it is seen later "
+            "than in the uninterrupted run)", path, ver, step);
   sim_printf(s, "read_restart: %s: step %ld, time %.6g s, dt %.6g s, %d nodes, %d triangles, %ld joints (%ld broken)%s\n",
              path, step, time, dt, m->node.n, m->tri.n, nj, s->joints ? (long)s->joints->nbroken : 0L,
              c_file ? ", contact couples restored" : "");
