@@ -154,16 +154,44 @@ typedef struct {
   char what[128];   /* the first dataset that failed            */
 } W;
 
+/* FNV-1a of n values of sz bytes (1, 4 or 8) taken least significant byte first, the same on a
+ * machine of either byte order: the checksum of a dataset's values (attribute CHECKSUM). */
+#define CHECKSUM "fnv1a"
+static uint64_t values_hash(const void *data, size_t n, size_t sz) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  const unsigned char *p = data;
+  for (size_t k = 0; k < n; k++, p += sz) {
+    uint64_t v = 0;
+    if (sz == 8) memcpy(&v, p, 8);
+    else if (sz == 4) { uint32_t u; memcpy(&u, p, 4); v = u; }
+    else v = *p;
+    for (size_t b = 0; b < sz; b++) {
+      h ^= (v >> (8 * b)) & 0xffu;
+      h *= 0x100000001b3ull;
+    }
+  }
+  return h;
+}
+
+/* Each dataset carries the checksum of its values (from format 3): a restart damaged after it was
+ * written (a block of a copy zeroed, a bit flipped) read as a valid one and continued a state no
+ * run reached. */
 static void put(W *w, hid_t g, const char *name, hid_t type, size_t n, const void *data) {
   if (w->bad) return;
   hsize_t dims[1] = {(hsize_t)n};
   hid_t sp = H5Screate_simple(1, dims, NULL);
   hid_t ds = sp >= 0 ? H5Dcreate2(g, name, type, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1;
   static const double none[1] = {0};
-  if (ds < 0 || H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, n && data ? data : (const void *)none) < 0) {
+  const uint64_t sum = values_hash(data, n && data ? n : 0, H5Tget_size(type));
+  hid_t asp = ds >= 0 ? H5Screate(H5S_SCALAR) : -1;
+  hid_t at = asp >= 0 ? H5Acreate2(ds, CHECKSUM, H5T_NATIVE_UINT64, asp, H5P_DEFAULT, H5P_DEFAULT) : -1;
+  if (ds < 0 || H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, n && data ? data : (const void *)none) < 0 ||
+      at < 0 || H5Awrite(at, H5T_NATIVE_UINT64, &sum) < 0) {
     w->bad = 1;
     snprintf(w->what, sizeof w->what, "%s", name);
   }
+  if (at >= 0) H5Aclose(at);
+  if (asp >= 0) H5Sclose(asp);
   if (ds >= 0) H5Dclose(ds);
   if (sp >= 0) H5Sclose(sp);
 }
@@ -219,9 +247,22 @@ static void get(const R *r, hid_t g, const char *name, hid_t type, size_t n, voi
   if (!n) return;
   hid_t ds = H5Dopen2(g, name, H5P_DEFAULT);
   herr_t e = ds >= 0 ? H5Dread(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) : -1;
+  /* the checksum written with the values (absent before format 3) */
+  uint64_t sum = 0;
+  int has = e >= 0 && H5Aexists(ds, CHECKSUM) > 0, bad_sum = 0;
+  if (has) {
+    hid_t at = H5Aopen(ds, CHECKSUM, H5P_DEFAULT);
+    bad_sum = at < 0 || H5Aread(at, H5T_NATIVE_UINT64, &sum) < 0 || sum != values_hash(data, n, H5Tget_size(type));
+    if (at >= 0) H5Aclose(at);
+  }
   if (ds >= 0) H5Dclose(ds);
   if (e < 0) {
     snprintf(what, sizeof what, "cannot read dataset %s", name);
+    rfail(r, what);
+  }
+  if (bad_sum) {
+    snprintf(what, sizeof what, "dataset %s does not match the checksum written with it: the file was damaged after "
+             "it was written", name);
     rfail(r, what);
   }
 }
