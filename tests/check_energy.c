@@ -710,6 +710,14 @@ START_TEST(test_bounded_swing_not_stopped) {
 }
 END_TEST
 
+/* A jointed block over a held base, with contact between them and in the block (its 'contact
+ * joined' line to follow). */
+#define BLOCK_ON_BASE                                                                                      \
+  "material c elastic rho 2400 E 30e9 nu 0.2 plane_stress pen_n 3e11 friction 0.3\n"                        \
+  "mesh rect blk c 0 0 0.2 0.2 8 8 pattern alt\nmesh rect base c -0.2 -0.1 0.4 -0.0005 12 2\n"             \
+  "jointprop j ft 1e6 fs 2e6 gf 10 pen 3e11 law bilinear\nfracture blk j\nregion bb box -1 -1 1 -0.099\n" \
+  "group bb node region bb\nfix h bb fixed xy\ncontact self blk\ncontact pair blk base\n"
+
 /* 'contact joined skip' lets a couple into the contact list only once its joint has failed, often
  * overlapping already (a joint in compression), and the penalty energy of that overlap comes from
  * nowhere: a jointed block hitting a base at 20 m/s showed 2.4e3 of its 1.92e4 J/m from nowhere at
@@ -719,10 +727,7 @@ END_TEST
 START_TEST(test_joined_skip_advice) {
   /* the energy given is the block's kinetic energy, 0.5 x 2400 x 0.04 x 20^2 = 19200 J/m */
   static const char *const deck =
-      "material c elastic rho 2400 E 30e9 nu 0.2 plane_stress pen_n 3e11 friction 0.3\n"
-      "mesh rect blk c 0 0 0.2 0.2 8 8 pattern alt\nmesh rect base c -0.2 -0.1 0.4 -0.0005 12 2\n"
-      "jointprop j ft 1e6 fs 2e6 gf 10 pen 3e11 law bilinear\nfracture blk j\nregion bb box -1 -1 1 -0.099\n"
-      "group bb node region bb\nfix h bb fixed xy\ncontact self blk\ncontact pair blk base\ncontact joined ${mode}\n"
+      BLOCK_ON_BASE "contact joined ${mode}\n"
       "velocity blk set 0 -20\ntimestep auto safety ${sf}\nrun $(round(800*0.5/v_sf))\nprint \"residual $(balance/19200)\"\n";
   char *err, *dir;
   /* safety 0.5: stopped at step 613 (13 to 37 % of the energy given, rising by a third a check);
@@ -907,11 +912,7 @@ static long stop_step(const char *name, const char *deck, char *hash, char **err
  * check afresh: both continued runs ended "ok" at step 4000 (exit 0), energy from nowhere and all;
  * so did one at step 1700 within the one run. */
 START_TEST(test_restart_keeps_energy_check) {
-  static const char *const scene =
-      "material c elastic rho 2400 E 30e9 nu 0.2 plane_stress pen_n 3e11 friction 0.3\n"
-      "mesh rect blk c 0 0 0.2 0.2 8 8 pattern alt\nmesh rect base c -0.2 -0.1 0.4 -0.0005 12 2\n"
-      "jointprop j ft 1e6 fs 2e6 gf 10 pen 3e11 law bilinear\nfracture blk j\nregion bb box -1 -1 1 -0.099\n"
-      "group bb node region bb\nfix h bb fixed xy\ncontact self blk\ncontact pair blk base\ncontact joined skip\n";
+  static const char *const scene = BLOCK_ON_BASE "contact joined skip\n";
   char deck[2048], h_one[17], h_two[17], h[17];
   char *err_one, *err_two, *err, *dir_one, *dir_two, *dir;
   snprintf(deck, sizeof deck, "%svelocity blk set 0 -20\ntimestep auto safety 0.1\nrestart every 1700 q\nrun 4000\n", scene);
