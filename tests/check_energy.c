@@ -710,6 +710,14 @@ START_TEST(test_bounded_swing_not_stopped) {
 }
 END_TEST
 
+/* A jointed block over a held base, with contact between them and in the block (its 'contact
+ * joined' line to follow). */
+#define BLOCK_ON_BASE                                                                                      \
+  "material c elastic rho 2400 E 30e9 nu 0.2 plane_stress pen_n 3e11 friction 0.3\n"                        \
+  "mesh rect blk c 0 0 0.2 0.2 8 8 pattern alt\nmesh rect base c -0.2 -0.1 0.4 -0.0005 12 2\n"             \
+  "jointprop j ft 1e6 fs 2e6 gf 10 pen 3e11 law bilinear\nfracture blk j\nregion bb box -1 -1 1 -0.099\n" \
+  "group bb node region bb\nfix h bb fixed xy\ncontact self blk\ncontact pair blk base\n"
+
 /* 'contact joined skip' lets a couple into the contact list only once its joint has failed, often
  * overlapping already (a joint in compression), and the penalty energy of that overlap comes from
  * nowhere: a jointed block hitting a base at 20 m/s showed 2.4e3 of its 1.92e4 J/m from nowhere at
@@ -719,10 +727,7 @@ END_TEST
 START_TEST(test_joined_skip_advice) {
   /* the energy given is the block's kinetic energy, 0.5 x 2400 x 0.04 x 20^2 = 19200 J/m */
   static const char *const deck =
-      "material c elastic rho 2400 E 30e9 nu 0.2 plane_stress pen_n 3e11 friction 0.3\n"
-      "mesh rect blk c 0 0 0.2 0.2 8 8 pattern alt\nmesh rect base c -0.2 -0.1 0.4 -0.0005 12 2\n"
-      "jointprop j ft 1e6 fs 2e6 gf 10 pen 3e11 law bilinear\nfracture blk j\nregion bb box -1 -1 1 -0.099\n"
-      "group bb node region bb\nfix h bb fixed xy\ncontact self blk\ncontact pair blk base\ncontact joined ${mode}\n"
+      BLOCK_ON_BASE "contact joined ${mode}\n"
       "velocity blk set 0 -20\ntimestep auto safety ${sf}\nrun $(round(800*0.5/v_sf))\nprint \"residual $(balance/19200)\"\n";
   char *err, *dir;
   /* safety 0.5: stopped at step 613 (13 to 37 % of the energy given, rising by a third a check);
@@ -883,6 +888,66 @@ START_TEST(test_start_overlap_named) {
 }
 END_TEST
 
+/* The stop step of deck NAME run in a new directory (its stderr and directory returned, caller frees),
+ * and the state_hash of its summary s.json into hash (17 bytes). */
+static long stop_step(const char *name, const char *deck, char *hash, char **err, char **dir) {
+  int rc = yft_run_binary(name, deck, "-log none -summary s.json", err, dir);
+  ck_assert_msg(rc == 3, "%s: exit %d: %s", name, rc, *err);
+  const char *f = strstr(*err, "numerical failure at step ");
+  ck_assert_msg(f, "%s: %s", name, *err);
+  char path[4096];
+  snprintf(path, sizeof path, "%s/s.json", *dir);
+  char *js = yft_slurp(path, 0), *h = js ? strstr(js, "\"state_hash\": \"") : NULL;
+  ck_assert_msg(h, "%s: no state_hash in %s", name, path);
+  snprintf(hash, 17, "%s", h + 15);
+  free(js);
+  return strtol(f + 26, NULL, 10);
+}
+
+/* The energy check's memory goes into the restart (format 3): a run continued from one is stopped
+ * at the step, with the message, of the run it continues.  The jointed block of
+ * test_joined_skip_advice at safety 0.1 grows slowly and is stopped by the slow-growth windows at
+ * step 2421, in one run of 4000 steps and in runs of 1800 + 2200.  Its restarts at step 1800
+ * (write_restart, between the runs) and 2000 (restart every, within the second run) started the
+ * check afresh: both continued runs ended "ok" at step 4000 (exit 0), energy from nowhere and all;
+ * so did one at step 1700 within the one run. */
+START_TEST(test_restart_keeps_energy_check) {
+  static const char *const scene = BLOCK_ON_BASE "contact joined skip\n";
+  char deck[2048], h_one[17], h_two[17], h[17];
+  char *err_one, *err_two, *err, *dir_one, *dir_two, *dir;
+  snprintf(deck, sizeof deck, "%svelocity blk set 0 -20\ntimestep auto safety 0.1\nrestart every 1700 q\nrun 4000\n", scene);
+  long s_one = stop_step("one.deck", deck, h_one, &err_one, &dir_one);
+  snprintf(deck, sizeof deck, "%svelocity blk set 0 -20\ntimestep auto safety 0.1\nrestart every 1000 p\nrun 1800\n"
+           "write_restart h.restart\nrun 2200\n", scene);
+  long s_two = stop_step("two.deck", deck, h_two, &err_two, &dir_two);
+  fprintf(stderr, "energy: slow growth stopped at step %ld in one run, %ld in two\n", s_one, s_two);
+  ck_assert_int_eq(s_two, s_one);
+  ck_assert_str_eq(h_two, h_one);
+  ck_assert_int_lt(s_one, 4000);
+  ck_assert_int_gt(s_one, 2000); /* after both restarts */
+  /* q: within the one run at step 1700, where a check is due (energy_check_due) after the restart
+   * is written: the continued run does that check first (without it the message said "since step
+   * 1624", the check before, where the uninterrupted one says 1700) */
+  static const char *const cont[3] = {"h.restart", "p", "q"};
+  for (int k = 0; k < 3; k++) {
+    const char *from = k < 2 ? dir_two : dir_one, *want_h = k < 2 ? h_two : h_one;
+    const char *want_msg = strstr(k < 2 ? err_two : err_one, "numerical failure");
+    snprintf(deck, sizeof deck, "%sread_restart %s/%s\nrun 4000 upto\n", scene, from, cont[k]);
+    long sk = stop_step("cont.deck", deck, h, &err, &dir);
+    fprintf(stderr, "energy: continued from %s: stopped at step %ld, state_hash %s (uninterrupted %s)\n", cont[k], sk,
+            h, want_h);
+    ck_assert_int_eq(sk, s_one);
+    ck_assert_str_eq(h, want_h);
+    ck_assert_str_eq(strstr(err, "numerical failure"), want_msg); /* the same cause, reference step and advice */
+    free(err);
+    yft_rm_dir(dir);
+  }
+  free(err_one); free(err_two);
+  yft_rm_dir(dir_one);
+  yft_rm_dir(dir_two);
+}
+END_TEST
+
 Suite *energy_suite(void) {
   Suite *s = suite_create("energy");
   TCase *tc = tcase_create("energy");
@@ -910,6 +975,7 @@ Suite *energy_suite(void) {
   tcase_add_test(tc, test_overlapping_fixes);
   tcase_add_test(tc, test_dissipation_beyond_given_stops);
   tcase_add_test(tc, test_start_overlap_named);
+  tcase_add_test(tc, test_restart_keeps_energy_check);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -650,6 +650,9 @@ static void set_version(const char *path, long v) {
   hid_t d = H5Dopen2(f, "/meta/version", H5P_DEFAULT);
   ck_assert(d >= 0);
   ck_assert(H5Dwrite(d, H5T_NATIVE_LONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &v) >= 0);
+  /* the version's checksum (format 3) goes, as in a file of the version set: an older file has
+   * none, and an edited value with its old checksum reads as a damaged file */
+  if (H5Aexists(d, "fnv1a") > 0) ck_assert(H5Adelete(d, "fnv1a") >= 0);
   H5Dclose(d);
   H5Fclose(f);
 }
@@ -675,6 +678,93 @@ START_TEST(test_restart_old_friction_memory) {
   set_version(path, 1);
   write_deck("early.deck", NULL, "read_restart early.restart\nrun 20 upto\n");
   expect_ok("early.deck", 1, h);
+  rm_tmpdir();
+}
+END_TEST
+
+/* Format 3 holds the energy check's memory (/energy).  A version 2 file reads with the check
+ * starting afresh at its step, said once (the continued state is the same: the check stops runs,
+ * it does not change them); a version 3 file without /energy and a version of a later yfdem are
+ * refused as I/O errors naming the cause. */
+START_TEST(test_restart_older_formats) {
+  mk_tmpdir();
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  write_deck("w.deck", NULL, "run 10\nwrite_restart early.restart\nrun 10\n");
+  char h[17], h2[17];
+  expect_ok("w.deck", 1, h);
+  char path[256];
+  snprintf(path, sizeof path, "%s/early.restart", tmpdir);
+  set_version(path, 2);
+  write_deck("v2.deck", NULL, "read_restart early.restart\nrun 20 upto\n");
+  expect_ok("v2.deck", 1, h2);
+  ck_assert_str_eq(h2, h);
+  char *e = err_of("v2.deck");
+  const char *note = strstr(e, "early.restart' is of format version 2, which holds no memory of the energy check: "
+                               "the check starts afresh at step 10");
+  ck_assert_msg(note && strstr(e, "v2.deck:") && !strstr(strstr(note, "holds no memory") + 1, "holds no memory"), "%s", e);
+  free(e);
+  set_version(path, 4);
+  ck_assert_int_eq(run_deck("v2.deck", 1, h2), YF_EXIT_IO);
+  e = err_of("v2.deck");
+  ck_assert_msg(strstr(e, "format version 4, this yfdem reads 3"), "%s", e);
+  free(e);
+  set_version(path, 3);
+  hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+  ck_assert(f >= 0 && H5Ldelete(f, "/energy", H5P_DEFAULT) >= 0);
+  H5Fclose(f);
+  ck_assert_int_eq(run_deck("v2.deck", 1, h2), YF_EXIT_IO);
+  e = err_of("v2.deck");
+  ck_assert_msg(strstr(e, "not a usable yfdem restart (no group /energy)"), "%s", e);
+  free(e);
+  rm_tmpdir();
+}
+END_TEST
+
+/* A restart damaged after it was written: cut at every 1/50 of its length (a copy that stopped),
+ * and 4 KiB zeroed at every 1/50 (a bad block).  Every one is refused as an I/O error (exit 2)
+ * naming the file, with no crash and no run.  The zeroed blocks that hit the values of a dataset
+ * (positions, couples' memory, joints' forces) were read as valid and continued a state no run
+ * reached: of the 49 zeroed copies of the beam's restart at step 100, 35 ran to the end (exit 0),
+ * 3 stopped as numerical failures (exit 3), one as a deck error; each dataset now carries the
+ * checksum of its values. */
+START_TEST(test_restart_damaged) {
+  mk_tmpdir();
+  write_deck("w.deck", NULL, "run 100\nwrite_restart r.restart\n");
+  char h[17];
+  expect_ok("w.deck", 1, h);
+  char path[256], dpath[256];
+  snprintf(path, sizeof path, "%s/r.restart", tmpdir);
+  snprintf(dpath, sizeof dpath, "%s/d.restart", tmpdir);
+  struct stat st;
+  ck_assert(stat(path, &st) == 0 && st.st_size > 50 * 4096);
+  size_t len = (size_t)st.st_size;
+  char *full = yft_slurp(path, 0); /* binary: the first len bytes */
+  ck_assert_ptr_nonnull(full);
+  write_deck("d.deck", NULL, "read_restart d.restart\nrun 110 upto\n");
+  int refused = 0;
+  for (int cut = 0; cut < 2; cut++)
+    for (int k = 1; k < 50; k++) {
+      size_t at = len * (size_t)k / 50;
+      FILE *f = fopen(dpath, "wb");
+      ck_assert_ptr_nonnull(f);
+      if (cut) {
+        ck_assert_uint_eq(fwrite(full, 1, at, f), at);
+      } else {
+        static const char zero[4096];
+        ck_assert(fwrite(full, 1, at, f) == at && fwrite(zero, 1, sizeof zero, f) == sizeof zero &&
+                  fwrite(full + at + sizeof zero, 1, len - at - sizeof zero, f) == len - at - sizeof zero);
+      }
+      fclose(f);
+      int code = run_deck("d.deck", 1, h);
+      char *e = err_of("d.deck");
+      ck_assert_msg(code == YF_EXIT_IO && strstr(e, "d.deck:19: error: read_restart: 'd.restart' is not a usable "
+                                                    "yfdem restart ("), "%s at %d/50: exit %d: %s",
+                    cut ? "cut" : "4 KiB zeroed", k, code, e);
+      free(e);
+      refused++;
+    }
+  fprintf(stderr, "restart: %d damaged copies of a %zu-byte restart refused (exit 2)\n", refused, len);
+  free(full);
   rm_tmpdir();
 }
 END_TEST
@@ -1438,6 +1528,12 @@ Suite *restart_suite(void) {
   tcase_add_test(tc, test_restart_refuses_other_properties);
   tcase_add_test(tc, test_restart_scene_grown_after_partition);
   tcase_add_test(tc, test_restart_other_partition);
+  suite_add_tcase(s, tc);
+  /* the file's format and what a restart carries besides the state (a case of its own, quick) */
+  tc = tcase_create("restart_sweep");
+  tcase_set_timeout(tc, 120);
+  tcase_add_test(tc, test_restart_older_formats);
+  tcase_add_test(tc, test_restart_damaged);
   suite_add_tcase(s, tc);
   return s;
 }

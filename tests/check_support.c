@@ -98,6 +98,15 @@ char *yft_deck_dir(const char *name, const char *deck_text) {
   return strdup(dir);
 }
 
+void yft_rm_dir(char *dir) {
+  if (!dir) return;
+  ck_assert_msg(!strncmp(dir, "/tmp/yft_", 9) && !strchr(dir, '\''), "not a test directory: %s", dir);
+  char cmd[600];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  ck_assert_int_eq(system(cmd), 0);
+  free(dir);
+}
+
 int yft_run_binary(const char *name, const char *deck_text, const char *extra_args, char **err, char **dirout) {
   char *dir = yft_deck_dir(name, deck_text);
   char errpath[512], cmd[4096];

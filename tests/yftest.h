@@ -21,6 +21,8 @@ int yft_run_binary(const char *name, const char *deck_text, const char *extra_ar
 const char *yft_binary(void);
 /* A fresh temporary directory (malloc'd path) holding deck NAME with deck_text. */
 char *yft_deck_dir(const char *name, const char *deck_text);
+/* Remove a directory yft_run_binary or yft_deck_dir made, and free its path. */
+void yft_rm_dir(char *dir);
 /* Write text to dir/name. */
 void yft_put_file(const char *dir, const char *name, const char *text);
 /* Run fn(arg) in a child process (its stdout silenced, its stderr captured into msg); returns

@@ -18,6 +18,7 @@ void cmd_read_restart(YfSim *s, const YfArgs *a) {
    * interrupt), so that is where FILE is looked for first; a deck run from elsewhere may keep
    * its restart beside itself, so the deck's directory is the second place. */
   const char *w = arg_word(a, 0, "FILE");
+  if (!w[0]) arg_error(a, 0, "empty file name"); /* ("" was looked for as '' and '.a' / '.b': exit 2) */
   /* a restart continues a deck from its start: after a run (or a restart read) it would replace
    * the state reached and the series the outputs began (frames of the earlier run were dropped
    * from the index and an off-cadence frame listed; a sweep of new decks, 2026-11-28) */

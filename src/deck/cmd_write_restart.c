@@ -15,6 +15,9 @@ void cmd_write_restart(YfSim *s, const YfArgs *a) {
   run_prepare(s); /* a restart before the first run holds the prepared initial state */
   io_attach(s);   /* the restart and output state it makes are freed with the simulation (report.c) */
   const char *p = arg_word(a, 0, "FILE"); /* an output: relative to the working directory */
+  /* "" wrote a whole restart to '.tmp' and failed to rename it (exit 2): a deck error, as for the
+   * other outputs' names */
+  if (!p[0]) arg_error(a, 0, "empty file name");
   arg_regular(a, 0, p);
   const char *by = output_claim(s, "write_restart", p, NULL, 0); /* it wrote over the log, a dump's index... */
   if (by && strcmp(by, "write_restart")) arg_error(a, 0, "already written by %s", by); /* its own again: a new version */

@@ -28,6 +28,8 @@
  *            Coulomb springs held then (the friction booking, contact.c); a file without them
  *            (written before they were kept) reads as no history: zero forces, and the
  *            springs' energy computed from g at the file's positions
+ *   /energy/{d (ENERGY_STATE_ND), l (ENERGY_STATE_NL)}   the energy check's memory (energy.c: its
+ *            highs, windows and streaks); version 3 on, required there
  * /meta/complete is written last; a file without it is refused.
  */
 #include <errno.h>
@@ -57,8 +59,11 @@
 /* 2: the Coulomb friction law's memory is s = F_t / sqrt(k_t) (contact_pair.h), no longer F_t.
  * A version 1 file is read when none of its Coulomb couples holds friction memory (the rest of
  * the layout is the same); otherwise it is refused (F_t cannot be turned into s without the
- * contact interval of the step it was written at). */
-#define RESTART_VERSION 2
+ * contact interval of the step it was written at).
+ * 3: /energy holds the energy check's memory (energy.h energy_state_save), so a continued run is
+ * stopped where the uninterrupted one is.  Versions 1 and 2 are read with the check starting
+ * afresh at the restart's step, and read_restart says so. */
+#define RESTART_VERSION 3
 
 typedef struct YfRestart {
   long every;      /* steps between periodic restarts (0: none)            */
@@ -149,16 +154,44 @@ typedef struct {
   char what[128];   /* the first dataset that failed            */
 } W;
 
+/* FNV-1a of n values of sz bytes (1, 4 or 8) taken least significant byte first, the same on a
+ * machine of either byte order: the checksum of a dataset's values (attribute CHECKSUM). */
+#define CHECKSUM "fnv1a"
+static uint64_t values_hash(const void *data, size_t n, size_t sz) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  const unsigned char *p = data;
+  for (size_t k = 0; k < n; k++, p += sz) {
+    uint64_t v = 0;
+    if (sz == 8) memcpy(&v, p, 8);
+    else if (sz == 4) { uint32_t u; memcpy(&u, p, 4); v = u; }
+    else v = *p;
+    for (size_t b = 0; b < sz; b++) {
+      h ^= (v >> (8 * b)) & 0xffu;
+      h *= 0x100000001b3ull;
+    }
+  }
+  return h;
+}
+
+/* Each dataset carries the checksum of its values (from format 3): a restart damaged after it was
+ * written (a block of a copy zeroed, a bit flipped) read as a valid one and continued a state no
+ * run reached. */
 static void put(W *w, hid_t g, const char *name, hid_t type, size_t n, const void *data) {
   if (w->bad) return;
   hsize_t dims[1] = {(hsize_t)n};
   hid_t sp = H5Screate_simple(1, dims, NULL);
   hid_t ds = sp >= 0 ? H5Dcreate2(g, name, type, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1;
   static const double none[1] = {0};
-  if (ds < 0 || H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, n && data ? data : (const void *)none) < 0) {
+  const uint64_t sum = values_hash(data, n && data ? n : 0, H5Tget_size(type));
+  hid_t asp = ds >= 0 ? H5Screate(H5S_SCALAR) : -1;
+  hid_t at = asp >= 0 ? H5Acreate2(ds, CHECKSUM, H5T_NATIVE_UINT64, asp, H5P_DEFAULT, H5P_DEFAULT) : -1;
+  if (ds < 0 || H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, n && data ? data : (const void *)none) < 0 ||
+      at < 0 || H5Awrite(at, H5T_NATIVE_UINT64, &sum) < 0) {
     w->bad = 1;
     snprintf(w->what, sizeof w->what, "%s", name);
   }
+  if (at >= 0) H5Aclose(at);
+  if (asp >= 0) H5Sclose(asp);
   if (ds >= 0) H5Dclose(ds);
   if (sp >= 0) H5Sclose(sp);
 }
@@ -214,9 +247,22 @@ static void get(const R *r, hid_t g, const char *name, hid_t type, size_t n, voi
   if (!n) return;
   hid_t ds = H5Dopen2(g, name, H5P_DEFAULT);
   herr_t e = ds >= 0 ? H5Dread(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) : -1;
+  /* the checksum written with the values (absent before format 3) */
+  uint64_t sum = 0;
+  int has = e >= 0 && H5Aexists(ds, CHECKSUM) > 0, bad_sum = 0;
+  if (has) {
+    hid_t at = H5Aopen(ds, CHECKSUM, H5P_DEFAULT);
+    bad_sum = at < 0 || H5Aread(at, H5T_NATIVE_UINT64, &sum) < 0 || sum != values_hash(data, n, H5Tget_size(type));
+    if (at >= 0) H5Aclose(at);
+  }
   if (ds >= 0) H5Dclose(ds);
   if (e < 0) {
     snprintf(what, sizeof what, "cannot read dataset %s", name);
+    rfail(r, what);
+  }
+  if (bad_sum) {
+    snprintf(what, sizeof what, "dataset %s does not match the checksum written with it: the file was damaged after "
+             "it was written", name);
     rfail(r, what);
   }
 }
@@ -380,6 +426,15 @@ static void write_all(W *w, YfSim *s) {
   g = group(w, "metrics");
   put(w, g, "d", H5T_NATIVE_DOUBLE, METRICS_STATE_ND, md);
   put(w, g, "l", H5T_NATIVE_LONG, METRICS_STATE_NL, ml);
+  gclose(g);
+
+  /* the energy check's memory (format 3) */
+  double ed[ENERGY_STATE_ND];
+  long el[ENERGY_STATE_NL];
+  energy_state_save(ed, el);
+  g = group(w, "energy");
+  put(w, g, "d", H5T_NATIVE_DOUBLE, ENERGY_STATE_ND, ed);
+  put(w, g, "l", H5T_NATIVE_LONG, ENERGY_STATE_NL, el);
   gclose(g);
 
   YfContactState cs;
@@ -555,7 +610,7 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   hid_t g = ropen(&r, "meta");
   if (dlen(g, "complete") != 1 || get_l(&r, g, "complete") != 1) rfail(&r, "incomplete file: the writer was stopped");
   long ver = get_l(&r, g, "version");
-  if (ver != RESTART_VERSION && ver != 1) {
+  if (ver < 1 || ver > RESTART_VERSION) {
     char what[96];
     snprintf(what, sizeof what, "format version %ld, this yfdem reads %d", ver, RESTART_VERSION);
     rfail(&r, what);
@@ -839,6 +894,14 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
     H5Gclose(g);
     metrics_state_load(md, ml);
   }
+  double ed[ENERGY_STATE_ND];
+  long el[ENERGY_STATE_NL];
+  if (ver >= 3) {
+    g = ropen(&r, "energy");
+    get(&r, g, "d", H5T_NATIVE_DOUBLE, ENERGY_STATE_ND, ed);
+    get(&r, g, "l", H5T_NATIVE_LONG, ENERGY_STATE_NL, el);
+    H5Gclose(g);
+  }
   H5Fclose(r.file);
 
   s->step = step;
@@ -872,7 +935,11 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   /* the energies of this state (the file holds those last evaluated), as the residual the deck's
    * changes before the next run are measured from (energy.c) */
   run_energies_whole(s);
-  energy_restored(s, budget);
+  energy_restored(s, budget, ver >= 3 ? ed : NULL, ver >= 3 ? el : NULL);
+  if (ver < 3)
+    yf_warn(loc, "read_restart: '%s' is of format version %ld, which holds no memory of the energy check: the "
+            "check starts afresh at step %ld (a growth of the energy balance that began before it is seen later "
+            "than in the uninterrupted run)", path, ver, step);
   sim_printf(s, "read_restart: %s: step %ld, time %.6g s, dt %.6g s, %d nodes, %d triangles, %ld joints (%ld broken)%s\n",
              path, step, time, dt, m->node.n, m->tri.n, nj, s->joints ? (long)s->joints->nbroken : 0L,
              c_file ? ", contact couples restored" : "");

@@ -9,7 +9,10 @@
  *   state (broken flags, pending breaks, damage per sampling point, shear strength memory,
  *   heterogeneity factors, random generator state, work, joint forces, break records), contact
  *   state (couple list, friction memory, live flags, couple forces, travel counter, search
- *   count) and the energy-check budget.  Histories are functions of time and need nothing.
+ *   count), the energy-check budget and the check's memory (its highs, windows and streaks: a
+ *   continued run is stopped where the uninterrupted one is).  Every dataset carries the checksum
+ *   of its values: a file damaged after it was written is refused (I/O error).  Histories are
+ *   functions of time and need nothing.
  *   A scene that does not match (node, triangle, joint counts or the topology hash over the
  *   triangle corners, initial positions and joint nodes) is refused with a deck error.
  *   The time step is restored.  A restart written during a run (restart every, an interrupt in

@@ -80,6 +80,9 @@ static struct {
   int warned;        /* warn mode: one warning per run */
   double overlap;    /* contact energy of a start state taken as given (bodies that start overlapping) [J/m] */
   long overlap_step; /* ... at the first step of the run that started at this step */
+  long check_step;   /* the step of the last check (-1: none) */
+  int resume;        /* read_restart of a restart written within a run: the next run goes on with the
+                      * check's memory of that run instead of starting its own */
 } E;
 
 /* Checks in a row (100 steps apart) at which a residual above the tolerance must reach a new high,
@@ -113,16 +116,45 @@ void energy_set_budget(double e) {
   E.have_end = 0;
 }
 
+/* The check's memory, in the order energy_restored reads it back. */
+void energy_state_save(double d[ENERGY_STATE_ND], long l[ENERGY_STATE_NL]) {
+  int k = 0;
+  d[k++] = E.contact_base;
+  for (int i = 0; i < NT; i++) d[k++] = E.last[i];
+  d[k++] = E.r_max; d[k++] = E.hold; d[k++] = E.wmin; d[k++] = E.wmax; d[k++] = E.pmax; d[k++] = E.overlap;
+  YF_ASSERT(k == ENERGY_STATE_ND);
+  k = 0;
+  l[k++] = E.contact_pending; l[k++] = E.last_step; l[k++] = E.streak; l[k++] = E.held; l[k++] = E.win;
+  l[k++] = E.wn; l[k++] = E.pn; l[k++] = E.wgrow; l[k++] = E.warned; l[k++] = E.overlap_step; l[k++] = E.check_step;
+  YF_ASSERT(k == ENERGY_STATE_NL);
+}
+
 /* A restart's state: its budget, and the residual it was written with (its energies were those of
  * its step), as if a run had ended there: a deck that changes the scene after read_restart gives
- * energy as between two runs. */
-void energy_restored(const YfSim *s, double budget) {
+ * energy as between two runs.  With the check's memory (d, l) the residual's highs and windows go
+ * on as in the uninterrupted deck (until format 3 they started afresh: a slow growth that spanned
+ * a restart was stopped up to WINDOWS + 1 windows later, or not at all). */
+void energy_restored(const YfSim *s, double budget, const double *d, const long *l) {
   energy_set_budget(budget);
   energy_run_end(s);
-  E.r_max = E.r_end;
-  E.win = 0;
-  E.wgrow = 0;
-  E.pn = 0;
+  E.resume = 0;
+  if (!d || !l) {
+    E.r_max = E.r_end;
+    E.win = 0;
+    E.wgrow = 0;
+    E.pn = 0;
+    E.check_step = -1;
+    return;
+  }
+  int k = 0;
+  E.contact_base = d[k++];
+  for (int i = 0; i < NT; i++) E.last[i] = d[k++];
+  E.r_max = d[k++]; E.hold = d[k++]; E.wmin = d[k++]; E.wmax = d[k++]; E.pmax = d[k++]; E.overlap = d[k++];
+  k = 0;
+  E.contact_pending = (int)l[k++]; E.last_step = l[k++]; E.streak = (int)l[k++]; E.held = (int)l[k++];
+  E.win = l[k++]; E.wn = (int)l[k++]; E.pn = (int)l[k++]; E.wgrow = (int)l[k++]; E.warned = (int)l[k++];
+  E.overlap_step = l[k++]; E.check_step = l[k++];
+  E.resume = !s->restored_between;
 }
 
 /* Gravity's work is a function of the state: sum m g . (x - x0). */
@@ -162,6 +194,13 @@ void energy_run_begin(YfSim *s, double e_floor) {
     if (isfinite(r) && isfinite(E.r_end)) E.budget += r - E.r_end;
     E.contact_pending = s->model.node.n != E.nn_end || s->model.tri.n != E.nt_end;
     E.contact_base = s->energy.contact;
+  }
+  if (E.resume) {
+    /* a restart written within a run: the uninterrupted run went on from here with its streaks,
+     * its reference terms and its warning; a periodic restart is written before its step's check */
+    E.resume = 0;
+    if (energy_check_due(s->step) && E.check_step != s->step) energy_check(s);
+    return;
   }
   terms(s, E.last);
   E.last_step = s->step;
@@ -322,6 +361,7 @@ static int grown(double r, double tol, double scale, long step) {
 }
 
 void energy_check(YfSim *s) {
+  E.check_step = s->step;
   if (s->ebal_mode == YF_EBAL_OFF) return;
   double t[NT];
   terms(s, t);

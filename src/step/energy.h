@@ -35,9 +35,17 @@ int energy_dt_above_limit_ok(const YfSim *s);
 /* The energy given at the start [J/m] (restart.c saves and restores it). */
 double energy_get_budget(void);
 void energy_set_budget(double e);
+/* The check's memory (its highs, windows, streaks, reference terms) for a restart, so that a run
+ * continued from one is stopped at the step the uninterrupted run is: ENERGY_STATE_ND doubles and
+ * ENERGY_STATE_NL longs, in an order only energy.c knows (restart.c stores them as they are). */
+enum { ENERGY_STATE_ND = 14, ENERGY_STATE_NL = 11 };
+void energy_state_save(double d[ENERGY_STATE_ND], long l[ENERGY_STATE_NL]);
 /* read_restart: the budget, and the state's energies as those a run ended with (s->energy as the
- * restart holds them; changes the deck makes before the next run are energy given). */
-void energy_restored(const YfSim *s, double budget);
+ * restart holds them; changes the deck makes before the next run are energy given).  d and l: the
+ * check's memory energy_state_save gave (NULL: a restart of a format without it, the check starts
+ * afresh); within a run (!s->restored_between) the next run goes on with it as the interrupted run
+ * would have, streaks and the check due at the restart's step included. */
+void energy_restored(const YfSim *s, double budget, const double *d, const long *l);
 void energy_reset(void);
 /* When most of the energy given is the contact energy of a start state (bodies that start
  * overlapping), a clause for a numerical failure's message naming it ("; the bodies started
