@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
 #include <unistd.h>
 #include "deck.h"
 #include "err.h"
@@ -22,14 +23,40 @@
 static jmp_buf fuzz_back;
 static void fuzz_exit_hook(int code) { longjmp(fuzz_back, code + 1); }
 
-/* Into a scratch directory (the files a deck writes, and the files a reader target writes for
- * its reader, land there), a 256 MB scene cap (YFDEM_MEM_MAX: absurd sizes are clean deck errors,
- * not out-of-memory kills), the exit hook. */
+/* A scratch directory for the files a deck writes and the files a reader target writes for its
+ * reader; every input runs in it (fuzz_enter .. fuzz_leave), the harness's own working directory
+ * is left as it was between inputs, so that libFuzzer finds the inputs named on its command line
+ * (build-fuzz/crash-...) relative to it.  A 256 MB scene cap (YFDEM_MEM_MAX: absurd sizes are
+ * clean deck errors, not out-of-memory kills) and the exit hook. */
+static char fuzz_dir[32];
+static int fuzz_home = -1;
 static void fuzz_setup(void) {
-  char tmpl[] = "/tmp/yffuzz_XXXXXX";
-  if (mkdtemp(tmpl) && chdir(tmpl) == 0) {}
+  snprintf(fuzz_dir, sizeof fuzz_dir, "/tmp/yffuzz_XXXXXX");
+  if (!mkdtemp(fuzz_dir)) { perror("fuzz: mkdtemp"); exit(1); }
   setenv("YFDEM_MEM_MAX", "268435456", 0);
   yf_set_exit_hook(fuzz_exit_hook);
+}
+
+/* The descriptors open before the first input: a reader stopped by an error (longjmp) leaves its
+ * file open, which yfdem's exit would have closed; fuzz_leave closes the others. */
+static unsigned char fuzz_fd_kept[1024];
+static int fuzz_fd_known;
+static void fuzz_fds(int close_new) {
+  for (int fd = 3; fd < 1024; fd++) {
+    int open_now = fcntl(fd, F_GETFD) != -1;
+    if (!fuzz_fd_known) fuzz_fd_kept[fd] = (unsigned char)open_now;
+    else if (close_new && open_now && !fuzz_fd_kept[fd]) close(fd);
+  }
+  fuzz_fd_known = 1;
+}
+static void fuzz_enter(void) {
+  if (fuzz_home < 0) fuzz_home = open(".", O_RDONLY | O_DIRECTORY);
+  if (!fuzz_fd_known) fuzz_fds(0);
+  if (chdir(fuzz_dir) != 0) { perror("fuzz: chdir"); exit(1); }
+}
+static void fuzz_leave(void) {
+  if (fchdir(fuzz_home) != 0) { perror("fuzz: fchdir"); exit(1); }
+  fuzz_fds(1);
 }
 
 /* Run the n bytes of text as the deck fname in a fresh simulation; returns the exit code the
@@ -64,6 +91,19 @@ static int fuzz_write_file(const char *path, const uint8_t *data, size_t n) {
   if (!f) return 0;
   int ok = fwrite(data, 1, n, f) == n;
   return fclose(f) == 0 && ok;
+}
+
+/* The text of tests/corpus/NAME (the harness runs from the repository's root: tools/fuzz/run),
+ * copied into the scratch directory; its length in *n.  Exits when it is missing. */
+static char *fuzz_corpus_file(const char *name, size_t *n) {
+  char path[256];
+  snprintf(path, sizeof path, "tests/corpus/%s", name);
+  char *t = yf_read_file(path, n, "fuzz input");
+  if (!t) { fprintf(stderr, "fuzz: cannot read %s (run from the repository's root)\n", path); exit(1); }
+  fuzz_enter();
+  if (!fuzz_write_file(name, (const uint8_t *)t, *n)) { perror("fuzz: scratch"); exit(1); }
+  fuzz_leave();
+  return t;
 }
 
 static int fuzz_has(const uint8_t *d, size_t n, const char *w) {

@@ -18,6 +18,8 @@ int LLVMFuzzerInitialize(int *argc, char ***argv) {
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   if (size > 65536 || fuzz_has(data, size, "run") || fuzz_has(data, size, "jump")) return 0;
+  fuzz_enter();
   fuzz_run_deck((const char *)data, size, "fuzz.deck");
+  fuzz_leave();
   return 0;
 }

@@ -3,9 +3,10 @@
  * A restart is an HDF5 file; random bytes would fuzz libhdf5's parser (not instrumented here, and
  * not ours), so this target is structure-aware: at start it runs a small fracturing, contact
  * scene and writes its restart (the template), then each input is a list of edits of the
- * template's datasets, and the edited file is read by the deck that rebuilds the scene
- * (`read_restart in.restart`), which then runs 2 steps: values read without a check (an index past
- * an array, a state no switch knows, a negative count, a NaN) show there.
+ * template's datasets, and the edited file is read by tests/corpus/reader_restart.deck, which
+ * rebuilds the scene (reader_restart_scene.inc), reads in.restart and runs 2 steps: values read
+ * without a check (an index past an array, a state no switch knows, a negative count, a NaN) show
+ * there.  make check replays the .restart rows of tests/corpus/MANIFEST with the same deck.
  *
  * An input is a sequence of 12-byte edits: dataset (byte 0, modulo the template's datasets, in
  * the order H5Ovisit lists them), operation (byte 1), element (bytes 2-3, modulo the length) and
@@ -23,24 +24,13 @@
 #include "fuzz_common.h"
 #include "h5quiet.h"
 
-/* The deck that makes the scene, as read_restart needs it rebuilt: a concrete bar with joints
- * between all its triangles, hit by a steel block (contact couples, breaking joints). */
-#define SCENE                                                                                                \
-  "material c elastic rho 2340 E 26e9 nu 0.18 plane_stress damping 0.1 pen_n 1e11 pen_t 1e10 friction 0.5\n" \
-  "material s elastic rho 7800 E 210e9 nu 0.3 plane_stress pen_n 1e11 pen_t 1e10 friction 0.3\n"            \
-  "mesh rect beam c 0 0 0.08 0.02 4 2\n"                                                                     \
-  "mesh rect hammer s 0.03 0.0201 0.05 0.0401 1 1\n"                                                         \
-  "jointprop cj ft 2e5 fs 4e5 gf 2 pen 1e11 weibull 6 seed 3\n"                                              \
-  "fracture beam cj\n"                                                                                       \
-  "velocity hammer set 0 -40\n"                                                                              \
-  "contact pair hammer beam\ncontact self beam\n"                                                            \
-  "timestep auto\n"
-
 enum { NDS_MAX = 128 };
 static char ds_name[NDS_MAX][64];
 static int nds;
 static uint8_t *tmpl;
 static size_t ntmpl;
+static char *deck;
+static size_t ndeck;
 
 static herr_t list_ds(hid_t o, const char *name, const H5O_info_t *info, void *op) {
   (void)o; (void)op;
@@ -51,12 +41,15 @@ static herr_t list_ds(hid_t o, const char *name, const H5O_info_t *info, void *o
 int LLVMFuzzerInitialize(int *argc, char ***argv) {
   (void)argc; (void)argv;
   fuzz_setup();
-  static const char make[] = SCENE "run 60\nwrite_restart t.restart\n";
+  size_t n;
+  free(fuzz_corpus_file("reader_restart_scene.inc", &n));
+  deck = fuzz_corpus_file("reader_restart.deck", &ndeck);
+  static const char make[] = "include reader_restart_scene.inc\nrun 60\nwrite_restart t.restart\n";
+  fuzz_enter();
   if (fuzz_run_deck(make, sizeof make - 1, "make_template.deck") != 0) {
     fprintf(stderr, "fuzz_restart: the template deck failed: %s\n", yf_last_message());
     exit(1);
   }
-  size_t n;
   char *t = yf_read_file("t.restart", &n, "template");
   if (!t) { perror("fuzz_restart: t.restart"); exit(1); }
   tmpl = (uint8_t *)t;
@@ -65,6 +58,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv) {
   hid_t f = H5Fopen("t.restart", H5F_ACC_RDONLY, H5P_DEFAULT);
   H5Ovisit2(f, H5_INDEX_NAME, H5_ITER_INC, list_ds, NULL, H5O_INFO_BASIC); /* HDF5 1.10 (Debian 12) */
   H5Fclose(f);
+  fuzz_leave();
   fprintf(stderr, "fuzz_restart: template t.restart, %zu bytes, %d datasets\n", ntmpl, nds);
   return 0;
 }
@@ -131,13 +125,15 @@ static void edit(hid_t f, const uint8_t *e) {
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
-  if (size > 12 * 64 || !fuzz_write_file("in.restart", tmpl, ntmpl)) return 0;
+  if (size > 12 * 64) return 0;
+  fuzz_enter();
   yf_h5_quiet();
-  hid_t f = H5Fopen("in.restart", H5F_ACC_RDWR, H5P_DEFAULT);
-  if (f < 0) return 0;
-  for (size_t k = 0; k + 12 <= size; k += 12) edit(f, data + k);
-  H5Fclose(f);
-  static const char deck[] = SCENE "fracture_log br.csv\nread_restart in.restart\nrun 2\n";
-  fuzz_run_deck(deck, sizeof deck - 1, "fuzz_restart.deck");
+  hid_t f = fuzz_write_file("in.restart", tmpl, ntmpl) ? H5Fopen("in.restart", H5F_ACC_RDWR, H5P_DEFAULT) : -1;
+  if (f >= 0) {
+    for (size_t k = 0; k + 12 <= size; k += 12) edit(f, data + k);
+    H5Fclose(f);
+    fuzz_run_deck(deck, ndeck, "reader_restart.deck");
+  }
+  fuzz_leave();
   return 0;
 }

@@ -5,6 +5,7 @@
  * then run for 2 steps: a reader that lets through what the step cannot take (a node index past
  * the nodes, a zero area, a NaN) shows there.  The exit hook (fuzz_common.h) brings a deck error
  * back here.  Its $YINCL files are looked up beside in.y: the scratch directory.
+ * (make check replays the .y rows of tests/corpus/MANIFEST as `yfdem FILE.y`: the same reader.)
  */
 #include "fuzz_common.h"
 
@@ -15,8 +16,10 @@ int LLVMFuzzerInitialize(int *argc, char ***argv) {
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
-  if (size > 65536 || !fuzz_write_file("in.y", data, size)) return 0;
   static const char deck[] = "read_y2d in.y\nrun 2\n";
-  fuzz_run_deck(deck, sizeof deck - 1, "fuzz_y2d.deck");
+  if (size > 65536) return 0;
+  fuzz_enter();
+  if (fuzz_write_file("in.y", data, size)) fuzz_run_deck(deck, sizeof deck - 1, "fuzz_y2d.deck");
+  fuzz_leave();
   return 0;
 }
