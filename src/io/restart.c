@@ -59,6 +59,8 @@
  * the layout is the same); otherwise it is refused (F_t cannot be turned into s without the
  * contact interval of the step it was written at). */
 #define RESTART_VERSION 2
+/* the most steps a run takes (cmd_run.c): a restart's step and last step lie in [0, this] */
+#define RESTART_STEP_MAX 1000000000000000L
 
 typedef struct YfRestart {
   long every;      /* steps between periodic restarts (0: none)            */
@@ -541,6 +543,15 @@ static void mismatch(const YfLoc *loc, const char *path, const char *what, long 
                 path, what, file, here);
 }
 
+/* A break or opened-crack record read from a restart: its indices name a triangle and a joint of
+ * the scene (the fracture log prints the triangles' ids: an index past them was read out of
+ * bounds), its mode one of the failure modes, its numbers finite. */
+static int record_ok(const YfBreak *b, int ntri, int njoint, long step) {
+  return b->mode >= YF_JMODE_I && b->mode <= YF_JMODE_MIXED && b->triA >= 0 && b->triA < ntri && b->triB >= 0 &&
+         b->triB < ntri && b->joint >= 0 && b->joint < njoint && b->step >= 0 && b->step <= step + 1 &&
+         isfinite(b->time) && isfinite(b->x) && isfinite(b->y) && isfinite(b->length);
+}
+
 void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   YfModel *m = &s->model;
   if (!m->tri.n)
@@ -677,6 +688,14 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   /* dt 0: a restart written before the first run of a deck with timestep auto (no step set yet) */
   if (step < 0 || !(dt > 0 || (between && f_auto && dt == 0.0)) || time != time)
     rfail(&r, "step, time or dt out of range");
+  /* a run goes on from these (step + N, time + dt...: a step of 2^63 - 1 overflowed) and the
+   * summary and thermo print them: the steps a run may take (cmd_run.c), finite numbers */
+  if (step > RESTART_STEP_MAX || last_step < 0 || last_step > RESTART_STEP_MAX || !isfinite(time) || !isfinite(dt))
+    rfail(&r, "sim/step, last_step, time or dt out of range");
+  for (int k = 0; k < 7; k++)
+    if (!isfinite(en[k])) rfail(&r, "sim/energy: not a finite number");
+  if (!(elem_steps >= 0 && isfinite(elem_steps)) || !(wall_s >= 0 && isfinite(wall_s)))
+    rfail(&r, "sim/elem_steps or wall_s out of range");
 
   g = ropen(&r, "nodes");
   get(&r, g, "x", H5T_NATIVE_DOUBLE, nn, N->x);
@@ -739,6 +758,13 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
       J->rec[k] = (YfBreak){rs[k], rd[4 * k], rd[4 * k + 1], rd[4 * k + 2], rd[4 * k + 3],
                             ri[4 * k], ri[4 * k + 1], ri[4 * k + 2], ri[4 * k + 3]};
     free(rs); free(rd); free(ri);
+    for (long k = 0; k < nr; k++)
+      if (!record_ok(&J->rec[k], m->tri.n, J->n, step)) rfail(&r, "joints/rec_*: a break record out of range");
+    if (J->nbroken < 0 || J->nbroken > J->n) rfail(&r, "joints/nbroken out of range");
+    for (size_t j = 0; j < n; j++)
+      if (J->state[j] > 2 || J->mode[j] > YF_JMODE_MIXED) rfail(&r, "joints/state or mode: a value no joint takes");
+    if (!isfinite(J->diss_broken) || !(J->dt_prev >= 0 && isfinite(J->dt_prev)))
+      rfail(&r, "joints/diss_broken or dt_prev out of range");
     /* opened cracks (absent in restarts written before they were recorded: none then) */
     if (dlen(g, "opened") >= 0) {
       get(&r, g, "opened", H5T_NATIVE_UCHAR, n, J->opened);
@@ -759,6 +785,8 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
         J->orec[k] = (YfBreak){rs[k], rd[4 * k], rd[4 * k + 1], rd[4 * k + 2], rd[4 * k + 3],
                                ri[4 * k], ri[4 * k + 1], ri[4 * k + 2], ri[4 * k + 3]};
       free(rs); free(rd); free(ri);
+      for (long k = 0; k < no; k++)
+        if (!record_ok(&J->orec[k], m->tri.n, J->n, step)) rfail(&r, "joints/orec_*: an opened-crack record out of range");
     }
     for (int i = 0; i < J->nset; i++) {
       char name[32];
