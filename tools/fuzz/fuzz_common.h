@@ -17,8 +17,11 @@
 #include <unistd.h>
 #include "deck.h"
 #include "err.h"
+#include "output.h"
+#include "report.h"
 #include "run.h"
 #include "sim.h"
+#include "summary.h"
 
 static jmp_buf fuzz_back;
 static void fuzz_exit_hook(int code) { longjmp(fuzz_back, code + 1); }
@@ -37,30 +40,42 @@ static void fuzz_setup(void) {
   yf_set_exit_hook(fuzz_exit_hook);
 }
 
-/* The descriptors open before the first input: a reader stopped by an error (longjmp) leaves its
- * file open, which yfdem's exit would have closed; fuzz_leave closes the others. */
-static unsigned char fuzz_fd_kept[1024];
-static int fuzz_fd_known;
-static void fuzz_fds(int close_new) {
+/* A reader stopped by an error (longjmp) leaves its file open, which yfdem's exit would have
+ * closed: fuzz_leave closes the descriptors of files in the scratch directory (only those:
+ * libFuzzer keeps descriptors of its own, its output among them). */
+static void fuzz_close_scratch_fds(void) {
+  size_t L = strlen(fuzz_dir);
   for (int fd = 3; fd < 1024; fd++) {
-    int open_now = fcntl(fd, F_GETFD) != -1;
-    if (!fuzz_fd_known) fuzz_fd_kept[fd] = (unsigned char)open_now;
-    else if (close_new && open_now && !fuzz_fd_kept[fd]) close(fd);
+    char link[64], to[512];
+    snprintf(link, sizeof link, "/proc/self/fd/%d", fd);
+    ssize_t n = readlink(link, to, sizeof to - 1);
+    if (n <= 0) continue;
+    to[n] = 0;
+    if (!strncmp(to, fuzz_dir, L) && to[L] == '/') close(fd);
   }
-  fuzz_fd_known = 1;
 }
 static void fuzz_enter(void) {
   if (fuzz_home < 0) fuzz_home = open(".", O_RDONLY | O_DIRECTORY);
-  if (!fuzz_fd_known) fuzz_fds(0);
   if (chdir(fuzz_dir) != 0) { perror("fuzz: chdir"); exit(1); }
 }
 static void fuzz_leave(void) {
   if (fchdir(fuzz_home) != 0) { perror("fuzz: fchdir"); exit(1); }
-  fuzz_fds(1);
+  fuzz_close_scratch_fds();
 }
 
-/* Run the n bytes of text as the deck fname in a fresh simulation; returns the exit code the
- * deck would have given yfdem (0: it ended normally). */
+/* What yfdem's exit path does (main.c's finish): the outputs closed (the fracture log, the records
+ * and the frames written out), the summary written: they read what the deck and its files left,
+ * so they are fuzzed too. */
+static YfSim *fuzz_sim;
+static void fuzz_cleanup(int code, const char *message) {
+  output_close_all(fuzz_sim);
+  run_summary_update(fuzz_sim);
+  summary_write(fuzz_sim, "summary.json", code, message);
+}
+
+/* Run the n bytes of text as the deck fname in a fresh simulation observed by the outputs (as
+ * main.c's io_attach), then the exit path; returns the exit code the deck would have given yfdem
+ * (0: it ended normally). */
 static int fuzz_run_deck(const char *text, size_t n, const char *fname) {
   char *buf = malloc(n + 1);
   memcpy(buf, text, n);
@@ -73,10 +88,17 @@ static int fuzz_run_deck(const char *text, size_t n, const char *fname) {
   code = 0;
   sim_init(&s);
   s.progress = 0;
+  fuzz_sim = &s;
+  io_attach(&s);
+  yf_set_cleanup(fuzz_cleanup);
   d = deck_new(&s);
   int j = setjmp(fuzz_back);
-  if (j == 0) deck_run_stream(d, fp, fname);
-  else code = j - 1;
+  if (j == 0) {
+    deck_run_stream(d, fp, fname);
+    code = yf_finish(0);
+  } else {
+    code = j - 1;
+  }
   fclose(fp);
   free(buf);
   deck_free(d);
