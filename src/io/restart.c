@@ -186,10 +186,29 @@ typedef struct {
   const YfLoc *loc;
 } R;
 
+/* The file and whatever of it is still open (the group and dataset being read): H5Fclose alone
+ * leaves the file open while an object of it is, so a process that goes on after the error (the
+ * fuzz target, tools/fuzz; a library caller) found the stale file in HDF5's cache when it opened
+ * a file of that name again (a SEGV in libhdf5). */
+static void close_file_all(hid_t f) {
+  const unsigned kinds = H5F_OBJ_DATASET | H5F_OBJ_GROUP | H5F_OBJ_DATATYPE | H5F_OBJ_ATTR | H5F_OBJ_LOCAL;
+  ssize_t n = H5Fget_obj_count(f, kinds);
+  if (n > 0) {
+    hid_t *ids = yf_malloc((size_t)n * sizeof *ids, "HDF5 handles");
+    n = H5Fget_obj_ids(f, kinds, (size_t)n, ids);
+    for (ssize_t k = 0; k < n; k++) {
+      if (H5Iget_type(ids[k]) == H5I_ATTR) H5Aclose(ids[k]);
+      else H5Oclose(ids[k]);
+    }
+    free(ids);
+  }
+  H5Fclose(f);
+}
+
 static void rfail(const R *r, const char *what) __attribute__((noreturn));
 static void rfail(const R *r, const char *what) {
   hid_t f = r->file;
-  if (f >= 0) H5Fclose(f);
+  if (f >= 0) close_file_all(f);
   yf_io_error(r->loc, "read_restart: '%s' is not a usable yfdem restart (%s)", r->path, what);
 }
 
