@@ -873,6 +873,12 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
       st.fcn = NULL;
     }
     st.fcn_valid = st.fcn ? (int)get_l(&r, g, "fcn_valid") : 0;
+    /* the distance moved since the last search decides the next one (a NaN never reaches the
+     * buffer: no search again, contacts missed in silence); the springs' energy is booked */
+    if (!(st.travel >= 0 && isfinite(st.travel)) || (st.has_spring && !isfinite(st.spring))) {
+      free(st.ij); free(st.g); free(st.alive); free(st.fcn);
+      rfail(&r, "contact/travel or spring out of range");
+    }
     H5Gclose(g);
     contact_state_load(s, &st);
     free(st.ij); free(st.g); free(st.alive); free(st.fcn);
