@@ -26,15 +26,16 @@
 static jmp_buf fuzz_back;
 static void fuzz_exit_hook(int code) { longjmp(fuzz_back, code + 1); }
 
-/* A scratch directory for the files a deck writes and the files a reader target writes for its
- * reader; every input runs in it (fuzz_enter .. fuzz_leave), the harness's own working directory
+/* A scratch directory ($TMPDIR or /tmp) for the files a deck writes and the files a reader target
+ * writes for its reader; every input runs in it (fuzz_enter .. fuzz_leave), the harness's own working directory
  * is left as it was between inputs, so that libFuzzer finds the inputs named on its command line
  * (build-fuzz/crash-...) relative to it.  A 256 MB scene cap (YFDEM_MEM_MAX: absurd sizes are
  * clean deck errors, not out-of-memory kills) and the exit hook. */
-static char fuzz_dir[32];
+static char fuzz_dir[256];
 static int fuzz_home = -1;
 static void fuzz_setup(void) {
-  snprintf(fuzz_dir, sizeof fuzz_dir, "/tmp/yffuzz_XXXXXX");
+  const char *tmp = getenv("TMPDIR");
+  snprintf(fuzz_dir, sizeof fuzz_dir, "%s/yffuzz_XXXXXX", tmp && tmp[0] && strlen(tmp) < 200 ? tmp : "/tmp");
   if (!mkdtemp(fuzz_dir)) { perror("fuzz: mkdtemp"); exit(1); }
   setenv("YFDEM_MEM_MAX", "268435456", 0);
   yf_set_exit_hook(fuzz_exit_hook);
