@@ -8,8 +8,9 @@
 #   make bench    element-steps per second, thread scaling, bytes per element
 #   make bench-mpi the same on 1 and 2 MPI ranks x 1 and 2 threads at 1e5 and 1e6 (./yfdem_mpi)
 #   make asan     the whole test suite under AddressSanitizer + UBSan (build-asan/; CI runs it)
-#   make fuzz     libFuzzer on the deck interpreter (clang; tools/fuzz/README.md), FUZZ_RUNS inputs
-#                 or FUZZ_TIME seconds
+#   make fuzz     libFuzzer on the deck interpreter and the .y, .msh and restart readers (clang;
+#                 tools/fuzz/README.md), FUZZ_RUNS inputs each
+#                 or FUZZ_TIME seconds in all
 #   make valgrind the example decks under valgrind: no definite leaks (tools/valgrind-decks)
 #
 # Required flags live in YF_CFLAGS so that `make CFLAGS=-O0` changes optimisation only.

@@ -1,10 +1,13 @@
 /* check_corpus.c: every malformed input of tests/corpus (MANIFEST) through the real binary.
  *
- * Each row names an input (a deck, or a Y2D .y deck), the exit code it must give (1 deck error,
- * 2 I/O error) and a piece of the message, which always starts with the FILE:LINE of the fault.
+ * Each row names an input (a deck, a Y2D .y deck, a Gmsh .msh mesh or a .restart file), the exit
+ * code it must give (1 deck error, 2 I/O error) and a piece of the message, which always starts
+ * with the FILE:LINE of the fault.  A .msh row is copied to in.msh and read by reader_gmsh.deck, a
+ * .restart row to in.restart and read by reader_restart.deck: the decks the reader fuzz targets
+ * run their inputs with (tools/fuzz), so that what they found stays fixed.
  * The inputs cover truncated lines, wrong types, huge numbers, NaN and inf, negative counts,
  * missing files, recursive includes, binary garbage, absurd sizes (mesh rect, .msh $Nodes,
- * .y capacities: refused before allocation) and what the fuzzer found (fuzz_*.deck).  Besides
+ * .y capacities: refused before allocation) and what the fuzzers found (fuzz_*).  Besides
  * the expected message: no crash (signal), no internal error, no sanitizer report.
  * YFDEM_MEM_MAX=4e9 makes the memory refusals independent of the machine.
  */
@@ -41,10 +44,16 @@ START_TEST(test_corpus) {
     char *name = strtok(line, "\t"), *code_s = strtok(NULL, "\t"), *piece = strtok(NULL, "\t");
     ck_assert_msg(name && code_s && piece, "bad MANIFEST row %d", rows + 1);
     int want = atoi(code_s);
-    size_t L = strlen(name);
-    int is_y = L > 2 && !strcmp(name + L - 2, ".y");
-    snprintf(cmd, sizeof cmd, "cd %s && YFDEM_MEM_MAX=4e9 OMP_NUM_THREADS=1 timeout 120 %s %s %s >/dev/null 2>err.txt", dir,
-             abs, is_y ? "" : "-in", name);
+    const char *ext = strrchr(name, '.') ? strrchr(name, '.') : "";
+    char run[1400];
+    if (!strcmp(ext, ".y")) /* a Y2D deck is run as such */
+      snprintf(run, sizeof run, "%s %s", abs, name);
+    else if (!strcmp(ext, ".msh") || !strcmp(ext, ".restart")) /* a file read by its reader's deck */
+      snprintf(run, sizeof run, "cp %s in%s && %s -in reader_%s.deck", name, ext, abs, ext[1] == 'm' ? "gmsh" : "restart");
+    else
+      snprintf(run, sizeof run, "%s -in %s", abs, name);
+    snprintf(cmd, sizeof cmd, "cd %s && YFDEM_MEM_MAX=4e9 OMP_NUM_THREADS=1 timeout 120 sh -c '%s' >/dev/null 2>err.txt",
+             dir, run);
     int st = system(cmd);
     int code = WIFEXITED(st) ? WEXITSTATUS(st) : 128;
     char ep[1100];

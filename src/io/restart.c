@@ -64,6 +64,8 @@
  * stopped where the uninterrupted one is.  Versions 1 and 2 are read with the check starting
  * afresh at the restart's step, and read_restart says so. */
 #define RESTART_VERSION 3
+/* the most steps a run takes (cmd_run.c): a restart's step and last step lie in [0, this] */
+#define RESTART_STEP_MAX 1000000000000000L
 
 typedef struct YfRestart {
   long every;      /* steps between periodic restarts (0: none)            */
@@ -217,10 +219,29 @@ typedef struct {
   const YfLoc *loc;
 } R;
 
+/* The file and whatever of it is still open (the group and dataset being read): H5Fclose alone
+ * leaves the file open while an object of it is, so a process that goes on after the error (the
+ * fuzz target, tools/fuzz; a library caller) found the stale file in HDF5's cache when it opened
+ * a file of that name again (a SEGV in libhdf5). */
+static void close_file_all(hid_t f) {
+  const unsigned kinds = H5F_OBJ_DATASET | H5F_OBJ_GROUP | H5F_OBJ_DATATYPE | H5F_OBJ_ATTR | H5F_OBJ_LOCAL;
+  ssize_t n = H5Fget_obj_count(f, kinds);
+  if (n > 0) {
+    hid_t *ids = yf_malloc((size_t)n * sizeof *ids, "HDF5 handles");
+    n = H5Fget_obj_ids(f, kinds, (size_t)n, ids);
+    for (ssize_t k = 0; k < n; k++) {
+      if (H5Iget_type(ids[k]) == H5I_ATTR) H5Aclose(ids[k]);
+      else H5Oclose(ids[k]);
+    }
+    free(ids);
+  }
+  H5Fclose(f);
+}
+
 static void rfail(const R *r, const char *what) __attribute__((noreturn));
 static void rfail(const R *r, const char *what) {
   hid_t f = r->file;
-  if (f >= 0) H5Fclose(f);
+  if (f >= 0) close_file_all(f);
   yf_io_error(r->loc, "read_restart: '%s' is not a usable yfdem restart (%s)", r->path, what);
 }
 
@@ -596,6 +617,15 @@ static void mismatch(const YfLoc *loc, const char *path, const char *what, long 
                 path, what, file, here);
 }
 
+/* A break or opened-crack record read from a restart: its indices name a triangle and a joint of
+ * the scene (the fracture log prints the triangles' ids: an index past them was read out of
+ * bounds), its mode one of the failure modes, its numbers finite. */
+static int record_ok(const YfBreak *b, int ntri, int njoint, long step) {
+  return b->mode >= YF_JMODE_I && b->mode <= YF_JMODE_MIXED && b->triA >= 0 && b->triA < ntri && b->triB >= 0 &&
+         b->triB < ntri && b->joint >= 0 && b->joint < njoint && b->step >= 0 && b->step <= step + 1 &&
+         isfinite(b->time) && isfinite(b->x) && isfinite(b->y) && isfinite(b->length);
+}
+
 void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   YfModel *m = &s->model;
   if (!m->tri.n)
@@ -732,6 +762,14 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   /* dt 0: a restart written before the first run of a deck with timestep auto (no step set yet) */
   if (step < 0 || !(dt > 0 || (between && f_auto && dt == 0.0)) || time != time)
     rfail(&r, "step, time or dt out of range");
+  /* a run goes on from these (step + N, time + dt...: a step of 2^63 - 1 overflowed) and the
+   * summary and thermo print them: the steps a run may take (cmd_run.c), finite numbers */
+  if (step > RESTART_STEP_MAX || last_step < 0 || last_step > RESTART_STEP_MAX || !isfinite(time) || !isfinite(dt))
+    rfail(&r, "sim/step, last_step, time or dt out of range");
+  for (int k = 0; k < 7; k++)
+    if (!isfinite(en[k])) rfail(&r, "sim/energy: not a finite number");
+  if (!(elem_steps >= 0 && isfinite(elem_steps)) || !(wall_s >= 0 && isfinite(wall_s)))
+    rfail(&r, "sim/elem_steps or wall_s out of range");
 
   g = ropen(&r, "nodes");
   get(&r, g, "x", H5T_NATIVE_DOUBLE, nn, N->x);
@@ -794,6 +832,13 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
       J->rec[k] = (YfBreak){rs[k], rd[4 * k], rd[4 * k + 1], rd[4 * k + 2], rd[4 * k + 3],
                             ri[4 * k], ri[4 * k + 1], ri[4 * k + 2], ri[4 * k + 3]};
     free(rs); free(rd); free(ri);
+    for (long k = 0; k < nr; k++)
+      if (!record_ok(&J->rec[k], m->tri.n, J->n, step)) rfail(&r, "joints/rec_*: a break record out of range");
+    if (J->nbroken < 0 || J->nbroken > J->n) rfail(&r, "joints/nbroken out of range");
+    for (size_t j = 0; j < n; j++)
+      if (J->state[j] > 2 || J->mode[j] > YF_JMODE_MIXED) rfail(&r, "joints/state or mode: a value no joint takes");
+    if (!isfinite(J->diss_broken) || !(J->dt_prev >= 0 && isfinite(J->dt_prev)))
+      rfail(&r, "joints/diss_broken or dt_prev out of range");
     /* opened cracks (absent in restarts written before they were recorded: none then) */
     if (dlen(g, "opened") >= 0) {
       get(&r, g, "opened", H5T_NATIVE_UCHAR, n, J->opened);
@@ -814,6 +859,8 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
         J->orec[k] = (YfBreak){rs[k], rd[4 * k], rd[4 * k + 1], rd[4 * k + 2], rd[4 * k + 3],
                                ri[4 * k], ri[4 * k + 1], ri[4 * k + 2], ri[4 * k + 3]};
       free(rs); free(rd); free(ri);
+      for (long k = 0; k < no; k++)
+        if (!record_ok(&J->orec[k], m->tri.n, J->n, step)) rfail(&r, "joints/orec_*: an opened-crack record out of range");
     }
     for (int i = 0; i < J->nset; i++) {
       char name[32];
@@ -881,6 +928,12 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
       st.fcn = NULL;
     }
     st.fcn_valid = st.fcn ? (int)get_l(&r, g, "fcn_valid") : 0;
+    /* the distance moved since the last search decides the next one (a NaN never reaches the
+     * buffer: no search again, contacts missed in silence); the springs' energy is booked */
+    if (!(st.travel >= 0 && isfinite(st.travel)) || (st.has_spring && !isfinite(st.spring))) {
+      free(st.ij); free(st.g); free(st.alive); free(st.fcn);
+      rfail(&r, "contact/travel or spring out of range");
+    }
     H5Gclose(g);
     contact_state_load(s, &st);
     free(st.ij); free(st.g); free(st.alive); free(st.fcn);

@@ -486,12 +486,34 @@ static void y2d_setup_contact(YfSim *s, YfY2dRun *r, const YfY2d *y, const unsig
   if (!any_meshed && y->diedi < y->diezon) contact_set_first_travel(s, y->diedi);
 }
 
+/* The run being built by load (NULL otherwise): reachable from y2d_model_free, which sim_free calls
+ * once the bc kind is registered, so that a deck error in the middle of reading (which ends yfdem;
+ * the fuzz targets and library callers go on) leaves its arrays (sized by the deck's capacities)
+ * freed, not unreachable. */
+static YfY2dRun *loading;
+
+static void y2drun_free(YfY2dRun *r) {
+  if (r->deck) {
+    y2d_free(deck_of(r));
+    free(r->deck);
+  }
+  free(r->path);
+  free(r->kind); free(r->amp); free(r->ap); free(r->at); free(r->R); free(r->Ri);
+  free(r->tt); free(r->tf); free(r->phi); free(r->set); free(r->le); free(r->lf);
+  free(r->acur); free(r->ublk); free(r->setof);
+  free(r);
+}
+
 static int load(YfSim *s, const char *path, double volfac, const YfLoc *from, int program) {
   if (s->y2d) yf_deck_error(from, "read_y2d: a Y2D deck (%s) was already read; one per simulation", s->y2d->path);
   YfY2d *y = yf_calloc(1, sizeof *y, "y2d deck");
+  YfY2dRun *r = yf_calloc(1, sizeof *r, "y2d run");
+  r->deck = y;
+  loading = r;
+  sim_add_bc_kind(s, &y2d_bc_kind); /* its free hook frees `loading` after an error (sim_free) */
   if (program ? y2d_read_program(path, y, from) : y2d_read(path, y, from)) { /* nothing to compute */
-    y2d_free(y);
-    free(y);
+    loading = NULL;
+    y2drun_free(r);
     return 0;
   }
   unsupported_checks(y);
@@ -511,9 +533,7 @@ static int load(YfSim *s, const char *path, double volfac, const YfLoc *from, in
   }
 
   YfModel *m = &s->model;
-  YfY2dRun *r = yf_calloc(1, sizeof *r, "y2d run");
   r->path = yf_strdup(path);
-  r->deck = y;
   r->volfac = volfac;
   r->gy = y->dcgray;
 
@@ -632,8 +652,8 @@ static int load(YfSim *s, const char *path, double volfac, const YfLoc *from, in
         r->tf[b * r->npts + p] = y2d_fac_value(y, b, p);
       }
   }
-  s->y2d = r;
-  sim_add_bc_kind(s, &y2d_bc_kind); /* the run loop applies the BC sets through it */
+  s->y2d = r; /* the run loop applies the BC sets through y2d_bc_kind */
+  loading = NULL;
   s->dt_warn_only = 1;              /* Y2D decks choose dt by experience: warn only */
 
   /* joints (meshing code 3) and contact */
@@ -659,17 +679,10 @@ static int load(YfSim *s, const char *path, double volfac, const YfLoc *from, in
 }
 
 void y2d_model_free(YfSim *s) {
-  YfY2dRun *r = s->y2d;
-  if (!r) return;
-  if (r->deck) {
-    y2d_free(deck_of(r));
-    free(r->deck);
-  }
-  free(r->path);
-  free(r->kind); free(r->amp); free(r->ap); free(r->at); free(r->R); free(r->Ri);
-  free(r->tt); free(r->tf); free(r->phi); free(r->set); free(r->le); free(r->lf);
-  free(r->acur); free(r->ublk); free(r->setof);
-  free(r);
+  if (loading && loading != s->y2d) y2drun_free(loading);
+  loading = NULL;
+  if (!s->y2d) return;
+  y2drun_free(s->y2d);
   s->y2d = NULL;
 }
 
