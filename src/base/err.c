@@ -5,6 +5,7 @@
  * cleanup cannot loop.
  */
 #include <ctype.h>
+#include <pthread.h>
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -59,6 +60,30 @@ void yf_catch_signals(void (*handler)(int sig)) {
   signal(SIGPIPE, SIG_IGN);
 }
 void yf_interruptible(int on) { install(!on); }
+
+/* METIS (GKlib's gk_sigtrap/gk_siguntrap, built with strict C: signal() is SysV's there) traps
+ * SIGTERM and SIGABRT during a call and puts the old handlers back one-shot (SA_RESETHAND), with
+ * no SA_RESTART and without SA_SIGINFO: after a partition the next SIGTERM (mpirun's on Ctrl-C)
+ * broke a blocked write to stdout (EINTR: exit 2 where an interrupt ends with a restart, exit
+ * 130), a second one killed the run, and OpenMPI's SIGABRT handler got no siginfo.  The guard
+ * blocks SIGINT and SIGTERM in this thread, keeps the handlers and restores them exactly
+ * afterwards; a signal that came in meanwhile is then delivered to our handler. */
+static struct sigaction guard_old[3];
+static sigset_t guard_mask;
+static const int guard_sig[3] = {SIGINT, SIGTERM, SIGABRT};
+void yf_signals_guard(int on) {
+  if (on) {
+    sigset_t block;
+    sigemptyset(&block);
+    sigaddset(&block, SIGINT);
+    sigaddset(&block, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &block, &guard_mask);
+    for (int k = 0; k < 3; k++) sigaction(guard_sig[k], NULL, &guard_old[k]);
+  } else {
+    for (int k = 0; k < 3; k++) sigaction(guard_sig[k], &guard_old[k], NULL);
+    pthread_sigmask(SIG_SETMASK, &guard_mask, NULL);
+  }
+}
 
 void yf_set_cleanup(YfCleanupFn fn) { cleanup_fn = fn; }
 void yf_set_exit_hook(void (*hook)(int code)) { exit_hook = hook; }

@@ -69,6 +69,10 @@ void yf_warn(const YfLoc *loc, const char *fmt, ...) __attribute__((format(print
  * the read (EINTR) and the reader can stop; yf_interruptible(0) puts SA_RESTART back. */
 void yf_catch_signals(void (*handler)(int sig));
 void yf_interruptible(int on);
+/* Around a library call that installs its own signal handlers (METIS): on = 1 blocks SIGINT and
+ * SIGTERM in this thread and keeps the SIGINT, SIGTERM and SIGABRT handlers; on = 0 restores them
+ * exactly and unblocks (a signal sent meanwhile then reaches the handler). */
+void yf_signals_guard(int on);
 /* 1 once the exit path (files closed, summary written) has begun: a signal then changes nothing. */
 int yf_exiting(void);
 

@@ -178,7 +178,9 @@ void partition_apply(YfSim *s) {
   METIS_SetDefaultOptions(opt);
   opt[METIS_OPTION_SEED] = 1;    /* deterministic: the same mesh gives the same parts */
   opt[METIS_OPTION_NUMBERING] = 0;
+  yf_signals_guard(1); /* METIS leaves SIGTERM one-shot and non-restarting (err.h) */
   int rc = METIS_PartGraphKway(&nv, &ncon, xadj, adj, NULL, NULL, NULL, &np, NULL, NULL, opt, &cut, part);
+  yf_signals_guard(0);
   free(xadj);
   free(adj);
   if (rc != METIS_OK) {
