@@ -708,6 +708,28 @@ START_TEST(test_second_interrupt_leaves_no_tmp) {
 }
 END_TEST
 
+/* Occurrences of needle in hay. */
+static int occurrences(const char *hay, const char *needle) {
+  int n = 0;
+  for (const char *p = hay; (p = strstr(p, needle)); p += strlen(needle)) n++;
+  return n;
+}
+
+/* A fix and a load on a group that selects nothing: said once each, at the first run, however many
+ * runs the deck makes (each of 3 runs said both again: 2026-11-29 MPI sweep). */
+START_TEST(test_empty_group_warned_once) {
+  char *err = NULL;
+  int code = yft_run_binary("eg.deck",
+                            "material m elastic rho 1000 E 1e7 nu 0.25 plane_strain\n"
+                            "mesh rect a m 0 0 0.1 0.05 4 2\nregion far box 5 5 6 6\ngroup g node region far\n"
+                            "fix f g velocity 0 0\nload q g traction 0 1\ntimestep 1e-6\nrun 5\nrun 5\nrun 5\n",
+                            "-log none", &err, NULL);
+  ck_assert_msg(code == 0 && occurrences(err, "fix 'f': group 'g' has no nodes") == 1 &&
+                occurrences(err, "load 'q': group 'g' has no boundary edge") == 1, "exit %d:\n%s", code, err);
+  free(err);
+}
+END_TEST
+
 Suite *habits_suite(void) {
   Suite *s = suite_create("habits");
   TCase *t = tcase_create("lammps");
@@ -733,6 +755,7 @@ Suite *habits_suite(void) {
   tcase_add_test(t, test_lammps_options_hinted);
   tcase_add_test(t, test_empty_deck_and_terminal_stdin);
   tcase_add_test(t, test_var_given_twice_warned);
+  tcase_add_test(t, test_empty_group_warned_once);
   suite_add_tcase(s, t);
   return s;
 }

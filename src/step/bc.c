@@ -38,7 +38,8 @@ typedef struct YfBc {
   int *owner;           /* at bc_prepare only (whole scene, 8 B per node, freed after): per
                            node component, the fix that prescribes it (the last given), -1 none */
   unsigned char *warned; /* per item: its overlap with a later fix (bit 0), a jump at a run's
-                            start (bit 1), a distributed load's edges (bit 2) were reported  */
+                            start (bit 1), a distributed load's edges (bit 2), its empty group
+                            (bit 3) were reported                                         */
   int warned_n;
 } YfBc;
 
@@ -94,7 +95,9 @@ int bc_set_velocity(YfSim *s, int group, double vx, double vy) {
 
 /* ---------------- resolution and application ---------------- */
 
-static void resolve_nodes(YfSim *s, YfBcItem *it) {
+/* warned: the item's bits of YfBc.warned; bit 3 says its empty group was reported (once per item:
+ * a deck of several runs said it again at every run) */
+static void resolve_nodes(YfSim *s, YfBcItem *it, unsigned char *warned) {
   YfNodes *n = &s->model.node;
   free(it->nodes);
   free(it->acts);
@@ -146,7 +149,7 @@ static void resolve_nodes(YfSim *s, YfBcItem *it) {
     free(it->edges);
     it->edges = NULL;
     it->ne = mesh_boundary_edges(&s->model, (uint64_t)1 << it->sp.group, &it->edges);
-    if (!it->ne)
+    if (!it->ne && !(*warned & 8))
       yf_warn(&it->sp.loc, "load '%s': group '%s' has no boundary edge (both end nodes must be in the group)",
               it->id, s->model.group[it->sp.group].name);
     /* nodes touched: the edge ends, each edge contributing to its own two nodes */
@@ -160,8 +163,10 @@ static void resolve_nodes(YfSim *s, YfBcItem *it) {
     int k = 0;
     for (int i = 0; i < n->n; i++)
       if (n->gmask[i] & bit) it->nodes[k++] = i;
-    if (!it->nn) yf_warn(&it->sp.loc, "fix '%s': group '%s' has no nodes", it->id, s->model.group[it->sp.group].name);
+    if (!it->nn && !(*warned & 8))
+      yf_warn(&it->sp.loc, "fix '%s': group '%s' has no nodes", it->id, s->model.group[it->sp.group].name);
   }
+  if (!it->nn) *warned |= 8;
   free(it->lf);
   it->lf = yf_calloc((size_t)(it->nn ? it->nn : 1) * 2, sizeof(double), "load forces");
 }
@@ -292,7 +297,7 @@ void bc_prepare(YfSim *s) {
     b->warned_n = b->n;
   }
   for (int i = 0; i < b->n; i++) {
-    resolve_nodes(s, &b->item[i]);
+    resolve_nodes(s, &b->item[i], &b->warned[i]);
     nfix += b->item[i].sp.kind <= BC_DISPLACEMENT;
   }
   /* which fix acts on each node component: a whole-scene table for this set-up only (a run keeps
