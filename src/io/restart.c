@@ -211,6 +211,13 @@ static hid_t group(W *w, const char *name) {
 static void gclose(hid_t g) {
   if (g >= 0) H5Gclose(g);
 }
+/* A module's saved state (metrics, the energy check): its doubles as d and its integers as l in group name. */
+static void put_state(W *w, const char *name, const double *d, size_t nd, const long *l, size_t nl) {
+  hid_t g = group(w, name);
+  put(w, g, "d", H5T_NATIVE_DOUBLE, nd, d);
+  put(w, g, "l", H5T_NATIVE_LONG, nl, l);
+  gclose(g);
+}
 
 /* Reading: every failure is fatal (an I/O error naming the file and the dataset). */
 typedef struct {
@@ -444,19 +451,13 @@ static void write_all(W *w, YfSim *s) {
   double md[METRICS_STATE_ND];
   long ml[METRICS_STATE_NL];
   metrics_state_save(md, ml);
-  g = group(w, "metrics");
-  put(w, g, "d", H5T_NATIVE_DOUBLE, METRICS_STATE_ND, md);
-  put(w, g, "l", H5T_NATIVE_LONG, METRICS_STATE_NL, ml);
-  gclose(g);
+  put_state(w, "metrics", md, METRICS_STATE_ND, ml, METRICS_STATE_NL);
 
   /* the energy check's memory (format 3) */
   double ed[ENERGY_STATE_ND];
   long el[ENERGY_STATE_NL];
   energy_state_save(ed, el);
-  g = group(w, "energy");
-  put(w, g, "d", H5T_NATIVE_DOUBLE, ENERGY_STATE_ND, ed);
-  put(w, g, "l", H5T_NATIVE_LONG, ENERGY_STATE_NL, el);
-  gclose(g);
+  put_state(w, "energy", ed, ENERGY_STATE_ND, el, ENERGY_STATE_NL);
 
   YfContactState cs;
   if (contact_state_save(s, &cs)) {
