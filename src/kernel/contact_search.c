@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "err.h"
+#include "parfor.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -461,11 +462,10 @@ int contact_trigger_step(YfSearchTrigger *t, double dt, double vmax2)
 double contact_vmax2(int n, const int *nodes, const double *vx, const double *vy)
 {
   double vm = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : vm) if (n >= YF_SEARCH_PAR_MIN)
-  for (int k = 0; k < n; k++) {
+  YF_PARFOR_IF(n >= YF_SEARCH_PAR_MIN, schedule(static) reduction(max : vm), for (int k = 0; k < n; k++) {
     int i = nodes ? nodes[k] : k;
     double v2 = vx[i] * vx[i] + vy[i] * vy[i];
     if (v2 > vm) vm = v2;
-  }
+  });
   return vm;
 }
