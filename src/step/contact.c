@@ -55,6 +55,7 @@
 #include "err.h"
 #include "joint.h"
 #include "par.h"
+#include "parfor.h"
 #include "stage_time.h"
 
 #define MAX_RULES YF_CONTACT_MAX_RULES
@@ -123,6 +124,7 @@ typedef struct YfContact {
   double *gdense;        /* restart: the friction memory, YF_PAIR_NG per couple (copy) */
   int cap_nodes;
   int fcn_valid;
+  int tmarked;           /* 0: no tmark is set (the one-thread path then skips its passes over every node) */
 
   YfSearchWork work;
   YfSearchTrigger trig;
@@ -1492,16 +1494,17 @@ void contact_step(YfSim *s) {
   yf_stage_time[YF_ST_DETECT] += t1 - t0;
 
   /* the screen's triangle records of this step (participating triangles only; MPI, divided
-   * update: those of this rank's couples) */
+   * update: those of this rank's couples).  Only the screen and the kernel of this step read
+   * them: with no couple (bodies that are not near each other, a 'contact pair' that never
+   * meets) none are made (2000 steps of two 1e4-triangle bodies 4 m apart: 6 % of the step). */
   const int *tv = m->tri.v, *tmat = m->tri.mat;
   const double *x = nd->x, *y = nd->y, *vx = nd->vx, *vy = nd->vy;
   double *tg = C->tg;
-  #pragma omp parallel for schedule(static) if (nitem >= C->par_min)
-  for (int q = 0; q < nitem; q++) {
+  YF_PARFOR_IF(nitem >= C->par_min, schedule(static), for (int q = 0; q < (C->pairs.n > 0 ? nitem : 0); q++) {
     const int t = item[q], *v = tv + 3 * t;
     double xs[3] = {x[v[0]], x[v[1]], x[v[2]]}, ys[3] = {y[v[0]], y[v[1]], y[v[2]]};
     contact_pair_geom(xs, ys, tg + (size_t)YF_TRI_GEOM * (tmap ? q : t));
-  }
+  });
 
   /* pass 1, the screen: couples whose edges all miss give no force (only their distance decides
    * whether they stay); the others are marked 2 and counted per fixed block */
@@ -1520,8 +1523,7 @@ void contact_step(YfSim *s) {
   /* MPI: this rank screens its own couples only (kernel_ranks), marking its drops 3 */
   const unsigned char dropped = dist ? 3 : 0;
   const double cs0 = dist ? yf_cpu_now() : 0.0;
-  #pragma omp parallel for schedule(static) if (np >= C->par_min && nblk > 1)
-  for (int b = 0; b < nblk; b++) {
+  YF_PARFOR_IF(np >= C->par_min && nblk > 1, schedule(static), for (int b = 0; b < nblk; b++) {
     int k1 = (b + 1) * PAIR_BLK < s1 ? (b + 1) * PAIR_BLK : s1, rm = 0, busy = 0, need = 0;
     for (int k = (b * PAIR_BLK > s0 ? b * PAIR_BLK : s0) - s0; k < k1 - s0; k++) {
       if (!alive[k]) continue;
@@ -1536,7 +1538,7 @@ void contact_step(YfSim *s) {
     C->blk_rm[b] = rm;
     C->blk_busy[b] = busy;
     C->blk_need[b] = need;
-  }
+  });
   if (dist) par_note_work(yf_cpu_now() - cs0); /* the screen of this rank's couples */
   int nbusy = 0, ng = C->pairs.ng;
   for (int b = 0; b < nblk; b++) {
@@ -1567,16 +1569,23 @@ void contact_step(YfSim *s) {
   const int nn = nd->n;
   if (dist) ng = C->pairs.ng; /* kernel_ranks numbers this rank's first contacts itself */
   const int kdrop = dist ? kernel_ranks(s, C, &P, nbusy, &ng) : -1; /* MPI: each rank its couples (above) */
+  if (kdrop >= 0) C->tmarked = 1;
   if (!dist) C->ntl = -1; /* the paths below mark nodes without listing them */
   if (kdrop < 0 && serial) {
-    for (int i = 0; i < nn; i++)
-      if (tmark[i]) { fcn[2 * i] = fcn[2 * i + 1] = 0.0; tmark[i] = 0; }
+    /* the passes over every node find nothing when no node was marked and no couple touches */
+    const int marks = C->tmarked || nbusy > 0;
+    if (marks)
+      for (int i = 0; i < nn; i++)
+        if (tmark[i]) { fcn[2 * i] = fcn[2 * i + 1] = 0.0; tmark[i] = 0; }
     P.fcn = fcn;
     P.tmark = tmark;
     for (int b = 0; b < nblk; b++) kernel_block(C, &P, b);
-    for (int i = 0; i < nn; i++)
-      if (tmark[i]) { fx[i] += fcn[2 * i]; fy[i] += fcn[2 * i + 1]; }
+    if (marks)
+      for (int i = 0; i < nn; i++)
+        if (tmark[i]) { fx[i] += fcn[2 * i]; fy[i] += fcn[2 * i + 1]; }
+    C->tmarked = nbusy > 0;
   } else if (kdrop < 0) {
+    C->tmarked = 1;
     hit_room(C, nbusy); /* rarely grows: see hit_room */
     P.hf = C->hf;
     P.hk = C->hk;
@@ -1664,6 +1673,7 @@ void contact_rehome(YfSim *s, const int *nold) {
   if (C->fcn_valid) par_move_ranges(C->fcn, nold, nlo, 2 * (int)sizeof(double));
   for (int i = nlo[me]; i < nlo[me + 1]; i++) C->tmark[i] = C->fcn[2 * i] != 0.0 || C->fcn[2 * i + 1] != 0.0;
   C->ntl = -1;
+  C->tmarked = 1;
   rehome_couples(C);
 }
 
@@ -1831,6 +1841,7 @@ int contact_state_load(YfSim *s, const YfContactState *st) {
     memcpy(C->fcn, st->fcn, (size_t)2 * st->nn * sizeof(double));
     for (int i = 0; i < st->nn; i++) C->tmark[i] = C->fcn[2 * i] != 0.0 || C->fcn[2 * i + 1] != 0.0;
     C->ntl = -1;
+    C->tmarked = 1;
   }
   C->fcn_valid = st->fcn_valid;
   C->espring = st->has_spring ? st->spring : spring_energy(s, C);
