@@ -23,10 +23,17 @@
 #define YF_TEAM_OF_MANY() 0
 #endif
 
+/* Loops whose condition held, counted by YF_PARFOR_IF and YF_WANT_TEAM (a region outside the
+ * macro): a step that counted none ran on one thread whatever the team, so the thread governor
+ * (step/threads.c) does not time it, and saves the two reads of the CPU clock it would cost.
+ * Counted by the main thread, outside parallel regions. */
+extern unsigned long yf_team_wanted;
+#define YF_WANT_TEAM(cond) ((cond) ? (yf_team_wanted++, 1) : 0)
+
 #define YF_PRAGMA_(x) _Pragma(#x)
 #define YF_PARFOR_IF(cond, clauses, ...)     \
   do {                                       \
-    if ((cond) && YF_TEAM_OF_MANY()) {       \
+    if (YF_WANT_TEAM(cond) && YF_TEAM_OF_MANY()) { \
       YF_PRAGMA_(omp parallel for clauses)   \
       __VA_ARGS__                            \
     } else {                                 \

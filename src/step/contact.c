@@ -1257,7 +1257,7 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nbusy, int *n
   ds_room(&DS.ed, &DS.ced, (size_t)(NSUM * ned + NSUM * nq + 2) * sizeof(double));
   double *ed = DS.ed;
   const double tk = yf_cpu_now();
-  #pragma omp parallel for schedule(dynamic, 1) if (nh >= C->par_min / 32 && nq > 1)
+  #pragma omp parallel for schedule(dynamic, 1) if (YF_WANT_TEAM(nh >= C->par_min / 32 && nq > 1))
   for (int q = 0; q < nq; q++) {
     int xa, xb, rm = 0, whole = piece(b0 + q, k0, k1, np, &xa, &xb);
     kernel_run(P, xa - k0, xb - k0, hoff[q], 0, &qsum[NSUM * q], &rm, whole ? NULL : ed + NSUM * eoff[q]);
@@ -1561,7 +1561,7 @@ void contact_step(YfSim *s) {
 #ifdef _OPENMP
   nthr = omp_get_max_threads();
 #endif
-  const int serial = !(nbusy >= C->par_min / 32 && nblk > 1) || nthr == 1;
+  const int serial = !YF_WANT_TEAM(nbusy >= C->par_min / 32 && nblk > 1) || nthr == 1;
   KernelPass P = {ij, tv, tmat, gi, alive, vx, vy, tg, tmap, C->pairs.g, C->mpn, C->mpt, C->mmu, C->mlaw, dt, rem2, ntot,
                   NULL, NULL, NULL, NULL};
   double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
