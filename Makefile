@@ -7,6 +7,7 @@
 #                 the dumps in a real ParaView (tests/paraview/run) and the script tests (tests/*/run)
 #   make bench    element-steps per second, thread scaling, bytes per element
 #   make bench-mpi the same on 1 and 2 MPI ranks x 1 and 2 threads at 1e5 and 1e6 (./yfdem_mpi)
+#   make bench-cost what a scene that models little costs (fixed costs of the step, unused contact)
 #   make asan     the whole test suite under AddressSanitizer + UBSan (build-asan/; CI runs it)
 #   make fuzz     libFuzzer on the deck interpreter and the .y, .msh and restart readers (clang;
 #                 tools/fuzz/README.md), FUZZ_RUNS inputs each
@@ -64,7 +65,7 @@ HDR     := $(wildcard src/*/*.h src/*/*.def)
 TSRC    := $(wildcard tests/check_*.c)
 TOBJ    := $(TSRC:tests/%.c=$(BUILD)/tests/%.o)
 
-.PHONY: all demo check test deps deps-test bench bench-mpi clean asan asan-mpi fuzz valgrind mpi
+.PHONY: all demo check test deps deps-test bench bench-cost bench-mpi clean asan asan-mpi fuzz valgrind mpi
 
 BIN     ?= yfdem
 
@@ -131,6 +132,13 @@ test: yfdem $(BUILD)/check_yfdem
 
 bench: yfdem
 	tools/bench
+
+# What a scene that models little costs (docs/PERFORMANCE.md, What a scene costs): the step's fixed
+# costs at 16 and 1000 triangles (1 thread, and the 2-thread default that times its steps), and a
+# contact rule between bodies that never meet.
+bench-cost: yfdem
+	tools/bench --cases elastic --sizes 16,1e3 --threads 1,2 --work 2e7 --repeat 3
+	tools/bench --cases elastic,contact_far --sizes 2e4 --threads 1 --work 4e8 --repeat 3
 
 bench-mpi: yfdem mpi
 	tools/bench --cases elastic,y2d_perf --sizes 1e5,1e6 --ranks 1,2 --threads 1,2

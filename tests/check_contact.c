@@ -377,6 +377,79 @@ START_TEST(test_threads_bitwise) {
 }
 END_TEST
 
+/* ------------------------------------------------------------------ contact that comes later */
+
+/* Two blocks 0.2 m apart closing at 4 m/s (8 x 4 cells each, h = 12.5 mm, buffer 3.75 mm):
+ * for the first ~9000 steps no couple exists, so the step makes no triangle records and skips
+ * its passes over the nodes (contact.c: a scene pays for contact only while couples exist); then
+ * the search finds the couples and the blocks collide.  The same scene with a 1 m buffer has
+ * every couple of the two blocks' boundary triangles from step 0 and so runs every pass at every step.  Couples that
+ * do not touch give no force, and touching ones are summed in couple order in both, so the two
+ * runs must end in the same bits, with no contact force left on a node once the blocks are apart;
+ * and the skipped run's impact must conserve momentum (1e-10 of
+ * sum m|v|, as head-on above) and exchange it (the blocks of equal mass swap velocities in a
+ * rigid bounce: b must leave faster than 1 m/s; it leaves at 2.997 m/s, a's 3 m/s). */
+static uint64_t far_impact(const char *buffer, long *pairs0, double *dP, double *vb) {
+  char deck[1024];
+  snprintf(deck, sizeof deck,
+           "material m elastic rho 1000 E 1e8 nu 0.25 plane_strain pen_n 3e5\n"
+           "mesh rect a m 0 0 0.1 0.05 8 4\nmesh rect b m 0.3 0 0.4 0.05 8 4\n"
+           "velocity a set 3 0\nvelocity b set -1 0\ncontact pair a b\ncontact buffer %s\ntimestep 2e-6\nrun 0\n",
+           buffer);
+  YfSim *s = yft_run(deck);
+  Stat a0 = gstat(s, "a"), b0 = gstat(s, "b");
+  const double P0 = a0.px + b0.px, scale = fabs(a0.px) + fabs(b0.px);
+  run_steps(s, 1000); /* 8 mm closer: 0.192 m apart */
+  *pairs0 = contact_pairs(s);
+  *dP = 0;
+  for (int k = 0; k < 60; k++) {
+    run_steps(s, 500);
+    Stat a = gstat(s, "a"), b = gstat(s, "b");
+    if (fabs(a.px + b.px - P0) > *dP) *dP = fabs(a.px + b.px - P0);
+  }
+  *dP /= scale;
+  *vb = gstat(s, "b").px / gstat(s, "b").m;
+  /* apart again: no node holds a contact force (the dump's fc field) */
+  const double *fc = contact_node_forces(s);
+  for (int i = 0; i < s->model.node.n; i++)
+    ck_assert_msg(fc[2 * i] == 0.0 && fc[2 * i + 1] == 0.0, "node %d keeps a contact force after the impact", i);
+  return sim_state_hash(s);
+}
+
+START_TEST(test_far_contact_skips_then_meets) {
+  quiet();
+  long p_far, p_all;
+  double dP_far, dP_all, vb_far, vb_all;
+  uint64_t h_far = far_impact("auto", &p_far, &dP_far, &vb_far);
+  uint64_t h_all = far_impact("1", &p_all, &dP_all, &vb_all);
+  fprintf(stderr, "far contact: couples before meeting %ld (buffer 1 m: %ld), b's velocity after %.4f m/s, dP %.3g; "
+          "hashes %016llx %016llx\n", p_far, p_all, vb_far, dP_far, (unsigned long long)h_far, (unsigned long long)h_all);
+  ck_assert_int_eq(p_far, 0);
+  ck_assert_int_eq(p_all, 40 * 40); /* every couple of the blocks' 40 + 40 boundary triangles */
+  ck_assert_double_gt(vb_far, 1.0);
+  ck_assert_double_le(dP_far, 1e-10);
+  ck_assert_msg(h_far == h_all, "the run without couples until they meet differs from the one with every couple");
+
+  /* contact that stops from one step to the next: blocks overlapping by 20 um push each other
+   * for a step, then fly apart at 2 x 100 m/s (0.4 mm a step of 2 us): at the next step no couple
+   * touches, and the node contact forces of the step before must not stay (the one-thread path
+   * skips its passes over the nodes only when no node holds one) */
+  YfSim *s = yft_run("material m elastic rho 1000 E 1e8 nu 0.25 plane_strain pen_n 3e5\n"
+                     "mesh rect a m 0 0 0.1 0.05 8 4\nmesh rect b m 0.09998 0 0.19998 0.05 8 4\n"
+                     "contact pair a b\ntimestep 2e-6\nenergy_check off\nrun 1\n");
+  const double *fc = contact_node_forces(s);
+  double f1 = 0;
+  for (int i = 0; i < s->model.node.n; i++) f1 += fabs(fc[2 * i]);
+  ck_assert_double_gt(f1, 0.0);
+  const int ga = model_group(&s->model, "a", 0);
+  for (int i = 0; i < s->model.node.n; i++) s->model.node.vx[i] = (s->model.node.gmask[i] >> ga & 1) ? -100.0 : 100.0;
+  run_steps(s, 2);
+  fc = contact_node_forces(s);
+  for (int i = 0; i < s->model.node.n; i++)
+    ck_assert_msg(fc[2 * i] == 0.0 && fc[2 * i + 1] == 0.0, "node %d keeps the contact force of a step before", i);
+}
+END_TEST
+
 /* ------------------------------------------------------------------ Y2D reference deck (a) */
 
 /* Reference deck (a) (elastic block falling on a base, contact, no friction) with contact switched
@@ -736,6 +809,7 @@ Suite *contact_suite(void) {
   tcase_add_test(t, test_fast_body_no_missed_couple);
   tcase_add_test(t, test_pack_forces_sum_to_zero);
   tcase_add_test(t, test_threads_bitwise);
+  tcase_add_test(t, test_far_contact_skips_then_meets);
   tcase_add_test(t, test_y2d_deck_a_api);
   tcase_add_test(t, test_participation_and_off);
   tcase_add_test(t, test_joined_skip_counts);

@@ -1,8 +1,9 @@
 /* check_habits.c: what a LAMMPS user expects of the program around the physics: a log file by
  * default (input lines, thermo, messages), a line per group, custom thermo columns and record
  * files, a timing table per run, a warning for a -var the deck never uses, "did you mean" in -h,
- * and no output file from a deck that fails before its first run.  The real binary ($YFDEM) runs
- * small decks in a temporary directory (yft_run_binary); its stdout is read back from the log. */
+ * no output file from a deck that fails before its first run, and no system call in the step.
+ * The real binary ($YFDEM) runs small decks in a temporary directory (yft_run_binary); its
+ * stdout is read back from the log. */
 #include <check.h>
 #include <math.h>
 #include <stdio.h>
@@ -730,6 +731,56 @@ START_TEST(test_empty_group_warned_once) {
 }
 END_TEST
 
+/* System calls that `strace -f -c` counts for the deck of dir run for `steps` steps with the
+ * options opt (-threads 1, or the default governed choice between one thread and two). */
+static long syscalls_of_run(const char *dir, long steps, const char *opt) {
+  char cmd[1400], out[600];
+  snprintf(out, sizeof out, "%s/strace_%ld.txt", dir, steps);
+  snprintf(cmd, sizeof cmd, "cd %s && OMP_NUM_THREADS=2 strace -f -c -o %s %s %s -log none -var steps %ld a.deck "
+           ">/dev/null 2>&1", dir, out, yft_binary(), opt, steps);
+  if (system(cmd) != 0) return -1;
+  char *t = yft_slurp(out, 0);
+  ck_assert_ptr_nonnull(t);
+  const char *tot = strstr(t, " total");
+  ck_assert_ptr_nonnull(tot);
+  const char *ln = tot;
+  while (ln > t && ln[-1] != '\n') ln--;
+  double pct = 0, sec = 0;
+  long upc = 0, calls = -1;
+  ck_assert_int_eq(sscanf(ln, "%lf %lf %ld %ld", &pct, &sec, &upc, &calls), 4);
+  free(t);
+  return calls;
+}
+
+/* The step does no I/O and allocates nothing (README, Source layout), so a run's system calls do
+ * not grow with its steps.  A 20-triangle bar with a support and gravity, 200 and 2200 steps, on
+ * one thread and by default (two threads allowed): the 2000 more steps may add a few calls (none
+ * are expected), not one per step.  An OpenMP loop whose `if` is false still built a libgomp team
+ * of one thread at each entry (a futex call each) and the element stage read the process's CPU
+ * clock twice (a system call each): 5 calls per step, 10 000 more here, and 80 % of a 16-triangle
+ * scene's step (parfor.h); by default the thread governor read it twice more per step, although
+ * no loop of such a scene runs on the team (threads.c). */
+START_TEST(test_step_makes_no_system_calls) {
+  char *dir = yft_deck_dir("a.deck", BAR "gravity 0 -9.81\nthermo 0\nvariable steps index 10\nrun ${steps}\n");
+  if (system("strace -V >/dev/null 2>&1") != 0) {
+    fprintf(stderr, "strace is not installed (tools/install-deps --test): the step's system calls are not counted\n");
+  } else {
+    static const char *const opts[] = {"-threads 1", ""};
+    for (int k = 0; k < 2; k++) {
+      long a = syscalls_of_run(dir, 200, opts[k]), b = syscalls_of_run(dir, 2200, opts[k]);
+      fprintf(stderr, "system calls (%s): %ld for 200 steps, %ld for 2200 steps\n", k ? "default" : opts[k], a, b);
+      ck_assert_int_gt(a, 0);
+      ck_assert_msg(b - a < 100, "%s: 2000 more steps made %ld more system calls (the step should make none)",
+                    k ? "default" : opts[k], b - a);
+    }
+  }
+  char cmd[700];
+  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+  if (system(cmd)) {}
+  free(dir);
+}
+END_TEST
+
 Suite *habits_suite(void) {
   Suite *s = suite_create("habits");
   TCase *t = tcase_create("lammps");
@@ -756,6 +807,7 @@ Suite *habits_suite(void) {
   tcase_add_test(t, test_empty_deck_and_terminal_stdin);
   tcase_add_test(t, test_var_given_twice_warned);
   tcase_add_test(t, test_empty_group_warned_once);
+  tcase_add_test(t, test_step_makes_no_system_calls);
   suite_add_tcase(s, t);
   return s;
 }

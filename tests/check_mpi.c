@@ -153,7 +153,14 @@ static double *frame_stress(const char *dir, const char *frame, long *n) {
 
 /* The matrix for one case: ./yfdem on 1 thread, then 1-4 ranks x 1-2 threads; frame (or NULL):
  * an HDF5 frame whose stresses must be bitwise ./yfdem's too. */
+static void matrix_gov(const char *name, const char *dir, const char *args, const char *frame, int team);
 static void matrix(const char *name, const char *dir, const char *args, const char *frame) {
+  matrix_gov(name, dir, args, frame, 1);
+}
+/* team 0: no loop of the scene is large enough to ask for the team, so the governor times no
+ * step and never switches (threads.c: nothing to choose; it used to read the CPU clock twice a
+ * step to switch between counts that computed alike) */
+static void matrix_gov(const char *name, const char *dir, const char *args, const char *frame, int team) {
   char sargs[2 * PATH_MAX + 64], path[PATH_MAX + 32], line[256];
   snprintf(sargs, sizeof sargs, "%s -summary ref.json", args);
   ck_assert_msg(run_in(dir, 0, 1, sargs, NULL) == 0, "%s: ./yfdem failed", name);
@@ -187,7 +194,7 @@ static void matrix(const char *name, const char *dir, const char *args, const ch
         snprintf(fp, sizeof fp, "%s/%s", dir, frame);
         unlink(fp);
       }
-      if (th < 0) { /* the run line says how the governor shared the steps: both counts ran */
+      if (th < 0 && team) { /* the run line says how the governor shared the steps: both counts ran */
         snprintf(path, sizeof path, "%s/out.txt", dir);
         char *out = yft_slurp(path, 0);
         /* "run: ... on 2 threads; auto: N steps on 2, M on 1)" (not "timestep auto: dt = ...") */
@@ -229,7 +236,8 @@ START_TEST(matrix_y2d) {
   char *d = workdir(), deck[PATH_MAX + 128];
   snprintf(deck, sizeof deck, "read_y2d %s/tests/y2d/decks/%s.y\nrun 150\n", ROOT, Y2D[_i]);
   write_file(d, "y.deck", deck);
-  matrix(Y2D[_i], d, "-in y.deck", NULL);
+  /* a (736 triangles) and d1 are too small for any loop to ask for the team (parfor.h) */
+  matrix_gov(Y2D[_i], d, "-in y.deck", NULL, _i == 1 || _i == 2);
   drop_dir(d);
 }
 END_TEST

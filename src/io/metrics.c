@@ -15,6 +15,7 @@
 #include <string.h>
 #include "metrics.h"
 #include "par.h"
+#include "parfor.h"
 #include "joint.h"
 #include "region.h"
 #include "run.h"
@@ -332,8 +333,7 @@ void metrics_step(YfSim *s) {
     const unsigned char *in = M.intri;
     const double *ts = m->tri.s;
     PeakBlk *pb = M.blk;
-    #pragma omp parallel for schedule(static) if (nb >= 4)
-    for (int b = 0; b < nb; b++) {
+    YF_PARFOR_IF(nb >= 4, schedule(static), for (int b = 0; b < nb; b++) {
       PeakBlk r = {-INFINITY, 0.0, -1, -1};
       const int ta = b * MBLK > e0 ? b * MBLK : e0, t1 = (b + 1) * MBLK < e1 ? (b + 1) * MBLK : e1;
       for (int t = ta; t < t1; t++) {
@@ -351,7 +351,7 @@ void metrics_step(YfSim *s) {
         }
       }
       pb[b] = r;
-    }
+    });
     PeakBlk mine = {-INFINITY, 0.0, -1, -1};
     for (int b = 0; b < nb; b++) {
       if (pb[b].best > mine.best) {

@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "err.h"
+#include "parfor.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -216,7 +217,7 @@ static int first_item_at_least(int n, const int *tri, int x)
 void contact_search_bounds(int n, const int *tri, const int *tri_v, const double *x, const double *y,
                            double *cx, double *cy, double *r)
 {
-#pragma omp parallel for schedule(static) if (n >= YF_SEARCH_PAR_MIN)
+#pragma omp parallel for schedule(static) if (YF_WANT_TEAM(n >= YF_SEARCH_PAR_MIN))
   for (int k = 0; k < n; k++) {
     const int *v = tri_v + 3 * (size_t)(tri ? tri[k] : k);
     double x0 = x[v[0]], x1 = x[v[1]], x2 = x[v[2]];
@@ -274,7 +275,7 @@ void contact_search(YfSearchWork *w, int n, const int *tri, const double *cx, co
   /* Stable counting sort of items by cell. */
   int *start = w->start, *cell = w->cell;
   memset(start, 0, (size_t)(ncells + 1) * sizeof *start);
-#pragma omp parallel for schedule(static) if (n >= YF_SEARCH_PAR_MIN)
+#pragma omp parallel for schedule(static) if (YF_WANT_TEAM(n >= YF_SEARCH_PAR_MIN))
   for (int k = 0; k < n; k++) {
     int ix = (int)((cx[k] - xmin) / h), iy = (int)((cy[k] - ymin) / h);
     if (ix >= nx) ix = nx - 1;
@@ -305,7 +306,7 @@ void contact_search(YfSearchWork *w, int n, const int *tri, const double *cx, co
     khi = first_item_at_least(n, tri, f->lower_hi);
   }
 
-#pragma omp parallel reduction(+ : tested) if (n >= w->par_min)
+#pragma omp parallel reduction(+ : tested) if (YF_WANT_TEAM(n >= w->par_min))
   {
     int t = 0, nt = 1;
 #ifdef _OPENMP
@@ -351,7 +352,7 @@ void contact_search(YfSearchWork *w, int n, const int *tri, const double *cx, co
     total += w->buf[t].n;
   }
   contact_pairs_reserve(out, total);
-#pragma omp parallel for schedule(static, 1) num_threads(nthr_used) if (nthr_used > 1)
+#pragma omp parallel for schedule(static, 1) num_threads(nthr_used) if (YF_WANT_TEAM(nthr_used > 1))
   for (int t = 0; t < nthr_used; t++)
     if (w->buf[t].n) /* an empty list may have no array (memcpy of NULL: undefined, UBSan) */
       memcpy(out->ij + 2 * (size_t)off[t], w->buf[t].ij, (size_t)w->buf[t].n * 2 * sizeof *out->ij);
@@ -420,7 +421,7 @@ void contact_search_merge(const YfPairs *old, YfPairs *fresh)
     return;
   }
   int *cnt = yf_malloc((size_t)(nch + 1) * sizeof *cnt, "contact merge"); /* once per search */
-#pragma omp parallel for schedule(static) if (nch > 1)
+#pragma omp parallel for schedule(static) if (YF_WANT_TEAM(nch > 1))
   for (int c = 0; c < nch; c++) {
     int k1 = (c + 1) * MERGE_CHUNK < n ? (c + 1) * MERGE_CHUNK : n;
     cnt[c] = merge_mark(old, fresh, c * MERGE_CHUNK, k1);
@@ -431,7 +432,7 @@ void contact_search_merge(const YfPairs *old, YfPairs *fresh)
     cnt[c] = total;
     total += u;
   }
-#pragma omp parallel for schedule(static) if (nch > 1)
+#pragma omp parallel for schedule(static) if (YF_WANT_TEAM(nch > 1))
   for (int c = 0; c < nch; c++) {
     int k1 = (c + 1) * MERGE_CHUNK < n ? (c + 1) * MERGE_CHUNK : n;
     merge_copy(old, fresh, c * MERGE_CHUNK, k1, cnt[c]);
@@ -461,11 +462,10 @@ int contact_trigger_step(YfSearchTrigger *t, double dt, double vmax2)
 double contact_vmax2(int n, const int *nodes, const double *vx, const double *vy)
 {
   double vm = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : vm) if (n >= YF_SEARCH_PAR_MIN)
-  for (int k = 0; k < n; k++) {
+  YF_PARFOR_IF(n >= YF_SEARCH_PAR_MIN, schedule(static) reduction(max : vm), for (int k = 0; k < n; k++) {
     int i = nodes ? nodes[k] : k;
     double v2 = vx[i] * vx[i] + vy[i] * vy[i];
     if (v2 > vm) vm = v2;
-  }
+  });
   return vm;
 }

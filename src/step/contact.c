@@ -55,6 +55,7 @@
 #include "err.h"
 #include "joint.h"
 #include "par.h"
+#include "parfor.h"
 #include "stage_time.h"
 
 #define MAX_RULES YF_CONTACT_MAX_RULES
@@ -129,6 +130,7 @@ typedef struct YfContact {
   double *gdense;        /* restart: the friction memory, YF_PAIR_NG per couple (copy) */
   int cap_nodes;
   int fcn_valid;
+  int tmarked;           /* 0: no tmark is set (the one-thread path then skips its passes over every node) */
 
   YfSearchWork work;
   YfSearchTrigger trig;
@@ -656,10 +658,10 @@ void contact_prepare(YfSim *s) {
   C->ntl = -1;
   memset(C->fcn, 0, (size_t)2 * nn * sizeof(double));
   C->fcn_valid = 0;
-  /* one process: a record for every triangle, made here (no allocation in the step); MPI: sized
-   * at the first step, when it is known whether a rank keeps the records of its couples'
-   * triangles only (contact_step) */
-  if (par_size() == 1) tg_room(C, nt);
+  /* the triangle records (128 B per triangle) are sized at the first step that has a couple
+   * (contact_step: a step that searched, which allocates anyway): a rule between bodies that never
+   * come near holds none (two 400-triangle bodies: heap peak 357 -> 255 KB); MPI: also when it is
+   * known whether a rank keeps the records of its couples' triangles only */
 
   /* the first step after a (re)setup searches; couples of the old list that still pass keep
    * their friction memory through the merge (triangle indices do not change) */
@@ -1300,7 +1302,7 @@ static int kernel_ranks(YfSim *s, YfContact *C, KernelPass *P, int nbusy, int *n
   ds_room(&DS.ed, &DS.ced, (size_t)(NSUM * ned + NSUM * nq + 2) * sizeof(double));
   double *ed = DS.ed;
   const double tk = yf_cpu_now();
-  #pragma omp parallel for schedule(dynamic, 1) if (nh >= C->par_min / 32 && nq > 1)
+  #pragma omp parallel for schedule(dynamic, 1) if (YF_WANT_TEAM(nh >= C->par_min / 32 && nq > 1))
   for (int q = 0; q < nq; q++) {
     int xa, xb, rm = 0, whole = piece(b0 + q, k0, k1, np, &xa, &xb);
     kernel_run(P, xa - k0, xb - k0, hoff[q], 0, &qsum[NSUM * q], &rm, whole ? NULL : ed + NSUM * eoff[q]);
@@ -1532,21 +1534,22 @@ void contact_step(YfSim *s) {
     nitem = DS.nrtri;
     tmap = DS.tloc; /* the records of these triangles only, in this order */
   }
-  tg_room(C, tmap ? nitem : m->tri.n);
+  if (C->pairs.n > 0) tg_room(C, tmap ? nitem : m->tri.n); /* rarely grows: see contact_prepare */
   double t1 = yf_now();
   yf_stage_time[YF_ST_DETECT] += t1 - t0;
 
   /* the screen's triangle records of this step (participating triangles only; MPI, divided
-   * update: those of this rank's couples) */
+   * update: those of this rank's couples).  Only the screen and the kernel of this step read
+   * them: with no couple (bodies that are not near each other, a 'contact pair' that never
+   * meets) none are made (2000 steps of two 1e4-triangle bodies 4 m apart: 6 % of the step). */
   const int *tv = m->tri.v, *tmat = m->tri.mat;
   const double *x = nd->x, *y = nd->y, *vx = nd->vx, *vy = nd->vy;
   double *tg = C->tg;
-  #pragma omp parallel for schedule(static) if (nitem >= C->par_min)
-  for (int q = 0; q < nitem; q++) {
+  YF_PARFOR_IF(nitem >= C->par_min, schedule(static), for (int q = 0; q < (C->pairs.n > 0 ? nitem : 0); q++) {
     const int t = item[q], *v = tv + 3 * t;
     double xs[3] = {x[v[0]], x[v[1]], x[v[2]]}, ys[3] = {y[v[0]], y[v[1]], y[v[2]]};
     contact_pair_geom(xs, ys, tg + (size_t)YF_TRI_GEOM * (tmap ? q : t));
-  }
+  });
 
   /* pass 1, the screen: couples whose edges all miss give no force (only their distance decides
    * whether they stay); the others are marked 2 and counted per fixed block */
@@ -1565,8 +1568,7 @@ void contact_step(YfSim *s) {
   /* MPI: this rank screens its own couples only (kernel_ranks), marking its drops 3 */
   const unsigned char dropped = dist ? 3 : 0;
   const double cs0 = dist ? yf_cpu_now() : 0.0;
-  #pragma omp parallel for schedule(static) if (np >= C->par_min && nblk > 1)
-  for (int b = 0; b < nblk; b++) {
+  YF_PARFOR_IF(np >= C->par_min && nblk > 1, schedule(static), for (int b = 0; b < nblk; b++) {
     int k1 = (b + 1) * PAIR_BLK < s1 ? (b + 1) * PAIR_BLK : s1, rm = 0, busy = 0, need = 0;
     for (int k = (b * PAIR_BLK > s0 ? b * PAIR_BLK : s0) - s0; k < k1 - s0; k++) {
       if (!alive[k]) continue;
@@ -1581,7 +1583,7 @@ void contact_step(YfSim *s) {
     C->blk_rm[b] = rm;
     C->blk_busy[b] = busy;
     C->blk_need[b] = need;
-  }
+  });
   if (dist) par_note_work(yf_cpu_now() - cs0); /* the screen of this rank's couples */
   int nbusy = 0, ng = C->pairs.ng;
   for (int b = 0; b < nblk; b++) {
@@ -1604,7 +1606,7 @@ void contact_step(YfSim *s) {
 #ifdef _OPENMP
   nthr = omp_get_max_threads();
 #endif
-  const int serial = !(nbusy >= C->par_min / 32 && nblk > 1) || nthr == 1;
+  const int serial = !YF_WANT_TEAM(nbusy >= C->par_min / 32 && nblk > 1) || nthr == 1;
   KernelPass P = {ij, tv, tmat, gi, alive, vx, vy, tg, tmap, C->pairs.g, C->mpn, C->mpt, C->mmu, C->mlaw, dt, rem2, ntot,
                   NULL, NULL, NULL, NULL};
   double *fx = nd->fx, *fy = nd->fy, *fcn = C->fcn;
@@ -1612,16 +1614,23 @@ void contact_step(YfSim *s) {
   const int nn = nd->n;
   if (dist) ng = C->pairs.ng; /* kernel_ranks numbers this rank's first contacts itself */
   const int kdrop = dist ? kernel_ranks(s, C, &P, nbusy, &ng) : -1; /* MPI: each rank its couples (above) */
+  if (kdrop >= 0) C->tmarked = 1;
   if (!dist) C->ntl = -1; /* the paths below mark nodes without listing them */
   if (kdrop < 0 && serial) {
-    for (int i = 0; i < nn; i++)
-      if (tmark[i]) { fcn[2 * i] = fcn[2 * i + 1] = 0.0; tmark[i] = 0; }
+    /* the passes over every node find nothing when no node was marked and no couple touches */
+    const int marks = C->tmarked || nbusy > 0;
+    if (marks)
+      for (int i = 0; i < nn; i++)
+        if (tmark[i]) { fcn[2 * i] = fcn[2 * i + 1] = 0.0; tmark[i] = 0; }
     P.fcn = fcn;
     P.tmark = tmark;
     for (int b = 0; b < nblk; b++) kernel_block(C, &P, b);
-    for (int i = 0; i < nn; i++)
-      if (tmark[i]) { fx[i] += fcn[2 * i]; fy[i] += fcn[2 * i + 1]; }
+    if (marks)
+      for (int i = 0; i < nn; i++)
+        if (tmark[i]) { fx[i] += fcn[2 * i]; fy[i] += fcn[2 * i + 1]; }
+    C->tmarked = nbusy > 0;
   } else if (kdrop < 0) {
+    C->tmarked = 1;
     hit_room(C, nbusy); /* rarely grows: see hit_room */
     P.hf = C->hf;
     P.hk = C->hk;
@@ -1709,6 +1718,7 @@ void contact_rehome(YfSim *s, const int *nold) {
   if (C->fcn_valid) par_move_ranges(C->fcn, nold, nlo, 2 * (int)sizeof(double));
   for (int i = nlo[me]; i < nlo[me + 1]; i++) C->tmark[i] = C->fcn[2 * i] != 0.0 || C->fcn[2 * i + 1] != 0.0;
   C->ntl = -1;
+  C->tmarked = 1;
   rehome_couples(C);
 }
 
@@ -1876,6 +1886,7 @@ int contact_state_load(YfSim *s, const YfContactState *st) {
     memcpy(C->fcn, st->fcn, (size_t)2 * st->nn * sizeof(double));
     for (int i = 0; i < st->nn; i++) C->tmark[i] = C->fcn[2 * i] != 0.0 || C->fcn[2 * i + 1] != 0.0;
     C->ntl = -1;
+    C->tmarked = 1;
   }
   C->fcn_valid = st->fcn_valid;
   C->espring = st->has_spring ? st->spring : spring_energy(s, C);

@@ -28,6 +28,7 @@
 #include <gsl/gsl_sf_gamma.h>
 #include "joint.h"
 #include "par.h"
+#include "parfor.h"
 #include "contact.h"
 #include "edgesort.h"
 #include "elem_tri.h"
@@ -847,13 +848,12 @@ void joints_forces(YfSim *s) {
   /* dynamic: a block of intact joints costs a fraction of one past its peak (scalar law, softening
    * curve), and the damaged ones cluster where the scene breaks; results are per joint and per
    * block, so the schedule cannot change a bit */
-  const double t0 = yf_cpu_now();
-  #pragma omp parallel for schedule(dynamic, 8) if (nj >= par_min)
-  for (int b = b0; b < b1; b++) {
+  const double t0 = dist ? par_work_clock() : 0.0;
+  YF_PARFOR_IF(nj >= par_min, schedule(dynamic, 8), for (int b = b0; b < b1; b++) {
     int jb1 = (b + 1) * JBLOCK < nj ? (b + 1) * JBLOCK : nj;
     joints_block(J, N, b * JBLOCK, jb1, dtp, &J->blk_nbreak[b], &J->blk_nopen[b]);
-  }
-  if (dist) par_note_work(yf_cpu_now() - t0);
+  });
+  if (dist) par_note_work(par_work_clock() - t0);
   if (dist) share_events(J, N, b0, b1);
   J->npend = 0;
   J_dirty = 1;
@@ -978,8 +978,7 @@ double joints_energy(YfSim *s, int dist) {
    * work and damage it alone holds current, then every block's pair from its owner */
   int b0 = 0, b1 = nb;
   const int mine = dist && mine_blocks(J, &b0, &b1);
-  #pragma omp parallel for schedule(dynamic, 8) if (J->n >= par_min)
-  for (int b = b0; b < b1; b++) block_energy(J, N, b, JE + 2 * b);
+  YF_PARFOR_IF(J->n >= par_min, schedule(dynamic, 8), for (int b = b0; b < b1; b++) block_energy(J, N, b, JE + 2 * b););
   for (int q = 0; q < np; q++) {
     const int j = J->pend[q];
     JP[q] = !mine || (j / JBLOCK >= b0 && j / JBLOCK < b1) ? J->w[j] + work_inc(N, J->node + 4 * j, J->f + 8 * j, J->f + 8 * j, J->dt_prev) : 0.0;

@@ -23,6 +23,7 @@
 #include "partition.h"
 #include "energy.h"
 #include "par.h"
+#include "parfor.h"
 #include "threads.h"
 
 static int BLOCK = 2048; /* triangles per block of the force loop: fixed, so sums do not depend on threads */
@@ -135,8 +136,7 @@ double run_stable_dt(YfSim *s, char *limiter, size_t n) {
    * setup), then the smallest limit, first of equals, in order: the serial loop's answer */
   const int nt = m->tri.n, nn = m->node.n;
   double *w = yf_malloc((size_t)(nt > 0 ? nt : 1) * sizeof *w, "stable time step");
-  #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
-  for (int e = 0; e < nt; e++) w[e] = tri_omega_max(m, R.tm, e);
+  YF_PARFOR_IF(nt >= PAR_MIN, schedule(static), for (int e = 0; e < nt; e++) w[e] = tri_omega_max(m, R.tm, e););
   for (int e = 0; e < nt; e++) {
     double d = tri_dt_of_omega(w[e], R.tm + m->tri.mat[e]);
     if (d < best) { best = d; which = e; }
@@ -303,8 +303,9 @@ static void energies(YfSim *s, int dist) {
     double *bt = blocks(&E.st, &E.cst, nbt);
     int tb0 = 0, tb1 = nbt;
     double *tp = dist ? par_tri_split(nbt, BLOCK, &tb0, &tb1) : NULL;
-    #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
-    for (int b = tb0; b < tb1; b++) bt[b] = tri_strain_potential(m, R.tm, b * BLOCK, (b + 1) * BLOCK < nt ? (b + 1) * BLOCK : nt);
+    YF_PARFOR_IF(nt >= PAR_MIN, schedule(static),
+                 for (int b = tb0; b < tb1; b++)
+                   bt[b] = tri_strain_potential(m, R.tm, b * BLOCK, (b + 1) * BLOCK < nt ? (b + 1) * BLOCK : nt););
     if (tp) {
       const int *tlo = par_tri_lo(), e0 = tlo[par_rank()], e1 = tlo[par_rank() + 1];
       const int h1 = tb1 > tb0 ? tb0 * BLOCK : e1, t0 = tb1 > tb0 && tb1 * BLOCK < nt ? tb1 * BLOCK : e1;
@@ -323,8 +324,9 @@ static double node_blocks(const YfNodes *n, const double *g, double *bk, int nbn
   const int nn = n->n;
   int kb0 = 0, kb1 = nbn;
   double *piece = dist ? par_node_split(nbn, E_NBLK, &kb0, &kb1) : NULL;
-  #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
-  for (int b = kb0; b < kb1; b++) bk[b] = node_sum(n, g, b * E_NBLK, (b + 1) * E_NBLK < nn ? (b + 1) * E_NBLK : nn);
+  YF_PARFOR_IF(nn >= PAR_MIN, schedule(static),
+               for (int b = kb0; b < kb1; b++)
+                 bk[b] = node_sum(n, g, b * E_NBLK, (b + 1) * E_NBLK < nn ? (b + 1) * E_NBLK : nn););
   if (piece) {
     int n0 = 0, n1 = nn;
     par_update_nodes(&n0, &n1, NULL, NULL);
@@ -465,19 +467,18 @@ static void progress(YfSim *s, long done, long total, double t0) {
 static void stage_elements(YfSim *s) {
   YfModel *m = &s->model;
   const int nblk = R.nblk, nt = m->tri.n;
-  const double c0 = yf_cpu_now();
+  const double c0 = par_work_clock();
   int b0 = 0, b1 = nblk;
   par_blocks(&b0, &b1); /* MPI: the blocks inside this rank's triangles; then every rank gets all results */
-  #pragma omp parallel for schedule(static) if (nt >= PAR_MIN)
-  for (int b = b0; b < b1; b++) {
+  YF_PARFOR_IF(nt >= PAR_MIN, schedule(static), for (int b = b0; b < b1; b++) {
     YfTriPass p;
     int e1 = (b + 1) * BLOCK < nt ? (b + 1) * BLOCK : nt;
     tri_forces(m, R.tm, b * BLOCK, e1, &p);
     R.blk[b] = p.visc_power;
     R.blk_bad[b] = p.bad;
     R.blk_badJ[b] = p.badJ;
-  }
-  par_share_elements(m, R.tm, R.blk, R.blk_bad, R.blk_badJ, yf_cpu_now() - c0);
+  });
+  par_share_elements(m, R.tm, R.blk, R.blk_bad, R.blk_badJ, par_work_clock() - c0);
   double power = 0;
   for (int b = 0; b < nblk; b++) {
     if (R.blk_bad[b] >= 0) {
@@ -542,8 +543,7 @@ static void stage_gather(YfSim *s) {
   par_nodes(&n0, &n1); /* MPI: the nodes this rank owns (their forces go to every rank after contact) */
   YF_ASSERT(m->gather_n0 == n0 && m->gather_n1 == n1);
   const int *off = m->gather_off; /* node i's list: off[i - n0] .. off[i - n0 + 1] - 1 */
-  #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
-  for (int i = n0; i < n1; i++) {
+  YF_PARFOR_IF(nn >= PAR_MIN, schedule(static), for (int i = n0; i < n1; i++) {
     double fx = 0, fy = 0;
     for (int k = off[i - n0]; k < off[i - n0 + 1]; k++) {
       int q = slot[k];
@@ -553,7 +553,7 @@ static void stage_gather(YfSim *s) {
     }
     n->fx[i] = fx;
     n->fy[i] = fy;
-  }
+  });
   for (int k = 0; k < s->nbc_kind; k++)
     if (s->bc_kind[k]->loads) s->bc_kind[k]->loads(s);
 }
@@ -587,28 +587,26 @@ static void stage_update(YfSim *s) {
   } else if (alpha > 0) {
     /* central-difference mass damping: v+ = ((1 - a dt/2) v- + dt f/m) / (1 + a dt/2) */
     const double c1 = 1.0 - 0.5 * alpha * dt, c2 = 1.0 / (1.0 + 0.5 * alpha * dt);
-    #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
-    for (int i = 0; i < nn; i++) {
+    YF_PARFOR_IF(nn >= PAR_MIN, schedule(static), for (int i = 0; i < nn; i++) {
       vxo[i] = vx[i];
       vyo[i] = vy[i];
       if (!(ms[i] > 1e-300)) continue;
       vx[i] = (c1 * vx[i] + dt * (fx[i] / ms[i] + gx)) * c2;
       vy[i] = (c1 * vy[i] + dt * (fy[i] / ms[i] + gy)) * c2;
-    }
+    });
   } else {
     /* MPI: this rank's nodes, then the shared nodes other ranks own (all nodes on one rank) */
     int u0 = 0, u1 = nn, nex = 0;
     const int *ex = NULL;
     par_update_nodes(&u0, &u1, &ex, &nex);
-    #pragma omp parallel for schedule(static) if (u1 - u0 >= PAR_MIN)
-    for (int i = u0; i < u1; i++) {
+    YF_PARFOR_IF(u1 - u0 >= PAR_MIN, schedule(static), for (int i = u0; i < u1; i++) {
       if (ms[i] > 1e-300) {
         vx[i] += dt * (fx[i] / ms[i] + gx);
         vy[i] += dt * (fy[i] / ms[i] + gy);
       }
       x[i] += dt * vx[i];
       y[i] += dt * vy[i];
-    }
+    });
     for (int k = 0; k < nex; k++) {
       const int i = ex[k];
       if (ms[i] > 1e-300) {
@@ -622,13 +620,12 @@ static void stage_update(YfSim *s) {
   for (int k = 0; k < s->nbc_kind; k++)
     if (s->bc_kind[k]->constrain_velocities) s->bc_kind[k]->constrain_velocities(s, vxo, vyo);
   if (alpha > 0) {
-    #pragma omp parallel for schedule(static) if (nn >= PAR_MIN)
-    for (int i = 0; i < nn; i++) {
+    YF_PARFOR_IF(nn >= PAR_MIN, schedule(static), for (int i = 0; i < nn; i++) {
       xo[i] = x[i];
       yo[i] = y[i];
       x[i] += dt * vx[i];
       y[i] += dt * vy[i];
-    }
+    });
   } else if (nbc) {
     for (int k = 0; k < s->nbc_kind; k++)
       if (s->bc_kind[k]->redo_positions) s->bc_kind[k]->redo_positions(s, xo, yo);

@@ -28,6 +28,7 @@
 #include "y2d_model.h"
 
 #include "par.h"
+#include "parfor.h"
 #include "yfvec.h"
 #include "y2d_read.h"
 #include "contact.h"
@@ -329,11 +330,10 @@ void y2d_update_velocities(YfSim *s, int par, double *vxo, double *vyo, int move
   int kb0 = 0, kb1 = nb, n0 = 0, n1 = nn;
   double *piece = par_node_split(nb, Y2D_UBLOCK, &kb0, &kb1);
   /* work summed per fixed block of nodes, blocks added in order: the same bits on any threads */
-  #pragma omp parallel for schedule(static) if (par)
-  for (int k = kb0; k < kb1; k++) {
+  YF_PARFOR_IF(par, schedule(static), for (int k = kb0; k < kb1; k++) {
     int i1 = (k + 1) * Y2D_UBLOCK < nn ? (k + 1) * Y2D_UBLOCK : nn;
     r->ublk[k] = update_range(r, n, s, k * Y2D_UBLOCK, i1, vxo, vyo, move);
-  }
+  });
   if (piece) {
     par_update_nodes(&n0, &n1, NULL, NULL);
     const int h1 = kb1 > kb0 ? kb0 * Y2D_UBLOCK : n1, t0 = kb1 > kb0 && kb1 * Y2D_UBLOCK < nn ? kb1 * Y2D_UBLOCK : n1;
