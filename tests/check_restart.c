@@ -645,19 +645,61 @@ START_TEST(test_restart_scene_grown_after_partition) {
 }
 END_TEST
 
-/* Set /meta/version of restart PATH to V (a file as an older yfdem wrote it). */
-static void set_version(const char *path, long v) {
+/* Element k of dataset NAME of restart PATH set to *v (of memory type t), its checksum dropped: an
+ * edited value with its old checksum reads as a damaged file, and an older file has none. */
+static void set_value(const char *path, const char *name, hsize_t k, hid_t t, const void *v) {
   hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
   ck_assert(f >= 0);
-  hid_t d = H5Dopen2(f, "/meta/version", H5P_DEFAULT);
+  hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
   ck_assert(d >= 0);
-  ck_assert(H5Dwrite(d, H5T_NATIVE_LONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &v) >= 0);
-  /* the version's checksum (format 3) goes, as in a file of the version set: an older file has
-   * none, and an edited value with its old checksum reads as a damaged file */
+  hid_t fs = H5Dget_space(d), ms = H5Screate(H5S_SCALAR);
+  hsize_t one = 1;
+  ck_assert(H5Sselect_hyperslab(fs, H5S_SELECT_SET, &k, NULL, &one, NULL) >= 0);
+  ck_assert(H5Dwrite(d, t, ms, fs, H5P_DEFAULT, v) >= 0);
   if (H5Aexists(d, "fnv1a") > 0) ck_assert(H5Adelete(d, "fnv1a") >= 0);
+  H5Sclose(ms);
+  H5Sclose(fs);
   H5Dclose(d);
   H5Fclose(f);
 }
+
+/* Set /meta/version of restart PATH to V (a file as an older yfdem wrote it). */
+static void set_version(const char *path, long v) { set_value(path, "/meta/version", 0, H5T_NATIVE_LONG, &v); }
+
+/* A node's mass or state edited in a restart (its checksum dropped, as a file of another tool or
+ * an older format would have none): a zero mass was read and froze the node, the run ending ok
+ * (2026-11-29 restart fuzzer); a NaN velocity ran into a numerical failure that named no restart.
+ * The masses are the scene's (run_prepare made them from the deck before the file is read), so
+ * any other bits are refused, and the node state must be finite: I/O errors naming the dataset. */
+START_TEST(test_restart_node_state_checked) {
+  mk_tmpdir();
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  write_deck("w.deck", NULL, "run 10\nwrite_restart a.restart\nwrite_restart b.restart\nwrite_restart c.restart\n");
+  char h[17];
+  expect_ok("w.deck", 1, h);
+  char path[256];
+  const double zero = 0.0, nan_v = NAN, heavier = 1.5;
+  const struct { const char *file, *ds; const double *v; const char *want; } rows[] = {
+    {"a.restart", "/nodes/m", &zero, "nodes/m: the masses are not those of the scene"},
+    {"b.restart", "/nodes/m", &heavier, "nodes/m: the masses are not those of the scene"},
+    {"c.restart", "/nodes/vx", &nan_v, "not a finite number"},
+  };
+  for (size_t i = 0; i < sizeof rows / sizeof rows[0]; i++) {
+    snprintf(path, sizeof path, "%s/%s", tmpdir, rows[i].file);
+    set_value(path, rows[i].ds, 3, H5T_NATIVE_DOUBLE, rows[i].v);
+    char deck[64], text[128];
+    snprintf(deck, sizeof deck, "r%zu.deck", i);
+    snprintf(text, sizeof text, "read_restart %s\nrun 20 upto\n", rows[i].file);
+    write_deck(deck, NULL, text);
+    int code = run_deck(deck, 1, h);
+    char *e = err_of(deck);
+    ck_assert_msg(code == YF_EXIT_IO && strstr(e, rows[i].want), "%s (%s): exit %d: %s", rows[i].file, rows[i].ds,
+                  code, e);
+    free(e);
+  }
+  rm_tmpdir();
+}
+END_TEST
 
 /* Format version 1 kept the Coulomb friction law's memory as F_t, version 2 as F_t / sqrt(k_t)
  * (kernel/contact_pair.h): a version 1 file whose Coulomb couples hold memory is refused (I/O
@@ -1568,6 +1610,7 @@ Suite *restart_suite(void) {
   tc = tcase_create("restart_sweep");
   tcase_set_timeout(tc, 120);
   tcase_add_test(tc, test_restart_older_formats);
+  tcase_add_test(tc, test_restart_node_state_checked);
   tcase_add_test(tc, test_restart_damaged);
   suite_add_tcase(s, tc);
   return s;

@@ -781,7 +781,20 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   get(&r, g, "vy", H5T_NATIVE_DOUBLE, nn, N->vy);
   get(&r, g, "fx", H5T_NATIVE_DOUBLE, nn, N->fx);
   get(&r, g, "fy", H5T_NATIVE_DOUBLE, nn, N->fy);
+  /* the masses run_prepare made from this scene (the fingerprint above proved it the file's): the
+   * file's must be the same bits; a zero mass was taken and froze its node, a NaN one was too */
+  double *m_here = yf_malloc((size_t)(nn ? nn : 1) * sizeof(double), "restart buffer");
+  memcpy(m_here, N->m, (size_t)nn * sizeof(double));
   get(&r, g, "m", H5T_NATIVE_DOUBLE, nn, N->m);
+  int bad_m = memcmp(m_here, N->m, (size_t)nn * sizeof(double)) != 0;
+  free(m_here);
+  if (bad_m) rfail(&r, "nodes/m: the masses are not those of the scene the deck built");
+  {
+    const double *a[] = {N->x, N->y, N->vx, N->vy, N->fx, N->fy};
+    for (size_t q = 0; q < sizeof a / sizeof a[0]; q++)
+      for (size_t i = 0; i < nn; i++)
+        if (!isfinite(a[q][i])) rfail(&r, "nodes/x, y, vx, vy, fx or fy: not a finite number");
+  }
   H5Gclose(g);
   /* stresses (absent in restarts written before they were stored: the first frame then shows the
    * stresses the deck's own preparation left) */
