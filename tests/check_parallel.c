@@ -393,6 +393,31 @@ START_TEST(test_partition_errors) {
 }
 END_TEST
 
+/* The run line's "auto:" count of a scene too small for any loop to ask for the team: every step ran
+ * as plain loops on one thread, and the line said "auto: 150 steps on 2, 0 on 1" (2026-11-29 cost
+ * sweep); it now counts them on 1. */
+START_TEST(test_auto_count_small_scene) {
+  const char *was = getenv("OMP_NUM_THREADS");
+  char *keep = was ? strdup(was) : NULL;
+  setenv("OMP_NUM_THREADS", "2", 1);
+  char *err = NULL, *dir = NULL;
+  int code = yft_run_binary("sm.deck",
+                            "material m elastic rho 1000 E 1e7 nu 0.25 plane_strain\nmesh rect a m 0 0 0.1 0.05 4 2\n"
+                            "velocity a set 1 0\ntimestep auto\nrun 150\n",
+                            "-log run.log", &err, &dir);
+  if (keep) setenv("OMP_NUM_THREADS", keep, 1);
+  else unsetenv("OMP_NUM_THREADS");
+  free(keep);
+  char path[600];
+  snprintf(path, sizeof path, "%s/run.log", dir);
+  char *log = yft_slurp(path, 1);
+  ck_assert_msg(code == 0 && strstr(log, "auto: 0 steps on 2, 150 on 1)"), "exit %d: %s\n%s", code, err, log);
+  free(log);
+  free(err);
+  free(dir);
+}
+END_TEST
+
 Suite *parallel_suite(void) {
   Suite *s = suite_create("parallel");
   TCase *t = tcase_create("determinism");
@@ -403,6 +428,7 @@ Suite *parallel_suite(void) {
   tcase_add_test(t, test_threads_governor);
   tcase_add_test(t, test_threads_governor_cost);
   tcase_add_test(t, test_threads_option);
+  tcase_add_test(t, test_auto_count_small_scene);
   tcase_add_test(t, test_renumbering_same_physics);
   tcase_add_test(t, test_partition_layout);
   tcase_add_test(t, test_partition_errors);

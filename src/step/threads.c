@@ -234,7 +234,11 @@ void threads_step_begin(void) {
 int threads_after_step(double seconds) {
   if (G.cap <= 1) return omp_max();
   g_wanted_last = yf_team_wanted != g_want0;
-  if (!g_wanted_last || !g_clocked) {
+  if (!g_wanted_last) { /* every loop ran as a plain loop: the step was on one thread, whatever the team */
+    G.steps_at[0]++;
+    return G.cur;
+  }
+  if (!g_clocked) {
     G.steps_at[G.cur > 1]++; /* the run line's report counts it on the current count */
     return G.cur;
   }
