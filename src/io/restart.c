@@ -74,6 +74,8 @@ typedef struct YfRestart {
   char *last;      /* last restart file written (for messages)              */
   uint64_t read_key; /* sim_state_hash of the state read_restart restored (output.c: a scene
                         changed after it rewrites the frame of its step)            */
+  char *reading;   /* the file read_restart is reading: held here, not only on its stack, so that
+                      an error's exit hook (the fuzzers, the tests) leaves nothing unreachable */
 } YfRestart;
 
 static YfRestart *rget(YfSim *s) {
@@ -90,6 +92,7 @@ void restart_free(YfSim *s) {
   if (!r) return;
   free(r->base);
   free(r->last);
+  free(r->reading);
   free(r);
   s->restart = NULL;
 }
@@ -635,6 +638,8 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   char *path = restart_pick_file(path_in);
   if (!path)
     yf_io_error(loc, "read_restart: no restart '%s' (nor %s.a / %s.b): %s", path_in, path_in, path_in, strerror(ENOENT));
+  free(rget(s)->reading);
+  rget(s)->reading = path;
   yf_h5_quiet();
   R r = {H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT), path, loc};
   if (r.file < 0) rfail(&r, "not an HDF5 file, or unreadable");
@@ -1010,6 +1015,7 @@ void restart_read(YfSim *s, const char *path_in, const YfLoc *loc) {
   sim_printf(s, "read_restart: %s: step %ld, time %.6g s, dt %.6g s, %d nodes, %d triangles, %ld joints (%ld broken)%s\n",
              path, step, time, dt, m->node.n, m->tri.n, nj, s->joints ? (long)s->joints->nbroken : 0L,
              c_file ? ", contact couples restored" : "");
+  s->restart->reading = NULL;
   free(path);
 }
 
