@@ -377,6 +377,7 @@ static const char *next_tok(Rd *r) {
       if (n + 2 > r->tokcap) {
         r->tokcap = r->tokcap ? 2 * r->tokcap : 256;
         r->tok = yf_realloc(r->tok, r->tokcap, "y2d token");
+        r->y->tok_scratch = r->tok;
       }
       r->tok[n++] = (char)c;
     } while ((c = getc(s->fp)) != EOF && !isspace(c));
@@ -1674,6 +1675,7 @@ static int read_deck(const char *path, YfY2d *out, const YfLoc *from, int progra
   read_tokens(&r);
   while (r.depth > 0) fclose(r.src[--r.depth].fp);
   free(r.tok);
+  out->tok_scratch = NULL;
   if (program && !out->has_ydoit) {
     yf_warn(&out->end, "nothing is computed: the deck has no $YDOIT before %s, and Y2D reads it and stops "
             "without computing; put $YDOIT before $YSTOP to run it", out->ystop ? "its $YSTOP" : "its end");
@@ -1714,6 +1716,8 @@ void y2d_free_arrays(YfY2d *y) {
 void y2d_free(YfY2d *y) {
   if (!y) return;
   y2d_free_arrays(y);
+  free(y->tok_scratch);
+  y->tok_scratch = NULL;
   for (int i = 0; i < y->nfiles; i++) free(y->files[i]);
   free(y->files);
   y->files = NULL;

@@ -197,6 +197,8 @@ typedef struct {
   double *d1ohyx, *d1ohyy; /* D1OHYX/Y: sampling point [m] (0)                                */
   double *d1ohyc, *d1ohyf; /* D1OHYC/F: time and value scales (default 1: not documented)      */
   double *d1ohys, *d1ohyt; /* D1OHYS/T: state (0)                                             */
+  char *tok_scratch;       /* the reader's token buffer while it reads (freed by y2d_free too: a
+                              deck error's exit hook, in the fuzzers and tests, leaves the reader) */
 } YfY2d;
 
 /* Read a .y deck.  path is opened as given (relative to the working directory); from is the
